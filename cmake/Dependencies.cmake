@@ -1,0 +1,64 @@
+# Finds every dependency; a missing one stops configuration with the Debian
+# package that provides it (scripts/install-deps.sh installs them all).
+
+function(aal_missing what apt_package)
+  message(FATAL_ERROR
+    "aperture: ${what} not found. Install it with\n"
+    "    sudo apt-get install ${apt_package}\n"
+    "or run scripts/install-deps.sh to install every dependency.")
+endfunction()
+
+macro(aal_find_package name apt_package)
+  find_package(${name} ${ARGN} QUIET)
+  if(NOT ${name}_FOUND)
+    aal_missing(${name} ${apt_package})
+  endif()
+endmacro()
+
+aal_find_package(Vulkan libvulkan-dev)
+aal_find_package(glslang glslang-dev CONFIG)
+find_program(AAL_GLSLANG_VALIDATOR glslangValidator)
+if(NOT AAL_GLSLANG_VALIDATOR)
+  aal_missing(glslangValidator glslang-tools)
+endif()
+aal_find_package(glfw3 libglfw3-dev CONFIG)
+aal_find_package(glm libglm-dev CONFIG)
+aal_find_package(OpenImageIO libopenimageio-dev CONFIG)
+# Debian's OpenImageIO config lists /usr/include/opencv4 although OpenCV's
+# headers are optional; drop include folders that do not exist.
+get_target_property(_oiio_includes OpenImageIO::OpenImageIO INTERFACE_INCLUDE_DIRECTORIES)
+set(_oiio_existing)
+foreach(dir IN LISTS _oiio_includes)
+  if(EXISTS "${dir}")
+    list(APPEND _oiio_existing "${dir}")
+  endif()
+endforeach()
+set_target_properties(OpenImageIO::OpenImageIO PROPERTIES
+  INTERFACE_INCLUDE_DIRECTORIES "${_oiio_existing}")
+# Debian installs GeographicLib's find module outside CMake's default path.
+list(APPEND CMAKE_MODULE_PATH /usr/share/cmake/geographiclib)
+aal_find_package(GeographicLib libgeographiclib-dev)
+if(NOT TARGET GeographicLib::GeographicLib)
+  add_library(GeographicLib::GeographicLib INTERFACE IMPORTED)
+  set_target_properties(GeographicLib::GeographicLib PROPERTIES
+    INTERFACE_INCLUDE_DIRECTORIES "${GeographicLib_INCLUDE_DIRS}"
+    INTERFACE_LINK_LIBRARIES "${GeographicLib_LIBRARIES}")
+endif()
+aal_find_package(TIFF libtiff-dev)
+aal_find_package(GeoTIFF libgeotiff-dev)
+aal_find_package(TBB libtbb-dev CONFIG)
+aal_find_package(CLI11 libcli11-dev CONFIG)
+find_package(PkgConfig QUIET)
+if(NOT PKG_CONFIG_FOUND)
+  aal_missing(pkg-config pkg-config)
+endif()
+pkg_check_modules(IMGUI QUIET IMPORTED_TARGET imgui)
+if(NOT IMGUI_FOUND)
+  aal_missing("Dear ImGui (pkg-config imgui)" "libimgui-dev libstb-dev")
+endif()
+if(AAL_BUILD_TESTS)
+  aal_find_package(GTest "libgtest-dev libgmock-dev")
+endif()
+if(AAL_BUILD_BENCH)
+  aal_find_package(benchmark libbenchmark-dev CONFIG)
+endif()

@@ -1,0 +1,41 @@
+// Compute pipelines whose descriptor set 0 is a list of storage buffers bound
+// with push descriptors, plus an optional push-constant block.
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include <vulkan/vulkan.h>
+
+namespace aal {
+
+class Buffer;
+class Device;
+
+class ComputePipeline {
+ public:
+  // `shaderName` as for loadSpirv; bindings 0..storageBufferCount-1 of set 0
+  // are storage buffers; pushConstantBytes may be 0.
+  ComputePipeline(const Device& device, const std::string& shaderName, uint32_t storageBufferCount,
+                  uint32_t pushConstantBytes);
+  ~ComputePipeline();
+  ComputePipeline(const ComputePipeline&) = delete;
+  ComputePipeline& operator=(const ComputePipeline&) = delete;
+
+  // Binds the pipeline and buffers, pushes constants and dispatches.
+  void record(VkCommandBuffer cmd, const std::vector<const Buffer*>& buffers,
+              const void* pushConstants, uint32_t groupsX, uint32_t groupsY = 1,
+              uint32_t groupsZ = 1) const;
+
+ private:
+  VkDevice device_ = VK_NULL_HANDLE;
+  uint32_t storageBufferCount_ = 0;
+  uint32_t pushConstantBytes_ = 0;
+  VkDescriptorSetLayout setLayout_ = VK_NULL_HANDLE;
+  VkPipelineLayout layout_ = VK_NULL_HANDLE;
+  VkPipeline pipeline_ = VK_NULL_HANDLE;
+  PFN_vkCmdPushDescriptorSetKHR pushDescriptorSet_ = nullptr;
+};
+
+}  // namespace aal

@@ -1,0 +1,125 @@
+#include "instance.h"
+
+#include <cstdlib>
+#include <cstring>
+#include <iostream>
+
+#include "vk_check.h"
+
+namespace aal {
+
+namespace {
+
+constexpr const char* kValidationLayer = "VK_LAYER_KHRONOS_validation";
+
+bool layerAvailable(const char* name) {
+  uint32_t count = 0;
+  vkEnumerateInstanceLayerProperties(&count, nullptr);
+  std::vector<VkLayerProperties> layers(count);
+  vkEnumerateInstanceLayerProperties(&count, layers.data());
+  for (const VkLayerProperties& layer : layers) {
+    if (std::strcmp(layer.layerName, name) == 0) return true;
+  }
+  return false;
+}
+
+VKAPI_ATTR VkBool32 VKAPI_CALL onDebugMessage(VkDebugUtilsMessageSeverityFlagBitsEXT severity,
+                                              VkDebugUtilsMessageTypeFlagsEXT,
+                                              const VkDebugUtilsMessengerCallbackDataEXT* data,
+                                              void* userData) {
+  const char* level =
+      (severity & VK_DEBUG_UTILS_MESSAGE_SEVERITY_ERROR_BIT_EXT) ? "error" : "warning";
+  std::string message = std::string("vulkan validation ") + level + ": " + data->pMessage;
+  std::cerr << message << "\n";
+  static_cast<ValidationLog*>(userData)->add(std::move(message));
+  return VK_FALSE;  // never abort the call; the test decides
+}
+
+VkDebugUtilsMessengerCreateInfoEXT messengerInfo(ValidationLog* log) {
+  VkDebugUtilsMessengerCreateInfoEXT info{VK_STRUCTURE_TYPE_DEBUG_UTILS_MESSENGER_CREATE_INFO_EXT};
+  info.messageSeverity = VK_DEBUG_UTILS_MESSAGE_SEVERITY_WARNING_BIT_EXT |
+                         VK_DEBUG_UTILS_MESSAGE_SEVERITY_ERROR_BIT_EXT;
+  info.messageType = VK_DEBUG_UTILS_MESSAGE_TYPE_GENERAL_BIT_EXT |
+                     VK_DEBUG_UTILS_MESSAGE_TYPE_VALIDATION_BIT_EXT |
+                     VK_DEBUG_UTILS_MESSAGE_TYPE_PERFORMANCE_BIT_EXT;
+  info.pfnUserCallback = onDebugMessage;
+  info.pUserData = log;
+  return info;
+}
+
+}  // namespace
+
+void ValidationLog::add(std::string message) {
+  std::lock_guard lock(mutex_);
+  messages_.push_back(std::move(message));
+}
+
+std::vector<std::string> ValidationLog::messages() const {
+  std::lock_guard lock(mutex_);
+  return messages_;
+}
+
+size_t ValidationLog::count() const {
+  std::lock_guard lock(mutex_);
+  return messages_.size();
+}
+
+bool validationRequestedByEnvironment() {
+  const char* value = std::getenv("AAL_VALIDATION");
+  return value && std::strcmp(value, "1") == 0;
+}
+
+Instance::Instance(const InstanceOptions& options) {
+  const bool validation = options.validation || validationRequestedByEnvironment();
+  if (validation && !layerAvailable(kValidationLayer)) {
+    throw VulkanError(std::string("validation requested but ") + kValidationLayer +
+                      " is not installed (sudo apt-get install vulkan-validationlayers)");
+  }
+
+  std::vector<const char*> extensions = options.extensions;
+  std::vector<const char*> layers;
+  if (validation) {
+    extensions.push_back(VK_EXT_DEBUG_UTILS_EXTENSION_NAME);
+    layers.push_back(kValidationLayer);
+  }
+
+  VkApplicationInfo app{VK_STRUCTURE_TYPE_APPLICATION_INFO};
+  app.pApplicationName = "aperture";
+  app.pEngineName = "aperture";
+  app.apiVersion = VK_API_VERSION_1_3;
+
+  // Chained so that instance creation and destruction are validated too.
+  VkDebugUtilsMessengerCreateInfoEXT debugInfo = messengerInfo(&log_);
+  VkInstanceCreateInfo info{VK_STRUCTURE_TYPE_INSTANCE_CREATE_INFO};
+  info.pNext = validation ? &debugInfo : nullptr;
+  info.pApplicationInfo = &app;
+  info.enabledLayerCount = static_cast<uint32_t>(layers.size());
+  info.ppEnabledLayerNames = layers.data();
+  info.enabledExtensionCount = static_cast<uint32_t>(extensions.size());
+  info.ppEnabledExtensionNames = extensions.data();
+
+  const VkResult result = vkCreateInstance(&info, nullptr, &instance_);
+  if (result == VK_ERROR_INCOMPATIBLE_DRIVER) {
+    throw VulkanError(
+        "no Vulkan 1.3 driver found; install one (sudo apt-get install mesa-vulkan-drivers "
+        "gives lavapipe, a CPU implementation)");
+  }
+  AAL_VK_CHECK(result);
+
+  if (validation) {
+    auto create = reinterpret_cast<PFN_vkCreateDebugUtilsMessengerEXT>(
+        vkGetInstanceProcAddr(instance_, "vkCreateDebugUtilsMessengerEXT"));
+    AAL_VK_CHECK(create(instance_, &debugInfo, nullptr, &messenger_));
+  }
+}
+
+Instance::~Instance() {
+  if (messenger_ != VK_NULL_HANDLE) {
+    auto destroy = reinterpret_cast<PFN_vkDestroyDebugUtilsMessengerEXT>(
+        vkGetInstanceProcAddr(instance_, "vkDestroyDebugUtilsMessengerEXT"));
+    destroy(instance_, messenger_, nullptr);
+  }
+  if (instance_ != VK_NULL_HANDLE) vkDestroyInstance(instance_, nullptr);
+}
+
+}  // namespace aal

@@ -1,0 +1,47 @@
+#!/usr/bin/env bash
+# Installs every Debian 12 package needed to build, test and run aperture.
+# Idempotent and non-interactive: packages already present are skipped, so a
+# configured machine runs this in well under a second.
+set -euo pipefail
+
+packages=(
+  # toolchain
+  build-essential cmake ninja-build pkg-config clang-format
+  # Vulkan: headers/loader, GLSL compiler, CPU driver (lavapipe), validation
+  libvulkan-dev glslang-tools glslang-dev spirv-tools
+  mesa-vulkan-drivers vulkan-validationlayers vulkan-tools
+  # windowing and UI
+  libglfw3-dev libimgui-dev libstb-dev xvfb xauth
+  # fonts for text in plots (OpenImageIO render_text)
+  fonts-dejavu-core
+  # math, images, geodesy, georeferencing
+  libglm-dev libopenimageio-dev openimageio-tools libgeographiclib-dev
+  libgeotiff-dev libtiff-dev
+  # parallelism, command line, tests, benchmarks
+  libtbb-dev libcli11-dev libgtest-dev libgmock-dev libbenchmark-dev
+)
+
+missing=()
+for p in "${packages[@]}"; do
+  if ! dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed"; then
+    missing+=("$p")
+  fi
+done
+
+if [ ${#missing[@]} -eq 0 ]; then
+  exit 0
+fi
+
+echo "install-deps: installing ${missing[*]}" >&2
+sudo=""
+if [ "$(id -u)" -ne 0 ]; then
+  if command -v sudo >/dev/null 2>&1; then
+    sudo="sudo"
+  else
+    echo "install-deps: need root (or sudo) to install: ${missing[*]}" >&2
+    exit 1
+  fi
+fi
+export DEBIAN_FRONTEND=noninteractive
+$sudo apt-get update -qq
+$sudo apt-get install -y -qq --no-install-recommends "${missing[@]}"

@@ -1,0 +1,21 @@
+#!/usr/bin/env bash
+# Sets up a fresh Debian 12 machine (packages via apt-get), builds aperture
+# and runs the whole test suite. Exits non-zero if any test fails.
+#   scripts/test.sh              Release build in build/
+#   AAL_SANITIZE=ON scripts/test.sh   ASan+UBSan build in build-sanitize/
+#   AAL_WERROR=ON scripts/test.sh     warnings are errors (CI)
+# Extra arguments go to ctest, e.g. scripts/test.sh -R Caps
+set -euo pipefail
+root=$(cd "$(dirname "$0")/.." && pwd)
+build_dir=${AAL_BUILD_DIR:-$root/build}
+[ "${AAL_SANITIZE:-OFF}" = ON ] && build_dir=${AAL_BUILD_DIR:-$root/build-sanitize}
+export AAL_BUILD_DIR=$build_dir
+
+"$root/scripts/build.sh"
+if [ "${AAL_SANITIZE:-OFF}" = ON ]; then
+  # Leaks inside the Vulkan loader and Mesa's drivers are not ours to fix.
+  export LSAN_OPTIONS="suppressions=$root/scripts/lsan.supp:print_suppressions=0"
+  export UBSAN_OPTIONS="print_stacktrace=1:halt_on_error=1"
+fi
+cd "$build_dir"
+ctest --output-on-failure -j"$(nproc)" "$@"

@@ -1,0 +1,37 @@
+// Outputs written to a temporary file in the destination folder and renamed
+// into place, so an interrupted or failed write never leaves a broken file and
+// an existing file is replaced atomically.
+#pragma once
+
+#include <filesystem>
+
+namespace aal {
+
+// Throws std::runtime_error when `path` cannot be created or replaced (missing
+// folder, no permission, is a folder). Call it before long work starts.
+void checkOutputWritable(const std::filesystem::path& path);
+
+class AtomicOutput {
+ public:
+  // Checks that `path` is writable (see checkOutputWritable) and picks a
+  // unique temporary name next to it, keeping the extension so writers that
+  // choose a format by extension still work.
+  explicit AtomicOutput(std::filesystem::path path);
+  // Removes the temporary file unless commit() succeeded.
+  ~AtomicOutput();
+  AtomicOutput(const AtomicOutput&) = delete;
+  AtomicOutput& operator=(const AtomicOutput&) = delete;
+
+  const std::filesystem::path& temporaryPath() const { return temporary_; }
+  const std::filesystem::path& finalPath() const { return final_; }
+
+  // Renames the temporary file onto the final path.
+  void commit();
+
+ private:
+  std::filesystem::path final_;
+  std::filesystem::path temporary_;
+  bool committed_ = false;
+};
+
+}  // namespace aal
