@@ -1,0 +1,61 @@
+// A DEM in memory: heights on a regular grid with metric spacing, a void mask
+// and optional georeferencing. DESIGN §1.
+//
+// Conventions: row 0 is the northern edge, column 0 the western edge, texel
+// centres sit on the grid points. Heights are metres (z scale applied) above
+// the DEM's own datum. Void (nodata) texels are filled for geometry and
+// flagged in voidMask, so `z` never holds NaN or infinity.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace aal {
+
+enum class CrsKind { None, Geographic, Projected };
+
+struct GeoReference {
+  CrsKind crs = CrsKind::None;
+  int epsg = 0;  // 0 when the file names none
+  // CRS coordinates of the centre of texel (0, 0) and the spacing between
+  // texel centres (degrees for geographic grids, CRS units for projected
+  // ones). x grows east with the column, y shrinks south with the row.
+  double originX = 0, originY = 0, stepX = 0, stepY = 0;
+  double linearUnitM = 1.0;  // metres per projected CRS unit (0.3048 for feet)
+  // Geographic centre of the DEM (WGS84 degrees), when it can be known.
+  bool hasCenter = false;
+  double centerLatDeg = 0, centerLonDeg = 0;
+};
+
+struct Heightfield {
+  int width = 0, height = 0;
+  std::vector<float> z;  // width * height, row-major, metres
+  // Empty when the DEM has no voids; else width * height flags, 1 = void.
+  std::vector<uint8_t> voidMask;
+  size_t voidCount = 0;
+
+  // Metric spacing between texel centres. For geographic grids the x
+  // spacing changes with latitude: rowCellSizeXM holds it per row, and
+  // cellSizeXM is the value at the centre row.
+  double cellSizeXM = 1.0, cellSizeYM = 1.0;
+  std::vector<double> rowCellSizeXM;
+  double zScale = 1.0;  // already applied to z; kept for the bake's metadata
+
+  GeoReference geo;
+  std::string source;  // path it was read from, or a description
+  std::string format;  // e.g. "GeoTIFF", "SRTM HGT", "synthetic"
+
+  size_t texelCount() const { return static_cast<size_t>(width) * static_cast<size_t>(height); }
+  size_t index(int x, int y) const {
+    return static_cast<size_t>(y) * static_cast<size_t>(width) + static_cast<size_t>(x);
+  }
+  float at(int x, int y) const { return z[index(x, y)]; }
+  bool isVoid(int x, int y) const { return !voidMask.empty() && voidMask[index(x, y)] != 0; }
+  double cellSizeXAtRow(int row) const {
+    return rowCellSizeXM.empty() ? cellSizeXM : rowCellSizeXM[static_cast<size_t>(row)];
+  }
+};
+
+}  // namespace aal
