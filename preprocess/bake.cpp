@@ -1,0 +1,134 @@
+#include "bake.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include <tbb/parallel_for.h>
+
+#include "bake_terrain.h"
+#include "horizon_sweep.h"
+#include "ray_bake.h"
+#include "sky_slice.h"
+
+namespace aal {
+
+namespace {
+
+constexpr double kTwoPi = 6.28318530717958647692;
+
+void checkOptions(const Heightfield& field, const BakeOptions& o) {
+  if (field.width < 1 || field.height < 1 || field.z.size() != field.texelCount()) {
+    throw std::invalid_argument("bake: empty or inconsistent heightfield");
+  }
+  if (o.azimuths < 4 || o.azimuths > 4096) {
+    throw std::invalid_argument("azimuths must be in [4, 4096]");
+  }
+  if (o.rays < 16 || o.rays > 1 << 20) throw std::invalid_argument("rays must be in [16, 2^20]");
+  if (!(o.maxDistanceM >= 0.0) || !std::isfinite(o.maxDistanceM)) {
+    throw std::invalid_argument("max distance must be >= 0");
+  }
+  if (!(o.refraction >= 0.0 && o.refraction < 1.0)) {
+    throw std::invalid_argument("refraction coefficient must be in [0, 1)");
+  }
+}
+
+void checkCancel(const BakeOptions& o) {
+  if (o.cancel && o.cancel->load(std::memory_order_relaxed)) throw BakeCancelled();
+}
+
+// Sums the sky slices of every azimuth into `sums`, and the SVF terms.
+void sweepAllAzimuths(const BakeTerrain& terrain, const BakeOptions& o, float* sums,
+                      std::vector<float>& svf) {
+  HorizonSweepOptions sweep;
+  sweep.clampEdge = o.clampEdge;
+  sweep.curvature = o.curvature ? (1.0 - o.refraction) / (2.0 * kEarthRadiusM) : 0.0;
+  sweep.maxDistanceM = o.maxDistanceM;
+  const double dPhi = kTwoPi / o.azimuths;
+  const bool wantSvf = !svf.empty();
+
+  for (int a = 0; a < o.azimuths; ++a) {
+    checkCancel(o);
+    const double phi = a * dPhi;
+    const double cosPhi = std::cos(phi), sinPhi = std::sin(phi);
+    const double cosPhiDPhi = cosPhi * dPhi, sinPhiDPhi = sinPhi * dPhi;
+    sweepHorizons(terrain, phi, sweep, [&](size_t texel, double tanHorizon) {
+      // Directions below the tangent plane are outside the hemisphere.
+      const double tanPlane =
+          terrain.slopeEast[texel] * cosPhi + terrain.slopeNorth[texel] * sinPhi;
+      addSkySlice(sums + 4 * texel, std::max(tanHorizon, tanPlane), dPhi, cosPhiDPhi, sinPhiDPhi);
+      if (wantSvf && tanHorizon > 0.0) {
+        svf[texel] += static_cast<float>(tanHorizon / std::sqrt(1.0 + tanHorizon * tanHorizon));
+      }
+    });
+    if (o.progress) o.progress(static_cast<double>(a + 1) / o.azimuths);
+  }
+  if (wantSvf) {
+    tbb::parallel_for(size_t(0), svf.size(),
+                      [&](size_t i) { svf[i] = 1.0f - svf[i] / o.azimuths; });
+  }
+}
+
+// Turns the sums into unit bent normals and arc lengths, in place.
+void finishApertures(const BakeTerrain& terrain, std::vector<float>& texels) {
+  tbb::parallel_for(size_t(0), texels.size() / 4, [&](size_t i) {
+    float* s = &texels[4 * i];
+    double bx = s[0], by = s[1], bz = s[2];
+    const double length = std::sqrt(bx * bx + by * by + bz * bz);
+    if (length > 0.0) {
+      bx /= length;
+      by /= length;
+      bz /= length;
+    } else {  // nothing visible: fall back to the surface normal
+      const double sx = terrain.slopeEast[i], sy = terrain.slopeNorth[i];
+      const double n = std::sqrt(1.0 + sx * sx + sy * sy);
+      bx = -sx / n;
+      by = -sy / n;
+      bz = 1.0 / n;
+    }
+    const double visible = std::clamp(s[3] / kTwoPi, 0.0, 1.0);
+    s[0] = static_cast<float>(bx);
+    s[1] = static_cast<float>(by);
+    s[2] = static_cast<float>(bz);
+    s[3] = static_cast<float>(std::acos(1.0 - visible));  // arc length of the cap
+  });
+}
+
+}  // namespace
+
+BakeResult bakeApertures(const Heightfield& field, const BakeOptions& o) {
+  checkOptions(field, o);
+  const BakeTerrain terrain = prepareBakeTerrain(field);
+
+  // The running sums live in the output's own storage: 16 bytes per texel.
+  BakeResult result;
+  ApertureMap& map = result.aperture;
+  map.width = field.width;
+  map.height = field.height;
+  map.texels.assign(map.texelCount() * 4, 0.0f);
+  if (o.skyViewFactor) result.skyViewFactor.assign(map.texelCount(), 0.0f);
+
+  if (o.method == BakeMethod::Sweep) {
+    sweepAllAzimuths(terrain, o, map.texels.data(), result.skyViewFactor);
+  } else {
+    bakeRays(terrain, o, map.texels.data(), result.skyViewFactor);
+  }
+  finishApertures(terrain, map.texels);
+
+  ApertureMapInfo& info = map.info;
+  info.azimuths = o.method == BakeMethod::Sweep ? o.azimuths : 0;
+  info.method = o.method == BakeMethod::Sweep ? "sweep" : "rays";
+  info.cellSizeX = field.cellSizeXM;
+  info.cellSizeY = field.cellSizeYM;
+  info.zScale = field.zScale;
+  info.sourceWidth = field.width;
+  info.sourceHeight = field.height;
+  info.sourceChecksum = heightfieldChecksum(field);
+  info.edge = o.clampEdge ? "clamp" : "open";
+  info.curvature = o.curvature;
+  info.refraction = o.curvature ? o.refraction : 0.0;
+  info.maxDistanceM = o.maxDistanceM;
+  return result;
+}
+
+}  // namespace aal

@@ -1,0 +1,52 @@
+// Baking: the visible sky of every texel of a heightfield as an aperture
+// (bent normal + cap arc length), plus the GIS sky-view factor. DESIGN §3.
+#pragma once
+
+#include <atomic>
+#include <functional>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "aperture_map.h"
+#include "heightfield.h"
+
+namespace aal {
+
+enum class BakeMethod {
+  Sweep,  // exact horizons per azimuth by line sweep, O(texels) per azimuth
+  Rays,   // brute-force reference: rays over the hemisphere, marched texel by texel
+};
+
+struct BakeOptions {
+  BakeMethod method = BakeMethod::Sweep;
+  int azimuths = 64;           // sweep: number of azimuth slices, evenly spaced from east
+  int rays = 1024;             // rays: rays per texel (stratified over the hemisphere)
+  bool clampEdge = false;      // beyond the DEM edge: open sky (false) or flat at the edge height
+  bool curvature = false;      // Earth curvature drop (R = 6371 km) with refraction
+  double refraction = 0.13;    // refraction coefficient k: drop = (1 - k) t^2 / 2R
+  double maxDistanceM = 0;     // 0 = the whole DEM counts
+  bool skyViewFactor = false;  // also compute SVF = 1 - mean sin(max(h, 0))
+  // Called with the fraction done in [0, 1], from the calling thread.
+  std::function<void(double)> progress;
+  // When set and true, the bake stops and throws BakeCancelled.
+  const std::atomic<bool>* cancel = nullptr;
+};
+
+class BakeCancelled : public std::runtime_error {
+ public:
+  BakeCancelled() : std::runtime_error("bake interrupted") {}
+};
+
+struct BakeResult {
+  ApertureMap aperture;              // info filled except `source`
+  std::vector<float> skyViewFactor;  // per texel in [0, 1] when requested, else empty
+};
+
+constexpr double kEarthRadiusM = 6371000.0;
+
+// Bakes the aperture map of `field` (heights in metres, cell sizes applied).
+// Throws std::invalid_argument for options out of range.
+BakeResult bakeApertures(const Heightfield& field, const BakeOptions& options);
+
+}  // namespace aal

@@ -1,0 +1,45 @@
+#include "bake_terrain.h"
+
+#include <algorithm>
+
+#include <tbb/parallel_for.h>
+
+namespace aal {
+
+BakeTerrain prepareBakeTerrain(const Heightfield& field) {
+  BakeTerrain t;
+  t.field = &field;
+  t.width = field.width;
+  t.height = field.height;
+  t.centreCol = 0.5 * (field.width - 1);
+  t.cellY = field.cellSizeYM;
+  t.rowCellX.resize(field.height);
+  t.rowY.resize(field.height);
+  for (int row = 0; row < field.height; ++row) {
+    t.rowCellX[row] = field.cellSizeXAtRow(row);
+    t.rowY[row] = (0.5 * (field.height - 1) - row) * field.cellSizeYM;  // row 0 is north
+  }
+
+  // Central differences inside, one-sided at the edges.
+  t.slopeEast.resize(field.texelCount());
+  t.slopeNorth.resize(field.texelCount());
+  const int w = field.width, h = field.height;
+  tbb::parallel_for(0, h, [&](int row) {
+    const int north = row > 0 ? row - 1 : row, south = row + 1 < h ? row + 1 : row;
+    const double dyNorth = (south - north) * field.cellSizeYM;
+    for (int col = 0; col < w; ++col) {
+      const int west = col > 0 ? col - 1 : col, east = col + 1 < w ? col + 1 : col;
+      const double dx = (east - west) * t.rowCellX[row];
+      const size_t i = field.index(col, row);
+      t.slopeEast[i] =
+          dx > 0 ? static_cast<float>((field.at(east, row) - field.at(west, row)) / dx) : 0.0f;
+      t.slopeNorth[i] =
+          dyNorth > 0 ? static_cast<float>((field.at(col, north) - field.at(col, south)) / dyNorth)
+                      : 0.0f;
+    }
+  });
+  t.maxHeight = *std::max_element(field.z.begin(), field.z.end());
+  return t;
+}
+
+}  // namespace aal

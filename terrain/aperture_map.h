@@ -1,0 +1,60 @@
+// Aperture map: per texel the visible sky as a spherical cap — the unit bent
+// normal (mean unoccluded direction, world frame x east, y north, z up) and
+// the cap's arc length r = acos(1 - visible solid angle / 2 pi). DESIGN §3-4.
+//
+// On disk: OpenEXR, same size as the DEM, channels R, G, B = bent normal,
+// A = arc length in radians, with `aal:` header attributes that tie the map
+// to its DEM and bake options.
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "heightfield.h"
+
+namespace aal {
+
+struct ApertureMapInfo {
+  int version = 1;
+  int azimuths = 0;
+  std::string method;  // "sweep" or "rays"
+  double cellSizeX = 0, cellSizeY = 0, zScale = 1;
+  std::string source;  // file name of the DEM (no folder)
+  int sourceWidth = 0, sourceHeight = 0;
+  std::string sourceChecksum;  // heightfieldChecksum() of the DEM, hex
+  std::string edge = "open";   // "open" or "clamp"
+  bool curvature = false;
+  double refraction = 0;    // used when curvature is on
+  double maxDistanceM = 0;  // 0 = unlimited
+};
+
+struct ApertureMap {
+  int width = 0, height = 0;
+  std::vector<float> texels;  // 4 floats per texel: bent normal x, y, z; arc length
+  ApertureMapInfo info;
+
+  size_t texelCount() const { return static_cast<size_t>(width) * static_cast<size_t>(height); }
+  // Visible solid angle over 2 pi, in [0, 1]: 1 - cos r.
+  float visibleFraction(size_t texel) const;
+};
+
+// 64-bit FNV-1a of the DEM's size and heights, as 16 hex digits: identifies
+// the DEM an aperture map was baked from (and keys bake caches).
+std::string heightfieldChecksum(const Heightfield& field);
+
+// Writes the map as EXR via a temporary file renamed into place. halfFloat
+// stores 16-bit floats (bent normal to ~1e-3, arc length to ~1e-3 rad).
+void writeApertureMap(const std::string& path, const ApertureMap& map, bool halfFloat);
+
+// Reads a map written by writeApertureMap. Throws InputError naming the file
+// when it is missing, unreadable, not 4 channels or lacks the aal:
+// attributes.
+ApertureMap readApertureMap(const std::string& path);
+
+// Throws InputError naming both files when the map was not baked from this
+// DEM (size, checksum).
+void checkApertureMatchesDem(const ApertureMap& map, const std::string& mapPath,
+                             const Heightfield& field, const std::string& demPath);
+
+}  // namespace aal

@@ -1,0 +1,98 @@
+#include "aperture_map.h"
+
+#include <gtest/gtest.h>
+
+#include <OpenImageIO/imageio.h>
+
+#include <filesystem>
+#include <fstream>
+
+#include "../tools/run_tool.h"
+#include "bake.h"
+#include "bake_test_util.h"
+#include "errors.h"
+
+namespace aal {
+namespace {
+
+Heightfield smallField(double bump = 0) {
+  return test::makeField(20, 10, 25.0, [&](double x, double y) { return 0.01 * x * y + bump; });
+}
+
+TEST(ApertureMap, RoundTripsWithItsAttributes) {
+  test::TempDir dir;
+  const Heightfield field = smallField();
+  BakeResult r = bakeApertures(field, BakeOptions{});
+  r.aperture.info.source = "small.tif";
+  const std::string path = (dir.path() / "a.exr").string();
+  writeApertureMap(path, r.aperture, /*halfFloat=*/false);
+  const ApertureMap back = readApertureMap(path);
+  EXPECT_EQ(back.width, 20);
+  EXPECT_EQ(back.height, 10);
+  EXPECT_EQ(back.texels, r.aperture.texels);
+  EXPECT_EQ(back.info.version, 1);
+  EXPECT_EQ(back.info.azimuths, 64);
+  EXPECT_EQ(back.info.method, "sweep");
+  EXPECT_EQ(back.info.source, "small.tif");
+  EXPECT_EQ(back.info.sourceWidth, 20);
+  EXPECT_EQ(back.info.sourceHeight, 10);
+  EXPECT_EQ(back.info.edge, "open");
+  EXPECT_FLOAT_EQ(back.info.cellSizeX, 25.0f);
+  EXPECT_EQ(back.info.sourceChecksum, heightfieldChecksum(field));
+  EXPECT_NO_THROW(checkApertureMatchesDem(back, path, field, "small.tif"));
+}
+
+TEST(ApertureMap, HalfFloatKeepsThreeDigits) {
+  test::TempDir dir;
+  const BakeResult r = bakeApertures(smallField(), BakeOptions{});
+  const std::string path = (dir.path() / "h.exr").string();
+  writeApertureMap(path, r.aperture, /*halfFloat=*/true);
+  const ApertureMap back = readApertureMap(path);
+  for (size_t i = 0; i < back.texels.size(); ++i) {
+    EXPECT_NEAR(back.texels[i], r.aperture.texels[i], 1e-3) << i;
+  }
+}
+
+TEST(ApertureMap, RefusesAMapOfAnotherDem) {
+  const Heightfield field = smallField();
+  const BakeResult r = bakeApertures(field, BakeOptions{});
+  const Heightfield other = smallField(1.0);
+  try {
+    checkApertureMatchesDem(r.aperture, "a.exr", other, "other.tif");
+    FAIL() << "no error";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("a.exr"), std::string::npos);
+    EXPECT_NE(std::string(e.what()).find("other.tif"), std::string::npos);
+  }
+  const Heightfield bigger = test::makeField(21, 10, 25.0, [](double, double) { return 0.0; });
+  EXPECT_THROW(checkApertureMatchesDem(r.aperture, "a.exr", bigger, "b.tif"), InputError);
+}
+
+TEST(ApertureMap, BadFilesGiveInputErrors) {
+  test::TempDir dir;
+  EXPECT_THROW(readApertureMap((dir.path() / "missing.exr").string()), InputError);
+  // An EXR without aal: attributes.
+  const std::string plain = (dir.path() / "plain.exr").string();
+  {
+    auto out = OIIO::ImageOutput::create(plain);
+    OIIO::ImageSpec spec(4, 4, 4, OIIO::TypeDesc::FLOAT);
+    std::vector<float> pixels(64, 0.5f);
+    ASSERT_TRUE(out->open(plain, spec));
+    ASSERT_TRUE(out->write_image(OIIO::TypeDesc::FLOAT, pixels.data()));
+    out->close();
+  }
+  EXPECT_THROW(readApertureMap(plain), InputError);
+  // A truncated aperture map.
+  const std::string good = (dir.path() / "good.exr").string();
+  writeApertureMap(good, bakeApertures(smallField(), BakeOptions{}).aperture, false);
+  const auto size = std::filesystem::file_size(good);
+  std::filesystem::resize_file(good, size / 2);
+  EXPECT_THROW(readApertureMap(good), InputError);
+  // Garbage.
+  const std::string junk = (dir.path() / "junk.exr").string();
+  std::ofstream(junk) << "not an image";
+  EXPECT_THROW(readApertureMap(junk), InputError);
+}
+
+}  // namespace
+}  // namespace aal
