@@ -14,9 +14,11 @@ BakeTerrain prepareBakeTerrain(const Heightfield& field) {
   t.centreCol = 0.5 * (field.width - 1);
   t.cellY = field.cellSizeYM;
   t.rowCellX.resize(field.height);
+  t.rowInvCellX.resize(field.height);
   t.rowY.resize(field.height);
   for (int row = 0; row < field.height; ++row) {
     t.rowCellX[row] = field.cellSizeXAtRow(row);
+    t.rowInvCellX[row] = 1.0 / t.rowCellX[row];
     t.rowY[row] = (0.5 * (field.height - 1) - row) * field.cellSizeYM;  // row 0 is north
   }
 

@@ -14,7 +14,7 @@ struct BakeTerrain {
   int width = 0, height = 0;
   // World-frame position of texel (col, row): x = (col - cx) * rowCellX[row]
   // (east), y = rowY[row] (north), origin at the DEM centre.
-  std::vector<double> rowCellX;
+  std::vector<double> rowCellX, rowInvCellX;
   std::vector<double> rowY;
   double centreCol = 0;
   double cellY = 1;

@@ -109,155 +109,197 @@ inline double clampedEdgeSlope(double rise, double toEdge, double curvature) {
   return -2.0 * std::sqrt(-rise * curvature);
 }
 
-// Slope from q to the upper hull's tangent point (the hull holds points all
-// ahead of q, farthest first). Seen from a point behind the chain, the slope
-// to its vertices rises up to the tangent point and falls after it, so a
-// binary search finds it.
-inline double hullTangentSlope(const std::vector<ProfilePoint>& hull, const ProfilePoint& q) {
-  auto atLeastAsSteep = [&](size_t far, size_t near) {  // slope(q, far) >= slope(q, near)
-    return (hull[far].z - q.z) * (hull[near].t - q.t) >= (hull[near].z - q.z) * (hull[far].t - q.t);
+// "No horizon": nothing ahead on the line (or the line is off the grid).
+// A finite sentinel keeps the inner loops free of NaN/inf tests.
+constexpr double kNoHorizon = -1e300;
+
+// Walks the lines of one azimuth. Lines are stepped in lockstep in groups of
+// neighbours so that the texels touched at one step sit together in memory
+// whatever the azimuth. kMajorIsColumn: lines advance column by column.
+template <bool kMajorIsColumn>
+class LineWalker {
+ public:
+  struct Line {
+    std::vector<ProfilePoint> hull;  // storage; the upper hull is hull[0 .. size)
+    size_t size = 0;                 // farthest point first
+    bool started = false;
+    double edgeT = 0, edgeZ = 0;  // the line's first point: the DEM edge ahead
   };
-  // Largest i with !atLeastAsSteep(i - 1, i) is the tangent point (0 if none).
-  size_t lo = 0, hi = hull.size() - 1;
-  while (lo < hi) {
-    const size_t mid = (lo + hi + 1) / 2;
-    if (atLeastAsSteep(mid - 1, mid)) {
-      hi = mid - 1;
-    } else {
-      lo = mid;
-    }
+
+  LineWalker(const BakeTerrain& terrain, const SweepLayout& layout, double ux, double uy,
+             const HorizonSweepOptions& options)
+      : terrain_(terrain),
+        field_(*terrain.field),
+        layout_(layout),
+        ux_(ux),
+        uy_(uy),
+        curvature_(options.curvature),
+        maxDistance_(options.maxDistanceM),
+        clampEdge_(options.clampEdge),
+        minorMax_(layout.minorLength - 1),
+        dCol_(ux > 0 ? 1 : -1),
+        dRow_(uy > 0 ? -1 : 1),  // rows grow south
+        wx_(std::abs(ux) > 1e-12 ? std::abs(ux) : 0.0),
+        wy_(std::abs(uy) > 1e-12 ? std::abs(uy) : 0.0),
+        invCellY_(1.0 / terrain.cellY),
+        rowCentre_(0.5 * (terrain.height - 1)) {}
+
+  void reset(Line& line) const {
+    line.hull.resize(static_cast<size_t>(layout_.majorLength));
+    line.size = 0;
+    line.started = false;
   }
-  return (hull[lo].z - q.z) / (hull[lo].t - q.t);
-}
 
-// Horizon tangents along one line for the texels on both sides of it, as
-// seen from each texel's own position: nearSide[k] for the texel at or just
-// past the line (minor index line + floorOffset[k]), farSide[k] for the one
-// after it (+1), NaN where that texel or the line is outside the grid.
-inline void sweepLine(const BakeTerrain& terrain, const SweepLayout& layout, int line, double ux,
-                      double uy, const HorizonSweepOptions& options,
-                      std::vector<ProfilePoint>& hull, std::vector<double>& nearSide,
-                      std::vector<double>& farSide) {
-  const Heightfield& field = *terrain.field;
-  const double k = options.curvature, maxDistance = options.maxDistanceM;
-  constexpr double kNone = -std::numeric_limits<double>::infinity();
-  constexpr double kOutside = std::numeric_limits<double>::quiet_NaN();
-  const int minorMax = layout.minorLength - 1;
-  hull.clear();
-  bool started = false;
-  double edgeT = 0, edgeZ = 0;
-
-  // Metric position of the grid point (major, minor) projected on u.
-  auto along = [&](int major, double minor) {
-    if (layout.majorIsColumn) {
-      const int nearRow = std::clamp(static_cast<int>(std::lround(minor)), 0, minorMax);
-      return (major - terrain.centreCol) * terrain.rowCellX[nearRow] * ux +
-             (0.5 * (terrain.height - 1) - minor) * terrain.cellY * uy;
+  // Advances `line` (state `state`) by sweep step `step` and returns the
+  // horizon tangent of its sample there, kNoHorizon when nothing lies ahead
+  // or the line is off the grid at that step.
+  [[gnu::always_inline]] double step(Line& state, int line, int step) const {
+    const double minor = line + step * layout_.minorPerStep;
+    if (minor < 0.0 || minor > minorMax_) return kNoHorizon;
+    const int major = layout_.start + step * layout_.step;
+    const int texel = line + layout_.floorOffset[step];
+    const double w = layout_.fraction[step];
+    // The line's sample: linear between the two texels it passes between.
+    const double z = (1 - w) * heightAt(major, texel) +
+                     w * heightAt(major, std::min(texel + 1, minorMax_));
+    const double t = along(major, minor);
+    const ProfilePoint p{t, z - curvature_ * t * t};
+    if (!state.started) {
+      state.started = true;
+      state.edgeT = t;
+      state.edgeZ = z;
     }
-    return (minor - terrain.centreCol) * terrain.rowCellX[major] * ux + terrain.y(major) * uy;
-  };
-  auto heightAt = [&](int major, int minor) {
-    return layout.majorIsColumn ? field.at(major, minor) : field.at(minor, major);
-  };
-  // Slope of the bilinear surface leaving texel (col, row) in direction u:
-  // the cell it enters rises along x and y by the one-sided differences. The
-  // line samples are a cell apart, so without this a texel in a crease would
-  // miss the wall right next to it (and see more sky than the terrain allows).
-  const int dCol = ux > 0 ? 1 : -1, dRow = uy > 0 ? -1 : 1;  // rows grow south
-  const double wx = std::abs(ux) > 1e-12 ? std::abs(ux) : 0.0;
-  const double wy = std::abs(uy) > 1e-12 ? std::abs(uy) : 0.0;
-  auto leavingSlope = [&](int col, int row, double z) {
-    const int c = col + dCol, r = row + dRow;
+    ProfilePoint* hull = state.hull.data();
+    size_t n = state.size;
+    if (maxDistance_ <= 0.0) {
+      // Pop points on or under the segment from p to the one behind them:
+      // they are off the upper hull from now on.
+      while (n >= 2 && (hull[n - 2].z - p.z) * (hull[n - 1].t - p.t) >=
+                           (hull[n - 1].z - p.z) * (hull[n - 2].t - p.t)) {
+        --n;
+      }
+    }
+    hull[n] = p;
+    state.size = n + 1;
+    return horizonOfNewest(state, z);
+  }
+
+  // Slope of the bilinear surface leaving texel (col, row) along u: the cell
+  // it enters rises along x and y by the one-sided differences. The line
+  // samples are a cell apart, so without this a texel in a crease would miss
+  // the wall right next to it (and see more sky than the terrain allows).
+  [[gnu::always_inline]] double leavingSlope(int col, int row) const {
+    const double z = field_.at(col, row);
     double slope = 0.0;
-    if (wx > 0.0) {
-      if (c < 0 || c >= field.width) return kNone;  // the cell ahead is off the grid
-      slope += wx * (field.at(c, row) - z) / terrain.rowCellX[row];
+    if (wx_ > 0.0) {
+      const int c = col + dCol_;
+      if (c < 0 || c >= field_.width) return kNoHorizon;  // the cell ahead is off the grid
+      slope += wx_ * (field_.at(c, row) - z) * terrain_.rowInvCellX[row];
     }
-    if (wy > 0.0) {
-      if (r < 0 || r >= field.height) return kNone;
-      slope += wy * (field.at(col, r) - z) / terrain.cellY;
+    if (wy_ > 0.0) {
+      const int r = row + dRow_;
+      if (r < 0 || r >= field_.height) return kNoHorizon;
+      slope += wy_ * (field_.at(col, r) - z) * invCellY_;
     }
     return slope;
-  };
-  // Horizon of profile point q (true height z) over the line's points passed so far.
-  auto horizonOf = [&](const ProfilePoint& q, double z) {
-    double best = kNone;
-    if (maxDistance > 0.0) {
-      // Exact within the distance limit: scan the line's nearer points.
-      for (size_t i = hull.size(); i-- > 0 && hull[i].t - q.t <= maxDistance;) {
+  }
+
+ private:
+  float heightAt(int major, int minor) const {
+    return kMajorIsColumn ? field_.at(major, minor) : field_.at(minor, major);
+  }
+
+  // Metric position of the grid point (major, minor) projected on u.
+  double along(int major, double minor) const {
+    if constexpr (kMajorIsColumn) {
+      const int nearRow = std::min(static_cast<int>(minor + 0.5), minorMax_);
+      return (major - terrain_.centreCol) * terrain_.rowCellX[nearRow] * ux_ +
+             (rowCentre_ - minor) * terrain_.cellY * uy_;
+    } else {
+      return (minor - terrain_.centreCol) * terrain_.rowCellX[major] * ux_ +
+             terrain_.y(major) * uy_;
+    }
+  }
+
+  // Horizon of the point just pushed (true height z): with a distance limit,
+  // a scan of the line's points within it; else the tangent to the hull,
+  // which is the point right behind it.
+  double horizonOfNewest(const Line& state, double z) const {
+    const ProfilePoint* hull = state.hull.data();
+    const size_t n = state.size;
+    const ProfilePoint& q = hull[n - 1];
+    double best = kNoHorizon;
+    if (maxDistance_ > 0.0) {
+      for (size_t i = n - 1; i-- > 0 && hull[i].t - q.t <= maxDistance_;) {
         best = std::max(best, (hull[i].z - q.z) / (hull[i].t - q.t));
       }
-    } else if (!hull.empty()) {
-      best = hullTangentSlope(hull, q);
+    } else if (n >= 2) {
+      best = (hull[n - 2].z - q.z) / (hull[n - 2].t - q.t);
     }
-    if (best != kNone) best += 2.0 * k * q.t;
-    if (started && options.clampEdge && (maxDistance <= 0.0 || edgeT - q.t <= maxDistance)) {
-      best = std::max(best, clampedEdgeSlope(edgeZ - z, edgeT - q.t, k));
+    if (best != kNoHorizon) best += 2.0 * curvature_ * q.t;
+    if (clampEdge_ && (maxDistance_ <= 0.0 || state.edgeT - q.t <= maxDistance_)) {
+      const double edge = clampedEdgeSlope(state.edgeZ - z, state.edgeT - q.t, curvature_);
+      if (edge > best) best = edge;
     }
     return best;
-  };
-  auto withLeavingSlope = [&](double horizon, int major, int minor) {
-    const int col = layout.majorIsColumn ? major : minor,
-              row = layout.majorIsColumn ? minor : major;
-    return std::max(horizon, leavingSlope(col, row, heightAt(major, minor)));
-  };
-
-  for (int step = 0; step < layout.majorLength; ++step) {
-    const int major = layout.start + step * layout.step;
-    const double minor = line + step * layout.minorPerStep;
-    const int texel = line + layout.floorOffset[step];
-    const double w = layout.fraction[step];
-    const bool onGrid = minor >= 0.0 && minor <= minorMax;
-    if (!onGrid) {
-      nearSide[step] = farSide[step] = kOutside;
-      continue;
-    }
-    // The line's sample: linear between the two texels it passes between.
-    const int j0 = texel, j1 = std::min(texel + 1, minorMax);
-    const double z = (1 - w) * heightAt(major, j0) + w * heightAt(major, j1);
-    const double t = along(major, minor);
-    const ProfilePoint p{t, z - k * t * t};
-    if (!started) {
-      started = true;
-      edgeT = t;
-      edgeZ = z;
-    }
-    // Horizon of the sample (before it joins the hull), for the texels on
-    // both sides; each adds its own leaving slope.
-    const double sampleHorizon = horizonOf(p, z);
-    nearSide[step] = withLeavingSlope(sampleHorizon, major, texel);
-    farSide[step] = w > 0.0 && texel + 1 <= minorMax
-                        ? withLeavingSlope(sampleHorizon, major, texel + 1)
-                        : kOutside;
-    if (maxDistance > 0.0) {
-      hull.push_back(p);
-      continue;
-    }
-    // Pop points on or under the segment from p to the one behind them: they
-    // are off the upper hull from now on.
-    while (hull.size() >= 2) {
-      const ProfilePoint& a = hull[hull.size() - 1];
-      const ProfilePoint& b = hull[hull.size() - 2];
-      if ((b.z - p.z) * (a.t - p.t) >= (a.z - p.z) * (b.t - p.t)) {
-        hull.pop_back();
-      } else {
-        break;
-      }
-    }
-    hull.push_back(p);
   }
-}
+
+  const BakeTerrain& terrain_;
+  const Heightfield& field_;
+  const SweepLayout& layout_;
+  const double ux_, uy_, curvature_, maxDistance_;
+  const bool clampEdge_;
+  const int minorMax_, dCol_, dRow_;
+  const double wx_, wy_, invCellY_, rowCentre_;
+};
 
 // Tangent at a texel between two lines, weighted by distance; a line with
-// nothing ahead (-inf) or outside the grid (NaN) leaves the other one (at
-// the grid's edges a texel may have only one line beside it).
+// nothing ahead or off the grid (kNoHorizon) leaves the other one (at the
+// grid's edges a texel may have only one line beside it).
 inline double blendHorizons(double near, double far, double farWeight) {
-  const bool haveFar = farWeight > 0.0 && !std::isnan(far) && !std::isinf(far);
-  const bool haveNear = !std::isnan(near) && !std::isinf(near);
-  if (haveNear && haveFar) return near + farWeight * (far - near);
-  if (haveNear) return near;
-  if (haveFar) return far;
-  return -std::numeric_limits<double>::infinity();
+  if (far <= kNoHorizon || farWeight == 0.0) return near;
+  if (near <= kNoHorizon) return far;
+  return near + farWeight * (far - near);
+}
+
+template <bool kMajorIsColumn, class Visit>
+void sweepLines(const BakeTerrain& terrain, const SweepLayout& layout, double ux, double uy,
+                const HorizonSweepOptions& options, Visit& visit) {
+  const LineWalker<kMajorIsColumn> walker(terrain, layout, ux, uy, options);
+  const Heightfield& field = *terrain.field;
+  constexpr int kGroup = 16;
+  struct Scratch {
+    std::vector<typename LineWalker<kMajorIsColumn>::Line> lines{kGroup + 1};
+    double horizon[kGroup + 1];
+  };
+  tbb::enumerable_thread_specific<Scratch> scratch;
+  // Texel (k, line + floorOffset[k]) lies between lines c - 1 and c: it
+  // takes line c's horizon with weight 1 - fraction[k] and line c - 1's with
+  // fraction[k], and at least the slope of the surface leaving it. So each
+  // group of lines also walks the line just before it.
+  const int firstLine = layout.firstLine + 1;
+  const int groups = (layout.lastLine - firstLine + kGroup) / kGroup;
+  tbb::parallel_for(0, groups, [&](int group) {
+    Scratch& s = scratch.local();
+    const int first = firstLine + group * kGroup;
+    const int count = std::min(kGroup, layout.lastLine + 1 - first);
+    for (int i = 0; i <= count; ++i) walker.reset(s.lines[i]);
+    for (int step = 0; step < layout.majorLength; ++step) {
+      for (int i = 0; i <= count; ++i) s.horizon[i] = walker.step(s.lines[i], first - 1 + i, step);
+      const int major = layout.start + step * layout.step;
+      const double fraction = layout.fraction[step];
+      for (int i = 1; i <= count; ++i) {
+        const int minor = first - 1 + i + layout.floorOffset[step];
+        if (minor < 0 || minor >= layout.minorLength) continue;
+        const int col = kMajorIsColumn ? major : minor;
+        const int row = kMajorIsColumn ? minor : major;
+        const double lines = blendHorizons(s.horizon[i], s.horizon[i - 1], fraction);
+        const double best = std::max(lines, walker.leavingSlope(col, row));
+        visit(field.index(col, row),
+              best <= kNoHorizon ? -std::numeric_limits<double>::infinity() : best);
+      }
+    }
+  });
 }
 
 }  // namespace detail
@@ -265,46 +307,18 @@ inline double blendHorizons(double near, double far, double farWeight) {
 // Calls visit(texelIndex, tanHorizon) once for every texel for the azimuth
 // phi (radians, counter-clockwise from east; u = (cos phi, sin phi) in the
 // world frame). tanHorizon is the tangent of the horizon elevation, -inf when
-// no terrain lies ahead. Lines run in parallel: visit is called concurrently,
-// but never twice for the same texel.
+// no terrain lies ahead. Groups of lines run in parallel: visit is called
+// concurrently, but never twice for the same texel.
 template <class Visit>
 void sweepHorizons(const BakeTerrain& terrain, double phi, const HorizonSweepOptions& options,
                    Visit&& visit) {
   const double ux = std::cos(phi), uy = std::sin(phi);
   const detail::SweepLayout layout = detail::makeSweepLayout(terrain, ux, uy);
-  const Heightfield& field = *terrain.field;
-
-  struct Scratch {
-    std::vector<detail::ProfilePoint> hull;
-    std::vector<double> near, far, previousFar;
-  };
-  tbb::enumerable_thread_specific<Scratch> scratch;
-  // Texel (k, line + floorOffset[k]) lies between lines c - 1 and c; it
-  // takes line c's horizon with weight 1 - fraction[k] and line c - 1's with
-  // fraction[k]. So each block of lines also sweeps the line just before it.
-  tbb::parallel_for(
-      tbb::blocked_range<int>(layout.firstLine + 1, layout.lastLine + 1, 16),
-      [&](const tbb::blocked_range<int>& lines) {
-        Scratch& s = scratch.local();
-        s.near.resize(layout.majorLength);
-        s.far.resize(layout.majorLength);
-        s.previousFar.resize(layout.majorLength);
-        detail::sweepLine(terrain, layout, lines.begin() - 1, ux, uy, options, s.hull, s.near,
-                          s.previousFar);
-        for (int line = lines.begin(); line != lines.end(); ++line) {
-          detail::sweepLine(terrain, layout, line, ux, uy, options, s.hull, s.near, s.far);
-          for (int step = 0; step < layout.majorLength; ++step) {
-            const int minor = line + layout.floorOffset[step];
-            if (minor < 0 || minor >= layout.minorLength) continue;
-            const int major = layout.start + step * layout.step;
-            const size_t index =
-                layout.majorIsColumn ? field.index(major, minor) : field.index(minor, major);
-            visit(index,
-                  detail::blendHorizons(s.near[step], s.previousFar[step], layout.fraction[step]));
-          }
-          std::swap(s.previousFar, s.far);
-        }
-      });
+  if (layout.majorIsColumn) {
+    detail::sweepLines<true>(terrain, layout, ux, uy, options, visit);
+  } else {
+    detail::sweepLines<false>(terrain, layout, ux, uy, options, visit);
+  }
 }
 
 }  // namespace aal

@@ -12,24 +12,45 @@
 
 namespace aal {
 
+// atan(x) to within 2e-6 rad, several times faster than std::atan: reduced
+// to |y| <= tan(pi/8) by atan(x) = pi/2 - atan(1/x) and atan(x) = pi/4 +
+// atan((x - 1)/(x + 1)), then the Taylor series to y^11 (next term < 1.1e-6).
+template <class Real>
+inline Real fastAtan(Real x) {
+  constexpr Real kHalfPi = Real(1.57079632679489661923), kQuarterPi = Real(0.78539816339744830962);
+  constexpr Real kTanEighthPi = Real(0.41421356237309504880);
+  const Real a = std::abs(x);
+  const bool inverted = a > Real(1);
+  Real y = inverted ? Real(1) / a : a;
+  const bool shifted = y > kTanEighthPi;
+  if (shifted) y = (y - Real(1)) / (y + Real(1));
+  const Real y2 = y * y;
+  const Real series =
+      y * (Real(1) + y2 * (Real(-1.0 / 3) + y2 * (Real(1.0 / 5) + y2 * (Real(-1.0 / 7) +
+                                                                       y2 * (Real(1.0 / 9) - y2 / Real(11))))));
+  Real result = (shifted ? kQuarterPi : Real(0)) + series;
+  if (inverted) result = kHalfPi - result;
+  return x < 0 ? -result : result;
+}
+
 // Adds the slice whose lowest visible elevation has tangent `tanTheta0` to a
 // texel's running sums, laid out like an aperture-map texel so they live in
 // the output's own storage: sum[0..2] the unnormalized bent vector (world
-// frame), sum[3] the visible solid angle in steradians.
-// cosPhiDPhi = cos(phi) * dPhi and sinPhiDPhi = sin(phi) * dPhi.
-inline void addSkySlice(float* sum, double tanTheta0, double dPhi, double cosPhiDPhi,
-                        double sinPhiDPhi) {
-  const double t = tanTheta0;
-  const double inv = 1.0 / (1.0 + t * t);  // cos^2 theta0
-  const double sinTheta = t * std::sqrt(inv);
-  const double theta = std::atan(t);
-  constexpr double kQuarterPi = 0.78539816339744830962;
-  const double ic = kQuarterPi - 0.5 * theta - 0.5 * t * inv;  // sin(2 theta)/4 = t/(2(1+t^2))
-  const double is = 0.5 * inv;
-  sum[0] += static_cast<float>(cosPhiDPhi * ic);
-  sum[1] += static_cast<float>(sinPhiDPhi * ic);
-  sum[2] += static_cast<float>(dPhi * is);
-  sum[3] += static_cast<float>(dPhi * (1.0 - sinTheta));
+// frame), sum[3] the visible solid angle in steradians. Single precision:
+// the sums are floats anyway.
+inline void addSkySlice(float* sum, float tanTheta0, float dPhi, float cosPhiDPhi,
+                        float sinPhiDPhi) {
+  const float t = tanTheta0;
+  const float inv = 1.0f / (1.0f + t * t);  // cos^2 theta0
+  const float sinTheta = t * std::sqrt(inv);
+  const float theta = fastAtan(t);
+  constexpr float kQuarterPi = 0.78539816339744830962f;
+  const float ic = kQuarterPi - 0.5f * theta - 0.5f * t * inv;  // sin(2 theta)/4 = t/(2(1+t^2))
+  const float is = 0.5f * inv;
+  sum[0] += cosPhiDPhi * ic;
+  sum[1] += sinPhiDPhi * ic;
+  sum[2] += dPhi * is;
+  sum[3] += dPhi * (1.0f - sinTheta);
 }
 
 }  // namespace aal

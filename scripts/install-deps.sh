@@ -19,6 +19,8 @@ packages=(
   libgeotiff-dev libtiff-dev
   # parallelism, command line, tests, benchmarks
   libtbb-dev libcli11-dev libgtest-dev libgmock-dev libbenchmark-dev
+  # fuzzing the DEM parsers (scripts/fuzz.sh): clang with libFuzzer
+  clang libclang-rt-14-dev
 )
 
 missing=()

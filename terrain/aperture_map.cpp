@@ -1,5 +1,6 @@
 #include "aperture_map.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -59,7 +60,16 @@ void writeApertureMap(const std::string& path, const ApertureMap& map, bool half
   if (!out || !out->open(output.temporaryPath().string(), spec)) {
     throw std::runtime_error("cannot write aperture map " + path + ": " + OIIO::geterror());
   }
-  if (!out->write_image(OIIO::TypeDesc::FLOAT, map.texels.data()) || !out->close()) {
+  // In blocks of rows, so that converting to half never copies the whole map.
+  constexpr int kRows = 64;
+  for (int y = 0; y < map.height; y += kRows) {
+    const int end = std::min(map.height, y + kRows);
+    const float* rows = map.texels.data() + static_cast<size_t>(y) * map.width * 4;
+    if (!out->write_scanlines(y, end, 0, OIIO::TypeDesc::FLOAT, rows)) {
+      throw std::runtime_error("cannot write aperture map " + path + ": " + out->geterror());
+    }
+  }
+  if (!out->close()) {
     throw std::runtime_error("cannot write aperture map " + path + ": " + out->geterror());
   }
   output.commit();

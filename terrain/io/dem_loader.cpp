@@ -1,0 +1,154 @@
+#include "dem_loader.h"
+
+#include <cmath>
+#include <cstdio>
+#include <iostream>
+
+#include "ascii_grid_reader.h"
+#include "dem_format.h"
+#include "errors.h"
+#include "exr_header.h"
+#include "georeference.h"
+#include "geotiff_reader.h"
+#include "hgt_reader.h"
+#include "image_band.h"
+#include "png_header.h"
+#include "void_fill.h"
+
+namespace aal {
+
+namespace {
+
+void checkOptions(const DemLoadOptions& options) {
+  if (options.cellSizeM &&
+      !(*options.cellSizeM >= kMinCellSizeM && *options.cellSizeM <= kMaxCellSizeM)) {
+    throw InputError("--cell-size must be a number in [" + std::to_string(kMinCellSizeM) + ", " +
+                     std::to_string(kMaxCellSizeM) + "] metres, got " +
+                     std::to_string(*options.cellSizeM));
+  }
+  if (options.zScale && !(*options.zScale > 0.0 && std::isfinite(*options.zScale))) {
+    throw InputError("--z-scale must be a positive number, got " + std::to_string(*options.zScale));
+  }
+}
+
+RawDem readRaw(const std::string& path, const DemLoadOptions& options) {
+  switch (detectDemFormat(path)) {
+    case DemFormat::GeoTiff: return readGeoTiff(path, options);
+    case DemFormat::Hgt: return readHgt(path, options);
+    case DemFormat::AsciiGrid: return readAsciiGrid(path, options);
+    case DemFormat::Png: {
+      checkPngStructure(path, options);
+      RawDem dem = readImageBand(path, "png", std::nullopt, options);
+      dem.format = "PNG";
+      return dem;
+    }
+    case DemFormat::OpenExr: {
+      checkExrHeader(path, options);
+      RawDem dem = readImageBand(path, "openexr", std::nullopt, options);
+      dem.format = "OpenEXR";
+      return dem;
+    }
+  }
+  throw std::logic_error("unhandled DEM format");
+}
+
+// Heights times the z scale; products beyond float range become voids.
+size_t scaleHeights(RawDem& raw, double zScale) {
+  size_t voids = 0;
+  for (size_t i = 0; i < raw.z.size(); ++i) {
+    if (!raw.voidMask[i]) {
+      const float scaled = static_cast<float>(raw.z[i] * zScale);
+      if (std::isfinite(scaled)) {
+        raw.z[i] = scaled;
+        continue;
+      }
+      raw.voidMask[i] = 1;
+    }
+    raw.z[i] = 0.0f;
+    ++voids;
+  }
+  return voids;
+}
+
+void applySpacing(const RawDem& raw, const std::string& path, const DemLoadOptions& options,
+                  Heightfield& field) {
+  if (raw.geo.crs != CrsKind::None) {
+    // Validates the georeferencing even when --cell-size overrides it, and
+    // gives the geographic centre.
+    MetricSpacing spacing = metricSpacing(path, raw.geo, raw.width, raw.height);
+    field.geo.hasCenter = spacing.hasCenter;
+    field.geo.centerLatDeg = spacing.centerLatDeg;
+    field.geo.centerLonDeg = spacing.centerLonDeg;
+    if (!options.cellSizeM) {
+      field.cellSizeXM = spacing.cellSizeXM;
+      field.cellSizeYM = spacing.cellSizeYM;
+      field.rowCellSizeXM = std::move(spacing.rowCellSizeXM);
+      return;
+    }
+  }
+  field.cellSizeXM = field.cellSizeYM = options.cellSizeM.value_or(kDefaultCellSizeM);
+}
+
+void warnAboutDefaults(const RawDem& raw, const std::string& path, const DemLoadOptions& options) {
+  if (!options.warn) return;
+  const bool noCellSize = raw.geo.crs == CrsKind::None && !options.cellSizeM;
+  const bool noZScale = raw.geo.crs == CrsKind::None && !raw.zUnitFromFile && !options.zScale;
+  if (!noCellSize && !noZScale) return;
+  char text[256];
+  if (noCellSize && noZScale) {
+    std::snprintf(text, sizeof text,
+                  "is not georeferenced: assuming %g m cells and heights in metres (z scale "
+                  "%g); give --cell-size and --z-scale to set them",
+                  kDefaultCellSizeM, kDefaultZScale);
+  } else if (noCellSize) {
+    std::snprintf(text, sizeof text,
+                  "is not georeferenced: assuming %g m cells; give --cell-size to set them",
+                  kDefaultCellSizeM);
+  } else {
+    std::snprintf(text, sizeof text,
+                  "is not georeferenced: assuming heights in metres (z scale %g); give "
+                  "--z-scale to set it",
+                  kDefaultZScale);
+  }
+  options.warn(path + " " + text);
+}
+
+}  // namespace
+
+void warnOnStderr(const std::string& message) {
+  std::cerr << "warning: " << message << "\n";
+}
+
+Heightfield heightfieldFromRaw(RawDem raw, const std::string& path, const DemLoadOptions& options) {
+  checkOptions(options);
+  const double zScale = options.zScale.value_or(raw.zUnitFromFile ? raw.zUnitM : kDefaultZScale);
+  const size_t voids = scaleHeights(raw, zScale);
+  if (voids == raw.texelCount()) {
+    throw InputError(path + ": every texel is void (nodata); nothing to use");
+  }
+  warnAboutDefaults(raw, path, options);
+
+  Heightfield field;
+  field.width = raw.width;
+  field.height = raw.height;
+  field.zScale = zScale;
+  field.geo = raw.geo;
+  field.source = path;
+  field.format = raw.format;
+  applySpacing(raw, path, options, field);
+  field.voidCount = voids;
+  if (voids > 0) {
+    fillVoidsNearest(raw.z, raw.voidMask, raw.width, raw.height, field.cellSizeXM,
+                     field.cellSizeYM);
+    field.voidMask = std::move(raw.voidMask);
+  }
+  field.z = std::move(raw.z);
+  return field;
+}
+
+Heightfield loadDem(const std::string& path, const DemLoadOptions& options) {
+  checkOptions(options);
+  return heightfieldFromRaw(readRaw(path, options), path, options);
+}
+
+}  // namespace aal

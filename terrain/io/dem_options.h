@@ -1,0 +1,41 @@
+// Options every DEM reader takes (terrain/io/dem_loader.h), and the size
+// limits that protect against absurd or hostile files.
+#pragma once
+
+#include <cstddef>
+#include <functional>
+#include <optional>
+#include <string>
+
+namespace aal {
+
+// Largest DEM side, in texels, and largest texel count accepted. Anything
+// bigger is refused with InputError before memory is allocated: 2^31 texels
+// already take 8 GiB of heights plus 2 GiB of void mask.
+constexpr int kMaxDemSide = 65536;
+constexpr size_t kMaxDemTexels = size_t{1} << 31;
+
+// Cell size and z scale assumed when a file has no georeferencing and the
+// user gave neither: one metre per texel, heights in metres.
+constexpr double kDefaultCellSizeM = 1.0;
+constexpr double kDefaultZScale = 1.0;
+
+// Prints "warning: MESSAGE" on stderr: the default warning sink.
+void warnOnStderr(const std::string& message);
+
+struct DemLoadOptions {
+  // Metric spacing between texel centres in x and y (> 0, finite). Overrides
+  // whatever the file says; geographic grids then get a uniform spacing.
+  std::optional<double> cellSizeM;
+  // Metres per stored height unit (> 0, finite). Overrides the file's
+  // vertical units (feet give 0.3048).
+  std::optional<double> zScale;
+  // Receives one message per suspicious but usable property of the file
+  // (defaults assumed, extra bands ignored, ...). May be empty: no warnings.
+  std::function<void(const std::string&)> warn = warnOnStderr;
+  // Texel-count limit (<= kMaxDemTexels makes sense). Fuzzers lower it so
+  // that hostile headers cannot ask for gigabytes.
+  size_t maxTexels = kMaxDemTexels;
+};
+
+}  // namespace aal

@@ -1,0 +1,170 @@
+#include "geotiff_tags.h"
+
+#include <cstdarg>
+#include <cstdio>
+#include <cstring>
+#include <memory>
+#include <mutex>
+#include <type_traits>
+
+#include <geotiff/geotiff.h>
+#include <geotiff/xtiffio.h>
+#include <tiffio.h>
+
+#include "errors.h"
+
+namespace aal {
+
+namespace {
+
+// libtiff and libgeotiff messages of one open file, kept instead of printed.
+struct Messages {
+  std::string errors;
+};
+
+std::string format(const char* fmt, va_list args) {
+  char text[512];
+  std::vsnprintf(text, sizeof text, fmt, args);
+  return text;
+}
+
+int onTiffError(TIFF*, void* user, const char* module, const char* fmt, va_list args) {
+  auto* messages = static_cast<Messages*>(user);
+  if (!messages->errors.empty()) messages->errors += "; ";
+  if (module && *module) messages->errors += std::string(module) + ": ";
+  messages->errors += format(fmt, args);
+  return 1;  // handled: do not call the global handler (which prints)
+}
+
+int onTiffWarning(TIFF*, void*, const char*, const char*, va_list) {
+  return 1;  // unknown tags and similar: nothing a user needs to see
+}
+
+void onGeoTiffMessage(GTIF* gtif, int level, const char* fmt, ...) {
+  if (level != LIBGEOTIFF_ERROR) return;
+  auto* messages = static_cast<Messages*>(GTIFGetUserData(gtif));
+  va_list args;
+  va_start(args, fmt);
+  if (!messages->errors.empty()) messages->errors += "; ";
+  messages->errors += format(fmt, args);
+  va_end(args);
+}
+
+struct TiffCloser {
+  void operator()(TIFF* tif) const { TIFFClose(tif); }
+};
+struct GtifFreer {
+  void operator()(GTIF* gtif) const { GTIFFree(gtif); }
+};
+struct OptionsFreer {
+  void operator()(TIFFOpenOptions* options) const { TIFFOpenOptionsFree(options); }
+};
+
+// Values of an array tag. libtiff registers GeoTIFF tags (through
+// XTIFFInitialize) with a 16-bit count but reads tags it does not know, like
+// GDAL_NODATA in libtiff 4.5, as anonymous fields with a 32-bit count: ask the
+// field which one applies.
+template <typename T>
+std::vector<T> arrayTag(TIFF* tif, uint32_t tag) {
+  const TIFFField* field = TIFFFindField(tif, tag, TIFF_ANY);  // quiet when unknown
+  if (!field) return {};
+  T* values = nullptr;
+  uint32_t count = 0;
+  if (!TIFFFieldPassCount(field)) {
+    if (TIFFGetField(tif, tag, &values) != 1 || !values) return {};
+    if constexpr (std::is_same_v<T, char>) {
+      count = static_cast<uint32_t>(std::strlen(values));
+    } else {
+      return {};  // fixed-count arrays are not used by any tag read here
+    }
+  } else if (TIFFFieldReadCount(field) == TIFF_VARIABLE2) {
+    if (TIFFGetField(tif, tag, &count, &values) != 1 || !values) return {};
+  } else {
+    uint16_t shortCount = 0;
+    if (TIFFGetField(tif, tag, &shortCount, &values) != 1 || !values) return {};
+    count = shortCount;
+  }
+  return std::vector<T>(values, values + count);
+}
+
+std::optional<int> shortKey(GTIF* gtif, geokey_t key) {
+  unsigned short value = 0;
+  if (GTIFKeyGetSHORT(gtif, key, &value, 0, 1) != 1) return std::nullopt;
+  return value;
+}
+
+std::optional<double> doubleKey(GTIF* gtif, geokey_t key) {
+  double value = 0;
+  if (GTIFKeyGetDOUBLE(gtif, key, &value, 0, 1) != 1) return std::nullopt;
+  return value;
+}
+
+void readGeoKeys(const std::string& path, TIFF* tif, GeoTiffTags& tags) {
+  Messages messages;  // of libgeotiff only
+  tags.hasGeoKeys = !arrayTag<uint16_t>(tif, TIFFTAG_GEOKEYDIRECTORY).empty();
+  if (!tags.hasGeoKeys) return;
+  std::unique_ptr<GTIF, GtifFreer> gtif(GTIFNewEx(tif, onGeoTiffMessage, &messages));
+  if (!gtif || !messages.errors.empty()) {
+    throw InputError(path + ": corrupt GeoKey directory: " +
+                     (messages.errors.empty() ? "libgeotiff cannot parse it" : messages.errors));
+  }
+  tags.modelType = shortKey(gtif.get(), GTModelTypeGeoKey);
+  tags.rasterType = shortKey(gtif.get(), GTRasterTypeGeoKey);
+  tags.geographicType = shortKey(gtif.get(), GeographicTypeGeoKey);
+  tags.angularUnits = shortKey(gtif.get(), GeogAngularUnitsGeoKey);
+  tags.angularUnitSizeRad = doubleKey(gtif.get(), GeogAngularUnitSizeGeoKey);
+  tags.projectedType = shortKey(gtif.get(), ProjectedCSTypeGeoKey);
+  tags.linearUnits = shortKey(gtif.get(), ProjLinearUnitsGeoKey);
+  tags.linearUnitSizeM = doubleKey(gtif.get(), ProjLinearUnitSizeGeoKey);
+  tags.verticalUnits = shortKey(gtif.get(), VerticalUnitsGeoKey);
+}
+
+}  // namespace
+
+GeoTiffTags readGeoTiffTags(const std::string& path) {
+  // Registers the GeoTIFF tags with libtiff, so their counts and types are
+  // known when the directory is read.
+  static std::once_flag registered;
+  std::call_once(registered, [] { XTIFFInitialize(); });
+
+  Messages messages;
+  std::unique_ptr<TIFFOpenOptions, OptionsFreer> openOptions(TIFFOpenOptionsAlloc());
+  TIFFOpenOptionsSetErrorHandlerExtR(openOptions.get(), onTiffError, &messages);
+  TIFFOpenOptionsSetWarningHandlerExtR(openOptions.get(), onTiffWarning, &messages);
+  std::unique_ptr<TIFF, TiffCloser> tif(TIFFOpenExt(path.c_str(), "r", openOptions.get()));
+  if (!tif) {
+    throw InputError(path + ": not a readable TIFF: " +
+                     (messages.errors.empty() ? "libtiff cannot open it" : messages.errors));
+  }
+
+  GeoTiffTags tags;
+  uint32_t width = 0, height = 0;
+  uint16_t samples = 1, bits = 1;
+  TIFFGetField(tif.get(), TIFFTAG_IMAGEWIDTH, &width);
+  TIFFGetField(tif.get(), TIFFTAG_IMAGELENGTH, &height);
+  TIFFGetFieldDefaulted(tif.get(), TIFFTAG_SAMPLESPERPIXEL, &samples);
+  TIFFGetFieldDefaulted(tif.get(), TIFFTAG_BITSPERSAMPLE, &bits);
+  tags.width = width;
+  tags.height = height;
+  tags.samplesPerPixel = samples;
+  tags.bitsPerSample = bits;
+  if (TIFFIsTiled(tif.get())) {
+    TIFFGetField(tif.get(), TIFFTAG_TILEWIDTH, &tags.tileWidth);
+    TIFFGetField(tif.get(), TIFFTAG_TILELENGTH, &tags.tileLength);
+  } else {
+    TIFFGetFieldDefaulted(tif.get(), TIFFTAG_ROWSPERSTRIP, &tags.rowsPerStrip);
+  }
+
+  tags.pixelScale = arrayTag<double>(tif.get(), TIFFTAG_GEOPIXELSCALE);
+  tags.tiePoints = arrayTag<double>(tif.get(), TIFFTAG_GEOTIEPOINTS);
+  tags.transformation = arrayTag<double>(tif.get(), TIFFTAG_GEOTRANSMATRIX);
+  const std::vector<char> nodata = arrayTag<char>(tif.get(), TIFFTAG_GDAL_NODATA);
+  if (!nodata.empty()) {
+    // An ASCII value: stop at its terminating NUL.
+    tags.gdalNodata = std::string(nodata.data(), strnlen(nodata.data(), nodata.size()));
+  }
+  readGeoKeys(path, tif.get(), tags);
+  return tags;
+}
+
+}  // namespace aal

@@ -1,0 +1,111 @@
+// The float32 GeoTIFF writer, checked by reading its files back with loadDem.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+
+#include "dem_loader.h"
+#include "dem_test_util.h"
+#include "geotiff_writer.h"
+
+namespace aal {
+namespace {
+
+std::vector<float> pattern(int width, int height) {
+  std::vector<float> v(static_cast<size_t>(width * height));
+  for (size_t i = 0; i < v.size(); ++i) v[i] = 0.001f * static_cast<float>(i * i) - 37.5f;
+  return v;
+}
+
+class GeoTiffWriter : public ::testing::Test {
+ protected:
+  std::string path(const std::string& name) const { return (dir_.path() / name).string(); }
+  test::TempDir dir_;
+  test::CapturedWarnings warnings_;
+};
+
+TEST_F(GeoTiffWriter, GeographicGridRoundTrips) {
+  GeoReference geo;
+  geo.crs = CrsKind::Geographic;
+  geo.epsg = 4326;
+  geo.originX = -84.41333333333333;
+  geo.originY = 36.73250000000000;
+  geo.stepX = geo.stepY = 1.0 / 1200.0;
+  const std::vector<float> data = pattern(37, 21);  // more than one 16-row strip
+  writeFloatGeoTiff(path("svf.tif"), 37, 21, data.data(), geo);
+  const Heightfield f = loadDem(path("svf.tif"), warnings_.options());
+  EXPECT_EQ(f.format, "GeoTIFF");
+  EXPECT_EQ(f.z, data);
+  EXPECT_EQ(f.geo.crs, CrsKind::Geographic);
+  EXPECT_EQ(f.geo.epsg, 4326);
+  EXPECT_NEAR(f.geo.originX, geo.originX, 1e-12);
+  EXPECT_NEAR(f.geo.originY, geo.originY, 1e-12);
+  EXPECT_NEAR(f.geo.stepX, geo.stepX, 1e-15);
+  EXPECT_TRUE(warnings_.messages.empty()) << ::testing::PrintToString(warnings_.messages);
+}
+
+TEST_F(GeoTiffWriter, ProjectedGridsKeepCodeAndUnit) {
+  GeoReference geo;
+  geo.crs = CrsKind::Projected;
+  geo.epsg = 32616;
+  geo.originX = 741000.5;
+  geo.originY = 4053000.25;
+  geo.stepX = geo.stepY = 10.0;
+  geo.linearUnitM = 0.3048;
+  const std::vector<float> data = pattern(5, 4);
+  writeFloatGeoTiff(path("ft.tif"), 5, 4, data.data(), geo);
+  Heightfield f = loadDem(path("ft.tif"), warnings_.options());
+  EXPECT_EQ(f.geo.epsg, 32616);
+  EXPECT_DOUBLE_EQ(f.geo.linearUnitM, 0.3048);
+  EXPECT_DOUBLE_EQ(f.cellSizeXM, 3.048);
+  EXPECT_NEAR(f.geo.originX, geo.originX, 1e-9);
+  EXPECT_NEAR(f.geo.originY, geo.originY, 1e-9);
+
+  geo.epsg = 0;  // user-defined CRS with an unusual unit
+  geo.linearUnitM = 2.5;
+  writeFloatGeoTiff(path("local.tif"), 5, 4, data.data(), geo);
+  f = loadDem(path("local.tif"), warnings_.options());
+  EXPECT_EQ(f.geo.epsg, 0);
+  EXPECT_DOUBLE_EQ(f.cellSizeXM, 25.0);
+  EXPECT_EQ(f.z, data);
+}
+
+TEST_F(GeoTiffWriter, NoGeoreferenceWritesAPlainTiff) {
+  const std::vector<float> data = pattern(3, 2);
+  writeFloatGeoTiff(path("plain.tif"), 3, 2, data.data(), GeoReference{});
+  const Heightfield f = loadDem(path("plain.tif"), warnings_.options());
+  EXPECT_EQ(f.format, "TIFF");
+  EXPECT_EQ(f.z, data);
+}
+
+TEST_F(GeoTiffWriter, ReplacesAnExistingFileAndLeavesNoTemporaryFile) {
+  const std::vector<float> first = pattern(3, 2), second(6, 9.0f);
+  writeFloatGeoTiff(path("out.tif"), 3, 2, first.data(), GeoReference{});
+  writeFloatGeoTiff(path("out.tif"), 3, 2, second.data(), GeoReference{});
+  EXPECT_EQ(loadDem(path("out.tif"), warnings_.options()).z, second);
+  size_t files = 0;
+  for ([[maybe_unused]] const auto& entry : std::filesystem::directory_iterator(dir_.path()))
+    ++files;
+  EXPECT_EQ(files, 1u);
+}
+
+TEST_F(GeoTiffWriter, MissingFolderFailsWithoutOutput) {
+  const std::vector<float> data = pattern(3, 2);
+  EXPECT_THROW(writeFloatGeoTiff(path("no/such/out.tif"), 3, 2, data.data(), GeoReference{}),
+               std::runtime_error);
+  EXPECT_FALSE(std::filesystem::exists(path("no")));
+}
+
+TEST_F(GeoTiffWriter, InvalidArgumentsThrow) {
+  const std::vector<float> data = pattern(3, 2);
+  EXPECT_THROW(writeFloatGeoTiff(path("a.tif"), 0, 2, data.data(), GeoReference{}),
+               std::invalid_argument);
+  EXPECT_THROW(writeFloatGeoTiff(path("a.tif"), 3, 2, nullptr, GeoReference{}),
+               std::invalid_argument);
+  GeoReference geo;
+  geo.crs = CrsKind::Projected;  // steps left at 0
+  EXPECT_THROW(writeFloatGeoTiff(path("a.tif"), 3, 2, data.data(), geo), std::invalid_argument);
+  EXPECT_FALSE(std::filesystem::exists(path("a.tif")));
+}
+
+}  // namespace
+}  // namespace aal

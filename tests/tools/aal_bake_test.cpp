@@ -1,0 +1,175 @@
+// Command-line contract of aal-bake.
+#include <gtest/gtest.h>
+#include <signal.h>
+#include <spawn.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <chrono>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <thread>
+
+#include "aperture_map.h"
+#include "dem_loader.h"
+#include "geotiff_writer.h"
+#include "run_tool.h"
+#include "synthetic.h"
+
+namespace aal {
+namespace {
+
+namespace fs = std::filesystem;
+using test::runTool;
+using test::TempDir;
+
+std::string quoted(const fs::path& p) { return "'" + p.string() + "'"; }
+
+// A synthetic DEM written as a projected float GeoTIFF.
+fs::path writeDem(const TempDir& dir, int size, const std::string& name = "dem.tif") {
+  SyntheticTerrainOptions s;
+  s.width = s.height = size;
+  s.cellSizeM = 30;
+  s.featureSizeTexels = size / 4.0;
+  const Heightfield field = makeSyntheticTerrain(s);
+  GeoReference geo;
+  geo.crs = CrsKind::Projected;
+  geo.epsg = 32616;  // UTM 16N
+  geo.originX = 500000;
+  geo.originY = 4000000;
+  geo.stepX = geo.stepY = 30;
+  const fs::path path = dir.path() / name;
+  writeFloatGeoTiff(path.string(), size, size, field.z.data(), geo);
+  return path;
+}
+
+size_t filesIn(const fs::path& dir) {
+  size_t n = 0;
+  for ([[maybe_unused]] const auto& e : fs::directory_iterator(dir)) ++n;
+  return n;
+}
+
+TEST(AalBake, WritesTheApertureMapAndExtras) {
+  TempDir dir;
+  const fs::path dem = writeDem(dir, 48);
+  const fs::path out = dir.path() / "a.exr", svf = dir.path() / "svf.tif",
+                 visible = dir.path() / "vis.tif";
+  const auto r = runTool("aal-bake", quoted(dem) + " -o " + quoted(out) + " --azimuths 16 --svf " +
+                                         quoted(svf) + " --visible " + quoted(visible));
+  ASSERT_EQ(r.exitCode, 0) << r.out;
+  EXPECT_NE(r.out.find("48x48"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("16 azimuths"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("texel-azimuths/s"), std::string::npos) << r.out;
+
+  const ApertureMap map = readApertureMap(out.string());
+  EXPECT_EQ(map.info.azimuths, 16);
+  EXPECT_EQ(map.info.source, "dem.tif");
+  EXPECT_FLOAT_EQ(map.info.cellSizeX, 30.0f);
+  const Heightfield field = loadDem(dem.string());
+  EXPECT_NO_THROW(checkApertureMatchesDem(map, out.string(), field, dem.string()));
+
+  // The extras carry the DEM's georeferencing and agree with the map.
+  const Heightfield vis = loadDem(visible.string());
+  EXPECT_EQ(vis.geo.epsg, 32616);
+  EXPECT_EQ(vis.width, 48);
+  for (size_t i = 0; i < vis.texelCount(); ++i) {
+    ASSERT_NEAR(vis.z[i], map.visibleFraction(i), 2e-3) << i;  // map stores halves
+  }
+  const Heightfield sky = loadDem(svf.string());
+  for (float v : sky.z) {
+    ASSERT_GE(v, 0.0f);
+    ASSERT_LE(v, 1.0f);
+  }
+  EXPECT_EQ(filesIn(dir.path()), 4u);  // dem + three outputs, no temporaries
+}
+
+TEST(AalBake, QuietPrintsNothing) {
+  TempDir dir;
+  const fs::path dem = writeDem(dir, 16);
+  const auto r = runTool("aal-bake", quoted(dem) + " -o " + quoted(dir.path() / "a.exr") + " -q");
+  EXPECT_EQ(r.exitCode, 0);
+  EXPECT_EQ(r.out, "");
+}
+
+TEST(AalBake, JacksboroBakesWithoutNan) {
+  TempDir dir;
+  const fs::path out = dir.path() / "j.exr";
+  const fs::path dem = fs::path(AAL_TEST_SOURCE_DIR) / "heightmaps" / "jacksboro_fault_dem.tif";
+  const auto r = runTool("aal-bake", quoted(dem) + " -o " + quoted(out) + " --float");
+  ASSERT_EQ(r.exitCode, 0) << r.out;
+  const ApertureMap map = readApertureMap(out.string());
+  EXPECT_EQ(map.info.source, "jacksboro_fault_dem.tif");
+  EXPECT_EQ(map.info.method, "sweep");
+  EXPECT_EQ(map.info.azimuths, 64);
+  EXPECT_NEAR(map.info.cellSizeY, 92.5, 0.5);  // 3 arc-seconds of latitude
+  for (size_t i = 0; i < map.texelCount(); ++i) {
+    const float* t = &map.texels[4 * i];
+    ASSERT_TRUE(std::isfinite(t[0]) && std::isfinite(t[1]) && std::isfinite(t[2]) &&
+                std::isfinite(t[3]))
+        << i;
+    ASSERT_NEAR(t[0] * t[0] + t[1] * t[1] + t[2] * t[2], 1.0f, 1e-4f);
+    ASSERT_GE(t[3], 0.0f);
+    ASSERT_LE(t[3], 1.5708f);
+  }
+}
+
+TEST(AalBake, BadArgumentsExitWithTwo) {
+  TempDir dir;
+  const fs::path dem = writeDem(dir, 16);
+  const std::string out = " -o " + quoted(dir.path() / "a.exr");
+  for (const std::string& args :
+       {quoted(dem) + out + " --azimuths 3", quoted(dem) + out + " --azimuths 100000",
+        quoted(dem) + out + " --method magic", quoted(dem) + out + " --edge wrap",
+        quoted(dem) + out + " --max-distance -5", quoted(dem) + out + " --cell-size 0",
+        quoted(dem), quoted(dir.path() / "missing.tif") + out,
+        quoted(dem) + out + " --method rays --svf " + quoted(dir.path() / "s.tif")}) {
+    const auto r = runTool("aal-bake", args);
+    EXPECT_EQ(r.exitCode, 2) << args << "\n" << r.out;
+  }
+  EXPECT_FALSE(fs::exists(dir.path() / "a.exr"));
+}
+
+TEST(AalBake, UnwritableOutputFailsBeforeBaking) {
+  TempDir dir;
+  const fs::path dem = writeDem(dir, 16);
+  const auto r = runTool("aal-bake", quoted(dem) + " -o " + quoted(dir.path() / "no" / "a.exr"));
+  EXPECT_EQ(r.exitCode, 2);
+  EXPECT_NE(r.out.find("does not exist"), std::string::npos) << r.out;
+  EXPECT_EQ(r.out.find("texel-azimuths"), std::string::npos) << "baked anyway: " << r.out;
+}
+
+TEST(AalBake, ReplacesAnExistingOutput) {
+  TempDir dir;
+  const fs::path dem = writeDem(dir, 16);
+  const fs::path out = dir.path() / "a.exr";
+  std::ofstream(out) << "old junk";
+  ASSERT_EQ(runTool("aal-bake", quoted(dem) + " -o " + quoted(out)).exitCode, 0);
+  EXPECT_NO_THROW(readApertureMap(out.string()));
+  EXPECT_EQ(filesIn(dir.path()), 2u);
+}
+
+TEST(AalBake, InterruptLeavesNoFile) {
+  TempDir dir;
+  const fs::path dem = writeDem(dir, 512);
+  const fs::path out = dir.path() / "a.exr";
+  const std::string bake = (test::binDir() / "aal-bake").string();
+  const std::string demArg = dem.string(), outArg = out.string();
+  // Enough azimuths for tens of seconds of work; interrupted well before.
+  const char* argv[] = {bake.c_str(), demArg.c_str(), "-o", outArg.c_str(), "--azimuths", "4096",
+                        "-q", nullptr};
+  pid_t pid = 0;
+  ASSERT_EQ(posix_spawn(&pid, bake.c_str(), nullptr, nullptr, const_cast<char**>(argv), environ),
+            0);
+  std::this_thread::sleep_for(std::chrono::milliseconds(800));
+  kill(pid, SIGINT);
+  int status = 0;
+  ASSERT_EQ(waitpid(pid, &status, 0), pid);
+  ASSERT_TRUE(WIFEXITED(status));
+  EXPECT_EQ(WEXITSTATUS(status), 1);
+  EXPECT_FALSE(fs::exists(out));
+  EXPECT_EQ(filesIn(dir.path()), 1u);  // only the DEM: no temporary left behind
+}
+
+}  // namespace
+}  // namespace aal

@@ -1,0 +1,127 @@
+// aal-info: what aperture reads from a DEM file, like gdalinfo: format, size,
+// CRS, metric cell size, geographic centre, height range and voids.
+#include <cstdio>
+#include <optional>
+#include <string>
+
+#include <CLI/CLI.hpp>
+
+#include "dem_format.h"
+#include "dem_loader.h"
+#include "dem_summary.h"
+#include "tool_main.h"
+
+namespace {
+
+struct Options {
+  std::string dem;
+  bool json = false;
+  std::optional<double> cellSizeM;
+  std::optional<double> zScale;
+};
+
+const char* crsName(aal::CrsKind crs) {
+  switch (crs) {
+    case aal::CrsKind::Geographic: return "geographic";
+    case aal::CrsKind::Projected: return "projected";
+    case aal::CrsKind::None: break;
+  }
+  return "none";
+}
+
+std::string jsonString(const std::string& text) {
+  std::string out = "\"";
+  for (const char c : text) {
+    if (c == '"' || c == '\\') {
+      out += '\\';
+      out += c;
+    } else if (static_cast<unsigned char>(c) < 0x20) {
+      char escaped[8];
+      std::snprintf(escaped, sizeof escaped, "\\u%04x", c);
+      out += escaped;
+    } else {
+      out += c;
+    }
+  }
+  return out + "\"";
+}
+
+void printJson(const aal::Heightfield& f, const aal::DemSummary& s) {
+  std::printf("{\"format\": %s, \"width\": %d, \"height\": %d, \"crs\": \"%s\", ",
+              jsonString(f.format).c_str(), f.width, f.height, crsName(f.geo.crs));
+  if (f.geo.epsg > 0) {
+    std::printf("\"epsg\": %d, ", f.geo.epsg);
+  } else {
+    std::printf("\"epsg\": null, ");
+  }
+  std::printf("\"cell_size_m\": [%.9g, %.9g], ", f.cellSizeXM, f.cellSizeYM);
+  if (f.geo.hasCenter) {
+    std::printf("\"center_lat\": %.9f, \"center_lon\": %.9f, ", f.geo.centerLatDeg,
+                f.geo.centerLonDeg);
+  } else {
+    std::printf("\"center_lat\": null, \"center_lon\": null, ");
+  }
+  std::printf("\"z_min\": %.9g, \"z_max\": %.9g, \"voids\": %zu}\n", s.zMinM, s.zMaxM, f.voidCount);
+}
+
+void printText(const aal::Heightfield& f, const aal::DemSummary& s) {
+  std::printf("file       %s\n", f.source.c_str());
+  std::printf("format     %s\n", f.format.c_str());
+  std::printf("size       %d x %d (%zu texels)\n", f.width, f.height, f.texelCount());
+  if (f.geo.epsg > 0) {
+    std::printf("crs        %s (EPSG:%d)\n", crsName(f.geo.crs), f.geo.epsg);
+  } else {
+    std::printf("crs        %s\n", crsName(f.geo.crs));
+  }
+  if (f.rowCellSizeXM.empty()) {
+    std::printf("cell size  x %.4f m, y %.4f m\n", f.cellSizeXM, f.cellSizeYM);
+  } else {
+    std::printf("cell size  x %.4f m at the centre row (%.4f .. %.4f m over the rows), y %.4f m\n",
+                f.cellSizeXM, s.rowCellSizeXMinM, s.rowCellSizeXMaxM, f.cellSizeYM);
+  }
+  if (f.geo.hasCenter) {
+    std::printf("centre     lat %.6f, lon %.6f (WGS84 degrees)\n", f.geo.centerLatDeg,
+                f.geo.centerLonDeg);
+  } else {
+    std::printf("centre     unknown\n");
+  }
+  std::printf("heights    %.3f .. %.3f m (z scale %g)\n", s.zMinM, s.zMaxM, f.zScale);
+  std::printf("voids      %zu texels (%.3f%%), filled with the nearest valid height\n", f.voidCount,
+              100.0 * static_cast<double>(f.voidCount) / f.texelCount());
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  CLI::App app(
+      "Prints what aperture reads from a DEM: format, size, CRS, metric cell size,\n"
+      "geographic centre, height range and void count.\n\n" +
+          aal::demFormatsHelp(),
+      "aal-info");
+  Options o;
+  app.add_option("DEM", o.dem, "elevation file")->required();
+  app.add_flag("--json", o.json,
+               "print one JSON object with the keys format, width, height, crs, epsg, "
+               "cell_size_m [x, y], center_lat, center_lon, z_min, z_max, voids");
+  app.add_option("--cell-size", o.cellSizeM,
+                 "metres between texel centres; overrides the file's georeferencing");
+  app.add_option("--z-scale", o.zScale,
+                 "metres per stored height unit; overrides the file's vertical unit");
+
+  return aal::runTool(app, argc, argv, [&] {
+    aal::DemLoadOptions options;
+    options.cellSizeM = o.cellSizeM;
+    options.zScale = o.zScale;
+    options.warn = [](const std::string& message) {
+      std::fprintf(stderr, "aal-info: warning: %s\n", message.c_str());
+    };
+    const aal::Heightfield field = aal::loadDem(o.dem, options);
+    const aal::DemSummary summary = aal::summarizeDem(field);
+    if (o.json) {
+      printJson(field, summary);
+    } else {
+      printText(field, summary);
+    }
+    return aal::kExitOk;
+  });
+}
