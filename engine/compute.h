@@ -8,6 +8,8 @@
 
 #include <vulkan/vulkan.h>
 
+#include "descriptors.h"
+
 namespace aal {
 
 class Buffer;
@@ -30,12 +32,8 @@ class ComputePipeline {
 
  private:
   VkDevice device_ = VK_NULL_HANDLE;
-  uint32_t storageBufferCount_ = 0;
-  uint32_t pushConstantBytes_ = 0;
-  VkDescriptorSetLayout setLayout_ = VK_NULL_HANDLE;
-  VkPipelineLayout layout_ = VK_NULL_HANDLE;
+  PipelineLayout layout_;
   VkPipeline pipeline_ = VK_NULL_HANDLE;
-  PFN_vkCmdPushDescriptorSetKHR pushDescriptorSet_ = nullptr;
 };
 
 }  // namespace aal

@@ -160,8 +160,8 @@ class LineWalker {
     const int texel = line + layout_.floorOffset[step];
     const double w = layout_.fraction[step];
     // The line's sample: linear between the two texels it passes between.
-    const double z = (1 - w) * heightAt(major, texel) +
-                     w * heightAt(major, std::min(texel + 1, minorMax_));
+    const double z =
+        (1 - w) * heightAt(major, texel) + w * heightAt(major, std::min(texel + 1, minorMax_));
     const double t = along(major, minor);
     const ProfilePoint p{t, z - curvature_ * t * t};
     if (!state.started) {

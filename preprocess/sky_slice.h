@@ -26,8 +26,9 @@ inline Real fastAtan(Real x) {
   if (shifted) y = (y - Real(1)) / (y + Real(1));
   const Real y2 = y * y;
   const Real series =
-      y * (Real(1) + y2 * (Real(-1.0 / 3) + y2 * (Real(1.0 / 5) + y2 * (Real(-1.0 / 7) +
-                                                                       y2 * (Real(1.0 / 9) - y2 / Real(11))))));
+      y * (Real(1) + y2 * (Real(-1.0 / 3) +
+                           y2 * (Real(1.0 / 5) +
+                                 y2 * (Real(-1.0 / 7) + y2 * (Real(1.0 / 9) - y2 / Real(11))))));
   Real result = (shifted ? kQuarterPi : Real(0)) + series;
   if (inverted) result = kHalfPi - result;
   return x < 0 ? -result : result;

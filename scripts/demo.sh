@@ -1,18 +1,49 @@
 #!/usr/bin/env bash
 # The main job, from a fresh Debian 12 machine: installs what is missing,
-# builds, and writes the results to out/ (or the folder given as $1).
-# For now: the spherical-cap error table and plot (exact vs Oat's approximation).
+# builds, bakes the shipped DEM (heightmaps/jacksboro_fault_dem.tif) and
+# renders it lit by the sun and the sky through a summer day, plus an
+# approximate-vs-exact pair and the cap error table. Results go to out/ (or
+# the folder given as $1).
 set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
 out=${1:-$root/out}
+dem=${DEM:-$root/heightmaps/jacksboro_fault_dem.tif}
+size=${SIZE:-1280x720}
 mkdir -p "$out"
 
-"$root/scripts/build.sh" --target aal-caps
+"$root/scripts/build.sh" --target aal-bake aal-render aal-caps aal-info
 bin=${AAL_BUILD_DIR:-$root/build}/bin
 
-echo "== Spherical-cap intersection: exact vs Oat's approximation"
-"$bin/aal-caps" --table "$out/cap-error.csv" --plot "$out/cap-error.png"
+echo "== DEM"
+"$bin/aal-info" "$dem"
+
 echo
-echo "Results in $out:"
-echo "  $out/cap-error.csv  error table over (r0, r1, d)"
-echo "  $out/cap-error.png  error plot"
+echo "== Baking the aperture map"
+"$bin/aal-bake" "$dem" -o "$out/aperture.exr" --svf "$out/sky-view-factor.tif"
+
+echo
+echo "== Rendering a summer day (UTC times; the DEM is at 84 W, local noon ~17:40 UTC)"
+day=${DAY:-2024-06-21}
+for time in 10:45 12:00 14:00 17:40 21:30 23:00 01:15; do
+  date=$day
+  [ "$time" = 01:15 ] && date=$(date -u -d "$day + 1 day" +%F)
+  name="day-${date}T${time/:/}Z.png"
+  "$bin/aal-render" "$dem" --aperture "$out/aperture.exr" -o "$out/$name" --size "$size" \
+    --time "${date}T${time}:00Z" -q
+  echo "  $out/$name"
+done
+
+echo
+echo "== Approximate (Oat's smoothstep) vs exact cap intersection, low sun"
+for mode in approx exact; do
+  "$bin/aal-render" "$dem" --aperture "$out/aperture.exr" -o "$out/sun-low-$mode.png" \
+    --size "$size" --sun-azimuth 250 --sun-elevation 10 --mode "$mode" -q
+  echo "  $out/sun-low-$mode.png"
+done
+
+echo
+echo "== Spherical-cap intersection error"
+"$bin/aal-caps" --table "$out/cap-error.csv" --plot "$out/cap-error.png"
+
+echo
+echo "Results in $out"

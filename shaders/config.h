@@ -9,4 +9,41 @@
 // Workgroup size of the cap parity compute shader.
 #define AAL_CAPS_PARITY_GROUP_SIZE 64
 
+// Shading modes (terrain/shading.h ShadingMode, shaders/shading.glsl).
+#define AAL_MODE_APPROX 0
+#define AAL_MODE_EXACT 1
+#define AAL_MODE_BASELINE_LAMBERT 2
+#define AAL_MODE_BASELINE_AO 3
+#define AAL_MODE_DEBUG_VISIBLE 4
+#define AAL_MODE_DEBUG_BENT_NORMAL 5
+#define AAL_MODE_DEBUG_SUN_FRACTION 6
+#define AAL_MODE_DEBUG_SKY_FILL 7
+
+// Workgroup size of the shading parity compute shader.
+#define AAL_SHADING_PARITY_GROUP_SIZE 64
+
+// Sun and sky (terrain/sky_model.h, terrain/tone_map.h, shaders/sky.glsl,
+// shaders/tone_map.glsl).
+// Floor on cos(view zenith angle) in the Perez function: views at and below
+// the horizon see the horizon's value.
+#define AAL_SKY_MIN_COS_THETA 0.001
+// CIE XYZ to linear Rec. 709 / sRGB, rows, from the BT.709 primaries and the
+// D65 white point (IEC 61966-2-1 prints it to 4 digits); use as
+// vec3(AAL_XYZ_TO_LINEAR_SRGB_ROW0) in either language.
+#define AAL_XYZ_TO_LINEAR_SRGB_ROW0 3.2404542, -1.5371385, -0.4985314
+#define AAL_XYZ_TO_LINEAR_SRGB_ROW1 -0.9692660, 1.8760108, 0.0415560
+#define AAL_XYZ_TO_LINEAR_SRGB_ROW2 0.0556434, -0.2040259, 1.0572252
+// Hable's filmic curve (Uncharted 2, GDC 2010): shoulder strength A, linear
+// strength B, linear angle C, toe strength D, toe numerator E, toe
+// denominator F, linear white point W.
+#define AAL_FILMIC_A 0.15
+#define AAL_FILMIC_B 0.50
+#define AAL_FILMIC_C 0.10
+#define AAL_FILMIC_D 0.20
+#define AAL_FILMIC_E 0.02
+#define AAL_FILMIC_F 0.30
+#define AAL_FILMIC_W 11.2
+// Workgroup size of the sky and tone-map parity compute shaders.
+#define AAL_SKY_PARITY_GROUP_SIZE 64
+
 #endif

@@ -10,8 +10,8 @@
 #include <thread>
 #include <vector>
 
-#include <CLI/CLI.hpp>
 #include <tbb/global_control.h>
+#include <CLI/CLI.hpp>
 
 #include "aperture_map.h"
 #include "atomic_file.h"
@@ -91,7 +91,8 @@ int run(const Options& o) {
   bake.progress = [&](double fraction) { progress.update(fraction); };
   bake.cancel = &gInterrupted;
 
-  const int threads = o.threads > 0 ? o.threads : static_cast<int>(std::thread::hardware_concurrency());
+  const int threads =
+      o.threads > 0 ? o.threads : static_cast<int>(std::thread::hardware_concurrency());
   tbb::global_control parallelism(tbb::global_control::max_allowed_parallelism,
                                   static_cast<size_t>(std::max(1, threads)));
   const auto start = std::chrono::steady_clock::now();
@@ -104,7 +105,8 @@ int run(const Options& o) {
     return aal::kExitFailure;
   }
   progress.finish();
-  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  const double seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 
   result.aperture.info.source = std::filesystem::path(o.dem).filename().string();
   aal::writeApertureMap(o.output, result.aperture, !o.fullFloat);
@@ -170,8 +172,7 @@ int main(int argc, char** argv) {
   app.add_option("--max-distance", o.maxDistance,
                  "only terrain within this many metres counts (0 = all; slower when set)")
       ->check(CLI::NonNegativeNumber);
-  app.add_option("--svf", o.svfPath,
-                 "also write the sky-view factor (Zaksek) as float32 GeoTIFF");
+  app.add_option("--svf", o.svfPath, "also write the sky-view factor (Zaksek) as float32 GeoTIFF");
   app.add_option("--visible", o.visiblePath,
                  "also write the visible fraction Omega/2pi as float32 GeoTIFF");
   app.add_option("--threads", o.threads, "worker threads (default: all cores)")

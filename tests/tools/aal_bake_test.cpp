@@ -24,7 +24,9 @@ namespace fs = std::filesystem;
 using test::runTool;
 using test::TempDir;
 
-std::string quoted(const fs::path& p) { return "'" + p.string() + "'"; }
+std::string quoted(const fs::path& p) {
+  return "'" + p.string() + "'";
+}
 
 // A synthetic DEM written as a projected float GeoTIFF.
 fs::path writeDem(const TempDir& dir, int size, const std::string& name = "dem.tif") {
@@ -121,8 +123,8 @@ TEST(AalBake, BadArgumentsExitWithTwo) {
   for (const std::string& args :
        {quoted(dem) + out + " --azimuths 3", quoted(dem) + out + " --azimuths 100000",
         quoted(dem) + out + " --method magic", quoted(dem) + out + " --edge wrap",
-        quoted(dem) + out + " --max-distance -5", quoted(dem) + out + " --cell-size 0",
-        quoted(dem), quoted(dir.path() / "missing.tif") + out,
+        quoted(dem) + out + " --max-distance -5", quoted(dem) + out + " --cell-size 0", quoted(dem),
+        quoted(dir.path() / "missing.tif") + out,
         quoted(dem) + out + " --method rays --svf " + quoted(dir.path() / "s.tif")}) {
     const auto r = runTool("aal-bake", args);
     EXPECT_EQ(r.exitCode, 2) << args << "\n" << r.out;
@@ -156,8 +158,8 @@ TEST(AalBake, InterruptLeavesNoFile) {
   const std::string bake = (test::binDir() / "aal-bake").string();
   const std::string demArg = dem.string(), outArg = out.string();
   // Enough azimuths for tens of seconds of work; interrupted well before.
-  const char* argv[] = {bake.c_str(), demArg.c_str(), "-o", outArg.c_str(), "--azimuths", "4096",
-                        "-q", nullptr};
+  const char* argv[] = {bake.c_str(), demArg.c_str(), "-o", outArg.c_str(),
+                        "--azimuths", "4096",         "-q", nullptr};
   pid_t pid = 0;
   ASSERT_EQ(posix_spawn(&pid, bake.c_str(), nullptr, nullptr, const_cast<char**>(argv), environ),
             0);

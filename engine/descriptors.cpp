@@ -1,0 +1,99 @@
+#include "descriptors.h"
+
+#include <stdexcept>
+
+#include "buffer.h"
+#include "device.h"
+#include "vk_check.h"
+
+namespace aal {
+
+PipelineLayout::PipelineLayout(const Device& device, const std::vector<VkDescriptorType>& bindings,
+                               VkShaderStageFlags stages, uint32_t pushConstantBytes)
+    : device_(device.handle()),
+      stages_(stages),
+      pushConstantBytes_(pushConstantBytes),
+      bindingCount_(bindings.size()) {
+  if (pushConstantBytes > device.properties().limits.maxPushConstantsSize) {
+    throw VulkanError("push constants exceed the device limit");
+  }
+  pushDescriptorSet_ = reinterpret_cast<PFN_vkCmdPushDescriptorSetKHR>(
+      vkGetDeviceProcAddr(device_, "vkCmdPushDescriptorSetKHR"));
+  if (!pushDescriptorSet_) throw VulkanError("vkCmdPushDescriptorSetKHR unavailable");
+  std::vector<VkDescriptorSetLayoutBinding> list(bindings.size());
+  for (uint32_t i = 0; i < bindings.size(); ++i) list[i] = {i, bindings[i], 1, stages, nullptr};
+  VkDescriptorSetLayoutCreateInfo setInfo{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO};
+  setInfo.flags = VK_DESCRIPTOR_SET_LAYOUT_CREATE_PUSH_DESCRIPTOR_BIT_KHR;
+  setInfo.bindingCount = static_cast<uint32_t>(list.size());
+  setInfo.pBindings = list.data();
+  AAL_VK_CHECK(vkCreateDescriptorSetLayout(device_, &setInfo, nullptr, &setLayout_));
+
+  VkPushConstantRange range{stages, 0, pushConstantBytes};
+  VkPipelineLayoutCreateInfo info{VK_STRUCTURE_TYPE_PIPELINE_LAYOUT_CREATE_INFO};
+  info.setLayoutCount = 1;
+  info.pSetLayouts = &setLayout_;
+  info.pushConstantRangeCount = pushConstantBytes > 0 ? 1 : 0;
+  info.pPushConstantRanges = &range;
+  AAL_VK_CHECK(vkCreatePipelineLayout(device_, &info, nullptr, &layout_));
+}
+
+PipelineLayout::~PipelineLayout() {
+  if (layout_ != VK_NULL_HANDLE) vkDestroyPipelineLayout(device_, layout_, nullptr);
+  if (setLayout_ != VK_NULL_HANDLE) vkDestroyDescriptorSetLayout(device_, setLayout_, nullptr);
+}
+
+DescriptorWrites& DescriptorWrites::uniformBuffer(uint32_t binding, const Buffer& buffer) {
+  entries_.push_back(
+      {binding, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, {buffer.handle(), 0, VK_WHOLE_SIZE}, {}});
+  return *this;
+}
+
+DescriptorWrites& DescriptorWrites::storageBuffer(uint32_t binding, const Buffer& buffer) {
+  entries_.push_back(
+      {binding, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, {buffer.handle(), 0, VK_WHOLE_SIZE}, {}});
+  return *this;
+}
+
+DescriptorWrites& DescriptorWrites::sampledImage(uint32_t binding, VkImageView view,
+                                                 VkSampler sampler) {
+  entries_.push_back({binding,
+                      VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER,
+                      {},
+                      {sampler, view, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL}});
+  return *this;
+}
+
+void DescriptorWrites::push(VkCommandBuffer cmd, VkPipelineBindPoint bindPoint,
+                            const PipelineLayout& layout) const {
+  std::vector<VkWriteDescriptorSet> writes(entries_.size());
+  for (size_t i = 0; i < entries_.size(); ++i) {
+    const Entry& e = entries_[i];
+    writes[i] = {VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};
+    writes[i].dstBinding = e.binding;
+    writes[i].descriptorCount = 1;
+    writes[i].descriptorType = e.type;
+    if (e.type == VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER) {
+      writes[i].pImageInfo = &e.image;
+    } else {
+      writes[i].pBufferInfo = &e.buffer;
+    }
+  }
+  layout.pushDescriptorSet()(cmd, bindPoint, layout.handle(), 0,
+                             static_cast<uint32_t>(writes.size()), writes.data());
+}
+
+Sampler::Sampler(const Device& device, VkFilter filter) : device_(device.handle()) {
+  VkSamplerCreateInfo info{VK_STRUCTURE_TYPE_SAMPLER_CREATE_INFO};
+  info.magFilter = filter;
+  info.minFilter = filter;
+  info.mipmapMode = VK_SAMPLER_MIPMAP_MODE_NEAREST;
+  info.addressModeU = info.addressModeV = info.addressModeW = VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE;
+  info.maxLod = 0.0f;
+  AAL_VK_CHECK(vkCreateSampler(device_, &info, nullptr, &sampler_));
+}
+
+Sampler::~Sampler() {
+  if (sampler_ != VK_NULL_HANDLE) vkDestroySampler(device_, sampler_, nullptr);
+}
+
+}  // namespace aal

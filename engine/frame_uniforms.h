@@ -1,0 +1,27 @@
+// C++ twin of the Frame uniform block of shaders/frame.glsl (std140).
+#pragma once
+
+#include <glm/mat4x4.hpp>
+#include <glm/vec4.hpp>
+
+#include "sky_model.h"
+
+namespace aal {
+
+struct FrameUniforms {
+  glm::mat4 viewProj{1.0f};
+  glm::mat4 invViewProj{1.0f};
+  glm::vec4 cameraPos{0.0f};
+  glm::vec4 sunDirection{0.0f};   // xyz, w: sun angular radius (rad)
+  glm::vec4 sunIrradiance{0.0f};  // rgb
+  glm::vec4 skyRadiance{0.0f};    // rgb, w: haze density (1/m)
+  glm::vec4 dem{0.0f};            // width, height, cell x, cell y
+  glm::vec4 heights{0.0f};        // min, max, water level, water on
+  glm::ivec4 grid{0};             // columns, rows, mode, albedo on
+  glm::vec4 display{0.0f};        // exposure, raw output
+  PreethamSky sky;
+};
+static_assert(sizeof(FrameUniforms) == 2 * 64 + 8 * 16 + sizeof(PreethamSky),
+              "FrameUniforms must match the std140 Frame block of shaders/frame.glsl");
+
+}  // namespace aal

@@ -1,0 +1,47 @@
+// Graphics pipelines for dynamic rendering, with no vertex input: vertex
+// shaders pull their data (gl_VertexIndex, textures, storage buffers).
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include <vulkan/vulkan.h>
+
+#include "descriptors.h"
+
+namespace aal {
+
+class Device;
+
+struct GraphicsPipelineDesc {
+  std::string vertexShader;    // e.g. "terrain.vert" (see loadSpirv)
+  std::string fragmentShader;  // e.g. "terrain.frag"
+  std::vector<VkDescriptorType> bindings;
+  uint32_t pushConstantBytes = 0;
+  std::vector<VkFormat> colorFormats;
+  VkFormat depthFormat = VK_FORMAT_UNDEFINED;
+  bool depthTest = false;
+  bool depthWrite = false;
+  VkCullModeFlags cullMode = VK_CULL_MODE_NONE;
+};
+
+class GraphicsPipeline {
+ public:
+  GraphicsPipeline(const Device& device, const GraphicsPipelineDesc& desc);
+  ~GraphicsPipeline();
+  GraphicsPipeline(const GraphicsPipeline&) = delete;
+  GraphicsPipeline& operator=(const GraphicsPipeline&) = delete;
+
+  VkPipeline handle() const { return pipeline_; }
+  const PipelineLayout& layout() const { return layout_; }
+
+  // Binds the pipeline, pushes descriptors and constants (may be null).
+  void bind(VkCommandBuffer cmd, const DescriptorWrites& writes, const void* pushConstants) const;
+
+ private:
+  VkDevice device_ = VK_NULL_HANDLE;
+  PipelineLayout layout_;
+  VkPipeline pipeline_ = VK_NULL_HANDLE;
+};
+
+}  // namespace aal

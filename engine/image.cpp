@@ -1,0 +1,133 @@
+#include "image.h"
+
+#include <string>
+#include <utility>
+
+#include "buffer.h"
+#include "device.h"
+#include "vk_check.h"
+
+namespace aal {
+
+Image::Image(const Device& device, const ImageDesc& desc) : device_(device.handle()), desc_(desc) {
+  const uint32_t limit = device.properties().limits.maxImageDimension2D;
+  if (desc.width == 0 || desc.height == 0 || desc.width > limit || desc.height > limit) {
+    throw VulkanError("image of " + std::to_string(desc.width) + "x" + std::to_string(desc.height) +
+                      " is outside the device's limits (1.." + std::to_string(limit) +
+                      " per side)");
+  }
+  VkImageCreateInfo info{VK_STRUCTURE_TYPE_IMAGE_CREATE_INFO};
+  info.imageType = VK_IMAGE_TYPE_2D;
+  info.format = desc.format;
+  info.extent = {desc.width, desc.height, 1};
+  info.mipLevels = 1;
+  info.arrayLayers = 1;
+  info.samples = VK_SAMPLE_COUNT_1_BIT;
+  info.tiling = VK_IMAGE_TILING_OPTIMAL;
+  info.usage = desc.usage;
+  info.initialLayout = VK_IMAGE_LAYOUT_UNDEFINED;
+  AAL_VK_CHECK(vkCreateImage(device_, &info, nullptr, &image_));
+
+  VkMemoryRequirements requirements;
+  vkGetImageMemoryRequirements(device_, image_, &requirements);
+  VkMemoryAllocateInfo alloc{VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO};
+  alloc.allocationSize = requirements.size;
+  alloc.memoryTypeIndex = findMemoryType(device.memoryProperties(), requirements.memoryTypeBits,
+                                         VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT);
+  AAL_VK_CHECK(vkAllocateMemory(device_, &alloc, nullptr, &memory_));
+  AAL_VK_CHECK(vkBindImageMemory(device_, image_, memory_, 0));
+
+  VkImageViewCreateInfo viewInfo{VK_STRUCTURE_TYPE_IMAGE_VIEW_CREATE_INFO};
+  viewInfo.image = image_;
+  viewInfo.viewType = VK_IMAGE_VIEW_TYPE_2D;
+  viewInfo.format = desc.format;
+  viewInfo.subresourceRange = {desc.aspect, 0, 1, 0, 1};
+  AAL_VK_CHECK(vkCreateImageView(device_, &viewInfo, nullptr, &view_));
+}
+
+Image::~Image() {
+  release();
+}
+
+Image::Image(Image&& other) noexcept {
+  *this = std::move(other);
+}
+
+Image& Image::operator=(Image&& other) noexcept {
+  if (this != &other) {
+    release();
+    device_ = std::exchange(other.device_, VK_NULL_HANDLE);
+    image_ = std::exchange(other.image_, VK_NULL_HANDLE);
+    memory_ = std::exchange(other.memory_, VK_NULL_HANDLE);
+    view_ = std::exchange(other.view_, VK_NULL_HANDLE);
+    desc_ = other.desc_;
+  }
+  return *this;
+}
+
+void Image::release() {
+  if (device_ == VK_NULL_HANDLE) return;
+  if (view_ != VK_NULL_HANDLE) vkDestroyImageView(device_, view_, nullptr);
+  if (image_ != VK_NULL_HANDLE) vkDestroyImage(device_, image_, nullptr);
+  if (memory_ != VK_NULL_HANDLE) vkFreeMemory(device_, memory_, nullptr);
+  view_ = VK_NULL_HANDLE;
+  image_ = VK_NULL_HANDLE;
+  memory_ = VK_NULL_HANDLE;
+}
+
+namespace {
+
+struct LayoutUse {
+  VkPipelineStageFlags2 stage;
+  VkAccessFlags2 access;
+};
+
+LayoutUse useOf(VkImageLayout layout) {
+  switch (layout) {
+    case VK_IMAGE_LAYOUT_UNDEFINED: return {VK_PIPELINE_STAGE_2_TOP_OF_PIPE_BIT, 0};
+    case VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL:
+      return {VK_PIPELINE_STAGE_2_TRANSFER_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT};
+    case VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL:
+      return {VK_PIPELINE_STAGE_2_TRANSFER_BIT, VK_ACCESS_2_TRANSFER_READ_BIT};
+    case VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL:
+      return {VK_PIPELINE_STAGE_2_VERTEX_SHADER_BIT | VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT |
+                  VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
+              VK_ACCESS_2_SHADER_SAMPLED_READ_BIT};
+    case VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL:
+      return {VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT,
+              VK_ACCESS_2_COLOR_ATTACHMENT_READ_BIT | VK_ACCESS_2_COLOR_ATTACHMENT_WRITE_BIT};
+    case VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL:
+      return {VK_PIPELINE_STAGE_2_EARLY_FRAGMENT_TESTS_BIT |
+                  VK_PIPELINE_STAGE_2_LATE_FRAGMENT_TESTS_BIT,
+              VK_ACCESS_2_DEPTH_STENCIL_ATTACHMENT_READ_BIT |
+                  VK_ACCESS_2_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT};
+    case VK_IMAGE_LAYOUT_PRESENT_SRC_KHR: return {VK_PIPELINE_STAGE_2_BOTTOM_OF_PIPE_BIT, 0};
+    default:
+      return {VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT,
+              VK_ACCESS_2_MEMORY_READ_BIT | VK_ACCESS_2_MEMORY_WRITE_BIT};
+  }
+}
+
+}  // namespace
+
+void transitionImage(VkCommandBuffer cmd, const Image& image, VkImageLayout from,
+                     VkImageLayout to) {
+  const LayoutUse src = useOf(from), dst = useOf(to);
+  VkImageMemoryBarrier2 barrier{VK_STRUCTURE_TYPE_IMAGE_MEMORY_BARRIER_2};
+  barrier.srcStageMask = src.stage;
+  barrier.srcAccessMask = src.access;
+  barrier.dstStageMask = dst.stage;
+  barrier.dstAccessMask = dst.access;
+  barrier.oldLayout = from;
+  barrier.newLayout = to;
+  barrier.srcQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
+  barrier.dstQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
+  barrier.image = image.handle();
+  barrier.subresourceRange = {image.desc().aspect, 0, 1, 0, 1};
+  VkDependencyInfo dependency{VK_STRUCTURE_TYPE_DEPENDENCY_INFO};
+  dependency.imageMemoryBarrierCount = 1;
+  dependency.pImageMemoryBarriers = &barrier;
+  vkCmdPipelineBarrier2(cmd, &dependency);
+}
+
+}  // namespace aal

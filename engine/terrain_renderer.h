@@ -1,0 +1,66 @@
+// Headless rendering of a terrain scene: the frame is a list of passes
+// (sky, terrain, tone map) into offscreen targets, read back to the host.
+// The windowed viewer reuses the passes with a swapchain image as target.
+#pragma once
+
+#include <cstdint>
+#include <memory>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include <glm/vec3.hpp>
+
+#include "buffer.h"
+#include "camera.h"
+#include "gpu_timer.h"
+#include "graphics_pipeline.h"
+#include "image.h"
+#include "shading.h"
+#include "sky_model.h"
+
+namespace aal {
+
+class Device;
+class TerrainScene;
+
+struct FrameSettings {
+  Camera camera;
+  ShadingMode mode = ShadingMode::Approx;
+  glm::vec3 sunDirection{0, 0, 1};  // unit, world frame
+  float sunRadiusRad = 0.004653f;
+  glm::vec3 sunIrradiance{0.0f};  // E_sun (terrain/atmosphere.h units)
+  glm::vec3 skyRadiance{0.0f};    // average L_sky
+  PreethamSky sky;                // background sky model
+  float hazeDensityPerM = 0.0f;   // aerial perspective extinction
+  float exposure = 1.0f;          // see terrain/tone_map.h
+  bool waterAtSeaLevel = false;   // paint heights <= 0 as water (DEMs with a vertical datum)
+};
+
+struct FrameResult {
+  uint32_t width = 0, height = 0;
+  std::vector<uint8_t> display;  // RGBA8, sRGB encoded (debug modes: raw values)
+  std::vector<float> linear;     // RGBA32F linear radiance, when asked for
+  std::vector<std::pair<std::string, double>> passMilliseconds;
+  size_t triangles = 0;
+};
+
+class TerrainRenderer {
+ public:
+  // Throws VulkanError when width/height are 0 or beyond the device limit.
+  TerrainRenderer(const Device& device, uint32_t width, uint32_t height);
+  ~TerrainRenderer();
+
+  FrameResult render(const TerrainScene& scene, const FrameSettings& settings, bool wantLinear);
+
+ private:
+  struct Passes;
+  const Device& device_;
+  uint32_t width_, height_;
+  Image hdr_, depth_, display_;
+  Buffer uniforms_;
+  std::unique_ptr<Passes> passes_;
+  GpuTimer timer_;
+};
+
+}  // namespace aal

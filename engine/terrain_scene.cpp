@@ -1,0 +1,66 @@
+#include "terrain_scene.h"
+
+#include <algorithm>
+
+#include <Imath/half.h>
+
+#include "device.h"
+#include "upload.h"
+
+namespace aal {
+
+TerrainScene::TerrainScene(const Device& device, const Heightfield& field,
+                           const ApertureMap& aperture, const AlbedoImage* albedo,
+                           size_t triangleBudget) {
+  const uint32_t w = static_cast<uint32_t>(field.width), h = static_cast<uint32_t>(field.height);
+  heights_ = Image(device, {w, h, VK_FORMAT_R32_SFLOAT,
+                            VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT});
+  aperture_ = Image(device, {w, h, VK_FORMAT_R16G16B16A16_SFLOAT,
+                             VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT});
+  std::vector<uint16_t> halves(aperture.texels.size());
+  std::transform(aperture.texels.begin(), aperture.texels.end(), halves.begin(),
+                 [](float v) { return Imath::half(v).bits(); });
+
+  hasAlbedo_ = albedo != nullptr;
+  std::vector<uint8_t> albedoBytes;
+  if (albedo) {
+    albedo_ = Image(device, {w, h, VK_FORMAT_R8G8B8A8_UNORM,
+                             VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT});
+    albedoBytes.resize(static_cast<size_t>(w) * h * 4);
+    for (size_t i = 0; i < static_cast<size_t>(w) * h; ++i) {
+      for (int c = 0; c < 3; ++c) {
+        albedoBytes[4 * i + c] =
+            static_cast<uint8_t>(std::clamp(albedo->rgb[3 * i + c], 0.0f, 1.0f) * 255.0f + 0.5f);
+      }
+      albedoBytes[4 * i + 3] = 255;
+    }
+  } else {
+    // A bound texture is required; one texel that the shader ignores.
+    albedo_ = Image(device, {1, 1, VK_FORMAT_R8G8B8A8_UNORM,
+                             VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT});
+    albedoBytes = {128, 128, 128, 255};
+  }
+
+  const TerrainGrid grid = makeTerrainGrid(field.width, field.height, triangleBudget);
+  gridColumns_ = grid.columns;
+  gridRows_ = grid.rows;
+  indexCount_ = static_cast<uint32_t>(grid.indices.size());
+  indices_ = Buffer(device, grid.indices.size() * sizeof(uint32_t),
+                    VK_BUFFER_USAGE_INDEX_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT,
+                    MemoryIntent::DeviceLocal);
+
+  UploadBatch upload(device);
+  upload.addImage(heights_, field.z.data(), field.z.size() * sizeof(float));
+  upload.addImage(aperture_, halves.data(), halves.size() * sizeof(uint16_t));
+  upload.addImage(albedo_, albedoBytes.data(), albedoBytes.size());
+  upload.addBuffer(indices_, grid.indices.data(), grid.indices.size() * sizeof(uint32_t));
+  upload.submit();
+
+  demInfo_ = {static_cast<float>(field.width), static_cast<float>(field.height),
+              static_cast<float>(field.cellSizeXM), static_cast<float>(field.cellSizeYM)};
+  const auto [lo, hi] = std::minmax_element(field.z.begin(), field.z.end());
+  minHeight_ = *lo;
+  maxHeight_ = *hi;
+}
+
+}  // namespace aal

@@ -1,0 +1,70 @@
+#include "aperture_cache.h"
+
+#include <cstdio>
+#include <cstdlib>
+#include <system_error>
+
+#include "errors.h"
+#include "progress.h"
+
+namespace aal {
+
+namespace fs = std::filesystem;
+
+fs::path apertureCacheDirectory() {
+  if (const char* dir = std::getenv("AAL_CACHE_DIR"); dir && *dir) return dir;
+  if (const char* xdg = std::getenv("XDG_CACHE_HOME"); xdg && *xdg)
+    return fs::path(xdg) / "aperture";
+  if (const char* home = std::getenv("HOME"); home && *home) {
+    return fs::path(home) / ".cache" / "aperture";
+  }
+  return fs::temp_directory_path() / "aperture-cache";
+}
+
+fs::path cachedAperturePath(const Heightfield& field, const BakeOptions& o) {
+  char name[160];
+  std::snprintf(name, sizeof name, "%s-%s-a%d-r%d-%s-c%d-k%.3f-d%.0f.exr",
+                heightfieldChecksum(field).c_str(),
+                o.method == BakeMethod::Sweep ? "sweep" : "rays", o.azimuths, o.rays,
+                o.clampEdge ? "clamp" : "open", o.curvature ? 1 : 0, o.refraction, o.maxDistanceM);
+  return apertureCacheDirectory() / name;
+}
+
+ApertureMap loadOrBakeAperture(const Heightfield& field, const std::string& demPath,
+                               BakeOptions options, bool quiet) {
+  const fs::path path = cachedAperturePath(field, options);
+  std::error_code error;
+  if (fs::exists(path, error)) {
+    try {
+      ApertureMap map = readApertureMap(path.string());
+      checkApertureMatchesDem(map, path.string(), field, demPath);
+      return map;
+    } catch (const InputError& e) {
+      // A damaged or stale cache entry is replaced, not fatal.
+      if (!quiet) std::fprintf(stderr, "note: rebaking (cache entry unusable: %s)\n", e.what());
+    }
+  }
+  ProgressBar progress("baking apertures", !quiet);
+  options.progress = [&](double fraction) { progress.update(fraction); };
+  BakeResult result = bakeApertures(field, options);
+  progress.finish();
+  result.aperture.info.source = fs::path(demPath).filename().string();
+  fs::create_directories(path.parent_path(), error);
+  if (error) {
+    if (!quiet) {
+      std::fprintf(stderr, "note: cannot create cache folder %s (%s); not caching\n",
+                   path.parent_path().c_str(), error.message().c_str());
+    }
+    return std::move(result.aperture);
+  }
+  try {
+    writeApertureMap(path.string(), result.aperture, /*halfFloat=*/true);
+    // What later runs will read: the same halves, so every render agrees.
+    return readApertureMap(path.string());
+  } catch (const std::exception& e) {
+    if (!quiet) std::fprintf(stderr, "note: not caching the aperture map: %s\n", e.what());
+  }
+  return std::move(result.aperture);
+}
+
+}  // namespace aal

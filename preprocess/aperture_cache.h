@@ -1,0 +1,27 @@
+// A cache of baked aperture maps, so that tools which need one (aal-render,
+// aal-view) bake a DEM only once. Maps live in $AAL_CACHE_DIR, else
+// $XDG_CACHE_HOME/aperture, else ~/.cache/aperture, named by the heights'
+// checksum and the bake options.
+#pragma once
+
+#include <filesystem>
+#include <string>
+
+#include "aperture_map.h"
+#include "bake.h"
+#include "heightfield.h"
+
+namespace aal {
+
+std::filesystem::path apertureCacheDirectory();
+
+// Cache file for this DEM (its loaded heights) and these bake options.
+std::filesystem::path cachedAperturePath(const Heightfield& field, const BakeOptions& options);
+
+// The cached map when present and valid, else a fresh bake (with progress on
+// stderr unless quiet) written to the cache atomically. `demPath` names the
+// DEM in the map's aal:source.
+ApertureMap loadOrBakeAperture(const Heightfield& field, const std::string& demPath,
+                               BakeOptions options, bool quiet);
+
+}  // namespace aal

@@ -1,0 +1,72 @@
+// Ambient aperture lighting of one surface point: twin of terrain/shading.h
+// (see there for the contract and units). DESIGN §5.
+#ifndef AAL_SHADING_GLSL
+#define AAL_SHADING_GLSL
+
+#include "caps.glsl"
+#include "config.h"
+
+struct ShadingInputs {
+  vec3 albedo;
+  vec3 normal;
+  vec3 bentNormal;
+  float apertureRad;
+  vec3 sunDirection;
+  float sunRadiusRad;
+  vec3 sunIrradiance;
+  vec3 skyRadiance;
+  vec3 transfer;
+};
+
+struct ShadingTerms {
+  vec3 direct;
+  vec3 ambient;
+  float sunFraction;
+  vec3 skyIrradiance;
+};
+
+ShadingTerms shadingTerms(ShadingInputs s, int mode) {
+  const float pi = float(AAL_PI);
+  ShadingTerms t;
+  vec3 diffuse = s.albedo / pi;
+  float nDotL = max(0.0, dot(s.normal, s.sunDirection));
+  float visible = 1.0 - cos(s.apertureRad);
+  if (mode == AAL_MODE_BASELINE_LAMBERT || mode == AAL_MODE_BASELINE_AO) {
+    t.sunFraction = 1.0;
+    t.direct = diffuse * s.sunIrradiance * nDotL;
+    t.skyIrradiance = pi * s.skyRadiance * (mode == AAL_MODE_BASELINE_AO ? visible : 1.0);
+    t.ambient = diffuse * t.skyIrradiance;
+    return t;
+  }
+  // atan2 of sine and cosine: GPU acos approximations are too coarse at the
+  // sun's scale (lavapipe's was off by ~1e-3 rad here).
+  float d = atan(length(cross(s.bentNormal, s.sunDirection)), dot(s.bentNormal, s.sunDirection));
+  float sunArea = capArea(s.sunRadiusRad);
+  float isect = mode == AAL_MODE_EXACT ? capIntersectionExact(s.apertureRad, s.sunRadiusRad, d)
+                                       : capIntersectionApprox(s.apertureRad, s.sunRadiusRad, d);
+  t.sunFraction = sunArea > 0.0 ? clamp(isect / sunArea, 0.0, 1.0) : 0.0;
+  vec3 toCentroid = lambertCentroid(s.bentNormal, s.sunDirection);
+  t.direct = diffuse * s.sunIrradiance * t.sunFraction * max(0.0, dot(s.normal, toCentroid));
+  float apertureArea = capArea(s.apertureRad);
+  float skyShare = apertureArea > 0.0 ? 1.0 - min(1.0, isect / apertureArea) : 0.0;
+  float sinR = sin(s.apertureRad);
+  t.skyIrradiance = s.skyRadiance * pi * sinR * sinR * max(0.0, dot(s.normal, s.bentNormal)) *
+                    skyShare;
+  t.ambient = diffuse * t.skyIrradiance * s.transfer;
+  return t;
+}
+
+vec3 shade(ShadingInputs s, int mode) {
+  if (mode == AAL_MODE_DEBUG_VISIBLE) return vec3(1.0 - cos(s.apertureRad));
+  if (mode == AAL_MODE_DEBUG_BENT_NORMAL) return s.bentNormal * 0.5 + 0.5;
+  if (mode == AAL_MODE_DEBUG_SUN_FRACTION) return vec3(shadingTerms(s, AAL_MODE_APPROX).sunFraction);
+  if (mode == AAL_MODE_DEBUG_SKY_FILL) {
+    float full = float(AAL_PI) * max(s.skyRadiance.r, max(s.skyRadiance.g, s.skyRadiance.b));
+    vec3 e = shadingTerms(s, AAL_MODE_APPROX).skyIrradiance;
+    return vec3(full > 0.0 ? max(e.r, max(e.g, e.b)) / full : 0.0);
+  }
+  ShadingTerms t = shadingTerms(s, mode);
+  return t.direct + t.ambient;
+}
+
+#endif

@@ -1,0 +1,39 @@
+#version 460
+// Evaluates shade() of shading.glsl for a list of inputs, so the tests can
+// compare it with terrain/shading.h (tests/engine/shading_parity_test.cpp).
+#extension GL_GOOGLE_include_directive : require
+
+#include "shading.glsl"
+
+layout(local_size_x = AAL_SHADING_PARITY_GROUP_SIZE) in;
+
+struct Query {
+  vec4 albedoMode;        // rgb albedo, w: mode
+  vec4 normal;            // xyz
+  vec4 bentAperture;      // xyz bent normal, w: aperture arc length
+  vec4 sunRadius;         // xyz sun direction, w: sun radius
+  vec4 sunIrradiance;     // rgb
+  vec4 skyRadiance;       // rgb
+  vec4 transfer;          // rgb
+};
+
+layout(set = 0, binding = 0, std430) readonly buffer Queries { Query queries[]; };
+layout(set = 0, binding = 1, std430) writeonly buffer Answers { vec4 answers[]; };
+layout(push_constant) uniform Push { uint count; };
+
+void main() {
+  uint i = gl_GlobalInvocationID.x;
+  if (i >= count) return;
+  Query q = queries[i];
+  ShadingInputs s;
+  s.albedo = q.albedoMode.rgb;
+  s.normal = q.normal.xyz;
+  s.bentNormal = q.bentAperture.xyz;
+  s.apertureRad = q.bentAperture.w;
+  s.sunDirection = q.sunRadius.xyz;
+  s.sunRadiusRad = q.sunRadius.w;
+  s.sunIrradiance = q.sunIrradiance.rgb;
+  s.skyRadiance = q.skyRadiance.rgb;
+  s.transfer = q.transfer.rgb;
+  answers[i] = vec4(shade(s, int(q.albedoMode.w)), 0.0);
+}

@@ -1,0 +1,17 @@
+#version 460
+// HDR radiance to display: exposure and a filmic curve, sRGB encoded. Debug
+// views pass their values through unchanged.
+#extension GL_GOOGLE_include_directive : require
+
+#include "frame.glsl"
+#include "tone_map.glsl"
+
+layout(set = 0, binding = 1) uniform sampler2D hdrImage;
+
+layout(location = 0) in vec2 uv;
+layout(location = 0) out vec4 color;
+
+void main() {
+  vec3 hdr = textureLod(hdrImage, uv, 0.0).rgb;
+  color = vec4(frame.display.y > 0.5 ? clamp(hdr, 0.0, 1.0) : toneMap(hdr, frame.display.x), 1.0);
+}

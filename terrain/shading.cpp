@@ -1,0 +1,73 @@
+#include "shading.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include <glm/geometric.hpp>
+
+#include "caps.h"
+
+namespace aal {
+
+namespace {
+constexpr float kPi = 3.14159265358979323846f;
+}
+
+ShadingTerms shadingTerms(const ShadingInputs& in, ShadingMode mode) {
+  ShadingTerms t;
+  const glm::vec3 diffuse = in.albedo / kPi;
+  const float nDotL = std::max(0.0f, glm::dot(in.normal, in.sunDirection));
+  const float visible = 1.0f - std::cos(in.apertureRad);  // Omega / 2 pi
+  if (mode == ShadingMode::BaselineLambert || mode == ShadingMode::BaselineAo) {
+    t.sunFraction = 1.0f;
+    t.direct = diffuse * in.sunIrradiance * nDotL;
+    // Constant ambient: the irradiance of the full sky dome, pi L_sky.
+    t.skyIrradiance = kPi * in.skyRadiance * (mode == ShadingMode::BaselineAo ? visible : 1.0f);
+    t.ambient = diffuse * t.skyIrradiance;
+    return t;
+  }
+  // Sun: the fraction of its disk seen through the aperture, with the
+  // Lambert term at the intersection's centroid (seed 002).
+  // Angle between the cap centres as atan2(|B x L|, B.L): acos loses
+  // precision at the sun's scale (and GPU acos approximations more so).
+  const float d = std::atan2(glm::length(glm::cross(in.bentNormal, in.sunDirection)),
+                             glm::dot(in.bentNormal, in.sunDirection));
+  const float sunArea = static_cast<float>(capArea(in.sunRadiusRad));
+  const float isect =
+      mode == ShadingMode::Exact
+          ? static_cast<float>(capIntersectionExact(in.apertureRad, in.sunRadiusRad, d))
+          : capIntersectionApprox(in.apertureRad, in.sunRadiusRad, d);
+  t.sunFraction = sunArea > 0 ? std::clamp(isect / sunArea, 0.0f, 1.0f) : 0.0f;
+  const glm::vec3 centroid = lambertCentroid(in.bentNormal, in.sunDirection);
+  t.direct =
+      diffuse * in.sunIrradiance * t.sunFraction * std::max(0.0f, glm::dot(in.normal, centroid));
+  // Sky: a uniform cap of radius r_a centred beta from N gives pi sin^2(r_a)
+  // cos(beta); the sun's share of the aperture is left out.
+  const float apertureArea = static_cast<float>(capArea(in.apertureRad));
+  const float skyShare = apertureArea > 0 ? 1.0f - std::min(1.0f, isect / apertureArea) : 0.0f;
+  const float sinR = std::sin(in.apertureRad);
+  t.skyIrradiance = in.skyRadiance * kPi * sinR * sinR *
+                    std::max(0.0f, glm::dot(in.normal, in.bentNormal)) * skyShare;
+  t.ambient = diffuse * t.skyIrradiance * in.transfer;
+  return t;
+}
+
+glm::vec3 shade(const ShadingInputs& in, ShadingMode mode) {
+  switch (mode) {
+    case ShadingMode::DebugVisible: return glm::vec3(1.0f - std::cos(in.apertureRad));
+    case ShadingMode::DebugBentNormal: return in.bentNormal * 0.5f + 0.5f;
+    case ShadingMode::DebugSunFraction:
+      return glm::vec3(shadingTerms(in, ShadingMode::Approx).sunFraction);
+    case ShadingMode::DebugSkyFill: {
+      const float full = kPi * std::max({in.skyRadiance.r, in.skyRadiance.g, in.skyRadiance.b});
+      const glm::vec3 e = shadingTerms(in, ShadingMode::Approx).skyIrradiance;
+      return glm::vec3(full > 0 ? std::max({e.r, e.g, e.b}) / full : 0.0f);
+    }
+    default: {
+      const ShadingTerms t = shadingTerms(in, mode);
+      return t.direct + t.ambient;
+    }
+  }
+}
+
+}  // namespace aal

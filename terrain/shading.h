@@ -1,0 +1,51 @@
+// Ambient aperture lighting of one surface point: DESIGN §5. The GLSL twin is
+// shaders/shading.glsl (checked for parity on the device by the tests).
+//
+// Radiometry: albedo a in [0, 1]; irradiances E (sun at normal incidence)
+// and radiances L (sky) in one linear RGB unit (terrain/atmosphere.h); the
+// result is outgoing radiance a/pi * E in that unit.
+#pragma once
+
+#include <glm/vec3.hpp>
+
+#include "config.h"
+
+namespace aal {
+
+enum class ShadingMode : int {
+  Approx = AAL_MODE_APPROX,                        // Oat's smoothstep cap intersection
+  Exact = AAL_MODE_EXACT,                          // exact cap intersection
+  BaselineLambert = AAL_MODE_BASELINE_LAMBERT,     // N.L, no shadow, constant sky ambient
+  BaselineAo = AAL_MODE_BASELINE_AO,               // N.L, sky ambient scaled by Omega/2pi
+  DebugVisible = AAL_MODE_DEBUG_VISIBLE,           // Omega/2pi as grey
+  DebugBentNormal = AAL_MODE_DEBUG_BENT_NORMAL,    // B * 0.5 + 0.5
+  DebugSunFraction = AAL_MODE_DEBUG_SUN_FRACTION,  // visible fraction f of the sun disk
+  DebugSkyFill = AAL_MODE_DEBUG_SKY_FILL,          // E_sky / (pi L_sky) as grey
+};
+
+struct ShadingInputs {
+  glm::vec3 albedo{0.2f};
+  glm::vec3 normal{0, 0, 1};        // unit shading normal N
+  glm::vec3 bentNormal{0, 0, 1};    // unit bent normal B (aperture centre)
+  float apertureRad = 1.5707963f;   // aperture cap arc length r_a
+  glm::vec3 sunDirection{0, 0, 1};  // unit L
+  float sunRadiusRad = 0.004653f;   // r_s
+  glm::vec3 sunIrradiance{0.0f};    // E_sun at normal incidence
+  glm::vec3 skyRadiance{0.0f};      // average sky radiance L_sky
+  glm::vec3 transfer{1.0f};         // ambient transfer W (DESIGN §6), 1 when nothing is near
+};
+
+struct ShadingTerms {
+  glm::vec3 direct{0.0f};
+  glm::vec3 ambient{0.0f};
+  float sunFraction = 0;          // f: the part of the sun's disk seen through the aperture
+  glm::vec3 skyIrradiance{0.0f};  // E_sky
+};
+
+// The terms of DESIGN §5 for the AAL modes (approx/exact) and the baselines.
+ShadingTerms shadingTerms(const ShadingInputs& in, ShadingMode mode);
+
+// Final linear value: direct + ambient, or the debug quantity of the mode.
+glm::vec3 shade(const ShadingInputs& in, ShadingMode mode);
+
+}  // namespace aal

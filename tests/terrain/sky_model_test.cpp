@@ -1,0 +1,208 @@
+// Preetham clear sky (terrain/sky_model.h): the paper's zenith values, the
+// shape of the distribution, the twilight rule, the hemisphere averages and
+// the photometric scale against the sun.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdio>
+
+#include <glm/geometric.hpp>
+
+#include "atmosphere.h"
+#include "sky_model.h"
+#include "solar_position.h"
+
+namespace aal {
+namespace {
+
+PreethamSky skyAt(double elevationDeg, double turbidity = 2.5, double azimuthDeg = 180.0) {
+  return makePreethamSky(sunDirection(azimuthDeg, elevationDeg), turbidity);
+}
+
+glm::vec3 viewAt(double azimuthDeg, double elevationDeg) {
+  return sunDirection(azimuthDeg, elevationDeg);
+}
+
+// Paper App. A.2 evaluated by hand for T = 2.5, theta_s = 30° (sun 60° up):
+//   chi = (4/9 - 2.5/120)(pi - pi/3) = 0.887209, tan chi = 1.227579,
+//   Y_z = (4.0453*2.5 - 4.9710) tan chi - 0.2155*2.5 + 2.4192 = 8.19297 kcd/m²;
+//   x_z = 0.25235, y_z = 0.25776 (the cubic polynomials of App. A.2).
+TEST(PreethamSky, ZenithMatchesPaperFormulas) {
+  const PreethamSky sky = skyAt(60.0);
+  const glm::vec3 zenith = skyRadiance(sky, {0, 0, 1});
+  EXPECT_NEAR(luminance(zenith), 8.19297f, 2e-3f * 8.19297f);
+  // Chromaticity back from RGB (inverse of the sRGB matrix, D65).
+  const float x = 0.4124564f * zenith.r + 0.3575761f * zenith.g + 0.1804375f * zenith.b;
+  const float y = 0.2126729f * zenith.r + 0.7151522f * zenith.g + 0.0721750f * zenith.b;
+  const float z = 0.0193339f * zenith.r + 0.1191920f * zenith.g + 0.9503041f * zenith.b;
+  EXPECT_NEAR(x / (x + y + z), 0.25235f, 5e-4f);
+  EXPECT_NEAR(y / (x + y + z), 0.25776f, 5e-4f);
+  // Horizon sun: Y_z = -0.2155 T + 2.4192 = 1.88045 (chi = 0).
+  EXPECT_NEAR(luminance(skyRadiance(skyAt(0.0), {0, 0, 1})), 1.88045f, 2e-3f * 1.88045f);
+}
+
+TEST(PreethamSky, DaySkyIsBlueAndBrightestAroundTheSun) {
+  const PreethamSky sky = skyAt(45.0);
+  const glm::vec3 zenith = skyRadiance(sky, {0, 0, 1});
+  EXPECT_GT(zenith.b, zenith.g);
+  EXPECT_GT(zenith.g, zenith.r);
+  const float nearSun = luminance(skyRadiance(sky, viewAt(180.0, 47.0)));
+  const float antiSun = luminance(skyRadiance(sky, viewAt(0.0, 45.0)));
+  EXPECT_GT(nearSun, 3.0f * antiSun);
+  // Horizon brightening away from the sun (Perez A < 0): 90° from the sun in
+  // azimuth, the horizon is brighter than 60° up.
+  EXPECT_GT(luminance(skyRadiance(sky, viewAt(90.0, 1.0))),
+            luminance(skyRadiance(sky, viewAt(90.0, 60.0))));
+}
+
+TEST(PreethamSky, IsSymmetricAboutTheSunsVerticalPlane) {
+  const PreethamSky sky = skyAt(30.0, 3.0, 200.0);
+  for (double delta : {10.0, 45.0, 90.0, 170.0}) {
+    for (double e : {5.0, 30.0, 70.0}) {
+      const glm::vec3 a = skyRadiance(sky, viewAt(200.0 + delta, e));
+      const glm::vec3 b = skyRadiance(sky, viewAt(200.0 - delta, e));
+      EXPECT_NEAR(glm::length(a - b), 0.0f, 1e-4f * glm::length(a)) << delta << " " << e;
+    }
+  }
+}
+
+TEST(PreethamSky, IsFiniteAndContinuousAcrossTheHorizon) {
+  const PreethamSky sky = skyAt(20.0);
+  for (double az = 0; az < 360; az += 15) {
+    const glm::vec3 above = skyRadiance(sky, viewAt(az, 0.01));
+    const glm::vec3 below = skyRadiance(sky, viewAt(az, -0.01));
+    EXPECT_NEAR(glm::length(above - below), 0.0f, 0.02f * glm::length(above)) << az;
+    const glm::vec3 down = skyRadiance(sky, viewAt(az, -89.0));
+    for (int c = 0; c < 3; ++c) {
+      EXPECT_TRUE(std::isfinite(down[c]));
+      EXPECT_GE(down[c], 0.0f);
+    }
+  }
+  const glm::vec3 nadir = skyRadiance(sky, {0, 0, -1});
+  EXPECT_TRUE(std::isfinite(nadir.r) && std::isfinite(nadir.g) && std::isfinite(nadir.b));
+  // Looking straight at the sun stays finite.
+  const glm::vec3 atSun = skyRadiance(sky, viewAt(180.0, 20.0));
+  EXPECT_TRUE(std::isfinite(luminance(atSun)));
+}
+
+TEST(PreethamSky, ClampsTurbidityToTheModelsRange) {
+  EXPECT_EQ(skyAt(40.0, 1.0).perezA.w, 2.0f);
+  EXPECT_EQ(skyAt(40.0, 30.0).perezA.w, 10.0f);
+  EXPECT_EQ(luminance(skyRadiance(skyAt(40.0, 1.0), {0, 0, 1})),
+            luminance(skyRadiance(skyAt(40.0, 2.0), {0, 0, 1})));
+  // Brighter, whiter sky with more haze.
+  const glm::vec3 clear = averageSkyRadiance(skyAt(40.0, 2.0));
+  const glm::vec3 hazy = averageSkyRadiance(skyAt(40.0, 8.0));
+  EXPECT_GT(luminance(hazy), luminance(clear));
+  EXPECT_GT(hazy.r / hazy.b, clear.r / clear.b);
+}
+
+TEST(PreethamSky, DefaultConstructedIsBlack) {
+  const PreethamSky sky;
+  EXPECT_EQ(skyRadiance(sky, {0, 0, 1}), glm::vec3(0.0f));
+  EXPECT_EQ(averageSkyRadiance(sky), glm::vec3(0.0f));
+}
+
+// --- Twilight rule -------------------------------------------------------------
+
+TEST(Twilight, FadeIsOneByDayZeroAfterCivilTwilightAndMonotonic) {
+  EXPECT_EQ(twilightFade(0.0), 1.0);
+  EXPECT_EQ(twilightFade(30.0), 1.0);
+  EXPECT_EQ(twilightFade(-6.0), 0.0);
+  EXPECT_EQ(twilightFade(-20.0), 0.0);
+  // 10^(0.4 e) smoothstep: -3° -> 10^-1.2 * 0.5 = 0.03155.
+  EXPECT_NEAR(twilightFade(-3.0), 0.031548, 1e-5);
+  for (double e = -6.0; e < 0.0; e += 0.05) EXPECT_LT(twilightFade(e), twilightFade(e + 0.05));
+  EXPECT_NEAR(twilightFade(-1e-9), 1.0, 1e-6);  // continuous at sunset
+}
+
+TEST(Twilight, SkyDimsWithTheFadeKeepsItsColoursAndIsBlackAtNight) {
+  const glm::vec3 atSunset = averageSkyRadiance(skyAt(0.0));
+  for (double e : {-0.5, -2.0, -4.0}) {
+    const glm::vec3 dusk = averageSkyRadiance(skyAt(e));
+    const glm::vec3 expected = static_cast<float>(twilightFade(e)) * atSunset;
+    EXPECT_NEAR(glm::length(dusk - expected), 0.0f, 1e-5f * glm::length(atSunset)) << e;
+  }
+  // (-6° itself is black too, twilightFade(-6) = 0, but the elevation read
+  // back from a float direction may sit a hair above it.)
+  for (double e : {-6.001, -7.0, -30.0, -90.0}) {
+    const PreethamSky night = skyAt(e);
+    EXPECT_EQ(averageSkyRadiance(night), glm::vec3(0.0f)) << e;
+    EXPECT_EQ(skyRadiance(night, {0.3f, 0.2f, 0.9f}), glm::vec3(0.0f)) << e;
+  }
+}
+
+// --- Hemisphere averages -----------------------------------------------------
+
+TEST(AverageSky, DefaultQuadratureConverges) {
+  for (double e : {90.0, 60.0, 30.0, 10.0, 2.0, 0.0}) {
+    const PreethamSky sky = skyAt(e);
+    const glm::vec3 coarse = averageSkyRadiance(sky);
+    const glm::vec3 fine = averageSkyRadiance(sky, 512, 256);
+    for (int c = 0; c < 3; ++c) EXPECT_NEAR(coarse[c], fine[c], 5e-3f * fine[c]) << e << " " << c;
+    const glm::vec3 coarseCos = cosineWeightedSkyRadiance(sky);
+    const glm::vec3 fineCos = cosineWeightedSkyRadiance(sky, 512, 256);
+    for (int c = 0; c < 3; ++c) EXPECT_NEAR(coarseCos[c], fineCos[c], 5e-3f * fineCos[c]) << e;
+  }
+}
+
+TEST(AverageSky, IsExactForAUniformSky) {
+  // With every Perez term switched off (A = C = E = 0) the sky is uniform and
+  // both averages equal the zenith value.
+  PreethamSky sky = skyAt(50.0);
+  sky.perezA = sky.perezC = sky.perezE = glm::vec4(0.0f);
+  const glm::vec3 l = skyRadiance(sky, {0, 0, 1});
+  EXPECT_NEAR(glm::length(averageSkyRadiance(sky) - l), 0.0f, 1e-5f * glm::length(l));
+  EXPECT_NEAR(glm::length(cosineWeightedSkyRadiance(sky) - l), 0.0f, 1e-5f * glm::length(l));
+}
+
+TEST(AverageSky, IsBlueByDayAndWarmAtSunset) {
+  const glm::vec3 noon = averageSkyRadiance(skyAt(60.0));
+  EXPECT_GT(noon.b, noon.g);
+  EXPECT_GT(noon.g, noon.r);
+  const glm::vec3 sunset = averageSkyRadiance(skyAt(2.0));
+  EXPECT_GT(sunset.r, sunset.g);
+  EXPECT_GT(sunset.g, sunset.b);
+  std::printf("L_sky T=2.5: 60deg (%.3f %.3f %.3f) Y=%.3f; 2deg (%.3f %.3f %.3f) Y=%.3f kcd/m2\n",
+              noon.r, noon.g, noon.b, luminance(noon), sunset.r, sunset.g, sunset.b,
+              luminance(sunset));
+}
+
+// --- Photometric scale: sun against sky ---------------------------------------
+
+// Clear-day noon (sun 60° up, T = 2.5): direct normal ~100 klx. Measured
+// clear skies give 10-25 klx of diffuse horizontal illuminance; Preetham's
+// sky runs bright (docs/sun-and-sky.md) and gives 27 klx here (24 at T = 2),
+// so the bound is 30. pi * L_sky (uniform average, DESIGN §5's fill for an
+// open flat texel) is about the same.
+TEST(SunAndSky, ClearNoonRatiosArePlausible) {
+  const double elevation = 60.0;
+  const PreethamSky sky = skyAt(elevation);
+  const float sun = luminance(sunIrradiance(elevation, 2.5));
+  const float directHorizontal = sun * float(std::sin(elevation * M_PI / 180));
+  const float diffuseHorizontal = float(M_PI) * luminance(cosineWeightedSkyRadiance(sky));
+  const float fill = float(M_PI) * luminance(averageSkyRadiance(sky));
+  EXPECT_GT(sun, 85.0f);
+  EXPECT_LT(sun, 110.0f);
+  EXPECT_GT(diffuseHorizontal, 10.0f);
+  EXPECT_LT(diffuseHorizontal, 30.0f);
+  EXPECT_GT(directHorizontal / diffuseHorizontal, 2.5f);
+  EXPECT_LT(directHorizontal / diffuseHorizontal, 10.0f);
+  EXPECT_GT(fill, 0.8f * diffuseHorizontal);
+  EXPECT_LT(fill, 1.25f * diffuseHorizontal);
+  std::printf(
+      "noon 60deg T=2.5: E_sun %.1f klx, direct horizontal %.1f klx, diffuse horizontal %.1f klx, "
+      "pi*L_sky %.1f klx\n",
+      sun, directHorizontal, diffuseHorizontal, fill);
+}
+
+TEST(SunAndSky, SkyDominatesAtSunsetAndEverythingIsDarkAtNight) {
+  const float sun2 = luminance(sunIrradiance(2.0, 2.5)) * float(std::sin(2.0 * M_PI / 180));
+  const float sky2 = float(M_PI) * luminance(cosineWeightedSkyRadiance(skyAt(2.0)));
+  EXPECT_GT(sky2, sun2);
+  EXPECT_EQ(luminance(sunIrradiance(-8.0, 2.5)), 0.0f);
+  EXPECT_EQ(luminance(averageSkyRadiance(skyAt(-8.0))), 0.0f);
+}
+
+}  // namespace
+}  // namespace aal

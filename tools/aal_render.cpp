@@ -1,0 +1,254 @@
+// aal-render: headless ambient aperture lighting of a DEM into an image.
+#include <cmath>
+#include <cstdio>
+#include <map>
+#include <optional>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include <CLI/CLI.hpp>
+
+#include "aperture_cache.h"
+#include "aperture_map.h"
+#include "atmosphere.h"
+#include "atomic_file.h"
+#include "camera.h"
+#include "dem_loader.h"
+#include "device.h"
+#include "instance.h"
+#include "screenshot.h"
+#include "sky_lighting.h"
+#include "solar_position.h"
+#include "terrain_renderer.h"
+#include "terrain_scene.h"
+#include "tone_map.h"
+#include "tool_main.h"
+
+namespace {
+
+const std::map<std::string, aal::ShadingMode> kModes = {
+    {"approx", aal::ShadingMode::Approx},
+    {"exact", aal::ShadingMode::Exact},
+    {"baseline-lambert", aal::ShadingMode::BaselineLambert},
+    {"baseline-ao", aal::ShadingMode::BaselineAo},
+    {"debug-visible", aal::ShadingMode::DebugVisible},
+    {"debug-bent-normal", aal::ShadingMode::DebugBentNormal},
+    {"debug-sun", aal::ShadingMode::DebugSunFraction},
+    {"debug-sky", aal::ShadingMode::DebugSkyFill},
+};
+
+struct Options {
+  std::string dem, aperture, output;
+  std::string size = "1280x720";
+  std::string camera, lookAt;
+  double fovDeg = 40;
+  std::optional<double> sunAzimuth, sunElevation;
+  std::string time;
+  std::optional<double> lat, lon;
+  double sunRadiusDeg = aal::kSunAngularRadiusDeg;
+  double turbidity = aal::kDefaultTurbidity;
+  std::optional<double> ev100;
+  std::optional<double> visibilityKm;
+  std::string mode = "approx";
+  std::optional<double> cellSize, zScale;
+  int device = -1;
+  size_t triangleBudget = 2'000'000;
+  bool stats = false;
+  bool quiet = false;
+};
+
+glm::dvec3 parseTriple(const std::string& name, const std::string& text) {
+  glm::dvec3 v;
+  char c1 = 0, c2 = 0;
+  std::istringstream in(text);
+  if (!(in >> v.x >> c1 >> v.y >> c2 >> v.z) || c1 != ',' || c2 != ',' || !in.eof() ||
+      !std::isfinite(v.x) || !std::isfinite(v.y) || !std::isfinite(v.z)) {
+    throw aal::InputError(name + " must be X,Y,Z in metres, got '" + text + "'");
+  }
+  return v;
+}
+
+std::pair<uint32_t, uint32_t> parseSize(const std::string& text) {
+  long w = 0, h = 0;
+  char x = 0;
+  std::istringstream in(text);
+  if (!(in >> w >> x >> h) || (x != 'x' && x != 'X') || !in.eof() || w <= 0 || h <= 0 ||
+      w > 65536 || h > 65536) {
+    throw aal::InputError("--size must be WIDTHxHEIGHT with positive sides, got '" + text + "'");
+  }
+  return {static_cast<uint32_t>(w), static_cast<uint32_t>(h)};
+}
+
+aal::SkyLighting lightingFor(const Options& o, const aal::Heightfield& field) {
+  if (!o.time.empty()) {
+    const std::optional<aal::UtcTime> time = aal::parseIso8601Utc(o.time);
+    if (!time)
+      throw aal::InputError("--time must be ISO 8601, e.g. 2024-06-21T12:00:00Z, got '" + o.time +
+                            "'");
+    double lat = 45, lon = 0;
+    if (field.geo.hasCenter) {
+      lat = field.geo.centerLatDeg;
+      lon = field.geo.centerLonDeg;
+    }
+    lat = o.lat.value_or(lat);
+    lon = o.lon.value_or(lon);
+    const aal::SolarPosition sun = aal::solarPosition(*time, lat, lon);
+    return aal::makeSkyLighting(sun.azimuthDeg, sun.elevationDeg, o.turbidity, sun.sunDistanceAu);
+  }
+  return aal::makeSkyLighting(o.sunAzimuth.value_or(315.0), o.sunElevation.value_or(45.0),
+                              o.turbidity);
+}
+
+int run(const Options& o) {
+  const aal::ShadingMode mode = kModes.at(o.mode);
+  const auto [width, height] = parseSize(o.size);
+  if (!aal::isSupportedImageOutput(o.output)) {
+    throw aal::InputError("output " + o.output + " must end in .png or .exr");
+  }
+  try {
+    aal::checkOutputWritable(o.output);
+  } catch (const std::exception& e) {
+    throw aal::InputError(e.what());
+  }
+  if (o.sunAzimuth.has_value() != o.sunElevation.has_value()) {
+    throw aal::InputError("give --sun-azimuth and --sun-elevation together");
+  }
+
+  aal::DemLoadOptions load;
+  load.cellSizeM = o.cellSize;
+  load.zScale = o.zScale;
+  const aal::Heightfield field = aal::loadDem(o.dem, load);
+  aal::ApertureMap aperture;
+  if (!o.aperture.empty()) {
+    aperture = aal::readApertureMap(o.aperture);
+    aal::checkApertureMatchesDem(aperture, o.aperture, field, o.dem);
+  } else {
+    aperture = aal::loadOrBakeAperture(field, o.dem, aal::BakeOptions{}, o.quiet);
+  }
+
+  const aal::SkyLighting light = lightingFor(o, field);
+  aal::FrameSettings settings;
+  settings.mode = mode;
+  const double aspect = double(width) / double(height);
+  settings.camera = aal::defaultCamera(field, aspect);
+  if (!o.camera.empty()) settings.camera.position = parseTriple("--camera", o.camera);
+  if (!o.lookAt.empty()) settings.camera.lookAt = parseTriple("--look-at", o.lookAt);
+  settings.camera.verticalFovDeg = o.fovDeg;
+  settings.sunDirection = light.sunDirection;
+  settings.sunRadiusRad = static_cast<float>(o.sunRadiusDeg * M_PI / 180.0);
+  settings.sunIrradiance = light.sunIrradiance;
+  settings.skyRadiance = light.skyRadiance;
+  settings.sky = light.sky;
+  // Default haze: a clear day, scaled with the DEM so that any size reads
+  // with depth but is not washed out (visibility 20 DEM diagonals, >= 200 km).
+  const glm::dvec2 extent = aal::demExtentM(field);
+  const double visibilityM =
+      o.visibilityKm ? *o.visibilityKm * 1000 : std::max(200e3, 20 * glm::length(extent));
+  settings.hazeDensityPerM = static_cast<float>(aal::hazeDensityForVisibility(visibilityM));
+  settings.waterAtSeaLevel = field.geo.crs != aal::CrsKind::None;
+  if (o.ev100) {
+    settings.exposure = aal::exposureFromEv100(static_cast<float>(*o.ev100));
+  } else {
+    // Fixed by a clear-day sun at 60 degrees, so dusk and night come out
+    // darker than noon instead of all grey.
+    const aal::SkyLighting reference = aal::makeSkyLighting(180.0, 60.0, o.turbidity);
+    settings.exposure = aal::autoExposure(reference.sunIrradiance, 60.0, reference.skyRadiance);
+  }
+
+  aal::Instance instance;
+  aal::Device device(instance, o.device);
+  if (width > device.properties().limits.maxImageDimension2D ||
+      height > device.properties().limits.maxImageDimension2D) {
+    throw aal::InputError("--size " + o.size + " exceeds the device's largest image (" +
+                          std::to_string(device.properties().limits.maxImageDimension2D) + ")");
+  }
+  const aal::TerrainScene scene(device, field, aperture, nullptr, o.triangleBudget);
+  aal::TerrainRenderer renderer(device, width, height);
+  const aal::FrameResult frame = renderer.render(scene, settings, aal::wantsLinearOutput(o.output));
+  aal::writeFrame(o.output, frame);
+
+  if (o.stats) {
+    std::printf("device     %s\n", device.name().c_str());
+    std::printf("size       %ux%u\n", width, height);
+    std::printf("triangles  %zu\n", frame.triangles);
+    std::printf("sun        azimuth %.2f deg, elevation %.2f deg\n", light.sunAzimuthDeg,
+                light.sunElevationDeg);
+    double total = 0;
+    for (const auto& [pass, ms] : frame.passMilliseconds) {
+      std::printf("gpu %-10s %8.3f ms\n", pass.c_str(), ms);
+      total += ms;
+    }
+    std::printf("gpu total      %8.3f ms\n", total);
+  }
+  if (!o.quiet) std::fprintf(stderr, "aal-render: wrote %s\n", o.output.c_str());
+  return aal::kExitOk;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  CLI::App app(
+      "Renders a DEM lit by the sun and the sky with ambient aperture lighting (headless).\n"
+      "Without --aperture, the aperture map is baked once and cached (see aal-bake).",
+      "aal-render");
+  Options o;
+  std::string modes;
+  for (const auto& [name, mode] : kModes) modes += (modes.empty() ? "" : ", ") + name;
+  app.add_option("dem", o.dem, "input DEM")->required();
+  app.add_option("--aperture", o.aperture, "aperture map baked from this DEM by aal-bake");
+  app.add_option("-o,--output", o.output, "output image: .png (display) or .exr (linear HDR)")
+      ->required();
+  app.add_option("--size", o.size, "image size WIDTHxHEIGHT")->capture_default_str();
+  app.add_option("--camera", o.camera,
+                 "camera position X,Y,Z in metres (DEM frame: x east, y north, "
+                 "z up, origin at the DEM centre); default: from the south-east");
+  app.add_option("--look-at", o.lookAt, "point the camera looks at, X,Y,Z in metres");
+  app.add_option("--fov", o.fovDeg, "vertical field of view in degrees")
+      ->check(CLI::Range(1.0, 170.0))
+      ->capture_default_str();
+  app.add_option("--sun-azimuth", o.sunAzimuth,
+                 "sun azimuth, degrees clockwise from north "
+                 "(default 315 like gdaldem)")
+      ->check(CLI::Range(-360.0, 720.0));
+  app.add_option("--sun-elevation", o.sunElevation,
+                 "sun elevation above the horizon, degrees "
+                 "(default 45)")
+      ->check(CLI::Range(-90.0, 90.0));
+  app.add_option("--time", o.time, "UTC date and time (ISO 8601) for the sun position");
+  app.add_option("--lat", o.lat, "latitude for --time (default: the DEM's centre, else 45)")
+      ->check(CLI::Range(-90.0, 90.0));
+  app.add_option("--lon", o.lon,
+                 "longitude for --time, east positive (default: the DEM's centre, else 0)")
+      ->check(CLI::Range(-180.0, 180.0));
+  app.add_option("--sun-radius", o.sunRadiusDeg,
+                 "sun angular radius in degrees (larger: softer shadows)")
+      ->check(CLI::Range(0.01, 20.0))
+      ->capture_default_str();
+  app.add_option("--turbidity", o.turbidity, "atmospheric turbidity (2 very clear .. 10 hazy)")
+      ->check(CLI::Range(2.0, 10.0))
+      ->capture_default_str();
+  app.add_option("--ev", o.ev100, "exposure value at ISO 100 (default: automatic)");
+  app.add_option("--visibility", o.visibilityKm,
+                 "distance haze: visibility in km (default: 20 DEM diagonals, at least 200)")
+      ->check(CLI::Range(0.1, 1e6));
+  app.add_option("--mode", o.mode, "shading: " + modes)
+      ->check(CLI::IsMember(modes.empty() ? std::vector<std::string>{} : [] {
+        std::vector<std::string> names;
+        for (const auto& entry : kModes) names.push_back(entry.first);
+        return names;
+      }()))
+      ->capture_default_str();
+  app.add_option("--cell-size", o.cellSize, "texel spacing in metres (as given to aal-bake)")
+      ->check(CLI::PositiveNumber);
+  app.add_option("--z-scale", o.zScale, "metres per height unit (as given to aal-bake)")
+      ->check(CLI::PositiveNumber);
+  app.add_option("--device", o.device, "Vulkan device index (default: the best one)")
+      ->check(CLI::NonNegativeNumber);
+  app.add_option("--triangles", o.triangleBudget, "triangle budget of the terrain grid")
+      ->check(CLI::Range(size_t(2), size_t(1) << 28))
+      ->capture_default_str();
+  app.add_flag("--stats", o.stats, "print per-pass GPU times and the triangle count");
+  app.add_flag("-q,--quiet", o.quiet, "no progress messages");
+  return aal::runTool(app, argc, argv, [&] { return run(o); });
+}
