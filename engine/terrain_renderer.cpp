@@ -33,7 +33,18 @@ VkRenderingAttachmentInfo colorAttachment(const Image& image, bool clear) {
   return a;
 }
 
-void setViewport(VkCommandBuffer cmd, uint32_t width, uint32_t height) {
+// Begins dynamic rendering into one colour (and optional depth) attachment
+// covering the whole target, with the viewport and scissor set to match.
+void beginRendering(VkCommandBuffer cmd, uint32_t width, uint32_t height,
+                    const VkRenderingAttachmentInfo& color,
+                    const VkRenderingAttachmentInfo* depth) {
+  VkRenderingInfo info{VK_STRUCTURE_TYPE_RENDERING_INFO};
+  info.renderArea = {{0, 0}, {width, height}};
+  info.layerCount = 1;
+  info.colorAttachmentCount = 1;
+  info.pColorAttachments = &color;
+  info.pDepthAttachment = depth;
+  vkCmdBeginRendering(cmd, &info);
   const VkViewport viewport{0, 0, float(width), float(height), 0, 1};
   const VkRect2D scissor{{0, 0}, {width, height}};
   vkCmdSetViewport(cmd, 0, 1, &viewport);
@@ -158,14 +169,7 @@ FrameResult TerrainRenderer::render(const TerrainScene& scene, const FrameSettin
     depth.loadOp = VK_ATTACHMENT_LOAD_OP_CLEAR;
     depth.storeOp = VK_ATTACHMENT_STORE_OP_DONT_CARE;
     depth.clearValue.depthStencil = {1.0f, 0};
-    VkRenderingInfo scenePass{VK_STRUCTURE_TYPE_RENDERING_INFO};
-    scenePass.renderArea = {{0, 0}, {width_, height_}};
-    scenePass.layerCount = 1;
-    scenePass.colorAttachmentCount = 1;
-    scenePass.pColorAttachments = &color;
-    scenePass.pDepthAttachment = &depth;
-    vkCmdBeginRendering(cmd, &scenePass);
-    setViewport(cmd, width_, height_);
+    beginRendering(cmd, width_, height_, color, &depth);
     timer_.begin(cmd, "terrain");
     passes_->terrain.bind(cmd,
                           DescriptorWrites()
@@ -186,14 +190,7 @@ FrameResult TerrainRenderer::render(const TerrainScene& scene, const FrameSettin
     // Pass 3: tone map into the display image.
     transitionImage(cmd, hdr_, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL,
                     VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL);
-    VkRenderingAttachmentInfo out = colorAttachment(display_, false);
-    VkRenderingInfo toneMapPass{VK_STRUCTURE_TYPE_RENDERING_INFO};
-    toneMapPass.renderArea = {{0, 0}, {width_, height_}};
-    toneMapPass.layerCount = 1;
-    toneMapPass.colorAttachmentCount = 1;
-    toneMapPass.pColorAttachments = &out;
-    vkCmdBeginRendering(cmd, &toneMapPass);
-    setViewport(cmd, width_, height_);
+    beginRendering(cmd, width_, height_, colorAttachment(display_, false), nullptr);
     timer_.begin(cmd, "tone map");
     passes_->toneMap.bind(cmd,
                           DescriptorWrites()

@@ -12,6 +12,7 @@
 #include <tiffio.h>
 
 #include "errors.h"
+#include "tiff_handles.h"
 
 namespace aal {
 
@@ -49,16 +50,6 @@ void onGeoTiffMessage(GTIF* gtif, int level, const char* fmt, ...) {
   messages->errors += format(fmt, args);
   va_end(args);
 }
-
-struct TiffCloser {
-  void operator()(TIFF* tif) const { TIFFClose(tif); }
-};
-struct GtifFreer {
-  void operator()(GTIF* gtif) const { GTIFFree(gtif); }
-};
-struct OptionsFreer {
-  void operator()(TIFFOpenOptions* options) const { TIFFOpenOptionsFree(options); }
-};
 
 // Values of an array tag. libtiff registers GeoTIFF tags (through
 // XTIFFInitialize) with a 16-bit count but reads tags it does not know, like
@@ -103,7 +94,7 @@ void readGeoKeys(const std::string& path, TIFF* tif, GeoTiffTags& tags) {
   Messages messages;  // of libgeotiff only
   tags.hasGeoKeys = !arrayTag<uint16_t>(tif, TIFFTAG_GEOKEYDIRECTORY).empty();
   if (!tags.hasGeoKeys) return;
-  std::unique_ptr<GTIF, GtifFreer> gtif(GTIFNewEx(tif, onGeoTiffMessage, &messages));
+  GtifHandle gtif(GTIFNewEx(tif, onGeoTiffMessage, &messages));
   if (!gtif || !messages.errors.empty()) {
     throw InputError(path + ": corrupt GeoKey directory: " +
                      (messages.errors.empty() ? "libgeotiff cannot parse it" : messages.errors));
@@ -128,10 +119,10 @@ GeoTiffTags readGeoTiffTags(const std::string& path) {
   std::call_once(registered, [] { XTIFFInitialize(); });
 
   Messages messages;
-  std::unique_ptr<TIFFOpenOptions, OptionsFreer> openOptions(TIFFOpenOptionsAlloc());
+  TiffOptionsHandle openOptions(TIFFOpenOptionsAlloc());
   TIFFOpenOptionsSetErrorHandlerExtR(openOptions.get(), onTiffError, &messages);
   TIFFOpenOptionsSetWarningHandlerExtR(openOptions.get(), onTiffWarning, &messages);
-  std::unique_ptr<TIFF, TiffCloser> tif(TIFFOpenExt(path.c_str(), "r", openOptions.get()));
+  TiffHandle tif(TIFFOpenExt(path.c_str(), "r", openOptions.get()));
   if (!tif) {
     throw InputError(path + ": not a readable TIFF: " +
                      (messages.errors.empty() ? "libtiff cannot open it" : messages.errors));

@@ -16,6 +16,7 @@
 
 #include "atomic_file.h"
 #include "dem_options.h"
+#include "tiff_handles.h"
 
 namespace aal {
 
@@ -42,16 +43,6 @@ int onTiffWarning(TIFF*, void*, const char*, const char*, va_list) {
   return 1;
 }
 
-struct TiffCloser {
-  void operator()(TIFF* tif) const { TIFFClose(tif); }
-};
-struct GtifFreer {
-  void operator()(GTIF* gtif) const { GTIFFree(gtif); }
-};
-struct OptionsFreer {
-  void operator()(TIFFOpenOptions* options) const { TIFFOpenOptionsFree(options); }
-};
-
 int linearUnitCode(double linearUnitM) {
   if (linearUnitM == 1.0) return 9001;
   if (linearUnitM == 0.3048) return 9002;
@@ -68,7 +59,7 @@ bool writeGeoKeys(TIFF* tif, const GeoReference& geo) {
       !TIFFSetField(tif, TIFFTAG_GEOTIEPOINTS, 6, tiePoint)) {
     return false;
   }
-  std::unique_ptr<GTIF, GtifFreer> gtif(GTIFNew(tif));
+  GtifHandle gtif(GTIFNew(tif));
   if (!gtif) return false;
   GTIFKeySet(gtif.get(), GTRasterTypeGeoKey, TYPE_SHORT, 1, RasterPixelIsArea);
   if (geo.crs == CrsKind::Geographic) {
@@ -93,13 +84,13 @@ void writeTiff(const std::string& path, int width, int height, const float* data
   static std::once_flag registered;
   std::call_once(registered, [] { XTIFFInitialize(); });
   Messages messages;
-  std::unique_ptr<TIFFOpenOptions, OptionsFreer> openOptions(TIFFOpenOptionsAlloc());
+  TiffOptionsHandle openOptions(TIFFOpenOptionsAlloc());
   TIFFOpenOptionsSetErrorHandlerExtR(openOptions.get(), onTiffError, &messages);
   TIFFOpenOptionsSetWarningHandlerExtR(openOptions.get(), onTiffWarning, &messages);
   // BigTIFF when the pixels alone come near the 4 GiB offset limit.
   const double bytes = 4.0 * width * height;
   const char* mode = bytes > 3.5e9 ? "w8" : "w";
-  std::unique_ptr<TIFF, TiffCloser> tif(TIFFOpenExt(path.c_str(), mode, openOptions.get()));
+  TiffHandle tif(TIFFOpenExt(path.c_str(), mode, openOptions.get()));
   const auto fail = [&](const std::string& what) {
     throw std::runtime_error("cannot write " + path + ": " + what +
                              (messages.errors.empty() ? "" : ": " + messages.errors));
