@@ -8,6 +8,7 @@
 
 #include <glm/vec4.hpp>
 
+#include "albedo_image.h"
 #include "aperture_map.h"
 #include "buffer.h"
 #include "heightfield.h"
@@ -17,13 +18,6 @@
 namespace aal {
 
 class Device;
-
-// An albedo image already at the DEM's size: linear RGB in [0, 1], row-major,
-// three floats per texel.
-struct AlbedoImage {
-  int width = 0, height = 0;
-  std::vector<float> rgb;
-};
 
 class TerrainScene {
  public:

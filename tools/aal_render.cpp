@@ -9,6 +9,7 @@
 
 #include <CLI/CLI.hpp>
 
+#include "albedo_image.h"
 #include "aperture_cache.h"
 #include "aperture_map.h"
 #include "atmosphere.h"
@@ -39,7 +40,7 @@ const std::map<std::string, aal::ShadingMode> kModes = {
 };
 
 struct Options {
-  std::string dem, aperture, output;
+  std::string dem, aperture, output, albedo;
   std::string size = "1280x720";
   std::string camera, lookAt;
   double fovDeg = 40;
@@ -127,6 +128,12 @@ int run(const Options& o) {
     aperture = aal::loadOrBakeAperture(field, o.dem, aal::BakeOptions{}, o.quiet);
   }
 
+  std::optional<aal::AlbedoImage> albedo;
+  if (!o.albedo.empty()) {
+    albedo = aal::loadAlbedoImage(o.albedo, field.width, field.height, [&](const std::string& m) {
+      if (!o.quiet) std::fprintf(stderr, "note: %s\n", m.c_str());
+    });
+  }
   const aal::SkyLighting light = lightingFor(o, field);
   aal::FrameSettings settings;
   settings.mode = mode;
@@ -163,7 +170,8 @@ int run(const Options& o) {
     throw aal::InputError("--size " + o.size + " exceeds the device's largest image (" +
                           std::to_string(device.properties().limits.maxImageDimension2D) + ")");
   }
-  const aal::TerrainScene scene(device, field, aperture, nullptr, o.triangleBudget);
+  const aal::TerrainScene scene(device, field, aperture, albedo ? &*albedo : nullptr,
+                                o.triangleBudget);
   aal::TerrainRenderer renderer(device, width, height);
   const aal::FrameResult frame = renderer.render(scene, settings, aal::wantsLinearOutput(o.output));
   aal::writeFrame(o.output, frame);
@@ -199,6 +207,9 @@ int main(int argc, char** argv) {
   app.add_option("--aperture", o.aperture, "aperture map baked from this DEM by aal-bake");
   app.add_option("-o,--output", o.output, "output image: .png (display) or .exr (linear HDR)")
       ->required();
+  app.add_option("--albedo", o.albedo,
+                 "surface colour image, e.g. an orthophoto (resampled to the DEM when its size "
+                 "differs); default: a palette by height and slope");
   app.add_option("--size", o.size, "image size WIDTHxHEIGHT")->capture_default_str();
   app.add_option("--camera", o.camera,
                  "camera position X,Y,Z in metres (DEM frame: x east, y north, "

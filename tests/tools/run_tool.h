@@ -23,8 +23,11 @@ inline std::filesystem::path binDir() {
 }
 
 // `arguments` is passed to the shell as written: quote what needs quoting.
-inline ToolResult runTool(const std::string& tool, const std::string& arguments) {
-  const std::string command = (binDir() / tool).string() + " " + arguments + " 2>&1";
+// `environment` ("NAME=value ...") is set for this run only.
+inline ToolResult runTool(const std::string& tool, const std::string& arguments,
+                          const std::string& environment = "") {
+  const std::string command = (environment.empty() ? "" : "env " + environment + " ") +
+                              (binDir() / tool).string() + " " + arguments + " 2>&1";
   FILE* pipe = popen(command.c_str(), "r");
   if (!pipe) throw std::runtime_error("cannot run " + command);
   ToolResult result;
