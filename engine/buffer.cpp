@@ -93,12 +93,15 @@ void Buffer::release() {
 void Buffer::write(const void* data, size_t bytes, size_t offset) {
   if (!mapped_ || offset + bytes > size_) throw std::logic_error("Buffer::write out of range");
   std::memcpy(static_cast<char*>(mapped_) + offset, data, bytes);
-  if (!coherent_) {
-    VkMappedMemoryRange range{VK_STRUCTURE_TYPE_MAPPED_MEMORY_RANGE};
-    range.memory = memory_;
-    range.size = VK_WHOLE_SIZE;
-    AAL_VK_CHECK(vkFlushMappedMemoryRanges(device_, 1, &range));
-  }
+  flush();
+}
+
+void Buffer::flush() {
+  if (!mapped_ || coherent_) return;
+  VkMappedMemoryRange range{VK_STRUCTURE_TYPE_MAPPED_MEMORY_RANGE};
+  range.memory = memory_;
+  range.size = VK_WHOLE_SIZE;
+  AAL_VK_CHECK(vkFlushMappedMemoryRanges(device_, 1, &range));
 }
 
 void Buffer::read(void* data, size_t bytes, size_t offset) const {

@@ -33,6 +33,9 @@ class Buffer {
   // Copies bytes in/out of a host-visible buffer, flushing/invalidating as needed.
   void write(const void* data, size_t bytes, size_t offset = 0);
   void read(void* data, size_t bytes, size_t offset = 0) const;
+  // Makes host writes through mapped() visible to the device (a no-op on
+  // coherent memory).
+  void flush();
 
  private:
   void release();

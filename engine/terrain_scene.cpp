@@ -12,14 +12,37 @@ namespace aal {
 TerrainScene::TerrainScene(const Device& device, const Heightfield& field,
                            const ApertureMap& aperture, const AlbedoImage* albedo,
                            size_t triangleBudget) {
+  const size_t width = static_cast<size_t>(field.width);
+  build(
+      device, field,
+      [&](uint32_t first, uint32_t end, void* destination) {
+        const float* source = aperture.texels.data() + first * width * 4;
+        std::transform(source, source + (end - first) * width * 4,
+                       static_cast<uint16_t*>(destination),
+                       [](float v) { return Imath::half(v).bits(); });
+      },
+      albedo, triangleBudget);
+}
+
+TerrainScene::TerrainScene(const Device& device, const Heightfield& field,
+                           ApertureMapReader& aperture, const AlbedoImage* albedo,
+                           size_t triangleBudget) {
+  build(
+      device, field,
+      [&](uint32_t first, uint32_t end, void* destination) {
+        aperture.readHalfRows(static_cast<int>(first), static_cast<int>(end), destination);
+      },
+      albedo, triangleBudget);
+}
+
+void TerrainScene::build(const Device& device, const Heightfield& field,
+                         const std::function<void(uint32_t, uint32_t, void*)>& apertureRows,
+                         const AlbedoImage* albedo, size_t triangleBudget) {
   const uint32_t w = static_cast<uint32_t>(field.width), h = static_cast<uint32_t>(field.height);
   heights_ = Image(device, {w, h, VK_FORMAT_R32_SFLOAT,
                             VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT});
   aperture_ = Image(device, {w, h, VK_FORMAT_R16G16B16A16_SFLOAT,
                              VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT});
-  std::vector<uint16_t> halves(aperture.texels.size());
-  std::transform(aperture.texels.begin(), aperture.texels.end(), halves.begin(),
-                 [](float v) { return Imath::half(v).bits(); });
 
   hasAlbedo_ = albedo != nullptr;
   std::vector<uint8_t> albedoBytes;
@@ -50,9 +73,9 @@ TerrainScene::TerrainScene(const Device& device, const Heightfield& field,
                     MemoryIntent::DeviceLocal);
 
   UploadBatch upload(device);
-  upload.addImage(heights_, field.z.data(), field.z.size() * sizeof(float));
-  upload.addImage(aperture_, halves.data(), halves.size() * sizeof(uint16_t));
-  upload.addImage(albedo_, albedoBytes.data(), albedoBytes.size());
+  upload.addImage(heights_, sizeof(float), field.z.data());
+  upload.addImage(aperture_, 4 * sizeof(uint16_t), apertureRows);
+  upload.addImage(albedo_, 4, albedoBytes.data());
   upload.addBuffer(indices_, grid.indices.data(), grid.indices.size() * sizeof(uint32_t));
   upload.submit();
 

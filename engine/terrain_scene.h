@@ -3,6 +3,7 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <functional>
 #include <memory>
 #include <vector>
 
@@ -27,6 +28,10 @@ class TerrainScene {
   // image size limit.
   TerrainScene(const Device& device, const Heightfield& field, const ApertureMap& aperture,
                const AlbedoImage* albedo, size_t triangleBudget);
+  // The same, streaming the aperture map from its file band by band (it must
+  // match the DEM, checkApertureMatchesDem), so it is never held as floats.
+  TerrainScene(const Device& device, const Heightfield& field, ApertureMapReader& aperture,
+               const AlbedoImage* albedo, size_t triangleBudget);
 
   const Image& heights() const { return heights_; }
   const Image& aperture() const { return aperture_; }
@@ -42,6 +47,11 @@ class TerrainScene {
   float maxHeight() const { return maxHeight_; }
 
  private:
+  // `apertureRows` writes rows of RGBA16F bent normal + arc length.
+  void build(const Device& device, const Heightfield& field,
+             const std::function<void(uint32_t, uint32_t, void*)>& apertureRows,
+             const AlbedoImage* albedo, size_t triangleBudget);
+
   Image heights_, aperture_, albedo_;
   Buffer indices_;
   bool hasAlbedo_ = false;

@@ -1,5 +1,7 @@
 #include "upload.h"
 
+#include <algorithm>
+#include <cstring>
 #include <stdexcept>
 
 #include "buffer.h"
@@ -10,60 +12,131 @@
 namespace aal {
 
 namespace {
+
 size_t alignUp(size_t value, size_t alignment) {
   return (value + alignment - 1) / alignment * alignment;
 }
+
+struct Copy {
+  const Image* image;
+  const Buffer* buffer;
+  size_t stagingOffset, bytes;
+  uint32_t firstRow, rows;
+  size_t bufferOffset;
+  bool first, last;
+};
+
 }  // namespace
 
-void UploadBatch::add(const Image* image, const Buffer* buffer, const void* data, size_t bytes) {
-  const size_t offset = alignUp(stagingBytes_, 16);
-  stagingBytes_ = offset + bytes;
-  pending_.push_back({image, buffer, data, offset, bytes});
+void UploadBatch::addImage(const Image& image, size_t bytesPerTexel, RowWriter rows) {
+  Pending p;
+  p.image = &image;
+  p.bytesPerTexel = bytesPerTexel;
+  p.rows = std::move(rows);
+  pending_.push_back(std::move(p));
 }
 
-void UploadBatch::addImage(const Image& image, const void* data, size_t bytes) {
-  add(&image, nullptr, data, bytes);
+void UploadBatch::addImage(const Image& image, size_t bytesPerTexel, const void* data) {
+  const size_t rowBytes = image.desc().width * bytesPerTexel;
+  const auto* bytes = static_cast<const unsigned char*>(data);
+  addImage(image, bytesPerTexel, [bytes, rowBytes](uint32_t first, uint32_t end, void* dst) {
+    std::memcpy(dst, bytes + first * rowBytes, (end - first) * rowBytes);
+  });
 }
 
 void UploadBatch::addBuffer(const Buffer& buffer, const void* data, size_t bytes) {
   if (bytes > buffer.size()) throw std::logic_error("UploadBatch::addBuffer: too many bytes");
-  add(nullptr, &buffer, data, bytes);
+  Pending p;
+  p.buffer = &buffer;
+  p.data = static_cast<const unsigned char*>(data);
+  p.bytes = bytes;
+  pending_.push_back(std::move(p));
 }
 
 void UploadBatch::submit() {
   if (pending_.empty()) return;
-  Buffer staging(device_, stagingBytes_, VK_BUFFER_USAGE_TRANSFER_SRC_BIT, MemoryIntent::Upload);
-  for (const Pending& p : pending_) staging.write(p.data, p.bytes, p.offset);
-  submitAndWait(device_, [&](VkCommandBuffer cmd) {
-    for (const Pending& p : pending_) {
-      if (p.buffer) {
-        VkBufferCopy region{p.offset, 0, p.bytes};
-        vkCmdCopyBuffer(cmd, staging.handle(), p.buffer->handle(), 1, &region);
-        continue;
-      }
-      transitionImage(cmd, *p.image, VK_IMAGE_LAYOUT_UNDEFINED,
-                      VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL);
-      VkBufferImageCopy region{};
-      region.bufferOffset = p.offset;
-      region.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
-      region.imageExtent = {p.image->desc().width, p.image->desc().height, 1};
-      vkCmdCopyBufferToImage(cmd, staging.handle(), p.image->handle(),
-                             VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 1, &region);
-      transitionImage(cmd, *p.image, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL,
-                      VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL);
+  size_t total = 0, widestRow = 16;
+  for (const Pending& p : pending_) {
+    if (p.image) {
+      const size_t rowBytes = p.image->desc().width * p.bytesPerTexel;
+      total += alignUp(rowBytes * p.image->desc().height, 16);
+      widestRow = std::max(widestRow, rowBytes);
+    } else {
+      total += alignUp(p.bytes, 16);
     }
-    // Buffer copies must be visible to vertex input and shaders.
-    VkMemoryBarrier2 barrier{VK_STRUCTURE_TYPE_MEMORY_BARRIER_2};
-    barrier.srcStageMask = VK_PIPELINE_STAGE_2_TRANSFER_BIT;
-    barrier.srcAccessMask = VK_ACCESS_2_TRANSFER_WRITE_BIT;
-    barrier.dstStageMask = VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT;
-    barrier.dstAccessMask = VK_ACCESS_2_MEMORY_READ_BIT;
-    VkDependencyInfo dependency{VK_STRUCTURE_TYPE_DEPENDENCY_INFO};
-    dependency.memoryBarrierCount = 1;
-    dependency.pMemoryBarriers = &barrier;
-    vkCmdPipelineBarrier2(cmd, &dependency);
-  });
-  stagingBytes_ = 0;
+  }
+  const size_t capacity = std::max(std::min(total, stagingLimit_), alignUp(widestRow, 16));
+  Buffer staging(device_, capacity, VK_BUFFER_USAGE_TRANSFER_SRC_BIT, MemoryIntent::Upload);
+  auto* mapped = static_cast<unsigned char*>(staging.mapped());
+
+  for (size_t next = 0; next < pending_.size();) {
+    // Fill the staging buffer with as much as fits.
+    std::vector<Copy> copies;
+    size_t used = 0;
+    for (size_t i = next; i < pending_.size(); ++i) {
+      Pending& p = pending_[i];
+      if (p.image) {
+        const uint32_t height = p.image->desc().height;
+        const size_t rowBytes = p.image->desc().width * p.bytesPerTexel;
+        const size_t fit = (capacity - used) / rowBytes;
+        const uint32_t rows = static_cast<uint32_t>(std::min<size_t>(fit, height - p.done));
+        if (rows == 0) break;
+        const uint32_t first = static_cast<uint32_t>(p.done);
+        p.rows(first, first + rows, mapped + used);
+        copies.push_back({p.image, nullptr, used, rows * rowBytes, first, rows, 0, first == 0,
+                          first + rows == height});
+        used = alignUp(used + rows * rowBytes, 16);
+        p.done += rows;
+        if (p.done < height) break;
+      } else {
+        const size_t chunk = std::min(capacity - used, p.bytes - p.done);
+        if (chunk == 0) break;
+        std::memcpy(mapped + used, p.data + p.done, chunk);
+        copies.push_back({nullptr, p.buffer, used, chunk, 0, 0, p.done, false, false});
+        used = alignUp(used + chunk, 16);
+        p.done += chunk;
+        if (p.done < p.bytes) break;
+      }
+      next = i + 1;
+    }
+    staging.flush();
+
+    submitAndWait(device_, [&](VkCommandBuffer cmd) {
+      for (const Copy& c : copies) {
+        if (c.buffer) {
+          const VkBufferCopy region{c.stagingOffset, c.bufferOffset, c.bytes};
+          vkCmdCopyBuffer(cmd, staging.handle(), c.buffer->handle(), 1, &region);
+          continue;
+        }
+        // Bands after the first find the image already in TRANSFER_DST.
+        if (c.first) {
+          transitionImage(cmd, *c.image, VK_IMAGE_LAYOUT_UNDEFINED,
+                          VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL);
+        }
+        VkBufferImageCopy region{};
+        region.bufferOffset = c.stagingOffset;
+        region.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
+        region.imageOffset = {0, static_cast<int32_t>(c.firstRow), 0};
+        region.imageExtent = {c.image->desc().width, c.rows, 1};
+        vkCmdCopyBufferToImage(cmd, staging.handle(), c.image->handle(),
+                               VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 1, &region);
+        if (c.last) {
+          transitionImage(cmd, *c.image, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL,
+                          VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL);
+        }
+      }
+      // Buffer copies must be visible to vertex input and shaders.
+      VkMemoryBarrier2 barrier{VK_STRUCTURE_TYPE_MEMORY_BARRIER_2};
+      barrier.srcStageMask = VK_PIPELINE_STAGE_2_TRANSFER_BIT;
+      barrier.srcAccessMask = VK_ACCESS_2_TRANSFER_WRITE_BIT;
+      barrier.dstStageMask = VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT;
+      barrier.dstAccessMask = VK_ACCESS_2_MEMORY_READ_BIT;
+      VkDependencyInfo dependency{VK_STRUCTURE_TYPE_DEPENDENCY_INFO};
+      dependency.memoryBarrierCount = 1;
+      dependency.pMemoryBarriers = &barrier;
+      vkCmdPipelineBarrier2(cmd, &dependency);
+    });
+  }
   pending_.clear();
 }
 

@@ -1,8 +1,12 @@
-// Batched uploads: data for many images and buffers goes into one staging
-// buffer and one command buffer, submitted once (no wait per upload).
+// Batched uploads through a staging buffer of bounded size: the data of many
+// images and buffers goes in as few submissions as the staging size allows
+// (one for small scenes), never one wait per upload, and never a second full
+// copy of a large texture in host memory.
 #pragma once
 
 #include <cstddef>
+#include <cstdint>
+#include <functional>
 #include <vector>
 
 #include <vulkan/vulkan.h>
@@ -13,32 +17,41 @@ class Buffer;
 class Device;
 class Image;
 
+// Writes rows [firstRow, endRow) of an image, tightly packed, to `destination`.
+using RowWriter = std::function<void(uint32_t firstRow, uint32_t endRow, void* destination)>;
+
 class UploadBatch {
  public:
-  explicit UploadBatch(const Device& device) : device_(device) {}
+  static constexpr size_t kDefaultStagingBytes = size_t{64} << 20;
 
-  // `data` must stay alive until submit() (it is copied straight into the
-  // staging memory then, so nothing is held twice). The image ends in
-  // SHADER_READ_ONLY_OPTIMAL; `bytes` is its full size, rows tightly packed.
-  void addImage(const Image& image, const void* data, size_t bytes);
-  // The buffer must have TRANSFER_DST usage; the data lands at offset 0.
+  explicit UploadBatch(const Device& device, size_t stagingBytes = kDefaultStagingBytes)
+      : device_(device), stagingLimit_(stagingBytes) {}
+
+  // The image is filled band by band by `rows` during submit(); it ends in
+  // SHADER_READ_ONLY_OPTIMAL. bytesPerTexel matches the image's format.
+  void addImage(const Image& image, size_t bytesPerTexel, RowWriter rows);
+  // Convenience: `data` (tightly packed rows) must stay alive until submit().
+  void addImage(const Image& image, size_t bytesPerTexel, const void* data);
+  // The buffer must have TRANSFER_DST usage; `data` lands at offset 0 and
+  // must stay alive until submit().
   void addBuffer(const Buffer& buffer, const void* data, size_t bytes);
 
-  // Fills one staging buffer, records every copy in one command buffer,
-  // submits it and waits.
+  // Copies everything, in as many staging-buffer loads as needed, and waits.
   void submit();
 
  private:
   struct Pending {
     const Image* image = nullptr;
+    size_t bytesPerTexel = 0;
+    RowWriter rows;
     const Buffer* buffer = nullptr;
-    const void* data = nullptr;
-    size_t offset = 0, bytes = 0;
+    const unsigned char* data = nullptr;
+    size_t bytes = 0;
+    size_t done = 0;  // rows (images) or bytes (buffers) already copied
   };
-  void add(const Image* image, const Buffer* buffer, const void* data, size_t bytes);
 
   const Device& device_;
-  size_t stagingBytes_ = 0;
+  size_t stagingLimit_;
   std::vector<Pending> pending_;
 };
 

@@ -30,15 +30,15 @@ fs::path cachedAperturePath(const Heightfield& field, const BakeOptions& o) {
   return apertureCacheDirectory() / name;
 }
 
-ApertureMap loadOrBakeAperture(const Heightfield& field, const std::string& demPath,
-                               BakeOptions options, bool quiet) {
+CachedAperture cachedOrBakedAperture(const Heightfield& field, const std::string& demPath,
+                                     BakeOptions options, bool quiet) {
   const fs::path path = cachedAperturePath(field, options);
   std::error_code error;
   if (fs::exists(path, error)) {
     try {
-      ApertureMap map = readApertureMap(path.string());
-      checkApertureMatchesDem(map, path.string(), field, demPath);
-      return map;
+      const ApertureMapReader reader(path.string());
+      checkApertureMatchesDem(reader.header(), path.string(), field, demPath);
+      return {path, {}};
     } catch (const InputError& e) {
       // A damaged or stale cache entry is replaced, not fatal.
       if (!quiet) std::fprintf(stderr, "note: rebaking (cache entry unusable: %s)\n", e.what());
@@ -55,16 +55,15 @@ ApertureMap loadOrBakeAperture(const Heightfield& field, const std::string& demP
       std::fprintf(stderr, "note: cannot create cache folder %s (%s); not caching\n",
                    path.parent_path().c_str(), error.message().c_str());
     }
-    return std::move(result.aperture);
+    return {{}, std::move(result.aperture)};
   }
   try {
     writeApertureMap(path.string(), result.aperture, /*halfFloat=*/true);
-    // What later runs will read: the same halves, so every render agrees.
-    return readApertureMap(path.string());
+    return {path, {}};
   } catch (const std::exception& e) {
     if (!quiet) std::fprintf(stderr, "note: not caching the aperture map: %s\n", e.what());
   }
-  return std::move(result.aperture);
+  return {{}, std::move(result.aperture)};
 }
 
 }  // namespace aal

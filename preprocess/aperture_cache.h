@@ -18,10 +18,17 @@ std::filesystem::path apertureCacheDirectory();
 // Cache file for this DEM (its loaded heights) and these bake options.
 std::filesystem::path cachedAperturePath(const Heightfield& field, const BakeOptions& options);
 
+// An aperture map for a DEM: the path of a valid cache entry, or the map in
+// memory when the cache cannot be written.
+struct CachedAperture {
+  std::filesystem::path path;  // empty when not cached
+  ApertureMap map;             // filled only when not cached
+};
+
 // The cached map when present and valid, else a fresh bake (with progress on
 // stderr unless quiet) written to the cache atomically. `demPath` names the
 // DEM in the map's aal:source.
-ApertureMap loadOrBakeAperture(const Heightfield& field, const std::string& demPath,
-                               BakeOptions options, bool quiet);
+CachedAperture cachedOrBakedAperture(const Heightfield& field, const std::string& demPath,
+                                     BakeOptions options, bool quiet);
 
 }  // namespace aal

@@ -5,6 +5,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <memory>
+#include <string>
 
 #include <OpenImageIO/imageio.h>
 
@@ -75,7 +76,10 @@ void writeApertureMap(const std::string& path, const ApertureMap& map, bool half
   output.commit();
 }
 
-ApertureMap readApertureMap(const std::string& path) {
+namespace {
+
+std::unique_ptr<OIIO::ImageInput> openApertureMap(const std::string& path,
+                                                  ApertureMapHeader& header) {
   if (!std::filesystem::exists(path)) throw InputError("aperture map " + path + " does not exist");
   auto in = OIIO::ImageInput::open(path);
   if (!in) throw InputError("cannot read aperture map " + path + ": " + OIIO::geterror());
@@ -87,10 +91,9 @@ ApertureMap readApertureMap(const std::string& path) {
   if (!spec.find_attribute("aal:version")) {
     throw InputError("aperture map " + path + " has no aal: attributes: not made by aal-bake");
   }
-  ApertureMap map;
-  map.width = spec.width;
-  map.height = spec.height;
-  ApertureMapInfo& i = map.info;
+  header.width = spec.width;
+  header.height = spec.height;
+  ApertureMapInfo& i = header.info;
   i.version = spec.get_int_attribute("aal:version");
   i.azimuths = spec.get_int_attribute("aal:azimuths");
   i.method = spec.get_string_attribute("aal:method");
@@ -107,6 +110,18 @@ ApertureMap readApertureMap(const std::string& path) {
                   &i.sourceHeight) != 2) {
     throw InputError("aperture map " + path + " has a malformed aal:sourceSize attribute");
   }
+  return in;
+}
+
+}  // namespace
+
+ApertureMap readApertureMap(const std::string& path) {
+  ApertureMapHeader header;
+  auto in = openApertureMap(path, header);
+  ApertureMap map;
+  map.width = header.width;
+  map.height = header.height;
+  map.info = header.info;
   map.texels.resize(map.texelCount() * 4);
   if (!in->read_image(0, 0, 0, 4, OIIO::TypeDesc::FLOAT, map.texels.data())) {
     throw InputError("cannot read aperture map " + path +
@@ -115,7 +130,33 @@ ApertureMap readApertureMap(const std::string& path) {
   return map;
 }
 
-void checkApertureMatchesDem(const ApertureMap& map, const std::string& mapPath,
+struct ApertureMapReader::Impl {
+  std::unique_ptr<OIIO::ImageInput> input;
+};
+
+ApertureMapReader::ApertureMapReader(const std::string& path) : path_(path), impl_(new Impl) {
+  try {
+    impl_->input = openApertureMap(path, header_);
+  } catch (...) {
+    delete impl_;
+    throw;
+  }
+}
+
+ApertureMapReader::~ApertureMapReader() {
+  delete impl_;
+}
+
+void ApertureMapReader::readHalfRows(int firstRow, int endRow, void* destination) {
+  if (!impl_->input->read_scanlines(0, 0, firstRow, endRow, 0, 0, 4, OIIO::TypeDesc::HALF,
+                                    destination) ||
+      impl_->input->has_error()) {
+    throw InputError("cannot read aperture map " + path_ +
+                     " (truncated or corrupt): " + impl_->input->geterror());
+  }
+}
+
+void checkApertureMatchesDem(const ApertureMapHeader& map, const std::string& mapPath,
                              const Heightfield& field, const std::string& demPath) {
   const std::string pair = "aperture map " + mapPath + " does not belong to DEM " + demPath;
   if (map.width != field.width || map.height != field.height) {
@@ -127,6 +168,12 @@ void checkApertureMatchesDem(const ApertureMap& map, const std::string& mapPath,
     throw InputError(pair + ": it was baked from other heights (" + map.info.source +
                      "); bake it again with aal-bake");
   }
+}
+
+void checkApertureMatchesDem(const ApertureMap& map, const std::string& mapPath,
+                             const Heightfield& field, const std::string& demPath) {
+  checkApertureMatchesDem(ApertureMapHeader{map.width, map.height, map.info}, mapPath, field,
+                          demPath);
 }
 
 }  // namespace aal

@@ -52,8 +52,37 @@ void writeApertureMap(const std::string& path, const ApertureMap& map, bool half
 // attributes.
 ApertureMap readApertureMap(const std::string& path);
 
+struct ApertureMapHeader {
+  int width = 0, height = 0;
+  ApertureMapInfo info;
+};
+
+// Streams a map row band by row band, so that large maps never sit in memory
+// as floats: the renderer copies them straight into staging memory.
+class ApertureMapReader {
+ public:
+  // Opens and validates the header (errors as readApertureMap).
+  explicit ApertureMapReader(const std::string& path);
+  ~ApertureMapReader();
+  ApertureMapReader(const ApertureMapReader&) = delete;
+  ApertureMapReader& operator=(const ApertureMapReader&) = delete;
+
+  const ApertureMapHeader& header() const { return header_; }
+  // Rows [firstRow, endRow) as RGBA 16-bit halves, tightly packed (8 bytes
+  // per texel). Throws InputError when the file is truncated or corrupt.
+  void readHalfRows(int firstRow, int endRow, void* destination);
+
+ private:
+  struct Impl;
+  std::string path_;
+  ApertureMapHeader header_;
+  Impl* impl_ = nullptr;
+};
+
 // Throws InputError naming both files when the map was not baked from this
 // DEM (size, checksum).
+void checkApertureMatchesDem(const ApertureMapHeader& map, const std::string& mapPath,
+                             const Heightfield& field, const std::string& demPath);
 void checkApertureMatchesDem(const ApertureMap& map, const std::string& mapPath,
                              const Heightfield& field, const std::string& demPath);
 

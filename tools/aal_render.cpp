@@ -2,6 +2,7 @@
 #include <cmath>
 #include <cstdio>
 #include <map>
+#include <memory>
 #include <optional>
 #include <sstream>
 #include <string>
@@ -120,12 +121,18 @@ int run(const Options& o) {
   load.cellSizeM = o.cellSize;
   load.zScale = o.zScale;
   const aal::Heightfield field = aal::loadDem(o.dem, load);
-  aal::ApertureMap aperture;
-  if (!o.aperture.empty()) {
-    aperture = aal::readApertureMap(o.aperture);
-    aal::checkApertureMatchesDem(aperture, o.aperture, field, o.dem);
+  // The aperture map is streamed from its file into the GPU when the scene
+  // is built, so it never sits in host memory as floats.
+  std::string aperturePath = o.aperture;
+  aal::ApertureMap inMemory;
+  if (!aperturePath.empty()) {
+    const aal::ApertureMapReader check(aperturePath);
+    aal::checkApertureMatchesDem(check.header(), aperturePath, field, o.dem);
   } else {
-    aperture = aal::loadOrBakeAperture(field, o.dem, aal::BakeOptions{}, o.quiet);
+    aal::CachedAperture cached =
+        aal::cachedOrBakedAperture(field, o.dem, aal::BakeOptions{}, o.quiet);
+    aperturePath = cached.path.string();
+    inMemory = std::move(cached.map);
   }
 
   std::optional<aal::AlbedoImage> albedo;
@@ -170,10 +177,20 @@ int run(const Options& o) {
     throw aal::InputError("--size " + o.size + " exceeds the device's largest image (" +
                           std::to_string(device.properties().limits.maxImageDimension2D) + ")");
   }
-  const aal::TerrainScene scene(device, field, aperture, albedo ? &*albedo : nullptr,
-                                o.triangleBudget);
+  std::unique_ptr<aal::TerrainScene> scene;
+  if (aperturePath.empty()) {
+    scene = std::make_unique<aal::TerrainScene>(device, field, inMemory,
+                                                albedo ? &*albedo : nullptr, o.triangleBudget);
+  } else {
+    aal::ApertureMapReader reader(aperturePath);
+    scene = std::make_unique<aal::TerrainScene>(device, field, reader, albedo ? &*albedo : nullptr,
+                                                o.triangleBudget);
+  }
+  inMemory = {};
+  albedo.reset();
   aal::TerrainRenderer renderer(device, width, height);
-  const aal::FrameResult frame = renderer.render(scene, settings, aal::wantsLinearOutput(o.output));
+  const aal::FrameResult frame =
+      renderer.render(*scene, settings, aal::wantsLinearOutput(o.output));
   aal::writeFrame(o.output, frame);
 
   if (o.stats) {

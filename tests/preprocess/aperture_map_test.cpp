@@ -2,6 +2,7 @@
 
 #include <gtest/gtest.h>
 
+#include <Imath/half.h>
 #include <OpenImageIO/imageio.h>
 
 #include <filesystem>
@@ -50,6 +51,28 @@ TEST(ApertureMap, HalfFloatKeepsThreeDigits) {
   const ApertureMap back = readApertureMap(path);
   for (size_t i = 0; i < back.texels.size(); ++i) {
     EXPECT_NEAR(back.texels[i], r.aperture.texels[i], 1e-3) << i;
+  }
+}
+
+TEST(ApertureMap, StreamsRowsAsHalves) {
+  test::TempDir dir;
+  const Heightfield field = smallField();
+  const BakeResult r = bakeApertures(field, BakeOptions{});
+  const std::string path = (dir.path() / "s.exr").string();
+  writeApertureMap(path, r.aperture, /*halfFloat=*/true);
+  ApertureMapReader reader(path);
+  EXPECT_EQ(reader.header().width, 20);
+  EXPECT_EQ(reader.header().info.sourceChecksum, heightfieldChecksum(field));
+  EXPECT_NO_THROW(checkApertureMatchesDem(reader.header(), path, field, "small.tif"));
+  // Rows 3..7 in one band, compared with the whole map read as floats.
+  const ApertureMap whole = readApertureMap(path);
+  std::vector<uint16_t> halves(5 * 20 * 4);
+  reader.readHalfRows(3, 8, halves.data());
+  for (size_t i = 0; i < halves.size(); ++i) {
+    const float expected = whole.texels[3 * 20 * 4 + i];
+    Imath::half value;
+    value.setBits(halves[i]);
+    ASSERT_NEAR(float(value), expected, 1e-6) << i;
   }
 }
 
