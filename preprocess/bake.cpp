@@ -55,7 +55,7 @@ void sweepAllAzimuths(const BakeTerrain& terrain, const BakeOptions& o, float* s
     sweepHorizons(terrain, phi, sweep, [&](size_t texel, double tanHorizon) {
       // Directions below the tangent plane are outside the hemisphere.
       const double tanPlane =
-          terrain.slopeEast[texel] * cosPhi + terrain.slopeNorth[texel] * sinPhi;
+          terrain.slopeEast(texel) * cosPhi + terrain.slopeNorth(texel) * sinPhi;
       addSkySlice(sums + 4 * texel, std::max(tanHorizon, tanPlane), dPhi, cosPhiDPhi, sinPhiDPhi);
       if (wantSvf && tanHorizon > 0.0) {
         svf[texel] += static_cast<float>(tanHorizon / std::sqrt(1.0 + tanHorizon * tanHorizon));
@@ -80,7 +80,7 @@ void finishApertures(const BakeTerrain& terrain, std::vector<float>& texels) {
       by /= length;
       bz /= length;
     } else {  // nothing visible: fall back to the surface normal
-      const double sx = terrain.slopeEast[i], sy = terrain.slopeNorth[i];
+      const double sx = terrain.slopeEast(i), sy = terrain.slopeNorth(i);
       const double n = std::sqrt(1.0 + sx * sx + sy * sy);
       bx = -sx / n;
       by = -sy / n;

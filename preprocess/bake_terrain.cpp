@@ -23,8 +23,7 @@ BakeTerrain prepareBakeTerrain(const Heightfield& field) {
   }
 
   // Central differences inside, one-sided at the edges.
-  t.slopeEast.resize(field.texelCount());
-  t.slopeNorth.resize(field.texelCount());
+  t.slopes.resize(2 * field.texelCount());
   const int w = field.width, h = field.height;
   tbb::parallel_for(0, h, [&](int row) {
     const int north = row > 0 ? row - 1 : row, south = row + 1 < h ? row + 1 : row;
@@ -33,9 +32,9 @@ BakeTerrain prepareBakeTerrain(const Heightfield& field) {
       const int west = col > 0 ? col - 1 : col, east = col + 1 < w ? col + 1 : col;
       const double dx = (east - west) * t.rowCellX[row];
       const size_t i = field.index(col, row);
-      t.slopeEast[i] =
+      t.slopes[2 * i] =
           dx > 0 ? static_cast<float>((field.at(east, row) - field.at(west, row)) / dx) : 0.0f;
-      t.slopeNorth[i] =
+      t.slopes[2 * i + 1] =
           dyNorth > 0 ? static_cast<float>((field.at(col, north) - field.at(col, south)) / dyNorth)
                       : 0.0f;
     }

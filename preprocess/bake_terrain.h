@@ -18,10 +18,13 @@ struct BakeTerrain {
   std::vector<double> rowY;
   double centreCol = 0;
   double cellY = 1;
-  // Height gradient per texel in metres per metre: dz/dx (east), dz/dy (north).
-  std::vector<float> slopeEast, slopeNorth;
+  // Height gradient per texel in metres per metre, interleaved (one cache
+  // line serves both): [2i] = dz/dx (east), [2i + 1] = dz/dy (north).
+  std::vector<float> slopes;
   double maxHeight = 0;  // tallest texel, metres
 
+  float slopeEast(size_t texel) const { return slopes[2 * texel]; }
+  float slopeNorth(size_t texel) const { return slopes[2 * texel + 1]; }
   double x(int col, int row) const { return (col - centreCol) * rowCellX[row]; }
   double y(int row) const { return rowY[row]; }
 };

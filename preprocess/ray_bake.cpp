@@ -92,7 +92,7 @@ void bakeRays(const BakeTerrain& terrain, const BakeOptions& o, float* sums,
       for (int col = 0; col < f.width; ++col) {
         const size_t i = f.index(col, row);
         // Tangent frame around the surface normal n = (-sx, -sy, 1)/|.|.
-        const double sx = terrain.slopeEast[i], sy = terrain.slopeNorth[i];
+        const double sx = terrain.slopeEast(i), sy = terrain.slopeNorth(i);
         const double len = std::sqrt(1 + sx * sx + sy * sy);
         const double n[3] = {-sx / len, -sy / len, 1 / len};
         double t[3] = {n[2], 0, -n[0]};  // perpendicular to n in the x-z plane

@@ -8,6 +8,7 @@
 //   Ic = pi/4 - theta0/2 - sin(2 theta0)/4,   Is = (1 - sin^2 theta0) / 2
 #pragma once
 
+#include <algorithm>
 #include <cmath>
 
 namespace aal {
@@ -19,19 +20,25 @@ template <class Real>
 inline Real fastAtan(Real x) {
   constexpr Real kHalfPi = Real(1.57079632679489661923), kQuarterPi = Real(0.78539816339744830962);
   constexpr Real kTanEighthPi = Real(0.41421356237309504880);
+  // Branch-free (selects, not jumps): the horizon tangents that reach here
+  // change sign and size from texel to texel, so branches mispredict.
+  // Both candidates are computed and one is picked, since compilers will not
+  // turn a guarded division into a select.
   const Real a = std::abs(x);
   const bool inverted = a > Real(1);
-  Real y = inverted ? Real(1) / a : a;
-  const bool shifted = y > kTanEighthPi;
-  if (shifted) y = (y - Real(1)) / (y + Real(1));
+  const Real inverse = Real(1) / std::max(a, Real(1e-30));
+  const Real reduced = inverted ? inverse : a;
+  const bool shifted = reduced > kTanEighthPi;
+  const Real folded = (reduced - Real(1)) / (reduced + Real(1));
+  const Real y = shifted ? folded : reduced;
   const Real y2 = y * y;
   const Real series =
-      y * (Real(1) + y2 * (Real(-1.0 / 3) +
-                           y2 * (Real(1.0 / 5) +
-                                 y2 * (Real(-1.0 / 7) + y2 * (Real(1.0 / 9) - y2 / Real(11))))));
-  Real result = (shifted ? kQuarterPi : Real(0)) + series;
-  if (inverted) result = kHalfPi - result;
-  return x < 0 ? -result : result;
+      y * (Real(1) +
+           y2 * (Real(-1.0 / 3) +
+                 y2 * (Real(1.0 / 5) + y2 * (Real(-1.0 / 7) + y2 * (Real(1.0 / 9) - y2 / Real(11))))));
+  const Real base = shifted ? kQuarterPi : Real(0);
+  const Real result = inverted ? kHalfPi - (base + series) : base + series;
+  return std::copysign(result, x);
 }
 
 // Adds the slice whose lowest visible elevation has tangent `tanTheta0` to a
