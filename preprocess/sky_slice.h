@@ -33,9 +33,9 @@ inline Real fastAtan(Real x) {
   const Real y = shifted ? folded : reduced;
   const Real y2 = y * y;
   const Real series =
-      y * (Real(1) +
-           y2 * (Real(-1.0 / 3) +
-                 y2 * (Real(1.0 / 5) + y2 * (Real(-1.0 / 7) + y2 * (Real(1.0 / 9) - y2 / Real(11))))));
+      y * (Real(1) + y2 * (Real(-1.0 / 3) +
+                           y2 * (Real(1.0 / 5) +
+                                 y2 * (Real(-1.0 / 7) + y2 * (Real(1.0 / 9) - y2 / Real(11))))));
   const Real base = shifted ? kQuarterPi : Real(0);
   const Real result = inverted ? kHalfPi - (base + series) : base + series;
   return std::copysign(result, x);
