@@ -31,9 +31,12 @@ t_saga_ms=$(seconds saga_cmd ta_lighting 3 -DEM "$dem" -SVF "$work/svf_ms.sdat" 
   -VISIBLE "$work/vis_ms.sdat" -NDIRS 32 -METHOD 1)
 t_saga_cs=$(seconds saga_cmd ta_lighting 3 -DEM "$dem" -SVF "$work/svf_cs.sdat" \
   -VISIBLE "$work/vis_cs.sdat" -NDIRS 32 -METHOD 0)
-grass -c "$dem" "$work/grassdb/bench" -e
+# r.horizon needs a projected location; aal-synth writes a local metric CRS
+# that GRASS cannot translate, so the grid goes into a UTM location as is (-o).
+grass -c EPSG:32616 "$work/grassdb/bench" -e
 t_grass=$(seconds grass "$work/grassdb/bench/PERMANENT" --exec bash -c \
-  "r.in.gdal -q input='$dem' output=dem && r.horizon -q elevation=dem step=11.25 output=hor")
+  "r.in.gdal -o --quiet input='$dem' output=dem && g.region raster=dem &&
+   r.horizon --quiet elevation=dem step=11.25 output=hor")
 
 printf "%dx%d DEM, 32 directions\n" "$size" "$size"
 printf "  %-34s %8s s\n" "aal-bake (sweep, whole DEM)" "$t_aal"
