@@ -18,36 +18,12 @@ namespace aal {
 
 namespace {
 
-// libtiff and libgeotiff messages of one open file, kept instead of printed.
-struct Messages {
-  std::string errors;
-};
-
-std::string format(const char* fmt, va_list args) {
-  char text[512];
-  std::vsnprintf(text, sizeof text, fmt, args);
-  return text;
-}
-
-int onTiffError(TIFF*, void* user, const char* module, const char* fmt, va_list args) {
-  auto* messages = static_cast<Messages*>(user);
-  if (!messages->errors.empty()) messages->errors += "; ";
-  if (module && *module) messages->errors += std::string(module) + ": ";
-  messages->errors += format(fmt, args);
-  return 1;  // handled: do not call the global handler (which prints)
-}
-
-int onTiffWarning(TIFF*, void*, const char*, const char*, va_list) {
-  return 1;  // unknown tags and similar: nothing a user needs to see
-}
-
 void onGeoTiffMessage(GTIF* gtif, int level, const char* fmt, ...) {
   if (level != LIBGEOTIFF_ERROR) return;
-  auto* messages = static_cast<Messages*>(GTIFGetUserData(gtif));
+  auto* messages = static_cast<TiffMessages*>(GTIFGetUserData(gtif));
   va_list args;
   va_start(args, fmt);
-  if (!messages->errors.empty()) messages->errors += "; ";
-  messages->errors += format(fmt, args);
+  messages->add(nullptr, fmt, args);
   va_end(args);
 }
 
@@ -91,7 +67,7 @@ std::optional<double> doubleKey(GTIF* gtif, geokey_t key) {
 }
 
 void readGeoKeys(const std::string& path, TIFF* tif, GeoTiffTags& tags) {
-  Messages messages;  // of libgeotiff only
+  TiffMessages messages;  // of libgeotiff only
   tags.hasGeoKeys = !arrayTag<uint16_t>(tif, TIFFTAG_GEOKEYDIRECTORY).empty();
   if (!tags.hasGeoKeys) return;
   GtifHandle gtif(GTIFNewEx(tif, onGeoTiffMessage, &messages));
@@ -113,16 +89,8 @@ void readGeoKeys(const std::string& path, TIFF* tif, GeoTiffTags& tags) {
 }  // namespace
 
 GeoTiffTags readGeoTiffTags(const std::string& path) {
-  // Registers the GeoTIFF tags with libtiff, so their counts and types are
-  // known when the directory is read.
-  static std::once_flag registered;
-  std::call_once(registered, [] { XTIFFInitialize(); });
-
-  Messages messages;
-  TiffOptionsHandle openOptions(TIFFOpenOptionsAlloc());
-  TIFFOpenOptionsSetErrorHandlerExtR(openOptions.get(), onTiffError, &messages);
-  TIFFOpenOptionsSetWarningHandlerExtR(openOptions.get(), onTiffWarning, &messages);
-  TiffHandle tif(TIFFOpenExt(path.c_str(), "r", openOptions.get()));
+  TiffMessages messages;
+  TiffHandle tif = openTiff(path, "r", messages);
   if (!tif) {
     throw InputError(path + ": not a readable TIFF: " +
                      (messages.errors.empty() ? "libtiff cannot open it" : messages.errors));

@@ -25,24 +25,6 @@ namespace {
 constexpr int kUserDefined = 32767;
 constexpr int kRowsPerStrip = 16;
 
-struct Messages {
-  std::string errors;
-};
-
-int onTiffError(TIFF*, void* user, const char* module, const char* fmt, va_list args) {
-  char text[512];
-  std::vsnprintf(text, sizeof text, fmt, args);
-  auto* messages = static_cast<Messages*>(user);
-  if (!messages->errors.empty()) messages->errors += "; ";
-  if (module && *module) messages->errors += std::string(module) + ": ";
-  messages->errors += text;
-  return 1;
-}
-
-int onTiffWarning(TIFF*, void*, const char*, const char*, va_list) {
-  return 1;
-}
-
 int linearUnitCode(double linearUnitM) {
   if (linearUnitM == 1.0) return 9001;
   if (linearUnitM == 0.3048) return 9002;
@@ -81,16 +63,11 @@ bool writeGeoKeys(TIFF* tif, const GeoReference& geo) {
 
 void writeTiff(const std::string& path, int width, int height, const float* data,
                const GeoReference& geo) {
-  static std::once_flag registered;
-  std::call_once(registered, [] { XTIFFInitialize(); });
-  Messages messages;
-  TiffOptionsHandle openOptions(TIFFOpenOptionsAlloc());
-  TIFFOpenOptionsSetErrorHandlerExtR(openOptions.get(), onTiffError, &messages);
-  TIFFOpenOptionsSetWarningHandlerExtR(openOptions.get(), onTiffWarning, &messages);
+  TiffMessages messages;
   // BigTIFF when the pixels alone come near the 4 GiB offset limit.
   const double bytes = 4.0 * width * height;
   const char* mode = bytes > 3.5e9 ? "w8" : "w";
-  TiffHandle tif(TIFFOpenExt(path.c_str(), mode, openOptions.get()));
+  TiffHandle tif = openTiff(path, mode, messages);
   const auto fail = [&](const std::string& what) {
     throw std::runtime_error("cannot write " + path + ": " + what +
                              (messages.errors.empty() ? "" : ": " + messages.errors));

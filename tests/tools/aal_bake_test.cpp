@@ -24,10 +24,7 @@ namespace fs = std::filesystem;
 using test::runTool;
 using test::TempDir;
 
-std::string quoted(const fs::path& p) {
-  return "'" + p.string() + "'";
-}
-
+using test::quoted;
 // A synthetic DEM written as a projected float GeoTIFF.
 fs::path writeDem(const TempDir& dir, int size, const std::string& name = "dem.tif") {
   SyntheticTerrainOptions s;

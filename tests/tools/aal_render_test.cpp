@@ -14,14 +14,7 @@ namespace fs = std::filesystem;
 using test::runTool;
 using test::TempDir;
 
-// Appends instead of chaining +: GCC 12 reports a false -Wrestrict for that.
-std::string quoted(const fs::path& p) {
-  std::string q = "'";
-  q += p.string();
-  q += "'";
-  return q;
-}
-
+using test::quoted;
 const fs::path kDem = fs::path(AAL_TEST_SOURCE_DIR) / "heightmaps" / "jacksboro_fault_dem.tif";
 
 // Renders with a private bake cache so tests do not share state.

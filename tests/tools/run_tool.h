@@ -22,6 +22,15 @@ inline std::filesystem::path binDir() {
   return AAL_TEST_BIN_DIR;
 }
 
+// A path in single quotes for the shell command line of runTool (appended,
+// not chained with +: GCC 12 reports a false -Wrestrict for that).
+inline std::string quoted(const std::filesystem::path& path) {
+  std::string q = "'";
+  q += path.string();
+  q += "'";
+  return q;
+}
+
 // `arguments` is passed to the shell as written: quote what needs quoting.
 // `environment` ("NAME=value ...") is set for this run only.
 inline ToolResult runTool(const std::string& tool, const std::string& arguments,
