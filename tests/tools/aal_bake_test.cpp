@@ -148,6 +148,17 @@ TEST(AalBake, ReplacesAnExistingOutput) {
   EXPECT_EQ(filesIn(dir.path()), 2u);
 }
 
+bool catchesSigint(pid_t pid) {
+  std::ifstream status("/proc/" + std::to_string(pid) + "/status");
+  std::string line;
+  while (std::getline(status, line)) {
+    if (line.rfind("SigCgt:", 0) == 0) {
+      return (std::stoull(line.substr(7), nullptr, 16) >> (SIGINT - 1)) & 1u;
+    }
+  }
+  return false;
+}
+
 TEST(AalBake, InterruptLeavesNoFile) {
   TempDir dir;
   const fs::path dem = writeDem(dir, 512);
@@ -160,7 +171,12 @@ TEST(AalBake, InterruptLeavesNoFile) {
   pid_t pid = 0;
   ASSERT_EQ(posix_spawn(&pid, bake.c_str(), nullptr, nullptr, const_cast<char**>(argv), environ),
             0);
-  std::this_thread::sleep_for(std::chrono::milliseconds(800));
+  // Interrupt once the tool catches SIGINT (bit 1 of SigCgt in
+  // /proc/PID/status), however slowly it starts, and a little later, mid-bake.
+  for (int i = 0; i < 200 && !catchesSigint(pid); ++i) {
+    std::this_thread::sleep_for(std::chrono::milliseconds(20));
+  }
+  std::this_thread::sleep_for(std::chrono::milliseconds(500));
   kill(pid, SIGINT);
   int status = 0;
   ASSERT_EQ(waitpid(pid, &status, 0), pid);
