@@ -121,13 +121,9 @@ FrameResult TerrainRenderer::render(const TerrainScene& scene, const FrameSettin
                                     bool wantLinear) {
   const double aspect = double(width_) / double(height_);
   // The depth range must hold the whole DEM: approximate it from the box.
-  Heightfield box;
-  box.width = static_cast<int>(scene.demInfo().x);
-  box.height = static_cast<int>(scene.demInfo().y);
-  box.cellSizeXM = scene.demInfo().z;
-  box.cellSizeYM = scene.demInfo().w;
-  box.z = {scene.minHeight(), scene.maxHeight()};
-  const DepthRange range = depthRangeFor(s.camera, box);
+  const glm::vec4 dem = scene.demInfo();
+  const DepthRange range = depthRangeFor(s.camera, {(dem.x - 1.0) * dem.z, (dem.y - 1.0) * dem.w},
+                                         scene.minHeight(), scene.maxHeight());
 
   FrameUniforms u;
   u.viewProj = projectionMatrix(s.camera, aspect, range) * viewMatrix(s.camera);

@@ -51,12 +51,16 @@ void sweepAllAzimuths(const BakeTerrain& terrain, const BakeOptions& o, float* s
     checkCancel(o);
     const double phi = a * dPhi;
     const double cosPhi = std::cos(phi), sinPhi = std::sin(phi);
-    const double cosPhiDPhi = cosPhi * dPhi, sinPhiDPhi = sinPhi * dPhi;
+    // The slices are summed in single precision (addSkySlice).
+    const float cosF = static_cast<float>(cosPhi), sinF = static_cast<float>(sinPhi);
+    const float dPhiF = static_cast<float>(dPhi);
+    const float cosPhiDPhi = static_cast<float>(cosPhi * dPhi);
+    const float sinPhiDPhi = static_cast<float>(sinPhi * dPhi);
     sweepHorizons(terrain, phi, sweep, [&](size_t texel, double tanHorizon) {
       // Directions below the tangent plane are outside the hemisphere.
-      const double tanPlane =
-          terrain.slopeEast(texel) * cosPhi + terrain.slopeNorth(texel) * sinPhi;
-      addSkySlice(sums + 4 * texel, std::max(tanHorizon, tanPlane), dPhi, cosPhiDPhi, sinPhiDPhi);
+      const float tanPlane = terrain.slopeEast(texel) * cosF + terrain.slopeNorth(texel) * sinF;
+      addSkySlice(sums + 4 * texel, std::max(static_cast<float>(tanHorizon), tanPlane), dPhiF,
+                  cosPhiDPhi, sinPhiDPhi);
       if (wantSvf && tanHorizon > 0.0) {
         svf[texel] += static_cast<float>(tanHorizon / std::sqrt(1.0 + tanHorizon * tanHorizon));
       }

@@ -1,7 +1,6 @@
 #include "ray_bake.h"
 
 #include <algorithm>
-#include <atomic>
 #include <cmath>
 #include <cstdint>
 #include <stdexcept>
@@ -80,7 +79,6 @@ void bakeRays(const BakeTerrain& terrain, const BakeOptions& o, float* sums,
   const int azimuthStrata = std::max(1, static_cast<int>(std::lround(std::sqrt(o.rays * 2.0))));
   const int elevationStrata = std::max(1, o.rays / azimuthStrata);
   const int rays = azimuthStrata * elevationStrata;
-  std::atomic<int> rowsDone{0};
 
   // Rows in blocks so that progress and cancellation are handled here, on
   // the calling thread.
@@ -131,8 +129,7 @@ void bakeRays(const BakeTerrain& terrain, const BakeOptions& o, float* sums,
         s[3] = static_cast<float>(kTwoPi * escaped / rays);
       }
     });
-    rowsDone = last;
-    if (o.progress) o.progress(static_cast<double>(rowsDone) / f.height);
+    if (o.progress) o.progress(static_cast<double>(last) / f.height);
   }
 }
 

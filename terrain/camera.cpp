@@ -24,15 +24,18 @@ glm::dvec2 demExtentM(const Heightfield& field) {
 }
 
 DepthRange depthRangeFor(const Camera& camera, const Heightfield& field) {
-  const glm::dvec2 extent = demExtentM(field);
   const auto [zMin, zMax] = heightRange(field);
+  return depthRangeFor(camera, demExtentM(field), zMin, zMax);
+}
+
+DepthRange depthRangeFor(const Camera& camera, glm::dvec2 extentM, double zMin, double zMax) {
   // Distance to the farthest corner of the DEM's bounding box, plus margin.
   double farthest = 0;
   for (double sx : {-0.5, 0.5}) {
     for (double sy : {-0.5, 0.5}) {
-      for (double z : {double(zMin), double(zMax)}) {
+      for (double z : {zMin, zMax}) {
         farthest = std::max(
-            farthest, glm::length(glm::dvec3(sx * extent.x, sy * extent.y, z) - camera.position));
+            farthest, glm::length(glm::dvec3(sx * extentM.x, sy * extentM.y, z) - camera.position));
       }
     }
   }

@@ -3,6 +3,7 @@
 #pragma once
 
 #include <glm/mat4x4.hpp>
+#include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
 
 #include "heightfield.h"
@@ -20,6 +21,8 @@ struct DepthRange {
   double nearM = 1, farM = 1e5;
 };
 DepthRange depthRangeFor(const Camera& camera, const Heightfield& field);
+// The same for a DEM box: extent in metres (x, y) and height range.
+DepthRange depthRangeFor(const Camera& camera, glm::dvec2 extentM, double zMin, double zMax);
 
 // View and projection for Vulkan: right-handed world, clip y pointing down,
 // depth 0 (near) .. 1 (far). Throws std::invalid_argument when position and

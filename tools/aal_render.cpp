@@ -261,11 +261,7 @@ int main(int argc, char** argv) {
                  "distance haze: visibility in km (default: 20 DEM diagonals, at least 200)")
       ->check(CLI::Range(0.1, 1e6));
   app.add_option("--mode", o.mode, "shading: " + modes)
-      ->check(CLI::IsMember(modes.empty() ? std::vector<std::string>{} : [] {
-        std::vector<std::string> names;
-        for (const auto& entry : kModes) names.push_back(entry.first);
-        return names;
-      }()))
+      ->check(CLI::IsMember(kModes))
       ->capture_default_str();
   app.add_option("--cell-size", o.cellSize, "texel spacing in metres (as given to aal-bake)")
       ->check(CLI::PositiveNumber);
