@@ -117,8 +117,7 @@ TerrainRenderer::TerrainRenderer(const Device& device, uint32_t width, uint32_t 
 
 TerrainRenderer::~TerrainRenderer() = default;
 
-FrameResult TerrainRenderer::render(const TerrainScene& scene, const FrameSettings& s,
-                                    bool wantLinear) {
+void TerrainRenderer::writeUniforms(const TerrainScene& scene, const FrameSettings& s) {
   const double aspect = double(width_) / double(height_);
   // The depth range must hold the whole DEM: approximate it from the box.
   const glm::vec4 dem = scene.demInfo();
@@ -139,7 +138,62 @@ FrameResult TerrainRenderer::render(const TerrainScene& scene, const FrameSettin
   u.display = {s.exposure, isDebug(s.mode) ? 1.0f : 0.0f, 0.0f, 0.0f};
   u.sky = s.sky;
   uniforms_.write(&u, sizeof u);
+}
 
+void TerrainRenderer::record(VkCommandBuffer cmd, const TerrainScene& scene,
+                             const FrameSettings& s) {
+  writeUniforms(scene, s);
+  timer_.reset(cmd);
+  transitionImage(cmd, hdr_, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL);
+  transitionImage(cmd, depth_, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL);
+  transitionImage(cmd, display_, VK_IMAGE_LAYOUT_UNDEFINED,
+                  VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL);
+
+  // Pass 1 and 2: the terrain, then the sky where the terrain left the far plane.
+  VkRenderingAttachmentInfo color = colorAttachment(hdr_, true);
+  VkRenderingAttachmentInfo depth{VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO};
+  depth.imageView = depth_.view();
+  depth.imageLayout = VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL;
+  depth.loadOp = VK_ATTACHMENT_LOAD_OP_CLEAR;
+  depth.storeOp = VK_ATTACHMENT_STORE_OP_DONT_CARE;
+  depth.clearValue.depthStencil = {1.0f, 0};
+  beginRendering(cmd, width_, height_, color, &depth);
+  timer_.begin(cmd, "terrain");
+  passes_->terrain.bind(cmd,
+                        DescriptorWrites()
+                            .uniformBuffer(0, uniforms_)
+                            .sampledImage(1, scene.heights().view(), passes_->linear.handle())
+                            .sampledImage(2, scene.aperture().view(), passes_->linear.handle())
+                            .sampledImage(3, scene.albedo().view(), passes_->linear.handle()),
+                        nullptr);
+  vkCmdBindIndexBuffer(cmd, scene.indices().handle(), 0, VK_INDEX_TYPE_UINT32);
+  vkCmdDrawIndexed(cmd, scene.indexCount(), 1, 0, 0, 0);
+  timer_.end(cmd);
+  timer_.begin(cmd, "sky");
+  passes_->sky.bind(cmd, DescriptorWrites().uniformBuffer(0, uniforms_), nullptr);
+  vkCmdDraw(cmd, 3, 1, 0, 0);
+  timer_.end(cmd);
+  vkCmdEndRendering(cmd);
+
+  // Pass 3: tone map into the display image.
+  transitionImage(cmd, hdr_, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL,
+                  VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL);
+  beginRendering(cmd, width_, height_, colorAttachment(display_, false), nullptr);
+  timer_.begin(cmd, "tone map");
+  passes_->toneMap.bind(cmd,
+                        DescriptorWrites()
+                            .uniformBuffer(0, uniforms_)
+                            .sampledImage(1, hdr_.view(), passes_->nearest.handle()),
+                        nullptr);
+  vkCmdDraw(cmd, 3, 1, 0, 0);
+  timer_.end(cmd);
+  vkCmdEndRendering(cmd);
+  transitionImage(cmd, display_, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL,
+                  VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL);
+}
+
+FrameResult TerrainRenderer::render(const TerrainScene& scene, const FrameSettings& s,
+                                    bool wantLinear) {
   const size_t pixels = size_t(width_) * height_;
   Buffer displayReadback(device_, pixels * 4, VK_BUFFER_USAGE_TRANSFER_DST_BIT,
                          MemoryIntent::Readback);
@@ -150,56 +204,7 @@ FrameResult TerrainRenderer::render(const TerrainScene& scene, const FrameSettin
   }
 
   submitAndWait(device_, [&](VkCommandBuffer cmd) {
-    timer_.reset(cmd);
-    transitionImage(cmd, hdr_, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL);
-    transitionImage(cmd, depth_, VK_IMAGE_LAYOUT_UNDEFINED,
-                    VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL);
-    transitionImage(cmd, display_, VK_IMAGE_LAYOUT_UNDEFINED,
-                    VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL);
-
-    // Pass 1 and 2: the terrain, then the sky where the terrain left the far plane.
-    VkRenderingAttachmentInfo color = colorAttachment(hdr_, true);
-    VkRenderingAttachmentInfo depth{VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO};
-    depth.imageView = depth_.view();
-    depth.imageLayout = VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL;
-    depth.loadOp = VK_ATTACHMENT_LOAD_OP_CLEAR;
-    depth.storeOp = VK_ATTACHMENT_STORE_OP_DONT_CARE;
-    depth.clearValue.depthStencil = {1.0f, 0};
-    beginRendering(cmd, width_, height_, color, &depth);
-    timer_.begin(cmd, "terrain");
-    passes_->terrain.bind(cmd,
-                          DescriptorWrites()
-                              .uniformBuffer(0, uniforms_)
-                              .sampledImage(1, scene.heights().view(), passes_->linear.handle())
-                              .sampledImage(2, scene.aperture().view(), passes_->linear.handle())
-                              .sampledImage(3, scene.albedo().view(), passes_->linear.handle()),
-                          nullptr);
-    vkCmdBindIndexBuffer(cmd, scene.indices().handle(), 0, VK_INDEX_TYPE_UINT32);
-    vkCmdDrawIndexed(cmd, scene.indexCount(), 1, 0, 0, 0);
-    timer_.end(cmd);
-    timer_.begin(cmd, "sky");
-    passes_->sky.bind(cmd, DescriptorWrites().uniformBuffer(0, uniforms_), nullptr);
-    vkCmdDraw(cmd, 3, 1, 0, 0);
-    timer_.end(cmd);
-    vkCmdEndRendering(cmd);
-
-    // Pass 3: tone map into the display image.
-    transitionImage(cmd, hdr_, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL,
-                    VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL);
-    beginRendering(cmd, width_, height_, colorAttachment(display_, false), nullptr);
-    timer_.begin(cmd, "tone map");
-    passes_->toneMap.bind(cmd,
-                          DescriptorWrites()
-                              .uniformBuffer(0, uniforms_)
-                              .sampledImage(1, hdr_.view(), passes_->nearest.handle()),
-                          nullptr);
-    vkCmdDraw(cmd, 3, 1, 0, 0);
-    timer_.end(cmd);
-    vkCmdEndRendering(cmd);
-
-    // Readback.
-    transitionImage(cmd, display_, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL,
-                    VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL);
+    record(cmd, scene, s);
     copyToBuffer(cmd, display_, displayReadback);
     if (wantLinear) {
       transitionImage(cmd, hdr_, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL,

@@ -51,9 +51,28 @@ class TerrainRenderer {
   TerrainRenderer(const Device& device, uint32_t width, uint32_t height);
   ~TerrainRenderer();
 
+  // Headless frame: records the passes, submits, waits and reads back.
   FrameResult render(const TerrainScene& scene, const FrameSettings& settings, bool wantLinear);
 
+  // Records the frame's passes into `cmd` (the windowed viewer presents the
+  // result). Writes the frame's uniforms at once, so the previous frame's
+  // submission must have finished. Afterwards displayImage() is in
+  // VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL and hdrImage() in
+  // VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL.
+  void record(VkCommandBuffer cmd, const TerrainScene& scene, const FrameSettings& settings);
+
+  // RGBA8 UNORM holding sRGB-encoded values (debug modes: raw values).
+  const Image& displayImage() const { return display_; }
+  // RGBA16F linear radiance.
+  const Image& hdrImage() const { return hdr_; }
+  uint32_t width() const { return width_; }
+  uint32_t height() const { return height_; }
+  // Milliseconds per pass of the last recorded frame, once it has finished.
+  std::vector<std::pair<std::string, double>> passMilliseconds() const { return timer_.results(); }
+
  private:
+  void writeUniforms(const TerrainScene& scene, const FrameSettings& settings);
+
   struct Passes;
   const Device& device_;
   uint32_t width_, height_;
