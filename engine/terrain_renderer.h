@@ -24,6 +24,14 @@ namespace aal {
 class Device;
 class TerrainScene;
 
+// Containment-test obscurances and the ambient transfer W (DESIGN §6).
+struct ObscuranceSettings {
+  bool enabled = true;
+  float radiusM = 0;  // near-field radius R; 0: chosen from the DEM
+  int samples = 16;   // n: 8, 16 or 32
+  int steps = 1;      // m: test points per ray, 1 or 2
+};
+
 struct FrameSettings {
   Camera camera;
   ShadingMode mode = ShadingMode::Approx;
@@ -35,6 +43,7 @@ struct FrameSettings {
   float hazeDensityPerM = 0.0f;   // aerial perspective extinction
   float exposure = 1.0f;          // see terrain/tone_map.h
   bool waterAtSeaLevel = false;   // paint heights <= 0 as water (DEMs with a vertical datum)
+  ObscuranceSettings obscurance;  // not used yet: the obscurance pass (issue 6) is being built
 };
 
 struct FrameResult {

@@ -9,6 +9,20 @@
 
 namespace aal {
 
+const std::map<std::string, ShadingMode>& shadingModeNames() {
+  static const std::map<std::string, ShadingMode> names = {
+      {"approx", ShadingMode::Approx},
+      {"exact", ShadingMode::Exact},
+      {"baseline-lambert", ShadingMode::BaselineLambert},
+      {"baseline-ao", ShadingMode::BaselineAo},
+      {"debug-visible", ShadingMode::DebugVisible},
+      {"debug-bent-normal", ShadingMode::DebugBentNormal},
+      {"debug-sun", ShadingMode::DebugSunFraction},
+      {"debug-sky", ShadingMode::DebugSkyFill},
+  };
+  return names;
+}
+
 namespace {
 constexpr float kPi = 3.14159265358979323846f;
 }

@@ -6,6 +6,9 @@
 // result is outgoing radiance a/pi * E in that unit.
 #pragma once
 
+#include <map>
+#include <string>
+
 #include <glm/vec3.hpp>
 
 #include "config.h"
@@ -22,6 +25,9 @@ enum class ShadingMode : int {
   DebugSunFraction = AAL_MODE_DEBUG_SUN_FRACTION,  // visible fraction f of the sun disk
   DebugSkyFill = AAL_MODE_DEBUG_SKY_FILL,          // E_sky / (pi L_sky) as grey
 };
+
+// Command-line / UI names of the modes (aal-render --mode, the viewer's panel).
+const std::map<std::string, ShadingMode>& shadingModeNames();
 
 struct ShadingInputs {
   glm::vec3 albedo{0.2f};

@@ -29,16 +29,7 @@
 
 namespace {
 
-const std::map<std::string, aal::ShadingMode> kModes = {
-    {"approx", aal::ShadingMode::Approx},
-    {"exact", aal::ShadingMode::Exact},
-    {"baseline-lambert", aal::ShadingMode::BaselineLambert},
-    {"baseline-ao", aal::ShadingMode::BaselineAo},
-    {"debug-visible", aal::ShadingMode::DebugVisible},
-    {"debug-bent-normal", aal::ShadingMode::DebugBentNormal},
-    {"debug-sun", aal::ShadingMode::DebugSunFraction},
-    {"debug-sky", aal::ShadingMode::DebugSkyFill},
-};
+const std::map<std::string, aal::ShadingMode>& kModes = aal::shadingModeNames();
 
 struct Options {
   std::string dem, aperture, output, albedo;
