@@ -7,6 +7,7 @@
 #include <tbb/parallel_for.h>
 
 #include "bake_terrain.h"
+#include "horizon_blocks.h"
 #include "horizon_sweep.h"
 #include "ray_bake.h"
 #include "sky_slice.h"
@@ -56,15 +57,40 @@ void sweepAllAzimuths(const BakeTerrain& terrain, const BakeOptions& o, float* s
     const float dPhiF = static_cast<float>(dPhi);
     const float cosPhiDPhi = static_cast<float>(cosPhi * dPhi);
     const float sinPhiDPhi = static_cast<float>(sinPhi * dPhi);
-    sweepHorizons(terrain, phi, sweep, [&](size_t texel, double tanHorizon) {
+    auto addSlice = [&](size_t texel, float tanHorizon) {
       // Directions below the tangent plane are outside the hemisphere.
       const float tanPlane = terrain.slopeEast(texel) * cosF + terrain.slopeNorth(texel) * sinF;
-      addSkySlice(sums + 4 * texel, std::max(static_cast<float>(tanHorizon), tanPlane), dPhiF,
-                  cosPhiDPhi, sinPhiDPhi);
-      if (wantSvf && tanHorizon > 0.0) {
-        svf[texel] += static_cast<float>(tanHorizon / std::sqrt(1.0 + tanHorizon * tanHorizon));
+      addSkySlice(sums + 4 * texel, std::max(tanHorizon, tanPlane), dPhiF, cosPhiDPhi, sinPhiDPhi);
+      if (wantSvf && tanHorizon > 0.0f) {
+        svf[texel] += tanHorizon / std::sqrt(1.0f + tanHorizon * tanHorizon);
       }
-    });
+    };
+    // The same for a block of texels, in loops that compile to vector code.
+    auto addSlices = [&](const HorizonBlock& b) {
+      float terms[HorizonBlock::kLines][4];
+      for (int j = 0; j < b.count; ++j) {
+        const size_t texel = b.firstTexel + j * b.stride;
+        const float tanPlane = terrain.slopeEast(texel) * cosF + terrain.slopeNorth(texel) * sinF;
+        skySliceTerms(terms[j], std::max(b.tanHorizon[j], tanPlane), dPhiF, cosPhiDPhi, sinPhiDPhi);
+      }
+      for (int j = 0; j < b.count; ++j) {
+        float* sum = sums + 4 * (b.firstTexel + j * b.stride);
+        for (int c = 0; c < 4; ++c) sum[c] += terms[j][c];
+      }
+      if (wantSvf) {
+        for (int j = 0; j < b.count; ++j) {
+          const float t = b.tanHorizon[j];
+          if (t > 0.0f) svf[b.firstTexel + j * b.stride] += t / std::sqrt(1.0f + t * t);
+        }
+      }
+    };
+    if (sweep.maxDistanceM > 0.0) {
+      sweepHorizons(terrain, phi, sweep, [&](size_t texel, double tanHorizon) {
+        addSlice(texel, static_cast<float>(tanHorizon));
+      });
+    } else {
+      sweepHorizonBlocks(terrain, phi, sweep, [&](const HorizonBlock& block) { addSlices(block); });
+    }
     if (o.progress) o.progress(static_cast<double>(a + 1) / o.azimuths);
   }
   if (wantSvf) {

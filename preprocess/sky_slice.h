@@ -41,13 +41,13 @@ inline Real fastAtan(Real x) {
   return std::copysign(result, x);
 }
 
-// Adds the slice whose lowest visible elevation has tangent `tanTheta0` to a
-// texel's running sums, laid out like an aperture-map texel so they live in
-// the output's own storage: sum[0..2] the unnormalized bent vector (world
-// frame), sum[3] the visible solid angle in steradians. Single precision:
-// the sums are floats anyway.
-inline void addSkySlice(float* sum, float tanTheta0, float dPhi, float cosPhiDPhi,
-                        float sinPhiDPhi) {
+// The terms one slice adds to a texel's running sums, laid out like an
+// aperture-map texel: term[0..2] the unnormalized bent vector (world frame),
+// term[3] the visible solid angle in steradians, for the slice whose lowest
+// visible elevation has tangent `tanTheta0`. Single precision: the sums are
+// floats anyway.
+inline void skySliceTerms(float* term, float tanTheta0, float dPhi, float cosPhiDPhi,
+                          float sinPhiDPhi) {
   const float t = tanTheta0;
   const float inv = 1.0f / (1.0f + t * t);  // cos^2 theta0
   const float sinTheta = t * std::sqrt(inv);
@@ -55,10 +55,19 @@ inline void addSkySlice(float* sum, float tanTheta0, float dPhi, float cosPhiDPh
   constexpr float kQuarterPi = 0.78539816339744830962f;
   const float ic = kQuarterPi - 0.5f * theta - 0.5f * t * inv;  // sin(2 theta)/4 = t/(2(1+t^2))
   const float is = 0.5f * inv;
-  sum[0] += cosPhiDPhi * ic;
-  sum[1] += sinPhiDPhi * ic;
-  sum[2] += dPhi * is;
-  sum[3] += dPhi * (1.0f - sinTheta);
+  term[0] = cosPhiDPhi * ic;
+  term[1] = sinPhiDPhi * ic;
+  term[2] = dPhi * is;
+  term[3] = dPhi * (1.0f - sinTheta);
+}
+
+// Adds that slice to a texel's running sums (same layout), which live in the
+// output's own storage.
+inline void addSkySlice(float* sum, float tanTheta0, float dPhi, float cosPhiDPhi,
+                        float sinPhiDPhi) {
+  float term[4];
+  skySliceTerms(term, tanTheta0, dPhi, cosPhiDPhi, sinPhiDPhi);
+  for (int c = 0; c < 4; ++c) sum[c] += term[c];
 }
 
 }  // namespace aal
