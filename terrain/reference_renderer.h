@@ -1,0 +1,73 @@
+// CPU ray tracer over the heightfield: the ground truth the GPU's shading
+// modes are measured against (DESIGN §9). Slow and simple on purpose.
+//
+// Same scene as the GPU renderer: the camera of camera.h, the terrain as the
+// bilinear surface through the texel centres with the centre row's cell size
+// (as engine/terrain_scene uploads it), the shading normal from central
+// differences one texel apart (as shaders/terrain.frag), the sun and the
+// average sky radiance of FrameSettings, the same aerial perspective.
+// What differs is the light transport, computed without approximation:
+// - sun: `sunRays` stratified points of the sun's disk, each tested with a
+//   shadow ray; direct = a/pi E_sun mean(visible_i max(0, N.L_i));
+// - sky: `skyRays` stratified cosine-weighted directions around N; a ray that
+//   escapes brings L_sky, one that hits the terrain brings one bounce: the
+//   hit point's albedo times its direct sun (one shadow ray to the sun's
+//   centre) and its sky light (pi L_sky (1 + N_hit.z) / 2, the open sky of its
+//   tangent plane); ambient = a/pi * pi/M * sum of those radiances.
+#pragma once
+
+#include <cstdint>
+#include <functional>
+#include <vector>
+
+#include <glm/vec3.hpp>
+
+#include "camera.h"
+#include "heightfield.h"
+
+namespace aal {
+
+struct ReferenceSettings {
+  Camera camera;
+  uint32_t width = 0, height = 0;
+  glm::vec3 sunDirection{0, 0, 1};  // unit, world frame
+  float sunRadiusRad = 0.004653f;
+  glm::vec3 sunIrradiance{0.0f};  // E_sun (atmosphere.h units)
+  glm::vec3 skyRadiance{0.0f};    // average L_sky
+  float hazeDensityPerM = 0.0f;
+  glm::vec3 albedo{0.2f};       // constant ground albedo
+  int sunRays = 16;             // shadow rays per pixel towards the sun's disk
+  int skyRays = 64;             // hemisphere rays per pixel
+  bool interreflection = true;  // false: rays that hit the terrain bring no light
+  uint32_t seed = 1;
+};
+
+struct ReferenceImage {
+  uint32_t width = 0, height = 0;
+  std::vector<glm::vec3> radiance;  // linear, row-major, top row first
+  std::vector<uint8_t> terrain;     // 1 where the pixel's ray hit the terrain
+};
+
+// Renders the terrain pixels (others stay black with terrain = 0). Runs in
+// parallel over rows; `progress` (may be empty) gets the finished fraction.
+// Throws std::invalid_argument on a zero size or ray counts < 1.
+ReferenceImage renderReference(const Heightfield& field, const ReferenceSettings& settings,
+                               const std::function<void(double)>& progress = {});
+
+// Outgoing radiance (no haze) of the terrain point `point` (on the surface,
+// world metres), with the renderer's sun and sky sampling and `seed`.
+glm::vec3 referenceRadianceAt(const Heightfield& field, const ReferenceSettings& settings,
+                              const glm::dvec3& point, uint32_t seed);
+
+// Relative RMSE of `test` against `reference` over the pixels where mask is 1:
+// sqrt(sum |t - r|^2 / sum |r|^2), RGB summed.
+double relativeRmse(const std::vector<glm::vec3>& test, const std::vector<glm::vec3>& reference,
+                    const std::vector<uint8_t>& mask);
+
+// The terrain mask without its silhouette: pixels whose 4 neighbours are all
+// terrain too (the GPU's triangles and the bilinear surface differ there by
+// a pixel).
+std::vector<uint8_t> interiorMask(const std::vector<uint8_t>& terrain, uint32_t width,
+                                  uint32_t height);
+
+}  // namespace aal
