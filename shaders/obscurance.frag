@@ -1,0 +1,59 @@
+#version 460
+// Obscurance pass (DESIGN §6): containment-test O and W of the surface point
+// seen in each pixel, with the pixel's rotation of the sample set (4x4
+// interleaved pattern, seed 000 §4.2).
+#extension GL_GOOGLE_include_directive : require
+
+#include "frame.glsl"
+#include "obscurance.glsl"
+#include "palette.glsl"
+
+layout(set = 0, binding = 1, std140) uniform ObscuranceSamples {
+  vec4 offsets[AAL_OBSCURANCE_MAX_SAMPLES];  // xyz: unit-radius (X, Y, Z), seed 000 eq. 8
+}
+samples;
+layout(set = 0, binding = 2) uniform sampler2D heightTexture;
+layout(set = 0, binding = 3) uniform sampler2D albedoTexture;
+layout(set = 0, binding = 4) uniform sampler2D surfaceImage;  // texel position, -1 for sky
+layout(set = 0, binding = 5) uniform sampler2D ambientImage;  // a: view distance (km)
+
+// rgb: W (debug-obscurance: O), a: the pixel's view distance (km) for the
+// filter's depth test, 0 for sky.
+layout(location = 0) in vec2 uv;  // unused: pixels are addressed by gl_FragCoord
+layout(location = 0) out vec4 transfer;
+
+float obscuranceHeight(vec2 texel) {
+  return textureLod(heightTexture, (texel + 0.5) / frame.dem.xy, 0.0).r;
+}
+
+// The palette needs a height and a normal: the occluder's height is at hand,
+// its normal would cost four more fetches in the loop (which made the pass
+// 2.5x slower on lavapipe), so the shaded point's normal stands in.
+vec3 obscuranceAlbedo(vec2 texel, float heightM, vec3 normal) {
+  if (frame.grid.w == AAL_ALBEDO_IMAGE) {
+    return textureLod(albedoTexture, (texel + 0.5) / frame.dem.xy, 0.0).rgb;
+  }
+  if (frame.grid.w == AAL_ALBEDO_CONSTANT) return frame.albedoValue.rgb;
+  return paletteAlbedo(heightM, normal);
+}
+
+vec3 obscuranceSampleOffset(int i) {
+  return samples.offsets[i].xyz;
+}
+
+void main() {
+  // At half resolution each pass pixel takes the surface point of the first
+  // image pixel of its 2x2 block.
+  ivec2 pixel = ivec2(gl_FragCoord.xy);
+  ivec2 source = min(pixel * frame.obscurancePass.z, textureSize(surfaceImage, 0) - 1);
+  vec2 texel = texelFetch(surfaceImage, source, 0).xy;
+  float distanceKm = texelFetch(ambientImage, source, 0).a;
+  if (texel.x < 0.0) {
+    transfer = vec4(1.0, 1.0, 1.0, 0.0);
+    return;
+  }
+  int index = frame.obscurancePass.y != 0 ? interleavePatternIndex(pixel) : 0;
+  vec4 e = estimateObscurance(texel, frame.dem.zw, int(frame.obscurance.y), frame.obscurance.x,
+                              int(frame.obscurance.z), interleaveRotationRad(index));
+  transfer = vec4(frame.grid.z == AAL_MODE_DEBUG_OBSCURANCE ? vec3(e.a) : e.rgb, distanceKm);
+}

@@ -1,0 +1,80 @@
+// Terrain shading: ambient aperture lighting (DESIGN §5) plus aerial
+// perspective; the body of terrain.frag (forward: the radiance) and
+// terrain_gbuffer.frag (AAL_TERRAIN_GBUFFER: also what the obscurance pass
+// and the composite read, DESIGN §6, §8).
+#ifndef AAL_TERRAIN_SHADING_GLSL
+#define AAL_TERRAIN_SHADING_GLSL
+
+#include "frame.glsl"
+#include "palette.glsl"
+#include "shading.glsl"
+
+layout(set = 0, binding = 1) uniform sampler2D heightTexture;
+layout(set = 0, binding = 2) uniform sampler2D apertureTexture;  // rgb bent normal, a arc length
+layout(set = 0, binding = 3) uniform sampler2D albedoTexture;
+
+layout(location = 0) in vec3 worldPosition;
+layout(location = 1) in vec2 texelPosition;
+
+// Forward: the radiance. G-buffer: everything but the ambient term, which
+// goes to ambientOut for the composite to multiply by the filtered W.
+layout(location = 0) out vec4 color;
+#ifdef AAL_TERRAIN_GBUFFER
+layout(location = 1) out vec4 ambientOut;  // rgb ambient x transmittance, a view distance (km)
+layout(location = 2) out vec2 surfaceOut;  // texel position: the obscurance pass's point x
+#endif
+
+float heightAt(vec2 texel) {
+  return textureLod(heightTexture, (texel + 0.5) / frame.dem.xy, 0.0).r;
+}
+
+// Normal from central differences of the heights, one texel apart.
+vec3 surfaceNormal(vec2 texel) {
+  float dx = heightAt(texel + vec2(1, 0)) - heightAt(texel - vec2(1, 0));
+  float dy = heightAt(texel - vec2(0, 1)) - heightAt(texel + vec2(0, 1));  // north is row - 1
+  return normalize(vec3(-dx / (2.0 * frame.dem.z), -dy / (2.0 * frame.dem.w), 1.0));
+}
+
+vec3 albedoAt(vec2 uv, float z, vec3 normal) {
+  if (frame.grid.w == AAL_ALBEDO_IMAGE) return textureLod(albedoTexture, uv, 0.0).rgb;
+  if (frame.grid.w == AAL_ALBEDO_CONSTANT) return frame.albedoValue.rgb;
+  return paletteAlbedo(z, normal);
+}
+
+void main() {
+  vec2 uv = (texelPosition + 0.5) / frame.dem.xy;
+  vec4 aperture = textureLod(apertureTexture, uv, 0.0);
+  ShadingInputs s;
+  s.normal = surfaceNormal(texelPosition);
+  s.bentNormal = normalize(aperture.xyz);
+  s.apertureRad = aperture.w;
+  s.albedo = albedoAt(uv, worldPosition.z, s.normal);
+  s.sunDirection = frame.sunDirection.xyz;
+  s.sunRadiusRad = frame.sunDirection.w;
+  s.sunIrradiance = frame.sunIrradiance.rgb;
+  s.skyRadiance = frame.skyRadiance.rgb;
+  s.transfer = vec3(1.0);
+  // Aerial perspective: radiance (direct + ambient W) T + L_sky (1 - T).
+  float distance = length(worldPosition - frame.cameraPos.xyz);
+  float transmittance = exp(-frame.skyRadiance.w * distance);
+  vec3 inScattered = frame.skyRadiance.rgb * (1.0 - transmittance);
+  int mode = frame.grid.z;
+#ifdef AAL_TERRAIN_GBUFFER
+  surfaceOut = texelPosition;
+  ambientOut = vec4(0.0, 0.0, 0.0, distance * 1e-3);
+  if (mode == AAL_MODE_DEBUG_OBSCURANCE || mode == AAL_MODE_DEBUG_TRANSFER) {
+    color = vec4(0.0, 0.0, 0.0, 1.0);
+    ambientOut.rgb = vec3(1.0);  // the composite adds 1 x (O or W)
+  } else {
+    ShadingTerms t = shadingTerms(s, mode);
+    color = vec4(t.direct * transmittance + inScattered, 1.0);
+    ambientOut.rgb = t.ambient * transmittance;
+  }
+#else
+  vec3 radiance = shade(s, mode);
+  if (frame.display.y < 0.5) radiance = radiance * transmittance + inScattered;
+  color = vec4(radiance, 1.0);
+#endif
+}
+
+#endif
