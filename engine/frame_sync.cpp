@@ -1,0 +1,79 @@
+#include "frame_sync.h"
+
+#include "device.h"
+#include "vk_check.h"
+
+namespace aal {
+
+namespace {
+VkSemaphore makeSemaphore(VkDevice device) {
+  VkSemaphoreCreateInfo info{VK_STRUCTURE_TYPE_SEMAPHORE_CREATE_INFO};
+  VkSemaphore semaphore = VK_NULL_HANDLE;
+  AAL_VK_CHECK(vkCreateSemaphore(device, &info, nullptr, &semaphore));
+  return semaphore;
+}
+}  // namespace
+
+FrameSync::FrameSync(const Device& device, uint32_t imageCount) : device_(device) {
+  const VkDevice vk = device.handle();
+  VkCommandPoolCreateInfo poolInfo{VK_STRUCTURE_TYPE_COMMAND_POOL_CREATE_INFO};
+  poolInfo.flags = VK_COMMAND_POOL_CREATE_TRANSIENT_BIT;
+  poolInfo.queueFamilyIndex = device.queueFamily();
+  AAL_VK_CHECK(vkCreateCommandPool(vk, &poolInfo, nullptr, &pool_));
+  VkCommandBufferAllocateInfo allocInfo{VK_STRUCTURE_TYPE_COMMAND_BUFFER_ALLOCATE_INFO};
+  allocInfo.commandPool = pool_;
+  allocInfo.level = VK_COMMAND_BUFFER_LEVEL_PRIMARY;
+  allocInfo.commandBufferCount = 1;
+  AAL_VK_CHECK(vkAllocateCommandBuffers(vk, &allocInfo, &commands_));
+  VkFenceCreateInfo fenceInfo{VK_STRUCTURE_TYPE_FENCE_CREATE_INFO};
+  fenceInfo.flags = VK_FENCE_CREATE_SIGNALED_BIT;  // no previous frame to wait for
+  AAL_VK_CHECK(vkCreateFence(vk, &fenceInfo, nullptr, &done_));
+  acquired_ = makeSemaphore(vk);
+  resize(imageCount);
+}
+
+FrameSync::~FrameSync() {
+  const VkDevice vk = device_.handle();
+  vkDeviceWaitIdle(vk);
+  for (VkSemaphore s : rendered_) vkDestroySemaphore(vk, s, nullptr);
+  vkDestroySemaphore(vk, acquired_, nullptr);
+  vkDestroyFence(vk, done_, nullptr);
+  vkDestroyCommandPool(vk, pool_, nullptr);
+}
+
+void FrameSync::resize(uint32_t imageCount) {
+  for (VkSemaphore s : rendered_) vkDestroySemaphore(device_.handle(), s, nullptr);
+  rendered_.clear();
+  for (uint32_t i = 0; i < imageCount; ++i) rendered_.push_back(makeSemaphore(device_.handle()));
+}
+
+void FrameSync::waitForPreviousFrame() {
+  AAL_VK_CHECK(vkWaitForFences(device_.handle(), 1, &done_, VK_TRUE, UINT64_MAX));
+}
+
+VkCommandBuffer FrameSync::beginCommands() {
+  AAL_VK_CHECK(vkResetCommandPool(device_.handle(), pool_, 0));
+  VkCommandBufferBeginInfo begin{VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO};
+  begin.flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT;
+  AAL_VK_CHECK(vkBeginCommandBuffer(commands_, &begin));
+  return commands_;
+}
+
+void FrameSync::submit(uint32_t imageIndex) {
+  AAL_VK_CHECK(vkEndCommandBuffer(commands_));
+  // Reset only now: a frame abandoned before submitting (swapchain out of
+  // date) must leave the fence signalled.
+  AAL_VK_CHECK(vkResetFences(device_.handle(), 1, &done_));
+  const VkPipelineStageFlags waitStage = VK_PIPELINE_STAGE_TRANSFER_BIT;
+  VkSubmitInfo submit{VK_STRUCTURE_TYPE_SUBMIT_INFO};
+  submit.waitSemaphoreCount = 1;
+  submit.pWaitSemaphores = &acquired_;
+  submit.pWaitDstStageMask = &waitStage;
+  submit.commandBufferCount = 1;
+  submit.pCommandBuffers = &commands_;
+  submit.signalSemaphoreCount = 1;
+  submit.pSignalSemaphores = &rendered_[imageIndex];
+  AAL_VK_CHECK(vkQueueSubmit(device_.queue(), 1, &submit, done_));
+}
+
+}  // namespace aal

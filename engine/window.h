@@ -1,0 +1,87 @@
+// A desktop window (GLFW) with a Vulkan surface, and its input: keys and
+// mouse polled per frame, wheel steps, key presses and dropped files queued
+// by callbacks until the frame takes them.
+#pragma once
+
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include <vulkan/vulkan.h>
+#include <glm/vec2.hpp>
+
+struct GLFWwindow;
+
+namespace aal {
+
+// No window can be opened (no display, or no Vulkan-capable window system).
+// The message tells the user to render headless with aal-render instead.
+class NoDisplayError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+class Window {
+ public:
+  // Opens a resizable window of `width` x `height` screen coordinates.
+  // Throws NoDisplayError when GLFW cannot start (no DISPLAY/WAYLAND_DISPLAY,
+  // or the display is unreachable) or has no Vulkan support.
+  Window(int width, int height, const std::string& title);
+  ~Window();
+  Window(const Window&) = delete;
+  Window& operator=(const Window&) = delete;
+
+  GLFWwindow* handle() const { return window_; }
+  // Instance extensions needed for this window's surface.
+  static std::vector<const char*> requiredInstanceExtensions();
+
+  void pollEvents();
+  // Blocks until an event arrives or `timeoutS` passes (used while minimised).
+  void waitEvents(double timeoutS);
+  // Hides the cursor and reports unbounded movement (while looking around).
+  void setCursorCaptured(bool captured);
+  bool shouldClose() const;
+  void requestClose();
+  void setTitle(const std::string& title);
+
+  // Size of the drawable area in pixels; 0 x 0 while minimised. On high-DPI
+  // screens it differs from the window size in screen coordinates.
+  VkExtent2D framebufferSize() const;
+  // Monitor content scale (1 on a standard-DPI screen): UI sizes scale by it.
+  float contentScale() const;
+
+  bool keyDown(int glfwKey) const;
+  bool mouseButtonDown(int glfwButton) const;
+  glm::dvec2 cursorPosition() const;
+  // Input queued since the last call of each.
+  double takeWheelSteps();
+  std::vector<int> takeKeyPresses();
+  std::vector<std::string> takeDroppedPaths();
+
+ private:
+  static void onScroll(GLFWwindow* window, double x, double y);
+  static void onKey(GLFWwindow* window, int key, int scancode, int action, int mods);
+  static void onDrop(GLFWwindow* window, int count, const char** paths);
+
+  GLFWwindow* window_ = nullptr;
+  double wheelSteps_ = 0;
+  std::vector<int> keyPresses_;
+  std::vector<std::string> droppedPaths_;
+};
+
+// A VkSurfaceKHR for a window, destroyed with its instance still alive.
+class Surface {
+ public:
+  Surface(VkInstance instance, const Window& window);
+  ~Surface();
+  Surface(const Surface&) = delete;
+  Surface& operator=(const Surface&) = delete;
+
+  VkSurfaceKHR handle() const { return surface_; }
+
+ private:
+  VkInstance instance_ = VK_NULL_HANDLE;
+  VkSurfaceKHR surface_ = VK_NULL_HANDLE;
+};
+
+}  // namespace aal

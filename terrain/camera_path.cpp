@@ -1,0 +1,108 @@
+#include "camera_path.h"
+
+#include <algorithm>
+#include <cmath>
+#include <fstream>
+#include <sstream>
+
+#include <glm/common.hpp>
+#include <glm/geometric.hpp>
+
+#include "errors.h"
+
+namespace aal {
+
+namespace {
+
+CameraKeyframe parseLine(const std::string& line, const std::string& where) {
+  std::istringstream in(line);
+  std::vector<double> values;
+  std::string token;
+  while (in >> token) {
+    size_t used = 0;
+    double v = 0;
+    try {
+      v = std::stod(token, &used);
+    } catch (const std::exception&) {
+      used = 0;
+    }
+    if (used != token.size() || !std::isfinite(v)) {
+      throw InputError(where + ": '" + token + "' is not a finite number");
+    }
+    values.push_back(v);
+  }
+  if (values.size() != 7 && values.size() != 8) {
+    throw InputError(where + ": expected TIME_S X Y Z LOOK_X LOOK_Y LOOK_Z [FOV_DEG], got " +
+                     std::to_string(values.size()) + " numbers");
+  }
+  CameraKeyframe key;
+  key.timeS = values[0];
+  key.camera.position = {values[1], values[2], values[3]};
+  key.camera.lookAt = {values[4], values[5], values[6]};
+  key.camera.verticalFovDeg = values.size() == 8 ? values[7] : 40.0;
+  if (glm::length(key.camera.lookAt - key.camera.position) < 1e-6) {
+    throw InputError(where + ": the camera position equals its look-at point");
+  }
+  if (!(key.camera.verticalFovDeg > 0 && key.camera.verticalFovDeg < 180)) {
+    throw InputError(where + ": field of view must be in (0, 180) degrees");
+  }
+  return key;
+}
+
+}  // namespace
+
+CameraPath CameraPath::parse(const std::string& text, const std::string& name) {
+  CameraPath path;
+  std::istringstream in(text);
+  std::string line;
+  for (int number = 1; std::getline(in, line); ++number) {
+    line = line.substr(0, line.find('#'));
+    if (line.find_first_not_of(" \t\r") == std::string::npos) continue;
+    const std::string where = "camera path " + name + " line " + std::to_string(number);
+    CameraKeyframe key = parseLine(line, where);
+    if (!path.keyframes_.empty() && !(key.timeS > path.keyframes_.back().timeS)) {
+      throw InputError(where + ": times must increase from line to line");
+    }
+    path.keyframes_.push_back(key);
+  }
+  if (path.keyframes_.empty()) {
+    throw InputError("camera path " + name +
+                     " has no keyframes (TIME_S X Y Z LOOK_X LOOK_Y LOOK_Z)");
+  }
+  return path;
+}
+
+CameraPath CameraPath::load(const std::string& path) {
+  std::ifstream file(path, std::ios::binary);
+  if (!file) throw InputError("cannot read camera path " + path);
+  std::ostringstream text;
+  text << file.rdbuf();
+  return parse(text.str(), path);
+}
+
+Camera CameraPath::at(double timeS) const {
+  if (timeS <= startS()) return keyframes_.front().camera;
+  if (timeS >= endS()) return keyframes_.back().camera;
+  const auto next =
+      std::upper_bound(keyframes_.begin(), keyframes_.end(), timeS,
+                       [](double t, const CameraKeyframe& key) { return t < key.timeS; });
+  const CameraKeyframe& b = *next;
+  const CameraKeyframe& a = *(next - 1);
+  const double w = (timeS - a.timeS) / (b.timeS - a.timeS);
+  Camera c;
+  c.position = glm::mix(a.camera.position, b.camera.position, w);
+  c.lookAt = glm::mix(a.camera.lookAt, b.camera.lookAt, w);
+  c.verticalFovDeg =
+      a.camera.verticalFovDeg + w * (b.camera.verticalFovDeg - a.camera.verticalFovDeg);
+  // Interpolating both ends can make them meet: keep the earlier view then.
+  if (glm::length(c.lookAt - c.position) < 1e-6)
+    c.lookAt = c.position + (a.camera.lookAt - a.camera.position);
+  return c;
+}
+
+double CameraPath::frameTime(int index, int frameCount) const {
+  if (frameCount <= 1) return startS();
+  return startS() + (endS() - startS()) * index / (frameCount - 1);
+}
+
+}  // namespace aal

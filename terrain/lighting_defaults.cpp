@@ -1,0 +1,27 @@
+#include "lighting_defaults.h"
+
+#include <algorithm>
+
+#include <glm/geometric.hpp>
+
+#include "camera.h"
+#include "sky_lighting.h"
+#include "tone_map.h"
+
+namespace aal {
+
+GeoPlace defaultSunPlace(const Heightfield& field) {
+  if (!field.geo.hasCenter) return {};
+  return {field.geo.centerLatDeg, field.geo.centerLonDeg};
+}
+
+double defaultVisibilityM(const Heightfield& field) {
+  return std::max(200e3, 20 * glm::length(demExtentM(field)));
+}
+
+float clearDayExposure(double turbidity) {
+  const SkyLighting reference = makeSkyLighting(180.0, 60.0, turbidity);
+  return autoExposure(reference.sunIrradiance, 60.0, reference.skyRadiance);
+}
+
+}  // namespace aal

@@ -1,0 +1,216 @@
+// Command-line contract of aal-view: scripted flights under Xvfb on lavapipe
+// with validation on, background bakes, dropped files, no display, bad input.
+#include <gtest/gtest.h>
+#include <unistd.h>
+
+#include <OpenImageIO/imageio.h>
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <set>
+
+#include "run_tool.h"
+
+namespace aal {
+namespace {
+
+namespace fs = std::filesystem;
+using test::quoted;
+using test::runShell;
+using test::runTool;
+using test::TempDir;
+
+const fs::path kDem = fs::path(AAL_TEST_SOURCE_DIR) / "heightmaps" / "jacksboro_fault_dem.tif";
+
+// aal-view in a private X server (xvfb-run, scripts/install-deps.sh installs
+// it), with a private aperture cache and the validation layer on. Servers
+// are searched from a number derived from the pid, so tests run in parallel
+// do not race for the same display.
+test::ToolResult view(const TempDir& dir, const std::string& args) {
+  const std::string server = std::to_string(100 + getpid() % 800);
+  return runShell("env AAL_VALIDATION=1 AAL_CACHE_DIR=" + quoted(dir.path() / "cache") +
+                  " xvfb-run -a -n " + server + " -s '-screen 0 1280x720x24' " +
+                  quoted(test::binDir() / "aal-view") + " " + args);
+}
+
+size_t filesIn(const fs::path& folder) {
+  size_t n = 0;
+  std::error_code ignored;
+  for ([[maybe_unused]] const auto& e : fs::directory_iterator(folder, ignored)) ++n;
+  return n;
+}
+
+struct Picture {
+  int width = 0, height = 0;
+  std::vector<unsigned char> rgba;
+};
+
+Picture readPng(const fs::path& path) {
+  Picture p;
+  auto in = OIIO::ImageInput::open(path.string());
+  if (!in) return p;
+  p.width = in->spec().width;
+  p.height = in->spec().height;
+  p.rgba.resize(size_t(p.width) * p.height * 4);
+  in->read_image(0, 0, 0, 4, OIIO::TypeDesc::UINT8, p.rgba.data());
+  return p;
+}
+
+// Standard deviation of the green channel over a block of rows.
+double greenSpread(const Picture& p, int firstRow, int endRow) {
+  double sum = 0, sum2 = 0;
+  size_t n = 0;
+  for (int y = firstRow; y < endRow; ++y) {
+    for (int x = 0; x < p.width; ++x) {
+      const double g = p.rgba[(size_t(y) * p.width + x) * 4 + 1];
+      sum += g;
+      sum2 += g * g;
+      ++n;
+    }
+  }
+  const double mean = sum / n;
+  return std::sqrt(std::max(0.0, sum2 / n - mean * mean));
+}
+
+void writeText(const fs::path& path, const std::string& text) {
+  std::ofstream(path) << text;
+}
+
+// A flight towards the centre of jacksboro (403 x 344 texels of ~75 x 92 m,
+// heights 236..1076 m) from the south-west.
+constexpr const char* kPath =
+    "# time  position              look-at\n"
+    "0   -22000 -18000 9000   0 0 500\n"
+    "1   -15000 -12000 6000   0 0 500\n";
+
+TEST(AalView, ScriptedFlightShowsTerrainWithoutValidationMessages) {
+  TempDir dir;
+  const fs::path path = dir.path() / "path.txt", shot = dir.path() / "shot.png";
+  writeText(path, kPath);
+  const auto r = view(dir, quoted(kDem) + " --size 320x240 --frames 4 --camera-path " +
+                               quoted(path) + " --screenshot " + quoted(shot) + " --stats");
+  ASSERT_EQ(r.exitCode, 0) << r.out;
+  EXPECT_EQ(r.out.find("vulkan validation"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("validation on, 0 messages"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("frames     4"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("present    fifo (vsync)"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("gpu terrain"), std::string::npos) << r.out;
+  // The aperture map was baked in the background and cached.
+  EXPECT_NE(r.out.find("aperture map ready"), std::string::npos) << r.out;
+  EXPECT_EQ(filesIn(dir.path() / "cache"), 1u);
+
+  const Picture p = readPng(shot);
+  ASSERT_EQ(p.width, 320);
+  ASSERT_EQ(p.height, 240);
+  // Terrain fills the lower part of the view: many distinct colours with
+  // real contrast, not a blank, constant or sky-only picture.
+  std::set<unsigned> colours;
+  for (size_t i = 0; i < p.rgba.size(); i += 4) {
+    colours.insert(p.rgba[i] << 16 | p.rgba[i + 1] << 8 | p.rgba[i + 2]);
+  }
+  EXPECT_GT(colours.size(), 200u);
+  EXPECT_GT(greenSpread(p, 120, 240), 4.0) << "flat colour where the terrain should be";
+  // Terrain is greener than the sky at the top.
+  double topGreenMinusBlue = 0, bottomGreenMinusBlue = 0;
+  for (int x = 0; x < p.width; ++x) {
+    const size_t top = size_t(x) * 4, bottom = (size_t(239) * p.width + x) * 4;
+    topGreenMinusBlue += double(p.rgba[top + 1]) - p.rgba[top + 2];
+    bottomGreenMinusBlue += double(p.rgba[bottom + 1]) - p.rgba[bottom + 2];
+  }
+  EXPECT_GT(bottomGreenMinusBlue, topGreenMinusBlue) << "no terrain at the bottom";
+}
+
+TEST(AalView, UsesTheCachedApertureMapOnTheSecondRunAndPresentsWithoutVsync) {
+  TempDir dir;
+  ASSERT_EQ(view(dir, quoted(kDem) + " --size 160x120 --frames 1").exitCode, 0);
+  const auto again = view(dir, quoted(kDem) + " --size 160x120 --frames 1 --no-vsync --stats");
+  ASSERT_EQ(again.exitCode, 0) << again.out;
+  // Without vsync: MAILBOX or IMMEDIATE (lavapipe's X11 surfaces offer both).
+  EXPECT_EQ(again.out.find("present    fifo"), std::string::npos) << again.out;
+  EXPECT_EQ(again.out.find("aperture map ready"), std::string::npos) << again.out;
+  EXPECT_EQ(filesIn(dir.path() / "cache"), 1u);
+}
+
+TEST(AalView, ClosingDuringABakeCancelsItAndCachesNothing) {
+  TempDir dir;
+  // 1024^2 at 1024 azimuths bakes for many seconds even on a fast machine;
+  // the window closes after one, and cancelling waits for at most one azimuth.
+  const fs::path dem = dir.path() / "big.tif";
+  ASSERT_EQ(runTool("aal-synth", "-o " + quoted(dem) + " --size 1024").exitCode, 0);
+  const auto r = view(dir, quoted(dem) + " --size 160x120 --azimuths 1024 --timeout 1 --stats");
+  ASSERT_EQ(r.exitCode, 0) << r.out;
+  // The terrain was on screen (baseline shading) while the bake ran.
+  EXPECT_EQ(r.out.find("baking     0 frames"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("frames drawn while the aperture map was baked"), std::string::npos);
+  EXPECT_NE(r.out.find("cancelled, nothing cached"), std::string::npos) << r.out;
+  EXPECT_EQ(filesIn(dir.path() / "cache"), 0u) << "a partial cache file was left";
+}
+
+TEST(AalView, AnUnreadableDroppedDemKeepsTheTerrain) {
+  TempDir dir;
+  const fs::path shot = dir.path() / "shot.png";
+  const auto r =
+      view(dir, quoted(kDem) + " --size 160x120 --frames 2 --drop " +
+                    quoted(dir.path() / "missing.tif") + " --screenshot " + quoted(shot));
+  ASSERT_EQ(r.exitCode, 0) << r.out;
+  EXPECT_NE(r.out.find("cannot open"), std::string::npos) << r.out;
+  const Picture p = readPng(shot);
+  ASSERT_EQ(p.width, 160);
+  EXPECT_GT(greenSpread(p, 0, 120), 2.0);
+}
+
+TEST(AalView, ADroppedDemReplacesTheTerrain) {
+  TempDir dir;
+  const fs::path dem = dir.path() / "small.tif";
+  ASSERT_EQ(runTool("aal-synth", "-o " + quoted(dem) + " --size 96").exitCode, 0);
+  const auto r = view(dir, quoted(kDem) + " --size 160x120 --frames 2 --drop " + quoted(dem));
+  ASSERT_EQ(r.exitCode, 0) << r.out;
+  EXPECT_NE(r.out.find("opened"), std::string::npos) << r.out;
+  // The first DEM's bake was cancelled when the second replaced it.
+  EXPECT_EQ(filesIn(dir.path() / "cache"), 1u);
+}
+
+TEST(AalView, WithoutADisplayItPointsToAalRender) {
+  const auto r = runTool("aal-view", quoted(kDem) + " --frames 1", "-u DISPLAY -u WAYLAND_DISPLAY");
+  EXPECT_TRUE(r.exitCode == 1 || r.exitCode == 2) << r.exitCode << r.out;
+  EXPECT_NE(r.out.find("aal-render"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("display"), std::string::npos) << r.out;
+}
+
+TEST(AalView, BadCommandLineExitsWithTwoBeforeOpeningAWindow) {
+  TempDir dir;
+  const fs::path bad = dir.path() / "bad.txt";
+  writeText(bad, "0 1 2 3 4 5\n");
+  const std::string dem = quoted(kDem);
+  for (const std::string& args :
+       {quoted(dir.path() / "missing.tif"), dem + " --frames 0", dem + " --frames -3",
+        dem + " --frames 2 --camera-path " + quoted(bad),
+        dem + " --frames 2 --camera-path " + quoted(dir.path() / "none.txt"),
+        dem + " --frames 2 --screenshot " + quoted(dir.path() / "x.jpg"),
+        dem + " --screenshot " + quoted(dir.path() / "x.png"), dem + " --size 0x10",
+        dem + " --mode magic", dem + " --sun-azimuth 10",
+        dem + " --aperture " + quoted(dir.path() / "missing.exr")}) {
+    // No display: input errors must be found before a window is needed.
+    const auto r = runTool("aal-view", args, "-u DISPLAY -u WAYLAND_DISPLAY");
+    EXPECT_EQ(r.exitCode, 2) << args << "\n" << r.out;
+    EXPECT_EQ(r.out.find("aal-render"), std::string::npos) << args << "\n" << r.out;
+  }
+  const auto frames = runTool("aal-view", dem + " --frames 0", "-u DISPLAY");
+  EXPECT_NE(frames.out.find("--frames"), std::string::npos) << frames.out;
+  const auto path =
+      runTool("aal-view", dem + " --frames 2 --camera-path " + quoted(bad), "-u DISPLAY");
+  EXPECT_NE(path.out.find("line 1"), std::string::npos) << path.out;
+}
+
+TEST(AalView, HelpExplainsTheControls) {
+  const auto r = runTool("aal-view", "--help");
+  ASSERT_EQ(r.exitCode, 0);
+  for (const char* text : {"right mouse", "W A S D", "Shift", "mouse wheel", "F12", "orbit",
+                           "--camera-path", "--frames", "--screenshot", "aal-render"}) {
+    EXPECT_NE(r.out.find(text), std::string::npos) << text;
+  }
+}
+
+}  // namespace
+}  // namespace aal

@@ -1,0 +1,90 @@
+// The viewer's sun and sky controls (tools/viewer/view_lighting.h): no window.
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "terrain_renderer.h"
+#include "view_lighting.h"
+
+namespace aal {
+namespace {
+
+Heightfield georeferencedAt(double latDeg, double lonDeg) {
+  Heightfield f;
+  f.width = f.height = 2;
+  f.z.assign(4, 100.0f);
+  f.cellSizeXM = f.cellSizeYM = 30;
+  f.geo.crs = CrsKind::Geographic;
+  f.geo.hasCenter = true;
+  f.geo.centerLatDeg = latDeg;
+  f.geo.centerLonDeg = lonDeg;
+  return f;
+}
+
+TEST(ViewLighting, DefaultsToMidAfternoonAtTheDemsPlace) {
+  const ViewLighting l = defaultViewLighting(georeferencedAt(36.6, -84.2));
+  EXPECT_DOUBLE_EQ(l.latitudeDeg, 36.6);
+  EXPECT_DOUBLE_EQ(l.longitudeDeg, -84.2);
+  // 15:00 local solar time is 15 + 84.2/15 = 20.61 h UTC.
+  EXPECT_NEAR(l.hourUtc, 20.613, 1e-3);
+  const SkyLighting sky = viewSkyLighting(l);
+  EXPECT_GT(sky.sunAzimuthDeg, 230);  // west of south in the afternoon
+  EXPECT_LT(sky.sunAzimuthDeg, 290);
+  EXPECT_GT(sky.sunElevationDeg, 30);
+}
+
+TEST(ViewLighting, DirectAzimuthAndElevationOverrideTheClock) {
+  ViewLighting l;
+  l.fromTime = false;
+  l.sunAzimuthDeg = 90;
+  l.sunElevationDeg = 30;
+  const SkyLighting sky = viewSkyLighting(l);
+  EXPECT_NEAR(sky.sunDirection.x, std::cos(30 * M_PI / 180), 1e-5);  // east
+  EXPECT_NEAR(sky.sunDirection.z, 0.5, 1e-5);
+}
+
+TEST(ViewLighting, IntensitiesAndExposureScale) {
+  ViewLighting l;
+  const Heightfield f = georeferencedAt(45, 0);
+  FrameSettings base, scaled;
+  applyViewLighting(l, f, base);
+  l.sunIntensity = 2;
+  l.skyIntensity = 0.5f;
+  l.exposureStops = 1;
+  applyViewLighting(l, f, scaled);
+  EXPECT_NEAR(scaled.sunIrradiance.y, 2 * base.sunIrradiance.y, 1e-4 * base.sunIrradiance.y);
+  EXPECT_NEAR(scaled.skyRadiance.y, 0.5 * base.skyRadiance.y, 1e-4 * base.skyRadiance.y);
+  EXPECT_NEAR(scaled.exposure, 2 * base.exposure, 1e-6 * base.exposure);
+  EXPECT_GT(base.hazeDensityPerM, 0);
+  EXPECT_TRUE(base.waterAtSeaLevel);  // georeferenced: heights have a datum
+}
+
+TEST(ViewLighting, PlayingWrapsTheTimeOfDay) {
+  ViewLighting l;
+  l.hourUtc = 23.5;
+  advanceViewTime(l, 10);  // paused: nothing moves
+  EXPECT_DOUBLE_EQ(l.hourUtc, 23.5);
+  l.playing = true;
+  l.hoursPerSecond = 0.25;
+  advanceViewTime(l, 4);
+  EXPECT_NEAR(l.hourUtc, 0.5, 1e-12);
+}
+
+TEST(ViewLighting, DatesOutOfRangeAreClamped) {
+  ViewLighting l;
+  l.year = 2023;
+  l.month = 2;
+  l.day = 31;
+  l.hourUtc = 12.75;
+  const UtcTime t = viewTime(l);
+  EXPECT_EQ(t.day, 28);
+  EXPECT_EQ(t.hour, 12);
+  EXPECT_EQ(t.minute, 45);
+  l.year = 2024;
+  EXPECT_EQ(viewTime(l).day, 29);
+  l.month = 13;
+  EXPECT_EQ(viewTime(l).month, 12);
+}
+
+}  // namespace
+}  // namespace aal

@@ -1,0 +1,166 @@
+// aal-view: fly over a DEM with live sun, sky and lighting controls.
+#include <optional>
+#include <string>
+
+#include <CLI/CLI.hpp>
+
+#include "aperture_map.h"
+#include "atomic_file.h"
+#include "screenshot.h"
+#include "tool_main.h"
+#include "tool_options.h"
+#include "viewer/viewer.h"
+
+namespace {
+
+constexpr const char* kControls = R"(Controls:
+  right mouse (hold)  look around (orbit: turn around the pivot)
+  W A S D             move forward, left, back, right (orbit: move the pivot)
+  Q / E               down / up
+  Shift               4x faster
+  mouse wheel         fly speed (orbit: zoom); speed also scales with the height above ground
+  F                   frame the whole DEM
+  O                   switch between fly and orbit mode
+  F12                 save a screenshot (aal-view-DATE-TIME.png in the current folder)
+  drop a DEM file     open it (a file that cannot be read leaves the current terrain)
+The panel sets the date, time of day (play/pause), place or a direct sun azimuth/elevation,
+sun radius, turbidity, sun/sky intensity, exposure, shading mode, obscurance, vsync,
+and shows the frame rate and GPU time per pass. See docs/viewer.md.)";
+
+struct Options {
+  std::string dem, aperture, cameraPath, screenshot, drop, size = "1280x720";
+  std::string mode = "approx", time;
+  std::optional<double> lat, lon, sunAzimuth, sunElevation;
+  std::optional<int> frames;
+  double timeoutS = 0;
+  bool noVsync = false, stats = false, noObscurance = false;
+  int device = -1, azimuths = 64;
+  size_t triangleBudget = 2'000'000;
+};
+
+// Scripted-run options checked before anything is loaded or opened.
+void checkScript(const Options& o) {
+  if (o.frames && *o.frames < 1) {
+    throw aal::InputError("--frames must be at least 1, got " + std::to_string(*o.frames));
+  }
+  if (!o.screenshot.empty()) {
+    if (!o.frames) throw aal::InputError("--screenshot needs --frames N (saved after frame N)");
+    if (!aal::isSupportedImageOutput(o.screenshot) || aal::wantsLinearOutput(o.screenshot)) {
+      throw aal::InputError("--screenshot " + o.screenshot + " must end in .png");
+    }
+    try {
+      aal::checkOutputWritable(o.screenshot);
+    } catch (const std::exception& e) {
+      throw aal::InputError(e.what());
+    }
+  }
+  if (o.sunAzimuth.has_value() != o.sunElevation.has_value()) {
+    throw aal::InputError("give --sun-azimuth and --sun-elevation together");
+  }
+}
+
+aal::ViewLighting initialLighting(const Options& o, const aal::Heightfield& field) {
+  aal::ViewLighting l = aal::defaultViewLighting(field);
+  if (o.lat) l.latitudeDeg = *o.lat;
+  if (o.lon) l.longitudeDeg = *o.lon;
+  if (!o.time.empty()) {
+    const std::optional<aal::UtcTime> t = aal::parseIso8601Utc(o.time);
+    if (!t) throw aal::InputError("--time must be ISO 8601, e.g. 2024-06-21T12:00:00Z");
+    l.year = t->year;
+    l.month = t->month;
+    l.day = t->day;
+    l.hourUtc = t->hour + t->minute / 60.0 + t->second / 3600.0;
+  }
+  if (o.sunAzimuth) {
+    l.fromTime = false;
+    l.sunAzimuthDeg = *o.sunAzimuth;
+    l.sunElevationDeg = *o.sunElevation;
+  }
+  return l;
+}
+
+int run(const Options& o) {
+  checkScript(o);
+  aal::ViewerOptions v;
+  v.dem = o.dem;
+  v.aperture = o.aperture;
+  const auto [width, height] = aal::parseSize(o.size);
+  v.width = static_cast<int>(width);
+  v.height = static_cast<int>(height);
+  v.vsync = !o.noVsync;
+  v.mode = aal::shadingModeNames().at(o.mode);
+  v.obscurance = !o.noObscurance;
+  v.device = o.device;
+  v.triangleBudget = o.triangleBudget;
+  v.bakeAzimuths = o.azimuths;
+  v.frames = o.frames.value_or(0);
+  if (!o.cameraPath.empty()) v.cameraPath = aal::CameraPath::load(o.cameraPath);
+  v.screenshot = o.screenshot;
+  v.timeoutS = o.timeoutS;
+  v.dropAfterFirstFrame = o.drop;
+  v.stats = o.stats;
+  // Bad input fails here, before a window opens.
+  std::shared_ptr<const aal::Heightfield> field = aal::loadViewerDem(o.dem);
+  if (!o.aperture.empty()) {
+    const aal::ApertureMapReader map(o.aperture);
+    aal::checkApertureMatchesDem(map.header(), o.aperture, *field, o.dem);
+  }
+  v.lighting = initialLighting(o, *field);
+  aal::Viewer viewer(v, std::move(field));
+  return viewer.run();
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  CLI::App app(
+      "Flies over a DEM lit by the sun and the sky with ambient aperture lighting, in a "
+      "window.\nWithout --aperture the aperture map comes from the cache shared with aal-render, "
+      "or is baked in the background (baseline shading until it is ready).\nNo display? Use "
+      "aal-render for headless images.",
+      "aal-view");
+  app.footer(kControls);
+  Options o;
+  std::string modes;
+  for (const auto& [name, mode] : aal::shadingModeNames())
+    modes += (modes.empty() ? "" : ", ") + name;
+  app.add_option("dem", o.dem, "input DEM (GeoTIFF, SRTM .hgt, ESRI ASCII, PNG, EXR)")->required();
+  app.add_option("--aperture", o.aperture, "aperture map baked from this DEM by aal-bake");
+  app.add_option("--size", o.size, "window size WIDTHxHEIGHT (screen coordinates)")
+      ->capture_default_str();
+  app.add_option("--mode", o.mode, "shading: " + modes)
+      ->check(CLI::IsMember(aal::shadingModeNames()))
+      ->capture_default_str();
+  app.add_option("--time", o.time, "UTC date and time (ISO 8601) for the sun position");
+  app.add_option("--lat", o.lat, "latitude for the sun (default: the DEM's centre, else 45)")
+      ->check(CLI::Range(-90.0, 90.0));
+  app.add_option("--lon", o.lon, "longitude, east positive (default: the DEM's centre, else 0)")
+      ->check(CLI::Range(-180.0, 180.0));
+  app.add_option("--sun-azimuth", o.sunAzimuth, "direct sun azimuth, degrees clockwise from north")
+      ->check(CLI::Range(-360.0, 720.0));
+  app.add_option("--sun-elevation", o.sunElevation, "direct sun elevation, degrees")
+      ->check(CLI::Range(-90.0, 90.0));
+  app.add_option("--frames", o.frames,
+                 "scripted run: render N frames (after the aperture map is ready), then exit");
+  app.add_option("--camera-path", o.cameraPath,
+                 "keyframes 'TIME_S X Y Z LOOK_X LOOK_Y LOOK_Z [FOV_DEG]' per line (DEM frame, "
+                 "metres); with --frames spread over the N frames, else played in real time");
+  app.add_option("--screenshot", o.screenshot, "save the last scripted frame as this PNG");
+  app.add_option("--timeout", o.timeoutS, "close the window after this many seconds")
+      ->check(CLI::PositiveNumber);
+  app.add_option("--drop", o.drop,
+                 "after the first frame, open this DEM as if it were dropped on the window");
+  app.add_flag("--no-obscurance", o.noObscurance,
+               "start with the obscurance pass off (the panel switches it)");
+  app.add_flag("--no-vsync", o.noVsync, "present without waiting for vsync (MAILBOX/IMMEDIATE)");
+  app.add_flag("--stats", o.stats, "print frame time, FPS and GPU time per pass at the end");
+  app.add_option("--device", o.device, "Vulkan device index (default: the best one)")
+      ->check(CLI::NonNegativeNumber);
+  app.add_option("--triangles", o.triangleBudget, "triangle budget of the terrain grid")
+      ->check(CLI::Range(size_t(2), size_t(1) << 28))
+      ->capture_default_str();
+  app.add_option("--azimuths", o.azimuths, "azimuths of a background bake")
+      ->check(CLI::Range(4, 4096))
+      ->capture_default_str();
+  return aal::runTool(app, argc, argv, [&] { return run(o); });
+}

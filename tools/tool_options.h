@@ -1,0 +1,41 @@
+// Option values shared by the tools' command lines (aal-render, aal-view):
+// image sizes and points in the DEM frame. Errors are InputError (exit 2).
+#pragma once
+
+#include <cmath>
+#include <cstdint>
+#include <sstream>
+#include <string>
+#include <utility>
+
+#include <glm/vec3.hpp>
+
+#include "errors.h"
+
+namespace aal {
+
+// "X,Y,Z" in metres; `name` (the option) goes into the message.
+inline glm::dvec3 parseTriple(const std::string& name, const std::string& text) {
+  glm::dvec3 v;
+  char c1 = 0, c2 = 0;
+  std::istringstream in(text);
+  if (!(in >> v.x >> c1 >> v.y >> c2 >> v.z) || c1 != ',' || c2 != ',' || !in.eof() ||
+      !std::isfinite(v.x) || !std::isfinite(v.y) || !std::isfinite(v.z)) {
+    throw InputError(name + " must be X,Y,Z in metres, got '" + text + "'");
+  }
+  return v;
+}
+
+// "WIDTHxHEIGHT" with positive sides up to 65536.
+inline std::pair<uint32_t, uint32_t> parseSize(const std::string& text) {
+  long w = 0, h = 0;
+  char x = 0;
+  std::istringstream in(text);
+  if (!(in >> w >> x >> h) || (x != 'x' && x != 'X') || !in.eof() || w <= 0 || h <= 0 ||
+      w > 65536 || h > 65536) {
+    throw InputError("--size must be WIDTHxHEIGHT with positive sides, got '" + text + "'");
+  }
+  return {static_cast<uint32_t>(w), static_cast<uint32_t>(h)};
+}
+
+}  // namespace aal

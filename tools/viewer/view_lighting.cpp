@@ -1,0 +1,77 @@
+#include "view_lighting.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "lighting_defaults.h"
+#include "terrain_renderer.h"
+#include "tone_map.h"
+
+namespace aal {
+
+namespace {
+
+int daysInMonth(int year, int month) {
+  static constexpr int kDays[12] = {31, 28, 31, 30, 31, 30, 31, 31, 30, 31, 30, 31};
+  const bool leap = (year % 4 == 0 && year % 100 != 0) || year % 400 == 0;
+  return month == 2 && leap ? 29 : kDays[std::clamp(month, 1, 12) - 1];
+}
+
+}  // namespace
+
+ViewLighting defaultViewLighting(const Heightfield& field) {
+  ViewLighting l;
+  const GeoPlace place = defaultSunPlace(field);
+  l.latitudeDeg = place.latitudeDeg;
+  l.longitudeDeg = place.longitudeDeg;
+  // 15:00 local solar time: 4 minutes of time per degree of longitude.
+  l.hourUtc = std::fmod(15.0 - place.longitudeDeg / 15.0 + 48.0, 24.0);
+  return l;
+}
+
+UtcTime viewTime(const ViewLighting& l) {
+  UtcTime t;
+  t.year = std::clamp(l.year, 1800, 2100);
+  t.month = std::clamp(l.month, 1, 12);
+  t.day = std::clamp(l.day, 1, daysInMonth(t.year, t.month));
+  const double hour = std::clamp(l.hourUtc, 0.0, 24.0 - 1e-6);
+  t.hour = static_cast<int>(hour);
+  const double minutes = (hour - t.hour) * 60.0;
+  t.minute = std::min(static_cast<int>(minutes), 59);
+  t.second = std::clamp((minutes - t.minute) * 60.0, 0.0, 59.999);
+  return t;
+}
+
+SkyLighting viewSkyLighting(const ViewLighting& l) {
+  SkyLighting sky;
+  if (l.fromTime) {
+    const SolarPosition sun = solarPosition(viewTime(l), l.latitudeDeg, l.longitudeDeg);
+    sky = makeSkyLighting(sun.azimuthDeg, sun.elevationDeg, l.turbidity, sun.sunDistanceAu);
+  } else {
+    sky = makeSkyLighting(l.sunAzimuthDeg, l.sunElevationDeg, l.turbidity);
+  }
+  sky.sunIrradiance *= l.sunIntensity;
+  sky.skyRadiance *= l.skyIntensity;
+  sky.sky.zenith.x *= l.skyIntensity;  // the background sky too
+  return sky;
+}
+
+void advanceViewTime(ViewLighting& l, double dtSeconds) {
+  if (!l.playing) return;
+  l.hourUtc = std::fmod(l.hourUtc + l.hoursPerSecond * dtSeconds, 24.0);
+  if (l.hourUtc < 0) l.hourUtc += 24.0;
+}
+
+void applyViewLighting(const ViewLighting& l, const Heightfield& field, FrameSettings& s) {
+  const SkyLighting light = viewSkyLighting(l);
+  s.sunDirection = light.sunDirection;
+  s.sunRadiusRad = static_cast<float>(l.sunRadiusDeg * M_PI / 180.0);
+  s.sunIrradiance = light.sunIrradiance;
+  s.skyRadiance = light.skyRadiance;
+  s.sky = light.sky;
+  s.hazeDensityPerM = static_cast<float>(hazeDensityForVisibility(defaultVisibilityM(field)));
+  s.waterAtSeaLevel = field.geo.crs != CrsKind::None;
+  s.exposure = clearDayExposure(l.turbidity) * std::exp2(l.exposureStops);
+}
+
+}  // namespace aal

@@ -1,0 +1,47 @@
+// The viewer's Dear ImGui panel: sun and sky, shading mode, obscurance,
+// camera and display settings, loading progress, messages and timings. It
+// edits the settings it is given and reports the buttons pressed.
+#pragma once
+
+#include <optional>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "camera_controller.h"
+#include "shading.h"
+#include "terrain_renderer.h"
+#include "view_lighting.h"
+
+namespace aal {
+
+// What the panel edits (by reference) and shows.
+struct ViewPanelModel {
+  ViewLighting& lighting;
+  ShadingMode& mode;
+  ObscuranceSettings& obscurance;
+  bool& vsync;
+  CameraMode cameraMode = CameraMode::Fly;
+  std::string demName;
+  int demWidth = 0, demHeight = 0;
+  size_t triangles = 0;
+  std::optional<double> bakeProgress;  // set while the aperture map is baked
+  std::string message;                 // last message (load errors, screenshots)
+  double framesPerSecond = 0, frameMs = 0;
+  std::vector<std::pair<std::string, double>> passMs;  // GPU time per pass
+  double speedMps = 0, heightAboveGroundM = 0;
+  // Obscurance radius R: the DEM's default (used when radiusM is 0) and the
+  // largest allowed (the shorter side of the DEM).
+  float defaultObscuranceRadiusM = 0, maxObscuranceRadiusM = 1;
+};
+
+struct ViewPanelActions {
+  bool screenshot = false;
+  bool frameDem = false;
+  bool toggleOrbit = false;
+  bool vsyncChanged = false;
+};
+
+ViewPanelActions drawViewPanel(ViewPanelModel& model);
+
+}  // namespace aal

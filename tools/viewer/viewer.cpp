@@ -1,0 +1,509 @@
+#include "viewer.h"
+
+#include <GLFW/glfw3.h>
+
+#include <cmath>
+#include <cstdio>
+#include <ctime>
+#include <filesystem>
+#include <map>
+
+#include "aperture_cache.h"
+#include "buffer.h"
+#include "dem_loader.h"
+#include "errors.h"
+#include "image.h"
+#include "lighting_defaults.h"
+#include "obscurance.h"
+#include "screenshot.h"
+#include "view_panel.h"
+#include "vk_check.h"
+
+namespace aal {
+
+namespace fs = std::filesystem;
+
+struct Viewer::Terrain {
+  std::string path;
+  std::shared_ptr<const Heightfield> field;
+  std::unique_ptr<TerrainScene> scene;
+  std::unique_ptr<BackgroundBake> bake;  // set while the aperture map is baked
+};
+
+struct Viewer::Timing {
+  using Clock = std::chrono::steady_clock;
+  Clock::time_point start = Clock::now(), last = start;
+  double smoothedFrameMs = 0;
+  std::vector<std::pair<std::string, double>> lastPassMs;
+  // Scripted frames, for --stats: wall time from the first counted frame.
+  Clock::time_point firstCounted;
+  int counted = 0;
+  int whileBaking = 0;  // frames drawn with the placeholder while the map was baked
+  std::map<std::string, double> passSumsMs;
+  int passFrames = 0;
+
+  double tick() {
+    const Clock::time_point now = Clock::now();
+    const double dt = std::chrono::duration<double>(now - last).count();
+    last = now;
+    smoothedFrameMs = smoothedFrameMs == 0 ? dt * 1e3 : 0.9 * smoothedFrameMs + 0.1 * dt * 1e3;
+    return dt;
+  }
+  double elapsedS() const { return std::chrono::duration<double>(Clock::now() - start).count(); }
+};
+
+namespace {
+
+// Layout change of a swapchain image (synchronization2).
+void swapchainBarrier(VkCommandBuffer cmd, VkImage image, VkImageLayout from, VkImageLayout to,
+                      VkPipelineStageFlags2 srcStage, VkAccessFlags2 srcAccess,
+                      VkPipelineStageFlags2 dstStage, VkAccessFlags2 dstAccess) {
+  VkImageMemoryBarrier2 barrier{VK_STRUCTURE_TYPE_IMAGE_MEMORY_BARRIER_2};
+  barrier.srcStageMask = srcStage;
+  barrier.srcAccessMask = srcAccess;
+  barrier.dstStageMask = dstStage;
+  barrier.dstAccessMask = dstAccess;
+  barrier.oldLayout = from;
+  barrier.newLayout = to;
+  barrier.srcQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
+  barrier.dstQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
+  barrier.image = image;
+  barrier.subresourceRange = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, 1};
+  VkDependencyInfo dependency{VK_STRUCTURE_TYPE_DEPENDENCY_INFO};
+  dependency.imageMemoryBarrierCount = 1;
+  dependency.pImageMemoryBarriers = &barrier;
+  vkCmdPipelineBarrier2(cmd, &dependency);
+}
+
+// Copies the renderer's display image (RGBA8, sRGB-encoded values) into the
+// UNORM swapchain image: no second encoding; the blit swizzles RGBA to BGRA.
+// Leaves the swapchain image in TRANSFER_DST_OPTIMAL.
+void blitToSwapchain(VkCommandBuffer cmd, const Image& display, VkImage target, VkExtent2D extent) {
+  // Chained to the acquire semaphore, which the submission waits for at the
+  // transfer stage.
+  swapchainBarrier(cmd, target, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL,
+                   VK_PIPELINE_STAGE_2_TRANSFER_BIT, 0, VK_PIPELINE_STAGE_2_TRANSFER_BIT,
+                   VK_ACCESS_2_TRANSFER_WRITE_BIT);
+  VkImageBlit region{};
+  region.srcSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
+  region.srcOffsets[1] = {static_cast<int32_t>(display.desc().width),
+                          static_cast<int32_t>(display.desc().height), 1};
+  region.dstSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
+  region.dstOffsets[1] = {static_cast<int32_t>(extent.width), static_cast<int32_t>(extent.height),
+                          1};
+  vkCmdBlitImage(cmd, display.handle(), VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, target,
+                 VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 1, &region, VK_FILTER_LINEAR);
+}
+
+// Copies the swapchain image as blitted (before the UI) into `buffer`.
+void readBackSwapchainImage(VkCommandBuffer cmd, VkImage image, VkExtent2D extent,
+                            const Buffer& buffer) {
+  swapchainBarrier(cmd, image, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL,
+                   VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, VK_PIPELINE_STAGE_2_TRANSFER_BIT,
+                   VK_ACCESS_2_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_2_TRANSFER_BIT,
+                   VK_ACCESS_2_TRANSFER_READ_BIT);
+  VkBufferImageCopy region{};
+  region.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
+  region.imageExtent = {extent.width, extent.height, 1};
+  vkCmdCopyImageToBuffer(cmd, image, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, buffer.handle(), 1,
+                         &region);
+  // Only the copy's reads must finish before the UI pass writes.
+  swapchainBarrier(cmd, image, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL,
+                   VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, VK_PIPELINE_STAGE_2_TRANSFER_BIT, 0,
+                   VK_PIPELINE_STAGE_2_TRANSFER_BIT, 0);
+}
+
+// The swapchain image from the blit to the UI render pass.
+void prepareForUi(VkCommandBuffer cmd, VkImage image) {
+  swapchainBarrier(cmd, image, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL,
+                   VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL, VK_PIPELINE_STAGE_2_TRANSFER_BIT,
+                   VK_ACCESS_2_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT,
+                   VK_ACCESS_2_COLOR_ATTACHMENT_READ_BIT | VK_ACCESS_2_COLOR_ATTACHMENT_WRITE_BIT);
+}
+
+void copyToBuffer(VkCommandBuffer cmd, const Image& image, const Buffer& buffer) {
+  VkBufferImageCopy region{};
+  region.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
+  region.imageExtent = {image.desc().width, image.desc().height, 1};
+  vkCmdCopyImageToBuffer(cmd, image.handle(), VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, buffer.handle(),
+                         1, &region);
+}
+
+// aal-view-YYYYMMDD-HHMMSS.png in the current folder, never overwriting.
+std::string nextScreenshotName() {
+  const std::time_t now = std::time(nullptr);
+  char stamp[32];
+  std::strftime(stamp, sizeof stamp, "%Y%m%d-%H%M%S", std::localtime(&now));
+  std::string name = std::string("aal-view-") + stamp + ".png";
+  for (int i = 2; fs::exists(name); ++i) {
+    name = std::string("aal-view-") + stamp + "-" + std::to_string(i) + ".png";
+  }
+  return name;
+}
+
+BakeOptions viewerBakeOptions(int azimuths) {
+  BakeOptions options;
+  options.azimuths = azimuths;
+  return options;
+}
+
+}  // namespace
+
+std::shared_ptr<const Heightfield> loadViewerDem(const std::string& path) {
+  return std::make_shared<const Heightfield>(loadDem(path));
+}
+
+Viewer::Viewer(const ViewerOptions& options, std::shared_ptr<const Heightfield> field)
+    : options_(options),
+      window_(options.width, options.height, "aal-view"),
+      instance_(InstanceOptions{false, Window::requiredInstanceExtensions()}),
+      surface_(std::make_unique<Surface>(instance_.handle(), window_)),
+      device_(instance_, options.device, {VK_KHR_SWAPCHAIN_EXTENSION_NAME}),
+      swapchain_(device_, surface_->handle(), window_.framebufferSize(), options.vsync),
+      sync_(device_, swapchain_.imageCount()),
+      ui_(instance_, device_, window_, swapchain_),
+      lighting_(options.lighting.value_or(defaultViewLighting(*field))),
+      mode_(options.mode),
+      vsync_(options.vsync),
+      timing_(std::make_unique<Timing>()) {
+  swapchainFramebuffer_ = window_.framebufferSize();
+  obscurance_.enabled = options.obscurance;
+  renderer_ = std::make_unique<TerrainRenderer>(device_, swapchain_.extent().width,
+                                                swapchain_.extent().height);
+  showTerrain(std::move(field), options.dem, options.aperture);
+}
+
+Viewer::~Viewer() {
+  device_.waitIdle();
+  // Cancels a running bake before the window and device go.
+  terrain_.reset();
+}
+
+void Viewer::showTerrain(std::shared_ptr<const Heightfield> field, const std::string& path,
+                         const std::string& aperturePath) {
+  auto terrain = std::make_unique<Terrain>();
+  terrain->path = path;
+  terrain->field = field;
+  const BakeOptions bakeOptions = viewerBakeOptions(options_.bakeAzimuths);
+  std::string mapPath = aperturePath;
+  if (mapPath.empty()) mapPath = findCachedAperture(*field, path, bakeOptions).string();
+  // The GPU may still draw the previous terrain.
+  device_.waitIdle();
+  if (!mapPath.empty()) {
+    ApertureMapReader reader(mapPath);
+    checkApertureMatchesDem(reader.header(), mapPath, *field, path);
+    terrain->scene =
+        std::make_unique<TerrainScene>(device_, *field, reader, nullptr, options_.triangleBudget);
+  } else {
+    // Shown at once with an open-sky placeholder (baseline shading) while the
+    // map is baked on another thread.
+    terrain->scene =
+        std::make_unique<TerrainScene>(device_, *field, nullptr, options_.triangleBudget);
+    terrain->bake = std::make_unique<BackgroundBake>(field, path, bakeOptions);
+  }
+  terrain_ = std::move(terrain);
+  const VkExtent2D extent = swapchain_.extent();
+  camera_ = std::make_unique<CameraController>(field, double(extent.width) / extent.height);
+  window_.setTitle("aal-view - " + fs::path(path).filename().string());
+}
+
+void Viewer::openDroppedDem(const std::string& path) {
+  try {
+    std::shared_ptr<const Heightfield> field = loadViewerDem(path);
+    const GeoPlace place = defaultSunPlace(*field);
+    showTerrain(field, path, "");
+    // The same local solar time at the new place.
+    lighting_.hourUtc = std::fmod(
+        lighting_.hourUtc - (place.longitudeDeg - lighting_.longitudeDeg) / 15.0 + 48.0, 24.0);
+    lighting_.latitudeDeg = place.latitudeDeg;
+    lighting_.longitudeDeg = place.longitudeDeg;
+    setMessage("opened " + path);
+  } catch (const std::exception& e) {
+    // The previous terrain stays.
+    setMessage(std::string("cannot open ") + path + ": " + e.what());
+  }
+}
+
+void Viewer::updateBake() {
+  Terrain& t = *terrain_;
+  if (!t.bake || !t.bake->finished()) return;
+  try {
+    CachedAperture cached = t.bake->take();
+    device_.waitIdle();
+    if (!cached.path.empty()) {
+      ApertureMapReader reader(cached.path.string());
+      t.scene = std::make_unique<TerrainScene>(device_, *t.field, reader, nullptr,
+                                               options_.triangleBudget);
+    } else {
+      t.scene = std::make_unique<TerrainScene>(device_, *t.field, cached.map, nullptr,
+                                               options_.triangleBudget);
+    }
+    setMessage("aperture map ready" + (cached.path.empty()
+                                           ? std::string(" (not cached)")
+                                           : ", cached as " + cached.path.string()));
+  } catch (const std::exception& e) {
+    setMessage(std::string("aperture bake failed: ") + e.what());
+  }
+  t.bake.reset();
+}
+
+void Viewer::handleKeys() {
+  for (int key : window_.takeKeyPresses()) {
+    if (ui_.wantsKeyboard()) continue;
+    const VkExtent2D extent = swapchain_.extent();
+    if (key == GLFW_KEY_F) camera_->frame(double(extent.width) / extent.height);
+    if (key == GLFW_KEY_O) {
+      camera_->setMode(camera_->mode() == CameraMode::Fly ? CameraMode::Orbit : CameraMode::Fly);
+    }
+    if (key == GLFW_KEY_F12) pendingScreenshot_ = nextScreenshotName();
+  }
+  for (const std::string& path : window_.takeDroppedPaths()) openDroppedDem(path);
+}
+
+void Viewer::updateCamera(double dtSeconds) {
+  const CameraPath* path = options_.cameraPath ? &*options_.cameraPath : nullptr;
+  if (path && options_.frames > 0) {
+    camera_->setCamera(path->at(path->frameTime(scriptedFrame_, options_.frames)));
+    return;
+  }
+  if (path && timing_->elapsedS() <= path->endS() - path->startS()) {
+    camera_->setCamera(path->at(path->startS() + timing_->elapsedS()));
+    return;
+  }
+  CameraInput in;
+  in.dtSeconds = dtSeconds;
+  const bool rightDown = window_.mouseButtonDown(GLFW_MOUSE_BUTTON_RIGHT);
+  if (rightDown && !looking_ && !ui_.wantsMouse()) {
+    looking_ = true;
+    window_.setCursorCaptured(true);
+    lastCursor_ = window_.cursorPosition();
+  }
+  if (!rightDown && looking_) {
+    looking_ = false;
+    window_.setCursorCaptured(false);
+  }
+  const glm::dvec2 cursor = window_.cursorPosition();
+  if (looking_) in.lookPixels = cursor - lastCursor_;
+  lastCursor_ = cursor;
+  const double wheel = window_.takeWheelSteps();
+  if (!ui_.wantsMouse()) in.wheelSteps = wheel;
+  if (!ui_.wantsKeyboard()) {
+    auto axis = [&](int plus, int minus) {
+      return (window_.keyDown(plus) ? 1.0 : 0.0) - (window_.keyDown(minus) ? 1.0 : 0.0);
+    };
+    in.move = {axis(GLFW_KEY_D, GLFW_KEY_A), axis(GLFW_KEY_W, GLFW_KEY_S),
+               axis(GLFW_KEY_E, GLFW_KEY_Q)};
+    in.fast = window_.keyDown(GLFW_KEY_LEFT_SHIFT) || window_.keyDown(GLFW_KEY_RIGHT_SHIFT);
+  }
+  camera_->update(in);
+}
+
+void Viewer::drawUi() {
+  ui_.beginFrame();
+  const Heightfield& field = *terrain_->field;
+  ViewPanelModel model{lighting_, mode_, obscurance_, vsync_};
+  model.cameraMode = camera_->mode();
+  model.demName = fs::path(terrain_->path).filename().string();
+  model.demWidth = field.width;
+  model.demHeight = field.height;
+  model.triangles = terrain_->scene->indexCount() / 3;
+  if (terrain_->bake) model.bakeProgress = terrain_->bake->progress();
+  model.message = message_;
+  model.frameMs = timing_->smoothedFrameMs;
+  model.framesPerSecond = model.frameMs > 0 ? 1e3 / model.frameMs : 0;
+  model.passMs = timing_->lastPassMs;
+  model.speedMps = camera_->speedMps();
+  model.heightAboveGroundM = camera_->heightAboveGround();
+  const glm::dvec2 extent = demExtentM(field);
+  model.defaultObscuranceRadiusM =
+      defaultObscuranceRadiusM({field.cellSizeXM, field.cellSizeYM}, extent);
+  model.maxObscuranceRadiusM = static_cast<float>(std::min(extent.x, extent.y));
+  const ViewPanelActions actions = drawViewPanel(model);
+  const VkExtent2D size = swapchain_.extent();
+  if (actions.frameDem) camera_->frame(double(size.width) / size.height);
+  if (actions.toggleOrbit) {
+    camera_->setMode(camera_->mode() == CameraMode::Fly ? CameraMode::Orbit : CameraMode::Fly);
+  }
+  if (actions.screenshot) pendingScreenshot_ = nextScreenshotName();
+  if (actions.vsyncChanged) swapchainStale_ = true;
+}
+
+FrameSettings Viewer::frameSettings() const {
+  FrameSettings s;
+  s.camera = camera_->camera();
+  // The placeholder aperture is an open sky: only the baselines are honest.
+  s.mode = terrain_->bake ? ShadingMode::BaselineLambert : mode_;
+  applyViewLighting(lighting_, *terrain_->field, s);
+  s.obscurance = obscurance_;
+  return s;
+}
+
+void Viewer::recordFrame(VkCommandBuffer cmd, uint32_t imageIndex, const FrameSettings& settings) {
+  renderer_->record(cmd, *terrain_->scene, settings);
+  const VkImage target = swapchain_.image(imageIndex);
+  blitToSwapchain(cmd, renderer_->displayImage(), target, swapchain_.extent());
+  if (!pendingScreenshot_.empty()) {
+    // What is presented (without the panel); the display image where the
+    // swapchain cannot be read.
+    const VkExtent2D extent = swapchain_.extent();
+    screenshotBuffer_ = Buffer(device_, VkDeviceSize(extent.width) * extent.height * 4,
+                               VK_BUFFER_USAGE_TRANSFER_DST_BIT, MemoryIntent::Readback);
+    screenshotFromSwapchain_ = swapchain_.readable();
+    if (screenshotFromSwapchain_) {
+      readBackSwapchainImage(cmd, target, extent, screenshotBuffer_);
+    } else {
+      copyToBuffer(cmd, renderer_->displayImage(), screenshotBuffer_);
+    }
+  }
+  prepareForUi(cmd, target);
+  ui_.record(cmd, imageIndex);
+}
+
+bool Viewer::drawFrame() {
+  sync_.waitForPreviousFrame();
+  timing_->lastPassMs = renderer_->passMilliseconds();
+  uint32_t imageIndex = 0;
+  SwapchainStatus status = swapchain_.acquire(sync_.acquired(), &imageIndex);
+  if (status == SwapchainStatus::OutOfDate) swapchainStale_ = true;
+  if (status == SwapchainStatus::SurfaceLost) recreateSurface();
+  if (status != SwapchainStatus::Ok) return false;
+
+  const FrameSettings settings = frameSettings();
+  recordFrame(sync_.beginCommands(), imageIndex, settings);
+  sync_.submit(imageIndex);
+  status = swapchain_.present(imageIndex, sync_.rendered(imageIndex));
+  if (status == SwapchainStatus::OutOfDate) swapchainStale_ = true;
+  if (status == SwapchainStatus::SurfaceLost) recreateSurface();
+  if (!pendingScreenshot_.empty()) saveScreenshot(std::exchange(pendingScreenshot_, {}));
+  return true;
+}
+
+void Viewer::saveScreenshot(const std::string& path) {
+  sync_.waitForPreviousFrame();
+  FrameResult frame;
+  frame.width = renderer_->width();
+  frame.height = renderer_->height();
+  frame.display.resize(size_t(frame.width) * frame.height * 4);
+  screenshotBuffer_.read(frame.display.data(), frame.display.size());
+  screenshotBuffer_ = Buffer();
+  if (screenshotFromSwapchain_ && swapchain_.format() == VK_FORMAT_B8G8R8A8_UNORM) {
+    for (size_t i = 0; i < frame.display.size(); i += 4) {
+      std::swap(frame.display[i], frame.display[i + 2]);
+    }
+  }
+  try {
+    writeFrame(path, frame);
+    setMessage("saved screenshot " + path);
+  } catch (const std::exception& e) {
+    setMessage(std::string("screenshot failed: ") + e.what());
+    if (path == options_.screenshot) throw;
+  }
+}
+
+void Viewer::recreateSwapchain() {
+  device_.waitIdle();
+  swapchainFramebuffer_ = window_.framebufferSize();
+  swapchain_.recreate(swapchainFramebuffer_, vsync_);
+  ui_.onSwapchainRecreated(swapchain_);
+  sync_.resize(swapchain_.imageCount());
+  const VkExtent2D extent = swapchain_.extent();
+  if (renderer_->width() != extent.width || renderer_->height() != extent.height) {
+    renderer_ = std::make_unique<TerrainRenderer>(device_, extent.width, extent.height);
+  }
+  swapchainStale_ = false;
+}
+
+void Viewer::recreateSurface() {
+  device_.waitIdle();
+  auto fresh = std::make_unique<Surface>(instance_.handle(), window_);
+  swapchain_.recreate(fresh->handle(), window_.framebufferSize(), vsync_);
+  surface_ = std::move(fresh);
+  swapchainStale_ = true;  // the rest follows the new swapchain
+}
+
+void Viewer::finishScriptedFrame() {
+  if (!options_.dropAfterFirstFrame.empty()) {
+    openDroppedDem(std::exchange(options_.dropAfterFirstFrame, {}));
+  }
+  if (options_.frames <= 0 || terrain_->bake) return;  // scripted frames wait for the bake
+  Timing& t = *timing_;
+  if (t.counted == 0) t.firstCounted = Timing::Clock::now();
+  ++t.counted;
+  for (const auto& [pass, ms] : t.lastPassMs) t.passSumsMs[pass] += ms;
+  if (!t.lastPassMs.empty()) ++t.passFrames;
+  if (++scriptedFrame_ >= options_.frames) window_.requestClose();
+}
+
+void Viewer::setMessage(const std::string& message) {
+  message_ = message;
+  std::fprintf(stderr, "aal-view: %s\n", message.c_str());
+}
+
+void Viewer::printStats() const {
+  const Timing& t = *timing_;
+  const VkExtent2D extent = swapchain_.extent();
+  std::printf("device     %s\n", device_.name().c_str());
+  std::printf("size       %ux%u\n", extent.width, extent.height);
+  const VkPresentModeKHR present = swapchain_.presentMode();
+  std::printf("present    %s\n", present == VK_PRESENT_MODE_FIFO_KHR      ? "fifo (vsync)"
+                                 : present == VK_PRESENT_MODE_MAILBOX_KHR ? "mailbox"
+                                                                          : "immediate");
+  std::printf("triangles  %u\n", terrain_->scene->indexCount() / 3);
+  std::printf("frames     %d\n", t.counted);
+  std::printf("baking     %d frames drawn while the aperture map was baked\n", t.whileBaking);
+  if (t.counted > 1) {
+    // Intervals between counted frames: the first frame's set-up is excluded.
+    const double seconds =
+        std::chrono::duration<double>(Timing::Clock::now() - t.firstCounted).count();
+    const double ms = seconds * 1e3 / (t.counted - 1);
+    std::printf("frame      %.2f ms (%.2f fps)\n", ms, 1e3 / ms);
+  }
+  double total = 0;
+  for (const auto& [pass, sum] : t.passSumsMs) {
+    std::printf("gpu %-10s %8.3f ms\n", pass.c_str(), sum / std::max(t.passFrames, 1));
+    total += sum / std::max(t.passFrames, 1);
+  }
+  std::printf("gpu total      %8.3f ms\n", total);
+}
+
+int Viewer::run() {
+  while (!window_.shouldClose()) {
+    window_.pollEvents();
+    const double dt = timing_->tick();
+    if (options_.timeoutS > 0 && timing_->elapsedS() > options_.timeoutS) window_.requestClose();
+    const VkExtent2D framebuffer = window_.framebufferSize();
+    if (framebuffer.width == 0 || framebuffer.height == 0) {
+      window_.waitEvents(0.1);  // minimised: no frames, but the timeout and the bake go on
+      continue;
+    }
+    if (swapchainStale_ || framebuffer.width != swapchainFramebuffer_.width ||
+        framebuffer.height != swapchainFramebuffer_.height) {
+      recreateSwapchain();
+    }
+    handleKeys();
+    updateBake();
+    advanceViewTime(lighting_, dt);
+    updateCamera(dt);
+    drawUi();
+    const bool lastScripted =
+        options_.frames > 0 && !terrain_->bake && scriptedFrame_ == options_.frames - 1;
+    if (lastScripted && !options_.screenshot.empty()) pendingScreenshot_ = options_.screenshot;
+    if (!drawFrame()) continue;
+    if (terrain_->bake) ++timing_->whileBaking;
+    finishScriptedFrame();
+  }
+  device_.waitIdle();
+  if (terrain_->bake && !terrain_->bake->finished()) {
+    setMessage("closed during the aperture bake: cancelled, nothing cached");
+  }
+  if (options_.stats) printStats();
+  // Under AAL_VALIDATION=1 any validation message fails the run (tests).
+  if (instance_.validationEnabled()) {
+    const size_t messages = instance_.validationLog().count();
+    std::fprintf(stderr, "aal-view: validation on, %zu messages\n", messages);
+    if (messages > 0) return 1;
+  }
+  return 0;
+}
+
+}  // namespace aal

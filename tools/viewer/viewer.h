@@ -1,0 +1,114 @@
+// aal-view's application: a window on the shared engine. Each frame is a
+// short list of steps: input -> camera -> loading -> UI -> terrain passes
+// (TerrainRenderer::record) -> blit to the swapchain image -> UI render pass
+// -> present. See docs/viewer.md.
+#pragma once
+
+#include <chrono>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "background_bake.h"
+#include "buffer.h"
+#include "camera_controller.h"
+#include "camera_path.h"
+#include "device.h"
+#include "frame_sync.h"
+#include "instance.h"
+#include "swapchain.h"
+#include "terrain_renderer.h"
+#include "terrain_scene.h"
+#include "ui_overlay.h"
+#include "view_lighting.h"
+#include "window.h"
+
+namespace aal {
+
+struct ViewerOptions {
+  std::string dem;                 // the DEM first shown
+  std::string aperture;            // its aperture map; empty: cached or baked in the background
+  int width = 1280, height = 720;  // window size in screen coordinates
+  bool vsync = true;
+  ShadingMode mode = ShadingMode::Approx;
+  bool obscurance = true;  // the obscurance pass on at the start
+  int device = -1;
+  size_t triangleBudget = 2'000'000;
+  int bakeAzimuths = 64;
+  // Scripted runs: render `frames` frames (0: run until the window closes),
+  // along `cameraPath` when given, then save `screenshot` when given.
+  int frames = 0;
+  std::optional<CameraPath> cameraPath;
+  std::string screenshot;
+  double timeoutS = 0;  // > 0: close the window after this many seconds
+  // Opened after the first frame as if dropped on the window (tests, demos).
+  std::string dropAfterFirstFrame;
+  bool stats = false;                    // print frame and GPU pass times at the end
+  std::optional<ViewLighting> lighting;  // initial sun and sky (default from the DEM)
+};
+
+// A DEM read from its file; throws InputError when it cannot be.
+std::shared_ptr<const Heightfield> loadViewerDem(const std::string& path);
+
+class Viewer {
+ public:
+  // Opens the window (NoDisplayError without a display) and shows `field`.
+  Viewer(const ViewerOptions& options, std::shared_ptr<const Heightfield> field);
+  ~Viewer();
+  Viewer(const Viewer&) = delete;
+  Viewer& operator=(const Viewer&) = delete;
+
+  // Runs until the window closes or the scripted frames are done; returns
+  // the exit code.
+  int run();
+
+ private:
+  struct Terrain;
+  struct Timing;
+
+  void showTerrain(std::shared_ptr<const Heightfield> field, const std::string& path,
+                   const std::string& aperturePath);
+  void openDroppedDem(const std::string& path);
+  void updateBake();
+  void handleKeys();
+  void updateCamera(double dtSeconds);
+  void drawUi();
+  bool drawFrame();
+  void recordFrame(VkCommandBuffer cmd, uint32_t imageIndex, const FrameSettings& settings);
+  FrameSettings frameSettings() const;
+  void recreateSwapchain();
+  void recreateSurface();
+  void saveScreenshot(const std::string& path);
+  void finishScriptedFrame();
+  void setMessage(const std::string& message);
+  void printStats() const;
+
+  ViewerOptions options_;
+  Window window_;
+  Instance instance_;
+  std::unique_ptr<Surface> surface_;
+  Device device_;
+  Swapchain swapchain_;
+  FrameSync sync_;
+  UiOverlay ui_;
+  std::unique_ptr<TerrainRenderer> renderer_;
+  std::unique_ptr<Terrain> terrain_;
+  std::unique_ptr<CameraController> camera_;
+  ViewLighting lighting_;
+  ShadingMode mode_;
+  ObscuranceSettings obscurance_;
+  bool vsync_;
+  bool swapchainStale_ = false;
+  std::string message_;
+  std::string pendingScreenshot_;          // saved after the next frame
+  bool screenshotFromSwapchain_ = false;   // else from the renderer's display image
+  Buffer screenshotBuffer_;                // the display image read back for it
+  VkExtent2D swapchainFramebuffer_{0, 0};  // window size the swapchain was made for
+  int scriptedFrame_ = 0;
+  std::unique_ptr<Timing> timing_;
+  glm::dvec2 lastCursor_{0.0};
+  bool looking_ = false;
+};
+
+}  // namespace aal
