@@ -46,6 +46,15 @@ GraphicsPipeline::GraphicsPipeline(const Device& device, const GraphicsPipelineD
   depth.depthCompareOp = VK_COMPARE_OP_LESS_OR_EQUAL;
   std::vector<VkPipelineColorBlendAttachmentState> blendAttachments(desc.colorFormats.size());
   for (auto& b : blendAttachments) {
+    if (desc.additiveBlend) {
+      b.blendEnable = VK_TRUE;
+      b.srcColorBlendFactor = VK_BLEND_FACTOR_ONE;
+      b.dstColorBlendFactor = VK_BLEND_FACTOR_ONE;
+      b.colorBlendOp = VK_BLEND_OP_ADD;
+      b.srcAlphaBlendFactor = VK_BLEND_FACTOR_ZERO;
+      b.dstAlphaBlendFactor = VK_BLEND_FACTOR_ONE;
+      b.alphaBlendOp = VK_BLEND_OP_ADD;
+    }
     b.colorWriteMask = VK_COLOR_COMPONENT_R_BIT | VK_COLOR_COMPONENT_G_BIT |
                        VK_COLOR_COMPONENT_B_BIT | VK_COLOR_COMPONENT_A_BIT;
   }

@@ -23,6 +23,8 @@ struct GraphicsPipelineDesc {
   bool depthTest = false;
   bool depthWrite = false;
   VkCullModeFlags cullMode = VK_CULL_MODE_NONE;
+  // Colour added to the target (ONE + ONE), alpha kept; else replaced.
+  bool additiveBlend = false;
 };
 
 class GraphicsPipeline {

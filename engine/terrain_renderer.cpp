@@ -8,6 +8,7 @@
 #include "descriptors.h"
 #include "device.h"
 #include "frame_uniforms.h"
+#include "obscurance_samples.h"
 #include "terrain_scene.h"
 #include "vk_check.h"
 
@@ -18,11 +19,27 @@ namespace {
 constexpr VkFormat kHdrFormat = VK_FORMAT_R16G16B16A16_SFLOAT;
 constexpr VkFormat kDepthFormat = VK_FORMAT_D32_SFLOAT;
 constexpr VkFormat kDisplayFormat = VK_FORMAT_R8G8B8A8_UNORM;
+constexpr VkFormat kAmbientFormat = VK_FORMAT_R16G16B16A16_SFLOAT;
+constexpr VkFormat kSurfaceFormat = VK_FORMAT_R32G32_SFLOAT;
+constexpr VkFormat kTransferFormat = VK_FORMAT_R16G16B16A16_SFLOAT;
 
 bool isDebug(ShadingMode mode) {
   return mode == ShadingMode::DebugVisible || mode == ShadingMode::DebugBentNormal ||
-         mode == ShadingMode::DebugSunFraction || mode == ShadingMode::DebugSkyFill;
+         mode == ShadingMode::DebugSunFraction || mode == ShadingMode::DebugSkyFill ||
+         mode == ShadingMode::DebugObscurance || mode == ShadingMode::DebugTransfer;
 }
+
+// The modes whose picture W changes: the AAL sky fill (DESIGN §5) and the O/W
+// views. The baselines keep their own ambient term.
+bool usesTransfer(ShadingMode mode) {
+  return mode == ShadingMode::Approx || mode == ShadingMode::Exact ||
+         mode == ShadingMode::DebugObscurance || mode == ShadingMode::DebugTransfer;
+}
+
+// The unit-radius sample offsets of seed 000 eq. 8 as std140 vec4s.
+struct ObscuranceSampleBlock {
+  glm::vec4 offsets[AAL_OBSCURANCE_MAX_SAMPLES];
+};
 
 VkRenderingAttachmentInfo colorAttachment(const Image& image, bool clear) {
   VkRenderingAttachmentInfo a{VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO};
@@ -33,16 +50,17 @@ VkRenderingAttachmentInfo colorAttachment(const Image& image, bool clear) {
   return a;
 }
 
-// Begins dynamic rendering into one colour (and optional depth) attachment
-// covering the whole target, with the viewport and scissor set to match.
+// Begins dynamic rendering into `colorCount` colour (and an optional depth)
+// attachments covering the whole target, with the viewport and scissor set to
+// match.
 void beginRendering(VkCommandBuffer cmd, uint32_t width, uint32_t height,
-                    const VkRenderingAttachmentInfo& color,
+                    const VkRenderingAttachmentInfo* colors, uint32_t colorCount,
                     const VkRenderingAttachmentInfo* depth) {
   VkRenderingInfo info{VK_STRUCTURE_TYPE_RENDERING_INFO};
   info.renderArea = {{0, 0}, {width, height}};
   info.layerCount = 1;
-  info.colorAttachmentCount = 1;
-  info.pColorAttachments = &color;
+  info.colorAttachmentCount = colorCount;
+  info.pColorAttachments = colors;
   info.pDepthAttachment = depth;
   vkCmdBeginRendering(cmd, &info);
   const VkViewport viewport{0, 0, float(width), float(height), 0, 1};
@@ -62,7 +80,7 @@ void copyToBuffer(VkCommandBuffer cmd, const Image& image, const Buffer& buffer)
 }  // namespace
 
 struct TerrainRenderer::Passes {
-  GraphicsPipeline sky, terrain, toneMap;
+  GraphicsPipeline sky, terrain, terrainGBuffer, obscurance, filter, composite, toneMap;
   Sampler linear, nearest;
 
   explicit Passes(const Device& device)
@@ -88,6 +106,49 @@ struct TerrainRenderer::Passes {
              true,
              true,
              VK_CULL_MODE_NONE}),
+        // With the obscurance pass the terrain also writes the ambient term
+        // and the surface point; without it the frame pays nothing for them.
+        terrainGBuffer(
+            device,
+            {"terrain.vert",
+             "terrain_gbuffer.frag",
+             {VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER,
+              VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER},
+             0,
+             {kHdrFormat, kAmbientFormat, kSurfaceFormat},
+             kDepthFormat,
+             true,
+             true,
+             VK_CULL_MODE_NONE}),
+        obscurance(
+            device,
+            {"fullscreen.vert",
+             "obscurance.frag",
+             {VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER,
+              VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER,
+              VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER},
+             0,
+             {kTransferFormat},
+             VK_FORMAT_UNDEFINED}),
+        filter(device,
+               {"fullscreen.vert",
+                "obscurance_filter.frag",
+                {VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER},
+                0,
+                {kTransferFormat},
+                VK_FORMAT_UNDEFINED}),
+        composite(device,
+                  {"fullscreen.vert",
+                   "composite.frag",
+                   {VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER,
+                    VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER},
+                   0,
+                   {kHdrFormat},
+                   VK_FORMAT_UNDEFINED,
+                   false,
+                   false,
+                   VK_CULL_MODE_NONE,
+                   true}),
         toneMap(device,
                 {"fullscreen.vert",
                  "tone_map.frag",
@@ -110,14 +171,24 @@ TerrainRenderer::TerrainRenderer(const Device& device, uint32_t width, uint32_t 
                       VK_IMAGE_ASPECT_DEPTH_BIT}),
       display_(device, {width, height, kDisplayFormat,
                         VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT}),
+      ambient_(device, {width, height, kAmbientFormat,
+                        VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_SAMPLED_BIT}),
+      surface_(device, {width, height, kSurfaceFormat,
+                        VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_SAMPLED_BIT}),
+      transfer_(device, {width, height, kTransferFormat,
+                         VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_SAMPLED_BIT}),
+      filtered_(device, {width, height, kTransferFormat,
+                         VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_SAMPLED_BIT}),
       uniforms_(device, sizeof(FrameUniforms), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT,
                 MemoryIntent::Upload),
+      samples_(device, sizeof(ObscuranceSampleBlock), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT,
+               MemoryIntent::Upload),
       passes_(std::make_unique<Passes>(device)),
-      timer_(device, 4) {}
+      timer_(device, 7) {}
 
 TerrainRenderer::~TerrainRenderer() = default;
 
-void TerrainRenderer::writeUniforms(const TerrainScene& scene, const FrameSettings& s) {
+bool TerrainRenderer::writeUniforms(const TerrainScene& scene, const FrameSettings& s) {
   const double aspect = double(width_) / double(height_);
   // The depth range must hold the whole DEM: approximate it from the box.
   const glm::vec4 dem = scene.demInfo();
@@ -133,52 +204,99 @@ void TerrainRenderer::writeUniforms(const TerrainScene& scene, const FrameSettin
   u.skyRadiance = glm::vec4(s.skyRadiance, s.hazeDensityPerM);
   u.dem = scene.demInfo();
   u.heights = {scene.minHeight(), scene.maxHeight(), 0.0f, s.waterAtSeaLevel ? 1.0f : 0.0f};
-  u.grid = {scene.gridColumns(), scene.gridRows(), static_cast<int>(s.mode),
-            scene.hasAlbedo() ? 1 : 0};
+  const int albedoSource = s.albedoValue       ? AAL_ALBEDO_CONSTANT
+                           : scene.hasAlbedo() ? AAL_ALBEDO_IMAGE
+                                               : AAL_ALBEDO_PALETTE;
+  u.grid = {scene.gridColumns(), scene.gridRows(), static_cast<int>(s.mode), albedoSource};
   u.display = {s.exposure, isDebug(s.mode) ? 1.0f : 0.0f, 0.0f, 0.0f};
+  u.albedoValue = glm::vec4(s.albedoValue.value_or(glm::vec3(0.0f)), 0.0f);
+  const ObscuranceSettings& o = s.obscurance;
+  const bool obscurance = o.enabled && usesTransfer(s.mode);
+  if (obscurance) {
+    const float radiusM =
+        o.radiusM > 0
+            ? o.radiusM
+            : defaultObscuranceRadiusM({dem.z, dem.w}, {(dem.x - 1) * dem.z, (dem.y - 1) * dem.w});
+    u.obscurance = {radiusM, float(o.samples), float(o.steps), 0.0f};
+    u.obscurancePass = {1, o.interleaved ? 1 : 0, o.halfResolution ? 2 : 1, 0};
+    ObscuranceSampleBlock block{};
+    const std::vector<glm::vec3>& offsets = obscuranceSampleOffsets(o.samples);
+    for (size_t i = 0; i < offsets.size(); ++i) block.offsets[i] = glm::vec4(offsets[i], 0.0f);
+    samples_.write(&block, sizeof block);
+  }
   u.sky = s.sky;
   uniforms_.write(&u, sizeof u);
+  return obscurance;
 }
 
 void TerrainRenderer::record(VkCommandBuffer cmd, const TerrainScene& scene,
                              const FrameSettings& s) {
-  writeUniforms(scene, s);
+  const bool obscurance = writeUniforms(scene, s);
   timer_.reset(cmd);
   transitionImage(cmd, hdr_, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL);
+  if (obscurance) {
+    transitionImage(cmd, ambient_, VK_IMAGE_LAYOUT_UNDEFINED,
+                    VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL);
+    transitionImage(cmd, surface_, VK_IMAGE_LAYOUT_UNDEFINED,
+                    VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL);
+  }
   transitionImage(cmd, depth_, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL);
   transitionImage(cmd, display_, VK_IMAGE_LAYOUT_UNDEFINED,
                   VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL);
 
-  // Pass 1 and 2: the terrain, then the sky where the terrain left the far plane.
-  VkRenderingAttachmentInfo color = colorAttachment(hdr_, true);
+  // Pass 1 and 2: the terrain, then the sky where the terrain left the far
+  // plane. With the obscurance pass the terrain also writes what it and the
+  // composite read (shaders/terrain_shading.glsl; cleared to "no surface":
+  // ambient 0 at distance 0, texel -1), and the sky follows in a second
+  // rendering with the colour and depth only.
+  VkRenderingAttachmentInfo colors[3] = {colorAttachment(hdr_, true),
+                                         colorAttachment(ambient_, true),
+                                         colorAttachment(surface_, true)};
+  colors[2].clearValue.color = {{-1.0f, -1.0f, 0.0f, 0.0f}};
   VkRenderingAttachmentInfo depth{VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO};
   depth.imageView = depth_.view();
   depth.imageLayout = VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL;
   depth.loadOp = VK_ATTACHMENT_LOAD_OP_CLEAR;
-  depth.storeOp = VK_ATTACHMENT_STORE_OP_DONT_CARE;
+  depth.storeOp = obscurance ? VK_ATTACHMENT_STORE_OP_STORE : VK_ATTACHMENT_STORE_OP_DONT_CARE;
   depth.clearValue.depthStencil = {1.0f, 0};
-  beginRendering(cmd, width_, height_, color, &depth);
+  beginRendering(cmd, width_, height_, colors, obscurance ? 3 : 1, &depth);
   timer_.begin(cmd, "terrain");
-  passes_->terrain.bind(cmd,
-                        DescriptorWrites()
-                            .uniformBuffer(0, uniforms_)
-                            .sampledImage(1, scene.heights().view(), passes_->linear.handle())
-                            .sampledImage(2, scene.aperture().view(), passes_->linear.handle())
-                            .sampledImage(3, scene.albedo().view(), passes_->linear.handle()),
-                        nullptr);
+  (obscurance ? passes_->terrainGBuffer : passes_->terrain)
+      .bind(cmd,
+            DescriptorWrites()
+                .uniformBuffer(0, uniforms_)
+                .sampledImage(1, scene.heights().view(), passes_->linear.handle())
+                .sampledImage(2, scene.aperture().view(), passes_->linear.handle())
+                .sampledImage(3, scene.albedo().view(), passes_->linear.handle()),
+            nullptr);
   vkCmdBindIndexBuffer(cmd, scene.indices().handle(), 0, VK_INDEX_TYPE_UINT32);
   vkCmdDrawIndexed(cmd, scene.indexCount(), 1, 0, 0, 0);
   timer_.end(cmd);
+  if (obscurance) {
+    vkCmdEndRendering(cmd);
+    // Order the terrain's colour and depth writes before the sky's.
+    transitionImage(cmd, hdr_, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL,
+                    VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL);
+    transitionImage(cmd, depth_, VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL,
+                    VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL);
+    colors[0].loadOp = VK_ATTACHMENT_LOAD_OP_LOAD;
+    depth.loadOp = VK_ATTACHMENT_LOAD_OP_LOAD;
+    depth.storeOp = VK_ATTACHMENT_STORE_OP_DONT_CARE;
+    beginRendering(cmd, width_, height_, colors, 1, &depth);
+  }
   timer_.begin(cmd, "sky");
   passes_->sky.bind(cmd, DescriptorWrites().uniformBuffer(0, uniforms_), nullptr);
   vkCmdDraw(cmd, 3, 1, 0, 0);
   timer_.end(cmd);
   vkCmdEndRendering(cmd);
 
-  // Pass 3: tone map into the display image.
+  if (obscurance) recordObscurance(cmd, scene, s.obscurance);
+
+  // Last pass: tone map into the display image.
   transitionImage(cmd, hdr_, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL,
                   VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL);
-  beginRendering(cmd, width_, height_, colorAttachment(display_, false), nullptr);
+  const VkRenderingAttachmentInfo displayColor = colorAttachment(display_, false);
+  beginRendering(cmd, width_, height_, &displayColor, 1, nullptr);
   timer_.begin(cmd, "tone map");
   passes_->toneMap.bind(cmd,
                         DescriptorWrites()
@@ -190,6 +308,77 @@ void TerrainRenderer::record(VkCommandBuffer cmd, const TerrainScene& scene,
   vkCmdEndRendering(cmd);
   transitionImage(cmd, display_, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL,
                   VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL);
+}
+
+void TerrainRenderer::recordObscurance(VkCommandBuffer cmd, const TerrainScene& scene,
+                                       const ObscuranceSettings& settings) {
+  transitionImage(cmd, ambient_, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL,
+                  VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL);
+  transitionImage(cmd, surface_, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL,
+                  VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL);
+  transitionImage(cmd, transfer_, VK_IMAGE_LAYOUT_UNDEFINED,
+                  VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL);
+  // At half resolution the pass fills the top-left quarter of transfer_.
+  const uint32_t scale = settings.halfResolution ? 2 : 1;
+  const uint32_t passWidth = (width_ + scale - 1) / scale,
+                 passHeight = (height_ + scale - 1) / scale;
+  const VkRenderingAttachmentInfo transfer = colorAttachment(transfer_, false);
+  // Timestamps around the whole rendering: lavapipe rasterizes when a
+  // rendering ends, so one inside it misses the work.
+  timer_.begin(cmd, "obscurance");
+  beginRendering(cmd, passWidth, passHeight, &transfer, 1, nullptr);
+  passes_->obscurance.bind(cmd,
+                           DescriptorWrites()
+                               .uniformBuffer(0, uniforms_)
+                               .uniformBuffer(1, samples_)
+                               .sampledImage(2, scene.heights().view(), passes_->linear.handle())
+                               .sampledImage(3, scene.albedo().view(), passes_->linear.handle())
+                               .sampledImage(4, surface_.view(), passes_->nearest.handle())
+                               .sampledImage(5, ambient_.view(), passes_->nearest.handle()),
+                           nullptr);
+  vkCmdDraw(cmd, 3, 1, 0, 0);
+  vkCmdEndRendering(cmd);
+  timer_.end(cmd);
+
+  transitionImage(cmd, transfer_, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL,
+                  VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL);
+  const Image* result = &transfer_;
+  if (settings.interleaved) {
+    transitionImage(cmd, filtered_, VK_IMAGE_LAYOUT_UNDEFINED,
+                    VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL);
+    const VkRenderingAttachmentInfo filtered = colorAttachment(filtered_, false);
+    timer_.begin(cmd, "obscurance filter");
+    beginRendering(cmd, passWidth, passHeight, &filtered, 1, nullptr);
+    passes_->filter.bind(cmd,
+                         DescriptorWrites()
+                             .uniformBuffer(0, uniforms_)
+                             .sampledImage(1, transfer_.view(), passes_->nearest.handle()),
+                         nullptr);
+    vkCmdDraw(cmd, 3, 1, 0, 0);
+    vkCmdEndRendering(cmd);
+    timer_.end(cmd);
+    transitionImage(cmd, filtered_, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL,
+                    VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL);
+    result = &filtered_;
+  }
+
+  // The composite blends onto the terrain pass's colour: order its writes
+  // before the blend's reads.
+  transitionImage(cmd, hdr_, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL,
+                  VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL);
+  VkRenderingAttachmentInfo hdr = colorAttachment(hdr_, false);
+  hdr.loadOp = VK_ATTACHMENT_LOAD_OP_LOAD;
+  timer_.begin(cmd, "composite");
+  beginRendering(cmd, width_, height_, &hdr, 1, nullptr);
+  passes_->composite.bind(cmd,
+                          DescriptorWrites()
+                              .uniformBuffer(0, uniforms_)
+                              .sampledImage(1, result->view(), passes_->nearest.handle())
+                              .sampledImage(2, ambient_.view(), passes_->nearest.handle()),
+                          nullptr);
+  vkCmdDraw(cmd, 3, 1, 0, 0);
+  vkCmdEndRendering(cmd);
+  timer_.end(cmd);
 }
 
 FrameResult TerrainRenderer::render(const TerrainScene& scene, const FrameSettings& s,

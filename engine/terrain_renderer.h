@@ -1,10 +1,12 @@
 // Headless rendering of a terrain scene: the frame is a list of passes
-// (sky, terrain, tone map) into offscreen targets, read back to the host.
+// (terrain, sky, obscurance/W, 4x4 filter and composite, tone map) into
+// offscreen targets, read back to the host.
 // The windowed viewer reuses the passes with a swapchain image as target.
 #pragma once
 
 #include <cstdint>
 #include <memory>
+#include <optional>
 #include <string>
 #include <utility>
 #include <vector>
@@ -16,6 +18,7 @@
 #include "gpu_timer.h"
 #include "graphics_pipeline.h"
 #include "image.h"
+#include "obscurance.h"
 #include "shading.h"
 #include "sky_model.h"
 
@@ -23,14 +26,6 @@ namespace aal {
 
 class Device;
 class TerrainScene;
-
-// Containment-test obscurances and the ambient transfer W (DESIGN §6).
-struct ObscuranceSettings {
-  bool enabled = true;
-  float radiusM = 0;  // near-field radius R; 0: chosen from the DEM
-  int samples = 16;   // n: 8, 16 or 32
-  int steps = 1;      // m: test points per ray, 1 or 2
-};
 
 struct FrameSettings {
   Camera camera;
@@ -43,7 +38,14 @@ struct FrameSettings {
   float hazeDensityPerM = 0.0f;   // aerial perspective extinction
   float exposure = 1.0f;          // see terrain/tone_map.h
   bool waterAtSeaLevel = false;   // paint heights <= 0 as water (DEMs with a vertical datum)
-  ObscuranceSettings obscurance;  // not used yet: the obscurance pass (issue 6) is being built
+  // Containment-test obscurances and W (DESIGN §6, terrain/obscurance.h): W
+  // multiplies the sky fill of the approx/exact modes; the debug-obscurance
+  // and debug-transfer modes show O and W. The renderer takes the settings as
+  // given (tools validate them with checkObscuranceSettings); radiusM 0 means
+  // defaultObscuranceRadiusM of the DEM.
+  ObscuranceSettings obscurance;
+  // A constant albedo for every texel, instead of the scene's image or palette.
+  std::optional<glm::vec3> albedoValue;
 };
 
 struct FrameResult {
@@ -80,13 +82,22 @@ class TerrainRenderer {
   std::vector<std::pair<std::string, double>> passMilliseconds() const { return timer_.results(); }
 
  private:
-  void writeUniforms(const TerrainScene& scene, const FrameSettings& settings);
+  // Writes the frame's uniforms (and the obscurance sample set); returns
+  // whether the obscurance pass runs this frame.
+  bool writeUniforms(const TerrainScene& scene, const FrameSettings& settings);
+  // Obscurance/W, the 4x4 filter, then upsampling and composite onto hdr_
+  // (DESIGN §6, §8).
+  void recordObscurance(VkCommandBuffer cmd, const TerrainScene& scene,
+                        const ObscuranceSettings& settings);
 
   struct Passes;
   const Device& device_;
   uint32_t width_, height_;
   Image hdr_, depth_, display_;
-  Buffer uniforms_;
+  // Terrain pass outputs for the obscurance pass and the composite (see
+  // shaders/terrain.frag), and the per-pixel O/W.
+  Image ambient_, surface_, transfer_, filtered_;
+  Buffer uniforms_, samples_;
   std::unique_ptr<Passes> passes_;
   GpuTimer timer_;
 };

@@ -35,6 +35,20 @@ TerrainScene::TerrainScene(const Device& device, const Heightfield& field,
       albedo, triangleBudget);
 }
 
+TerrainScene::TerrainScene(const Device& device, const Heightfield& field,
+                           const AlbedoImage* albedo, size_t triangleBudget) {
+  const size_t width = static_cast<size_t>(field.width);
+  const uint16_t up[4] = {Imath::half(0.0f).bits(), Imath::half(0.0f).bits(),
+                          Imath::half(1.0f).bits(), Imath::half(1.5707964f).bits()};
+  build(
+      device, field,
+      [&](uint32_t first, uint32_t end, void* destination) {
+        uint16_t* out = static_cast<uint16_t*>(destination);
+        for (size_t i = 0; i < (end - first) * width; ++i) std::copy(up, up + 4, out + 4 * i);
+      },
+      albedo, triangleBudget);
+}
+
 void TerrainScene::build(const Device& device, const Heightfield& field,
                          const std::function<void(uint32_t, uint32_t, void*)>& apertureRows,
                          const AlbedoImage* albedo, size_t triangleBudget) {

@@ -32,6 +32,11 @@ class TerrainScene {
   // match the DEM, checkApertureMatchesDem), so it is never held as floats.
   TerrainScene(const Device& device, const Heightfield& field, ApertureMapReader& aperture,
                const AlbedoImage* albedo, size_t triangleBudget);
+  // The same with an open sky at every texel (bent normal up, arc length
+  // pi/2) in place of an aperture map: aal-view shows the baseline modes with
+  // it while the real map is baked.
+  TerrainScene(const Device& device, const Heightfield& field, const AlbedoImage* albedo,
+               size_t triangleBudget);
 
   const Image& heights() const { return heights_; }
   const Image& aperture() const { return aperture_; }

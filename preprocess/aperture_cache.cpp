@@ -2,6 +2,7 @@
 
 #include <cstdio>
 #include <cstdlib>
+#include <functional>
 #include <system_error>
 
 #include "errors.h"
@@ -30,22 +31,40 @@ fs::path cachedAperturePath(const Heightfield& field, const BakeOptions& o) {
   return apertureCacheDirectory() / name;
 }
 
+fs::path findCachedAperture(const Heightfield& field, const std::string& demPath,
+                            const BakeOptions& options, std::string* whyUnusable) {
+  const fs::path path = cachedAperturePath(field, options);
+  std::error_code error;
+  if (!fs::exists(path, error)) return {};
+  try {
+    const ApertureMapReader reader(path.string());
+    checkApertureMatchesDem(reader.header(), path.string(), field, demPath);
+    return path;
+  } catch (const InputError& e) {
+    if (whyUnusable) *whyUnusable = e.what();
+  }
+  return {};
+}
+
 CachedAperture cachedOrBakedAperture(const Heightfield& field, const std::string& demPath,
                                      BakeOptions options, bool quiet) {
   const fs::path path = cachedAperturePath(field, options);
   std::error_code error;
-  if (fs::exists(path, error)) {
-    try {
-      const ApertureMapReader reader(path.string());
-      checkApertureMatchesDem(reader.header(), path.string(), field, demPath);
-      return {path, {}};
-    } catch (const InputError& e) {
-      // A damaged or stale cache entry is replaced, not fatal.
-      if (!quiet) std::fprintf(stderr, "note: rebaking (cache entry unusable: %s)\n", e.what());
-    }
+  std::string whyUnusable;
+  if (fs::path found = findCachedAperture(field, demPath, options, &whyUnusable); !found.empty()) {
+    return {found, {}};
+  }
+  // A damaged or stale cache entry is replaced, not fatal.
+  if (!whyUnusable.empty() && !quiet) {
+    std::fprintf(stderr, "note: rebaking (cache entry unusable: %s)\n", whyUnusable.c_str());
   }
   ProgressBar progress("baking apertures", !quiet);
-  options.progress = [&](double fraction) { progress.update(fraction); };
+  // The caller's hook (e.g. aal-view's progress bar) still hears every step.
+  const std::function<void(double)> callerProgress = options.progress;
+  options.progress = [&](double fraction) {
+    progress.update(fraction);
+    if (callerProgress) callerProgress(fraction);
+  };
   BakeResult result = bakeApertures(field, options);
   progress.finish();
   result.aperture.info.source = fs::path(demPath).filename().string();

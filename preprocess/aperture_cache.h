@@ -18,6 +18,12 @@ std::filesystem::path apertureCacheDirectory();
 // Cache file for this DEM (its loaded heights) and these bake options.
 std::filesystem::path cachedAperturePath(const Heightfield& field, const BakeOptions& options);
 
+// The cache entry for this DEM and these options when it exists and matches
+// the DEM, else empty (with the reason in *whyUnusable for a bad entry).
+std::filesystem::path findCachedAperture(const Heightfield& field, const std::string& demPath,
+                                         const BakeOptions& options,
+                                         std::string* whyUnusable = nullptr);
+
 // An aperture map for a DEM: the path of a valid cache entry, or the map in
 // memory when the cache cannot be written.
 struct CachedAperture {
@@ -27,7 +33,8 @@ struct CachedAperture {
 
 // The cached map when present and valid, else a fresh bake (with progress on
 // stderr unless quiet) written to the cache atomically. `demPath` names the
-// DEM in the map's aal:source.
+// DEM in the map's aal:source. options.progress, when set, is called too;
+// options.cancel stops the bake (BakeCancelled) before anything is written.
 CachedAperture cachedOrBakedAperture(const Heightfield& field, const std::string& demPath,
                                      BakeOptions options, bool quiet);
 

@@ -18,9 +18,24 @@
 #define AAL_MODE_DEBUG_BENT_NORMAL 5
 #define AAL_MODE_DEBUG_SUN_FRACTION 6
 #define AAL_MODE_DEBUG_SKY_FILL 7
+#define AAL_MODE_DEBUG_OBSCURANCE 8
+#define AAL_MODE_DEBUG_TRANSFER 9
 
 // Workgroup size of the shading parity compute shader.
 #define AAL_SHADING_PARITY_GROUP_SIZE 64
+
+// Containment-test obscurances (terrain/obscurance.h, shaders/obscurance.glsl).
+// Largest sample count n (the sample uniform buffer holds this many).
+#define AAL_OBSCURANCE_MAX_SAMPLES 32
+// The 4x4 filter skips neighbours whose view distance differs from the
+// centre's by more than this fraction of it (seed 000 §4.2).
+#define AAL_OBSCURANCE_DEPTH_TOLERANCE 0.05
+// Albedo sources (Frame.grid.w): palette by height and slope, image, constant.
+#define AAL_ALBEDO_PALETTE 0
+#define AAL_ALBEDO_IMAGE 1
+#define AAL_ALBEDO_CONSTANT 2
+// Workgroup size of the obscurance parity compute shader.
+#define AAL_OBSCURANCE_PARITY_GROUP_SIZE 64
 
 // Sun and sky (terrain/sky_model.h, terrain/tone_map.h, shaders/sky.glsl,
 // shaders/tone_map.glsl).

@@ -8,14 +8,17 @@
 layout(set = 0, binding = 0, std140) uniform Frame {
   mat4 viewProj;
   mat4 invViewProj;
-  vec4 cameraPos;      // xyz metres
-  vec4 sunDirection;   // xyz unit vector to the sun; w: sun angular radius (rad)
-  vec4 sunIrradiance;  // rgb E_sun at normal incidence
-  vec4 skyRadiance;    // rgb average sky radiance L_sky; w: haze density (1/m)
-  vec4 dem;            // width, height (texels), cell size x, y (m)
-  vec4 heights;        // min, max (m), water level (m), water on (0/1)
-  ivec4 grid;          // columns, rows, shading mode, albedo texture on (0/1)
-  vec4 display;        // exposure, raw output (1: debug values, no tone map), 0, 0
+  vec4 cameraPos;        // xyz metres
+  vec4 sunDirection;     // xyz unit vector to the sun; w: sun angular radius (rad)
+  vec4 sunIrradiance;    // rgb E_sun at normal incidence
+  vec4 skyRadiance;      // rgb average sky radiance L_sky; w: haze density (1/m)
+  vec4 dem;              // width, height (texels), cell size x, y (m)
+  vec4 heights;          // min, max (m), water level (m), water on (0/1)
+  ivec4 grid;            // columns, rows, shading mode, albedo source (AAL_ALBEDO_*)
+  vec4 display;          // exposure, raw output (1: debug values, no tone map), 0, 0
+  vec4 albedoValue;      // rgb constant albedo (source AAL_ALBEDO_CONSTANT)
+  vec4 obscurance;       // R (m), samples n, steps m, 0
+  ivec4 obscurancePass;  // on (0/1), interleaved + filtered (0/1), pixel size (1 or 2), 0
   PreethamSky sky;
 }
 frame;

@@ -65,6 +65,7 @@ vec3 shade(ShadingInputs s, int mode) {
     vec3 e = shadingTerms(s, AAL_MODE_APPROX).skyIrradiance;
     return vec3(full > 0.0 ? max(e.r, max(e.g, e.b)) / full : 0.0);
   }
+  if (mode == AAL_MODE_DEBUG_OBSCURANCE || mode == AAL_MODE_DEBUG_TRANSFER) return s.transfer;
   ShadingTerms t = shadingTerms(s, mode);
   return t.direct + t.ambient;
 }

@@ -19,6 +19,8 @@ const std::map<std::string, ShadingMode>& shadingModeNames() {
       {"debug-bent-normal", ShadingMode::DebugBentNormal},
       {"debug-sun", ShadingMode::DebugSunFraction},
       {"debug-sky", ShadingMode::DebugSkyFill},
+      {"debug-obscurance", ShadingMode::DebugObscurance},
+      {"debug-transfer", ShadingMode::DebugTransfer},
   };
   return names;
 }
@@ -77,6 +79,8 @@ glm::vec3 shade(const ShadingInputs& in, ShadingMode mode) {
       const glm::vec3 e = shadingTerms(in, ShadingMode::Approx).skyIrradiance;
       return glm::vec3(full > 0 ? std::max({e.r, e.g, e.b}) / full : 0.0f);
     }
+    case ShadingMode::DebugObscurance:
+    case ShadingMode::DebugTransfer: return in.transfer;
     default: {
       const ShadingTerms t = shadingTerms(in, mode);
       return t.direct + t.ambient;

@@ -24,6 +24,10 @@ enum class ShadingMode : int {
   DebugBentNormal = AAL_MODE_DEBUG_BENT_NORMAL,    // B * 0.5 + 0.5
   DebugSunFraction = AAL_MODE_DEBUG_SUN_FRACTION,  // visible fraction f of the sun disk
   DebugSkyFill = AAL_MODE_DEBUG_SKY_FILL,          // E_sky / (pi L_sky) as grey
+  // The obscurance pass's O as grey and W as RGB (DESIGN §6): shade() returns
+  // the transfer input, which the renderer sets to O or W.
+  DebugObscurance = AAL_MODE_DEBUG_OBSCURANCE,
+  DebugTransfer = AAL_MODE_DEBUG_TRANSFER,
 };
 
 // Command-line / UI names of the modes (aal-render --mode, the viewer's panel).

@@ -19,6 +19,7 @@
 #include "dem_loader.h"
 #include "device.h"
 #include "instance.h"
+#include "lighting_defaults.h"
 #include "screenshot.h"
 #include "sky_lighting.h"
 #include "solar_position.h"
@@ -26,6 +27,7 @@
 #include "terrain_scene.h"
 #include "tone_map.h"
 #include "tool_main.h"
+#include "tool_options.h"
 
 namespace {
 
@@ -49,28 +51,43 @@ struct Options {
   size_t triangleBudget = 2'000'000;
   bool stats = false;
   bool quiet = false;
+  std::string albedoValue;
+  std::optional<double> obscuranceRadiusM;
+  int obscuranceSamples = aal::ObscuranceSettings{}.samples, obscuranceSteps = 1;
+  bool noObscurance = false;
 };
 
-glm::dvec3 parseTriple(const std::string& name, const std::string& text) {
+// --albedo-value: one grey value or R,G,B, each in [0, 1].
+glm::vec3 parseAlbedoValue(const std::string& text) {
+  std::istringstream in(text);
   glm::dvec3 v;
   char c1 = 0, c2 = 0;
-  std::istringstream in(text);
-  if (!(in >> v.x >> c1 >> v.y >> c2 >> v.z) || c1 != ',' || c2 != ',' || !in.eof() ||
-      !std::isfinite(v.x) || !std::isfinite(v.y) || !std::isfinite(v.z)) {
-    throw aal::InputError(name + " must be X,Y,Z in metres, got '" + text + "'");
+  bool ok = static_cast<bool>(in >> v.x);
+  if (ok && in.eof()) {
+    v.y = v.z = v.x;
+  } else {
+    ok = ok && (in >> c1 >> v.y >> c2 >> v.z) && c1 == ',' && c2 == ',' && in.eof();
   }
-  return v;
+  for (int c = 0; c < 3 && ok; ++c) ok = v[c] >= 0 && v[c] <= 1;
+  if (!ok) {
+    throw aal::InputError("--albedo-value must be A or R,G,B with values in [0, 1], got '" + text +
+                          "'");
+  }
+  return glm::vec3(v);
 }
 
-std::pair<uint32_t, uint32_t> parseSize(const std::string& text) {
-  long w = 0, h = 0;
-  char x = 0;
-  std::istringstream in(text);
-  if (!(in >> w >> x >> h) || (x != 'x' && x != 'X') || !in.eof() || w <= 0 || h <= 0 ||
-      w > 65536 || h > 65536) {
-    throw aal::InputError("--size must be WIDTHxHEIGHT with positive sides, got '" + text + "'");
-  }
-  return {static_cast<uint32_t>(w), static_cast<uint32_t>(h)};
+// Obscurance settings from the options, checked against the DEM.
+aal::ObscuranceSettings obscuranceFor(const Options& o, const aal::Heightfield& field) {
+  aal::ObscuranceSettings s;
+  s.enabled = !o.noObscurance;
+  s.samples = o.obscuranceSamples;
+  s.steps = o.obscuranceSteps;
+  const glm::dvec2 extent = aal::demExtentM(field);
+  s.radiusM = o.obscuranceRadiusM
+                  ? static_cast<float>(*o.obscuranceRadiusM)
+                  : aal::defaultObscuranceRadiusM({field.cellSizeXM, field.cellSizeYM}, extent);
+  aal::checkObscuranceSettings(s, extent);
+  return s;
 }
 
 aal::SkyLighting lightingFor(const Options& o, const aal::Heightfield& field) {
@@ -79,13 +96,9 @@ aal::SkyLighting lightingFor(const Options& o, const aal::Heightfield& field) {
     if (!time)
       throw aal::InputError("--time must be ISO 8601, e.g. 2024-06-21T12:00:00Z, got '" + o.time +
                             "'");
-    double lat = 45, lon = 0;
-    if (field.geo.hasCenter) {
-      lat = field.geo.centerLatDeg;
-      lon = field.geo.centerLonDeg;
-    }
-    lat = o.lat.value_or(lat);
-    lon = o.lon.value_or(lon);
+    const aal::GeoPlace place = aal::defaultSunPlace(field);
+    const double lat = o.lat.value_or(place.latitudeDeg);
+    const double lon = o.lon.value_or(place.longitudeDeg);
     const aal::SolarPosition sun = aal::solarPosition(*time, lat, lon);
     return aal::makeSkyLighting(sun.azimuthDeg, sun.elevationDeg, o.turbidity, sun.sunDistanceAu);
   }
@@ -95,7 +108,7 @@ aal::SkyLighting lightingFor(const Options& o, const aal::Heightfield& field) {
 
 int run(const Options& o) {
   const aal::ShadingMode mode = kModes.at(o.mode);
-  const auto [width, height] = parseSize(o.size);
+  const auto [width, height] = aal::parseSize(o.size);
   if (!aal::isSupportedImageOutput(o.output)) {
     throw aal::InputError("output " + o.output + " must end in .png or .exr");
   }
@@ -108,10 +121,17 @@ int run(const Options& o) {
     throw aal::InputError("give --sun-azimuth and --sun-elevation together");
   }
 
+  if (!o.albedo.empty() && !o.albedoValue.empty()) {
+    throw aal::InputError("give --albedo or --albedo-value, not both");
+  }
+  const std::optional<glm::vec3> albedoValue =
+      o.albedoValue.empty() ? std::nullopt : std::optional(parseAlbedoValue(o.albedoValue));
+
   aal::DemLoadOptions load;
   load.cellSizeM = o.cellSize;
   load.zScale = o.zScale;
   const aal::Heightfield field = aal::loadDem(o.dem, load);
+  const aal::ObscuranceSettings obscurance = obscuranceFor(o, field);
   // The aperture map is streamed from its file into the GPU when the scene
   // is built, so it never sits in host memory as floats.
   std::string aperturePath = o.aperture;
@@ -135,30 +155,26 @@ int run(const Options& o) {
   const aal::SkyLighting light = lightingFor(o, field);
   aal::FrameSettings settings;
   settings.mode = mode;
+  settings.obscurance = obscurance;
+  settings.albedoValue = albedoValue;
   const double aspect = double(width) / double(height);
   settings.camera = aal::defaultCamera(field, aspect);
-  if (!o.camera.empty()) settings.camera.position = parseTriple("--camera", o.camera);
-  if (!o.lookAt.empty()) settings.camera.lookAt = parseTriple("--look-at", o.lookAt);
+  if (!o.camera.empty()) settings.camera.position = aal::parseTriple("--camera", o.camera);
+  if (!o.lookAt.empty()) settings.camera.lookAt = aal::parseTriple("--look-at", o.lookAt);
   settings.camera.verticalFovDeg = o.fovDeg;
   settings.sunDirection = light.sunDirection;
   settings.sunRadiusRad = static_cast<float>(o.sunRadiusDeg * M_PI / 180.0);
   settings.sunIrradiance = light.sunIrradiance;
   settings.skyRadiance = light.skyRadiance;
   settings.sky = light.sky;
-  // Default haze: a clear day, scaled with the DEM so that any size reads
-  // with depth but is not washed out (visibility 20 DEM diagonals, >= 200 km).
-  const glm::dvec2 extent = aal::demExtentM(field);
   const double visibilityM =
-      o.visibilityKm ? *o.visibilityKm * 1000 : std::max(200e3, 20 * glm::length(extent));
+      o.visibilityKm ? *o.visibilityKm * 1000 : aal::defaultVisibilityM(field);
   settings.hazeDensityPerM = static_cast<float>(aal::hazeDensityForVisibility(visibilityM));
   settings.waterAtSeaLevel = field.geo.crs != aal::CrsKind::None;
   if (o.ev100) {
     settings.exposure = aal::exposureFromEv100(static_cast<float>(*o.ev100));
   } else {
-    // Fixed by a clear-day sun at 60 degrees, so dusk and night come out
-    // darker than noon instead of all grey.
-    const aal::SkyLighting reference = aal::makeSkyLighting(180.0, 60.0, o.turbidity);
-    settings.exposure = aal::autoExposure(reference.sunIrradiance, 60.0, reference.skyRadiance);
+    settings.exposure = aal::clearDayExposure(o.turbidity);
   }
 
   aal::Instance instance;
@@ -190,6 +206,12 @@ int run(const Options& o) {
     std::printf("triangles  %zu\n", frame.triangles);
     std::printf("sun        azimuth %.2f deg, elevation %.2f deg\n", light.sunAzimuthDeg,
                 light.sunElevationDeg);
+    if (obscurance.enabled) {
+      std::printf("obscurance R %.1f m, n %d, m %d\n", obscurance.radiusM, obscurance.samples,
+                  obscurance.steps);
+    } else {
+      std::printf("obscurance off\n");
+    }
     double total = 0;
     for (const auto& [pass, ms] : frame.passMilliseconds) {
       std::printf("gpu %-10s %8.3f ms\n", pass.c_str(), ms);
@@ -218,6 +240,20 @@ int main(int argc, char** argv) {
   app.add_option("--albedo", o.albedo,
                  "surface colour image, e.g. an orthophoto (resampled to the DEM when its size "
                  "differs); default: a palette by height and slope");
+  app.add_option("--albedo-value", o.albedoValue,
+                 "constant surface albedo A or R,G,B in [0, 1] (instead of --albedo)");
+  app.add_option("--obscurance-radius", o.obscuranceRadiusM,
+                 "near-field radius R of the containment-test obscurances in metres (default: " +
+                     std::to_string(int(aal::kDefaultObscuranceRadiusCells)) +
+                     " DEM cells, at most the DEM's shorter side)");
+  app.add_option("--obscurance-samples", o.obscuranceSamples,
+                 "obscurance sample count n: 8, 16 or 32")
+      ->capture_default_str();
+  app.add_option("--obscurance-steps", o.obscuranceSteps,
+                 "obscurance test points per ray m: 1 or 2")
+      ->capture_default_str();
+  app.add_flag("--no-obscurance", o.noObscurance,
+               "no obscurances: the ambient transfer W is 1 everywhere");
   app.add_option("--size", o.size, "image size WIDTHxHEIGHT")->capture_default_str();
   app.add_option("--camera", o.camera,
                  "camera position X,Y,Z in metres (DEM frame: x east, y north, "

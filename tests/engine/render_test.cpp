@@ -124,7 +124,9 @@ TEST_F(Render, JacksboroRendersTerrainAndSky) {
   }
   EXPECT_GT(maxLuma - minLuma, 40);
   EXPECT_GT(frame.triangles, 100000u);
-  ASSERT_EQ(frame.passMilliseconds.size(), 3u);
+  // terrain, sky, obscurance, obscurance filter, composite, tone map.
+  ASSERT_EQ(frame.passMilliseconds.size(), 6u);
+  EXPECT_EQ(frame.passMilliseconds[2].first, "obscurance");
 }
 
 // Golden images: small renders compared within a tolerance; on failure the
@@ -180,6 +182,25 @@ TEST_F(Render, GoldenFbmDebugViews) {
   expectMatchesGolden(
       renderer.render(scene, topView(f, ShadingMode::DebugBentNormal, 0, 45), false),
       "fbm-bent-normal");
+}
+
+// O and W (DESIGN §6) of the same terrain, with an orange albedo so that the
+// colour bleeding shows in W.
+TEST_F(Render, GoldenFbmObscuranceAndTransfer) {
+  SyntheticTerrainOptions o;
+  o.width = o.height = 64;
+  o.featureSizeTexels = 24;
+  o.ridged = true;
+  const Heightfield f = makeSyntheticTerrain(o);
+  const ApertureMap aperture = bake(f);
+  const TerrainScene scene(device(), f, aperture, nullptr, 100000);
+  TerrainRenderer renderer(device(), 64, 64);
+  FrameSettings s = topView(f, ShadingMode::DebugObscurance, 0, 45);
+  s.obscurance.radiusM = 600;
+  s.albedoValue = glm::vec3(0.8f, 0.5f, 0.2f);
+  expectMatchesGolden(renderer.render(scene, s, false), "fbm-obscurance");
+  s.mode = ShadingMode::DebugTransfer;
+  expectMatchesGolden(renderer.render(scene, s, false), "fbm-transfer");
 }
 
 }  // namespace

@@ -3,7 +3,10 @@
 
 #include <OpenImageIO/imageio.h>
 
+#include <algorithm>
 #include <filesystem>
+#include <utility>
+#include <vector>
 
 #include "run_tool.h"
 
@@ -82,6 +85,95 @@ TEST(AalRender, BadInputExitsWithTwo) {
     EXPECT_EQ(r.exitCode, 2) << args << "\n" << r.out;
   }
   EXPECT_FALSE(fs::exists(dir.path() / "x.png"));
+}
+
+TEST(AalRender, BadObscuranceOptionsExitWithTwoAndSayWhy) {
+  TempDir dir;
+  const std::string out = " -o " + quoted(dir.path() / "x.png") + " --size 32x18";
+  const std::pair<std::string, std::string> cases[] = {
+      {" --obscurance-samples 12", "--obscurance-samples"},
+      {" --obscurance-steps 3", "--obscurance-steps"},
+      {" --obscurance-radius 0", "--obscurance-radius"},
+      {" --obscurance-radius -30", "--obscurance-radius"},
+      {" --obscurance-radius 1e9", "shorter side"},
+      {" --albedo-value 1.5", "--albedo-value"},
+      {" --albedo-value banana", "--albedo-value"},
+      {" --albedo-value 0.1,0.2", "--albedo-value"},
+      {" --albedo-value 0.5 --albedo " + quoted(dir.path() / "a.png"), "not both"}};
+  for (const auto& [args, message] : cases) {
+    const auto r = render(dir, out + args);
+    EXPECT_EQ(r.exitCode, 2) << args << "\n" << r.out;
+    EXPECT_NE(r.out.find(message), std::string::npos) << args << "\n" << r.out;
+  }
+  EXPECT_FALSE(fs::exists(dir.path() / "x.png"));
+}
+
+// The mean and minimum of the first channel over pixels whose value is > 0
+// (debug views paint the sky black).
+std::pair<double, float> terrainMeanAndMin(const fs::path& exr) {
+  auto in = OIIO::ImageInput::open(exr.string());
+  if (!in) return {-1, -1};
+  const OIIO::ImageSpec spec = in->spec();
+  std::vector<float> pixels(static_cast<size_t>(spec.width) * spec.height * spec.nchannels);
+  in->read_image(0, 0, 0, spec.nchannels, OIIO::TypeDesc::FLOAT, pixels.data());
+  double sum = 0;
+  float least = 2;
+  int count = 0;
+  for (size_t i = 0; i < pixels.size(); i += static_cast<size_t>(spec.nchannels)) {
+    if (pixels[i] <= 0) continue;
+    sum += pixels[i];
+    least = std::min(least, pixels[i]);
+    ++count;
+  }
+  return {count ? sum / count : -1, least};
+}
+
+TEST(AalRender, ObscuranceAndTransferViewsAreLinearInExr) {
+  TempDir dir;
+  const fs::path o = dir.path() / "o.exr", w = dir.path() / "w.exr", off = dir.path() / "off.exr";
+  auto r = render(dir, "-o " + quoted(o) +
+                           " --size 64x36 --mode debug-obscurance --obscurance-samples 8 "
+                           "--obscurance-steps 2 --obscurance-radius 1500 --stats");
+  ASSERT_EQ(r.exitCode, 0) << r.out;
+  EXPECT_NE(r.out.find("obscurance R 1500.0 m, n 8, m 2"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("gpu obscurance"), std::string::npos) << r.out;
+  ASSERT_EQ(render(dir, "-o " + quoted(w) +
+                            " --size 64x36 --mode debug-transfer --obscurance-samples 8 "
+                            "--obscurance-steps 2 --obscurance-radius 1500 --albedo-value 0.6")
+                .exitCode,
+            0);
+  ASSERT_EQ(render(dir, "-o " + quoted(off) + " --size 64x36 --mode debug-transfer --no-obscurance")
+                .exitCode,
+            0);
+  const auto [meanO, minO] = terrainMeanAndMin(o);
+  const auto [meanW, minW] = terrainMeanAndMin(w);
+  const auto [meanOff, minOff] = terrainMeanAndMin(off);
+  // Linear values in (0, 1]: the valleys of jacksboro are obscured, W lifts
+  // them with the bounced light, and without the pass W is 1.
+  EXPECT_GT(minO, 0.0f);
+  EXPECT_LT(minO, 0.95f);
+  EXPECT_LT(meanO, 1.0);
+  EXPECT_GT(meanW, meanO);
+  EXPECT_LE(meanW, 1.0);
+  EXPECT_EQ(minOff, 1.0f);
+  EXPECT_EQ(meanOff, 1.0);
+}
+
+TEST(AalRender, AlbedoImageOfAnotherSizeIsResampledWithANote) {
+  TempDir dir;
+  const fs::path albedo = dir.path() / "albedo.png";
+  {
+    std::vector<uint8_t> grey(40 * 30 * 3, 128);
+    auto image = OIIO::ImageOutput::create(albedo.string());
+    ASSERT_TRUE(image);
+    ASSERT_TRUE(image->open(albedo.string(), OIIO::ImageSpec(40, 30, 3, OIIO::TypeDesc::UINT8)));
+    ASSERT_TRUE(image->write_image(OIIO::TypeDesc::UINT8, grey.data()));
+    image->close();
+  }
+  const auto r = render(
+      dir, "-o " + quoted(dir.path() / "a.png") + " --size 32x18 --albedo " + quoted(albedo));
+  EXPECT_EQ(r.exitCode, 0) << r.out;
+  EXPECT_NE(r.out.find("resampled to the DEM"), std::string::npos) << r.out;
 }
 
 TEST(AalRender, RefusesAnApertureMapOfAnotherDem) {

@@ -31,12 +31,9 @@ inline std::string quoted(const std::filesystem::path& path) {
   return q;
 }
 
-// `arguments` is passed to the shell as written: quote what needs quoting.
-// `environment` ("NAME=value ...") is set for this run only.
-inline ToolResult runTool(const std::string& tool, const std::string& arguments,
-                          const std::string& environment = "") {
-  const std::string command = (environment.empty() ? "" : "env " + environment + " ") +
-                              (binDir() / tool).string() + " " + arguments + " 2>&1";
+// Runs a shell command line, capturing stdout and stderr together.
+inline ToolResult runShell(const std::string& commandLine) {
+  const std::string command = commandLine + " 2>&1";
   FILE* pipe = popen(command.c_str(), "r");
   if (!pipe) throw std::runtime_error("cannot run " + command);
   ToolResult result;
@@ -47,6 +44,15 @@ inline ToolResult runTool(const std::string& tool, const std::string& arguments,
   const int status = pclose(pipe);
   result.exitCode = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
   return result;
+}
+
+// `arguments` is passed to the shell as written: quote what needs quoting.
+// `environment` ("NAME=value ...", or env options such as "-u NAME") is set
+// for this run only.
+inline ToolResult runTool(const std::string& tool, const std::string& arguments,
+                          const std::string& environment = "") {
+  return runShell((environment.empty() ? "" : "env " + environment + " ") +
+                  (binDir() / tool).string() + " " + arguments);
 }
 
 // A fresh empty folder under the system temp folder, removed by the destructor.
