@@ -59,13 +59,21 @@ class TerrainSurface {
     return glm::normalize(glm::dvec3(-dx / (2 * cellX_), -dy / (2 * cellY_), 1.0));
   }
 
-  // First hit of origin + s * dir for s in (sStart, sEnd], by marching in
-  // steps of half a cell (horizontally and vertically) and bisecting the
-  // last step. Leaving the DEM's box or rising above its top escapes.
+  // First crossing of the surface by origin + s * dir for s in (sStart,
+  // sEnd], by marching in steps of half a cell (horizontally and vertically)
+  // and bisecting the last step. A ray that starts under the surface (one
+  // entering the DEM's box through a side, below the edge) hits where it
+  // comes up through it, as the GPU's two-sided triangles would show.
+  // Leaving the DEM's box or rising above its top escapes.
   bool intersect(const glm::dvec3& origin, const glm::dvec3& dir, double sStart, double sEnd,
                  double& sHit) const {
     const double horizontal = std::hypot(dir.x, dir.y);
     const double ds = step_ / std::max({horizontal, std::abs(dir.z), 1e-9});
+    const auto below = [&](double s) {
+      const glm::dvec3 p = origin + s * dir;
+      return p.z < heightAt(p.x, p.y);
+    };
+    const bool startsBelow = below(sStart);
     double sPrev = sStart;
     for (double s = sStart + ds;; s += ds) {
       const bool last = s >= sEnd;
@@ -73,12 +81,11 @@ class TerrainSurface {
       const glm::dvec3 p = origin + s * dir;
       if (!inside(p.x, p.y)) return false;
       if (dir.z >= 0 && p.z > maxHeight_) return false;
-      if (p.z < heightAt(p.x, p.y)) {
+      if (below(s) != startsBelow) {
         double lo = sPrev, hi = s;
         for (int i = 0; i < 20; ++i) {
           const double mid = 0.5 * (lo + hi);
-          const glm::dvec3 q = origin + mid * dir;
-          (q.z < heightAt(q.x, q.y) ? hi : lo) = mid;
+          (below(mid) != startsBelow ? hi : lo) = mid;
         }
         sHit = hi;
         return true;
@@ -94,7 +101,9 @@ class TerrainSurface {
     sIn = 0;
     sOut = 1e300;
     const double lo[3] = {-halfX_ * cellX_, -halfY_ * cellY_, -1e300};
-    const double hi[3] = {halfX_ * cellX_, halfY_ * cellY_, maxHeight_};
+    // The top a hair above the highest texel, so that a ray entering through
+    // it starts above the surface (a flat DEM's surface is its top).
+    const double hi[3] = {halfX_ * cellX_, halfY_ * cellY_, maxHeight_ + 1e-3 * cell()};
     for (int a = 0; a < 3; ++a) {
       if (std::abs(dir[a]) < 1e-300) {
         if (origin[a] < lo[a] || origin[a] > hi[a]) return false;
@@ -239,11 +248,15 @@ ReferenceImage renderReference(const Heightfield& field, const ReferenceSettings
       const glm::dvec3 dir = glm::normalize(glm::dvec3(farPoint) / farPoint.w - eye);
       double sHit;
       double sIn, sOut;
+      const size_t pixel = size_t(y) * s.width + x;
       if (!surface.clipToBox(eye, dir, sIn, sOut) ||
           !surface.intersect(eye, dir, sIn, sOut, sHit)) {
+        if (s.background) {
+          const glm::vec3 up(dir.x, dir.y, std::max(dir.z, 1e-3));
+          image.radiance[pixel] = skyRadiance(*s.background, glm::normalize(up));
+        }
         continue;
       }
-      const size_t pixel = size_t(y) * s.width + x;
       std::mt19937 rng(s.seed * 2654435761u + static_cast<uint32_t>(pixel));
       glm::dvec3 radiance = shader.shade(eye + sHit * dir, rng);
       const double transmittance = std::exp(-double(s.hazeDensityPerM) * sHit);

@@ -22,8 +22,11 @@
 
 #include <glm/vec3.hpp>
 
+#include <optional>
+
 #include "camera.h"
 #include "heightfield.h"
+#include "sky_model.h"
 
 namespace aal {
 
@@ -40,6 +43,9 @@ struct ReferenceSettings {
   int skyRays = 64;             // hemisphere rays per pixel
   bool interreflection = true;  // false: rays that hit the terrain bring no light
   uint32_t seed = 1;
+  // Sky model for the pixels that miss the terrain (as shaders/sky.frag:
+  // below the horizon the horizon's colour); none: they stay black.
+  std::optional<PreethamSky> background;
 };
 
 struct ReferenceImage {
@@ -48,7 +54,8 @@ struct ReferenceImage {
   std::vector<uint8_t> terrain;     // 1 where the pixel's ray hit the terrain
 };
 
-// Renders the terrain pixels (others stay black with terrain = 0). Runs in
+// Renders the terrain pixels; the others get the background sky (or stay
+// black) and terrain = 0. Runs in
 // parallel over rows; `progress` (may be empty) gets the finished fraction.
 // Throws std::invalid_argument on a zero size or ray counts < 1.
 ReferenceImage renderReference(const Heightfield& field, const ReferenceSettings& settings,

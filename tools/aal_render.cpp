@@ -1,4 +1,5 @@
 // aal-render: headless ambient aperture lighting of a DEM into an image.
+#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <map>
@@ -20,6 +21,9 @@
 #include "device.h"
 #include "instance.h"
 #include "lighting_defaults.h"
+#include "mode_comparison.h"
+#include "progress.h"
+#include "reference_renderer.h"
 #include "screenshot.h"
 #include "sky_lighting.h"
 #include "solar_position.h"
@@ -55,7 +59,12 @@ struct Options {
   std::optional<double> obscuranceRadiusM;
   int obscuranceSamples = aal::ObscuranceSettings{}.samples, obscuranceSteps = 1;
   bool noObscurance = false;
+  std::string compare;  // folder for --compare
+  int referenceSunRays = 16, referenceSkyRays = 64;
 };
+
+// The CPU ray tracer's name on --mode (not a GPU shading mode).
+constexpr const char* kReferenceMode = "reference";
 
 // --albedo-value: one grey value or R,G,B, each in [0, 1].
 glm::vec3 parseAlbedoValue(const std::string& text) {
@@ -106,16 +115,82 @@ aal::SkyLighting lightingFor(const Options& o, const aal::Heightfield& field) {
                               o.turbidity);
 }
 
-int run(const Options& o) {
-  const aal::ShadingMode mode = kModes.at(o.mode);
-  const auto [width, height] = aal::parseSize(o.size);
-  if (!aal::isSupportedImageOutput(o.output)) {
-    throw aal::InputError("output " + o.output + " must end in .png or .exr");
+aal::ComparisonOptions comparisonOptions(const Options& o,
+                                         const std::optional<glm::vec3>& albedoValue) {
+  aal::ComparisonOptions c;
+  c.sunRays = o.referenceSunRays;
+  c.skyRays = o.referenceSkyRays;
+  c.albedo = albedoValue.value_or(glm::vec3(aal::kReferenceTerrainAlbedo));
+  return c;
+}
+
+// --mode reference: the CPU ray tracer alone (no Vulkan device needed).
+int renderReferenceImage(const Options& o, const aal::Heightfield& field,
+                         const aal::FrameSettings& settings, uint32_t width, uint32_t height,
+                         const std::optional<glm::vec3>& albedoValue) {
+  const aal::ReferenceSettings r =
+      aal::referenceSettingsFor(settings, width, height, comparisonOptions(o, albedoValue));
+  aal::ProgressBar bar("ray tracing", !o.quiet);
+  const auto start = std::chrono::steady_clock::now();
+  const aal::ReferenceImage image =
+      aal::renderReference(field, r, [&](double f) { bar.update(f); });
+  bar.finish();
+  aal::writeFrame(o.output, aal::referenceFrame(image, settings.exposure));
+  if (!o.quiet) {
+    const double seconds =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    std::fprintf(stderr,
+                 "aal-render: reference (%d sun + %d sky rays per pixel) in %.1f s, wrote %s\n",
+                 r.sunRays, r.skyRays, seconds, o.output.c_str());
   }
-  try {
-    aal::checkOutputWritable(o.output);
-  } catch (const std::exception& e) {
-    throw aal::InputError(e.what());
+  return aal::kExitOk;
+}
+
+// --compare FOLDER: every mode against the reference, a table on stdout.
+int runComparison(const Options& o, const aal::Heightfield& field, const aal::TerrainScene& scene,
+                  aal::TerrainRenderer& renderer, const aal::FrameSettings& settings,
+                  const std::optional<glm::vec3>& albedoValue) {
+  aal::ProgressBar bar("ray tracing the reference", !o.quiet);
+  const aal::Comparison c =
+      aal::compareModes(renderer, scene, field, settings, aal::defaultComparedModes(settings),
+                        comparisonOptions(o, albedoValue), [&](double f) { bar.update(f); });
+  bar.finish();
+  aal::writeComparison(o.compare, c, settings.exposure);
+  std::printf("%-20s %14s %22s\n", "mode", "relative RMSE", "mean relative error");
+  for (const aal::ModeError& e : c.modes) {
+    std::printf("%-20s %13.2f%% %21.2f%%\n", e.mode.c_str(), 100 * e.relativeRmse,
+                100 * e.meanRelativeError);
+  }
+  if (!o.quiet) {
+    std::fprintf(stderr, "aal-render: reference in %.1f s; wrote %s/\n", c.referenceSeconds,
+                 o.compare.c_str());
+  }
+  return aal::kExitOk;
+}
+
+int run(const Options& o) {
+  const bool reference = o.mode == kReferenceMode;
+  const aal::ShadingMode mode = reference ? aal::ShadingMode::Approx : kModes.at(o.mode);
+  const auto [width, height] = aal::parseSize(o.size);
+  if (o.output.empty() == o.compare.empty()) {
+    throw aal::InputError("give -o IMAGE or --compare FOLDER (one of them)");
+  }
+  if ((reference || !o.compare.empty()) && !o.albedo.empty()) {
+    throw aal::InputError(
+        "the reference renderer knows only a constant albedo: use --albedo-value, not --albedo");
+  }
+  if (reference && !o.compare.empty()) {
+    throw aal::InputError("--compare renders the reference itself: leave out --mode reference");
+  }
+  if (!o.output.empty()) {
+    if (!aal::isSupportedImageOutput(o.output)) {
+      throw aal::InputError("output " + o.output + " must end in .png or .exr");
+    }
+    try {
+      aal::checkOutputWritable(o.output);
+    } catch (const std::exception& e) {
+      throw aal::InputError(e.what());
+    }
   }
   if (o.sunAzimuth.has_value() != o.sunElevation.has_value()) {
     throw aal::InputError("give --sun-azimuth and --sun-elevation together");
@@ -136,7 +211,9 @@ int run(const Options& o) {
   // is built, so it never sits in host memory as floats.
   std::string aperturePath = o.aperture;
   aal::ApertureMap inMemory;
-  if (!aperturePath.empty()) {
+  if (reference) {
+    // The ray tracer needs no aperture map.
+  } else if (!aperturePath.empty()) {
     const aal::ApertureMapReader check(aperturePath);
     aal::checkApertureMatchesDem(check.header(), aperturePath, field, o.dem);
   } else {
@@ -177,6 +254,8 @@ int run(const Options& o) {
     settings.exposure = aal::clearDayExposure(o.turbidity);
   }
 
+  if (reference) return renderReferenceImage(o, field, settings, width, height, albedoValue);
+
   aal::Instance instance;
   aal::Device device(instance, o.device);
   if (width > device.properties().limits.maxImageDimension2D ||
@@ -196,6 +275,7 @@ int run(const Options& o) {
   inMemory = {};
   albedo.reset();
   aal::TerrainRenderer renderer(device, width, height);
+  if (!o.compare.empty()) return runComparison(o, field, *scene, renderer, settings, albedoValue);
   const aal::FrameResult frame =
       renderer.render(*scene, settings, aal::wantsLinearOutput(o.output));
   aal::writeFrame(o.output, frame);
@@ -235,8 +315,19 @@ int main(int argc, char** argv) {
   for (const auto& [name, mode] : kModes) modes += (modes.empty() ? "" : ", ") + name;
   app.add_option("dem", o.dem, "input DEM")->required();
   app.add_option("--aperture", o.aperture, "aperture map baked from this DEM by aal-bake");
-  app.add_option("-o,--output", o.output, "output image: .png (display) or .exr (linear HDR)")
-      ->required();
+  app.add_option("-o,--output", o.output, "output image: .png (display) or .exr (linear HDR)");
+  app.add_option("--compare", o.compare,
+                 "instead of -o: render every shading mode and the CPU reference into this "
+                 "folder (images, error maps, errors.csv) and print each mode's error against "
+                 "the reference (relative RMSE of linear radiance over the terrain)");
+  app.add_option("--reference-sun-rays", o.referenceSunRays,
+                 "reference: shadow rays per pixel towards the sun's disk")
+      ->check(CLI::Range(1, 4096))
+      ->capture_default_str();
+  app.add_option("--reference-sky-rays", o.referenceSkyRays,
+                 "reference: cosine-weighted sky rays per pixel (one bounce where they hit)")
+      ->check(CLI::Range(1, 65536))
+      ->capture_default_str();
   app.add_option("--albedo", o.albedo,
                  "surface colour image, e.g. an orthophoto (resampled to the DEM when its size "
                  "differs); default: a palette by height and slope");
@@ -287,8 +378,15 @@ int main(int argc, char** argv) {
   app.add_option("--visibility", o.visibilityKm,
                  "distance haze: visibility in km (default: 20 DEM diagonals, at least 200)")
       ->check(CLI::Range(0.1, 1e6));
-  app.add_option("--mode", o.mode, "shading: " + modes)
-      ->check(CLI::IsMember(kModes))
+  app.add_option("--mode", o.mode,
+                 "shading: " + modes + ", or " + kReferenceMode +
+                     " (CPU ray tracer: sun-disk shadow rays, sky rays with one bounce; constant "
+                     "albedo; slow, for measuring the others)")
+      ->check(CLI::IsMember([] {
+        std::vector<std::string> names{kReferenceMode};
+        for (const auto& entry : kModes) names.push_back(entry.first);
+        return names;
+      }()))
       ->capture_default_str();
   app.add_option("--cell-size", o.cellSize, "texel spacing in metres (as given to aal-bake)")
       ->check(CLI::PositiveNumber);

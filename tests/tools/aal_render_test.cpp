@@ -197,5 +197,55 @@ TEST(AalRender, NoVulkanDriverSaysHowToGetOne) {
   EXPECT_NE(r.out.find("mesa-vulkan-drivers"), std::string::npos) << r.out;
 }
 
+TEST(AalRender, ReferenceModeRaytracesWithoutAVulkanDevice) {
+  // The CPU reference needs neither a device nor an aperture map.
+  TempDir dir;
+  const fs::path out = dir.path() / "ref.exr";
+  const auto r =
+      runTool("aal-render",
+              quoted(kDem) + " -o " + quoted(out) +
+                  " --mode reference --size 40x24 --reference-sky-rays 4 "
+                  "--reference-sun-rays 1 --albedo-value 0.3",
+              "AAL_CACHE_DIR=" + quoted(dir.path() / "cache") +
+                  " VK_ICD_FILENAMES=/nonexistent.json VK_DRIVER_FILES=/nonexistent.json");
+  ASSERT_EQ(r.exitCode, 0) << r.out;
+  EXPECT_EQ(specOf(out).width, 40);
+  EXPECT_FALSE(fs::exists(dir.path() / "cache")) << "nothing was baked";
+}
+
+TEST(AalRender, CompareWritesEveryModeItsErrorMapAndATable) {
+  TempDir dir;
+  const fs::path folder = dir.path() / "cmp";
+  const auto r = render(dir, "--compare " + quoted(folder) +
+                                 " --size 48x27 --reference-sky-rays 16 --reference-sun-rays 4");
+  ASSERT_EQ(r.exitCode, 0) << r.out;
+  for (const char* name :
+       {"reference.exr", "reference.png", "approx.png", "approx-error.png", "exact.png",
+        "approx-without-w.png", "baseline-lambert.png", "baseline-ao-error.png", "errors.csv"}) {
+    EXPECT_TRUE(fs::exists(folder / name)) << name;
+  }
+  EXPECT_NE(r.out.find("relative RMSE"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("baseline-ao"), std::string::npos) << r.out;
+}
+
+TEST(AalRender, ReferenceAndCompareRefuseWhatTheyCannotDo) {
+  TempDir dir;
+  const fs::path albedo = dir.path() / "albedo.png";
+  ASSERT_EQ(test::runShell("oiiotool --create 8x8 3 -o " + quoted(albedo)).exitCode, 0);
+  const std::string out = " -o " + quoted(dir.path() / "x.png");
+  const std::vector<std::pair<std::string, std::string>> cases = {
+      {out + " --mode reference --albedo " + quoted(albedo), "constant albedo"},
+      {"--compare " + quoted(dir.path() / "c") + " --albedo " + quoted(albedo), "constant albedo"},
+      {"--compare " + quoted(dir.path() / "c") + " --mode reference", "leave out --mode reference"},
+      {out + " --compare " + quoted(dir.path() / "c"), "one of them"},
+      {"--size 8x8", "one of them"},
+  };
+  for (const auto& [args, message] : cases) {
+    const auto r = render(dir, args);
+    EXPECT_EQ(r.exitCode, 2) << args << "\n" << r.out;
+    EXPECT_NE(r.out.find(message), std::string::npos) << args << "\n" << r.out;
+  }
+}
+
 }  // namespace
 }  // namespace aal

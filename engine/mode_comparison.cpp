@@ -1,0 +1,163 @@
+#include "mode_comparison.h"
+
+#include <chrono>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <stdexcept>
+
+#include "atomic_file.h"
+#include "screenshot.h"
+#include "tone_map.h"
+
+namespace aal {
+
+namespace {
+
+float luminance(const glm::vec3& c) {
+  return 0.2126f * c.r + 0.7152f * c.g + 0.0722f * c.b;
+}
+
+std::vector<glm::vec3> linearRgb(const FrameResult& frame) {
+  std::vector<glm::vec3> rgb(size_t(frame.width) * frame.height);
+  for (size_t i = 0; i < rgb.size(); ++i) {
+    rgb[i] = {frame.linear[4 * i], frame.linear[4 * i + 1], frame.linear[4 * i + 2]};
+  }
+  return rgb;
+}
+
+FrameResult imageFrame(uint32_t width, uint32_t height) {
+  FrameResult f;
+  f.width = width;
+  f.height = height;
+  f.display.assign(size_t(width) * height * 4, 0);
+  f.linear.assign(size_t(width) * height * 4, 0.0f);
+  return f;
+}
+
+}  // namespace
+
+std::vector<ComparedMode> defaultComparedModes(const FrameSettings& settings) {
+  const bool w = settings.obscurance.enabled;
+  std::vector<ComparedMode> modes = {{"approx", ShadingMode::Approx, w},
+                                     {"exact", ShadingMode::Exact, w}};
+  if (w) modes.push_back({"approx-without-w", ShadingMode::Approx, false});
+  modes.push_back({"baseline-lambert", ShadingMode::BaselineLambert, false});
+  modes.push_back({"baseline-ao", ShadingMode::BaselineAo, false});
+  return modes;
+}
+
+ReferenceSettings referenceSettingsFor(const FrameSettings& settings, uint32_t width,
+                                       uint32_t height, const ComparisonOptions& options) {
+  ReferenceSettings r;
+  r.camera = settings.camera;
+  r.width = width;
+  r.height = height;
+  r.sunDirection = settings.sunDirection;
+  r.sunRadiusRad = settings.sunRadiusRad;
+  r.sunIrradiance = settings.sunIrradiance;
+  r.skyRadiance = settings.skyRadiance;
+  r.hazeDensityPerM = settings.hazeDensityPerM;
+  r.albedo = options.albedo;
+  r.sunRays = options.sunRays;
+  r.skyRays = options.skyRays;
+  r.interreflection = options.interreflection;
+  r.background = settings.sky;
+  return r;
+}
+
+FrameResult referenceFrame(const ReferenceImage& image, float exposure) {
+  FrameResult frame = imageFrame(image.width, image.height);
+  for (size_t i = 0; i < image.radiance.size(); ++i) {
+    const glm::vec3 l = image.radiance[i];
+    const glm::vec3 d = toneMap(l, exposure);
+    for (int k = 0; k < 3; ++k) {
+      frame.linear[4 * i + k] = l[k];
+      frame.display[4 * i + k] = static_cast<uint8_t>(std::lround(255.0f * d[k]));
+    }
+    frame.linear[4 * i + 3] = 1.0f;
+    frame.display[4 * i + 3] = 255;
+  }
+  return frame;
+}
+
+Comparison compareModes(TerrainRenderer& renderer, const TerrainScene& scene,
+                        const Heightfield& field, const FrameSettings& settings,
+                        const std::vector<ComparedMode>& modes, const ComparisonOptions& options,
+                        const std::function<void(double)>& progress) {
+  Comparison c;
+  const auto start = std::chrono::steady_clock::now();
+  c.reference = renderReference(
+      field, referenceSettingsFor(settings, renderer.width(), renderer.height(), options),
+      progress);
+  c.referenceSeconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  c.mask = interiorMask(c.reference.terrain, c.reference.width, c.reference.height);
+
+  for (const ComparedMode& m : modes) {
+    FrameSettings s = settings;
+    s.mode = m.mode;
+    s.obscurance.enabled = m.obscurance;
+    s.albedoValue = options.albedo;
+    ModeError e;
+    e.mode = m.name;
+    e.frame = renderer.render(scene, s, true);
+    const std::vector<glm::vec3> gpu = linearRgb(e.frame);
+    e.relativeRmse = relativeRmse(gpu, c.reference.radiance, c.mask);
+    double sum = 0;
+    size_t count = 0;
+    for (size_t i = 0; i < gpu.size(); ++i) {
+      const float y = luminance(c.reference.radiance[i]);
+      if (!c.mask[i] || y <= 0.0f) continue;
+      sum += std::abs(luminance(gpu[i]) - y) / y;
+      ++count;
+    }
+    e.meanRelativeError = count > 0 ? sum / count : 0.0;
+    c.modes.push_back(std::move(e));
+  }
+  return c;
+}
+
+void writeComparison(const std::string& folder, const Comparison& c, float exposure) {
+  std::filesystem::create_directories(folder);
+  const auto path = [&](const std::string& name) {
+    return (std::filesystem::path(folder) / name).string();
+  };
+  const uint32_t w = c.reference.width, h = c.reference.height;
+
+  const FrameResult reference = referenceFrame(c.reference, exposure);
+  writeFrame(path("reference.exr"), reference);
+  writeFrame(path("reference.png"), reference);
+
+  std::string csv = "mode,relative_rmse,mean_relative_error\n";
+  for (const ModeError& e : c.modes) {
+    writeFrame(path(e.mode + ".png"), e.frame);
+    FrameResult error = imageFrame(w, h);
+    for (size_t i = 0; i < c.reference.radiance.size(); ++i) {
+      uint8_t* px = &error.display[4 * i];
+      px[3] = 255;
+      if (!c.reference.terrain[i]) {  // sky: blue, so the terrain's outline shows
+        px[2] = 96;
+        continue;
+      }
+      const float y = luminance(c.reference.radiance[i]);
+      const glm::vec3 g{e.frame.linear[4 * i], e.frame.linear[4 * i + 1],
+                        e.frame.linear[4 * i + 2]};
+      const float relative = y > 0.0f ? std::abs(luminance(g) - y) / y : 0.0f;
+      const auto v = static_cast<uint8_t>(std::lround(255.0f * std::min(1.0f, relative / 0.5f)));
+      px[0] = px[1] = px[2] = v;
+    }
+    writeFrame(path(e.mode + "-error.png"), error);
+    csv += e.mode + "," + std::to_string(e.relativeRmse) + "," +
+           std::to_string(e.meanRelativeError) + "\n";
+  }
+  AtomicOutput out(path("errors.csv"));
+  {
+    std::ofstream file(out.temporaryPath());
+    file << csv;
+    if (!file) throw std::runtime_error("cannot write " + path("errors.csv"));
+  }
+  out.commit();
+}
+
+}  // namespace aal

@@ -1,0 +1,79 @@
+// Every shading mode against the CPU reference (DESIGN §9): the same camera,
+// sun and sky rendered by the GPU in each mode and by the reference ray
+// tracer, with the relative RMSE of linear radiance over the terrain and
+// error maps as images.
+#pragma once
+
+#include <functional>
+#include <string>
+#include <vector>
+
+#include <glm/vec3.hpp>
+
+#include "reference_renderer.h"
+#include "terrain_renderer.h"
+
+namespace aal {
+
+class TerrainScene;
+
+// One GPU rendering to compare: a shading mode, with or without the
+// obscurance passes (W).
+struct ComparedMode {
+  std::string name;
+  ShadingMode mode = ShadingMode::Approx;
+  bool obscurance = true;
+};
+
+// approx, exact (with W when the settings enable it), approx without W,
+// and the two no-aperture baselines.
+std::vector<ComparedMode> defaultComparedModes(const FrameSettings& settings);
+
+struct ComparisonOptions {
+  int sunRays = 16;
+  int skyRays = 64;
+  // Ground albedo of both renderers (the GPU gets it as FrameSettings::
+  // albedoValue): the reference knows only a constant.
+  glm::vec3 albedo{0.2f};
+  bool interreflection = true;
+};
+
+// The reference's settings for a GPU frame: same camera, sun, sky, haze,
+// the given size, ray counts and albedo, the sky model as background.
+ReferenceSettings referenceSettingsFor(const FrameSettings& settings, uint32_t width,
+                                       uint32_t height, const ComparisonOptions& options);
+
+// The reference image as a frame: linear radiance and its tone-mapped display
+// (tone_map.h toneMap with `exposure`), for writeFrame().
+FrameResult referenceFrame(const ReferenceImage& image, float exposure);
+
+struct ModeError {
+  std::string mode;
+  double relativeRmse = 0;       // sqrt(sum |gpu - ref|^2 / sum |ref|^2) over the mask
+  double meanRelativeError = 0;  // mean of |Y_gpu - Y_ref| / Y_ref over the mask (luminance)
+  FrameResult frame;             // the GPU's frame, linear included
+};
+
+struct Comparison {
+  ReferenceImage reference;
+  std::vector<uint8_t> mask;  // terrain pixels away from the silhouette
+  std::vector<ModeError> modes;
+  double referenceSeconds = 0;
+};
+
+// Renders the reference and each of `modes` at the renderer's size, both
+// with options.albedo as the ground's albedo. `progress` (may be empty) gets
+// the reference's finished fraction.
+Comparison compareModes(TerrainRenderer& renderer, const TerrainScene& scene,
+                        const Heightfield& field, const FrameSettings& settings,
+                        const std::vector<ComparedMode>& modes, const ComparisonOptions& options,
+                        const std::function<void(double)>& progress = {});
+
+// Writes into `folder` (created if missing): reference.exr (linear) and
+// reference.png (tone-mapped with `exposure`), NAME.png and NAME-error.png
+// (per-pixel |Y_gpu - Y_ref| / Y_ref, black 0 to white >= 50 %, sky blue) for
+// each mode, and errors.csv (name, relative RMSE, mean relative error).
+// Files go through temporary files renamed into place.
+void writeComparison(const std::string& folder, const Comparison& comparison, float exposure);
+
+}  // namespace aal
