@@ -45,11 +45,15 @@ float capIntersectionApprox(float r0Rad, float r1Rad, float dRad) {
   return smoothstep(0.0, 1.0, 1.0 - overlap) * (twoPi - twoPi * cos(smaller));
 }
 
-// normalize(B + L), falling back to B when they cancel (seed 002, Lambert).
-vec3 lambertCentroid(vec3 bentNormal, vec3 lightDir) {
-  vec3 s = bentNormal + lightDir;
-  float len = length(s);
-  return len > 1e-6 ? s / len : bentNormal;
+// Centroid of the visible part of the light's cap: twin of
+// visibleLightCentroid in terrain/caps.h (see there).
+vec3 visibleLightCentroid(vec3 bentNormal, vec3 lightDir, float dRad, float lightRadiusRad,
+                          float visibleFraction) {
+  float shift = min(dRad, (1.0 - clamp(visibleFraction, 0.0, 1.0)) * lightRadiusRad);
+  vec3 across = bentNormal - lightDir * dot(bentNormal, lightDir);
+  float len = length(across);
+  if (shift <= 0.0 || len < 1e-7) return lightDir;
+  return lightDir * cos(shift) + across / len * sin(shift);
 }
 
 #endif

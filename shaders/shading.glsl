@@ -45,7 +45,8 @@ ShadingTerms shadingTerms(ShadingInputs s, int mode) {
   float isect = mode == AAL_MODE_EXACT ? capIntersectionExact(s.apertureRad, s.sunRadiusRad, d)
                                        : capIntersectionApprox(s.apertureRad, s.sunRadiusRad, d);
   t.sunFraction = sunArea > 0.0 ? clamp(isect / sunArea, 0.0, 1.0) : 0.0;
-  vec3 toCentroid = lambertCentroid(s.bentNormal, s.sunDirection);
+  vec3 toCentroid =
+      visibleLightCentroid(s.bentNormal, s.sunDirection, d, s.sunRadiusRad, t.sunFraction);
   t.direct = diffuse * s.sunIrradiance * t.sunFraction * max(0.0, dot(s.normal, toCentroid));
   float apertureArea = capArea(s.apertureRad);
   float skyShare = apertureArea > 0.0 ? 1.0 - min(1.0, isect / apertureArea) : 0.0;

@@ -70,10 +70,14 @@ float capIntersectionApprox(float r0Rad, float r1Rad, float dRad) {
   return smoothstep01(1.0f - overlap) * (kTwoPi - kTwoPi * std::cos(smaller));
 }
 
-glm::vec3 lambertCentroid(const glm::vec3& bentNormal, const glm::vec3& lightDir) {
-  const glm::vec3 sum = bentNormal + lightDir;
-  const float len = glm::length(sum);
-  return len > 1e-6f ? sum / len : bentNormal;
+glm::vec3 visibleLightCentroid(const glm::vec3& bentNormal, const glm::vec3& lightDir, float dRad,
+                               float lightRadiusRad, float visibleFraction) {
+  const float shift =
+      std::min(dRad, (1.0f - std::clamp(visibleFraction, 0.0f, 1.0f)) * lightRadiusRad);
+  const glm::vec3 across = bentNormal - lightDir * glm::dot(bentNormal, lightDir);
+  const float length = glm::length(across);
+  if (shift <= 0.0f || length < 1e-7f) return lightDir;  // centred, or nothing to lean to
+  return lightDir * std::cos(shift) + across / length * std::sin(shift);
 }
 
 }  // namespace aal

@@ -43,7 +43,7 @@ ShadingTerms shadingTerms(const ShadingInputs& in, ShadingMode mode) {
     return t;
   }
   // Sun: the fraction of its disk seen through the aperture, with the
-  // Lambert term at the intersection's centroid (seed 002).
+  // Lambert term at the centroid of the visible part (caps.h).
   // Angle between the cap centres as atan2(|B x L|, B.L): acos loses
   // precision at the sun's scale (and GPU acos approximations more so).
   const float d = std::atan2(glm::length(glm::cross(in.bentNormal, in.sunDirection)),
@@ -54,7 +54,8 @@ ShadingTerms shadingTerms(const ShadingInputs& in, ShadingMode mode) {
           ? static_cast<float>(capIntersectionExact(in.apertureRad, in.sunRadiusRad, d))
           : capIntersectionApprox(in.apertureRad, in.sunRadiusRad, d);
   t.sunFraction = sunArea > 0 ? std::clamp(isect / sunArea, 0.0f, 1.0f) : 0.0f;
-  const glm::vec3 centroid = lambertCentroid(in.bentNormal, in.sunDirection);
+  const glm::vec3 centroid =
+      visibleLightCentroid(in.bentNormal, in.sunDirection, d, in.sunRadiusRad, t.sunFraction);
   t.direct =
       diffuse * in.sunIrradiance * t.sunFraction * std::max(0.0f, glm::dot(in.normal, centroid));
   // Sky: a uniform cap of radius r_a centred beta from N gives pi sin^2(r_a)

@@ -42,8 +42,10 @@ std::vector<CapQuery> makeQueries() {
   std::mt19937_64 rng(2024);
   std::uniform_real_distribution<float> angle(0.0f, float(kPi));
   auto add = [&](float r0, float r1, float d) {
+    // w: the light's visible fraction for visibleLightCentroid (r1 is the light).
+    const float fraction = float(queries.size() % 5) / 4.0f;
     queries.push_back(
-        {{r0, r1, d, 0}, glm::vec4(randomUnit(rng), 0), glm::vec4(randomUnit(rng), 0)});
+        {{r0, r1, d, fraction}, glm::vec4(randomUnit(rng), 0), glm::vec4(randomUnit(rng), 0)});
   };
   for (int i = 0; i < 4000; ++i) add(angle(rng), angle(rng), angle(rng));
   // Sun-sized caps against apertures of every size: the renderer's case.
@@ -104,8 +106,8 @@ TEST_F(CapsParity, GlslMatchesCpp) {
     const float approx = capIntersectionApprox(q.x, q.y, q.z);
     EXPECT_NEAR(a.areas.z, approx, 1e-5 * 4 * kPi)
         << "approx r0=" << q.x << " r1=" << q.y << " d=" << q.z;
-    const glm::vec3 c =
-        lambertCentroid(glm::vec3(queries[i].bentNormal), glm::vec3(queries[i].lightDir));
+    const glm::vec3 c = visibleLightCentroid(glm::vec3(queries[i].bentNormal),
+                                             glm::vec3(queries[i].lightDir), q.z, q.y, q.w);
     EXPECT_LT(glm::length(glm::vec3(a.centroid) - c), 1e-5f) << i;
     worstExact = std::max(worstExact, std::abs(a.areas.y - exact));
     worstApprox = std::max(worstApprox, double(std::abs(a.areas.z - approx)));

@@ -236,18 +236,32 @@ TEST(CapIntersectionApprox, ExactInTheTrivialCases) {
   EXPECT_NEAR(capIntersectionApprox(0.3f, 1.0f, 0.5f), capArea(0.3), 1e-5);  // nested
 }
 
-TEST(LambertCentroid, IsTheNormalizedBisector) {
-  const glm::vec3 b(0, 0, 1), l(1, 0, 0);
-  const glm::vec3 c = lambertCentroid(b, l);
-  EXPECT_NEAR(glm::length(c), 1.0f, 1e-6f);
-  EXPECT_NEAR(glm::dot(c, b), glm::dot(c, l), 1e-6f);
-  EXPECT_NEAR(c.x, std::sqrt(0.5f), 1e-6f);
-  EXPECT_EQ(lambertCentroid(b, b), b);
+TEST(VisibleLightCentroid, IsTheLightItselfWhenAllOfItIsVisible) {
+  const glm::vec3 b(0, 0, 1), l(std::sqrt(0.5f), 0, std::sqrt(0.5f));
+  EXPECT_EQ(visibleLightCentroid(b, l, 0.785f, 0.00465f, 1.0f), l);
 }
 
-TEST(LambertCentroid, FallsBackToTheBentNormalForOppositeDirections) {
-  const glm::vec3 b(0, 0, 1);
-  EXPECT_EQ(lambertCentroid(b, -b), b);
+TEST(VisibleLightCentroid, LeansTowardsTheBentNormalAsTheApertureCutsTheLight) {
+  const glm::vec3 b(0, 0, 1), l(1, 0, 0);  // 90 degrees apart
+  const float r = 0.1f;
+  float previous = 0;
+  for (float f : {0.75f, 0.5f, 0.25f, 0.0f}) {
+    const glm::vec3 c = visibleLightCentroid(b, l, 1.5708f, r, f);
+    EXPECT_NEAR(glm::length(c), 1.0f, 1e-6f);
+    EXPECT_NEAR(c.y, 0.0f, 1e-7f);  // on the great circle through B and L
+    const float shift = std::atan2(c.z, c.x);
+    EXPECT_NEAR(shift, (1 - f) * r, 1e-6f) << f;
+    EXPECT_GT(shift, previous);
+    previous = shift;
+  }
+}
+
+TEST(VisibleLightCentroid, NeverPassesTheBentNormal) {
+  // A light larger than its distance to B: the shift stops at B.
+  const glm::vec3 b(0, 0, 1), l(std::sin(0.05f), 0, std::cos(0.05f));
+  const glm::vec3 c = visibleLightCentroid(b, l, 0.05f, 0.5f, 0.0f);
+  EXPECT_NEAR(glm::dot(c, b), 1.0f, 1e-6f);
+  EXPECT_EQ(visibleLightCentroid(b, b, 0.0f, 0.5f, 0.3f), b);  // nothing to lean towards
 }
 
 }  // namespace
