@@ -4,7 +4,9 @@
 // (issue 5): approx within 15% of baseline-lambert.
 #include <benchmark/benchmark.h>
 
+#include <algorithm>
 #include <cstdlib>
+#include <map>
 #include <memory>
 #include <optional>
 
@@ -15,6 +17,7 @@
 #include "device.h"
 #include "instance.h"
 #include "sky_lighting.h"
+#include "synthetic.h"
 #include "terrain_renderer.h"
 #include "terrain_scene.h"
 
@@ -102,6 +105,80 @@ void BM_RenderObscurance(benchmark::State& state) {
 BENCHMARK(BM_RenderObscurance)
     ->ArgsProduct({{0, 8, 16, 32}, {1}})
     ->Args({16, 0})
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime();
+
+// Issue 7: the quadtree LOD flying over synthetic fBm DEMs of 1024^2 to
+// 12288^2 texels (30 m cells; made in memory, never stored), 1280x720, the
+// approx frame without the obscurance passes, the default 2 M triangle
+// budget. The scene has an open sky for apertures (the map's content does
+// not change the frame time) and nothing is baked. The camera flies the same
+// world path over every DEM: 24 km diagonally through the centre, 300 m above
+// the ground, looking 3 km ahead; each iteration renders the next of 16
+// points on it. Target: the largest DEM within 1.5x of the smallest. On a
+// shared machine compare a small and a big DEM in one run, alternated:
+//   bench_render --benchmark_filter='LodFlight/(1024|8192)/'
+//     --benchmark_repetitions=5 --benchmark_enable_random_interleaving=true
+// (16384^2 does not fit lavapipe's 2 GiB heap with its RGBA16F aperture
+// texture, and 32768^2 needs the tiling of issue 7's other half.)
+struct LodFixture {
+  aal::Heightfield field;
+  std::unique_ptr<aal::TerrainScene> scene;
+};
+
+aal::Device& benchDevice() {
+  return fixture().device;
+}
+
+LodFixture& lodFixture(int size) {
+  static std::map<int, LodFixture> fixtures;
+  auto it = fixtures.find(size);
+  if (it != fixtures.end()) return it->second;
+  // One big DEM at a time (lavapipe's heap is 2 GiB); the small ones stay, so
+  // --benchmark_enable_random_interleaving can alternate a small and a big one.
+  std::erase_if(fixtures, [](const auto& f) { return f.first > 4096; });
+  LodFixture& f = fixtures[size];
+  aal::SyntheticTerrainOptions o;
+  o.width = o.height = size;
+  f.field = aal::makeSyntheticTerrain(o);
+  f.scene = std::make_unique<aal::TerrainScene>(benchDevice(), f.field, nullptr, 2'000'000);
+  return f;
+}
+
+void BM_RenderLodFlight(benchmark::State& state) {
+  Fixture& base = fixture();
+  LodFixture& f = lodFixture(static_cast<int>(state.range(0)));
+  aal::FrameSettings s = base.settings;
+  s.mode = aal::ShadingMode::Approx;
+  s.obscurance.enabled = false;
+  s.camera.verticalFovDeg = 40;
+  const auto groundAt = [&](double x, double y) {
+    const int col =
+        std::clamp(int(x / f.field.cellSizeXM + 0.5 * (f.field.width - 1)), 0, f.field.width - 1);
+    const int row =
+        std::clamp(int(0.5 * (f.field.height - 1) - y / f.field.cellSizeYM), 0, f.field.height - 1);
+    return double(f.field.at(col, row));
+  };
+  double gpuMs = 0, triangles = 0;
+  int point = 0;
+  for (auto _ : state) {
+    const double t = -12000.0 + 24000.0 * (point++ % 16) / 15.0;
+    const glm::dvec3 position(t, t, groundAt(t, t) + 300.0);
+    s.camera.position = position;
+    s.camera.lookAt = {t + 2121.0, t + 2121.0, groundAt(t + 2121.0, t + 2121.0)};
+    const aal::FrameResult frame = base.renderer->render(*f.scene, s, false);
+    for (const auto& pass : frame.passMilliseconds) gpuMs += pass.second;
+    triangles += static_cast<double>(frame.triangles);
+  }
+  const double n = static_cast<double>(state.iterations());
+  state.counters["gpu_ms"] = gpuMs / n;
+  state.counters["triangles"] = triangles / n;
+}
+BENCHMARK(BM_RenderLodFlight)
+    ->Arg(1024)
+    ->Arg(8192)
+    ->Arg(12288)
+    ->Iterations(16)
     ->Unit(benchmark::kMillisecond)
     ->UseRealTime();
 

@@ -1,5 +1,7 @@
 #include "terrain_renderer.h"
 
+#include <algorithm>
+
 #include <Imath/half.h>
 
 #include <glm/matrix.hpp>
@@ -36,9 +38,12 @@ bool usesTransfer(ShadingMode mode) {
          mode == ShadingMode::DebugObscurance || mode == ShadingMode::DebugTransfer;
 }
 
-// The unit-radius sample offsets of seed 000 eq. 8 as std140 vec4s.
+// The unit-radius sample offsets of seed 000 eq. 8 as std140 vec4s, one set
+// per interleave cell (set k's sample i at k * AAL_OBSCURANCE_MAX_SAMPLES + i;
+// 8 KiB, within lavapipe's 64 KiB uniform buffers).
+static_assert(kObscuranceSampleSets == AAL_OBSCURANCE_SAMPLE_SETS);
 struct ObscuranceSampleBlock {
-  glm::vec4 offsets[AAL_OBSCURANCE_MAX_SAMPLES];
+  glm::vec4 offsets[AAL_OBSCURANCE_SAMPLE_SETS * AAL_OBSCURANCE_MAX_SAMPLES];
 };
 
 VkRenderingAttachmentInfo colorAttachment(const Image& image, bool clear) {
@@ -94,32 +99,32 @@ struct TerrainRenderer::Passes {
                      kDepthFormat,
                      true,
                      false}),
-        terrain(
-            device,
-            {"terrain.vert",
-             "terrain.frag",
-             {VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER,
-              VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER},
-             0,
-             {kHdrFormat},
-             kDepthFormat,
-             true,
-             true,
-             VK_CULL_MODE_NONE}),
+        terrain(device,
+                {"terrain.vert",
+                 "terrain.frag",
+                 {VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER,
+                  VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER,
+                  VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
+                 0,
+                 {kHdrFormat},
+                 kDepthFormat,
+                 true,
+                 true,
+                 VK_CULL_MODE_NONE}),
         // With the obscurance pass the terrain also writes the ambient term
         // and the surface point; without it the frame pays nothing for them.
         terrainGBuffer(
-            device,
-            {"terrain.vert",
-             "terrain_gbuffer.frag",
-             {VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER,
-              VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER},
-             0,
-             {kHdrFormat, kAmbientFormat, kSurfaceFormat},
-             kDepthFormat,
-             true,
-             true,
-             VK_CULL_MODE_NONE}),
+            device, {"terrain.vert",
+                     "terrain_gbuffer.frag",
+                     {VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER,
+                      VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER,
+                      VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
+                     0,
+                     {kHdrFormat, kAmbientFormat, kSurfaceFormat},
+                     kDepthFormat,
+                     true,
+                     true,
+                     VK_CULL_MODE_NONE}),
         obscurance(
             device,
             {"fullscreen.vert",
@@ -197,6 +202,7 @@ bool TerrainRenderer::writeUniforms(const TerrainScene& scene, const FrameSettin
 
   FrameUniforms u;
   u.viewProj = projectionMatrix(s.camera, aspect, range) * viewMatrix(s.camera);
+  viewProj_ = u.viewProj;
   u.invViewProj = glm::inverse(u.viewProj);
   u.cameraPos = glm::vec4(glm::vec3(s.camera.position), 1.0f);
   u.sunDirection = glm::vec4(s.sunDirection, s.sunRadiusRad);
@@ -207,7 +213,7 @@ bool TerrainRenderer::writeUniforms(const TerrainScene& scene, const FrameSettin
   const int albedoSource = s.albedoValue       ? AAL_ALBEDO_CONSTANT
                            : scene.hasAlbedo() ? AAL_ALBEDO_IMAGE
                                                : AAL_ALBEDO_PALETTE;
-  u.grid = {scene.gridColumns(), scene.gridRows(), static_cast<int>(s.mode), albedoSource};
+  u.grid = {kLodPatchQuads, scene.lod().levels(), static_cast<int>(s.mode), albedoSource};
   u.display = {s.exposure, isDebug(s.mode) ? 1.0f : 0.0f, 0.0f, 0.0f};
   u.albedoValue = glm::vec4(s.albedoValue.value_or(glm::vec3(0.0f)), 0.0f);
   const ObscuranceSettings& o = s.obscurance;
@@ -220,8 +226,13 @@ bool TerrainRenderer::writeUniforms(const TerrainScene& scene, const FrameSettin
     u.obscurance = {radiusM, float(o.samples), float(o.steps), 0.0f};
     u.obscurancePass = {1, o.interleaved ? 1 : 0, o.halfResolution ? 2 : 1, 0};
     ObscuranceSampleBlock block{};
-    const std::vector<glm::vec3>& offsets = obscuranceSampleOffsets(o.samples);
-    for (size_t i = 0; i < offsets.size(); ++i) block.offsets[i] = glm::vec4(offsets[i], 0.0f);
+    for (int k = 0; k < kObscuranceSampleSets; ++k) {
+      const std::vector<glm::vec3>& offsets = obscuranceCellSampleOffsets(o.samples, k);
+      for (size_t i = 0; i < offsets.size(); ++i) {
+        block.offsets[static_cast<size_t>(k) * AAL_OBSCURANCE_MAX_SAMPLES + i] =
+            glm::vec4(offsets[i], 0.0f);
+      }
+    }
     samples_.write(&block, sizeof block);
   }
   u.sky = s.sky;
@@ -229,9 +240,46 @@ bool TerrainRenderer::writeUniforms(const TerrainScene& scene, const FrameSettin
   return obscurance;
 }
 
+void TerrainRenderer::selectPatches(const TerrainScene& scene, const FrameSettings& s) {
+  LodFrame frame;
+  frame.cameraM = s.camera.position;
+  frame.viewProj = viewProj_;
+  frame.viewportHeightPx = height_;
+  frame.verticalFovDeg = s.camera.verticalFovDeg;
+  frame.triangleBudget = scene.triangleBudget();
+  frame.budgetScaleM = scene.lodBudgetScaleM();
+  frame.settings = s.lod;
+  selection_ = selectLodForFrame(scene.lod(), frame);
+  // At least one instance, so the buffer exists when nothing is in view.
+  const size_t bytes = std::max<size_t>(selection_.patches.size(), 1) * sizeof(LodPatch);
+  if (patches_.size() < bytes) {
+    // The previous frame's submission has finished (see record()): the old
+    // buffer may go. Grow by half again to avoid a new one every frame.
+    patches_ = Buffer(device_, bytes + bytes / 2, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
+                      MemoryIntent::Upload);
+  }
+  if (!selection_.patches.empty()) {
+    patches_.write(selection_.patches.data(), selection_.patches.size() * sizeof(LodPatch));
+  }
+}
+
+void TerrainRenderer::drawPatches(VkCommandBuffer cmd) const {
+  if (selection_.wholeCount > 0)
+    vkCmdDrawIndexed(cmd, kLodPatchIndices, selection_.wholeCount, 0, 0, 0);
+  uint32_t first = selection_.wholeCount;
+  for (uint32_t q = 0; q < 4; ++q) {
+    const uint32_t count = selection_.quadrantCount[q];
+    if (count > 0) {
+      vkCmdDrawIndexed(cmd, kLodQuadrantIndices, count, q * kLodQuadrantIndices, 0, first);
+    }
+    first += count;
+  }
+}
+
 void TerrainRenderer::record(VkCommandBuffer cmd, const TerrainScene& scene,
                              const FrameSettings& s) {
   const bool obscurance = writeUniforms(scene, s);
+  selectPatches(scene, s);
   timer_.reset(cmd);
   transitionImage(cmd, hdr_, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL);
   if (obscurance) {
@@ -267,10 +315,11 @@ void TerrainRenderer::record(VkCommandBuffer cmd, const TerrainScene& scene,
                 .uniformBuffer(0, uniforms_)
                 .sampledImage(1, scene.heights().view(), passes_->linear.handle())
                 .sampledImage(2, scene.aperture().view(), passes_->linear.handle())
-                .sampledImage(3, scene.albedo().view(), passes_->linear.handle()),
+                .sampledImage(3, scene.albedo().view(), passes_->linear.handle())
+                .storageBuffer(4, patches_),
             nullptr);
   vkCmdBindIndexBuffer(cmd, scene.indices().handle(), 0, VK_INDEX_TYPE_UINT32);
-  vkCmdDrawIndexed(cmd, scene.indexCount(), 1, 0, 0, 0);
+  drawPatches(cmd);
   timer_.end(cmd);
   if (obscurance) {
     vkCmdEndRendering(cmd);
@@ -413,7 +462,8 @@ FrameResult TerrainRenderer::render(const TerrainScene& scene, const FrameSettin
     result.linear.assign(halves.begin(), halves.end());
   }
   result.passMilliseconds = timer_.results();
-  result.triangles = scene.indexCount() / 3;
+  result.triangles = selection_.triangles;
+  result.patchesPerLevel = selection_.patchesPerLevel;
   return result;
 }
 

@@ -19,6 +19,7 @@
 #include "graphics_pipeline.h"
 #include "image.h"
 #include "obscurance.h"
+#include "quadtree_lod.h"
 #include "shading.h"
 #include "sky_model.h"
 
@@ -46,6 +47,9 @@ struct FrameSettings {
   ObscuranceSettings obscurance;
   // A constant albedo for every texel, instead of the scene's image or palette.
   std::optional<glm::vec3> albedoValue;
+  // The terrain's quadtree LOD (terrain/quadtree_lod.h); the triangle budget
+  // is the scene's.
+  LodSettings lod;
 };
 
 struct FrameResult {
@@ -53,7 +57,8 @@ struct FrameResult {
   std::vector<uint8_t> display;  // RGBA8, sRGB encoded (debug modes: raw values)
   std::vector<float> linear;     // RGBA32F linear radiance, when asked for
   std::vector<std::pair<std::string, double>> passMilliseconds;
-  size_t triangles = 0;
+  size_t triangles = 0;                   // terrain triangles drawn (LOD patches)
+  std::vector<uint32_t> patchesPerLevel;  // LOD patches drawn per level (0: finest)
 };
 
 class TerrainRenderer {
@@ -78,6 +83,8 @@ class TerrainRenderer {
   const Image& hdrImage() const { return hdr_; }
   uint32_t width() const { return width_; }
   uint32_t height() const { return height_; }
+  // The LOD selection of the last recorded frame (its triangle count).
+  const LodSelection& lodSelection() const { return selection_; }
   // Milliseconds per pass of the last recorded frame, once it has finished.
   std::vector<std::pair<std::string, double>> passMilliseconds() const { return timer_.results(); }
 
@@ -85,6 +92,10 @@ class TerrainRenderer {
   // Writes the frame's uniforms (and the obscurance sample set); returns
   // whether the obscurance pass runs this frame.
   bool writeUniforms(const TerrainScene& scene, const FrameSettings& settings);
+  // Selects the LOD patches for the camera and writes them to patches_.
+  void selectPatches(const TerrainScene& scene, const FrameSettings& settings);
+  // Draws the selected patches: whole nodes, then each quadrant's.
+  void drawPatches(VkCommandBuffer cmd) const;
   // Obscurance/W, the 4x4 filter, then upsampling and composite onto hdr_
   // (DESIGN §6, §8).
   void recordObscurance(VkCommandBuffer cmd, const TerrainScene& scene,
@@ -98,6 +109,9 @@ class TerrainRenderer {
   // shaders/terrain.frag), and the per-pixel O/W.
   Image ambient_, surface_, transfer_, filtered_;
   Buffer uniforms_, samples_;
+  Buffer patches_;  // LodPatch instances of the frame (grows as needed)
+  LodSelection selection_;
+  glm::mat4 viewProj_{1.0f};  // of the last writeUniforms
   std::unique_ptr<Passes> passes_;
   GpuTimer timer_;
 };

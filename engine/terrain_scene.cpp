@@ -1,6 +1,7 @@
 #include "terrain_scene.h"
 
 #include <algorithm>
+#include <stdexcept>
 
 #include <Imath/half.h>
 
@@ -78,11 +79,12 @@ void TerrainScene::build(const Device& device, const Heightfield& field,
     albedoBytes = {128, 128, 128, 255};
   }
 
-  const TerrainGrid grid = makeTerrainGrid(field.width, field.height, triangleBudget);
-  gridColumns_ = grid.columns;
-  gridRows_ = grid.rows;
-  indexCount_ = static_cast<uint32_t>(grid.indices.size());
-  indices_ = Buffer(device, grid.indices.size() * sizeof(uint32_t),
+  if (triangleBudget < 2) throw std::invalid_argument("triangle budget must be at least 2");
+  lod_ = std::make_unique<LodQuadtree>(field);
+  triangleBudget_ = triangleBudget;
+  lodBudgetScaleM_ = lodBudgetRangeScale(*lod_, triangleBudget);
+  const std::vector<uint32_t> patchIndices = makeLodPatchIndices();
+  indices_ = Buffer(device, patchIndices.size() * sizeof(uint32_t),
                     VK_BUFFER_USAGE_INDEX_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT,
                     MemoryIntent::DeviceLocal);
 
@@ -90,7 +92,7 @@ void TerrainScene::build(const Device& device, const Heightfield& field,
   upload.addImage(heights_, sizeof(float), field.z.data());
   upload.addImage(aperture_, 4 * sizeof(uint16_t), apertureRows);
   upload.addImage(albedo_, 4, albedoBytes.data());
-  upload.addBuffer(indices_, grid.indices.data(), grid.indices.size() * sizeof(uint32_t));
+  upload.addBuffer(indices_, patchIndices.data(), patchIndices.size() * sizeof(uint32_t));
   upload.submit();
 
   demInfo_ = {static_cast<float>(field.width), static_cast<float>(field.height),

@@ -1,4 +1,5 @@
-// The GPU side of one DEM: height, aperture and albedo textures and the grid.
+// The GPU side of one DEM: height, aperture and albedo textures, the quadtree
+// LOD (terrain/quadtree_lod.h) and its patch mesh.
 #pragma once
 
 #include <cstddef>
@@ -14,7 +15,7 @@
 #include "buffer.h"
 #include "heightfield.h"
 #include "image.h"
-#include "terrain_grid.h"
+#include "quadtree_lod.h"
 
 namespace aal {
 
@@ -24,8 +25,9 @@ class TerrainScene {
  public:
   // Uploads everything in one batch. The aperture map must belong to the DEM
   // (checkApertureMatchesDem). `albedo` may be null: a palette by height and
-  // slope is used then. Throws VulkanError when the DEM exceeds the device's
-  // image size limit.
+  // slope is used then. `triangleBudget` caps the triangles the LOD draws per
+  // frame (lodBudgetRangeScale; never below the crack-free minimum). Throws
+  // VulkanError when the DEM exceeds the device's image size limit.
   TerrainScene(const Device& device, const Heightfield& field, const ApertureMap& aperture,
                const AlbedoImage* albedo, size_t triangleBudget);
   // The same, streaming the aperture map from its file band by band (it must
@@ -42,10 +44,12 @@ class TerrainScene {
   const Image& aperture() const { return aperture_; }
   const Image& albedo() const { return albedo_; }
   bool hasAlbedo() const { return hasAlbedo_; }
+  // The LOD patch's index buffer (makeLodPatchIndices).
   const Buffer& indices() const { return indices_; }
-  int gridColumns() const { return gridColumns_; }
-  int gridRows() const { return gridRows_; }
-  uint32_t indexCount() const { return indexCount_; }
+  const LodQuadtree& lod() const { return *lod_; }
+  size_t triangleBudget() const { return triangleBudget_; }
+  // lodBudgetRangeScale of the quadtree and the budget (+inf: no limit).
+  double lodBudgetScaleM() const { return lodBudgetScaleM_; }
   // width, height (texels), cell size x, y (metres)
   glm::vec4 demInfo() const { return demInfo_; }
   float minHeight() const { return minHeight_; }
@@ -60,8 +64,9 @@ class TerrainScene {
   Image heights_, aperture_, albedo_;
   Buffer indices_;
   bool hasAlbedo_ = false;
-  int gridColumns_ = 0, gridRows_ = 0;
-  uint32_t indexCount_ = 0;
+  std::unique_ptr<LodQuadtree> lod_;
+  size_t triangleBudget_ = 0;
+  double lodBudgetScaleM_ = 0;
   glm::vec4 demInfo_{0.0f};
   float minHeight_ = 0, maxHeight_ = 0;
 };

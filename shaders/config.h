@@ -27,6 +27,9 @@
 // Containment-test obscurances (terrain/obscurance.h, shaders/obscurance.glsl).
 // Largest sample count n (the sample uniform buffer holds this many).
 #define AAL_OBSCURANCE_MAX_SAMPLES 32
+// Sample sets, one per cell of the 4x4 interleave pattern
+// (kObscuranceSampleSets, terrain/obscurance_samples.h).
+#define AAL_OBSCURANCE_SAMPLE_SETS 16
 // The 4x4 filter skips neighbours whose view distance differs from the
 // centre's by more than this fraction of it (seed 000 §4.2).
 #define AAL_OBSCURANCE_DEPTH_TOLERANCE 0.05
@@ -36,6 +39,13 @@
 #define AAL_ALBEDO_CONSTANT 2
 // Workgroup size of the obscurance parity compute shader.
 #define AAL_OBSCURANCE_PARITY_GROUP_SIZE 64
+
+// Quadtree LOD (terrain/quadtree_lod.h, terrain/lod_patch.h, shaders/lod.glsl):
+// quads across one patch (even, so that its quadrants and the morph's odd and
+// even grid points line up with the next coarser level).
+#define AAL_LOD_PATCH_QUADS 32
+// Workgroup size of the LOD morph parity compute shader.
+#define AAL_LOD_PARITY_GROUP_SIZE 64
 
 // Sun and sky (terrain/sky_model.h, terrain/tone_map.h, shaders/sky.glsl,
 // shaders/tone_map.glsl).

@@ -1,7 +1,7 @@
 #version 460
 // Obscurance pass (DESIGN §6): containment-test O and W of the surface point
-// seen in each pixel, with the pixel's rotation of the sample set (4x4
-// interleaved pattern, seed 000 §4.2).
+// seen in each pixel, with the pixel's sample set of the 4x4 interleaved
+// pattern (seed 000 §4.2; obscuranceCellSampleOffsets).
 #extension GL_GOOGLE_include_directive : require
 
 #include "frame.glsl"
@@ -9,7 +9,9 @@
 #include "palette.glsl"
 
 layout(set = 0, binding = 1, std140) uniform ObscuranceSamples {
-  vec4 offsets[AAL_OBSCURANCE_MAX_SAMPLES];  // xyz: unit-radius (X, Y, Z), seed 000 eq. 8
+  // xyz: unit-radius (X, Y, Z) of seed 000 eq. 8; set k's sample i at
+  // k * AAL_OBSCURANCE_MAX_SAMPLES + i.
+  vec4 offsets[AAL_OBSCURANCE_SAMPLE_SETS * AAL_OBSCURANCE_MAX_SAMPLES];
 }
 samples;
 layout(set = 0, binding = 2) uniform sampler2D heightTexture;
@@ -37,8 +39,8 @@ vec3 obscuranceAlbedo(vec2 texel, float heightM, vec3 normal) {
   return paletteAlbedo(heightM, normal);
 }
 
-vec3 obscuranceSampleOffset(int i) {
-  return samples.offsets[i].xyz;
+vec3 obscuranceSampleOffset(int set, int i) {
+  return samples.offsets[set * AAL_OBSCURANCE_MAX_SAMPLES + i].xyz;
 }
 
 void main() {
@@ -52,8 +54,9 @@ void main() {
     transfer = vec4(1.0, 1.0, 1.0, 0.0);
     return;
   }
-  int index = frame.obscurancePass.y != 0 ? interleavePatternIndex(pixel) : 0;
-  vec4 e = estimateObscurance(texel, frame.dem.zw, int(frame.obscurance.y), frame.obscurance.x,
-                              int(frame.obscurance.z), interleaveRotationRad(index));
+  // One set everywhere: set 0, the unshifted base set.
+  int set = frame.obscurancePass.y != 0 ? interleavePatternIndex(pixel) : 0;
+  vec4 e = estimateObscurance(texel, frame.dem.zw, set, int(frame.obscurance.y), frame.obscurance.x,
+                              int(frame.obscurance.z), 0.0);
   transfer = vec4(frame.grid.z == AAL_MODE_DEBUG_OBSCURANCE ? vec3(e.a) : e.rgb, distanceKm);
 }

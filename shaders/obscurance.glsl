@@ -8,7 +8,10 @@
 //                                           linear RGB albedo at an occluder's
 //                                           projection, given its height and
 //                                           the shaded point's normal
-//   vec3 obscuranceSampleOffset(int i);     unit-radius (X, Y, Z) of sample i
+//   vec3 obscuranceSampleOffset(int set, int i);
+//                                           unit-radius (X, Y, Z) of sample i
+//                                           of interleave cell `set`'s set
+//                                           (obscuranceCellSampleOffsets)
 #ifndef AAL_OBSCURANCE_GLSL
 #define AAL_OBSCURANCE_GLSL
 
@@ -16,7 +19,7 @@
 
 float obscuranceHeight(vec2 texel);
 vec3 obscuranceAlbedo(vec2 texel, float heightM, vec3 normal);
-vec3 obscuranceSampleOffset(int i);
+vec3 obscuranceSampleOffset(int set, int i);
 
 vec3 obscuranceNormal(vec2 texel, vec2 cellSizeM) {
   float dx = obscuranceHeight(texel + vec2(1, 0)) - obscuranceHeight(texel - vec2(1, 0));
@@ -39,12 +42,9 @@ int interleavePatternIndex(ivec2 pixel) {
   return kInterleaveBayer[(pixel.y & 3) * 4 + (pixel.x & 3)];
 }
 
-float interleaveRotationRad(int index) {
-  return float(AAL_TWO_PI) * float(index) / 16.0;
-}
-
-// rgb: W, a: O.
-vec4 estimateObscurance(vec2 texel, vec2 cellSizeM, int samples, float radiusM, int steps,
+// rgb: W, a: O. `set` picks the interleave cell's sample set (its azimuth
+// rotation included: the renderer passes rotationRad = 0).
+vec4 estimateObscurance(vec2 texel, vec2 cellSizeM, int set, int samples, float radiusM, int steps,
                         float rotationRad) {
   float z = obscuranceHeight(texel);
   vec3 n = obscuranceNormal(texel, cellSizeM);
@@ -53,7 +53,7 @@ vec4 estimateObscurance(vec2 texel, vec2 cellSizeM, int samples, float radiusM, 
   float open = 0.0;
   vec3 occludedAlbedo = vec3(0.0);
   for (int i = 0; i < samples; ++i) {
-    vec3 o = obscuranceSampleOffset(i);
+    vec3 o = obscuranceSampleOffset(set, i);
     vec3 ray = radiusM * (o.x * t + o.y * b + o.z * n);
     bool outer = true;
     for (int j = 1; j <= steps && outer; ++j) {

@@ -10,7 +10,7 @@
 layout(local_size_x = AAL_OBSCURANCE_PARITY_GROUP_SIZE) in;
 
 struct Query {
-  vec4 texelRotation;  // xy texel, z rotation (rad), w unused
+  vec4 texelRotation;  // xy texel, z rotation (rad), w sample set (0..15)
 };
 
 layout(set = 0, binding = 0, std430) readonly buffer Queries {
@@ -23,7 +23,7 @@ layout(set = 0, binding = 2, std430) readonly buffer Albedo {
   vec4 albedo[];
 };  // per texel
 layout(set = 0, binding = 3, std430) readonly buffer Offsets {
-  vec4 offsets[];
+  vec4 offsets[];  // set k's sample i at k * samples + i
 };
 layout(set = 0, binding = 4, std430) writeonly buffer Answers {
   vec4 answers[];
@@ -57,13 +57,13 @@ vec3 obscuranceAlbedo(vec2 texel, float heightM, vec3 normal) {
   return albedo[p.y * size.x + p.x].rgb;
 }
 
-vec3 obscuranceSampleOffset(int i) {
-  return offsets[i].xyz;
+vec3 obscuranceSampleOffset(int set, int i) {
+  return offsets[set * samples + i].xyz;
 }
 
 void main() {
   uint i = gl_GlobalInvocationID.x;
   if (i >= count) return;
   vec4 q = queries[i].texelRotation;
-  answers[i] = estimateObscurance(q.xy, cellSizeM, samples, radiusM, steps, q.z);
+  answers[i] = estimateObscurance(q.xy, cellSizeM, int(q.w), samples, radiusM, steps, q.z);
 }

@@ -67,8 +67,10 @@ void obscuranceTangentFrame(glm::vec3 normal, float rotationRad, glm::vec3& tang
                             glm::vec3& bitangent);
 
 // Interleaved sampling (seed 000 §4.2, Keller & Heidrich 2001): pixel (x, y)
-// uses rotation index bayer4x4(x mod 4, y mod 4) in 0..15, i.e. rotation
-// 2π·index/16 around N, so every 4x4 block holds all 16 rotations.
+// uses sample set index bayer4x4(x mod 4, y mod 4) in 0..15
+// (obscuranceCellSampleOffsets), so every 4x4 block holds all 16 sets. Set k
+// is the base set rotated by interleaveRotationRad(k) = 2π·k/16 about N and
+// shifted in elevation and distance (obscurance_samples.h).
 int interleavePatternIndex(int x, int y);
 float interleaveRotationRad(int index);
 
@@ -79,10 +81,11 @@ struct ObscuranceEstimate {
 
 // Seed 000 eq. 9 at the surface point above `texel`: test points
 // p_ij = x + (j/m) R (X_i T + Y_i B + Z_i N), j = 1..m, with (X_i, Y_i, Z_i)
-// the unit-radius `offsets` (obscuranceSampleOffsets); S_i = 1 when every
-// p_ij is outer (p.z >= h(p.xy), exact for a heightfield), and the albedo a of
-// an occluded ray is taken at the projection of its first inner point (seed
-// 000 §4). W is 0 when every ray is occluded (0/0 in the snow limit).
+// the unit-radius `offsets` (obscuranceSampleOffsets, or an interleave cell's
+// obscuranceCellSampleOffsets); S_i = 1 when every p_ij is outer
+// (p.z >= h(p.xy), exact for a heightfield), and the albedo a of an occluded
+// ray is taken at the projection of its first inner point (seed 000 §4). W is 0 when every ray is
+// occluded (0/0 in the snow limit).
 ObscuranceEstimate estimateObscurance(const ObscuranceField& field,
                                       const std::vector<glm::vec3>& offsets, glm::vec2 texel,
                                       float radiusM, int steps, float rotationRad);

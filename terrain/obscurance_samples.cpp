@@ -10,6 +10,8 @@
 #include <stdexcept>
 #include <string>
 
+#include <glm/common.hpp>
+
 namespace aal {
 
 namespace {
@@ -20,6 +22,8 @@ constexpr double kTwoPi = 6.28318530717958647692;
 // minimum distance after ~30).
 constexpr int kCandidatesPerSite = 1024;
 constexpr int kLloydIterations = 40;
+// Candidate (ξy, ξz) shifts tried for each interleave cell (cellShifts).
+constexpr uint32_t kShiftCandidates = 1024;
 
 // Radical inverse in base b of i: the Halton sequence's coordinates.
 double radicalInverse(uint32_t i, uint32_t base) {
@@ -85,6 +89,82 @@ std::vector<glm::vec3> relaxedPoints(int n) {
   return points;
 }
 
+// frac(p + shift) in [0, 1)^3 (the rounding to float must not give 1).
+glm::vec3 toroidalShift(const glm::vec3& p, const glm::dvec3& shift) {
+  glm::dvec3 q = glm::dvec3(p) + shift;
+  q -= glm::floor(q);
+  return glm::min(glm::vec3(q), glm::vec3(std::nextafter(1.0f, 0.0f)));
+}
+
+// The 16 Cranley-Patterson shifts of one set. s_k.x = k/16 keeps the
+// azimuths of cell k those of rotation k. (s_k.y, s_k.z) are picked by
+// best-candidate sampling (Mitchell 1991): for k = 1..15 in turn, of
+// kShiftCandidates Halton (2, 3) shifts, the one whose shifted set lies
+// furthest (minimum distance, ξx periodic) from the sets of cells 0..k-1.
+// The 4x4 filter averages the 16 cells, so what it integrates with is their
+// union of 16n points; this makes that union well spread too. Its minimum
+// distance is 3.3-5.8x that of the rotations alone and 2-3x that with fixed
+// shifts such as a (0,4,3)-net's, whose dyadic shifts map the n = 8 set
+// nearly onto itself (docs/obscurance.md).
+std::vector<glm::dvec3> cellShifts(const std::vector<glm::vec3>& points) {
+  std::vector<glm::dvec3> shifts{glm::dvec3(0.0)};
+  std::vector<glm::dvec3> placed(points.begin(), points.end());
+  std::vector<glm::dvec3> shifted(points.size());
+  for (int k = 1; k < kObscuranceSampleSets; ++k) {
+    const double x = static_cast<double>(k) / kObscuranceSampleSets;
+    double best = -1;
+    glm::dvec3 bestShift(x, 0, 0);
+    for (uint32_t c = 1; c <= kShiftCandidates; ++c) {
+      const glm::dvec3 shift(x, radicalInverse(c, 2), radicalInverse(c, 3));
+      double nearest = std::numeric_limits<double>::max();
+      for (size_t i = 0; i < points.size() && nearest > best; ++i) {
+        shifted[i] = glm::dvec3(toroidalShift(points[i], shift));
+        for (const glm::dvec3& q : placed) {
+          nearest = std::min(nearest, periodicDistance2(shifted[i], q));
+        }
+      }
+      if (nearest > best) best = nearest, bestShift = shift;
+    }
+    shifts.push_back(bestShift);
+    for (const glm::vec3& p : points) placed.emplace_back(toroidalShift(p, bestShift));
+  }
+  return shifts;
+}
+
+struct CellSets {
+  std::vector<glm::vec3> shifts;
+  std::vector<std::vector<glm::vec3>> points, offsets;  // per cell
+};
+
+const CellSets& cellSets(int n) {
+  static std::mutex mutex;
+  static std::map<int, CellSets> cache;
+  const std::vector<glm::vec3>& points = obscuranceUnitCubePoints(n);
+  const std::lock_guard<std::mutex> lock(mutex);
+  auto it = cache.find(n);
+  if (it == cache.end()) {
+    CellSets sets;
+    for (const glm::dvec3& shift : cellShifts(points)) {
+      sets.shifts.emplace_back(shift);
+      std::vector<glm::vec3> cellPoints, cellOffsets;
+      for (const glm::vec3& p : points) {
+        cellPoints.push_back(toroidalShift(p, shift));
+        cellOffsets.push_back(obscuranceOffset(cellPoints.back()));
+      }
+      sets.points.push_back(std::move(cellPoints));
+      sets.offsets.push_back(std::move(cellOffsets));
+    }
+    it = cache.emplace(n, std::move(sets)).first;
+  }
+  return it->second;
+}
+
+void checkCell(int cell) {
+  if (cell < 0 || cell >= kObscuranceSampleSets) {
+    throw std::invalid_argument("obscurance sample set must be 0..15, got " + std::to_string(cell));
+  }
+}
+
 void checkCount(int n) {
   if (!isSupportedObscuranceSampleCount(n)) {
     throw std::invalid_argument("obscurance sample count must be 8, 16 or 32, got " +
@@ -132,6 +212,23 @@ const std::vector<glm::vec3>& obscuranceSampleOffsets(int n) {
   return it->second;
 }
 
+const std::vector<glm::vec3>& obscuranceCellShifts(int n) {
+  checkCount(n);
+  return cellSets(n).shifts;
+}
+
+const std::vector<glm::vec3>& obscuranceCellUnitCubePoints(int n, int cell) {
+  checkCount(n);
+  checkCell(cell);
+  return cellSets(n).points[static_cast<size_t>(cell)];
+}
+
+const std::vector<glm::vec3>& obscuranceCellSampleOffsets(int n, int cell) {
+  checkCount(n);
+  checkCell(cell);
+  return cellSets(n).offsets[static_cast<size_t>(cell)];
+}
+
 double minimumPeriodicDistance(const std::vector<glm::vec3>& points) {
   double best = std::numeric_limits<double>::max();
   for (size_t i = 0; i < points.size(); ++i) {
@@ -157,6 +254,25 @@ double l2StarDiscrepancy(const std::vector<glm::vec3>& points) {
   }
   const double t2 = 1.0 / 27.0 - 0.25 / n * single + pair / (n * n);
   return std::sqrt(std::max(0.0, t2));
+}
+
+double wrapAroundL2Discrepancy(const std::vector<glm::vec3>& points) {
+  // Hickernell 1998, eq. 5.1c: WD² = -(4/3)^d
+  //     + 1/n² Σ_i Σ_j Π_k (3/2 - |x_ik - x_jk| (1 - |x_ik - x_jk|)), d = 3.
+  const double n = static_cast<double>(points.size());
+  double pair = 0;
+  for (const glm::vec3& p : points) {
+    for (const glm::vec3& q : points) {
+      double product = 1;
+      for (int k = 0; k < 3; ++k) {
+        const double d = std::abs(static_cast<double>(p[k]) - q[k]);
+        product *= 1.5 - d * (1 - d);
+      }
+      pair += product;
+    }
+  }
+  const double wd2 = -64.0 / 27.0 + pair / (n * n);
+  return std::sqrt(std::max(0.0, wd2));
 }
 
 }  // namespace aal

@@ -32,11 +32,36 @@ glm::vec3 obscuranceOffset(glm::vec3 xi);
 // obscuranceOffset of every point of obscuranceUnitCubePoints(n).
 const std::vector<glm::vec3>& obscuranceSampleOffsets(int n);
 
+// Interleaved sampling (seed 000 §4.2, Keller & Heidrich 2001) gives each of
+// the 16 cells of the 4x4 pixel pattern its own set: the relaxed points under
+// a Cranley-Patterson rotation (Cranley & Patterson 1976), a toroidal shift
+// s_k of the unit cube, so cell k uses frac(ξ + s_k). s_k.x = k/16 is the
+// azimuth rotation 2πk/16 about N; (s_k.y, s_k.z) also move the elevations
+// and distances, which rotations alone leave shared by all 16 cells
+// (docs/obscurance.md). Cell 0 is the unshifted set.
+constexpr int kObscuranceSampleSets = 16;
+
+// The 16 shifts s_k of the n-point set, s_0 = 0 (see the .cpp for how
+// (s_k.y, s_k.z) are chosen). Throws std::invalid_argument for an
+// unsupported n.
+const std::vector<glm::vec3>& obscuranceCellShifts(int n);
+
+// Cell k's points frac(ξ + s_k) and their offsets (obscuranceOffset); cell 0
+// equals obscuranceUnitCubePoints(n) / obscuranceSampleOffsets(n). Throws
+// std::invalid_argument for an unsupported n or k outside 0..15.
+const std::vector<glm::vec3>& obscuranceCellUnitCubePoints(int n, int cell);
+const std::vector<glm::vec3>& obscuranceCellSampleOffsets(int n, int cell);
+
 // Spread of a point set of the unit cube, for the tests and docs/obscurance.md.
 // Smallest distance between two points, with ξx periodic (the azimuth wraps).
 double minimumPeriodicDistance(const std::vector<glm::vec3>& points);
 // L2 star discrepancy by Warnock's closed form (Warnock 1972); a uniform
 // random set of n points has E[T²] = (2^-3 - 3^-3) / n.
 double l2StarDiscrepancy(const std::vector<glm::vec3>& points);
+// Wrap-around L2 discrepancy (Hickernell 1998): the L2* measure over boxes of
+// the torus, so unchanged by a toroidal shift (every interleave cell's set has
+// the base set's); a uniform random set of n points has
+// E[WD²] = ((3/2)^3 - (4/3)^3) / n.
+double wrapAroundL2Discrepancy(const std::vector<glm::vec3>& points);
 
 }  // namespace aal

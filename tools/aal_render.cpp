@@ -394,7 +394,8 @@ int main(int argc, char** argv) {
       ->check(CLI::PositiveNumber);
   app.add_option("--device", o.device, "Vulkan device index (default: the best one)")
       ->check(CLI::NonNegativeNumber);
-  app.add_option("--triangles", o.triangleBudget, "triangle budget of the terrain grid")
+  app.add_option("--triangles", o.triangleBudget,
+                 "per-frame triangle budget of the terrain's quadtree LOD")
       ->check(CLI::Range(size_t(2), size_t(1) << 28))
       ->capture_default_str();
   app.add_flag("--stats", o.stats, "print per-pass GPU times and the triangle count");

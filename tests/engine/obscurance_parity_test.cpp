@@ -1,5 +1,6 @@
 // estimateObscurance() of shaders/obscurance.glsl agrees with
-// terrain/obscurance.h on the device, on a synthetic heightfield.
+// terrain/obscurance.h on the device, on a synthetic heightfield, with every
+// interleave cell's sample set.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -71,17 +72,23 @@ TEST_F(ObscuranceParity, GlslEstimatorMatchesCppOnATerrain) {
   std::mt19937 rng(23);
   std::uniform_real_distribution<float> col(0.0f, 95.0f), row(0.0f, 79.0f), unit(0.0f, 1.0f);
   size_t compared = 0, flipped = 0, occluded = 0;
+  std::vector<size_t> perSet(kObscuranceSampleSets);
   double worst = 0;
   for (int n : {8, 16, 32}) {
     for (int steps : {1, 2}) {
-      const std::vector<glm::vec3>& offsets = obscuranceSampleOffsets(n);
+      // Every interleave cell's set, set k's sample i at k * n + i.
       std::vector<glm::vec4> offsetData;
-      for (const glm::vec3& v : offsets) offsetData.emplace_back(v, 0.0f);
+      for (int k = 0; k < kObscuranceSampleSets; ++k) {
+        for (const glm::vec3& v : obscuranceCellSampleOffsets(n, k)) offsetData.emplace_back(v, 0);
+      }
+      // Each query with one of the 16 sets; half with rotation 0, as the
+      // renderer uses them, half with a random rotation of the frame.
       std::vector<glm::vec4> queries(2000);
       for (size_t i = 0; i < queries.size(); ++i) {
-        const float rotation =
-            i % 2 ? interleaveRotationRad(static_cast<int>(i % 16)) : 6.2831853f * unit(rng);
-        queries[i] = {col(rng), row(rng), rotation, 0};
+        const float rotation = i % 2 ? 0.0f : 6.2831853f * unit(rng);
+        const int set = static_cast<int>((i / 2) % kObscuranceSampleSets);
+        queries[i] = {col(rng), row(rng), rotation, static_cast<float>(set)};
+        ++perSet[static_cast<size_t>(set)];
       }
       const float radiusM = 60.0f + 140.0f * unit(rng);
       const uint32_t count = static_cast<uint32_t>(queries.size());
@@ -103,7 +110,8 @@ TEST_F(ObscuranceParity, GlslEstimatorMatchesCppOnATerrain) {
       output.read(answers.data(), count * sizeof(glm::vec4));
       for (uint32_t i = 0; i < count; ++i) {
         const ObscuranceEstimate e = estimateObscurance(
-            field, offsets, {queries[i].x, queries[i].y}, radiusM, steps, queries[i].z);
+            field, obscuranceCellSampleOffsets(n, static_cast<int>(queries[i].w)),
+            {queries[i].x, queries[i].y}, radiusM, steps, queries[i].z);
         const double dO = std::abs(answers[i].w - e.obscurance);
         double dW = 0;
         for (int c = 0; c < 3; ++c)
@@ -126,6 +134,7 @@ TEST_F(ObscuranceParity, GlslEstimatorMatchesCppOnATerrain) {
       "differently; otherwise worst |O|,|W| difference %.3g\n",
       compared, occluded, flipped, worst);
   EXPECT_GT(occluded, compared / 4) << "the terrain must occlude many of the points";
+  for (size_t count : perSet) EXPECT_GE(count, compared / 20) << "every set must be compared";
   EXPECT_LT(flipped, compared / 200) << "more than 0.5% of points differ";
 }
 

@@ -131,7 +131,10 @@ TEST_F(Render, JacksboroRendersTerrainAndSky) {
     maxLuma = std::max(maxLuma, luma);
   }
   EXPECT_GT(maxLuma - minLuma, 40);
-  EXPECT_GT(frame.triangles, 100000u);
+  // The quadtree LOD draws what 160x90 pixels need (quads of about a pixel),
+  // within the scene's budget.
+  EXPECT_GT(frame.triangles, 0u);
+  EXPECT_LE(frame.triangles, 200000u);
   // terrain, sky, obscurance, obscurance filter, composite, tone map.
   ASSERT_EQ(frame.passMilliseconds.size(), 6u);
   EXPECT_EQ(frame.passMilliseconds[2].first, "obscurance");

@@ -112,6 +112,84 @@ TEST(ObscuranceSamples, LloydPointsAreBetterSpreadThanRandomAndHalton) {
   }
 }
 
+// Interleaved sampling's 16 sets (obscurance_samples.h): Cranley-Patterson
+// shifts of the base set, each as well spread as the base set, whose union
+// (what the 4x4 filter averages) is far better spread than the union of the
+// 16 azimuth rotations alone.
+TEST(ObscuranceSamples, InterleaveCellSetsAreShiftedBaseSetsWithAWellSpreadUnion) {
+  for (int n : {8, 16, 32}) {
+    const std::vector<glm::vec3>& base = obscuranceUnitCubePoints(n);
+    const std::vector<glm::vec3>& shifts = obscuranceCellShifts(n);
+    ASSERT_EQ(shifts.size(), static_cast<size_t>(kObscuranceSampleSets));
+    EXPECT_EQ(shifts[0], glm::vec3(0.0f));
+    EXPECT_EQ(obscuranceCellUnitCubePoints(n, 0), base);
+    EXPECT_EQ(obscuranceCellSampleOffsets(n, 0), obscuranceSampleOffsets(n));
+    const double spacing = std::cbrt(1.0 / n);
+    const double baseWrapAround = wrapAroundL2Discrepancy(base);
+    std::vector<glm::vec3> cells, rotations;
+    double minDistance = 1, maxDistance = 0, minStar = 1, maxStar = 0, worstWrapAround = 0;
+    for (int k = 0; k < kObscuranceSampleSets; ++k) {
+      const std::vector<glm::vec3>& points = obscuranceCellUnitCubePoints(n, k);
+      ASSERT_EQ(points.size(), base.size());
+      // s_k.x = k/16: cell k's azimuths are those of rotation k.
+      EXPECT_FLOAT_EQ(shifts[static_cast<size_t>(k)].x, static_cast<float>(k) / 16) << k;
+      for (size_t i = 0; i < points.size(); ++i) {
+        for (int c = 0; c < 3; ++c) {
+          EXPECT_GE(points[i][c], 0.0f);
+          EXPECT_LT(points[i][c], 1.0f);
+          const double wrapped = points[i][c] - base[i][c] - shifts[static_cast<size_t>(k)][c];
+          EXPECT_NEAR(wrapped - std::round(wrapped), 0.0, 1e-6) << n << " " << k << " " << i;
+        }
+        EXPECT_EQ(obscuranceCellSampleOffsets(n, k)[i], obscuranceOffset(points[i]));
+        rotations.emplace_back(std::fmod(base[i].x + static_cast<float>(k) / 16, 1.0f), base[i].y,
+                               base[i].z);
+      }
+      cells.insert(cells.end(), points.begin(), points.end());
+      const double distance = minimumPeriodicDistance(points);
+      minDistance = std::min(minDistance, distance);
+      maxDistance = std::max(maxDistance, distance);
+      minStar = std::min(minStar, l2StarDiscrepancy(points));
+      maxStar = std::max(maxStar, l2StarDiscrepancy(points));
+      worstWrapAround =
+          std::max(worstWrapAround, std::abs(wrapAroundL2Discrepancy(points) - baseWrapAround));
+    }
+    const double unionSpacing = std::cbrt(1.0 / (16.0 * n));
+    const double unionDistance = minimumPeriodicDistance(cells);
+    const double rotationDistance = minimumPeriodicDistance(rotations);
+    std::printf(
+        "n=%d cells: min distance %.3f..%.3f (base %.3f), L2* %.3f..%.3f (base %.3f), "
+        "wrap-around L2 %.4f (all cells); union of 16n: min distance %.4f (%.2f of (16n)^-1/3, "
+        "rotations only %.4f), L2* %.4f (rotations %.4f), wrap-around %.4f (rotations %.4f)\n",
+        n, minDistance, maxDistance, minimumPeriodicDistance(base), minStar, maxStar,
+        l2StarDiscrepancy(base), baseWrapAround, unionDistance, unionDistance / unionSpacing,
+        rotationDistance, l2StarDiscrepancy(cells), l2StarDiscrepancy(rotations),
+        wrapAroundL2Discrepancy(cells), wrapAroundL2Discrepancy(rotations));
+    // Each cell keeps the base set's spread: a toroidal shift keeps the
+    // distances on the torus, and the wrap-around discrepancy.
+    EXPECT_GT(minDistance, 0.6 * spacing) << n;
+    EXPECT_LT(worstWrapAround, 1e-5) << n;
+    EXPECT_GT(unionDistance, 0.35 * unionSpacing) << n;
+    EXPECT_GT(unionDistance, 2.0 * rotationDistance) << n;
+    EXPECT_LT(wrapAroundL2Discrepancy(cells), wrapAroundL2Discrepancy(rotations)) << n;
+  }
+}
+
+TEST(ObscuranceSamples, WrapAroundDiscrepancyIsShiftInvariantAndMatchesRandomExpectation) {
+  const std::vector<glm::vec3> points = randomPoints(5, 12);
+  std::vector<glm::vec3> shifted;
+  for (const glm::vec3& p : points) {
+    shifted.emplace_back(std::fmod(p.x + 0.3f, 1.0f), std::fmod(p.y + 0.55f, 1.0f),
+                         std::fmod(p.z + 0.9f, 1.0f));
+  }
+  EXPECT_NEAR(wrapAroundL2Discrepancy(points), wrapAroundL2Discrepancy(shifted), 1e-6);
+  // E[WD²] = ((3/2)^3 - (4/3)^3) / n over uniform random sets.
+  double meanSquare = 0;
+  for (uint32_t seed = 0; seed < 400; ++seed) {
+    meanSquare += std::pow(wrapAroundL2Discrepancy(randomPoints(seed, 16)), 2) / 400;
+  }
+  EXPECT_NEAR(meanSquare, (27.0 / 8 - 64.0 / 27) / 16, 0.05 * (27.0 / 8 - 64.0 / 27) / 16);
+}
+
 TEST(ObscuranceSamples, DiscrepancyOfAKnownSetMatchesBruteForce) {
   // Warnock's formula against the definition: the mean over boxes [0, y) of
   // (fraction inside - volume)^2, by Monte Carlo over y.
@@ -136,6 +214,10 @@ TEST(ObscuranceSamples, DeterministicAndOnlyForSupportedCounts) {
   EXPECT_FALSE(isSupportedObscuranceSampleCount(12));
   EXPECT_THROW(obscuranceUnitCubePoints(12), std::invalid_argument);
   EXPECT_THROW(obscuranceSampleOffsets(0), std::invalid_argument);
+  EXPECT_EQ(obscuranceCellSampleOffsets(16, 5), obscuranceCellSampleOffsets(16, 5));
+  EXPECT_THROW(obscuranceCellSampleOffsets(16, 16), std::invalid_argument);
+  EXPECT_THROW(obscuranceCellUnitCubePoints(16, -1), std::invalid_argument);
+  EXPECT_THROW(obscuranceCellShifts(24), std::invalid_argument);
 }
 
 TEST(ObscuranceSamples, OffsetsAreCosineDirectionsAtDistancesOfDensityMuPrime) {
@@ -163,10 +245,10 @@ TEST(Obscurance, FlatGroundIsOpen) {
   const ObscuranceField field = fieldOf(flat, glm::vec3(0.3f));
   for (int n : {8, 16, 32}) {
     for (int steps : {1, 2}) {
-      for (int k = 0; k < 16; ++k) {
+      for (int k = 0; k < kObscuranceSampleSets; ++k) {
         const ObscuranceEstimate e =
-            estimateObscurance(field, obscuranceSampleOffsets(n), {20.3f, 19.7f}, 80.0f, steps,
-                               interleaveRotationRad(k));
+            estimateObscurance(field, obscuranceCellSampleOffsets(n, k), {20.3f, 19.7f}, 80.0f,
+                               steps, interleaveRotationRad(k));
         EXPECT_EQ(e.obscurance, 1.0f);
         EXPECT_EQ(e.transfer, glm::vec3(1.0f));
       }

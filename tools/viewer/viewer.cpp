@@ -306,7 +306,7 @@ void Viewer::drawUi() {
   model.demName = fs::path(terrain_->path).filename().string();
   model.demWidth = field.width;
   model.demHeight = field.height;
-  model.triangles = terrain_->scene->indexCount() / 3;
+  model.triangles = renderer_->lodSelection().triangles;  // the last frame's LOD
   if (terrain_->bake) model.bakeProgress = terrain_->bake->progress();
   model.message = message_;
   model.frameMs = timing_->smoothedFrameMs;

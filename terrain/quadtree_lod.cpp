@@ -1,0 +1,321 @@
+#include "quadtree_lod.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <stdexcept>
+
+#include <tbb/parallel_for.h>
+#include <glm/common.hpp>
+#include <glm/geometric.hpp>
+
+namespace aal {
+
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+// A finite stand-in for an unbounded range: single precision holds it and
+// its doublings up to level 31 (the shader computes in floats).
+constexpr double kUnboundedRangeM = 1e12;
+
+int ceilDiv(int a, int b) {
+  return (a + b - 1) / b;
+}
+
+size_t patchTriangles(bool whole) {
+  const size_t quads = size_t(kLodPatchQuads) * kLodPatchQuads;
+  return whole ? 2 * quads : quads / 2;
+}
+
+// The six planes of Vulkan's clip volume (-w <= x, y <= w, 0 <= z <= w) as
+// world-space plane equations a x + b y + c z + d >= 0 (Gribb and Hartmann
+// 2001, "Fast Extraction of Viewing Frustum Planes from the World-View-
+// Projection Matrix").
+std::array<glm::dvec4, 6> frustumPlanes(const glm::mat4& m) {
+  const auto row = [&](int i) { return glm::dvec4(m[0][i], m[1][i], m[2][i], m[3][i]); };
+  const glm::dvec4 x = row(0), y = row(1), z = row(2), w = row(3);
+  return {w + x, w - x, w + y, w - y, z, w - z};
+}
+
+bool outsideFrustum(const LodBox& box, const std::array<glm::dvec4, 6>& planes) {
+  for (const glm::dvec4& p : planes) {
+    // The box corner farthest along the plane's normal.
+    const glm::dvec3 corner(p.x >= 0 ? box.max.x : box.min.x, p.y >= 0 ? box.max.y : box.min.y,
+                            p.z >= 0 ? box.max.z : box.min.z);
+    if (p.x * corner.x + p.y * corner.y + p.z * corner.z + p.w < 0) return true;
+  }
+  return false;
+}
+
+bool intersectsSphere(const LodBox& box, glm::dvec3 centre, double radius) {
+  const glm::dvec3 nearest = glm::clamp(centre, box.min, box.max);
+  const glm::dvec3 d = nearest - centre;
+  return glm::dot(d, d) <= radius * radius;
+}
+
+class Selector {
+ public:
+  // Stops adding patches once more than `limit` triangles are selected.
+  Selector(const LodQuadtree& tree, const LodRanges& ranges, glm::dvec3 camera,
+           const glm::mat4* viewProj, size_t limit = std::numeric_limits<size_t>::max())
+      : tree_(tree), ranges_(ranges), camera_(camera), cull_(viewProj != nullptr), limit_(limit) {
+    if (viewProj) planes_ = frustumPlanes(*viewProj);
+    whole_.reserve(256);
+    for (auto& q : quadrants_) q.reserve(256);
+  }
+
+  LodSelection run() {
+    const int root = tree_.levels() - 1;
+    select(root, 0, 0);
+    LodSelection s;
+    s.scaleM = ranges_.scaleM;
+    s.patchesPerLevel.assign(static_cast<size_t>(tree_.levels()), 0);
+    s.wholeCount = static_cast<uint32_t>(whole_.size());
+    s.patches = whole_;
+    s.triangles = whole_.size() * patchTriangles(true);
+    for (size_t q = 0; q < 4; ++q) {
+      s.quadrantCount[q] = static_cast<uint32_t>(quadrants_[q].size());
+      s.patches.insert(s.patches.end(), quadrants_[q].begin(), quadrants_[q].end());
+      s.triangles += quadrants_[q].size() * patchTriangles(false);
+    }
+    for (const LodPatch& p : s.patches) ++s.patchesPerLevel[static_cast<size_t>(p.node.w)];
+    return s;
+  }
+
+ private:
+  LodPatch patch(int level, int i, int j) const {
+    const float size = static_cast<float>(tree_.nodeTexels(level));
+    return {glm::vec4(i * size, j * size, float(1 << level), float(level)),
+            glm::vec4(ranges_.morphM[static_cast<size_t>(level)], 0.0f, 0.0f)};
+  }
+
+  // Strugar 2009, §3.1, LODSelect: true when the node's area is taken care
+  // of (drawn, culled, or off the DEM), false when it is beyond its level's
+  // range and its parent must draw it.
+  bool select(int level, int i, int j) {
+    if (triangles_ > limit_) return true;
+    if (i >= tree_.nodesAcross(level) || j >= tree_.nodesDown(level)) return true;
+    const LodBox box = tree_.nodeBox(level, i, j);
+    const bool root = level == tree_.levels() - 1;
+    if (!root && !intersectsSphere(box, camera_, ranges_.rangeM[size_t(level)])) return false;
+    if (cull_ && outsideFrustum(box, planes_)) return true;
+    if (level == 0 || !intersectsSphere(box, camera_, ranges_.rangeM[size_t(level - 1)])) {
+      whole_.push_back(patch(level, i, j));
+      triangles_ += patchTriangles(true);
+      return true;
+    }
+    for (int q = 0; q < 4; ++q) {
+      const int ci = 2 * i + q % 2, cj = 2 * j + q / 2;
+      if (!select(level - 1, ci, cj)) {
+        quadrants_[size_t(q)].push_back(patch(level, i, j));
+        triangles_ += patchTriangles(false);
+      }
+    }
+    return true;
+  }
+
+  const LodQuadtree& tree_;
+  const LodRanges& ranges_;
+  glm::dvec3 camera_;
+  bool cull_;
+  size_t limit_, triangles_ = 0;
+  std::array<glm::dvec4, 6> planes_{};
+  std::vector<LodPatch> whole_;
+  std::array<std::vector<LodPatch>, 4> quadrants_;
+};
+
+}  // namespace
+
+LodQuadtree::LodQuadtree(const Heightfield& field)
+    : LodQuadtree(
+          field.width, field.height, {field.cellSizeXM, field.cellSizeYM}, [&](int i, int j) {
+            // Every texel of the leaf, its east and south edges included.
+            const int c0 = i * kLodPatchQuads, c1 = std::min(c0 + kLodPatchQuads, field.width - 1);
+            const int r0 = j * kLodPatchQuads, r1 = std::min(r0 + kLodPatchQuads, field.height - 1);
+            float lo = std::numeric_limits<float>::max(), hi = std::numeric_limits<float>::lowest();
+            for (int r = r0; r <= r1; ++r) {
+              const float* row = field.z.data() + field.index(0, r);
+              const auto [mn, mx] = std::minmax_element(row + c0, row + c1 + 1);
+              lo = std::min(lo, *mn);
+              hi = std::max(hi, *mx);
+            }
+            return glm::vec2(lo, hi);
+          }) {}
+
+LodQuadtree::LodQuadtree(int width, int height, glm::dvec2 cellSizeM,
+                         const std::function<glm::vec2(int, int)>& leafHeights)
+    : width_(width), height_(height), cellXM_(cellSizeM.x), cellYM_(cellSizeM.y) {
+  if (width_ < 2 || height_ < 2) throw std::invalid_argument("a DEM needs at least 2x2 texels");
+  const int leavesX = nodesAcross(0), leavesY = nodesDown(0);
+  int levels = 1;
+  while ((1 << (levels - 1)) < std::max(leavesX, leavesY)) ++levels;
+  heights_.resize(static_cast<size_t>(levels));
+  heights_[0].resize(size_t(leavesX) * leavesY);
+  tbb::parallel_for(0, leavesY, [&](int j) {
+    for (int i = 0; i < leavesX; ++i) heights_[0][size_t(j) * leavesX + i] = leafHeights(i, j);
+  });
+  buildInnerNodes();
+}
+
+void LodQuadtree::buildInnerNodes() {
+  const int levels = this->levels();
+  // Inner nodes: the union of their children (which share their edges).
+  for (int level = 1; level < levels; ++level) {
+    const int nx = nodesAcross(level), ny = nodesDown(level);
+    const int cx = nodesAcross(level - 1), cy = nodesDown(level - 1);
+    heights_[size_t(level)].resize(size_t(nx) * ny);
+    for (int j = 0; j < ny; ++j) {
+      for (int i = 0; i < nx; ++i) {
+        glm::vec2 h(std::numeric_limits<float>::max(), std::numeric_limits<float>::lowest());
+        for (int q = 0; q < 4; ++q) {
+          const int ci = 2 * i + q % 2, cj = 2 * j + q / 2;
+          if (ci >= cx || cj >= cy) continue;
+          const glm::vec2 c = heights_[size_t(level - 1)][size_t(cj) * cx + ci];
+          h = {std::min(h.x, c.x), std::max(h.y, c.y)};
+        }
+        heights_[size_t(level)][size_t(j) * nx + i] = h;
+      }
+    }
+  }
+  for (int level = 0; level < levels; ++level) {
+    double worst = 0;
+    for (int j = 0; j < nodesDown(level); ++j) {
+      for (int i = 0; i < nodesAcross(level); ++i) {
+        const LodBox b = nodeBox(level, i, j);
+        worst = std::max(worst, glm::length(b.max - b.min));
+      }
+    }
+    maxDiagonalM_.push_back(worst);
+  }
+}
+
+int LodQuadtree::nodesAcross(int level) const {
+  return ceilDiv(ceilDiv(width_ - 1, kLodPatchQuads), 1 << level);
+}
+
+int LodQuadtree::nodesDown(int level) const {
+  return ceilDiv(ceilDiv(height_ - 1, kLodPatchQuads), 1 << level);
+}
+
+glm::vec2 LodQuadtree::nodeHeights(int level, int i, int j) const {
+  return heights_[size_t(level)][size_t(j) * nodesAcross(level) + i];
+}
+
+LodBox LodQuadtree::nodeBox(int level, int i, int j) const {
+  const int size = nodeTexels(level);
+  const int c0 = i * size, c1 = std::min(c0 + size, width_ - 1);
+  const int r0 = j * size, r1 = std::min(r0 + size, height_ - 1);
+  // DESIGN §1: x east from the DEM centre, y north (row 0 is the north edge).
+  const double halfW = 0.5 * (width_ - 1), halfH = 0.5 * (height_ - 1);
+  const glm::vec2 h = nodeHeights(level, i, j);
+  return {{(c0 - halfW) * cellXM_, (halfH - r1) * cellYM_, h.x},
+          {(c1 - halfW) * cellXM_, (halfH - r0) * cellYM_, h.y}};
+}
+
+size_t LodQuadtree::memoryBytes() const {
+  size_t bytes = sizeof(*this) + maxDiagonalM_.size() * sizeof(double);
+  for (const auto& level : heights_) bytes += level.capacity() * sizeof(glm::vec2);
+  return bytes;
+}
+
+LodRanges makeLodRanges(const LodQuadtree& tree, double scaleM, bool morph) {
+  LodRanges r;
+  r.scaleM = std::min(scaleM, kUnboundedRangeM);
+  const int root = tree.levels() - 1;
+  double previous = 0;
+  for (int level = 0; level <= root; ++level) {
+    const double range = level == root ? kUnboundedRangeM * 4 : r.scaleM * double(1 << level);
+    r.rangeM.push_back(range);
+    // Strugar §3.3: the morph covers the last kLodMorphFraction of the
+    // level's own distance band [range_(l-1), range_l]. The root has no
+    // coarser level to morph into.
+    if (level == root || !morph) {
+      r.morphM.emplace_back(kLodNoMorph, 2 * kLodNoMorph);
+    } else {
+      r.morphM.emplace_back(range - kLodMorphFraction * (range - previous), range);
+    }
+    previous = range;
+  }
+  return r;
+}
+
+double lodMinimumRangeScale(const LodQuadtree& tree) {
+  // D_l <= (1 - f)(range_(l+1) - range_l) = (1 - f) K 2^l for l + 1 below the root.
+  const glm::dvec2 cell = tree.cellSizeM();
+  double k = std::max(cell.x, cell.y);
+  for (int level = 0; level + 2 < tree.levels(); ++level) {
+    k = std::max(k, tree.maxNodeDiagonalM(level) / ((1.0 - kLodMorphFraction) * (1 << level)));
+  }
+  return k;
+}
+
+double lodPixelRangeScale(const LodQuadtree& tree, double viewportHeightPx, double verticalFovDeg,
+                          double maxQuadPixels) {
+  // A level-l quad (2^l cells of c metres) d metres away covers about
+  // 2^l c f / d pixels, f = (H / 2) / tan(fov / 2) the focal length in
+  // pixels; it is drawn from range_(l-1) = K 2^(l-1) on, where it covers
+  // 2 c f / K pixels at most.
+  const glm::dvec2 cell = tree.cellSizeM();
+  const double focalPx = 0.5 * viewportHeightPx / std::tan(0.5 * verticalFovDeg * kPi / 180.0);
+  return 2.0 * std::max(cell.x, cell.y) * focalPx / maxQuadPixels;
+}
+
+double lodBudgetRangeScale(const LodQuadtree& tree, size_t triangleBudget) {
+  const glm::dvec2 cell = tree.cellSizeM();
+  const glm::dvec2 extent((tree.demWidth() - 1) * cell.x, (tree.demHeight() - 1) * cell.y);
+  std::vector<glm::dvec3> cameras;
+  for (double fy : {0.1, 0.3, 0.5, 0.7, 0.9}) {
+    for (double fx : {0.1, 0.3, 0.5, 0.7, 0.9}) {
+      // At the middle of its leaf's height range: inside the leaf's box.
+      const int i = std::min(int(fx * tree.nodesAcross(0)), tree.nodesAcross(0) - 1);
+      const int j = std::min(int(fy * tree.nodesDown(0)), tree.nodesDown(0) - 1);
+      const glm::vec2 h = tree.nodeHeights(0, i, j);
+      cameras.emplace_back((fx - 0.5) * extent.x, (0.5 - fy) * extent.y, 0.5 * (h.x + h.y));
+    }
+  }
+  const auto worst = [&](double scale) {
+    const LodRanges ranges = makeLodRanges(tree, scale);
+    size_t most = 0;
+    for (const glm::dvec3& c : cameras) {
+      // Selections past the budget stop early: only "too many" matters.
+      most = std::max(most, Selector(tree, ranges, c, nullptr, triangleBudget).run().triangles);
+    }
+    return most;
+  };
+  const double lo = lodMinimumRangeScale(tree);
+  // Level 0 unmorphed over the whole DEM box from any of the cameras.
+  const double full = glm::length(tree.nodeBox(tree.levels() - 1, 0, 0).max -
+                                  tree.nodeBox(tree.levels() - 1, 0, 0).min) /
+                      (1.0 - kLodMorphFraction);
+  if (worst(std::max(full, lo)) <= triangleBudget) return std::numeric_limits<double>::infinity();
+  if (worst(lo) > triangleBudget) return lo;
+  double a = lo, b = std::max(full, lo);  // worst(a) fits, worst(b) does not
+  for (int step = 0; step < 30 && b > a * 1.001; ++step) {
+    const double mid = std::sqrt(a * b);
+    (worst(mid) <= triangleBudget ? a : b) = mid;
+  }
+  return a;
+}
+
+LodSelection selectLod(const LodQuadtree& tree, const LodRanges& ranges, glm::dvec3 cameraM,
+                       const glm::mat4* viewProj) {
+  return Selector(tree, ranges, cameraM, viewProj).run();
+}
+
+LodSelection selectLodForFrame(const LodQuadtree& tree, const LodFrame& frame) {
+  const double minimum = lodMinimumRangeScale(tree);
+  const double pixel = lodPixelRangeScale(tree, frame.viewportHeightPx, frame.verticalFovDeg,
+                                          frame.settings.maxQuadPixels);
+  double scale = std::max(minimum, std::min(frame.budgetScaleM, pixel));
+  LodSelection s;
+  for (int attempt = 0; attempt < 16; ++attempt) {
+    s = selectLod(tree, makeLodRanges(tree, scale, frame.settings.morph), frame.cameraM,
+                  &frame.viewProj);
+    if (s.triangles <= frame.triangleBudget || scale <= minimum) break;
+    scale = std::max(minimum, std::min(scale, kUnboundedRangeM) * 0.95 *
+                                  std::sqrt(double(frame.triangleBudget) / double(s.triangles)));
+  }
+  return s;
+}
+
+}  // namespace aal
