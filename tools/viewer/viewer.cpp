@@ -448,7 +448,7 @@ void Viewer::printStats() const {
   std::printf("present    %s\n", present == VK_PRESENT_MODE_FIFO_KHR      ? "fifo (vsync)"
                                  : present == VK_PRESENT_MODE_MAILBOX_KHR ? "mailbox"
                                                                           : "immediate");
-  std::printf("triangles  %u\n", terrain_->scene->indexCount() / 3);
+  std::printf("triangles  %zu (last frame)\n", renderer_->lodSelection().triangles);
   std::printf("frames     %d\n", t.counted);
   std::printf("baking     %d frames drawn while the aperture map was baked\n", t.whileBaking);
   if (t.counted > 1) {
