@@ -86,6 +86,19 @@ void Window::setTitle(const std::string& title) {
   glfwSetWindowTitle(window_, title.c_str());
 }
 
+void Window::setSize(int width, int height) {
+  glfwSetWindowSize(window_, width, height);
+}
+void Window::iconify() {
+  glfwIconifyWindow(window_);
+}
+void Window::restore() {
+  glfwRestoreWindow(window_);
+}
+bool Window::iconified() const {
+  return glfwGetWindowAttrib(window_, GLFW_ICONIFIED) == GLFW_TRUE;
+}
+
 VkExtent2D Window::framebufferSize() const {
   int w = 0, h = 0;
   glfwGetFramebufferSize(window_, &w, &h);

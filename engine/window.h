@@ -44,6 +44,16 @@ class Window {
   void requestClose();
   void setTitle(const std::string& title);
 
+  // Scripted window changes (aal-view's test hooks), as if the user had
+  // made them; a window manager may adjust or ignore them, and without one
+  // (a bare X server such as Xvfb) iconifying does nothing.
+  void setSize(int width, int height);
+  void iconify();
+  void restore();
+  // True while the window is minimised (iconified). X11 keeps the size of an
+  // iconified window, so a 0 x 0 framebuffer alone does not tell.
+  bool iconified() const;
+
   // Size of the drawable area in pixels; 0 x 0 while minimised. On high-DPI
   // screens it differs from the window size in screen coordinates.
   VkExtent2D framebufferSize() const;

@@ -29,6 +29,7 @@ and shows the frame rate and GPU time per pass. See docs/viewer.md.)";
 
 struct Options {
   std::string dem, aperture, cameraPath, screenshot, drop, size = "1280x720";
+  std::optional<std::string> resizeAfter, minimiseAfter, toggleVsyncAfter;  // test hooks
   std::string mode = "approx", time;
   std::optional<double> lat, lon, sunAzimuth, sunElevation;
   std::optional<int> frames;
@@ -57,6 +58,48 @@ void checkScript(const Options& o) {
   if (o.sunAzimuth.has_value() != o.sunElevation.has_value()) {
     throw aal::InputError("give --sun-azimuth and --sun-elevation together");
   }
+}
+
+// The frame of a --*-after test hook: "FRAME", or "FRAME:VALUE" when
+// `value` is wanted (it receives VALUE). FRAME counts like --frames, and a
+// run of N frames ends after frame N, so FRAME must be below N.
+int parseAfterFrame(const std::string& option, const std::string& text,
+                    const std::optional<int>& frames, std::string* value = nullptr) {
+  const size_t colon = text.find(':');
+  const std::string frame = text.substr(0, colon);
+  const std::string form = value ? "FRAME:VALUE" : "FRAME";
+  if ((colon == std::string::npos) != (value == nullptr) || frame.empty() ||
+      frame.find_first_not_of("0123456789") != std::string::npos || frame.size() > 9 ||
+      std::stoi(frame) < 1) {
+    throw aal::InputError(option + " must be " + form +
+                          " with FRAME a positive frame number, got '" + text + "'");
+  }
+  const int n = std::stoi(frame);
+  if (frames && n >= *frames) {
+    throw aal::InputError(option + " " + text + ": the run ends after frame " +
+                          std::to_string(*frames) + " (--frames)");
+  }
+  if (value) *value = text.substr(colon + 1);
+  return n;
+}
+
+aal::WindowScript windowScript(const Options& o) {
+  aal::WindowScript s;
+  if (o.resizeAfter) {
+    std::string size;
+    s.resizeAfterFrame = parseAfterFrame("--resize-after", *o.resizeAfter, o.frames, &size);
+    const auto [width, height] = aal::parseSize(size, "--resize-after's size");
+    s.resizeWidth = static_cast<int>(width);
+    s.resizeHeight = static_cast<int>(height);
+  }
+  if (o.minimiseAfter) {
+    s.minimiseAfterFrame = parseAfterFrame("--minimise-after", *o.minimiseAfter, o.frames);
+  }
+  if (o.toggleVsyncAfter) {
+    s.toggleVsyncAfterFrame =
+        parseAfterFrame("--toggle-vsync-after", *o.toggleVsyncAfter, o.frames);
+  }
+  return s;
 }
 
 aal::ViewLighting initialLighting(const Options& o, const aal::Heightfield& field) {
@@ -98,6 +141,7 @@ int run(const Options& o) {
   v.screenshot = o.screenshot;
   v.timeoutS = o.timeoutS;
   v.dropAfterFirstFrame = o.drop;
+  v.script = windowScript(o);
   v.stats = o.stats;
   // Bad input fails here, before a window opens.
   std::shared_ptr<const aal::Heightfield> field = aal::loadViewerDem(o.dem);
@@ -150,13 +194,23 @@ int main(int argc, char** argv) {
       ->check(CLI::PositiveNumber);
   app.add_option("--drop", o.drop,
                  "after the first frame, open this DEM as if it were dropped on the window");
+  // Test hooks: what the user does to the window, scripted. FRAME counts
+  // like --frames.
+  app.add_option("--resize-after", o.resizeAfter,
+                 "FRAME:WxH: resize the window after frame FRAME (tests, demos)");
+  app.add_option("--minimise-after", o.minimiseAfter,
+                 "FRAME: minimise the window after frame FRAME, restore it a few event-loop "
+                 "iterations later (tests, demos; a window manager does the minimising)");
+  app.add_option("--toggle-vsync-after", o.toggleVsyncAfter,
+                 "FRAME: switch vsync after frame FRAME, as the panel does (tests, demos)");
   app.add_flag("--no-obscurance", o.noObscurance,
                "start with the obscurance pass off (the panel switches it)");
   app.add_flag("--no-vsync", o.noVsync, "present without waiting for vsync (MAILBOX/IMMEDIATE)");
   app.add_flag("--stats", o.stats, "print frame time, FPS and GPU time per pass at the end");
   app.add_option("--device", o.device, "Vulkan device index (default: the best one)")
       ->check(CLI::NonNegativeNumber);
-  app.add_option("--triangles", o.triangleBudget, "triangle budget of the terrain grid")
+  app.add_option("--triangles", o.triangleBudget,
+                 "per-frame triangle budget of the terrain's quadtree LOD")
       ->check(CLI::Range(size_t(2), size_t(1) << 28))
       ->capture_default_str();
   app.add_option("--azimuths", o.azimuths, "azimuths of a background bake")

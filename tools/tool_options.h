@@ -26,14 +26,16 @@ inline glm::dvec3 parseTriple(const std::string& name, const std::string& text) 
   return v;
 }
 
-// "WIDTHxHEIGHT" with positive sides up to 65536.
-inline std::pair<uint32_t, uint32_t> parseSize(const std::string& text) {
+// "WIDTHxHEIGHT" with positive sides up to 65536; `name` (the option) goes
+// into the message.
+inline std::pair<uint32_t, uint32_t> parseSize(const std::string& text,
+                                               const std::string& name = "--size") {
   long w = 0, h = 0;
   char x = 0;
   std::istringstream in(text);
   if (!(in >> w >> x >> h) || (x != 'x' && x != 'X') || !in.eof() || w <= 0 || h <= 0 ||
       w > 65536 || h > 65536) {
-    throw InputError("--size must be WIDTHxHEIGHT with positive sides, got '" + text + "'");
+    throw InputError(name + " must be WIDTHxHEIGHT with positive sides, got '" + text + "'");
   }
   return {static_cast<uint32_t>(w), static_cast<uint32_t>(h)};
 }

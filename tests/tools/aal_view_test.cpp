@@ -212,5 +212,109 @@ TEST(AalView, HelpExplainsTheControls) {
   }
 }
 
+// The window hooks (--resize-after, --minimise-after, --toggle-vsync-after)
+// stand in for the user: they drive the paths that follow the window. Each
+// run has a --timeout so that a viewer that stopped drawing ends (with fewer
+// frames than asked, which the checks catch) instead of hanging the test.
+
+// Terrain as in ScriptedFlightShowsTerrainWithoutValidationMessages: many
+// colours, contrast in the lower half, greener at the bottom than the sky.
+void expectTerrain(const Picture& p) {
+  std::set<unsigned> colours;
+  for (size_t i = 0; i < p.rgba.size(); i += 4) {
+    colours.insert(p.rgba[i] << 16 | p.rgba[i + 1] << 8 | p.rgba[i + 2]);
+  }
+  EXPECT_GT(colours.size(), 200u);
+  EXPECT_GT(greenSpread(p, p.height / 2, p.height), 4.0) << "flat colour instead of terrain";
+  double top = 0, bottom = 0;
+  for (int x = 0; x < p.width; ++x) {
+    const size_t t = size_t(x) * 4, b = (size_t(p.height - 1) * p.width + x) * 4;
+    top += double(p.rgba[t + 1]) - p.rgba[t + 2];
+    bottom += double(p.rgba[b + 1]) - p.rgba[b + 2];
+  }
+  EXPECT_GT(bottom, top) << "no terrain at the bottom";
+}
+
+TEST(AalView, ResizingMidFlightRecreatesTheSwapchainAndRenderer) {
+  TempDir dir;
+  const fs::path path = dir.path() / "path.txt", shot = dir.path() / "shot.png";
+  writeText(path, kPath);
+  const auto r = view(dir, quoted(kDem) +
+                               " --size 320x240 --frames 5 --resize-after 2:400x300 --timeout 30"
+                               " --camera-path " +
+                               quoted(path) + " --screenshot " + quoted(shot) + " --stats");
+  ASSERT_EQ(r.exitCode, 0) << r.out;  // 1 on any validation message
+  EXPECT_NE(r.out.find("validation on, 0 messages"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("resizing the window to 400x300"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("frames     5"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("size       400x300"), std::string::npos) << r.out;
+  // The screenshot has the renderer's size: still 320 x 240 had only the
+  // swapchain followed the window.
+  const Picture p = readPng(shot);
+  ASSERT_EQ(p.width, 400);
+  ASSERT_EQ(p.height, 300);
+  expectTerrain(p);
+}
+
+TEST(AalView, TogglingVsyncMidFlightChangesThePresentMode) {
+  TempDir dir;
+  const fs::path shot = dir.path() / "shot.png";
+  const auto r = view(dir, quoted(kDem) +
+                               " --size 160x120 --frames 4 --toggle-vsync-after 2 --timeout 30"
+                               " --screenshot " +
+                               quoted(shot) + " --stats");
+  ASSERT_EQ(r.exitCode, 0) << r.out;
+  EXPECT_NE(r.out.find("validation on, 0 messages"), std::string::npos) << r.out;
+  // From FIFO to MAILBOX or IMMEDIATE (lavapipe's X11 surfaces offer both),
+  // and frames drawn after the switch.
+  EXPECT_NE(r.out.find("present mode fifo (vsync) -> "), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("present    "), std::string::npos) << r.out;
+  EXPECT_EQ(r.out.find("present    fifo"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("frames     4"), std::string::npos) << r.out;
+  const Picture p = readPng(shot);
+  ASSERT_EQ(p.width, 160);
+  EXPECT_GT(greenSpread(p, 0, 120), 2.0);
+}
+
+TEST(AalView, MinimisingUnderXvfbLeavesTheWindowDrawing) {
+  TempDir dir;
+  const fs::path shot = dir.path() / "shot.png";
+  const auto r = view(dir, quoted(kDem) +
+                               " --size 160x120 --frames 10 --minimise-after 2 --timeout 30"
+                               " --screenshot " +
+                               quoted(shot) + " --stats");
+  ASSERT_EQ(r.exitCode, 0) << r.out;
+  EXPECT_NE(r.out.find("validation on, 0 messages"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("minimising the window"), std::string::npos) << r.out;
+  // Xvfb runs no window manager, and on X11 the window manager iconifies:
+  // glfwIconifyWindow only asks it to, so the window stays as it was, the
+  // viewer goes on drawing and restores it after a few event-loop
+  // iterations. The minimised path itself (no frames until restored) cannot
+  // be reached here.
+  EXPECT_NE(r.out.find("restored the window: it was not minimised"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("frames     10"), std::string::npos) << r.out;
+  const Picture p = readPng(shot);
+  ASSERT_EQ(p.width, 160);
+  ASSERT_EQ(p.height, 120);
+  EXPECT_GT(greenSpread(p, 0, 120), 2.0);
+}
+
+TEST(AalView, WindowHooksAreInTheHelpAndMalformedOnesExitWithTwo) {
+  const std::string dem = quoted(kDem);
+  for (const std::string& args :
+       {dem + " --resize-after 2", dem + " --resize-after 2:0x10", dem + " --resize-after x:10x10",
+        dem + " --resize-after 0:10x10", dem + " --frames 3 --resize-after 3:10x10",
+        dem + " --minimise-after -1", dem + " --minimise-after 1:2",
+        dem + " --toggle-vsync-after ''", dem + " --frames 2 --toggle-vsync-after 5"}) {
+    const auto r = runTool("aal-view", args, "-u DISPLAY -u WAYLAND_DISPLAY");
+    EXPECT_EQ(r.exitCode, 2) << args << "\n" << r.out;
+    EXPECT_NE(r.out.find("-after"), std::string::npos) << args << "\n" << r.out;
+  }
+  const auto help = runTool("aal-view", "--help");
+  for (const char* text : {"--resize-after", "--minimise-after", "--toggle-vsync-after"}) {
+    EXPECT_NE(help.out.find(text), std::string::npos) << text;
+  }
+}
+
 }  // namespace
 }  // namespace aal

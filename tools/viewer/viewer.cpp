@@ -141,6 +141,18 @@ std::string nextScreenshotName() {
   return name;
 }
 
+const char* presentModeName(VkPresentModeKHR mode) {
+  return mode == VK_PRESENT_MODE_FIFO_KHR      ? "fifo (vsync)"
+         : mode == VK_PRESENT_MODE_MAILBOX_KHR ? "mailbox"
+                                               : "immediate";
+}
+
+// --minimise-after: the window is restored once it was seen minimised for
+// kMinimisedIterations event-loop iterations, or after kMaxIterations when it
+// never was (no window manager to iconify it, as under Xvfb).
+constexpr int kMinimisedIterations = 3;
+constexpr int kMaxMinimiseIterations = 5;
+
 BakeOptions viewerBakeOptions(int azimuths) {
   BakeOptions options;
   options.azimuths = azimuths;
@@ -403,7 +415,13 @@ void Viewer::saveScreenshot(const std::string& path) {
 void Viewer::recreateSwapchain() {
   device_.waitIdle();
   swapchainFramebuffer_ = window_.framebufferSize();
+  const VkPresentModeKHR before = swapchain_.presentMode();
   swapchain_.recreate(swapchainFramebuffer_, vsync_);
+  // Shows whether the vsync switch took effect (the surface may offer FIFO only).
+  if (swapchain_.presentMode() != before) {
+    setMessage(std::string("present mode ") + presentModeName(before) + " -> " +
+               presentModeName(swapchain_.presentMode()));
+  }
   ui_.onSwapchainRecreated(swapchain_);
   sync_.resize(swapchain_.imageCount());
   const VkExtent2D extent = swapchain_.extent();
@@ -425,13 +443,51 @@ void Viewer::finishScriptedFrame() {
   if (!options_.dropAfterFirstFrame.empty()) {
     openDroppedDem(std::exchange(options_.dropAfterFirstFrame, {}));
   }
-  if (options_.frames <= 0 || terrain_->bake) return;  // scripted frames wait for the bake
+  if (terrain_->bake) return;  // scripted frames and window events wait for the bake
+  ++scriptedFrame_;
+  runWindowScript();
+  if (options_.frames <= 0) return;
   Timing& t = *timing_;
   if (t.counted == 0) t.firstCounted = Timing::Clock::now();
   ++t.counted;
   for (const auto& [pass, ms] : t.lastPassMs) t.passSumsMs[pass] += ms;
   if (!t.lastPassMs.empty()) ++t.passFrames;
-  if (++scriptedFrame_ >= options_.frames) window_.requestClose();
+  if (scriptedFrame_ >= options_.frames) window_.requestClose();
+}
+
+void Viewer::runWindowScript() {
+  const WindowScript& s = options_.script;
+  if (scriptedFrame_ == s.resizeAfterFrame) {
+    // The next iteration sees the new framebuffer size and recreates the rest.
+    setMessage("resizing the window to " + std::to_string(s.resizeWidth) + "x" +
+               std::to_string(s.resizeHeight));
+    window_.setSize(s.resizeWidth, s.resizeHeight);
+  }
+  if (scriptedFrame_ == s.toggleVsyncAfterFrame) {
+    vsync_ = !vsync_;
+    swapchainStale_ = true;
+  }
+  if (scriptedFrame_ == s.minimiseAfterFrame) {
+    setMessage("minimising the window");
+    window_.iconify();
+    minimiseIterations_ = 0;
+    minimisedIterations_ = 0;
+  }
+}
+
+void Viewer::followScriptedMinimise(bool minimised) {
+  if (minimiseIterations_ < 0) return;
+  ++minimiseIterations_;
+  if (minimised) ++minimisedIterations_;
+  if (minimisedIterations_ < kMinimisedIterations && minimiseIterations_ < kMaxMinimiseIterations) {
+    return;
+  }
+  window_.restore();
+  setMessage(minimisedIterations_ > 0
+                 ? "restored the window after " + std::to_string(minimisedIterations_) +
+                       " event-loop iterations minimised without drawing"
+                 : "restored the window: it was not minimised (no window manager?)");
+  minimiseIterations_ = -1;
 }
 
 void Viewer::setMessage(const std::string& message) {
@@ -444,10 +500,7 @@ void Viewer::printStats() const {
   const VkExtent2D extent = swapchain_.extent();
   std::printf("device     %s\n", device_.name().c_str());
   std::printf("size       %ux%u\n", extent.width, extent.height);
-  const VkPresentModeKHR present = swapchain_.presentMode();
-  std::printf("present    %s\n", present == VK_PRESENT_MODE_FIFO_KHR      ? "fifo (vsync)"
-                                 : present == VK_PRESENT_MODE_MAILBOX_KHR ? "mailbox"
-                                                                          : "immediate");
+  std::printf("present    %s\n", presentModeName(swapchain_.presentMode()));
   std::printf("triangles  %zu (last frame)\n", renderer_->lodSelection().triangles);
   std::printf("frames     %d\n", t.counted);
   std::printf("baking     %d frames drawn while the aperture map was baked\n", t.whileBaking);
@@ -472,7 +525,9 @@ int Viewer::run() {
     const double dt = timing_->tick();
     if (options_.timeoutS > 0 && timing_->elapsedS() > options_.timeoutS) window_.requestClose();
     const VkExtent2D framebuffer = window_.framebufferSize();
-    if (framebuffer.width == 0 || framebuffer.height == 0) {
+    const bool minimised = framebuffer.width == 0 || framebuffer.height == 0 || window_.iconified();
+    followScriptedMinimise(minimised);
+    if (minimised) {
       window_.waitEvents(0.1);  // minimised: no frames, but the timeout and the bake go on
       continue;
     }

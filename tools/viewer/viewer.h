@@ -26,6 +26,17 @@
 
 namespace aal {
 
+// Window events of a scripted run (tests, demos), each after frame N counted
+// like ViewerOptions::frames (0: none), as if the user had caused it. They
+// drive the paths that follow the window: swapchain, renderer and UI
+// framebuffers recreated, drawing paused while minimised.
+struct WindowScript {
+  int resizeAfterFrame = 0;
+  int resizeWidth = 0, resizeHeight = 0;  // screen coordinates
+  int minimiseAfterFrame = 0;             // restored a few event-loop iterations later
+  int toggleVsyncAfterFrame = 0;          // as the panel's vsync checkbox
+};
+
 struct ViewerOptions {
   std::string dem;                 // the DEM first shown
   std::string aperture;            // its aperture map; empty: cached or baked in the background
@@ -44,6 +55,7 @@ struct ViewerOptions {
   double timeoutS = 0;  // > 0: close the window after this many seconds
   // Opened after the first frame as if dropped on the window (tests, demos).
   std::string dropAfterFirstFrame;
+  WindowScript script;
   bool stats = false;                    // print frame and GPU pass times at the end
   std::optional<ViewLighting> lighting;  // initial sun and sky (default from the DEM)
 };
@@ -81,6 +93,8 @@ class Viewer {
   void recreateSurface();
   void saveScreenshot(const std::string& path);
   void finishScriptedFrame();
+  void runWindowScript();
+  void followScriptedMinimise(bool minimised);
   void setMessage(const std::string& message);
   void printStats() const;
 
@@ -105,7 +119,11 @@ class Viewer {
   bool screenshotFromSwapchain_ = false;   // else from the renderer's display image
   Buffer screenshotBuffer_;                // the display image read back for it
   VkExtent2D swapchainFramebuffer_{0, 0};  // window size the swapchain was made for
-  int scriptedFrame_ = 0;
+  int scriptedFrame_ = 0;                  // frames drawn with the real aperture map
+  // --minimise-after: event-loop iterations since the window was iconified
+  // (-1: not pending), and how many of them found it minimised.
+  int minimiseIterations_ = -1;
+  int minimisedIterations_ = 0;
   std::unique_ptr<Timing> timing_;
   glm::dvec2 lastCursor_{0.0};
   bool looking_ = false;
