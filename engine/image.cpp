@@ -130,4 +130,12 @@ void transitionImage(VkCommandBuffer cmd, const Image& image, VkImageLayout from
   vkCmdPipelineBarrier2(cmd, &dependency);
 }
 
+void copyImageToBuffer(VkCommandBuffer cmd, const Image& image, const Buffer& buffer) {
+  VkBufferImageCopy region{};
+  region.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
+  region.imageExtent = {image.desc().width, image.desc().height, 1};
+  vkCmdCopyImageToBuffer(cmd, image.handle(), VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, buffer.handle(),
+                         1, &region);
+}
+
 }  // namespace aal

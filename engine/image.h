@@ -41,6 +41,12 @@ class Image {
   ImageDesc desc_;
 };
 
+class Buffer;
+
+// Records a copy of the whole image (colour aspect, in
+// VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL) into `buffer`, tightly packed.
+void copyImageToBuffer(VkCommandBuffer cmd, const Image& image, const Buffer& buffer);
+
 // Records a layout transition of the whole image (synchronization2), with
 // conservative stage/access masks derived from the layouts.
 void transitionImage(VkCommandBuffer cmd, const Image& image, VkImageLayout from, VkImageLayout to);

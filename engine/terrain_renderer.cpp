@@ -74,14 +74,6 @@ void beginRendering(VkCommandBuffer cmd, uint32_t width, uint32_t height,
   vkCmdSetScissor(cmd, 0, 1, &scissor);
 }
 
-void copyToBuffer(VkCommandBuffer cmd, const Image& image, const Buffer& buffer) {
-  VkBufferImageCopy region{};
-  region.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
-  region.imageExtent = {image.desc().width, image.desc().height, 1};
-  vkCmdCopyImageToBuffer(cmd, image.handle(), VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, buffer.handle(),
-                         1, &region);
-}
-
 }  // namespace
 
 struct TerrainRenderer::Passes {
@@ -443,11 +435,11 @@ FrameResult TerrainRenderer::render(const TerrainScene& scene, const FrameSettin
 
   submitAndWait(device_, [&](VkCommandBuffer cmd) {
     record(cmd, scene, s);
-    copyToBuffer(cmd, display_, displayReadback);
+    copyImageToBuffer(cmd, display_, displayReadback);
     if (wantLinear) {
       transitionImage(cmd, hdr_, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL,
                       VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL);
-      copyToBuffer(cmd, hdr_, linearReadback);
+      copyImageToBuffer(cmd, hdr_, linearReadback);
     }
   });
 

@@ -54,11 +54,7 @@ struct Options {
 void checkOutputs(const Options& o) {
   for (const std::string& path : {o.output, o.svfPath, o.visiblePath}) {
     if (path.empty()) continue;
-    try {
-      aal::checkOutputWritable(path);
-    } catch (const std::exception& e) {
-      throw aal::InputError(e.what());
-    }
+    aal::requireWritableOutput(path);
   }
 }
 

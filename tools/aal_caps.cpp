@@ -112,8 +112,8 @@ int sweep(const Options& o) {
     }
     maxRadius = o.degrees ? *o.maxRadius / kDeg : *o.maxRadius;
   }
-  if (!o.tablePath.empty()) aal::checkOutputWritable(o.tablePath);
-  if (!o.plotPath.empty()) aal::checkOutputWritable(o.plotPath);
+  if (!o.tablePath.empty()) aal::requireWritableOutput(o.tablePath);
+  if (!o.plotPath.empty()) aal::requireWritableOutput(o.plotPath);
 
   const std::vector<aal::CapErrorSample> samples =
       aal::sweepCapError(o.steps, 2 * o.steps, maxRadius);

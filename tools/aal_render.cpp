@@ -186,11 +186,7 @@ int run(const Options& o) {
     if (!aal::isSupportedImageOutput(o.output)) {
       throw aal::InputError("output " + o.output + " must end in .png or .exr");
     }
-    try {
-      aal::checkOutputWritable(o.output);
-    } catch (const std::exception& e) {
-      throw aal::InputError(e.what());
-    }
+    aal::requireWritableOutput(o.output);
   }
   if (o.sunAzimuth.has_value() != o.sunElevation.has_value()) {
     throw aal::InputError("give --sun-azimuth and --sun-elevation together");

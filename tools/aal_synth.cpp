@@ -38,7 +38,7 @@ int main(int argc, char** argv) {
 
   return aal::runTool(app, argc, argv, [&] {
     s.width = s.height = size;
-    aal::checkOutputWritable(output);
+    aal::requireWritableOutput(output);
     const aal::Heightfield field = aal::makeSyntheticTerrain(s);
     aal::GeoReference geo;
     geo.crs = aal::CrsKind::Projected;

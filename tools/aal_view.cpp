@@ -49,11 +49,7 @@ void checkScript(const Options& o) {
     if (!aal::isSupportedImageOutput(o.screenshot) || aal::wantsLinearOutput(o.screenshot)) {
       throw aal::InputError("--screenshot " + o.screenshot + " must end in .png");
     }
-    try {
-      aal::checkOutputWritable(o.screenshot);
-    } catch (const std::exception& e) {
-      throw aal::InputError(e.what());
-    }
+    aal::requireWritableOutput(o.screenshot);
   }
   if (o.sunAzimuth.has_value() != o.sunElevation.has_value()) {
     throw aal::InputError("give --sun-azimuth and --sun-elevation together");

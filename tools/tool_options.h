@@ -10,9 +10,20 @@
 
 #include <glm/vec3.hpp>
 
+#include "atomic_file.h"
 #include "errors.h"
 
 namespace aal {
+
+// checkOutputWritable for a path the user gave: an output that cannot be
+// written is bad input (exit 2), found before any work starts.
+inline void requireWritableOutput(const std::string& path) {
+  try {
+    checkOutputWritable(path);
+  } catch (const std::exception& e) {
+    throw InputError(e.what());
+  }
+}
 
 // "X,Y,Z" in metres; `name` (the option) goes into the message.
 inline glm::dvec3 parseTriple(const std::string& name, const std::string& text) {

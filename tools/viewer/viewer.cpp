@@ -121,14 +121,6 @@ void prepareForUi(VkCommandBuffer cmd, VkImage image) {
                    VK_ACCESS_2_COLOR_ATTACHMENT_READ_BIT | VK_ACCESS_2_COLOR_ATTACHMENT_WRITE_BIT);
 }
 
-void copyToBuffer(VkCommandBuffer cmd, const Image& image, const Buffer& buffer) {
-  VkBufferImageCopy region{};
-  region.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
-  region.imageExtent = {image.desc().width, image.desc().height, 1};
-  vkCmdCopyImageToBuffer(cmd, image.handle(), VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, buffer.handle(),
-                         1, &region);
-}
-
 // aal-view-YYYYMMDD-HHMMSS.png in the current folder, never overwriting.
 std::string nextScreenshotName() {
   const std::time_t now = std::time(nullptr);
@@ -364,7 +356,7 @@ void Viewer::recordFrame(VkCommandBuffer cmd, uint32_t imageIndex, const FrameSe
     if (screenshotFromSwapchain_) {
       readBackSwapchainImage(cmd, target, extent, screenshotBuffer_);
     } else {
-      copyToBuffer(cmd, renderer_->displayImage(), screenshotBuffer_);
+      copyImageToBuffer(cmd, renderer_->displayImage(), screenshotBuffer_);
     }
   }
   prepareForUi(cmd, target);
