@@ -2,7 +2,8 @@
 # The main job, from a fresh Debian 12 machine: installs what is missing,
 # builds, bakes the shipped DEM (heightmaps/jacksboro_fault_dem.tif) and
 # renders it lit by the sun and the sky through a summer day, plus an
-# approximate-vs-exact pair and the cap error table. Results go to out/ (or
+# approximate-vs-exact pair, every mode against the ray-traced reference and
+# the cap error table. Results go to out/ (or
 # the folder given as $1).
 set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
@@ -40,6 +41,12 @@ for mode in approx exact; do
     --size "$size" --sun-azimuth 250 --sun-elevation 10 --mode "$mode" -q
   echo "  $out/sun-low-$mode.png"
 done
+
+echo
+echo "== Every shading mode against the CPU ray-traced reference, low sun (320x180)"
+"$bin/aal-render" "$dem" --aperture "$out/aperture.exr" --compare "$out/compare" \
+  --size 320x180 --sun-azimuth 250 --sun-elevation 10 -q
+echo "  $out/compare/ (images, error maps, errors.csv)"
 
 echo
 echo "== Spherical-cap intersection error"

@@ -21,6 +21,7 @@
 #include "geotiff_writer.h"
 #include "progress.h"
 #include "tool_main.h"
+#include "tool_options.h"
 
 namespace {
 

@@ -14,6 +14,7 @@
 #include "cap_error.h"
 #include "cap_error_plot.h"
 #include "tool_main.h"
+#include "tool_options.h"
 
 namespace {
 

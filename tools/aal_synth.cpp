@@ -12,6 +12,7 @@
 #include "geotiff_writer.h"
 #include "synthetic.h"
 #include "tool_main.h"
+#include "tool_options.h"
 
 int main(int argc, char** argv) {
   CLI::App app(
