@@ -13,19 +13,6 @@ namespace {
 
 constexpr double kTwoPi = 6.28318530717958647692;
 
-// Bilinear height at fractional grid position (col, row), clamped to the grid.
-double bilinearHeight(const Heightfield& f, double col, double row) {
-  col = std::clamp(col, 0.0, static_cast<double>(f.width - 1));
-  row = std::clamp(row, 0.0, static_cast<double>(f.height - 1));
-  const int c0 = std::min(static_cast<int>(col), f.width - 2 < 0 ? 0 : f.width - 2);
-  const int r0 = std::min(static_cast<int>(row), f.height - 2 < 0 ? 0 : f.height - 2);
-  const int c1 = std::min(c0 + 1, f.width - 1), r1 = std::min(r0 + 1, f.height - 1);
-  const double tc = col - c0, tr = row - r0;
-  const double top = f.at(c0, r0) + (f.at(c1, r0) - f.at(c0, r0)) * tc;
-  const double bottom = f.at(c0, r1) + (f.at(c1, r1) - f.at(c0, r1)) * tc;
-  return top + (bottom - top) * tr;
-}
-
 uint64_t hashTexel(uint64_t i) {
   i += 0x9E3779B97F4A7C15ull;
   i = (i ^ (i >> 30)) * 0xBF58476D1CE4E5B9ull;
@@ -67,7 +54,7 @@ bool rayEscapes(const BakeTerrain& terrain, const BakeOptions& o, double x, doub
     const double col = terrain.centreCol + px / cellX;
     const bool outside = row < 0 || row > f.height - 1 || col < 0 || col > f.width - 1;
     if (outside && !o.clampEdge) return true;
-    if (rayZ < bilinearHeight(f, col, row) - curvature * s * s) return false;
+    if (rayZ < f.bilinearHeight(col, row) - curvature * s * s) return false;
     if (s > 1e9) return true;  // numerically horizontal ray over a clamped plain
   }
 }

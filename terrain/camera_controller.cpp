@@ -25,15 +25,8 @@ CameraController::CameraController(std::shared_ptr<const Heightfield> field, dou
 double CameraController::groundHeightAt(double x, double y) const {
   const Heightfield& f = *field_;
   // World to fractional texel coordinates: column 0 west, row 0 north.
-  const double col = std::clamp(x / f.cellSizeXM + 0.5 * (f.width - 1), 0.0, f.width - 1.0);
-  const double row = std::clamp(0.5 * (f.height - 1) - y / f.cellSizeYM, 0.0, f.height - 1.0);
-  const int c0 = std::min(static_cast<int>(col), f.width - 1);
-  const int r0 = std::min(static_cast<int>(row), f.height - 1);
-  const int c1 = std::min(c0 + 1, f.width - 1), r1 = std::min(r0 + 1, f.height - 1);
-  const double u = col - c0, v = row - r0;
-  const double top = (1 - u) * f.at(c0, r0) + u * f.at(c1, r0);
-  const double bottom = (1 - u) * f.at(c0, r1) + u * f.at(c1, r1);
-  return (1 - v) * top + v * bottom;
+  return f.bilinearHeight(x / f.cellSizeXM + 0.5 * (f.width - 1),
+                          0.5 * (f.height - 1) - y / f.cellSizeYM);
 }
 
 double CameraController::minClearanceM() const {

@@ -7,6 +7,8 @@
 // flagged in voidMask, so `z` never holds NaN or infinity.
 #pragma once
 
+#include <algorithm>
+
 #include <cstddef>
 #include <cstdint>
 #include <string>
@@ -55,6 +57,20 @@ struct Heightfield {
   bool isVoid(int x, int y) const { return !voidMask.empty() && voidMask[index(x, y)] != 0; }
   double cellSizeXAtRow(int row) const {
     return rowCellSizeXM.empty() ? cellSizeXM : rowCellSizeXM[static_cast<size_t>(row)];
+  }
+  // Bilinear height at the fractional texel position (col, row), clamped to
+  // the grid: the surface through the texel centres that the bakers' rays,
+  // the reference renderer and the viewer's camera all march or stand on.
+  double bilinearHeight(double col, double row) const {
+    col = std::clamp(col, 0.0, static_cast<double>(width - 1));
+    row = std::clamp(row, 0.0, static_cast<double>(height - 1));
+    const int c0 = std::min(static_cast<int>(col), std::max(width - 2, 0));
+    const int r0 = std::min(static_cast<int>(row), std::max(height - 2, 0));
+    const int c1 = std::min(c0 + 1, width - 1), r1 = std::min(r0 + 1, height - 1);
+    const double tc = col - c0, tr = row - r0;
+    const double top = at(c0, r0) + (at(c1, r0) - at(c0, r0)) * tc;
+    const double bottom = at(c0, r1) + (at(c1, r1) - at(c0, r1)) * tc;
+    return top + (bottom - top) * tr;
   }
 };
 

@@ -34,18 +34,7 @@ class TerrainSurface {
     return std::abs(x) <= halfX_ * cellX_ + 1e-9 && std::abs(y) <= halfY_ * cellY_ + 1e-9;
   }
 
-  // Height at continuous texel coordinates, clamped to the grid.
-  double heightAtTexel(double col, double row) const {
-    col = std::clamp(col, 0.0, double(field_.width - 1));
-    row = std::clamp(row, 0.0, double(field_.height - 1));
-    const int c0 = std::min(static_cast<int>(col), field_.width - 1);
-    const int r0 = std::min(static_cast<int>(row), field_.height - 1);
-    const int c1 = std::min(c0 + 1, field_.width - 1), r1 = std::min(r0 + 1, field_.height - 1);
-    const double fc = col - c0, fr = row - r0;
-    const double top = (1 - fc) * field_.at(c0, r0) + fc * field_.at(c1, r0);
-    const double bottom = (1 - fc) * field_.at(c0, r1) + fc * field_.at(c1, r1);
-    return (1 - fr) * top + fr * bottom;
-  }
+  double heightAtTexel(double col, double row) const { return field_.bilinearHeight(col, row); }
 
   double heightAt(double x, double y) const { return heightAtTexel(col(x), row(y)); }
   double col(double x) const { return x / cellX_ + halfX_; }
