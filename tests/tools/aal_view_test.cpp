@@ -1,7 +1,9 @@
 // Command-line contract of aal-view: scripted flights under Xvfb on lavapipe
 // with validation on, background bakes, dropped files, no display, bad input.
 #include <gtest/gtest.h>
+
 #include <unistd.h>
+#include <cstdlib>
 
 #include <OpenImageIO/imageio.h>
 
@@ -27,11 +29,18 @@ const fs::path kDem = fs::path(AAL_TEST_SOURCE_DIR) / "heightmaps" / "jacksboro_
 // it), with a private aperture cache and the validation layer on. Servers
 // are searched from a number derived from the pid, so tests run in parallel
 // do not race for the same display.
+// Under the sanitizer build scripts/test.sh preloads the ASan runtime and
+// lavapipe (LD_PRELOAD): that is for aal-view alone, not for the X server
+// and xauth that xvfb-run starts, which are not built for it and fail.
 test::ToolResult view(const TempDir& dir, const std::string& args) {
   const std::string server = std::to_string(100 + getpid() % 800);
-  return runShell("env AAL_VALIDATION=1 AAL_CACHE_DIR=" + quoted(dir.path() / "cache") +
-                  " xvfb-run -a -n " + server + " -s '-screen 0 1280x720x24' " +
-                  quoted(test::binDir() / "aal-view") + " " + args);
+  const char* preload = std::getenv("LD_PRELOAD");
+  const std::string viewerEnv =
+      preload && *preload ? "env LD_PRELOAD=" + test::quoted(fs::path(preload)) + " " : "";
+  return runShell(
+      "env -u LD_PRELOAD AAL_VALIDATION=1 AAL_CACHE_DIR=" + quoted(dir.path() / "cache") +
+      " xvfb-run -a -n " + server + " -s '-screen 0 1280x720x24' " + viewerEnv +
+      quoted(test::binDir() / "aal-view") + " " + args);
 }
 
 size_t filesIn(const fs::path& folder) {
