@@ -6,6 +6,7 @@
 #include <fstream>
 #include <stdexcept>
 
+#include "atmosphere.h"
 #include "atomic_file.h"
 #include "screenshot.h"
 #include "tone_map.h"
@@ -13,10 +14,6 @@
 namespace aal {
 
 namespace {
-
-float luminance(const glm::vec3& c) {
-  return 0.2126f * c.r + 0.7152f * c.g + 0.0722f * c.b;
-}
 
 std::vector<glm::vec3> linearRgb(const FrameResult& frame) {
   std::vector<glm::vec3> rgb(size_t(frame.width) * frame.height);

@@ -52,20 +52,13 @@ void sweepAllAzimuths(const BakeTerrain& terrain, const BakeOptions& o, float* s
     checkCancel(o);
     const double phi = a * dPhi;
     const double cosPhi = std::cos(phi), sinPhi = std::sin(phi);
-    // The slices are summed in single precision (addSkySlice).
+    // The slices are summed in single precision (sky_slice.h).
     const float cosF = static_cast<float>(cosPhi), sinF = static_cast<float>(sinPhi);
     const float dPhiF = static_cast<float>(dPhi);
     const float cosPhiDPhi = static_cast<float>(cosPhi * dPhi);
     const float sinPhiDPhi = static_cast<float>(sinPhi * dPhi);
-    auto addSlice = [&](size_t texel, float tanHorizon) {
-      // Directions below the tangent plane are outside the hemisphere.
-      const float tanPlane = terrain.slopeEast(texel) * cosF + terrain.slopeNorth(texel) * sinF;
-      addSkySlice(sums + 4 * texel, std::max(tanHorizon, tanPlane), dPhiF, cosPhiDPhi, sinPhiDPhi);
-      if (wantSvf && tanHorizon > 0.0f) {
-        svf[texel] += tanHorizon / std::sqrt(1.0f + tanHorizon * tanHorizon);
-      }
-    };
-    // The same for a block of texels, in loops that compile to vector code.
+    // Adds this slice to a block of texels, in loops that compile to vector
+    // code. Directions below the tangent plane are outside the hemisphere.
     auto addSlices = [&](const HorizonBlock& b) {
       float terms[HorizonBlock::kLines][4];
       for (int j = 0; j < b.count; ++j) {
@@ -85,8 +78,10 @@ void sweepAllAzimuths(const BakeTerrain& terrain, const BakeOptions& o, float* s
       }
     };
     if (sweep.maxDistanceM > 0.0) {
+      // The distance-limited sweep visits texel by texel: blocks of one.
       sweepHorizons(terrain, phi, sweep, [&](size_t texel, double tanHorizon) {
-        addSlice(texel, static_cast<float>(tanHorizon));
+        const float tanH = std::max(static_cast<float>(tanHorizon), kNoHorizonTangent);
+        addSlices(HorizonBlock{texel, 1, 1, &tanH});
       });
     } else {
       sweepHorizonBlocks(terrain, phi, sweep, [&](const HorizonBlock& block) { addSlices(block); });

@@ -12,7 +12,7 @@
 
 namespace aal {
 
-// Adds into sums (4 floats per texel, as addSkySlice) the escaping
+// Adds into sums (4 floats per texel, laid out as skySliceTerms) the escaping
 // directions and 2 pi * escaping fraction. Rays are stratified in (uniform
 // solid angle, azimuth) and jittered with a fixed per-texel seed.
 // The sky-view factor is not available from this method (svf must be empty).

@@ -61,13 +61,4 @@ inline void skySliceTerms(float* term, float tanTheta0, float dPhi, float cosPhi
   term[3] = dPhi * (1.0f - sinTheta);
 }
 
-// Adds that slice to a texel's running sums (same layout), which live in the
-// output's own storage.
-inline void addSkySlice(float* sum, float tanTheta0, float dPhi, float cosPhiDPhi,
-                        float sinPhiDPhi) {
-  float term[4];
-  skySliceTerms(term, tanTheta0, dPhi, cosPhiDPhi, sinPhiDPhi);
-  for (int c = 0; c < 4; ++c) sum[c] += term[c];
-}
-
 }  // namespace aal

@@ -43,8 +43,8 @@ TEST(SkySlice, ClosedFormsMatchNumericalIntegration) {
   for (double theta0 : {-1.2, -0.5, 0.0, 0.3, 0.9, 1.4}) {
     float sum[4] = {0, 0, 0, 0};
     const double phi = 0.7, dPhi = 0.1;
-    addSkySlice(sum, float(std::tan(theta0)), float(dPhi), float(std::cos(phi) * dPhi),
-                float(std::sin(phi) * dPhi));
+    skySliceTerms(sum, float(std::tan(theta0)), float(dPhi), float(std::cos(phi) * dPhi),
+                  float(std::sin(phi) * dPhi));
     double omega, horizontal, vertical;
     integrateSlice(theta0, omega, horizontal, vertical);
     EXPECT_NEAR(sum[3], dPhi * omega, 1e-6) << theta0;
