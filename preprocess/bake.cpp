@@ -119,17 +119,14 @@ void finishApertures(const BakeTerrain& terrain, std::vector<float>& texels) {
   });
 }
 
-}  // namespace
-
-BakeResult bakeApertures(const Heightfield& field, const BakeOptions& o) {
-  checkOptions(field, o);
-  const BakeTerrain terrain = prepareBakeTerrain(field);
-
+// Bakes the texels of the terrain's window; info.sourceChecksum is left to
+// the caller.
+BakeResult bakeWindow(const Heightfield& field, const BakeTerrain& terrain, const BakeOptions& o) {
   // The running sums live in the output's own storage: 16 bytes per texel.
   BakeResult result;
   ApertureMap& map = result.aperture;
-  map.width = field.width;
-  map.height = field.height;
+  map.width = terrain.window.width;
+  map.height = terrain.window.height;
   map.texels.assign(map.texelCount() * 4, 0.0f);
   if (o.skyViewFactor) result.skyViewFactor.assign(map.texelCount(), 0.0f);
 
@@ -139,8 +136,14 @@ BakeResult bakeApertures(const Heightfield& field, const BakeOptions& o) {
     bakeRays(terrain, o, map.texels.data(), result.skyViewFactor);
   }
   finishApertures(terrain, map.texels);
+  map.info = bakeInfo(field, o);
+  return result;
+}
 
-  ApertureMapInfo& info = map.info;
+}  // namespace
+
+ApertureMapInfo bakeInfo(const Heightfield& field, const BakeOptions& o) {
+  ApertureMapInfo info;
   info.azimuths = o.method == BakeMethod::Sweep ? o.azimuths : 0;
   info.method = o.method == BakeMethod::Sweep ? "sweep" : "rays";
   info.cellSizeX = field.cellSizeXM;
@@ -148,12 +151,27 @@ BakeResult bakeApertures(const Heightfield& field, const BakeOptions& o) {
   info.zScale = field.zScale;
   info.sourceWidth = field.width;
   info.sourceHeight = field.height;
-  info.sourceChecksum = heightfieldChecksum(field);
   info.edge = o.clampEdge ? "clamp" : "open";
   info.curvature = o.curvature;
   info.refraction = o.curvature ? o.refraction : 0.0;
   info.maxDistanceM = o.maxDistanceM;
+  return info;
+}
+
+BakeResult bakeApertures(const Heightfield& field, const BakeOptions& o) {
+  checkOptions(field, o);
+  BakeResult result = bakeWindow(field, prepareBakeTerrain(field), o);
+  result.aperture.info.sourceChecksum = heightfieldChecksum(field);
   return result;
+}
+
+BakeResult bakeApertureWindow(const Heightfield& field, const TexelWindow& window,
+                              const BakeOptions& o) {
+  checkOptions(field, o);
+  if (!window.covers(field) && (o.method != BakeMethod::Sweep || !(o.maxDistanceM > 0.0))) {
+    throw std::invalid_argument("a bake window needs the sweep with a max distance");
+  }
+  return bakeWindow(field, prepareBakeTerrain(field, window), o);
 }
 
 }  // namespace aal

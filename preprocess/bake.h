@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "aperture_map.h"
+#include "bake_terrain.h"
 #include "heightfield.h"
 
 namespace aal {
@@ -48,5 +49,18 @@ constexpr double kEarthRadiusM = 6371000.0;
 // Bakes the aperture map of `field` (heights in metres, cell sizes applied).
 // Throws std::invalid_argument for options out of range.
 BakeResult bakeApertures(const Heightfield& field, const BakeOptions& options);
+
+// The header attributes a bake of `field` with these options carries, but
+// `source` and `sourceChecksum`.
+ApertureMapInfo bakeInfo(const Heightfield& field, const BakeOptions& options);
+
+// Bakes only the texels of `window` (a tile of the field), with the whole
+// field's geometry and horizons: equal bit for bit to the same texels of
+// bakeApertures. A partial window needs the sweep with a max distance (then
+// only terrain near the tile is walked). The map has the window's size; its
+// info describes the whole source, except that sourceChecksum is left empty
+// (a tiled bake hashes the field once, not per tile).
+BakeResult bakeApertureWindow(const Heightfield& field, const TexelWindow& window,
+                              const BakeOptions& options);
 
 }  // namespace aal

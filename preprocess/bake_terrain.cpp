@@ -1,12 +1,21 @@
 #include "bake_terrain.h"
 
 #include <algorithm>
+#include <stdexcept>
 
 #include <tbb/parallel_for.h>
 
 namespace aal {
 
 BakeTerrain prepareBakeTerrain(const Heightfield& field) {
+  return prepareBakeTerrain(field, TexelWindow{0, 0, field.width, field.height});
+}
+
+BakeTerrain prepareBakeTerrain(const Heightfield& field, const TexelWindow& window) {
+  if (window.width < 1 || window.height < 1 || window.col < 0 || window.row < 0 ||
+      window.col + window.width > field.width || window.row + window.height > field.height) {
+    throw std::invalid_argument("bake window outside the heightfield");
+  }
   BakeTerrain t;
   t.field = &field;
   t.width = field.width;
@@ -22,16 +31,17 @@ BakeTerrain prepareBakeTerrain(const Heightfield& field) {
     t.rowY[row] = (0.5 * (field.height - 1) - row) * field.cellSizeYM;  // row 0 is north
   }
 
-  // Central differences inside, one-sided at the edges.
-  t.slopes.resize(2 * field.texelCount());
+  // Central differences inside, one-sided at the edges of the field.
+  t.window = window;
+  t.slopes.resize(2 * window.texelCount());
   const int w = field.width, h = field.height;
-  tbb::parallel_for(0, h, [&](int row) {
+  tbb::parallel_for(window.row, window.row + window.height, [&](int row) {
     const int north = row > 0 ? row - 1 : row, south = row + 1 < h ? row + 1 : row;
     const double dyNorth = (south - north) * field.cellSizeYM;
-    for (int col = 0; col < w; ++col) {
+    for (int col = window.col; col < window.col + window.width; ++col) {
       const int west = col > 0 ? col - 1 : col, east = col + 1 < w ? col + 1 : col;
       const double dx = (east - west) * t.rowCellX[row];
-      const size_t i = field.index(col, row);
+      const size_t i = t.windowIndex(col, row);
       t.slopes[2 * i] =
           dx > 0 ? static_cast<float>((field.at(east, row) - field.at(west, row)) / dx) : 0.0f;
       t.slopes[2 * i + 1] =

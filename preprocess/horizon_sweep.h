@@ -16,6 +16,13 @@
 // line. Axis-aligned and diagonal lines pass through texel centres, where
 // this is exact.
 //
+// A bake window (BakeTerrain::window, a tile of the field) keeps the whole
+// field's lines, positions and heights: only the texels inside it are
+// visited, and only the steps that reach them are walked. With a distance
+// limit a line starts a little more than that distance before the window
+// (the points farther away cannot count), so a tile's horizons equal the
+// whole field's bit for bit; without one, lines start at the field's edge.
+//
 // Earth curvature drops a point at distance t by k t^2 (k = (1 - refraction)
 // / 2R). With heights z~ = z - k t^2 (t measured along u from any origin) the
 // true slope from p to q is slope~(p, q) + 2 k t_p, so the hull of z~ still
@@ -60,9 +67,25 @@ struct SweepLayout {
   std::vector<int> floorOffset;  // floor(k * minorPerStep)
   std::vector<double> fraction;  // k * minorPerStep - floorOffset[k]
   int firstLine = 0, lastLine = 0;
+  // Steps [firstStep, endStep) are walked; texels are visited from
+  // visitStep on (the steps before only fill the hulls), those with minor
+  // coordinates in [minorBegin, minorEnd): the window's.
+  int firstStep = 0, visitStep = 0, endStep = 0;
+  int minorBegin = 0, minorEnd = 0;
 };
 
-inline SweepLayout makeSweepLayout(const BakeTerrain& terrain, double ux, double uy) {
+// Sweep steps that cover `distance` metres along any line: a step advances
+// at least one cell (the smallest of the field) along u. The margin holds
+// the small unevenness of t along a line on geographic grids.
+inline int stepsCovering(const BakeTerrain& terrain, double distance) {
+  double smallest = terrain.cellY;
+  for (double cellX : terrain.rowCellX) smallest = std::min(smallest, cellX);
+  return static_cast<int>(std::min(std::ceil(distance / smallest), 1e9)) + 4;
+}
+
+// `maxDistanceM` (0 = none) sets how far before a partial window lines start.
+inline SweepLayout makeSweepLayout(const BakeTerrain& terrain, double ux, double uy,
+                                   double maxDistanceM = 0.0) {
   SweepLayout s;
   // Direction of +u in grid units (columns east, rows south) at the centre row.
   const double dc = ux / terrain.rowCellX[terrain.height / 2];
@@ -82,17 +105,29 @@ inline SweepLayout makeSweepLayout(const BakeTerrain& terrain, double ux, double
   }
   s.floorOffset.resize(s.majorLength);
   s.fraction.resize(s.majorLength);
-  int lo = 0, hi = 0;
   for (int k = 0; k < s.majorLength; ++k) {
     const double offset = k * s.minorPerStep;
     s.floorOffset[k] = static_cast<int>(std::floor(offset));
     s.fraction[k] = offset - s.floorOffset[k];
+  }
+  // The window's major range in steps (major = start + k * step).
+  const TexelWindow& w = terrain.window;
+  const int majorBegin = s.majorIsColumn ? w.col : w.row;
+  const int majorEnd = majorBegin + (s.majorIsColumn ? w.width : w.height);
+  s.minorBegin = s.majorIsColumn ? w.row : w.col;
+  s.minorEnd = s.minorBegin + (s.majorIsColumn ? w.height : w.width);
+  s.visitStep = s.step < 0 ? s.majorLength - majorEnd : majorBegin;
+  s.endStep = s.step < 0 ? s.majorLength - majorBegin : majorEnd;
+  s.firstStep =
+      maxDistanceM > 0.0 ? std::max(0, s.visitStep - stepsCovering(terrain, maxDistanceM)) : 0;
+  int lo = s.floorOffset[s.visitStep], hi = lo;
+  for (int k = s.visitStep; k < s.endStep; ++k) {
     lo = std::min(lo, s.floorOffset[k]);
     hi = std::max(hi, s.floorOffset[k]);
   }
   // Texel (k, j) lies between lines j - floorOffset[k] - 1 and j - floorOffset[k].
-  s.firstLine = -hi - 1;
-  s.lastLine = s.minorLength - 1 - lo;
+  s.firstLine = s.minorBegin - hi - 1;
+  s.lastLine = s.minorEnd - 1 - lo;
   return s;
 }
 
@@ -152,8 +187,9 @@ class LineWalker {
 
   // Advances `line` (state `state`) by sweep step `step` and returns the
   // horizon tangent of its sample there, kNoHorizon when nothing lies ahead
-  // or the line is off the grid at that step.
-  [[gnu::always_inline]] double step(Line& state, int line, int step) const {
+  // or the line is off the grid at that step (or `horizon` is false: the
+  // step only fills the hull).
+  [[gnu::always_inline]] double step(Line& state, int line, int step, bool horizon = true) const {
     const double minor = line + step * layout_.minorPerStep;
     if (minor < 0.0 || minor > minorMax_) return kNoHorizon;
     const int major = layout_.start + step * layout_.step;
@@ -181,7 +217,7 @@ class LineWalker {
     }
     hull[n] = p;
     state.size = n + 1;
-    return horizonOfNewest(state, z);
+    return horizon ? horizonOfNewest(state, z) : kNoHorizon;
   }
 
   // Slope of the bilinear surface leaving texel (col, row) along u: the cell
@@ -266,7 +302,6 @@ template <bool kMajorIsColumn, class Visit>
 void sweepLines(const BakeTerrain& terrain, const SweepLayout& layout, double ux, double uy,
                 const HorizonSweepOptions& options, Visit& visit) {
   const LineWalker<kMajorIsColumn> walker(terrain, layout, ux, uy, options);
-  const Heightfield& field = *terrain.field;
   constexpr int kGroup = 16;
   struct Scratch {
     std::vector<typename LineWalker<kMajorIsColumn>::Line> lines{kGroup + 1};
@@ -284,18 +319,27 @@ void sweepLines(const BakeTerrain& terrain, const SweepLayout& layout, double ux
     const int first = firstLine + group * kGroup;
     const int count = std::min(kGroup, layout.lastLine + 1 - first);
     for (int i = 0; i <= count; ++i) walker.reset(s.lines[i]);
-    for (int step = 0; step < layout.majorLength; ++step) {
-      for (int i = 0; i <= count; ++i) s.horizon[i] = walker.step(s.lines[i], first - 1 + i, step);
+    for (int step = layout.firstStep; step < layout.visitStep; ++step) {
+      for (int i = 0; i <= count; ++i) walker.step(s.lines[i], first - 1 + i, step, false);
+    }
+    for (int step = layout.visitStep; step < layout.endStep; ++step) {
+      for (int i = 0; i <= count; ++i) {
+        // Line c serves texels c + floorOffset and the one above it: a
+        // window's lines skip the horizon scan where both lie outside it.
+        const int beside = first - 1 + i + layout.floorOffset[step];
+        const bool used = beside >= layout.minorBegin - 1 && beside < layout.minorEnd;
+        s.horizon[i] = walker.step(s.lines[i], first - 1 + i, step, used);
+      }
       const int major = layout.start + step * layout.step;
       const double fraction = layout.fraction[step];
       for (int i = 1; i <= count; ++i) {
         const int minor = first - 1 + i + layout.floorOffset[step];
-        if (minor < 0 || minor >= layout.minorLength) continue;
+        if (minor < layout.minorBegin || minor >= layout.minorEnd) continue;
         const int col = kMajorIsColumn ? major : minor;
         const int row = kMajorIsColumn ? minor : major;
         const double lines = blendHorizons(s.horizon[i], s.horizon[i - 1], fraction);
         const double best = std::max(lines, walker.leavingSlope(col, row));
-        visit(field.index(col, row),
+        visit(terrain.windowIndex(col, row),
               best <= kNoHorizon ? -std::numeric_limits<double>::infinity() : best);
       }
     }
@@ -304,16 +348,17 @@ void sweepLines(const BakeTerrain& terrain, const SweepLayout& layout, double ux
 
 }  // namespace detail
 
-// Calls visit(texelIndex, tanHorizon) once for every texel for the azimuth
-// phi (radians, counter-clockwise from east; u = (cos phi, sin phi) in the
-// world frame). tanHorizon is the tangent of the horizon elevation, -inf when
-// no terrain lies ahead. Groups of lines run in parallel: visit is called
+// Calls visit(windowIndex, tanHorizon) once for every texel of the
+// terrain's window (BakeTerrain::windowIndex) for the azimuth phi (radians,
+// counter-clockwise from east; u = (cos phi, sin phi) in the world frame).
+// tanHorizon is the tangent of the horizon elevation, -inf when no terrain
+// lies ahead. Groups of lines run in parallel: visit is called
 // concurrently, but never twice for the same texel.
 template <class Visit>
 void sweepHorizons(const BakeTerrain& terrain, double phi, const HorizonSweepOptions& options,
                    Visit&& visit) {
   const double ux = std::cos(phi), uy = std::sin(phi);
-  const detail::SweepLayout layout = detail::makeSweepLayout(terrain, ux, uy);
+  const detail::SweepLayout layout = detail::makeSweepLayout(terrain, ux, uy, options.maxDistanceM);
   if (layout.majorIsColumn) {
     detail::sweepLines<true>(terrain, layout, ux, uy, options, visit);
   } else {

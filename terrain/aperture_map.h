@@ -5,8 +5,15 @@
 // On disk: OpenEXR, same size as the DEM, channels R, G, B = bent normal,
 // A = arc length in radians, with `aal:` header attributes that tie the map
 // to its DEM and bake options.
+//
+// A tiled bake writes a folder instead: one such EXR per tile, named
+// tile_ROW_COL.exr (tile indices, 4 digits) with its place in the DEM in
+// aal:tileOrigin, and index.txt, written last, with the full size, the tile
+// size and the bake's attributes. Everything below that reads a map also
+// reads such a folder, as one map (docs/baking.md).
 #pragma once
 
+#include <algorithm>
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -27,6 +34,9 @@ struct ApertureMapInfo {
   bool curvature = false;
   double refraction = 0;    // used when curvature is on
   double maxDistanceM = 0;  // 0 = unlimited
+  // Where this map's texel (0, 0) lies in the source: 0, 0 but for the
+  // tiles of a tiled bake (aal:tileOrigin, written when the map is a part).
+  int originCol = 0, originRow = 0;
 };
 
 struct ApertureMap {
@@ -47,21 +57,46 @@ std::string heightfieldChecksum(const Heightfield& field);
 // stores 16-bit floats (bent normal to ~1e-3, arc length to ~1e-3 rad).
 void writeApertureMap(const std::string& path, const ApertureMap& map, bool halfFloat);
 
-// Reads a map written by writeApertureMap. Throws InputError naming the file
-// when it is missing, unreadable, not 4 channels or lacks the aal:
-// attributes.
-ApertureMap readApertureMap(const std::string& path);
-
 struct ApertureMapHeader {
   int width = 0, height = 0;
   ApertureMapInfo info;
 };
 
+// Reads a map written by writeApertureMap, or a tiled map's folder (whole).
+// Throws InputError naming the file when it is missing, unreadable, not 4
+// channels or lacks the aal: attributes, or when a tile does not belong to
+// its folder's index.
+ApertureMap readApertureMap(const std::string& path);
+
+// The index of a tiled map (index.txt in its folder).
+struct ApertureTileIndex {
+  ApertureMapHeader map;  // the whole map: full size, the bake's attributes
+  int tileSize = 0;       // tiles are tileSize square, less at the right and bottom edges
+
+  int columns() const { return (map.width + tileSize - 1) / tileSize; }
+  int rows() const { return (map.height + tileSize - 1) / tileSize; }
+  int tileWidth(int column) const { return std::min(tileSize, map.width - column * tileSize); }
+  int tileHeight(int row) const { return std::min(tileSize, map.height - row * tileSize); }
+};
+
+// "tile_0002_0013.exr" for tile row 2, column 13.
+std::string apertureTileName(int row, int column);
+// index.txt in `folder`, written via a temporary file renamed into place.
+void writeApertureTileIndex(const std::string& folder, const ApertureTileIndex& index);
+// Throws InputError naming the folder when index.txt is missing or malformed.
+ApertureTileIndex readApertureTileIndex(const std::string& folder);
+// Throws InputError naming the tile's file unless the header is that of
+// tile (row, column) of `index` (size, origin, DEM checksum, attributes).
+void checkApertureTile(const ApertureTileIndex& index, int row, int column,
+                       const ApertureMapHeader& tile, const std::string& tilePath);
+
 // Streams a map row band by row band, so that large maps never sit in memory
-// as floats: the renderer copies them straight into staging memory.
+// as floats: the renderer copies them straight into staging memory. A tiled
+// map's folder reads the same: the rows are put together from its tiles.
 class ApertureMapReader {
  public:
-  // Opens and validates the header (errors as readApertureMap).
+  // Opens and validates the header (errors as readApertureMap); for a
+  // folder, its index (tiles are opened as their rows are read).
   explicit ApertureMapReader(const std::string& path);
   ~ApertureMapReader();
   ApertureMapReader(const ApertureMapReader&) = delete;

@@ -20,6 +20,7 @@
 #include "dem_loader.h"
 #include "geotiff_writer.h"
 #include "progress.h"
+#include "tiled_bake.h"
 #include "tool_main.h"
 #include "tool_options.h"
 
@@ -50,13 +51,54 @@ struct Options {
   int threads = 0;
   bool quiet = false;
   bool fullFloat = false;
+  int tileSize = 0;  // 0: tiled only above the in-memory limit
 };
 
-void checkOutputs(const Options& o) {
-  for (const std::string& path : {o.output, o.svfPath, o.visiblePath}) {
+// A tiled bake's output folder: an existing writable folder, or a new one
+// in an existing writable folder.
+void requireWritableFolder(const std::string& path) {
+  namespace fs = std::filesystem;
+  std::error_code error;
+  if (fs::exists(path, error) && !fs::is_directory(path, error)) {
+    throw aal::InputError("a tiled bake writes a folder: " + path + " is a file");
+  }
+  if (fs::is_directory(path, error)) {
+    aal::requireWritableOutput((fs::path(path) / "index.txt").string());
+  } else {
+    aal::requireWritableOutput(path);  // its parent folder exists and is writable
+  }
+}
+
+void checkOutputs(const Options& o, bool tiled) {
+  if (tiled) {
+    requireWritableFolder(o.output);
+  } else {
+    aal::requireWritableOutput(o.output);
+  }
+  for (const std::string& path : {o.svfPath, o.visiblePath}) {
     if (path.empty()) continue;
     aal::requireWritableOutput(path);
   }
+}
+
+// Tiled when asked, or when the DEM is above the in-memory limit; then the
+// options must suit a tiled bake.
+bool checkTiling(const Options& o, const aal::Heightfield& field) {
+  const bool tooLarge = field.texelCount() > aal::kInMemoryBakeTexelLimit;
+  if (o.tileSize == 0 && !tooLarge) return false;
+  const std::string why =
+      o.tileSize > 0
+          ? std::string("a tiled bake (--tile-size)")
+          : "the DEM is " + std::to_string(field.width) + "x" + std::to_string(field.height) +
+                ": above 16384x16384 texels only a tiled bake fits in memory, which";
+  if (!(o.maxDistance > 0)) {
+    throw aal::InputError(why + " needs --max-distance (each tile sees the terrain within it)");
+  }
+  if (o.method != "sweep") throw aal::InputError(why + " needs --method sweep");
+  if (!o.svfPath.empty() || !o.visiblePath.empty()) {
+    throw aal::InputError(why + " writes no --svf or --visible");
+  }
+  return true;
 }
 
 std::vector<float> visibleFractions(const aal::ApertureMap& map) {
@@ -66,11 +108,16 @@ std::vector<float> visibleFractions(const aal::ApertureMap& map) {
 }
 
 int run(const Options& o) {
-  checkOutputs(o);  // before minutes of work, not after
+  // Outputs are checked before minutes of work, not after (again once the
+  // DEM's size has decided the tiling).
+  const bool askedTiled = o.tileSize > 0 || std::filesystem::is_directory(o.output);
+  checkOutputs(o, askedTiled);
   aal::DemLoadOptions load;
   load.cellSizeM = o.cellSize;
   load.zScale = o.zScale;
   aal::Heightfield field = aal::loadDem(o.dem, load);
+  const bool tiled = checkTiling(o, field);
+  if (tiled != askedTiled) checkOutputs(o, tiled);
 
   aal::BakeOptions bake;
   bake.method = o.method == "rays" ? aal::BakeMethod::Rays : aal::BakeMethod::Sweep;
@@ -92,21 +139,40 @@ int run(const Options& o) {
       o.threads > 0 ? o.threads : static_cast<int>(std::thread::hardware_concurrency());
   tbb::global_control parallelism(tbb::global_control::max_allowed_parallelism,
                                   static_cast<size_t>(std::max(1, threads)));
+  const std::string source = std::filesystem::path(o.dem).filename().string();
   const auto start = std::chrono::steady_clock::now();
   aal::BakeResult result;
+  aal::TiledBakeSummary tiles;
+  aal::TiledBakeOptions tiling;
+  tiling.tileSize = o.tileSize > 0 ? o.tileSize : aal::kDefaultTileSize;
+  tiling.halfFloat = !o.fullFloat;
+  tiling.sourceName = source;
   try {
-    result = aal::bakeApertures(field, bake);
+    if (tiled) {
+      tiles = aal::bakeTiled(field, bake, tiling, o.output);
+    } else {
+      result = aal::bakeApertures(field, bake);
+    }
   } catch (const aal::BakeCancelled&) {
     progress.finish();
-    std::fprintf(stderr, "aal-bake: interrupted; nothing was written\n");
+    if (tiled) {
+      std::fprintf(stderr,
+                   "aal-bake: interrupted; the finished tiles are kept in %s: run the same "
+                   "command again to resume\n",
+                   o.output.c_str());
+    } else {
+      std::fprintf(stderr, "aal-bake: interrupted; nothing was written\n");
+    }
     return aal::kExitFailure;
   }
   progress.finish();
   const double seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 
-  result.aperture.info.source = std::filesystem::path(o.dem).filename().string();
-  aal::writeApertureMap(o.output, result.aperture, !o.fullFloat);
+  if (!tiled) {
+    result.aperture.info.source = source;
+    aal::writeApertureMap(o.output, result.aperture, !o.fullFloat);
+  }
   if (!o.svfPath.empty()) {
     aal::writeFloatGeoTiff(o.svfPath, field.width, field.height, result.skyViewFactor.data(),
                            field.geo);
@@ -116,11 +182,18 @@ int run(const Options& o) {
     aal::writeFloatGeoTiff(o.visiblePath, field.width, field.height, visible.data(), field.geo);
   }
 
-  const double work = static_cast<double>(field.texelCount()) *
-                      (bake.method == aal::BakeMethod::Sweep ? o.azimuths : o.rays);
+  // A resumed tiled bake counts only the texels it baked.
+  double texels = static_cast<double>(field.texelCount());
+  std::string layout;
+  if (tiled) {
+    layout = ", " + std::to_string(tiling.tileSize) + "-texel tiles (" +
+             std::to_string(tiles.baked) + " baked, " + std::to_string(tiles.resumed) + " resumed)";
+    if (tiles.tiles > 0) texels *= static_cast<double>(tiles.baked) / tiles.tiles;
+  }
+  const double work = texels * (bake.method == aal::BakeMethod::Sweep ? o.azimuths : o.rays);
   if (!o.quiet) {
-    std::fprintf(stderr, "aal-bake: %s %dx%d, %s, %s in %.2f s (%.3g texel-%s/s) -> %s\n",
-                 result.aperture.info.source.c_str(), field.width, field.height, o.method.c_str(),
+    std::fprintf(stderr, "aal-bake: %s %dx%d%s, %s, %s in %.2f s (%.3g texel-%s/s) -> %s\n",
+                 source.c_str(), field.width, field.height, layout.c_str(), o.method.c_str(),
                  (bake.method == aal::BakeMethod::Sweep ? std::to_string(o.azimuths) + " azimuths"
                                                         : std::to_string(o.rays) + " rays")
                      .c_str(),
@@ -137,12 +210,19 @@ int main(int argc, char** argv) {
       "Bakes the aperture map of a DEM: for every texel the visible sky as a spherical cap, "
       "its\nbent normal (mean unoccluded direction) and arc length r = acos(1 - Omega/2pi), "
       "written as\nEXR (RGB = bent normal, A = r). Horizons come from the whole DEM (no "
-      "distance limit\nunless --max-distance).\n\n" +
+      "distance limit\nunless --max-distance).\n\nAbove 16384x16384 texels (the in-memory bake's "
+      "~28.5 bytes per texel would not\nfit 24 GiB at the next size up) the DEM is baked in "
+      "tiles into the folder -o, and\n--max-distance is required: each tile is baked from "
+      "itself plus the terrain within\nthat distance, equal to the in-memory bake. An "
+      "interrupted tiled bake resumes from its\nfinished tiles when run again. aal-render and "
+      "aal-view read the folder as the map.\n\n" +
           aal::demFormatsHelp(),
       "aal-bake");
   Options o;
   app.add_option("dem", o.dem, "input DEM")->required();
-  app.add_option("-o,--output", o.output, "output aperture map (.exr)")->required();
+  app.add_option("-o,--output", o.output,
+                 "output aperture map (.exr), or the output folder of a tiled bake")
+      ->required();
   app.add_option("--method", o.method,
                  "sweep: exact horizons by line sweep (fast); rays: brute-force reference")
       ->check(CLI::IsMember({"sweep", "rays"}))
@@ -174,6 +254,11 @@ int main(int argc, char** argv) {
                  "also write the visible fraction Omega/2pi as float32 GeoTIFF");
   app.add_option("--threads", o.threads, "worker threads (default: all cores)")
       ->check(CLI::Range(1, 1024));
+  app.add_option("--tile-size", o.tileSize,
+                 "bake in tiles of N x N texels into the folder -o, resumable (needs "
+                 "--max-distance); DEMs above 16384x16384 texels are always baked tiled, in "
+                 "tiles of 4096")
+      ->check(CLI::Range(aal::kMinTileSize, aal::kMaxTileSize));
   app.add_flag("--float", o.fullFloat, "store 32-bit floats instead of 16-bit halves");
   app.add_flag("-q,--quiet", o.quiet, "no progress and no summary");
 

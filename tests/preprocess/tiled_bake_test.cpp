@@ -1,0 +1,362 @@
+// The tiled bake: tiles equal the in-memory bake bit for bit (seams
+// included), the tile folder reads as one map, interrupted bakes resume.
+#include "tiled_bake.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <vector>
+
+#include "../tools/run_tool.h"
+#include "aperture_map.h"
+#include "errors.h"
+#include "horizon_sweep.h"
+#include "synthetic.h"
+
+namespace aal {
+namespace {
+
+namespace fs = std::filesystem;
+
+// 300 x 200 fBm at 30 m cells, 600 m of relief: tiles of 64 leave partial
+// tiles at the right (44) and bottom (8) edges.
+Heightfield fbmField(int width = 300, int height = 200) {
+  SyntheticTerrainOptions s;
+  s.width = width;
+  s.height = height;
+  s.cellSizeM = 30;
+  s.seed = 11;
+  s.featureSizeTexels = 40;
+  s.octaves = 5;
+  return makeSyntheticTerrain(s);
+}
+
+// The same terrain on a geographic grid far north, where the x spacing
+// shrinks by ~11 % from the southern to the northern edge.
+Heightfield geographicField() {
+  Heightfield field = fbmField(150, 120);
+  field.rowCellSizeXM.resize(static_cast<size_t>(field.height));
+  for (int row = 0; row < field.height; ++row) {
+    const double latDeg = 62.0 - row * 0.03;
+    field.rowCellSizeXM[static_cast<size_t>(row)] = 60.0 * std::cos(latDeg * M_PI / 180.0);
+  }
+  field.cellSizeXM = field.rowCellSizeXM[static_cast<size_t>(field.height / 2)];
+  return field;
+}
+
+BakeOptions distanceLimited(double maxDistanceM, bool clampEdge = false) {
+  BakeOptions o;
+  o.azimuths = 24;  // not a multiple of 8: lines at every kind of slope
+  o.maxDistanceM = maxDistanceM;
+  o.clampEdge = clampEdge;
+  return o;
+}
+
+// Counts texels of `tile` (at `window` in the field) that differ in any bit
+// from the whole-field bake `whole`.
+size_t differingTexels(const ApertureMap& whole, const ApertureMap& tile,
+                       const TexelWindow& window) {
+  size_t differing = 0;
+  for (int row = 0; row < window.height; ++row) {
+    for (int col = 0; col < window.width; ++col) {
+      const float* a = &whole.texels[4 * (static_cast<size_t>(row + window.row) * whole.width +
+                                          static_cast<size_t>(col + window.col))];
+      const float* b = &tile.texels[4 * (static_cast<size_t>(row) * tile.width + col)];
+      if (std::memcmp(a, b, 4 * sizeof(float)) != 0) ++differing;
+    }
+  }
+  return differing;
+}
+
+// Bakes every tile of `field` with bakeApertureWindow and expects each to
+// equal the whole bake bit for bit.
+void expectTilesEqualWholeBake(const Heightfield& field, const BakeOptions& o, int tileSize) {
+  const BakeResult whole = bakeApertures(field, o);
+  for (int row = 0; row < field.height; row += tileSize) {
+    for (int col = 0; col < field.width; col += tileSize) {
+      const TexelWindow window{col, row, std::min(tileSize, field.width - col),
+                               std::min(tileSize, field.height - row)};
+      const BakeResult tile = bakeApertureWindow(field, window, o);
+      ASSERT_EQ(tile.aperture.width, window.width);
+      ASSERT_EQ(tile.aperture.height, window.height);
+      EXPECT_EQ(differingTexels(whole.aperture, tile.aperture, window), 0u)
+          << "tile at " << col << "," << row;
+    }
+  }
+}
+
+TEST(TiledBake, TilesEqualTheInMemoryBakeWithOpenEdges) {
+  expectTilesEqualWholeBake(fbmField(), distanceLimited(150), 64);
+}
+
+TEST(TiledBake, TilesEqualTheInMemoryBakeWithClampedEdgesAndCurvature) {
+  BakeOptions o = distanceLimited(200, /*clampEdge=*/true);
+  o.curvature = true;
+  expectTilesEqualWholeBake(fbmField(), o, 64);
+}
+
+TEST(TiledBake, TilesEqualTheInMemoryBakeOnAGeographicGrid) {
+  expectTilesEqualWholeBake(geographicField(), distanceLimited(300, true), 32);
+}
+
+// A distance reaching across several tiles: the lines of a tile start
+// three tiles away.
+TEST(TiledBake, DistanceLongerThanATile) {
+  expectTilesEqualWholeBake(fbmField(120, 90), distanceLimited(1500), 16);
+}
+
+// The sweep over a window equals the whole sweep there, also without a
+// distance limit (its lines then start at the field's edge).
+TEST(TiledBake, WindowSweepEqualsTheWholeSweep) {
+  const Heightfield field = fbmField(90, 60);
+  const BakeTerrain whole = prepareBakeTerrain(field);
+  const TexelWindow window{23, 17, 40, 25};
+  const BakeTerrain part = prepareBakeTerrain(field, window);
+  for (const double maxDistanceM : {0.0, 200.0}) {
+    HorizonSweepOptions o;
+    o.maxDistanceM = maxDistanceM;
+    o.clampEdge = true;
+    for (int a = 0; a < 24; ++a) {
+      const double phi = a * 2 * M_PI / 24;
+      std::vector<double> all(field.texelCount(), NAN), some(window.texelCount(), NAN);
+      sweepHorizons(whole, phi, o, [&](size_t i, double t) { all[i] = t; });
+      sweepHorizons(part, phi, o, [&](size_t i, double t) { some[i] = t; });
+      size_t differing = 0;
+      for (int row = 0; row < window.height; ++row) {
+        for (int col = 0; col < window.width; ++col) {
+          const double a1 = all[field.index(col + window.col, row + window.row)];
+          const double a2 = some[part.windowIndex(col + window.col, row + window.row)];
+          if (std::memcmp(&a1, &a2, sizeof a1) != 0) ++differing;
+        }
+      }
+      EXPECT_EQ(differing, 0u) << "azimuth " << a << ", max distance " << maxDistanceM;
+    }
+  }
+}
+
+// The texels either side of every tile boundary, on a map baked in the
+// folder and read back, equal those of the single-file bake.
+TEST(TiledBake, SeamsMatchTheSingleFileBake) {
+  test::TempDir dir;
+  const Heightfield field = fbmField();
+  const BakeOptions o = distanceLimited(150);
+  BakeResult whole = bakeApertures(field, o);
+  whole.aperture.info.source = "fbm.tif";
+  const std::string single = (dir.path() / "whole.exr").string();
+  writeApertureMap(single, whole.aperture, true);
+  TiledBakeOptions t;
+  t.tileSize = 64;
+  t.sourceName = "fbm.tif";
+  const std::string folder = (dir.path() / "tiles").string();
+  const TiledBakeSummary summary = bakeTiled(field, o, t, folder);
+  EXPECT_EQ(summary.tiles, 5 * 4);
+  EXPECT_EQ(summary.baked, 20);
+  const ApertureMap a = readApertureMap(single), b = readApertureMap(folder);
+  ASSERT_EQ(b.width, field.width);
+  ASSERT_EQ(b.height, field.height);
+  for (int boundary = 64; boundary < field.width; boundary += 64) {
+    for (int row = 0; row < field.height; ++row) {
+      for (int col : {boundary - 1, boundary}) {
+        const size_t i = 4 * field.index(col, row);
+        EXPECT_EQ(std::memcmp(&a.texels[i], &b.texels[i], 16), 0) << col << "," << row;
+      }
+    }
+  }
+  for (int boundary = 64; boundary < field.height; boundary += 64) {
+    for (int col = 0; col < field.width; ++col) {
+      for (int row : {boundary - 1, boundary}) {
+        const size_t i = 4 * field.index(col, row);
+        EXPECT_EQ(std::memcmp(&a.texels[i], &b.texels[i], 16), 0) << col << "," << row;
+      }
+    }
+  }
+  EXPECT_EQ(a.texels, b.texels);  // and everything else
+  EXPECT_EQ(b.info.sourceChecksum, heightfieldChecksum(field));
+  EXPECT_EQ(b.info.source, "fbm.tif");
+  EXPECT_EQ(b.info.maxDistanceM, 150);
+  EXPECT_NO_THROW(checkApertureMatchesDem(b, folder, field, "fbm.tif"));
+}
+
+// The streaming reader puts rows together from the tiles, for row bands
+// that start and end inside tiles.
+TEST(TiledBake, ReaderAssemblesRowsFromTiles) {
+  test::TempDir dir;
+  const Heightfield field = fbmField(100, 70);
+  const BakeOptions o = distanceLimited(100);
+  BakeResult whole = bakeApertures(field, o);
+  const std::string single = (dir.path() / "whole.exr").string();
+  writeApertureMap(single, whole.aperture, true);
+  TiledBakeOptions t;
+  t.tileSize = 16;
+  const std::string folder = (dir.path() / "tiles").string();
+  bakeTiled(field, o, t, folder);
+  ApertureMapReader a(single), b(folder);
+  EXPECT_EQ(b.header().width, 100);
+  EXPECT_EQ(b.header().height, 70);
+  EXPECT_EQ(b.header().info.sourceChecksum, a.header().info.sourceChecksum);
+  for (auto [first, end] : {std::pair{0, 70}, {5, 37}, {16, 32}, {60, 70}, {3, 4}, {40, 40}}) {
+    const size_t count = static_cast<size_t>(end - first) * 100 * 4;
+    std::vector<uint16_t> fromFile(count), fromTiles(count);
+    a.readHalfRows(first, end, fromFile.data());
+    b.readHalfRows(first, end, fromTiles.data());
+    EXPECT_EQ(fromFile, fromTiles) << "rows " << first << " to " << end;
+  }
+}
+
+TEST(TiledBake, InterruptedBakeResumesFromItsFinishedTiles) {
+  test::TempDir dir;
+  const Heightfield field = fbmField(200, 150);
+  BakeOptions o = distanceLimited(120, true);
+  TiledBakeOptions t;
+  t.tileSize = 64;  // 4 x 3 tiles
+  const std::string reference = (dir.path() / "reference").string();
+  bakeTiled(field, o, t, reference);
+
+  // Stop past half way: during the fifth tile (tiles of 64, 64, 64 and 8
+  // texels across; 64, 64 and 22 down).
+  const std::string folder = (dir.path() / "tiles").string();
+  std::atomic<bool> cancel{false};
+  o.cancel = &cancel;
+  o.progress = [&](double fraction) {
+    if (fraction > 0.5) cancel = true;
+  };
+  EXPECT_THROW(bakeTiled(field, o, t, folder), BakeCancelled);
+  EXPECT_FALSE(fs::exists(fs::path(folder) / "index.txt"));
+  std::vector<fs::file_time_type> written;
+  int finished = 0;
+  for (int i = 0; i < 12; ++i) {
+    const fs::path tile = fs::path(folder) / apertureTileName(i / 4, i % 4);
+    if (fs::exists(tile)) {
+      ++finished;
+      written.push_back(fs::last_write_time(tile));
+    }
+  }
+  EXPECT_EQ(finished, 4);
+  // Unfinished, the folder is no map yet.
+  EXPECT_THROW(readApertureMap(folder), InputError);
+  EXPECT_THROW(ApertureMapReader{folder}, InputError);
+
+  cancel = false;
+  o.progress = nullptr;
+  const TiledBakeSummary summary = bakeTiled(field, o, t, folder);
+  EXPECT_EQ(summary.tiles, 12);
+  EXPECT_EQ(summary.resumed, finished);
+  EXPECT_EQ(summary.baked, 12 - finished);
+  for (int i = 0; i < finished; ++i) {
+    const fs::path tile = fs::path(folder) / apertureTileName(i / 4, i % 4);
+    EXPECT_EQ(fs::last_write_time(tile), written[static_cast<size_t>(i)]) << tile;
+  }
+  EXPECT_EQ(readApertureMap(folder).texels, readApertureMap(reference).texels);
+
+  // Run again on the finished folder: nothing to bake.
+  EXPECT_EQ(bakeTiled(field, o, t, folder).resumed, 12);
+}
+
+TEST(TiledBake, AFolderOfAnotherBakeIsAnError) {
+  test::TempDir dir;
+  const Heightfield field = fbmField(100, 70);
+  TiledBakeOptions t;
+  t.tileSize = 32;
+  const std::string folder = (dir.path() / "tiles").string();
+  bakeTiled(field, distanceLimited(100), t, folder);
+  // Other options, another DEM, another tile size: nothing is overwritten.
+  EXPECT_THROW(bakeTiled(field, distanceLimited(110), t, folder), InputError);
+  EXPECT_THROW(bakeTiled(fbmField(100, 71), distanceLimited(100), t, folder), InputError);
+  TiledBakeOptions other = t;
+  other.tileSize = 48;
+  EXPECT_THROW(bakeTiled(field, distanceLimited(100), other, folder), InputError);
+  // Without the index, a tile of another bake is found as such.
+  fs::remove(fs::path(folder) / "index.txt");
+  try {
+    bakeTiled(field, distanceLimited(110), t, folder);
+    ADD_FAILURE() << "a tile of another bake was accepted";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("tile_0000_0000.exr"), std::string::npos) << e.what();
+  }
+}
+
+TEST(TiledBake, CorruptOrMissingTilesAreNamed) {
+  test::TempDir dir;
+  const Heightfield field = fbmField(100, 70);
+  TiledBakeOptions t;
+  t.tileSize = 32;
+  const std::string folder = (dir.path() / "tiles").string();
+  bakeTiled(field, distanceLimited(100), t, folder);
+  const ApertureMap good = readApertureMap(folder);
+
+  const fs::path tile = fs::path(folder) / apertureTileName(1, 2);
+  fs::resize_file(tile, fs::file_size(tile) / 2);
+  for (const bool streaming : {false, true}) {
+    try {
+      if (streaming) {
+        ApertureMapReader reader(folder);
+        std::vector<uint16_t> rows(100 * 70 * 4);
+        reader.readHalfRows(0, 70, rows.data());
+      } else {
+        readApertureMap(folder);
+      }
+      ADD_FAILURE() << "a truncated tile was read";
+    } catch (const InputError& e) {
+      EXPECT_NE(std::string(e.what()).find("tile_0001_0002.exr"), std::string::npos) << e.what();
+    }
+  }
+  // Resuming bakes the broken tile again.
+  const TiledBakeSummary summary = bakeTiled(field, distanceLimited(100), t, folder);
+  EXPECT_EQ(summary.baked, 1);
+  EXPECT_EQ(readApertureMap(folder).texels, good.texels);
+
+  fs::remove(tile);
+  try {
+    readApertureMap(folder);
+    ADD_FAILURE() << "a missing tile was not noticed";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("tile_0001_0002.exr"), std::string::npos) << e.what();
+  }
+}
+
+TEST(TiledBake, AFolderOfAnotherDemDoesNotMatch) {
+  test::TempDir dir;
+  const Heightfield field = fbmField(100, 70);
+  TiledBakeOptions t;
+  t.tileSize = 32;
+  const std::string folder = (dir.path() / "tiles").string();
+  bakeTiled(field, distanceLimited(100), t, folder);
+  const ApertureMapReader reader(folder);
+  EXPECT_NO_THROW(checkApertureMatchesDem(reader.header(), folder, field, "a.tif"));
+  Heightfield other = field;
+  other.z[17] += 1.0f;
+  EXPECT_THROW(checkApertureMatchesDem(reader.header(), folder, other, "b.tif"), InputError);
+  EXPECT_THROW(checkApertureMatchesDem(reader.header(), folder, fbmField(100, 71), "c.tif"),
+               InputError);
+}
+
+TEST(TiledBake, RejectsWhatItCannotBake) {
+  const Heightfield field = fbmField(40, 30);
+  TiledBakeOptions t;
+  BakeOptions o = distanceLimited(100);
+  t.tileSize = kMinTileSize - 1;
+  EXPECT_THROW(checkTiledBakeOptions(o, t), std::invalid_argument);
+  t.tileSize = kMaxTileSize + 1;
+  EXPECT_THROW(checkTiledBakeOptions(o, t), std::invalid_argument);
+  t.tileSize = 16;
+  EXPECT_NO_THROW(checkTiledBakeOptions(o, t));
+  o.maxDistanceM = 0;
+  EXPECT_THROW(checkTiledBakeOptions(o, t), std::invalid_argument);
+  // A partial window without a distance limit would need the whole DEM.
+  EXPECT_THROW(bakeApertureWindow(field, TexelWindow{0, 0, 16, 16}, o), std::invalid_argument);
+  EXPECT_NO_THROW(bakeApertureWindow(field, TexelWindow{0, 0, 40, 30}, o));
+  o = distanceLimited(100);
+  o.method = BakeMethod::Rays;
+  EXPECT_THROW(checkTiledBakeOptions(o, t), std::invalid_argument);
+  o = distanceLimited(100);
+  o.skyViewFactor = true;
+  EXPECT_THROW(checkTiledBakeOptions(o, t), std::invalid_argument);
+  EXPECT_THROW(bakeApertureWindow(field, TexelWindow{30, 0, 16, 16}, distanceLimited(100)),
+               std::invalid_argument);  // outside the field
+}
+
+}  // namespace
+}  // namespace aal

@@ -1,0 +1,198 @@
+// Command-line contract of aal-bake's tiled bake, and aal-render and aal-view
+// reading the tile folder as the aperture map.
+#include <gtest/gtest.h>
+
+#include <OpenImageIO/imageio.h>
+
+#include <unistd.h>
+
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <vector>
+
+#include "aperture_map.h"
+#include "geotiff_writer.h"
+#include "run_tool.h"
+#include "synthetic.h"
+
+namespace aal {
+namespace {
+
+namespace fs = std::filesystem;
+using test::quoted;
+using test::runTool;
+using test::TempDir;
+
+// A width x height synthetic DEM written as a projected float GeoTIFF.
+fs::path writeDem(const TempDir& dir, int width, int height, uint64_t seed = 1) {
+  SyntheticTerrainOptions s;
+  s.width = width;
+  s.height = height;
+  s.cellSizeM = 30;
+  s.seed = seed;
+  s.featureSizeTexels = 24;
+  const Heightfield field = makeSyntheticTerrain(s);
+  GeoReference geo;
+  geo.crs = CrsKind::Projected;
+  geo.epsg = 32616;
+  geo.originX = 500000;
+  geo.originY = 4000000;
+  geo.stepX = geo.stepY = 30;
+  const fs::path path = dir.path() / ("dem" + std::to_string(seed) + ".tif");
+  writeFloatGeoTiff(path.string(), width, height, field.z.data(), geo);
+  return path;
+}
+
+const std::string kOptions = " --azimuths 16 --max-distance 200 -q";
+
+TEST(AalBakeTiled, FolderEqualsTheSingleFileBake) {
+  TempDir dir;
+  const fs::path dem = writeDem(dir, 90, 70);
+  const fs::path single = dir.path() / "a.exr", folder = dir.path() / "a.tiles";
+  ASSERT_EQ(runTool("aal-bake", quoted(dem) + " -o " + quoted(single) + kOptions).exitCode, 0);
+  const auto r = runTool("aal-bake", quoted(dem) + " -o " + quoted(folder) +
+                                         " --tile-size 32 --azimuths 16 --max-distance 200");
+  ASSERT_EQ(r.exitCode, 0) << r.out;
+  EXPECT_NE(r.out.find("32-texel tiles (9 baked, 0 resumed)"), std::string::npos) << r.out;
+  EXPECT_TRUE(fs::exists(folder / "index.txt"));
+  const ApertureMap a = readApertureMap(single.string()), b = readApertureMap(folder.string());
+  EXPECT_EQ(b.width, 90);
+  EXPECT_EQ(b.height, 70);
+  EXPECT_EQ(a.texels, b.texels);
+  EXPECT_EQ(a.info.sourceChecksum, b.info.sourceChecksum);
+  EXPECT_EQ(b.info.source, dem.filename().string());
+}
+
+TEST(AalBakeTiled, RunningAgainResumesFromTheFinishedTiles) {
+  TempDir dir;
+  const fs::path dem = writeDem(dir, 90, 70);
+  const fs::path folder = dir.path() / "a.tiles";
+  const std::string command =
+      quoted(dem) + " -o " + quoted(folder) + " --tile-size 32 --azimuths 16 --max-distance 200";
+  ASSERT_EQ(runTool("aal-bake", command).exitCode, 0);
+  const ApertureMap whole = readApertureMap(folder.string());
+  // As an interrupted run leaves it: some tiles, no index.
+  fs::remove(folder / "index.txt");
+  fs::remove(folder / apertureTileName(1, 1));
+  fs::remove(folder / apertureTileName(2, 0));
+  const auto r = runTool("aal-bake", command);
+  ASSERT_EQ(r.exitCode, 0) << r.out;
+  EXPECT_NE(r.out.find("(2 baked, 7 resumed)"), std::string::npos) << r.out;
+  EXPECT_EQ(readApertureMap(folder.string()).texels, whole.texels);
+  // Other options on the same folder: refused, nothing overwritten.
+  const auto other = runTool("aal-bake", quoted(dem) + " -o " + quoted(folder) +
+                                             " --tile-size 32 --azimuths 32 --max-distance 200");
+  EXPECT_EQ(other.exitCode, 2) << other.out;
+  EXPECT_NE(other.out.find("another folder"), std::string::npos) << other.out;
+  EXPECT_EQ(readApertureMap(folder.string()).texels, whole.texels);
+}
+
+TEST(AalBakeTiled, BadTiledBakesExitWithTwoBeforeWork) {
+  TempDir dir;
+  const fs::path dem = writeDem(dir, 40, 40);
+  const fs::path folder = dir.path() / "t";
+  const std::string out = quoted(dem) + " -o " + quoted(folder);
+  const fs::path file = dir.path() / "file.exr";
+  std::ofstream(file) << "a file";
+  struct Case {
+    std::string args, says;
+  };
+  for (const Case& c : {
+           Case{out + " --tile-size 8 --max-distance 100", "--tile-size"},
+           Case{out + " --tile-size 20000 --max-distance 100", "--tile-size"},
+           Case{out + " --tile-size 16", "--max-distance"},
+           Case{out + " --tile-size 16 --max-distance 100 --method rays", "sweep"},
+           Case{out + " --tile-size 16 --max-distance 100 --svf " + quoted(dir.path() / "s.tif"),
+                "--svf"},
+           Case{quoted(dem) + " -o " + quoted(file) + " --tile-size 16 --max-distance 100",
+                "is a file"},
+           Case{quoted(dem) + " -o " + quoted(dir.path() / "no" / "t") +
+                    " --tile-size 16 --max-distance 100",
+                "does not exist"},
+       }) {
+    const auto r = runTool("aal-bake", c.args);
+    EXPECT_EQ(r.exitCode, 2) << c.args << "\n" << r.out;
+    EXPECT_NE(r.out.find(c.says), std::string::npos) << c.args << "\n" << r.out;
+    EXPECT_EQ(r.out.find("texel-azimuths"), std::string::npos) << "baked anyway: " << r.out;
+  }
+  EXPECT_FALSE(fs::exists(folder));
+}
+
+TEST(AalBakeTiled, HelpStatesTheLimit) {
+  const auto r = runTool("aal-bake", "--help");
+  ASSERT_EQ(r.exitCode, 0);
+  EXPECT_NE(r.out.find("16384x16384"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("--tile-size"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("--max-distance is required"), std::string::npos) << r.out;
+}
+
+std::vector<float> pixels(const fs::path& path) {
+  auto in = OIIO::ImageInput::open(path.string());
+  if (!in) return {};
+  const OIIO::ImageSpec& spec = in->spec();
+  std::vector<float> values(static_cast<size_t>(spec.width) * spec.height * spec.nchannels);
+  if (!in->read_image(0, 0, 0, spec.nchannels, OIIO::TypeDesc::FLOAT, values.data())) return {};
+  return values;
+}
+
+TEST(AalBakeTiled, RenderReadsTheTileFolder) {
+  TempDir dir;
+  const fs::path dem = writeDem(dir, 90, 70), other = writeDem(dir, 90, 70, 2);
+  const fs::path single = dir.path() / "a.exr", folder = dir.path() / "a.tiles";
+  ASSERT_EQ(runTool("aal-bake", quoted(dem) + " -o " + quoted(single) + kOptions).exitCode, 0);
+  ASSERT_EQ(
+      runTool("aal-bake", quoted(dem) + " -o " + quoted(folder) + " --tile-size 32" + kOptions)
+          .exitCode,
+      0);
+  const std::string view = " --size 64x48 --sun-azimuth 135 --sun-elevation 20";
+  const fs::path fromFile = dir.path() / "file.exr", fromTiles = dir.path() / "tiles.exr";
+  auto r = runTool("aal-render", quoted(dem) + " --aperture " + quoted(single) + " -o " +
+                                     quoted(fromFile) + view);
+  ASSERT_EQ(r.exitCode, 0) << r.out;
+  r = runTool("aal-render",
+              quoted(dem) + " --aperture " + quoted(folder) + " -o " + quoted(fromTiles) + view);
+  ASSERT_EQ(r.exitCode, 0) << r.out;
+  const std::vector<float> a = pixels(fromFile), b = pixels(fromTiles);
+  ASSERT_FALSE(a.empty());
+  EXPECT_EQ(a, b);
+  // A folder baked from another DEM is refused.
+  r = runTool("aal-render", quoted(other) + " --aperture " + quoted(folder) + " -o " +
+                                quoted(dir.path() / "x.png") + view);
+  EXPECT_EQ(r.exitCode, 2) << r.out;
+  EXPECT_NE(r.out.find("does not belong"), std::string::npos) << r.out;
+}
+
+// aal-view in a private X server, as in aal_view_test.cpp (without the
+// sanitizer build's LD_PRELOAD handling: the viewer tests cover that).
+test::ToolResult view(const std::string& args) {
+  const std::string server = std::to_string(100 + getpid() % 800);
+  return test::runShell("env -u LD_PRELOAD AAL_VALIDATION=1 xvfb-run -a -n " + server +
+                        " -s '-screen 0 1280x720x24' " + quoted(test::binDir() / "aal-view") + " " +
+                        args);
+}
+
+TEST(AalBakeTiled, ViewerReadsTheTileFolder) {
+  if (std::getenv("LD_PRELOAD")) GTEST_SKIP() << "sanitizer build: see aal_view_test.cpp";
+  TempDir dir;
+  const fs::path dem = writeDem(dir, 90, 70);
+  const fs::path single = dir.path() / "a.exr", folder = dir.path() / "a.tiles";
+  ASSERT_EQ(runTool("aal-bake", quoted(dem) + " -o " + quoted(single) + kOptions).exitCode, 0);
+  ASSERT_EQ(
+      runTool("aal-bake", quoted(dem) + " -o " + quoted(folder) + " --tile-size 32" + kOptions)
+          .exitCode,
+      0);
+  const fs::path fromFile = dir.path() / "file.png", fromTiles = dir.path() / "tiles.png";
+  const std::string flight = " --size 160x120 --frames 2 --screenshot ";
+  auto r = view(quoted(dem) + " --aperture " + quoted(single) + flight + quoted(fromFile));
+  ASSERT_EQ(r.exitCode, 0) << r.out;
+  r = view(quoted(dem) + " --aperture " + quoted(folder) + flight + quoted(fromTiles));
+  ASSERT_EQ(r.exitCode, 0) << r.out;
+  EXPECT_EQ(r.out.find("aperture map ready"), std::string::npos) << "baked instead: " << r.out;
+  const std::vector<float> a = pixels(fromFile), b = pixels(fromTiles);
+  ASSERT_FALSE(a.empty());
+  EXPECT_EQ(a, b);
+}
+
+}  // namespace
+}  // namespace aal
