@@ -48,45 +48,96 @@ void sweepAllAzimuths(const BakeTerrain& terrain, const BakeOptions& o, float* s
   const double dPhi = kTwoPi / o.azimuths;
   const bool wantSvf = !svf.empty();
 
-  for (int a = 0; a < o.azimuths; ++a) {
-    checkCancel(o);
-    const double phi = a * dPhi;
-    const double cosPhi = std::cos(phi), sinPhi = std::sin(phi);
-    // The slices are summed in single precision (sky_slice.h).
-    const float cosF = static_cast<float>(cosPhi), sinF = static_cast<float>(sinPhi);
-    const float dPhiF = static_cast<float>(dPhi);
-    const float cosPhiDPhi = static_cast<float>(cosPhi * dPhi);
-    const float sinPhiDPhi = static_cast<float>(sinPhi * dPhi);
-    // Adds this slice to a block of texels, in loops that compile to vector
-    // code. Directions below the tangent plane are outside the hemisphere.
-    auto addSlices = [&](const HorizonBlock& b) {
-      float terms[HorizonBlock::kLines][4];
+  // One azimuth's constants, in the single precision the slices are summed
+  // in (sky_slice.h).
+  struct Slice {
+    double phi;
+    float cosPhi, sinPhi, dPhi, cosPhiDPhi, sinPhiDPhi;
+  };
+  const auto sliceOf = [&](int a) {
+    const double phi = a * dPhi, cosPhi = std::cos(phi), sinPhi = std::sin(phi);
+    return Slice{phi,
+                 static_cast<float>(cosPhi),
+                 static_cast<float>(sinPhi),
+                 static_cast<float>(dPhi),
+                 static_cast<float>(cosPhi * dPhi),
+                 static_cast<float>(sinPhi * dPhi)};
+  };
+  constexpr int kLines = HorizonBlock::kLines;
+  // The terms of slice s at a block's texels, from their horizon tangents.
+  // Directions below the tangent plane are outside the hemisphere.
+  const auto sliceTerms = [&](const HorizonBlock& b, const float* tanHorizon, const Slice& s,
+                              float(*terms)[4]) {
+    for (int j = 0; j < b.count; ++j) {
+      const size_t texel = b.firstTexel + j * b.stride;
+      const float tanPlane =
+          terrain.slopeEast(texel) * s.cosPhi + terrain.slopeNorth(texel) * s.sinPhi;
+      skySliceTerms(terms[j], std::max(tanHorizon[j], tanPlane), s.dPhi, s.cosPhiDPhi,
+                    s.sinPhiDPhi);
+    }
+    if (wantSvf) {
       for (int j = 0; j < b.count; ++j) {
-        const size_t texel = b.firstTexel + j * b.stride;
-        const float tanPlane = terrain.slopeEast(texel) * cosF + terrain.slopeNorth(texel) * sinF;
-        skySliceTerms(terms[j], std::max(b.tanHorizon[j], tanPlane), dPhiF, cosPhiDPhi, sinPhiDPhi);
+        const float t = tanHorizon[j];
+        if (t > 0.0f) svf[b.firstTexel + j * b.stride] += t / std::sqrt(1.0f + t * t);
       }
+    }
+  };
+  // Adds slice s (and, from b.tanOpposite, the opposite slice) to a block of
+  // texels in loops that compile to vector code, reading and writing each
+  // texel's sums once.
+  const auto addSlices = [&](const HorizonBlock& b, const Slice& s, const Slice* opposite) {
+    // The texels a few steps on: their sums and slopes are a column apart
+    // or in another row, where the hardware prefetcher does not look.
+    for (int j = 0; j < b.aheadCount; ++j) {
+      const size_t texel = b.aheadFirstTexel + j * b.stride;
+      __builtin_prefetch(sums + 4 * texel, 1);
+      __builtin_prefetch(&terrain.slopes[2 * texel], 0);
+    }
+    float terms[kLines][4];
+    sliceTerms(b, b.tanHorizon, s, terms);
+    if (opposite) {
+      float oppositeTerms[kLines][4];
+      sliceTerms(b, b.tanOpposite, *opposite, oppositeTerms);
       for (int j = 0; j < b.count; ++j) {
-        float* sum = sums + 4 * (b.firstTexel + j * b.stride);
-        for (int c = 0; c < 4; ++c) sum[c] += terms[j][c];
+        for (int c = 0; c < 4; ++c) terms[j][c] += oppositeTerms[j][c];
       }
-      if (wantSvf) {
-        for (int j = 0; j < b.count; ++j) {
-          const float t = b.tanHorizon[j];
-          if (t > 0.0f) svf[b.firstTexel + j * b.stride] += t / std::sqrt(1.0f + t * t);
-        }
-      }
-    };
+    }
+    for (int j = 0; j < b.count; ++j) {
+      float* sum = sums + 4 * (b.firstTexel + j * b.stride);
+      for (int c = 0; c < 4; ++c) sum[c] += terms[j][c];
+    }
+  };
+  const auto sweepOne = [&](const Slice& s) {
     if (sweep.maxDistanceM > 0.0) {
       // The distance-limited sweep visits texel by texel: blocks of one.
-      sweepHorizons(terrain, phi, sweep, [&](size_t texel, double tanHorizon) {
+      sweepHorizons(terrain, s.phi, sweep, [&](size_t texel, double tanHorizon) {
         const float tanH = std::max(static_cast<float>(tanHorizon), kNoHorizonTangent);
-        addSlices(HorizonBlock{texel, 1, 1, &tanH});
+        addSlices(HorizonBlock{texel, 1, 1, &tanH}, s, nullptr);
       });
     } else {
-      sweepHorizonBlocks(terrain, phi, sweep, [&](const HorizonBlock& block) { addSlices(block); });
+      sweepHorizonBlocks(terrain, s.phi, sweep,
+                         [&](const HorizonBlock& b) { addSlices(b, s, nullptr); });
     }
-    if (o.progress) o.progress(static_cast<double>(a + 1) / o.azimuths);
+  };
+
+  // Without a distance limit azimuths a and a + n/2 are swept together
+  // (sweepOpposedHorizonBlocks): one pass over the sums for both.
+  const bool opposed = sweep.maxDistanceM <= 0.0 && o.azimuths % 2 == 0;
+  const int passes = opposed ? o.azimuths / 2 : o.azimuths;
+  for (int pass = 0; pass < passes; ++pass) {
+    checkCancel(o);
+    const Slice s = sliceOf(pass);
+    if (!opposed) {
+      sweepOne(s);
+    } else {
+      const Slice opposite = sliceOf(pass + passes);
+      if (!sweepOpposedHorizonBlocks(terrain, s.phi, opposite.phi, sweep,
+                                     [&](const HorizonBlock& b) { addSlices(b, s, &opposite); })) {
+        sweepOne(s);
+        sweepOne(opposite);
+      }
+    }
+    if (o.progress) o.progress(static_cast<double>(pass + 1) / passes);
   }
   if (wantSvf) {
     tbb::parallel_for(size_t(0), svf.size(),

@@ -13,13 +13,26 @@
 
 namespace aal {
 
+// atan(y) for 0 <= y <= 1 to within 3.3e-7 rad (in float; 2.5e-7 exact):
+// the odd minimax polynomial of degree 13, fitted for this project by the
+// Remez exchange on [0, 1].
+template <class Real>
+inline Real atanUnit(Real y) {
+  const Real y2 = y * y;
+  return y * (Real(0.9999961115495709) +
+              y2 * (Real(-0.3331736805474933) +
+                    y2 * (Real(0.19807815564989179) +
+                          y2 * (Real(-0.1323334209557463) +
+                                y2 * (Real(0.07962367236561659) +
+                                      y2 * (Real(-0.033604220565024996) +
+                                            y2 * Real(0.006811793290873252)))))));
+}
+
 // atan(x) to within 2e-6 rad, several times faster than std::atan: reduced
-// to |y| <= tan(pi/8) by atan(x) = pi/2 - atan(1/x) and atan(x) = pi/4 +
-// atan((x - 1)/(x + 1)), then the Taylor series to y^11 (next term < 1.1e-6).
+// to |y| <= 1 by atan(x) = pi/2 - atan(1/x), then atanUnit.
 template <class Real>
 inline Real fastAtan(Real x) {
-  constexpr Real kHalfPi = Real(1.57079632679489661923), kQuarterPi = Real(0.78539816339744830962);
-  constexpr Real kTanEighthPi = Real(0.41421356237309504880);
+  constexpr Real kHalfPi = Real(1.57079632679489661923);
   // Branch-free (selects, not jumps): the horizon tangents that reach here
   // change sign and size from texel to texel, so branches mispredict.
   // Both candidates are computed and one is picked, since compilers will not
@@ -27,25 +40,19 @@ inline Real fastAtan(Real x) {
   const Real a = std::abs(x);
   const bool inverted = a > Real(1);
   const Real inverse = Real(1) / std::max(a, Real(1e-30));
-  const Real reduced = inverted ? inverse : a;
-  const bool shifted = reduced > kTanEighthPi;
-  const Real folded = (reduced - Real(1)) / (reduced + Real(1));
-  const Real y = shifted ? folded : reduced;
-  const Real y2 = y * y;
-  const Real series =
-      y * (Real(1) + y2 * (Real(-1.0 / 3) +
-                           y2 * (Real(1.0 / 5) +
-                                 y2 * (Real(-1.0 / 7) + y2 * (Real(1.0 / 9) - y2 / Real(11))))));
-  const Real base = shifted ? kQuarterPi : Real(0);
-  const Real result = inverted ? kHalfPi - (base + series) : base + series;
-  return std::copysign(result, x);
+  const Real series = atanUnit(inverted ? inverse : a);
+  return std::copysign(inverted ? kHalfPi - series : series, x);
 }
 
 // The terms one slice adds to a texel's running sums, laid out like an
 // aperture-map texel: term[0..2] the unnormalized bent vector (world frame),
 // term[3] the visible solid angle in steradians, for the slice whose lowest
-// visible elevation has tangent `tanTheta0`. Single precision: the sums are
-// floats anyway.
+// visible elevation has tangent `tanTheta0` (|tanTheta0| < 1e19, where its
+// square is finite). Single precision: the sums are floats anyway.
+// Measured per texel in a loop over blocks of 32 (this machine): 3.7 ns;
+// 4.5 ns with the earlier atan (two divisions), 5.2 ns computing cos theta0
+// and 1/|t| from one square root and one division (a longer dependency
+// chain), 5.2-7.4 ns with t clamped first (std::min/max or std::clamp).
 inline void skySliceTerms(float* term, float tanTheta0, float dPhi, float cosPhiDPhi,
                           float sinPhiDPhi) {
   const float t = tanTheta0;

@@ -7,6 +7,8 @@
 
 #include <cmath>
 #include <limits>
+#include <tuple>
+#include <utility>
 #include <vector>
 
 #include "bake_terrain.h"
@@ -67,6 +69,48 @@ void expectSameHorizons(const BakeTerrain& terrain, double phi, const HorizonSwe
                          << o.curvature;
 }
 
+// The opposed sweep hands over both azimuths' tangents of every texel once;
+// each must match its own reference sweep. Returns whether it paired.
+bool expectSameOpposedHorizons(const BakeTerrain& terrain, double phi, double phiOpposite,
+                               const HorizonSweepOptions& o) {
+  const size_t texels = terrain.field->texelCount();
+  std::vector<double> reference(texels), referenceOpposite(texels);
+  sweepHorizons(terrain, phi, o, [&](size_t i, double tanH) { reference[i] = tanH; });
+  sweepHorizons(terrain, phiOpposite, o,
+                [&](size_t i, double tanH) { referenceOpposite[i] = tanH; });
+  std::vector<float> blocks(texels), blocksOpposite(texels);
+  std::vector<int> visits(texels, 0);
+  const bool paired =
+      sweepOpposedHorizonBlocks(terrain, phi, phiOpposite, o, [&](const HorizonBlock& b) {
+        EXPECT_NE(b.tanOpposite, nullptr);
+        for (int j = 0; j < b.count; ++j) {
+          const size_t i = b.firstTexel + j * b.stride;
+          blocks[i] = b.tanHorizon[j];
+          blocksOpposite[i] = b.tanOpposite[j];
+          ++visits[i];
+        }
+      });
+  double worst = 0;
+  for (size_t i = 0; i < texels; ++i) {
+    if (!paired) {
+      EXPECT_EQ(visits[i], 0) << "texel " << i << " phi " << phi;
+      continue;
+    }
+    EXPECT_EQ(visits[i], 1) << "texel " << i << " phi " << phi;
+    for (auto [ref, block] :
+         {std::pair{reference[i], blocks[i]}, std::pair{referenceOpposite[i], blocksOpposite[i]}}) {
+      EXPECT_EQ(std::isinf(ref), block <= kNoHorizonTangent)
+          << "texel " << i << " phi " << phi << ": " << ref << " vs " << block;
+      if (!std::isinf(ref)) {
+        worst = std::max(worst, std::abs(block - ref) / std::max(1.0, std::abs(ref)));
+      }
+    }
+  }
+  EXPECT_LT(worst, 2e-4) << "phi " << phi << " clamp " << o.clampEdge << " curvature "
+                         << o.curvature;
+  return paired;
+}
+
 TEST(HorizonBlocks, MatchTheReferenceSweepForEveryAzimuth) {
   const Heightfield field = roughTerrain(45, 38, false);
   const BakeTerrain terrain = prepareBakeTerrain(field);
@@ -96,6 +140,30 @@ TEST(HorizonBlocks, CoverNarrowAndTinyGrids) {
     const Heightfield field = roughTerrain(w, h, false);
     const BakeTerrain terrain = prepareBakeTerrain(field);
     for (int a = 0; a < 16; ++a) expectSameHorizons(terrain, a * 2 * kPi / 16 + 0.2, {});
+  }
+}
+
+TEST(HorizonBlocks, OpposedSweepMatchesTheReferenceSweepsOfBothAzimuths) {
+  const double kCurve = (1 - 0.13) / (2 * 6371000.0);
+  for (auto [w, h, geographic] : {std::tuple{45, 38, false}, std::tuple{40, 40, true},
+                                  std::tuple{1, 7, false}, std::tuple{17, 2, false}}) {
+    const Heightfield field = roughTerrain(w, h, geographic);
+    const BakeTerrain terrain = prepareBakeTerrain(field);
+    int paired = 0;
+    constexpr int kAzimuths = 48;
+    const double dPhi = 2 * kPi / kAzimuths;
+    for (int a = 0; a < kAzimuths / 2; ++a) {
+      paired += expectSameOpposedHorizons(terrain, a * dPhi, (a + kAzimuths / 2) * dPhi, {});
+    }
+    // Only the diagonals may fail to pair (their major axes can differ).
+    EXPECT_GE(paired, kAzimuths / 2 - 2) << w << "x" << h;
+    for (const HorizonSweepOptions& o :
+         {HorizonSweepOptions{true, 0.0, 0.0}, HorizonSweepOptions{true, kCurve, 0.0}}) {
+      for (int a = 0; a < 12; ++a) {
+        const double phi = (a + 0.37) * 2 * kPi / 24;
+        EXPECT_TRUE(expectSameOpposedHorizons(terrain, phi, phi + kPi, o)) << phi;
+      }
+    }
   }
 }
 

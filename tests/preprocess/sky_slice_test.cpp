@@ -54,5 +54,32 @@ TEST(SkySlice, ClosedFormsMatchNumericalIntegration) {
   }
 }
 
+// The closed forms in double precision with std::atan, at tangents from
+// 1e-8 to 1e8 and up to 1e18: the single-precision terms stay within 1e-6
+// (per unit dPhi) of them and finite.
+TEST(SkySlice, TermsMatchTheDoublePrecisionClosedFormsAtEveryTangent) {
+  const double phi = 2.1, dPhi = 0.3;
+  double worst = 0;
+  auto check = [&](double t) {
+    float term[4];
+    skySliceTerms(term, float(t), float(dPhi), float(std::cos(phi) * dPhi),
+                  float(std::sin(phi) * dPhi));
+    const double tf = float(t), theta = std::atan(tf), s = std::sin(theta);
+    const double ic = kPi / 4 - theta / 2 - std::sin(2 * theta) / 4, is = (1 - s * s) / 2;
+    const double expected[4] = {std::cos(phi) * dPhi * ic, std::sin(phi) * dPhi * ic, dPhi * is,
+                                dPhi * (1 - s)};
+    for (int c = 0; c < 4; ++c) {
+      ASSERT_TRUE(std::isfinite(term[c])) << t;
+      worst = std::max(worst, std::abs(term[c] - expected[c]) / dPhi);
+    }
+  };
+  for (double e = -8; e <= 8; e += 1e-3) {
+    check(std::pow(10.0, e));
+    check(-std::pow(10.0, e));
+  }
+  for (double t : {0.0, 1e18, -1e18}) check(t);
+  EXPECT_LT(worst, 1e-6);
+}
+
 }  // namespace
 }  // namespace aal
