@@ -9,6 +9,7 @@
 #include <map>
 #include <memory>
 #include <optional>
+#include <utility>
 
 #include "albedo_image.h"
 #include "bake.h"
@@ -109,18 +110,23 @@ BENCHMARK(BM_RenderObscurance)
     ->UseRealTime();
 
 // Issue 7: the quadtree LOD flying over synthetic fBm DEMs of 1024^2 to
-// 12288^2 texels (30 m cells; made in memory, never stored), 1280x720, the
+// 16384^2 texels (30 m cells; made in memory, never stored), 1280x720, the
 // approx frame without the obscurance passes, the default 2 M triangle
 // budget. The scene has an open sky for apertures (the map's content does
-// not change the frame time) and nothing is baked. The camera flies the same
-// world path over every DEM: 24 km diagonally through the centre, 300 m above
-// the ground, looking 3 km ahead; each iteration renders the next of 16
+// not change the frame time) and nothing is baked. DEMs beyond one image of
+// the device are tiled (engine/terrain_tiles.h: on lavapipe 16384^2 is, its
+// RGBA16F aperture alone being a 2 GiB allocation). The camera flies the
+// same world path over every DEM: 24 km diagonally through the centre, 300 m
+// above the ground, looking 3 km ahead; each iteration renders the next of 16
 // points on it. Target: the largest DEM within 1.5x of the smallest. On a
 // shared machine compare a small and a big DEM in one run, alternated:
-//   bench_render --benchmark_filter='LodFlight/(1024|8192)/'
+//   bench_render --benchmark_filter='LodFlight/(1024|16384)/0/'
 //     --benchmark_repetitions=5 --benchmark_enable_random_interleaving=true
-// (16384^2 does not fit lavapipe's 2 GiB heap with its RGBA16F aperture
-// texture, and 32768^2 needs the tiling of issue 7's other half.)
+// The second argument forces tiles of at most that many texels (0: only the
+// device's limits): LodFlight/8192/4096 is 8192/0 in 2x2 tiles, the cost of
+// the tiling itself. AAL_BENCH_LOD_SIZE=N adds an N^2 DEM (e.g. 20000 or
+// 24576; about 16 bytes per texel of memory on lavapipe, where device
+// memory is host memory, plus the 1024^2 DEM and the renderer).
 struct LodFixture {
   aal::Heightfield field;
   std::unique_ptr<aal::TerrainScene> scene;
@@ -130,24 +136,30 @@ aal::Device& benchDevice() {
   return fixture().device;
 }
 
-LodFixture& lodFixture(int size) {
-  static std::map<int, LodFixture> fixtures;
-  auto it = fixtures.find(size);
+// `maxTileTexels` > 0 forces tiles of at most that size (TerrainTiling), to
+// compare a tiled DEM with the same DEM in one image.
+LodFixture& lodFixture(int size, uint32_t maxTileTexels) {
+  static std::map<std::pair<int, uint32_t>, LodFixture> fixtures;
+  const std::pair<int, uint32_t> key(size, maxTileTexels);
+  auto it = fixtures.find(key);
   if (it != fixtures.end()) return it->second;
-  // One big DEM at a time (lavapipe's heap is 2 GiB); the small ones stay, so
+  // One big DEM size at a time (memory); the small ones stay, so
   // --benchmark_enable_random_interleaving can alternate a small and a big one.
-  std::erase_if(fixtures, [](const auto& f) { return f.first > 4096; });
-  LodFixture& f = fixtures[size];
+  std::erase_if(fixtures,
+                [&](const auto& f) { return f.first.first > 4096 && f.first.first != size; });
+  LodFixture& f = fixtures[key];
   aal::SyntheticTerrainOptions o;
   o.width = o.height = size;
   f.field = aal::makeSyntheticTerrain(o);
-  f.scene = std::make_unique<aal::TerrainScene>(benchDevice(), f.field, nullptr, 2'000'000);
+  f.scene = std::make_unique<aal::TerrainScene>(benchDevice(), f.field, nullptr, 2'000'000,
+                                                aal::TerrainTiling{maxTileTexels, 0});
   return f;
 }
 
 void BM_RenderLodFlight(benchmark::State& state) {
   Fixture& base = fixture();
-  LodFixture& f = lodFixture(static_cast<int>(state.range(0)));
+  LodFixture& f = lodFixture(static_cast<int>(state.range(0)),
+                             state.range(1) > 0 ? static_cast<uint32_t>(state.range(1)) : 0);
   aal::FrameSettings s = base.settings;
   s.mode = aal::ShadingMode::Approx;
   s.obscurance.enabled = false;
@@ -173,15 +185,31 @@ void BM_RenderLodFlight(benchmark::State& state) {
   const double n = static_cast<double>(state.iterations());
   state.counters["gpu_ms"] = gpuMs / n;
   state.counters["triangles"] = triangles / n;
+  state.counters["tiles"] = f.scene->tiles().tileCount();
+  state.counters["texture_mib"] = double(f.scene->textureBytes()) / (1 << 20);
 }
 BENCHMARK(BM_RenderLodFlight)
-    ->Arg(1024)
-    ->Arg(8192)
-    ->Arg(12288)
+    ->Args({1024, 0})
+    ->Args({8192, 0})
+    ->Args({8192, 4096})
+    ->Args({16384, 0})
     ->Iterations(16)
     ->Unit(benchmark::kMillisecond)
     ->UseRealTime();
 
 }  // namespace
 
-BENCHMARK_MAIN();
+int main(int argc, char** argv) {
+  if (const char* size = std::getenv("AAL_BENCH_LOD_SIZE")) {
+    benchmark::RegisterBenchmark("BM_RenderLodFlight", BM_RenderLodFlight)
+        ->Args({std::atoi(size), 0})
+        ->Iterations(16)
+        ->Unit(benchmark::kMillisecond)
+        ->UseRealTime();
+  }
+  benchmark::Initialize(&argc, argv);
+  if (benchmark::ReportUnrecognizedArguments(argc, argv)) return 1;
+  benchmark::RunSpecifiedBenchmarks();
+  benchmark::Shutdown();
+  return 0;
+}

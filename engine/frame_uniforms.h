@@ -22,9 +22,12 @@ struct FrameUniforms {
   glm::vec4 albedoValue{0.0f};    // rgb constant albedo
   glm::vec4 obscurance{0.0f};     // R (m), n, m
   glm::ivec4 obscurancePass{0};   // on, interleaved + filtered, pixel size (1 or 2)
+  glm::ivec4 tileGrid{0};         // tile core width, height, tiles across, down
+  glm::ivec4 tileImage{0};        // tile border, 0, tile image width, height
+  glm::ivec4 tileLayers{0};       // layers per page: heights, apertures, albedo, 0
   PreethamSky sky;
 };
-static_assert(sizeof(FrameUniforms) == 2 * 64 + 11 * 16 + sizeof(PreethamSky),
+static_assert(sizeof(FrameUniforms) == 2 * 64 + 14 * 16 + sizeof(PreethamSky),
               "FrameUniforms must match the std140 Frame block of shaders/frame.glsl");
 
 }  // namespace aal

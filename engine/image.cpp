@@ -21,7 +21,7 @@ Image::Image(const Device& device, const ImageDesc& desc) : device_(device.handl
   info.format = desc.format;
   info.extent = {desc.width, desc.height, 1};
   info.mipLevels = 1;
-  info.arrayLayers = 1;
+  info.arrayLayers = desc.layers;
   info.samples = VK_SAMPLE_COUNT_1_BIT;
   info.tiling = VK_IMAGE_TILING_OPTIMAL;
   info.usage = desc.usage;
@@ -39,9 +39,9 @@ Image::Image(const Device& device, const ImageDesc& desc) : device_(device.handl
 
   VkImageViewCreateInfo viewInfo{VK_STRUCTURE_TYPE_IMAGE_VIEW_CREATE_INFO};
   viewInfo.image = image_;
-  viewInfo.viewType = VK_IMAGE_VIEW_TYPE_2D;
+  viewInfo.viewType = desc.arrayView ? VK_IMAGE_VIEW_TYPE_2D_ARRAY : VK_IMAGE_VIEW_TYPE_2D;
   viewInfo.format = desc.format;
-  viewInfo.subresourceRange = {desc.aspect, 0, 1, 0, 1};
+  viewInfo.subresourceRange = {desc.aspect, 0, 1, 0, desc.layers};
   AAL_VK_CHECK(vkCreateImageView(device_, &viewInfo, nullptr, &view_));
 }
 
@@ -123,7 +123,7 @@ void transitionImage(VkCommandBuffer cmd, const Image& image, VkImageLayout from
   barrier.srcQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
   barrier.dstQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
   barrier.image = image.handle();
-  barrier.subresourceRange = {image.desc().aspect, 0, 1, 0, 1};
+  barrier.subresourceRange = {image.desc().aspect, 0, 1, 0, image.desc().layers};
   VkDependencyInfo dependency{VK_STRUCTURE_TYPE_DEPENDENCY_INFO};
   dependency.imageMemoryBarrierCount = 1;
   dependency.pImageMemoryBarriers = &barrier;

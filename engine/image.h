@@ -12,6 +12,10 @@ struct ImageDesc {
   VkFormat format = VK_FORMAT_UNDEFINED;
   VkImageUsageFlags usage = 0;
   VkImageAspectFlags aspect = VK_IMAGE_ASPECT_COLOR_BIT;
+  // Array layers; with arrayView the view is a 2D array (sampler2DArray)
+  // even for one layer.
+  uint32_t layers = 1;
+  bool arrayView = false;
 };
 
 class Image {
@@ -47,7 +51,7 @@ class Buffer;
 // VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL) into `buffer`, tightly packed.
 void copyImageToBuffer(VkCommandBuffer cmd, const Image& image, const Buffer& buffer);
 
-// Records a layout transition of the whole image (synchronization2), with
+// Records a layout transition of the whole image, every layer (synchronization2), with
 // conservative stage/access masks derived from the layouts.
 void transitionImage(VkCommandBuffer cmd, const Image& image, VkImageLayout from, VkImageLayout to);
 

@@ -74,11 +74,127 @@ void beginRendering(VkCommandBuffer cmd, uint32_t width, uint32_t height,
   vkCmdSetScissor(cmd, 0, 1, &scissor);
 }
 
+// The frame's uniforms at binding 0, the terrain textures
+// (shaders/terrain_textures.glsl: heights, apertures, albedo, each
+// kTerrainTilePages pages), then `rest`.
+std::vector<VkDescriptorType> terrainBindings(const std::vector<VkDescriptorType>& rest) {
+  static_assert(AAL_TERRAIN_TEXTURE_BINDING == 1);
+  std::vector<VkDescriptorType> bindings(1 + 3 * kTerrainTilePages,
+                                         VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER);
+  bindings[0] = VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER;
+  bindings.insert(bindings.end(), rest.begin(), rest.end());
+  return bindings;
+}
+
+// Binding of the first descriptor after the terrain textures.
+constexpr uint32_t kAfterTerrainTextures = AAL_TERRAIN_TEXTURE_BINDING + 3 * kTerrainTilePages;
+
+// The frame's uniforms and the scene's texture pages; pages the scene does
+// not have repeat its first (the shaders never pick them).
+DescriptorWrites terrainWrites(const Buffer& uniforms, const TerrainScene& scene,
+                               VkSampler sampler) {
+  DescriptorWrites writes;
+  writes.uniformBuffer(0, uniforms);
+  uint32_t binding = AAL_TERRAIN_TEXTURE_BINDING;
+  for (const std::vector<Image>* pages :
+       {&scene.heightPages(), &scene.aperturePages(), &scene.albedoPages()}) {
+    for (uint32_t page = 0; page < kTerrainTilePages; ++page) {
+      const Image& image = page < pages->size() ? (*pages)[page] : pages->front();
+      writes.sampledImage(binding++, image.view(), sampler);
+    }
+  }
+  return writes;
+}
+
+// Which shader variants sample a scene's textures
+// (shaders/terrain_textures.glsl): page 0 only, a pick among two or four
+// pages for the apertures only, or among four for every kind. Lavapipe pays
+// for every page a fetch could pick, so each scene gets the least its pages
+// need.
+enum class TexturePaging { OnePage, TwoAperturePages, AperturePages, All };
+constexpr int kTexturePagings = 4;
+
+TexturePaging texturePagingOf(const TerrainTileLayout& tiles) {
+  if (tiles.pagesOf(TerrainTexture::Height) > 1 || tiles.pagesOf(TerrainTexture::Albedo) > 1) {
+    return TexturePaging::All;
+  }
+  const uint32_t pages = tiles.pagesOf(TerrainTexture::Aperture);
+  return pages == 1   ? TexturePaging::OnePage
+         : pages == 2 ? TexturePaging::TwoAperturePages
+                      : TexturePaging::AperturePages;
+}
+
+// The shaders of one TexturePaging.
+const char* terrainVertexShader(TexturePaging paging) {
+  return paging == TexturePaging::All ? "terrain_paged.vert" : "terrain.vert";
+}
+const char* terrainFragmentShader(TexturePaging paging, bool gbuffer) {
+  switch (paging) {
+    case TexturePaging::OnePage: return gbuffer ? "terrain_gbuffer.frag" : "terrain.frag";
+    case TexturePaging::TwoAperturePages:
+      return gbuffer ? "terrain_gbuffer_aperture_pages2.frag" : "terrain_aperture_pages2.frag";
+    case TexturePaging::AperturePages:
+      return gbuffer ? "terrain_gbuffer_aperture_pages4.frag" : "terrain_aperture_pages4.frag";
+    case TexturePaging::All: break;
+  }
+  return gbuffer ? "terrain_gbuffer_paged.frag" : "terrain_paged.frag";
+}
+
+// The pipelines that sample the DEM's textures, in one TexturePaging's
+// shader variants.
+struct TerrainSamplingPipelines {
+  GraphicsPipeline terrain, terrainGBuffer, obscurance;
+
+  TerrainSamplingPipelines(const Device& device, TexturePaging paging)
+      : terrain(device, {terrainVertexShader(paging),
+                         terrainFragmentShader(paging, false),
+                         terrainBindings({VK_DESCRIPTOR_TYPE_STORAGE_BUFFER}),
+                         0,
+                         {kHdrFormat},
+                         kDepthFormat,
+                         true,
+                         true,
+                         VK_CULL_MODE_NONE}),
+        // With the obscurance pass the terrain also writes the ambient term
+        // and the surface point; without it the frame pays nothing for them.
+        terrainGBuffer(device, {terrainVertexShader(paging),
+                                terrainFragmentShader(paging, true),
+                                terrainBindings({VK_DESCRIPTOR_TYPE_STORAGE_BUFFER}),
+                                0,
+                                {kHdrFormat, kAmbientFormat, kSurfaceFormat},
+                                kDepthFormat,
+                                true,
+                                true,
+                                VK_CULL_MODE_NONE}),
+        // The obscurance pass reads heights and albedo, never apertures.
+        obscurance(device,
+                   {"fullscreen.vert",
+                    paging == TexturePaging::All ? "obscurance_paged.frag" : "obscurance.frag",
+                    terrainBindings({VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER,
+                                     VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER,
+                                     VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER}),
+                    0,
+                    {kTransferFormat},
+                    VK_FORMAT_UNDEFINED}) {}
+};
+
 }  // namespace
 
 struct TerrainRenderer::Passes {
-  GraphicsPipeline sky, terrain, terrainGBuffer, obscurance, filter, composite, toneMap;
+  GraphicsPipeline sky;
+  // Per TexturePaging: one page made with the renderer, the others for the
+  // first scene that needs them.
+  std::unique_ptr<TerrainSamplingPipelines> samplingByPaging[kTexturePagings];
+  GraphicsPipeline filter, composite, toneMap;
   Sampler linear, nearest;
+
+  // The terrain-sampling pipelines for `scene`.
+  const TerrainSamplingPipelines& sampling(const Device& device, const TerrainScene& scene) {
+    const TexturePaging paging = texturePagingOf(scene.tiles());
+    std::unique_ptr<TerrainSamplingPipelines>& pipelines = samplingByPaging[int(paging)];
+    if (!pipelines) pipelines = std::make_unique<TerrainSamplingPipelines>(device, paging);
+    return *pipelines;
+  }
 
   explicit Passes(const Device& device)
       // The sky is drawn after the terrain, at the far plane with the depth
@@ -91,42 +207,6 @@ struct TerrainRenderer::Passes {
                      kDepthFormat,
                      true,
                      false}),
-        terrain(device,
-                {"terrain.vert",
-                 "terrain.frag",
-                 {VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER,
-                  VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER,
-                  VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
-                 0,
-                 {kHdrFormat},
-                 kDepthFormat,
-                 true,
-                 true,
-                 VK_CULL_MODE_NONE}),
-        // With the obscurance pass the terrain also writes the ambient term
-        // and the surface point; without it the frame pays nothing for them.
-        terrainGBuffer(
-            device, {"terrain.vert",
-                     "terrain_gbuffer.frag",
-                     {VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER,
-                      VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER,
-                      VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
-                     0,
-                     {kHdrFormat, kAmbientFormat, kSurfaceFormat},
-                     kDepthFormat,
-                     true,
-                     true,
-                     VK_CULL_MODE_NONE}),
-        obscurance(
-            device,
-            {"fullscreen.vert",
-             "obscurance.frag",
-             {VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER,
-              VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER,
-              VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER},
-             0,
-             {kTransferFormat},
-             VK_FORMAT_UNDEFINED}),
         filter(device,
                {"fullscreen.vert",
                 "obscurance_filter.frag",
@@ -154,7 +234,10 @@ struct TerrainRenderer::Passes {
                  {kDisplayFormat},
                  VK_FORMAT_UNDEFINED}),
         linear(device, VK_FILTER_LINEAR),
-        nearest(device, VK_FILTER_NEAREST) {}
+        nearest(device, VK_FILTER_NEAREST) {
+    samplingByPaging[int(TexturePaging::OnePage)] =
+        std::make_unique<TerrainSamplingPipelines>(device, TexturePaging::OnePage);
+  }
 };
 
 TerrainRenderer::TerrainRenderer(const Device& device, uint32_t width, uint32_t height)
@@ -227,6 +310,12 @@ bool TerrainRenderer::writeUniforms(const TerrainScene& scene, const FrameSettin
     }
     samples_.write(&block, sizeof block);
   }
+  const TerrainTileLayout& tiles = scene.tiles();
+  u.tileGrid =
+      glm::ivec4(glm::uvec4(tiles.coreWidth, tiles.coreHeight, tiles.tilesX, tiles.tilesY));
+  u.tileImage = glm::ivec4(glm::uvec4(tiles.border, 0, tiles.imageWidth(), tiles.imageHeight()));
+  u.tileLayers = glm::ivec4(
+      glm::uvec4(tiles.layersPerPage[0], tiles.layersPerPage[1], tiles.layersPerPage[2], 0));
   u.sky = s.sky;
   uniforms_.write(&u, sizeof u);
   return obscurance;
@@ -301,14 +390,11 @@ void TerrainRenderer::record(VkCommandBuffer cmd, const TerrainScene& scene,
   depth.clearValue.depthStencil = {1.0f, 0};
   beginRendering(cmd, width_, height_, colors, obscurance ? 3 : 1, &depth);
   timer_.begin(cmd, "terrain");
-  (obscurance ? passes_->terrainGBuffer : passes_->terrain)
+  const TerrainSamplingPipelines& sampling = passes_->sampling(device_, scene);
+  (obscurance ? sampling.terrainGBuffer : sampling.terrain)
       .bind(cmd,
-            DescriptorWrites()
-                .uniformBuffer(0, uniforms_)
-                .sampledImage(1, scene.heights().view(), passes_->linear.handle())
-                .sampledImage(2, scene.aperture().view(), passes_->linear.handle())
-                .sampledImage(3, scene.albedo().view(), passes_->linear.handle())
-                .storageBuffer(4, patches_),
+            terrainWrites(uniforms_, scene, passes_->linear.handle())
+                .storageBuffer(kAfterTerrainTextures, patches_),
             nullptr);
   vkCmdBindIndexBuffer(cmd, scene.indices().handle(), 0, VK_INDEX_TYPE_UINT32);
   drawPatches(cmd);
@@ -368,15 +454,14 @@ void TerrainRenderer::recordObscurance(VkCommandBuffer cmd, const TerrainScene& 
   // rendering ends, so one inside it misses the work.
   timer_.begin(cmd, "obscurance");
   beginRendering(cmd, passWidth, passHeight, &transfer, 1, nullptr);
-  passes_->obscurance.bind(cmd,
-                           DescriptorWrites()
-                               .uniformBuffer(0, uniforms_)
-                               .uniformBuffer(1, samples_)
-                               .sampledImage(2, scene.heights().view(), passes_->linear.handle())
-                               .sampledImage(3, scene.albedo().view(), passes_->linear.handle())
-                               .sampledImage(4, surface_.view(), passes_->nearest.handle())
-                               .sampledImage(5, ambient_.view(), passes_->nearest.handle()),
-                           nullptr);
+  passes_->sampling(device_, scene)
+      .obscurance.bind(
+          cmd,
+          terrainWrites(uniforms_, scene, passes_->linear.handle())
+              .uniformBuffer(kAfterTerrainTextures, samples_)
+              .sampledImage(kAfterTerrainTextures + 1, surface_.view(), passes_->nearest.handle())
+              .sampledImage(kAfterTerrainTextures + 2, ambient_.view(), passes_->nearest.handle()),
+          nullptr);
   vkCmdDraw(cmd, 3, 1, 0, 0);
   vkCmdEndRendering(cmd);
   timer_.end(cmd);

@@ -1,18 +1,84 @@
 #include "terrain_scene.h"
 
 #include <algorithm>
+#include <cstring>
 #include <stdexcept>
+#include <string>
 
 #include <Imath/half.h>
 
 #include "device.h"
 #include "upload.h"
+#include "vk_check.h"
 
 namespace aal {
 
+namespace {
+
+// Writes whole DEM rows [firstRow, endRow) of one texture kind, tightly packed.
+using DemRows = std::function<void(uint32_t firstRow, uint32_t endRow, void* destination)>;
+
+constexpr VkImageUsageFlags kTextureUsage =
+    VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT;
+
+// The rows of tile (tileX, tileY)'s image: its core and border, texels
+// beyond the DEM clamped to its edge (what the single image's sampler would
+// read there). `scratch` holds the DEM rows of one band.
+RowWriter tileRows(const TerrainTileLayout& t, uint32_t tileX, uint32_t tileY, size_t texelBytes,
+                   const DemRows& demRows, std::vector<unsigned char>& scratch) {
+  if (t.tileCount() == 1 && t.border == 0) return demRows;
+  return [&t, tileX, tileY, texelBytes, &demRows, &scratch](uint32_t first, uint32_t end,
+                                                            void* destination) {
+    const int64_t row0 = int64_t{tileY} * t.coreHeight - t.border;
+    const auto demRow = [&](uint32_t r) {
+      return static_cast<uint32_t>(std::clamp<int64_t>(row0 + r, 0, int64_t{t.demHeight} - 1));
+    };
+    const uint32_t demFirst = demRow(first), demEnd = demRow(end - 1) + 1;
+    const size_t demRowBytes = size_t{t.demWidth} * texelBytes;
+    scratch.resize(std::max(scratch.size(), (demEnd - demFirst) * demRowBytes));
+    demRows(demFirst, demEnd, scratch.data());
+
+    const int64_t col0 = int64_t{tileX} * t.coreWidth - t.border;
+    const int64_t width = t.imageWidth();
+    // Columns [inside, outside) of the tile lie in the DEM; the rest repeat
+    // its first or last column.
+    const int64_t inside = std::clamp<int64_t>(-col0, 0, width);
+    const int64_t outside = std::clamp<int64_t>(int64_t{t.demWidth} - col0, inside, width);
+    auto* out = static_cast<unsigned char*>(destination);
+    for (uint32_t r = first; r < end; ++r) {
+      const unsigned char* source = scratch.data() + (demRow(r) - demFirst) * demRowBytes;
+      for (int64_t c = 0; c < inside; ++c) std::memcpy(out + c * texelBytes, source, texelBytes);
+      std::memcpy(out + inside * texelBytes, source + (col0 + inside) * texelBytes,
+                  (outside - inside) * texelBytes);
+      const unsigned char* last = source + demRowBytes - texelBytes;
+      for (int64_t c = outside; c < width; ++c) std::memcpy(out + c * texelBytes, last, texelBytes);
+      out += width * texelBytes;
+    }
+  };
+}
+
+TerrainTileLimits deviceTileLimits(const Device& device, const TerrainTiling& tiling) {
+  VkPhysicalDeviceMaintenance3Properties maintenance3{
+      VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_MAINTENANCE_3_PROPERTIES};
+  VkPhysicalDeviceProperties2 properties{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_PROPERTIES_2};
+  properties.pNext = &maintenance3;
+  vkGetPhysicalDeviceProperties2(device.physical(), &properties);
+  TerrainTileLimits limits;
+  limits.maxTileTexels = tiling.maxTileTexels;
+  limits.maxImageDimension = device.properties().limits.maxImageDimension2D;
+  limits.maxArrayLayers = device.properties().limits.maxImageArrayLayers;
+  limits.maxAllocationBytes = maintenance3.maxMemoryAllocationSize;
+  if (tiling.maxPageBytes > 0) {
+    limits.maxAllocationBytes = std::min<uint64_t>(limits.maxAllocationBytes, tiling.maxPageBytes);
+  }
+  return limits;
+}
+
+}  // namespace
+
 TerrainScene::TerrainScene(const Device& device, const Heightfield& field,
                            const ApertureMap& aperture, const AlbedoImage* albedo,
-                           size_t triangleBudget) {
+                           size_t triangleBudget, const TerrainTiling& tiling) {
   const size_t width = static_cast<size_t>(field.width);
   build(
       device, field,
@@ -22,22 +88,23 @@ TerrainScene::TerrainScene(const Device& device, const Heightfield& field,
                        static_cast<uint16_t*>(destination),
                        [](float v) { return Imath::half(v).bits(); });
       },
-      albedo, triangleBudget);
+      albedo, triangleBudget, tiling);
 }
 
 TerrainScene::TerrainScene(const Device& device, const Heightfield& field,
                            ApertureMapReader& aperture, const AlbedoImage* albedo,
-                           size_t triangleBudget) {
+                           size_t triangleBudget, const TerrainTiling& tiling) {
   build(
       device, field,
       [&](uint32_t first, uint32_t end, void* destination) {
         aperture.readHalfRows(static_cast<int>(first), static_cast<int>(end), destination);
       },
-      albedo, triangleBudget);
+      albedo, triangleBudget, tiling);
 }
 
 TerrainScene::TerrainScene(const Device& device, const Heightfield& field,
-                           const AlbedoImage* albedo, size_t triangleBudget) {
+                           const AlbedoImage* albedo, size_t triangleBudget,
+                           const TerrainTiling& tiling) {
   const size_t width = static_cast<size_t>(field.width);
   const uint16_t up[4] = {Imath::half(0.0f).bits(), Imath::half(0.0f).bits(),
                           Imath::half(1.0f).bits(), Imath::half(1.5707964f).bits()};
@@ -47,39 +114,67 @@ TerrainScene::TerrainScene(const Device& device, const Heightfield& field,
         uint16_t* out = static_cast<uint16_t*>(destination);
         for (size_t i = 0; i < (end - first) * width; ++i) std::copy(up, up + 4, out + 4 * i);
       },
-      albedo, triangleBudget);
+      albedo, triangleBudget, tiling);
 }
 
 void TerrainScene::build(const Device& device, const Heightfield& field,
-                         const std::function<void(uint32_t, uint32_t, void*)>& apertureRows,
-                         const AlbedoImage* albedo, size_t triangleBudget) {
+                         const DemRows& apertureRows, const AlbedoImage* albedo,
+                         size_t triangleBudget, const TerrainTiling& tiling) {
+  if (triangleBudget < 2) throw std::invalid_argument("triangle budget must be at least 2");
   const uint32_t w = static_cast<uint32_t>(field.width), h = static_cast<uint32_t>(field.height);
-  heights_ = Image(device, {w, h, VK_FORMAT_R32_SFLOAT,
-                            VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT});
-  aperture_ = Image(device, {w, h, VK_FORMAT_R16G16B16A16_SFLOAT,
-                             VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT});
-
+  tiles_ = planTerrainTiles(w, h, deviceTileLimits(device, tiling));
   hasAlbedo_ = albedo != nullptr;
-  std::vector<uint8_t> albedoBytes;
-  if (albedo) {
-    albedo_ = Image(device, {w, h, VK_FORMAT_R8G8B8A8_UNORM,
-                             VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT});
-    albedoBytes.resize(static_cast<size_t>(w) * h * 4);
-    for (size_t i = 0; i < static_cast<size_t>(w) * h; ++i) {
+
+  const DemRows heightRows = [&](uint32_t first, uint32_t end, void* destination) {
+    std::memcpy(destination, field.z.data() + size_t{first} * w, size_t{end - first} * w * 4);
+  };
+  // RGBA8 from the linear RGB floats, band by band (no second full copy).
+  const DemRows albedoRows = [&](uint32_t first, uint32_t end, void* destination) {
+    auto* out = static_cast<uint8_t*>(destination);
+    for (size_t i = size_t{first} * w; i < size_t{end} * w; ++i, out += 4) {
       for (int c = 0; c < 3; ++c) {
-        albedoBytes[4 * i + c] =
+        out[c] =
             static_cast<uint8_t>(std::clamp(albedo->rgb[3 * i + c], 0.0f, 1.0f) * 255.0f + 0.5f);
       }
-      albedoBytes[4 * i + 3] = 255;
+      out[3] = 255;
     }
-  } else {
-    // A bound texture is required; one texel that the shader ignores.
-    albedo_ = Image(device, {1, 1, VK_FORMAT_R8G8B8A8_UNORM,
-                             VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT});
-    albedoBytes = {128, 128, 128, 255};
+  };
+
+  struct Kind {
+    TerrainTexture texture;
+    std::vector<Image>& pages;
+    VkFormat format;
+    const DemRows& rows;
+    size_t texelBytes() const { return kTerrainTextureBytes[int(texture)]; }
+  };
+  const Kind kinds[] = {
+      {TerrainTexture::Height, heights_, VK_FORMAT_R32_SFLOAT, heightRows},
+      {TerrainTexture::Aperture, aperture_, VK_FORMAT_R16G16B16A16_SFLOAT, apertureRows},
+      {TerrainTexture::Albedo, albedo_, VK_FORMAT_R8G8B8A8_UNORM, albedoRows}};
+  textureBytes_ = 0;
+  try {
+    for (const Kind& kind : kinds) {
+      if (&kind.pages == &albedo_ && !albedo) {
+        // A bound texture is required; one texel that the shader ignores.
+        albedo_.emplace_back(device, ImageDesc{1, 1, kind.format, kTextureUsage,
+                                               VK_IMAGE_ASPECT_COLOR_BIT, 1, true});
+        continue;
+      }
+      for (uint32_t page = 0; page < tiles_.pagesOf(kind.texture); ++page) {
+        const uint32_t layers = tiles_.layersIn(kind.texture, page);
+        kind.pages.emplace_back(
+            device, ImageDesc{tiles_.imageWidth(), tiles_.imageHeight(), kind.format, kTextureUsage,
+                              VK_IMAGE_ASPECT_COLOR_BIT, layers, true});
+        textureBytes_ +=
+            uint64_t{tiles_.imageWidth()} * tiles_.imageHeight() * layers * kind.texelBytes();
+      }
+    }
+  } catch (const VulkanError& e) {
+    throw VulkanError("the DEM's textures (" + describeTerrainTiles(tiles_) + ", " +
+                      std::to_string(tiles_.texelsPerKind() * (hasAlbedo_ ? 16 : 12) >> 20) +
+                      " MiB) do not fit the device's memory: " + e.what());
   }
 
-  if (triangleBudget < 2) throw std::invalid_argument("triangle budget must be at least 2");
   lod_ = std::make_unique<LodQuadtree>(field);
   triangleBudget_ = triangleBudget;
   lodBudgetScaleM_ = lodBudgetRangeScale(*lod_, triangleBudget);
@@ -89,9 +184,21 @@ void TerrainScene::build(const Device& device, const Heightfield& field,
                     MemoryIntent::DeviceLocal);
 
   UploadBatch upload(device);
-  upload.addImage(heights_, sizeof(float), field.z.data());
-  upload.addImage(aperture_, 4 * sizeof(uint16_t), apertureRows);
-  upload.addImage(albedo_, 4, albedoBytes.data());
+  std::vector<unsigned char> scratch;  // one band of DEM rows while a tile is filled
+  const uint8_t grey[4] = {128, 128, 128, 255};
+  for (const Kind& kind : kinds) {
+    if (&kind.pages == &albedo_ && !albedo) {
+      upload.addImage(albedo_[0], 4, grey);
+      continue;
+    }
+    const uint32_t perPage = tiles_.layersPerPageOf(kind.texture);
+    for (uint32_t tile = 0; tile < tiles_.tileCount(); ++tile) {
+      upload.addImage(kind.pages[tile / perPage], kind.texelBytes(),
+                      tileRows(tiles_, tile % tiles_.tilesX, tile / tiles_.tilesX,
+                               kind.texelBytes(), kind.rows, scratch),
+                      tile % perPage);
+    }
+  }
   upload.addBuffer(indices_, patchIndices.data(), patchIndices.size() * sizeof(uint32_t));
   upload.submit();
 

@@ -1,5 +1,7 @@
 // The GPU side of one DEM: height, aperture and albedo textures, the quadtree
-// LOD (terrain/quadtree_lod.h) and its patch mesh.
+// LOD (terrain/quadtree_lod.h) and its patch mesh. DEMs beyond one image of
+// the device (or a forced tile size) are split into tiles with borders
+// (engine/terrain_tiles.h); every tile stays resident (docs/rendering.md).
 #pragma once
 
 #include <cstddef>
@@ -16,6 +18,7 @@
 #include "heightfield.h"
 #include "image.h"
 #include "quadtree_lod.h"
+#include "terrain_tiles.h"
 
 namespace aal {
 
@@ -26,23 +29,33 @@ class TerrainScene {
   // Uploads everything in one batch. The aperture map must belong to the DEM
   // (checkApertureMatchesDem). `albedo` may be null: a palette by height and
   // slope is used then. `triangleBudget` caps the triangles the LOD draws per
-  // frame (lodBudgetRangeScale; never below the crack-free minimum). Throws
-  // VulkanError when the DEM exceeds the device's image size limit.
+  // frame (lodBudgetRangeScale; never below the crack-free minimum).
+  // `tiling` may ask for smaller tiles and fewer per page than the device
+  // allows (tests, aal-render --max-tile). Throws
+  // std::runtime_error (planTerrainTiles) when the DEM needs more texture
+  // pages than the renderer binds, and VulkanError naming the DEM, its tiles
+  // and the bytes when the device cannot hold them.
   TerrainScene(const Device& device, const Heightfield& field, const ApertureMap& aperture,
-               const AlbedoImage* albedo, size_t triangleBudget);
+               const AlbedoImage* albedo, size_t triangleBudget, const TerrainTiling& tiling = {});
   // The same, streaming the aperture map from its file band by band (it must
   // match the DEM, checkApertureMatchesDem), so it is never held as floats.
   TerrainScene(const Device& device, const Heightfield& field, ApertureMapReader& aperture,
-               const AlbedoImage* albedo, size_t triangleBudget);
+               const AlbedoImage* albedo, size_t triangleBudget, const TerrainTiling& tiling = {});
   // The same with an open sky at every texel (bent normal up, arc length
   // pi/2) in place of an aperture map: aal-view shows the baseline modes with
   // it while the real map is baked.
   TerrainScene(const Device& device, const Heightfield& field, const AlbedoImage* albedo,
-               size_t triangleBudget);
+               size_t triangleBudget, const TerrainTiling& tiling = {});
 
-  const Image& heights() const { return heights_; }
-  const Image& aperture() const { return aperture_; }
-  const Image& albedo() const { return albedo_; }
+  // How the textures are tiled (one tile: the images are the DEM).
+  const TerrainTileLayout& tiles() const { return tiles_; }
+  // The texture pages per kind (2D array images, one layer per tile;
+  // tiles().pages of them; without an albedo image one page of one texel).
+  const std::vector<Image>& heightPages() const { return heights_; }
+  const std::vector<Image>& aperturePages() const { return aperture_; }
+  const std::vector<Image>& albedoPages() const { return albedo_; }
+  // Device memory of the textures (bytes).
+  uint64_t textureBytes() const { return textureBytes_; }
   bool hasAlbedo() const { return hasAlbedo_; }
   // The LOD patch's index buffer (makeLodPatchIndices).
   const Buffer& indices() const { return indices_; }
@@ -56,12 +69,15 @@ class TerrainScene {
   float maxHeight() const { return maxHeight_; }
 
  private:
-  // `apertureRows` writes rows of RGBA16F bent normal + arc length.
+  // `apertureRows` writes whole DEM rows of RGBA16F bent normal + arc length.
   void build(const Device& device, const Heightfield& field,
-             const std::function<void(uint32_t, uint32_t, void*)>& apertureRows,
-             const AlbedoImage* albedo, size_t triangleBudget);
+             const std::function<void(uint32_t firstRow, uint32_t endRow, void* destination)>&
+                 apertureRows,
+             const AlbedoImage* albedo, size_t triangleBudget, const TerrainTiling& tiling);
 
-  Image heights_, aperture_, albedo_;
+  TerrainTileLayout tiles_;
+  std::vector<Image> heights_, aperture_, albedo_;
+  uint64_t textureBytes_ = 0;
   Buffer indices_;
   bool hasAlbedo_ = false;
   std::unique_ptr<LodQuadtree> lod_;

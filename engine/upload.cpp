@@ -21,18 +21,21 @@ struct Copy {
   const Image* image;
   const Buffer* buffer;
   size_t stagingOffset, bytes;
-  uint32_t firstRow, rows;
+  uint32_t firstRow, rows, layer;
   size_t bufferOffset;
   bool first, last;
 };
 
 }  // namespace
 
-void UploadBatch::addImage(const Image& image, size_t bytesPerTexel, RowWriter rows) {
+void UploadBatch::addImage(const Image& image, size_t bytesPerTexel, RowWriter rows,
+                           uint32_t layer) {
+  if (layer >= image.desc().layers) throw std::logic_error("UploadBatch::addImage: no such layer");
   Pending p;
   p.image = &image;
   p.bytesPerTexel = bytesPerTexel;
   p.rows = std::move(rows);
+  p.layer = layer;
   pending_.push_back(std::move(p));
 }
 
@@ -83,8 +86,11 @@ void UploadBatch::submit() {
         if (rows == 0) break;
         const uint32_t first = static_cast<uint32_t>(p.done);
         p.rows(first, first + rows, mapped + used);
-        copies.push_back({p.image, nullptr, used, rows * rowBytes, first, rows, 0, first == 0,
-                          first + rows == height});
+        // The image's layout changes with its first layer's first band and
+        // its last layer's last band (the transitions cover every layer).
+        copies.push_back({p.image, nullptr, used, rows * rowBytes, first, rows, p.layer, 0,
+                          first == 0 && p.layer == 0,
+                          first + rows == height && p.layer + 1 == p.image->desc().layers});
         used = alignUp(used + rows * rowBytes, 16);
         p.done += rows;
         if (p.done < height) break;
@@ -92,7 +98,7 @@ void UploadBatch::submit() {
         const size_t chunk = std::min(capacity - used, p.bytes - p.done);
         if (chunk == 0) break;
         std::memcpy(mapped + used, p.data + p.done, chunk);
-        copies.push_back({nullptr, p.buffer, used, chunk, 0, 0, p.done, false, false});
+        copies.push_back({nullptr, p.buffer, used, chunk, 0, 0, 0, p.done, false, false});
         used = alignUp(used + chunk, 16);
         p.done += chunk;
         if (p.done < p.bytes) break;
@@ -115,7 +121,7 @@ void UploadBatch::submit() {
         }
         VkBufferImageCopy region{};
         region.bufferOffset = c.stagingOffset;
-        region.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
+        region.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, c.layer, 1};
         region.imageOffset = {0, static_cast<int32_t>(c.firstRow), 0};
         region.imageExtent = {c.image->desc().width, c.rows, 1};
         vkCmdCopyBufferToImage(cmd, staging.handle(), c.image->handle(),

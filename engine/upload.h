@@ -29,7 +29,8 @@ class UploadBatch {
 
   // The image is filled band by band by `rows` during submit(); it ends in
   // SHADER_READ_ONLY_OPTIMAL. bytesPerTexel matches the image's format.
-  void addImage(const Image& image, size_t bytesPerTexel, RowWriter rows);
+  // Array images: add every layer, in order 0, 1, ..., one after the other.
+  void addImage(const Image& image, size_t bytesPerTexel, RowWriter rows, uint32_t layer = 0);
   // Convenience: `data` (tightly packed rows) must stay alive until submit().
   void addImage(const Image& image, size_t bytesPerTexel, const void* data);
   // The buffer must have TRANSFER_DST usage; `data` lands at offset 0 and
@@ -44,6 +45,7 @@ class UploadBatch {
     const Image* image = nullptr;
     size_t bytesPerTexel = 0;
     RowWriter rows;
+    uint32_t layer = 0;
     const Buffer* buffer = nullptr;
     const unsigned char* data = nullptr;
     size_t bytes = 0;

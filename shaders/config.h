@@ -47,6 +47,16 @@
 // Workgroup size of the LOD morph parity compute shader.
 #define AAL_LOD_PARITY_GROUP_SIZE 64
 
+// Tiled terrain textures (engine/terrain_tiles.h, shaders/tile_lookup.glsl,
+// shaders/terrain_textures.glsl): border texels per tile side, texture pages
+// (2D array images) per kind, and the first of the 3 x AAL_TERRAIN_TILE_PAGES
+// bindings (heights, apertures, albedo) in every pipeline that samples them.
+#define AAL_TERRAIN_TILE_BORDER 2
+#define AAL_TERRAIN_TILE_PAGES 4
+#define AAL_TERRAIN_TEXTURE_BINDING 1
+// Workgroup size of the tile lookup parity compute shader.
+#define AAL_TILE_PARITY_GROUP_SIZE 64
+
 // Sun and sky (terrain/sky_model.h, terrain/tone_map.h, shaders/sky.glsl,
 // shaders/tone_map.glsl).
 // Floor on cos(view zenith angle) in the Perez function: views at and below

@@ -19,6 +19,9 @@ layout(set = 0, binding = 0, std140) uniform Frame {
   vec4 albedoValue;      // rgb constant albedo (source AAL_ALBEDO_CONSTANT)
   vec4 obscurance;       // R (m), samples n, steps m, 0
   ivec4 obscurancePass;  // on (0/1), interleaved + filtered (0/1), pixel size (1 or 2), 0
+  ivec4 tileGrid;        // tile core width, height (texels), tiles across, down (tile_lookup.glsl)
+  ivec4 tileImage;       // tile border, 0, tile image width, height (texels)
+  ivec4 tileLayers;      // tiles (layers) per page: heights, apertures, albedo, 0
   PreethamSky sky;
 }
 frame;

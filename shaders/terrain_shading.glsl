@@ -8,10 +8,7 @@
 #include "frame.glsl"
 #include "palette.glsl"
 #include "shading.glsl"
-
-layout(set = 0, binding = 1) uniform sampler2D heightTexture;
-layout(set = 0, binding = 2) uniform sampler2D apertureTexture;  // rgb bent normal, a arc length
-layout(set = 0, binding = 3) uniform sampler2D albedoTexture;
+#include "terrain_textures.glsl"
 
 layout(location = 0) in vec3 worldPosition;
 layout(location = 1) in vec2 texelPosition;
@@ -24,31 +21,26 @@ layout(location = 1) out vec4 ambientOut;  // rgb ambient x transmittance, a vie
 layout(location = 2) out vec2 surfaceOut;  // texel position: the obscurance pass's point x
 #endif
 
-float heightAt(vec2 texel) {
-  return textureLod(heightTexture, (texel + 0.5) / frame.dem.xy, 0.0).r;
-}
-
 // Normal from central differences of the heights, one texel apart.
 vec3 surfaceNormal(vec2 texel) {
-  float dx = heightAt(texel + vec2(1, 0)) - heightAt(texel - vec2(1, 0));
-  float dy = heightAt(texel - vec2(0, 1)) - heightAt(texel + vec2(0, 1));  // north is row - 1
+  float dx = terrainHeight(texel + vec2(1, 0)) - terrainHeight(texel - vec2(1, 0));
+  float dy = terrainHeight(texel - vec2(0, 1)) - terrainHeight(texel + vec2(0, 1));  // north: row - 1
   return normalize(vec3(-dx / (2.0 * frame.dem.z), -dy / (2.0 * frame.dem.w), 1.0));
 }
 
-vec3 albedoAt(vec2 uv, float z, vec3 normal) {
-  if (frame.grid.w == AAL_ALBEDO_IMAGE) return textureLod(albedoTexture, uv, 0.0).rgb;
+vec3 albedoAt(vec2 texel, float z, vec3 normal) {
+  if (frame.grid.w == AAL_ALBEDO_IMAGE) return terrainAlbedo(texel);
   if (frame.grid.w == AAL_ALBEDO_CONSTANT) return frame.albedoValue.rgb;
   return paletteAlbedo(z, normal);
 }
 
 void main() {
-  vec2 uv = (texelPosition + 0.5) / frame.dem.xy;
-  vec4 aperture = textureLod(apertureTexture, uv, 0.0);
+  vec4 aperture = terrainAperture(texelPosition);
   ShadingInputs s;
   s.normal = surfaceNormal(texelPosition);
   s.bentNormal = normalize(aperture.xyz);
   s.apertureRad = aperture.w;
-  s.albedo = albedoAt(uv, worldPosition.z, s.normal);
+  s.albedo = albedoAt(texelPosition, worldPosition.z, s.normal);
   s.sunDirection = frame.sunDirection.xyz;
   s.sunRadiusRad = frame.sunDirection.w;
   s.sunIrradiance = frame.sunIrradiance.rgb;

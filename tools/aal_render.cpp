@@ -53,6 +53,7 @@ struct Options {
   std::optional<double> cellSize, zScale;
   int device = -1;
   size_t triangleBudget = 2'000'000;
+  uint32_t maxTileTexels = 0;
   bool stats = false;
   bool quiet = false;
   std::string albedoValue;
@@ -262,11 +263,13 @@ int run(const Options& o) {
   std::unique_ptr<aal::TerrainScene> scene;
   if (aperturePath.empty()) {
     scene = std::make_unique<aal::TerrainScene>(device, field, inMemory,
-                                                albedo ? &*albedo : nullptr, o.triangleBudget);
+                                                albedo ? &*albedo : nullptr, o.triangleBudget,
+                                                aal::TerrainTiling{o.maxTileTexels, 0});
   } else {
     aal::ApertureMapReader reader(aperturePath);
     scene = std::make_unique<aal::TerrainScene>(device, field, reader, albedo ? &*albedo : nullptr,
-                                                o.triangleBudget);
+                                                o.triangleBudget,
+                                                aal::TerrainTiling{o.maxTileTexels, 0});
   }
   inMemory = {};
   albedo.reset();
@@ -280,6 +283,8 @@ int run(const Options& o) {
     std::printf("device     %s\n", device.name().c_str());
     std::printf("size       %ux%u\n", width, height);
     std::printf("triangles  %zu\n", frame.triangles);
+    std::printf("textures   %s, %.1f MiB\n", aal::describeTerrainTiles(scene->tiles()).c_str(),
+                double(scene->textureBytes()) / (1 << 20));
     std::printf("sun        azimuth %.2f deg, elevation %.2f deg\n", light.sunAzimuthDeg,
                 light.sunElevationDeg);
     if (obscurance.enabled) {
@@ -394,6 +399,10 @@ int main(int argc, char** argv) {
                  "per-frame triangle budget of the terrain's quadtree LOD")
       ->check(CLI::Range(size_t(2), size_t(1) << 28))
       ->capture_default_str();
+  app.add_option("--max-tile", o.maxTileTexels,
+                 "split the DEM's textures into tiles of at most N texels across (tests; by "
+                 "default only DEMs beyond the device's largest image are tiled)")
+      ->check(CLI::Range(uint32_t(1), uint32_t(1) << 20));
   app.add_flag("--stats", o.stats, "print per-pass GPU times and the triangle count");
   app.add_flag("-q,--quiet", o.quiet, "no progress messages");
   return aal::runTool(app, argc, argv, [&] { return run(o); });

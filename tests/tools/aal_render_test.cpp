@@ -4,6 +4,7 @@
 #include <OpenImageIO/imageio.h>
 
 #include <algorithm>
+#include <cstdlib>
 #include <filesystem>
 #include <utility>
 #include <vector>
@@ -157,6 +158,35 @@ TEST(AalRender, ObscuranceAndTransferViewsAreLinearInExr) {
   EXPECT_LE(meanW, 1.0);
   EXPECT_EQ(minOff, 1.0f);
   EXPECT_EQ(meanOff, 1.0);
+}
+
+std::vector<uint8_t> pixelsOf(const fs::path& path) {
+  auto in = OIIO::ImageInput::open(path.string());
+  if (!in) return {};
+  std::vector<uint8_t> pixels(in->spec().image_pixels() * size_t(in->spec().nchannels));
+  in->read_image(0, 0, 0, -1, OIIO::TypeDesc::UINT8, pixels.data());
+  return pixels;
+}
+
+// --max-tile splits the DEM's textures into tiles (docs/rendering.md): the
+// picture stays the single image's within 1 LSB (tests/engine/tile_render_test.cpp
+// checks every mode).
+TEST(AalRender, MaxTileTilesTheTexturesWithoutChangingThePicture) {
+  TempDir dir;
+  const fs::path single = dir.path() / "single.png", tiled = dir.path() / "tiled.png";
+  const auto a = render(dir, "-o " + quoted(single) + " --size 160x90 --stats");
+  ASSERT_EQ(a.exitCode, 0) << a.out;
+  EXPECT_NE(a.out.find("in 1x1 tiles"), std::string::npos) << a.out;
+  const auto b = render(dir, "-o " + quoted(tiled) + " --size 160x90 --stats --max-tile 100");
+  ASSERT_EQ(b.exitCode, 0) << b.out;
+  EXPECT_NE(b.out.find("403x344 texels in 5x4 tiles of 81x86"), std::string::npos) << b.out;
+  const std::vector<uint8_t> x = pixelsOf(single), y = pixelsOf(tiled);
+  ASSERT_EQ(x.size(), y.size());
+  ASSERT_FALSE(x.empty());
+  int worst = 0;
+  for (size_t i = 0; i < x.size(); ++i) worst = std::max(worst, std::abs(int(x[i]) - int(y[i])));
+  EXPECT_LE(worst, 1);
+  EXPECT_EQ(render(dir, "-o " + quoted(tiled) + " --max-tile 0").exitCode, 2);
 }
 
 TEST(AalRender, AlbedoImageOfAnotherSizeIsResampledWithANote) {

@@ -1,0 +1,90 @@
+// The DEM's textures (heights, apertures, albedo) as every pass samples
+// them: a texel position of the whole DEM goes through the tile lookup
+// (tile_lookup.glsl, engine/terrain_tiles.h) to a layer of one of
+// AAL_TERRAIN_TILE_PAGES 2D array images per kind. A single-tile scene has
+// one page of one layer whose image is the DEM: the same fetches as one
+// plain texture. Array images instead of arrays of textures: lavapipe has no
+// descriptor indexing (not even dynamically uniform), and layers are chosen
+// per fetch.
+#ifndef AAL_TERRAIN_TEXTURES_GLSL
+#define AAL_TERRAIN_TEXTURES_GLSL
+
+#include "config.h"
+#include "frame.glsl"
+#include "tile_lookup.glsl"
+
+#if AAL_TERRAIN_TILE_PAGES != 4
+#error "terrain_textures.glsl declares four pages per kind"
+#endif
+
+#define AAL_TERRAIN_PAGES(name, first)                                        \
+  layout(set = 0, binding = first + 0) uniform sampler2DArray name##Page0; \
+  layout(set = 0, binding = first + 1) uniform sampler2DArray name##Page1; \
+  layout(set = 0, binding = first + 2) uniform sampler2DArray name##Page2; \
+  layout(set = 0, binding = first + 3) uniform sampler2DArray name##Page3;
+
+AAL_TERRAIN_PAGES(terrainHeight, AAL_TERRAIN_TEXTURE_BINDING)
+AAL_TERRAIN_PAGES(terrainAperture, AAL_TERRAIN_TEXTURE_BINDING + AAL_TERRAIN_TILE_PAGES)
+AAL_TERRAIN_PAGES(terrainAlbedo, AAL_TERRAIN_TEXTURE_BINDING + 2 * AAL_TERRAIN_TILE_PAGES)
+
+// Bilinear fetch (explicit LOD 0: valid in any control flow) from the
+// tile's page. Lavapipe runs every arm of a branch for every fetch (a
+// four-way pick made the terrain pass 1.6x and the obscurance pass 2.7x
+// slower), so a pick is compiled in only where a scene needs it: the
+// *_paged variants (AAL_TERRAIN_PAGED) pick among four pages for every kind;
+// the *_aperture_pagesN ones (AAL_TERRAIN_APERTURE_PAGES N = 2 or 4) among N
+// for the apertures only (8 bytes a texel: they fill pages first); the
+// others read page 0 (scenes of one page per kind: all but the largest DEMs).
+#define AAL_TERRAIN_FETCH_FROM(name, n, t) \
+  textureLod(name##Page##n, vec3((t).uv, float((t).layer)), 0.0)
+#define AAL_TERRAIN_FETCH_PAGES1(name, t) AAL_TERRAIN_FETCH_FROM(name, 0, t)
+#define AAL_TERRAIN_FETCH_PAGES2(name, t) \
+  ((t).page == 0 ? AAL_TERRAIN_FETCH_FROM(name, 0, t) : AAL_TERRAIN_FETCH_FROM(name, 1, t))
+#define AAL_TERRAIN_FETCH_PAGES4(name, t)                        \
+  ((t).page == 0   ? AAL_TERRAIN_FETCH_FROM(name, 0, t)         \
+   : (t).page == 1 ? AAL_TERRAIN_FETCH_FROM(name, 1, t)         \
+   : (t).page == 2 ? AAL_TERRAIN_FETCH_FROM(name, 2, t)         \
+                   : AAL_TERRAIN_FETCH_FROM(name, 3, t))
+#if defined(AAL_TERRAIN_PAGED)
+#define AAL_TERRAIN_FETCH_HEIGHT AAL_TERRAIN_FETCH_PAGES4
+#define AAL_TERRAIN_FETCH_APERTURE AAL_TERRAIN_FETCH_PAGES4
+#define AAL_TERRAIN_FETCH_ALBEDO AAL_TERRAIN_FETCH_PAGES4
+#else
+#define AAL_TERRAIN_FETCH_HEIGHT AAL_TERRAIN_FETCH_PAGES1
+#define AAL_TERRAIN_FETCH_ALBEDO AAL_TERRAIN_FETCH_PAGES1
+#if !defined(AAL_TERRAIN_APERTURE_PAGES)
+#define AAL_TERRAIN_FETCH_APERTURE AAL_TERRAIN_FETCH_PAGES1
+#elif AAL_TERRAIN_APERTURE_PAGES == 2
+#define AAL_TERRAIN_FETCH_APERTURE AAL_TERRAIN_FETCH_PAGES2
+#else
+#define AAL_TERRAIN_FETCH_APERTURE AAL_TERRAIN_FETCH_PAGES4
+#endif
+#endif
+
+// The tile of a DEM texel position, in the pages of a kind with
+// `layersPerPage` tiles per page (frame.tileLayers).
+TerrainTileTexel terrainTexel(vec2 texel, int layersPerPage) {
+  TerrainTiles tiles = TerrainTiles(
+      frame.tileGrid, ivec4(frame.tileImage.x, layersPerPage, frame.tileImage.zw));
+  return terrainTileTexel(tiles, texel);
+}
+
+// Height (m) at a DEM texel position, bilinear, clamped to the DEM's edge.
+float terrainHeight(vec2 texel) {
+  TerrainTileTexel t = terrainTexel(texel, frame.tileLayers.x);
+  return AAL_TERRAIN_FETCH_HEIGHT(terrainHeight, t).r;
+}
+
+// rgb bent normal, a arc length (rad), bilinear.
+vec4 terrainAperture(vec2 texel) {
+  TerrainTileTexel t = terrainTexel(texel, frame.tileLayers.y);
+  return AAL_TERRAIN_FETCH_APERTURE(terrainAperture, t);
+}
+
+// Albedo image (linear RGB as stored), bilinear.
+vec3 terrainAlbedo(vec2 texel) {
+  TerrainTileTexel t = terrainTexel(texel, frame.tileLayers.z);
+  return AAL_TERRAIN_FETCH_ALBEDO(terrainAlbedo, t).rgb;
+}
+
+#endif
