@@ -57,6 +57,8 @@ RowWriter tileRows(const TerrainTileLayout& t, uint32_t tileX, uint32_t tileY, s
   };
 }
 
+}  // namespace
+
 TerrainTileLimits deviceTileLimits(const Device& device, const TerrainTiling& tiling) {
   VkPhysicalDeviceMaintenance3Properties maintenance3{
       VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_MAINTENANCE_3_PROPERTIES};
@@ -73,8 +75,6 @@ TerrainTileLimits deviceTileLimits(const Device& device, const TerrainTiling& ti
   }
   return limits;
 }
-
-}  // namespace
 
 TerrainScene::TerrainScene(const Device& device, const Heightfield& field,
                            const ApertureMap& aperture, const AlbedoImage* albedo,

@@ -24,6 +24,10 @@ namespace aal {
 
 class Device;
 
+// The tile limits of `device` (image size, array layers, allocation size),
+// narrowed by `tiling`: what TerrainScene plans its tiles with.
+TerrainTileLimits deviceTileLimits(const Device& device, const TerrainTiling& tiling);
+
 class TerrainScene {
  public:
   // Uploads everything in one batch. The aperture map must belong to the DEM

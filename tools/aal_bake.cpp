@@ -192,13 +192,18 @@ int run(const Options& o) {
   }
   const double work = texels * (bake.method == aal::BakeMethod::Sweep ? o.azimuths : o.rays);
   if (!o.quiet) {
-    std::fprintf(stderr, "aal-bake: %s %dx%d%s, %s, %s in %.2f s (%.3g texel-%s/s) -> %s\n",
-                 source.c_str(), field.width, field.height, layout.c_str(), o.method.c_str(),
+    // A bake that only resumed finished tiles has no rate to report.
+    char rate[64] = "nothing baked";
+    if (work > 0) {
+      std::snprintf(rate, sizeof rate, "%.3g texel-%s/s", work / seconds,
+                    bake.method == aal::BakeMethod::Sweep ? "azimuths" : "rays");
+    }
+    std::fprintf(stderr, "aal-bake: %s %dx%d%s, %s, %s in %.2f s (%s) -> %s\n", source.c_str(),
+                 field.width, field.height, layout.c_str(), o.method.c_str(),
                  (bake.method == aal::BakeMethod::Sweep ? std::to_string(o.azimuths) + " azimuths"
                                                         : std::to_string(o.rays) + " rays")
                      .c_str(),
-                 seconds, work / seconds,
-                 bake.method == aal::BakeMethod::Sweep ? "azimuths" : "rays", o.output.c_str());
+                 seconds, rate, o.output.c_str());
   }
   return aal::kExitOk;
 }

@@ -260,6 +260,16 @@ int run(const Options& o) {
     throw aal::InputError("--size " + o.size + " exceeds the device's largest image (" +
                           std::to_string(device.properties().limits.maxImageDimension2D) + ")");
   }
+  if (o.maxTileTexels > 0) {
+    // A forced tile size that needs more texture pages than the renderer
+    // binds is a bad argument, not a failure of the run.
+    try {
+      aal::planTerrainTiles(static_cast<uint32_t>(field.width), static_cast<uint32_t>(field.height),
+                            aal::deviceTileLimits(device, aal::TerrainTiling{o.maxTileTexels, 0}));
+    } catch (const std::runtime_error& e) {
+      throw aal::InputError("--max-tile " + std::to_string(o.maxTileTexels) + ": " + e.what());
+    }
+  }
   std::unique_ptr<aal::TerrainScene> scene;
   if (aperturePath.empty()) {
     scene = std::make_unique<aal::TerrainScene>(device, field, inMemory,

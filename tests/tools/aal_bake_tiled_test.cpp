@@ -80,6 +80,11 @@ TEST(AalBakeTiled, RunningAgainResumesFromTheFinishedTiles) {
   ASSERT_EQ(r.exitCode, 0) << r.out;
   EXPECT_NE(r.out.find("(2 baked, 7 resumed)"), std::string::npos) << r.out;
   EXPECT_EQ(readApertureMap(folder.string()).texels, whole.texels);
+  // Every tile finished: all resumed, and no rate is claimed for no work.
+  const auto again = runTool("aal-bake", command);
+  ASSERT_EQ(again.exitCode, 0) << again.out;
+  EXPECT_NE(again.out.find("(0 baked, 9 resumed)"), std::string::npos) << again.out;
+  EXPECT_NE(again.out.find("(nothing baked)"), std::string::npos) << again.out;
   // Other options on the same folder: refused, nothing overwritten.
   const auto other = runTool("aal-bake", quoted(dem) + " -o " + quoted(folder) +
                                              " --tile-size 32 --azimuths 32 --max-distance 200");

@@ -187,6 +187,10 @@ TEST(AalRender, MaxTileTilesTheTexturesWithoutChangingThePicture) {
   for (size_t i = 0; i < x.size(); ++i) worst = std::max(worst, std::abs(int(x[i]) - int(y[i])));
   EXPECT_LE(worst, 1);
   EXPECT_EQ(render(dir, "-o " + quoted(tiled) + " --max-tile 0").exitCode, 2);
+  // 1-texel tiles: 403 x 344 layers need more pages than the renderer binds.
+  const auto tooSmall = render(dir, "-o " + quoted(tiled) + " --max-tile 1");
+  EXPECT_EQ(tooSmall.exitCode, 2) << tooSmall.out;
+  EXPECT_NE(tooSmall.out.find("--max-tile 1"), std::string::npos) << tooSmall.out;
 }
 
 TEST(AalRender, AlbedoImageOfAnotherSizeIsResampledWithANote) {
