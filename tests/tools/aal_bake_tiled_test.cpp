@@ -168,17 +168,7 @@ TEST(AalBakeTiled, RenderReadsTheTileFolder) {
   EXPECT_NE(r.out.find("does not belong"), std::string::npos) << r.out;
 }
 
-// aal-view in a private X server, as in aal_view_test.cpp (without the
-// sanitizer build's LD_PRELOAD handling: the viewer tests cover that).
-test::ToolResult view(const std::string& args) {
-  const std::string server = std::to_string(100 + getpid() % 800);
-  return test::runShell("env -u LD_PRELOAD AAL_VALIDATION=1 xvfb-run -a -n " + server +
-                        " -s '-screen 0 1280x720x24' " + quoted(test::binDir() / "aal-view") + " " +
-                        args);
-}
-
 TEST(AalBakeTiled, ViewerReadsTheTileFolder) {
-  if (std::getenv("LD_PRELOAD")) GTEST_SKIP() << "sanitizer build: see aal_view_test.cpp";
   TempDir dir;
   const fs::path dem = writeDem(dir, 90, 70);
   const fs::path single = dir.path() / "a.exr", folder = dir.path() / "a.tiles";
@@ -189,9 +179,10 @@ TEST(AalBakeTiled, ViewerReadsTheTileFolder) {
       0);
   const fs::path fromFile = dir.path() / "file.png", fromTiles = dir.path() / "tiles.png";
   const std::string flight = " --size 160x120 --frames 2 --screenshot ";
-  auto r = view(quoted(dem) + " --aperture " + quoted(single) + flight + quoted(fromFile));
+  auto r =
+      test::runViewer(quoted(dem) + " --aperture " + quoted(single) + flight + quoted(fromFile));
   ASSERT_EQ(r.exitCode, 0) << r.out;
-  r = view(quoted(dem) + " --aperture " + quoted(folder) + flight + quoted(fromTiles));
+  r = test::runViewer(quoted(dem) + " --aperture " + quoted(folder) + flight + quoted(fromTiles));
   ASSERT_EQ(r.exitCode, 0) << r.out;
   EXPECT_EQ(r.out.find("aperture map ready"), std::string::npos) << "baked instead: " << r.out;
   const std::vector<float> a = pixels(fromFile), b = pixels(fromTiles);

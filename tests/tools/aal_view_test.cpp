@@ -25,22 +25,9 @@ using test::TempDir;
 
 const fs::path kDem = fs::path(AAL_TEST_SOURCE_DIR) / "heightmaps" / "jacksboro_fault_dem.tif";
 
-// aal-view in a private X server (xvfb-run, scripts/install-deps.sh installs
-// it), with a private aperture cache and the validation layer on. Servers
-// are searched from a number derived from the pid, so tests run in parallel
-// do not race for the same display.
-// Under the sanitizer build scripts/test.sh preloads the ASan runtime and
-// lavapipe (LD_PRELOAD): that is for aal-view alone, not for the X server
-// and xauth that xvfb-run starts, which are not built for it and fail.
+// aal-view under xvfb-run with this test's own aperture cache (run_tool.h).
 test::ToolResult view(const TempDir& dir, const std::string& args) {
-  const std::string server = std::to_string(100 + getpid() % 800);
-  const char* preload = std::getenv("LD_PRELOAD");
-  const std::string viewerEnv =
-      preload && *preload ? "env LD_PRELOAD=" + test::quoted(fs::path(preload)) + " " : "";
-  return runShell(
-      "env -u LD_PRELOAD AAL_VALIDATION=1 AAL_CACHE_DIR=" + quoted(dir.path() / "cache") +
-      " xvfb-run -a -n " + server + " -s '-screen 0 1280x720x24' " + viewerEnv +
-      quoted(test::binDir() / "aal-view") + " " + args);
+  return test::runViewer(args, "AAL_CACHE_DIR=" + quoted(dir.path() / "cache"));
 }
 
 size_t filesIn(const fs::path& folder) {

@@ -3,6 +3,7 @@
 #pragma once
 
 #include <sys/wait.h>
+#include <unistd.h>
 
 #include <array>
 #include <cstdio>
@@ -53,6 +54,23 @@ inline ToolResult runTool(const std::string& tool, const std::string& arguments,
                           const std::string& environment = "") {
   return runShell((environment.empty() ? "" : "env " + environment + " ") +
                   (binDir() / tool).string() + " " + arguments);
+}
+
+// aal-view in a private X server (xvfb-run; aal-view needs a display). The
+// server number is searched from one derived from the pid, so tests run in
+// parallel do not race for the same display. `environment` ("NAME=value
+// ...") is set for the run. Under the sanitizer build scripts/test.sh
+// preloads the ASan runtime and lavapipe (LD_PRELOAD): that is for aal-view
+// alone, not for the X server and xauth that xvfb-run starts, which are not
+// built for it and fail.
+inline ToolResult runViewer(const std::string& arguments, const std::string& environment = "") {
+  const std::string server = std::to_string(100 + getpid() % 800);
+  const char* preload = std::getenv("LD_PRELOAD");
+  const std::string viewerEnv =
+      preload && *preload ? "env LD_PRELOAD=" + quoted(std::filesystem::path(preload)) + " " : "";
+  return runShell("env -u LD_PRELOAD AAL_VALIDATION=1 " + environment + " xvfb-run -a -n " +
+                  server + " -s '-screen 0 1280x720x24' " + viewerEnv +
+                  quoted(binDir() / "aal-view") + " " + arguments);
 }
 
 // A fresh empty folder under the system temp folder, removed by the destructor.
