@@ -49,7 +49,7 @@ BakeTerrain prepareBakeTerrain(const Heightfield& field, const TexelWindow& wind
                       : 0.0f;
     }
   });
-  t.maxHeight = *std::max_element(field.z.begin(), field.z.end());
+  if (window.covers(field)) t.maxHeight = *std::max_element(field.z.begin(), field.z.end());
   return t;
 }
 

@@ -35,7 +35,10 @@ struct BakeTerrain {
   // Height gradient per window texel in metres per metre, interleaved (one
   // cache line serves both): [2i] = dz/dx (east), [2i + 1] = dz/dy (north).
   std::vector<float> slopes;
-  double maxHeight = 0;  // tallest texel, metres
+  // Tallest texel of the field, metres: for the ray baker, which bakes whole
+  // fields only; the terrain of a smaller window leaves it unset (a tiled
+  // bake would otherwise scan the whole DEM once per tile for nothing).
+  double maxHeight = 0;
 
   float slopeEast(size_t texel) const { return slopes[2 * texel]; }
   float slopeNorth(size_t texel) const { return slopes[2 * texel + 1]; }
@@ -50,7 +53,8 @@ struct BakeTerrain {
 // zScale and cell sizes are taken as already applied to the heightfield.
 BakeTerrain prepareBakeTerrain(const Heightfield& field);
 // The same for the texels of `window` only (inside the field): its slopes
-// equal the whole field's there.
+// equal the whole field's there; maxHeight is set only when the window
+// covers the whole field.
 BakeTerrain prepareBakeTerrain(const Heightfield& field, const TexelWindow& window);
 
 }  // namespace aal

@@ -62,6 +62,9 @@ bool rayEscapes(const BakeTerrain& terrain, const BakeOptions& o, double x, doub
 void bakeRays(const BakeTerrain& terrain, const BakeOptions& o, float* sums,
               std::vector<float>& svf) {
   if (!svf.empty()) throw std::invalid_argument("the sky-view factor needs the sweep method");
+  if (!terrain.window.covers(*terrain.field)) {
+    throw std::invalid_argument("the ray method bakes whole fields only, not windows");
+  }
   const Heightfield& f = *terrain.field;
   const int azimuthStrata = std::max(1, static_cast<int>(std::lround(std::sqrt(o.rays * 2.0))));
   const int elevationStrata = std::max(1, o.rays / azimuthStrata);
