@@ -2,7 +2,9 @@
 // hulls and blending, but each step of a group of lines hands the horizons
 // of its texels over as one block, and the arithmetic runs in single
 // precision in loops over the group that the compiler turns into vector
-// code. Only the hull update (a stack pop loop per line) stays scalar.
+// code. The hull update (a stack pop loop per line) is scalar, except on
+// CPUs with AVX2, where it runs 8 lines at a time (BlockLineWalker::walkAvx2,
+// chosen at run time; the same results bit for bit).
 // Without a distance limit only: sweepHorizons() remains the general path
 // and the reference this one is tested against. sweepOpposedHorizonBlocks()
 // hands over azimuths phi and phi + pi together, so that a bake touches a
@@ -19,6 +21,13 @@
 #include <limits>
 #include <utility>
 #include <vector>
+
+#if defined(__x86_64__) && defined(__GNUC__)
+#include <immintrin.h>
+#define AAL_HORIZON_AVX2 1
+#else
+#define AAL_HORIZON_AVX2 0
+#endif
 
 #include <tbb/enumerable_thread_specific.h>
 #include <tbb/parallel_for.h>
@@ -67,6 +76,17 @@ inline float clampedEdgeSlopeF(float rise, float toEdge, float curvature) {
   return toEdge <= 0.0f ? 0.0f : beyond;
 }
 
+// Whether this CPU runs the AVX2 hull update (BlockLineWalker): the build
+// targets plain x86-64, so the choice is made at run time.
+inline bool horizonAvx2() {
+#if AAL_HORIZON_AVX2
+  static const bool avx2 = __builtin_cpu_supports("avx2") && __builtin_cpu_supports("fma");
+  return avx2;
+#else
+  return false;
+#endif
+}
+
 // A run of neighbouring lines of one layout, walked in lockstep: per sweep
 // step, the texels between consecutive walked lines get their horizon
 // tangents (blended between the two lines, at least the leaving slope).
@@ -90,7 +110,8 @@ class BlockLineWalker {
         curvature_(static_cast<float>(options.curvature)),
         clampEdge_(options.clampEdge),
         minorMax_(layout.minorLength - 1),
-        rowCentre_(0.5f * static_cast<float>(terrain.height - 1)) {
+        rowCentre_(0.5f * static_cast<float>(terrain.height - 1)),
+        avx2_(horizonAvx2()) {
     // The bilinear surface leaving a texel (LineWalker::leavingSlope): one
     // neighbour lies on the next major slice, the other beside it on the
     // same slice.
@@ -109,9 +130,10 @@ class BlockLineWalker {
   void begin(int firstLine, int lines) {
     firstLine_ = firstLine;
     lines_ = lines;
-    for (int i = 0; i < lines; ++i) {
-      size_[i] = 0;
-      started_[i] = false;
+    std::fill(size_, size_ + kPaddedLines, 0);
+    // Read (and ignored) in lanes without a hull yet.
+    for (float* a : {edgeT_, edgeZ_, topT_, topZ_, belowT_, belowZ_}) {
+      std::fill(a, a + kPaddedLines, 0.0f);
     }
   }
 
@@ -119,9 +141,42 @@ class BlockLineWalker {
   // writes the tangents of the texels with minor coordinates minorLo ..
   // minorHi (on the grid, between walked lines; none when minorLo > minorHi)
   // to out[minor - minorLo].
-  void step(int step, int minorLo, int minorHi, float* out);
+  void step(int step, int minorLo, int minorHi, float* out) {
+#if AAL_HORIZON_AVX2
+    if (avx2_) return stepAvx2(step, minorLo, minorHi, out);
+#endif
+    stepImpl<false>(step, minorLo, minorHi, out);
+  }
 
  private:
+  // Per-line arrays run to whole vectors of 8 lines.
+  static constexpr int kPaddedLines = (kMaxLines + 7) / 8 * 8;
+
+  // The body of step(); kAvx2: compiled for AVX2 (stepAvx2), with the line
+  // samples, hull updates and texels 4 or 8 lines at a time
+  // (lineSamplesAvx2, walkAvx2).
+  template <bool kAvx2>
+  [[gnu::always_inline]] inline void stepImpl(int step, int minorLo, int minorHi, float* out);
+#if AAL_HORIZON_AVX2
+  __attribute__((target("avx2,fma"))) void stepAvx2(int step, int minorLo, int minorHi,
+                                                    float* out) {
+    stepImpl<true>(step, minorLo, minorHi, out);
+  }
+#endif
+  // What stepImpl gathers per step before the hull updates, for walkAvx2.
+  struct StepSlice {
+    int base, lineFirst, lineLast;
+    float w;
+    bool offGridMajor;
+    const float *heights, *nextSlice, *invCellX, *lineT;
+  };
+#if AAL_HORIZON_AVX2
+  __attribute__((target("avx2,fma"))) void lineSamplesAvx2(int step, int major, float* lineT,
+                                                           int& lineFirst, int& lineLast) const;
+  __attribute__((target("avx2,fma"))) void walkAvx2(const StepSlice& slice, int minorLo,
+                                                    int minorHi, float* out);
+#endif
+
   float heightAt(int major, int minor) const {
     return kMajorIsColumn ? field_.at(major, minor) : field_.at(minor, major);
   }
@@ -135,18 +190,24 @@ class BlockLineWalker {
   const bool clampEdge_;
   const int minorMax_;
   const float rowCentre_;
+  const bool avx2_;
   int dMajorNeighbour_, dMinorNeighbour_;
   float wMajorNeighbour_, wMinorNeighbour_, invCellY_;
   int firstLine_ = 0, lines_ = 0;
-  // Per walked line.
-  int size_[kMaxLines];
-  bool started_[kMaxLines];
-  float edgeT_[kMaxLines], edgeZ_[kMaxLines];
+  // Per walked line: hull size (0: not started) and the DEM edge ahead.
+  alignas(32) int size_[kPaddedLines];
+  alignas(32) float edgeT_[kPaddedLines], edgeZ_[kPaddedLines];
+  // The AVX2 path's copy of the top two hull points, hull[size - 1] and
+  // hull[size - 2]: the first pop test of a step needs no gather.
+  alignas(32) float topT_[kPaddedLines], topZ_[kPaddedLines];
+  alignas(32) float belowT_[kPaddedLines], belowZ_[kPaddedLines];
 };
 
 template <bool kMajorIsColumn>
-void BlockLineWalker<kMajorIsColumn>::step(int step, int minorLo, int minorHi, float* out) {
-  constexpr int kMax = kMaxLines;
+template <bool kAvx2>
+inline void BlockLineWalker<kMajorIsColumn>::stepImpl(int step, int minorLo, int minorHi,
+                                                      float* out) {
+  constexpr int kMax = kPaddedLines;
   const int lines = lines_, majorLength = layout_.majorLength, minorMax = minorMax_;
   const float curvature = curvature_;
   const int major = layout_.start + step * layout_.step;
@@ -166,17 +227,30 @@ void BlockLineWalker<kMajorIsColumn>::step(int step, int minorLo, int minorHi, f
   const bool haveNextSlice = nextMajor >= 0 && nextMajor < majorLength;
   // The cell ahead is off the grid: no leaving slope (LineWalker::leavingSlope).
   const bool offGridMajor = wMajorNeighbour_ > 0.0f && !haveNextSlice;
-  for (int j = 0; j < lines + 2; ++j) {
-    const int minor = std::clamp(base - 1 + j, 0, minorMax);
-    heights[j] = heightAt(major, minor);
-    nextSlice[j] = haveNextSlice ? heightAt(nextMajor, minor) : 0.0f;
-    invCellX[j] = static_cast<float>(
-        terrain_.rowInvCellX[kMajorIsColumn ? static_cast<size_t>(minor) : major]);
+  if (kAvx2 && base >= 1 && base + lines <= minorMax) {
+    // Inside the grid: no clamps, so the loop is vector code.
+    for (int j = 0; j < lines + 2; ++j) {
+      heights[j] = heightAt(major, base - 1 + j);
+      nextSlice[j] = haveNextSlice ? heightAt(nextMajor, base - 1 + j) : 0.0f;
+      invCellX[j] = static_cast<float>(
+          terrain_.rowInvCellX[kMajorIsColumn ? static_cast<size_t>(base - 1 + j) : major]);
+    }
+  } else {
+    for (int j = 0; j < lines + 2; ++j) {
+      const int minor = std::clamp(base - 1 + j, 0, minorMax);
+      heights[j] = heightAt(major, minor);
+      nextSlice[j] = haveNextSlice ? heightAt(nextMajor, minor) : 0.0f;
+      invCellX[j] = static_cast<float>(
+          terrain_.rowInvCellX[kMajorIsColumn ? static_cast<size_t>(minor) : major]);
+    }
   }
 
   // Line samples: distance along u and height, linear across the line.
   int lineFirst = lines, lineLast = -1;
-  for (int i = 0; i < lines; ++i) {
+#if AAL_HORIZON_AVX2
+  if constexpr (kAvx2) lineSamplesAvx2(step, major, lineT, lineFirst, lineLast);
+#endif
+  for (int i = 0; i < lines && !kAvx2; ++i) {
     const double minor = (firstLine_ + i) + step * layout_.minorPerStep;
     if (minor < 0.0 || minor > minorMax) continue;
     lineFirst = std::min(lineFirst, i);
@@ -191,6 +265,13 @@ void BlockLineWalker<kMajorIsColumn>::step(int step, int minorLo, int minorHi, f
     }
     lineT[i] = static_cast<float>(t);
   }
+#if AAL_HORIZON_AVX2
+  if constexpr (kAvx2) {
+    walkAvx2({base, lineFirst, lineLast, w, offGridMajor, heights, nextSlice, invCellX, lineT},
+             minorLo, minorHi, out);
+    return;
+  }
+#endif
   for (int i = lineFirst; i <= lineLast; ++i) {
     lineZ[i] = (1.0f - w) * heights[i + 1] + w * heights[i + 2];
     lineCurvedZ[i] = lineZ[i] - curvature * lineT[i] * lineT[i];
@@ -201,8 +282,7 @@ void BlockLineWalker<kMajorIsColumn>::step(int step, int minorLo, int minorHi, f
   for (int i = lineFirst; i <= lineLast; ++i) {
     HullPointF* hull = hulls_ + static_cast<size_t>(i) * majorLength;
     const float t = lineT[i], z = lineCurvedZ[i];
-    if (!started_[i]) {
-      started_[i] = true;
+    if (size_[i] == 0) {
       edgeT_[i] = t;
       edgeZ_[i] = lineZ[i];
     }
@@ -257,6 +337,244 @@ void BlockLineWalker<kMajorIsColumn>::step(int step, int minorLo, int minorHi, f
     out[i - texelFirst] = std::max(blend, offGrid ? kNoHorizonTangent : leaving);
   }
 }
+
+#if AAL_HORIZON_AVX2
+// clampedEdgeSlopeF in 8 lanes.
+__attribute__((target("avx2,fma"))) inline __m256 clampedEdgeSlopeAvx2(__m256 rise, __m256 toEdge,
+                                                                       float curvature) {
+  const __m256 zero = _mm256_setzero_ps(), noHorizon = _mm256_set1_ps(kNoHorizonTangent);
+  const __m256 drop = _mm256_sub_ps(zero, rise);
+  const __m256 tangentDistance = _mm256_sqrt_ps(
+      _mm256_div_ps(_mm256_max_ps(drop, zero), _mm256_set1_ps(std::max(curvature, 1e-30f))));
+  const __m256 curved = _mm256_blendv_ps(
+      _mm256_mul_ps(_mm256_set1_ps(-2.0f),
+                    _mm256_sqrt_ps(_mm256_mul_ps(drop, _mm256_set1_ps(curvature)))),
+      noHorizon, _mm256_cmp_ps(tangentDistance, toEdge, _CMP_LE_OQ));
+  const __m256 beyond = _mm256_blendv_ps(curvature <= 0.0f ? zero : curved, noHorizon,
+                                         _mm256_cmp_ps(rise, zero, _CMP_GE_OQ));
+  return _mm256_blendv_ps(beyond, zero, _mm256_cmp_ps(toEdge, zero, _CMP_LE_OQ));
+}
+
+// a[start .. start + 7] as a vector, from aligned loads (a runs to whole
+// vectors past start + 7).
+__attribute__((target("avx2,fma"))) inline __m256 shiftedLanesAvx2(const float* a, int start) {
+  const float* at = a + (start & ~7);
+  const __m256i index =
+      _mm256_add_epi32(_mm256_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7), _mm256_set1_epi32(start & 7));
+  const __m256 low = _mm256_permutevar8x32_ps(_mm256_load_ps(at), index);
+  const __m256 high = _mm256_permutevar8x32_ps(_mm256_load_ps(at + 8), index);
+  return _mm256_blendv_ps(low, high,
+                          _mm256_castsi256_ps(_mm256_cmpgt_epi32(index, _mm256_set1_epi32(7))));
+}
+
+// The line samples' distances along u, 4 lines at a time in double
+// precision: the same operations as the scalar loop.
+template <bool kMajorIsColumn>
+__attribute__((target("avx2,fma"))) inline void BlockLineWalker<kMajorIsColumn>::lineSamplesAvx2(
+    int step, int major, float* lineT, int& lineFirst, int& lineLast) const {
+  const int minorMax = minorMax_;
+  const __m256d lowest = _mm256_setzero_pd(), highest = _mm256_set1_pd(minorMax);
+  const __m256d centreCol = _mm256_set1_pd(terrain_.centreCol);
+  const __m256d ux = _mm256_set1_pd(ux_), uy = _mm256_set1_pd(uy_);
+  const __m256d iota = _mm256_setr_pd(0, 1, 2, 3);
+  unsigned long long validBits = 0;
+  for (int i = 0; i < lines_; i += 4) {
+    // (firstLine + i) + step * minorPerStep, as the scalar loop rounds it.
+    const __m256d minor =
+        _mm256_add_pd(_mm256_add_pd(_mm256_set1_pd(static_cast<double>(firstLine_ + i)), iota),
+                      _mm256_set1_pd(step * layout_.minorPerStep));
+    const __m256d inside = _mm256_and_pd(_mm256_cmp_pd(minor, lowest, _CMP_GE_OQ),
+                                         _mm256_cmp_pd(minor, highest, _CMP_LE_OQ));
+    validBits |= static_cast<unsigned long long>(_mm256_movemask_pd(inside)) << i;
+    __m256d t;
+    if constexpr (kMajorIsColumn) {
+      const __m128i nearRow = _mm_min_epi32(
+          _mm256_cvttpd_epi32(_mm256_add_pd(_mm256_max_pd(minor, lowest), _mm256_set1_pd(0.5))),
+          _mm_set1_epi32(minorMax));
+      const __m256d cellX =
+          _mm256_mask_i32gather_pd(_mm256_setzero_pd(), terrain_.rowCellX.data(), nearRow,
+                                   _mm256_castsi256_pd(_mm256_set1_epi64x(-1)), 8);
+      t = _mm256_add_pd(
+          _mm256_mul_pd(_mm256_mul_pd(_mm256_set1_pd(major - terrain_.centreCol), cellX), ux),
+          _mm256_mul_pd(_mm256_mul_pd(_mm256_sub_pd(_mm256_set1_pd(rowCentre_), minor),
+                                      _mm256_set1_pd(terrain_.cellY)),
+                        uy));
+    } else {
+      t = _mm256_add_pd(_mm256_mul_pd(_mm256_mul_pd(_mm256_sub_pd(minor, centreCol),
+                                                    _mm256_set1_pd(terrain_.rowCellX[major])),
+                                      ux),
+                        _mm256_set1_pd(terrain_.y(major) * uy_));
+    }
+    _mm_storeu_ps(lineT + i, _mm256_cvtpd_ps(t));
+  }
+  validBits &= lines_ >= 64 ? ~0ull : (1ull << lines_) - 1;
+  if (validBits) {
+    lineFirst = __builtin_ctzll(validBits);
+    lineLast = 63 - __builtin_clzll(validBits);
+  }
+}
+
+// The rest of step() for AVX2, in lanes of 8 lines: each round of pops
+// tests all lanes at once and gathers the next point down only for the
+// lanes that popped, until no lane pops; the texels then take their two
+// lines' tangents by lane shifts in registers (shifted loads of what was
+// just stored would stall on store forwarding). Bit for bit the scalar
+// path's result: the same operations in the same order, no fused
+// multiply-adds.
+template <bool kMajorIsColumn>
+__attribute__((target("avx2,fma"))) inline void BlockLineWalker<kMajorIsColumn>::walkAvx2(
+    const StepSlice& slice, int minorLo, int minorHi, float* out) {
+  const int majorLength = layout_.majorLength, lines = lines_;
+  const bool texels = minorLo <= minorHi;
+  alignas(32) float lineCurvedZ[kPaddedLines], lineHorizon[kPaddedLines + 8];
+  const __m256 noHorizon = _mm256_set1_ps(kNoHorizonTangent);
+  const __m256 w = _mm256_set1_ps(slice.w), w1 = _mm256_set1_ps(1.0f - slice.w);
+  const __m256 curvature = _mm256_set1_ps(curvature_);
+  const __m256 twoCurvature = _mm256_set1_ps(2.0f * curvature_);
+  const long long* points = reinterpret_cast<const long long*>(hulls_);
+  const __m256i iota = _mm256_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7);
+  const __m256i one = _mm256_set1_epi32(1);
+  // A gather of 4 points (t, z pairs) per half: lanes 0, 1, 4, 5 and 2, 3,
+  // 6, 7, so that one shuffle per coordinate puts the 8 back in order.
+  const __m256i indexLow = _mm256_setr_epi32(0, 1, 4, 5, 0, 0, 0, 0);
+  const __m256i indexHigh = _mm256_setr_epi32(2, 3, 6, 7, 0, 0, 0, 0);
+  const __m256i maskLow = _mm256_setr_epi32(0, 0, 1, 1, 4, 4, 5, 5);
+  const __m256i maskHigh = _mm256_setr_epi32(2, 2, 3, 3, 6, 6, 7, 7);
+  for (int c = 0; c < lines; c += 8) {
+    const __m256i line = _mm256_add_epi32(_mm256_set1_epi32(c), iota);
+    const __m256i valid =
+        _mm256_and_si256(_mm256_cmpgt_epi32(line, _mm256_set1_epi32(slice.lineFirst - 1)),
+                         _mm256_cmpgt_epi32(_mm256_set1_epi32(slice.lineLast + 1), line));
+    if (_mm256_testz_si256(valid, valid)) {
+      _mm256_store_ps(lineHorizon + c, noHorizon);
+      continue;
+    }
+    const __m256 t = _mm256_loadu_ps(slice.lineT + c);
+    const __m256 z = _mm256_add_ps(_mm256_mul_ps(w1, _mm256_loadu_ps(slice.heights + c + 1)),
+                                   _mm256_mul_ps(w, _mm256_loadu_ps(slice.heights + c + 2)));
+    const __m256 curvedZ = _mm256_sub_ps(z, _mm256_mul_ps(_mm256_mul_ps(curvature, t), t));
+    _mm256_store_ps(lineCurvedZ + c, curvedZ);
+    __m256i n = _mm256_load_si256(reinterpret_cast<const __m256i*>(size_ + c));
+    const __m256 fresh =
+        _mm256_castsi256_ps(_mm256_and_si256(valid, _mm256_cmpeq_epi32(n, _mm256_setzero_si256())));
+    const __m256 edgeT = _mm256_blendv_ps(_mm256_load_ps(edgeT_ + c), t, fresh);
+    const __m256 edgeZ = _mm256_blendv_ps(_mm256_load_ps(edgeZ_ + c), z, fresh);
+    _mm256_store_ps(edgeT_ + c, edgeT);
+    _mm256_store_ps(edgeZ_ + c, edgeZ);
+
+    // Pop: a is hull[n - 1], b hull[n - 2]. A lane that has popped k times
+    // needs hull[n0 - 3 - k] next, whatever the other lanes did: the gather
+    // of round k is issued before its test, off the tests' dependency chain
+    // (clamped to the line's own points; what lanes that stopped read is
+    // not used).
+    __m256 aT = _mm256_load_ps(topT_ + c), aZ = _mm256_load_ps(topZ_ + c);
+    __m256 bT = _mm256_load_ps(belowT_ + c), bZ = _mm256_load_ps(belowZ_ + c);
+    const __m256i first = _mm256_mullo_epi32(line, _mm256_set1_epi32(majorLength));
+    const __m256i next = _mm256_add_epi32(first, _mm256_sub_epi32(n, _mm256_set1_epi32(3)));
+    const __m128i firstLow = _mm256_castsi256_si128(_mm256_permutevar8x32_epi32(first, indexLow));
+    const __m128i firstHigh = _mm256_castsi256_si128(_mm256_permutevar8x32_epi32(first, indexHigh));
+    __m128i nextLow = _mm256_castsi256_si128(_mm256_permutevar8x32_epi32(next, indexLow));
+    __m128i nextHigh = _mm256_castsi256_si128(_mm256_permutevar8x32_epi32(next, indexHigh));
+    const __m256i gatherLow = _mm256_permutevar8x32_epi32(valid, maskLow);
+    const __m256i gatherHigh = _mm256_permutevar8x32_epi32(valid, maskHigh);
+    __m256i active = _mm256_and_si256(valid, _mm256_cmpgt_epi32(n, one));
+    for (;;) {
+      const __m256 low = _mm256_castsi256_ps(_mm256_mask_i32gather_epi64(
+          _mm256_setzero_si256(), points, _mm_max_epi32(nextLow, firstLow), gatherLow, 8));
+      const __m256 high = _mm256_castsi256_ps(_mm256_mask_i32gather_epi64(
+          _mm256_setzero_si256(), points, _mm_max_epi32(nextHigh, firstHigh), gatherHigh, 8));
+      nextLow = _mm_sub_epi32(nextLow, _mm_set1_epi32(1));
+      nextHigh = _mm_sub_epi32(nextHigh, _mm_set1_epi32(1));
+      const __m256 under = _mm256_cmp_ps(
+          _mm256_mul_ps(_mm256_sub_ps(bZ, curvedZ), _mm256_sub_ps(aT, t)),
+          _mm256_mul_ps(_mm256_sub_ps(aZ, curvedZ), _mm256_sub_ps(bT, t)), _CMP_GE_OQ);
+      const __m256i pop = _mm256_and_si256(active, _mm256_castps_si256(under));
+      if (_mm256_testz_si256(pop, pop)) break;
+      n = _mm256_add_epi32(n, pop);  // -1 where popped
+      aT = _mm256_blendv_ps(aT, bT, _mm256_castsi256_ps(pop));
+      aZ = _mm256_blendv_ps(aZ, bZ, _mm256_castsi256_ps(pop));
+      active = _mm256_and_si256(pop, _mm256_cmpgt_epi32(n, one));
+      bT = _mm256_shuffle_ps(low, high, _MM_SHUFFLE(2, 0, 2, 0));
+      bZ = _mm256_shuffle_ps(low, high, _MM_SHUFFLE(3, 1, 3, 1));
+    }
+    // The new point goes on top (pushed below), a below it.
+    const __m256 keep = _mm256_castsi256_ps(valid);
+    _mm256_store_ps(belowT_ + c, _mm256_blendv_ps(_mm256_load_ps(belowT_ + c), aT, keep));
+    _mm256_store_ps(belowZ_ + c, _mm256_blendv_ps(_mm256_load_ps(belowZ_ + c), aZ, keep));
+    _mm256_store_ps(topT_ + c, _mm256_blendv_ps(_mm256_load_ps(topT_ + c), t, keep));
+    _mm256_store_ps(topZ_ + c, _mm256_blendv_ps(_mm256_load_ps(topZ_ + c), curvedZ, keep));
+    _mm256_store_si256(
+        reinterpret_cast<__m256i*>(size_ + c),
+        _mm256_blendv_epi8(_mm256_load_si256(reinterpret_cast<const __m256i*>(size_ + c)),
+                           _mm256_add_epi32(n, one), valid));
+    if (!texels) continue;
+
+    // The tangent from the new point to a; none where nothing lies ahead.
+    const __m256 ahead = _mm256_castsi256_ps(_mm256_cmpgt_epi32(n, _mm256_setzero_si256()));
+    const __m256 slope =
+        _mm256_div_ps(_mm256_blendv_ps(noHorizon, _mm256_sub_ps(aZ, curvedZ), ahead),
+                      _mm256_blendv_ps(_mm256_set1_ps(1.0f), _mm256_sub_ps(aT, t), ahead));
+    __m256 horizon = _mm256_blendv_ps(_mm256_add_ps(slope, _mm256_mul_ps(twoCurvature, t)),
+                                      noHorizon, _mm256_cmp_ps(slope, noHorizon, _CMP_LE_OQ));
+    if (clampEdge_) {
+      horizon = _mm256_max_ps(
+          clampedEdgeSlopeAvx2(_mm256_sub_ps(edgeZ, z), _mm256_sub_ps(edgeT, t), curvature_),
+          horizon);
+    }
+    _mm256_store_ps(lineHorizon + c, _mm256_blendv_ps(noHorizon, horizon, keep));
+  }
+  for (int i = slice.lineFirst; i <= slice.lineLast; ++i) {
+    hulls_[static_cast<size_t>(i) * majorLength + size_[i] - 1] = {slice.lineT[i], lineCurvedZ[i]};
+  }
+  if (!texels) return;
+
+  // The texels: texel j lies between lines j + texelFirst - 1 and j +
+  // texelFirst.
+  const int texelFirst = minorLo - slice.base, count = minorHi - minorLo + 1;
+  const __m256 invCellY = _mm256_set1_ps(invCellY_);
+  const __m256 wMajor = _mm256_set1_ps(wMajorNeighbour_), wMinor = _mm256_set1_ps(wMinorNeighbour_);
+  const bool wZero = slice.w == 0.0f, minorChecked = wMinorNeighbour_ > 0.0f;
+  for (int j = 0; j < count; j += 8) {
+    const int i = j + texelFirst;  // first texel's line; heights index i + 1
+    const __m256 nearLine = shiftedLanesAvx2(lineHorizon, i),
+                 farLine = shiftedLanesAvx2(lineHorizon, i - 1);
+    const __m256 blended =
+        _mm256_add_ps(nearLine, _mm256_mul_ps(w, _mm256_sub_ps(farLine, nearLine)));
+    const __m256 nearNone = _mm256_cmp_ps(nearLine, noHorizon, _CMP_LE_OQ);
+    const __m256 farNone = _mm256_cmp_ps(farLine, noHorizon, _CMP_LE_OQ);
+    const __m256 blend =
+        wZero ? nearLine
+              : _mm256_blendv_ps(_mm256_blendv_ps(blended, farLine, nearNone), nearLine, farNone);
+    const __m256 own = _mm256_loadu_ps(slice.heights + i + 1);
+    const __m256 invCellX = _mm256_loadu_ps(slice.invCellX + i + 1);
+    const __m256 invCellMajor = kMajorIsColumn ? invCellX : invCellY;
+    const __m256 invCellMinor = kMajorIsColumn ? invCellY : invCellX;
+    const __m256 leaving = _mm256_add_ps(
+        _mm256_mul_ps(
+            _mm256_mul_ps(wMajor, _mm256_sub_ps(_mm256_loadu_ps(slice.nextSlice + i + 1), own)),
+            invCellMajor),
+        _mm256_mul_ps(_mm256_mul_ps(wMinor, _mm256_sub_ps(_mm256_loadu_ps(slice.heights + i + 1 +
+                                                                          dMinorNeighbour_),
+                                                          own)),
+                      invCellMinor));
+    __m256 offGrid = _mm256_castsi256_ps(_mm256_set1_epi32(slice.offGridMajor ? -1 : 0));
+    if (minorChecked) {
+      const __m256i minorNeighbour =
+          _mm256_add_epi32(_mm256_set1_epi32(slice.base + i + dMinorNeighbour_), iota);
+      offGrid = _mm256_or_ps(
+          offGrid, _mm256_castsi256_ps(_mm256_or_si256(
+                       _mm256_cmpgt_epi32(_mm256_setzero_si256(), minorNeighbour),
+                       _mm256_cmpgt_epi32(minorNeighbour, _mm256_set1_epi32(minorMax_)))));
+    }
+    const __m256 result = _mm256_max_ps(_mm256_blendv_ps(leaving, noHorizon, offGrid), blend);
+    if (j + 8 <= count) {
+      _mm256_storeu_ps(out + j, result);
+    } else {
+      _mm256_maskstore_ps(out + j, _mm256_cmpgt_epi32(_mm256_set1_epi32(count - j), iota), result);
+    }
+  }
+}
+#endif
 
 // The texels a group of lines hands over at each step, and what the blocks
 // point at.
