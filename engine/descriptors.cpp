@@ -82,13 +82,13 @@ void DescriptorWrites::push(VkCommandBuffer cmd, VkPipelineBindPoint bindPoint,
                              static_cast<uint32_t>(writes.size()), writes.data());
 }
 
-Sampler::Sampler(const Device& device, VkFilter filter) : device_(device.handle()) {
+Sampler::Sampler(const Device& device, VkFilter filter, bool mipmapped) : device_(device.handle()) {
   VkSamplerCreateInfo info{VK_STRUCTURE_TYPE_SAMPLER_CREATE_INFO};
   info.magFilter = filter;
   info.minFilter = filter;
-  info.mipmapMode = VK_SAMPLER_MIPMAP_MODE_NEAREST;
+  info.mipmapMode = mipmapped ? VK_SAMPLER_MIPMAP_MODE_LINEAR : VK_SAMPLER_MIPMAP_MODE_NEAREST;
   info.addressModeU = info.addressModeV = info.addressModeW = VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE;
-  info.maxLod = 0.0f;
+  info.maxLod = mipmapped ? VK_LOD_CLAMP_NONE : 0.0f;
   AAL_VK_CHECK(vkCreateSampler(device_, &info, nullptr, &sampler_));
 }
 

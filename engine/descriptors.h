@@ -59,7 +59,8 @@ class DescriptorWrites {
 // A linear (or nearest) sampler clamped to the edge.
 class Sampler {
  public:
-  Sampler(const Device& device, VkFilter filter);
+  // `mipmapped`: trilinear across an image's mip levels (else level 0 only).
+  Sampler(const Device& device, VkFilter filter, bool mipmapped = false);
   ~Sampler();
   Sampler(const Sampler&) = delete;
   Sampler& operator=(const Sampler&) = delete;

@@ -20,7 +20,7 @@ Image::Image(const Device& device, const ImageDesc& desc) : device_(device.handl
   info.imageType = VK_IMAGE_TYPE_2D;
   info.format = desc.format;
   info.extent = {desc.width, desc.height, 1};
-  info.mipLevels = 1;
+  info.mipLevels = desc.mipLevels;
   info.arrayLayers = desc.layers;
   info.samples = VK_SAMPLE_COUNT_1_BIT;
   info.tiling = VK_IMAGE_TILING_OPTIMAL;
@@ -41,7 +41,7 @@ Image::Image(const Device& device, const ImageDesc& desc) : device_(device.handl
   viewInfo.image = image_;
   viewInfo.viewType = desc.arrayView ? VK_IMAGE_VIEW_TYPE_2D_ARRAY : VK_IMAGE_VIEW_TYPE_2D;
   viewInfo.format = desc.format;
-  viewInfo.subresourceRange = {desc.aspect, 0, 1, 0, desc.layers};
+  viewInfo.subresourceRange = {desc.aspect, 0, desc.mipLevels, 0, desc.layers};
   AAL_VK_CHECK(vkCreateImageView(device_, &viewInfo, nullptr, &view_));
 }
 
@@ -123,7 +123,8 @@ void transitionImage(VkCommandBuffer cmd, const Image& image, VkImageLayout from
   barrier.srcQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
   barrier.dstQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
   barrier.image = image.handle();
-  barrier.subresourceRange = {image.desc().aspect, 0, 1, 0, image.desc().layers};
+  barrier.subresourceRange = {image.desc().aspect, 0, image.desc().mipLevels, 0,
+                              image.desc().layers};
   VkDependencyInfo dependency{VK_STRUCTURE_TYPE_DEPENDENCY_INFO};
   dependency.imageMemoryBarrierCount = 1;
   dependency.pImageMemoryBarriers = &barrier;

@@ -16,6 +16,8 @@ struct ImageDesc {
   // even for one layer.
   uint32_t layers = 1;
   bool arrayView = false;
+  // Mip levels; the view covers them all.
+  uint32_t mipLevels = 1;
 };
 
 class Image {
@@ -51,8 +53,8 @@ class Buffer;
 // VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL) into `buffer`, tightly packed.
 void copyImageToBuffer(VkCommandBuffer cmd, const Image& image, const Buffer& buffer);
 
-// Records a layout transition of the whole image, every layer (synchronization2), with
-// conservative stage/access masks derived from the layouts.
+// Records a layout transition of the whole image, every layer and level
+// (synchronization2), with conservative stage/access masks derived from the layouts.
 void transitionImage(VkCommandBuffer cmd, const Image& image, VkImageLayout from, VkImageLayout to);
 
 }  // namespace aal

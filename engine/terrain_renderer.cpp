@@ -186,7 +186,8 @@ struct TerrainRenderer::Passes {
   // first scene that needs them.
   std::unique_ptr<TerrainSamplingPipelines> samplingByPaging[kTexturePagings];
   GraphicsPipeline filter, composite, toneMap;
-  Sampler linear, nearest;
+  // terrainSampler: the DEM's mipmapped textures (terrain_textures.glsl).
+  Sampler terrainSampler, nearest;
 
   // The terrain-sampling pipelines for `scene`.
   const TerrainSamplingPipelines& sampling(const Device& device, const TerrainScene& scene) {
@@ -233,7 +234,7 @@ struct TerrainRenderer::Passes {
                  0,
                  {kDisplayFormat},
                  VK_FORMAT_UNDEFINED}),
-        linear(device, VK_FILTER_LINEAR),
+        terrainSampler(device, VK_FILTER_LINEAR, true),
         nearest(device, VK_FILTER_NEAREST) {
     samplingByPaging[int(TexturePaging::OnePage)] =
         std::make_unique<TerrainSamplingPipelines>(device, TexturePaging::OnePage);
@@ -393,7 +394,7 @@ void TerrainRenderer::record(VkCommandBuffer cmd, const TerrainScene& scene,
   const TerrainSamplingPipelines& sampling = passes_->sampling(device_, scene);
   (obscurance ? sampling.terrainGBuffer : sampling.terrain)
       .bind(cmd,
-            terrainWrites(uniforms_, scene, passes_->linear.handle())
+            terrainWrites(uniforms_, scene, passes_->terrainSampler.handle())
                 .storageBuffer(kAfterTerrainTextures, patches_),
             nullptr);
   vkCmdBindIndexBuffer(cmd, scene.indices().handle(), 0, VK_INDEX_TYPE_UINT32);
@@ -457,7 +458,7 @@ void TerrainRenderer::recordObscurance(VkCommandBuffer cmd, const TerrainScene& 
   passes_->sampling(device_, scene)
       .obscurance.bind(
           cmd,
-          terrainWrites(uniforms_, scene, passes_->linear.handle())
+          terrainWrites(uniforms_, scene, passes_->terrainSampler.handle())
               .uniformBuffer(kAfterTerrainTextures, samples_)
               .sampledImage(kAfterTerrainTextures + 1, surface_.view(), passes_->nearest.handle())
               .sampledImage(kAfterTerrainTextures + 2, ambient_.view(), passes_->nearest.handle()),

@@ -18,15 +18,15 @@ namespace {
 // Writes whole DEM rows [firstRow, endRow) of one texture kind, tightly packed.
 using DemRows = std::function<void(uint32_t firstRow, uint32_t endRow, void* destination)>;
 
+// TRANSFER_SRC: tests read the levels back.
 constexpr VkImageUsageFlags kTextureUsage =
-    VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT;
+    VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT;
 
-// The rows of tile (tileX, tileY)'s image: its core and border, texels
-// beyond the DEM clamped to its edge (what the single image's sampler would
-// read there). `scratch` holds the DEM rows of one band.
+// The rows of tile (tileX, tileY)'s image: its core and border (and the
+// rounding up to the mip alignment), texels beyond the DEM clamped to its
+// edge (what a sampler's clamp would read there). `scratch` holds the DEM rows of one band.
 RowWriter tileRows(const TerrainTileLayout& t, uint32_t tileX, uint32_t tileY, size_t texelBytes,
                    const DemRows& demRows, std::vector<unsigned char>& scratch) {
-  if (t.tileCount() == 1 && t.border == 0) return demRows;
   return [&t, tileX, tileY, texelBytes, &demRows, &scratch](uint32_t first, uint32_t end,
                                                             void* destination) {
     const int64_t row0 = int64_t{tileY} * t.coreHeight - t.border;
@@ -55,6 +55,46 @@ RowWriter tileRows(const TerrainTileLayout& t, uint32_t tileX, uint32_t tileY, s
       out += width * texelBytes;
     }
   };
+}
+
+// Mip levels (UploadBatch): the mean of 2 x 2 texels, summed in one fixed
+// order so that a level is the same in every tile that holds it.
+void reduceHeights(const unsigned char* upper, const unsigned char* lower, unsigned char* out,
+                   uint32_t width) {
+  const auto* a = reinterpret_cast<const float*>(upper);
+  const auto* b = reinterpret_cast<const float*>(lower);
+  auto* o = reinterpret_cast<float*>(out);
+  for (uint32_t i = 0; i < width; ++i) {
+    o[i] = ((a[2 * i] + a[2 * i + 1]) + (b[2 * i] + b[2 * i + 1])) * 0.25f;
+  }
+}
+
+void reduceApertures(const unsigned char* upper, const unsigned char* lower, unsigned char* out,
+                     uint32_t width) {
+  const auto* a = reinterpret_cast<const uint16_t*>(upper);
+  const auto* b = reinterpret_cast<const uint16_t*>(lower);
+  auto* o = reinterpret_cast<uint16_t*>(out);
+  const auto value = [](uint16_t bits) {
+    Imath::half h;
+    h.setBits(bits);
+    return float(h);
+  };
+  for (uint32_t i = 0; i < 4 * width; ++i) {
+    const uint32_t c = i % 4, left = 8 * (i / 4) + c;
+    o[i] =
+        Imath::half(
+            ((value(a[left]) + value(a[left + 4])) + (value(b[left]) + value(b[left + 4]))) * 0.25f)
+            .bits();
+  }
+}
+
+void reduceAlbedo(const unsigned char* upper, const unsigned char* lower, unsigned char* out,
+                  uint32_t width) {
+  for (uint32_t i = 0; i < 4 * width; ++i) {
+    const uint32_t c = i % 4, left = 8 * (i / 4) + c;
+    out[i] = static_cast<unsigned char>(
+        (unsigned{upper[left]} + upper[left + 4] + lower[left] + lower[left + 4] + 2) / 4);
+  }
 }
 
 }  // namespace
@@ -145,12 +185,14 @@ void TerrainScene::build(const Device& device, const Heightfield& field,
     std::vector<Image>& pages;
     VkFormat format;
     const DemRows& rows;
+    MipReducer reduce;
     size_t texelBytes() const { return kTerrainTextureBytes[int(texture)]; }
   };
   const Kind kinds[] = {
-      {TerrainTexture::Height, heights_, VK_FORMAT_R32_SFLOAT, heightRows},
-      {TerrainTexture::Aperture, aperture_, VK_FORMAT_R16G16B16A16_SFLOAT, apertureRows},
-      {TerrainTexture::Albedo, albedo_, VK_FORMAT_R8G8B8A8_UNORM, albedoRows}};
+      {TerrainTexture::Height, heights_, VK_FORMAT_R32_SFLOAT, heightRows, reduceHeights},
+      {TerrainTexture::Aperture, aperture_, VK_FORMAT_R16G16B16A16_SFLOAT, apertureRows,
+       reduceApertures},
+      {TerrainTexture::Albedo, albedo_, VK_FORMAT_R8G8B8A8_UNORM, albedoRows, reduceAlbedo}};
   textureBytes_ = 0;
   try {
     for (const Kind& kind : kinds) {
@@ -164,9 +206,8 @@ void TerrainScene::build(const Device& device, const Heightfield& field,
         const uint32_t layers = tiles_.layersIn(kind.texture, page);
         kind.pages.emplace_back(
             device, ImageDesc{tiles_.imageWidth(), tiles_.imageHeight(), kind.format, kTextureUsage,
-                              VK_IMAGE_ASPECT_COLOR_BIT, layers, true});
-        textureBytes_ +=
-            uint64_t{tiles_.imageWidth()} * tiles_.imageHeight() * layers * kind.texelBytes();
+                              VK_IMAGE_ASPECT_COLOR_BIT, layers, true, tiles_.mipLevels});
+        textureBytes_ += tiles_.layerTexels() * layers * kind.texelBytes();
       }
     }
   } catch (const VulkanError& e) {
@@ -196,7 +237,7 @@ void TerrainScene::build(const Device& device, const Heightfield& field,
       upload.addImage(kind.pages[tile / perPage], kind.texelBytes(),
                       tileRows(tiles_, tile % tiles_.tilesX, tile / tiles_.tilesX,
                                kind.texelBytes(), kind.rows, scratch),
-                      tile % perPage);
+                      tile % perPage, kind.reduce);
     }
   }
   upload.addBuffer(indices_, patchIndices.data(), patchIndices.size() * sizeof(uint32_t));

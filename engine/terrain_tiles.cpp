@@ -12,7 +12,21 @@ uint32_t ceilDiv(uint32_t a, uint32_t b) {
   return (a + b - 1) / b;
 }
 
+// Texels of a width x height image with kTerrainMipLevels levels (sizes
+// multiples of the alignment).
+uint64_t mipChainTexels(uint32_t width, uint32_t height) {
+  uint64_t texels = 0;
+  for (uint32_t level = 0; level < kTerrainMipLevels; ++level) {
+    texels += uint64_t{std::max(1u, width >> level)} * std::max(1u, height >> level);
+  }
+  return texels;
+}
+
 }  // namespace
+
+uint64_t TerrainTileLayout::layerTexels() const {
+  return mipChainTexels(imageWidth(), imageHeight());
+}
 
 uint32_t TerrainTileLayout::layersIn(TerrainTexture kind, uint32_t page) const {
   const uint32_t perPage = layersPerPageOf(kind), first = page * perPage;
@@ -29,27 +43,31 @@ TerrainTileLayout planTerrainTiles(uint32_t demWidth, uint32_t demHeight,
   // more memory than its texels.
   const uint64_t allocation = limits.maxAllocationBytes / 16 * 15;
   const uint32_t forced = limits.maxTileTexels > 0 ? limits.maxTileTexels : UINT32_MAX;
-  const uint32_t single = std::min(forced, limits.maxImageDimension);
   const uint64_t widest = kTerrainTextureBytes[int(TerrainTexture::Aperture)];
-  if (demWidth <= single && demHeight <= single &&
-      uint64_t{demWidth} * demHeight * widest <= allocation) {
-    t.coreWidth = demWidth;
-    t.coreHeight = demHeight;
+  t.coreWidth = demWidth;
+  t.coreHeight = demHeight;
+  if (demWidth <= forced && demHeight <= forced && t.imageWidth() <= limits.maxImageDimension &&
+      t.imageHeight() <= limits.maxImageDimension &&
+      mipChainTexels(t.imageWidth(), t.imageHeight()) * widest <= allocation) {
     return t;
   }
 
-  t.border = kTerrainTileBorder;
+  const int64_t align = kTerrainMipAlignment;
   const int64_t bySide = int64_t{limits.maxImageDimension} - 2 * t.border;
-  const int64_t byAllocation = int64_t(std::sqrt(double(allocation / widest))) - 2 * t.border;
-  const uint32_t maxCore = static_cast<uint32_t>(
-      std::max<int64_t>(1, std::min({int64_t{forced}, bySide, byAllocation})));
-  t.tilesX = ceilDiv(demWidth, maxCore);
-  t.tilesY = ceilDiv(demHeight, maxCore);
-  t.coreWidth = ceilDiv(demWidth, t.tilesX);
-  t.coreHeight = ceilDiv(demHeight, t.tilesY);
+  // The mip levels add at most a third to level 0.
+  const int64_t byAllocation =
+      int64_t(std::sqrt(double(allocation / widest) * 0.75)) - 2 * t.border;
+  const int64_t maxCore =
+      std::max(align, std::min({int64_t{forced}, bySide, byAllocation}) / align * align);
+  const auto split = [&](uint32_t texels, uint32_t& tiles, uint32_t& core) {
+    tiles = ceilDiv(texels, static_cast<uint32_t>(maxCore));
+    core = TerrainTileLayout::alignedToMips(ceilDiv(texels, tiles));
+    tiles = ceilDiv(texels, core);
+  };
+  split(demWidth, t.tilesX, t.coreWidth);
+  split(demHeight, t.tilesY, t.coreHeight);
   for (int kind = 0; kind < kTerrainTextureKinds; ++kind) {
-    const uint64_t layerBytes =
-        uint64_t{t.imageWidth()} * t.imageHeight() * kTerrainTextureBytes[kind];
+    const uint64_t layerBytes = t.layerTexels() * kTerrainTextureBytes[kind];
     const uint64_t layers =
         std::clamp<uint64_t>(allocation / layerBytes, 1, std::max(1u, limits.maxArrayLayers));
     t.layersPerPage[kind] = static_cast<uint32_t>(std::min<uint64_t>(layers, t.tileCount()));

@@ -21,21 +21,41 @@ struct Copy {
   const Image* image;
   const Buffer* buffer;
   size_t stagingOffset, bytes;
-  uint32_t firstRow, rows, layer;
+  uint32_t firstRow, rows, layer, level;
   size_t bufferOffset;
   bool first, last;
 };
 
+// Rows of level 0 that make whole rows of every level of `image`.
+uint32_t rowsPerBandStep(const Image& image) {
+  return 1u << (image.desc().mipLevels - 1);
+}
+
+// Staging bytes of `rows` level-0 rows and their rows of the other levels
+// (rows a multiple of rowsPerBandStep).
+size_t bandBytes(const Image& image, size_t bytesPerTexel, uint32_t rows) {
+  size_t bytes = 0;
+  for (uint32_t level = 0; level < image.desc().mipLevels; ++level) {
+    bytes += alignUp(size_t{image.desc().width >> level} * bytesPerTexel * (rows >> level), 16);
+  }
+  return bytes;
+}
+
 }  // namespace
 
-void UploadBatch::addImage(const Image& image, size_t bytesPerTexel, RowWriter rows,
-                           uint32_t layer) {
+void UploadBatch::addImage(const Image& image, size_t bytesPerTexel, RowWriter rows, uint32_t layer,
+                           MipReducer reduce) {
   if (layer >= image.desc().layers) throw std::logic_error("UploadBatch::addImage: no such layer");
+  const uint32_t step = rowsPerBandStep(image);
+  if (step > 1 && (!reduce || image.desc().width % step || image.desc().height % step)) {
+    throw std::logic_error("UploadBatch::addImage: mip levels need a reducer and aligned sizes");
+  }
   Pending p;
   p.image = &image;
   p.bytesPerTexel = bytesPerTexel;
   p.rows = std::move(rows);
   p.layer = layer;
+  p.reduce = reduce;
   pending_.push_back(std::move(p));
 }
 
@@ -58,17 +78,17 @@ void UploadBatch::addBuffer(const Buffer& buffer, const void* data, size_t bytes
 
 void UploadBatch::submit() {
   if (pending_.empty()) return;
-  size_t total = 0, widestRow = 16;
+  size_t total = 0, widestBand = 16;
   for (const Pending& p : pending_) {
     if (p.image) {
-      const size_t rowBytes = p.image->desc().width * p.bytesPerTexel;
-      total += alignUp(rowBytes * p.image->desc().height, 16);
-      widestRow = std::max(widestRow, rowBytes);
+      total += bandBytes(*p.image, p.bytesPerTexel, p.image->desc().height);
+      widestBand =
+          std::max(widestBand, bandBytes(*p.image, p.bytesPerTexel, rowsPerBandStep(*p.image)));
     } else {
       total += alignUp(p.bytes, 16);
     }
   }
-  const size_t capacity = std::max(std::min(total, stagingLimit_), alignUp(widestRow, 16));
+  const size_t capacity = std::max(std::min(total, stagingLimit_), widestBand);
   Buffer staging(device_, capacity, VK_BUFFER_USAGE_TRANSFER_SRC_BIT, MemoryIntent::Upload);
   auto* mapped = static_cast<unsigned char*>(staging.mapped());
 
@@ -79,26 +99,47 @@ void UploadBatch::submit() {
     for (size_t i = next; i < pending_.size(); ++i) {
       Pending& p = pending_[i];
       if (p.image) {
-        const uint32_t height = p.image->desc().height;
-        const size_t rowBytes = p.image->desc().width * p.bytesPerTexel;
-        const size_t fit = (capacity - used) / rowBytes;
-        const uint32_t rows = static_cast<uint32_t>(std::min<size_t>(fit, height - p.done));
+        const ImageDesc& d = p.image->desc();
+        const uint32_t step = rowsPerBandStep(*p.image);
+        // As many whole steps of rows as fit.
+        uint32_t rows = 0;
+        while (p.done + rows < d.height &&
+               bandBytes(*p.image, p.bytesPerTexel, rows + step) <= capacity - used) {
+          rows += step;
+        }
         if (rows == 0) break;
         const uint32_t first = static_cast<uint32_t>(p.done);
-        p.rows(first, first + rows, mapped + used);
-        // The image's layout changes with its first layer's first band and
-        // its last layer's last band (the transitions cover every layer).
-        copies.push_back({p.image, nullptr, used, rows * rowBytes, first, rows, p.layer, 0,
-                          first == 0 && p.layer == 0,
-                          first + rows == height && p.layer + 1 == p.image->desc().layers});
-        used = alignUp(used + rows * rowBytes, 16);
+        const unsigned char* upper = nullptr;
+        for (uint32_t level = 0; level < d.mipLevels; ++level) {
+          const uint32_t width = d.width >> level, levelRows = rows >> level;
+          const size_t rowBytes = size_t{width} * p.bytesPerTexel;
+          unsigned char* out = mapped + used;
+          if (level == 0) {
+            p.rows(first, first + rows, out);
+          } else {
+            // From the level above, just written to the staging buffer.
+            for (uint32_t r = 0; r < levelRows; ++r) {
+              p.reduce(upper + 2 * r * 2 * rowBytes, upper + (2 * r + 1) * 2 * rowBytes,
+                       out + r * rowBytes, width);
+            }
+          }
+          upper = out;
+          // The image's layout changes with its first layer's first band and
+          // after its last layer's last band (the transitions cover every
+          // layer and level).
+          copies.push_back(
+              {p.image, nullptr, used, levelRows * rowBytes, first >> level, levelRows, p.layer,
+               level, 0, first == 0 && p.layer == 0 && level == 0,
+               first + rows == d.height && p.layer + 1 == d.layers && level + 1 == d.mipLevels});
+          used = alignUp(used + levelRows * rowBytes, 16);
+        }
         p.done += rows;
-        if (p.done < height) break;
+        if (p.done < d.height) break;
       } else {
         const size_t chunk = std::min(capacity - used, p.bytes - p.done);
         if (chunk == 0) break;
         std::memcpy(mapped + used, p.data + p.done, chunk);
-        copies.push_back({nullptr, p.buffer, used, chunk, 0, 0, 0, p.done, false, false});
+        copies.push_back({nullptr, p.buffer, used, chunk, 0, 0, 0, 0, p.done, false, false});
         used = alignUp(used + chunk, 16);
         p.done += chunk;
         if (p.done < p.bytes) break;
@@ -121,9 +162,9 @@ void UploadBatch::submit() {
         }
         VkBufferImageCopy region{};
         region.bufferOffset = c.stagingOffset;
-        region.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, c.layer, 1};
+        region.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, c.level, c.layer, 1};
         region.imageOffset = {0, static_cast<int32_t>(c.firstRow), 0};
-        region.imageExtent = {c.image->desc().width, c.rows, 1};
+        region.imageExtent = {c.image->desc().width >> c.level, c.rows, 1};
         vkCmdCopyBufferToImage(cmd, staging.handle(), c.image->handle(),
                                VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 1, &region);
         if (c.last) {

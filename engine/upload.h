@@ -20,6 +20,11 @@ class Image;
 // Writes rows [firstRow, endRow) of an image, tightly packed, to `destination`.
 using RowWriter = std::function<void(uint32_t firstRow, uint32_t endRow, void* destination)>;
 
+// Makes one row of `width` texels of a mip level from two rows of the level
+// above (2 * width texels each): each texel the mean of its 2 x 2 texels.
+using MipReducer = void (*)(const unsigned char* upper, const unsigned char* lower,
+                            unsigned char* out, uint32_t width);
+
 class UploadBatch {
  public:
   static constexpr size_t kDefaultStagingBytes = size_t{64} << 20;
@@ -30,7 +35,13 @@ class UploadBatch {
   // The image is filled band by band by `rows` during submit(); it ends in
   // SHADER_READ_ONLY_OPTIMAL. bytesPerTexel matches the image's format.
   // Array images: add every layer, in order 0, 1, ..., one after the other.
-  void addImage(const Image& image, size_t bytesPerTexel, RowWriter rows, uint32_t layer = 0);
+  // Images with mip levels need `reduce` and sizes that are multiples of
+  // 2^(levels - 1): each band of rows (a multiple of that many) brings its
+  // rows of every level, made on the host from the band alone, so a level's
+  // texels depend only on the level-0 texels they cover (not on the band, the
+  // image size or the device).
+  void addImage(const Image& image, size_t bytesPerTexel, RowWriter rows, uint32_t layer = 0,
+                MipReducer reduce = nullptr);
   // Convenience: `data` (tightly packed rows) must stay alive until submit().
   void addImage(const Image& image, size_t bytesPerTexel, const void* data);
   // The buffer must have TRANSFER_DST usage; `data` lands at offset 0 and
@@ -46,6 +57,7 @@ class UploadBatch {
     size_t bytesPerTexel = 0;
     RowWriter rows;
     uint32_t layer = 0;
+    MipReducer reduce = nullptr;
     const Buffer* buffer = nullptr;
     const unsigned char* data = nullptr;
     size_t bytes = 0;

@@ -48,10 +48,15 @@
 #define AAL_LOD_PARITY_GROUP_SIZE 64
 
 // Tiled terrain textures (engine/terrain_tiles.h, shaders/tile_lookup.glsl,
-// shaders/terrain_textures.glsl): border texels per tile side, texture pages
-// (2D array images) per kind, and the first of the 3 x AAL_TERRAIN_TILE_PAGES
-// bindings (heights, apertures, albedo) in every pipeline that samples them.
-#define AAL_TERRAIN_TILE_BORDER 2
+// shaders/terrain_textures.glsl): mip levels of every tile image (the
+// coarsest, AAL_TERRAIN_MIP_LEVELS - 1, has texels of 32 x 32 DEM texels),
+// border texels per tile side (enough for a bilinear fetch of the coarsest
+// level at a core's edge: 1.5 of its texels, rounded up to whole ones),
+// texture pages (2D array images) per kind, and the first of the 3 x
+// AAL_TERRAIN_TILE_PAGES bindings (heights, apertures, albedo) in every
+// pipeline that samples them.
+#define AAL_TERRAIN_MIP_LEVELS 6
+#define AAL_TERRAIN_TILE_BORDER 64
 #define AAL_TERRAIN_TILE_PAGES 4
 #define AAL_TERRAIN_TEXTURE_BINDING 1
 // Workgroup size of the tile lookup parity compute shader.

@@ -21,26 +21,41 @@ layout(location = 1) out vec4 ambientOut;  // rgb ambient x transmittance, a vie
 layout(location = 2) out vec2 surfaceOut;  // texel position: the obscurance pass's point x
 #endif
 
-// Normal from central differences of the heights, one texel apart.
-vec3 surfaceNormal(vec2 texel) {
-  float dx = terrainHeight(texel + vec2(1, 0)) - terrainHeight(texel - vec2(1, 0));
-  float dy = terrainHeight(texel - vec2(0, 1)) - terrainHeight(texel + vec2(0, 1));  // north: row - 1
-  return normalize(vec3(-dx / (2.0 * frame.dem.z), -dy / (2.0 * frame.dem.w), 1.0));
+// The level of detail of a fragment's fetches: its footprint on the DEM
+// (texels per pixel along the longer screen axis, as a GPU's own LOD
+// selection), never finer than the DEM. Call in uniform control flow.
+float terrainFragmentLod(vec2 texel) {
+  vec2 dx = dFdx(texel), dy = dFdy(texel);
+  return max(0.0, 0.5 * log2(max(dot(dx, dx), dot(dy, dy))));
 }
 
-vec3 albedoAt(vec2 texel, float z, vec3 normal) {
-  if (frame.grid.w == AAL_ALBEDO_IMAGE) return terrainAlbedo(texel);
+// Normal from central differences of the heights at level of detail `lod`,
+// one of its texels (2^lod of the DEM's) apart.
+vec3 surfaceNormal(vec2 texel, float lod) {
+  float step = exp2(lod);
+  float dx = terrainHeightLod(texel + vec2(step, 0), lod) -
+             terrainHeightLod(texel - vec2(step, 0), lod);
+  float dy = terrainHeightLod(texel - vec2(0, step), lod) -
+             terrainHeightLod(texel + vec2(0, step), lod);  // north: row - 1
+  return normalize(vec3(-dx / (2.0 * step * frame.dem.z), -dy / (2.0 * step * frame.dem.w), 1.0));
+}
+
+vec3 albedoAt(vec2 texel, float lod, float z, vec3 normal) {
+  if (frame.grid.w == AAL_ALBEDO_IMAGE) return terrainAlbedoLod(texel, lod);
   if (frame.grid.w == AAL_ALBEDO_CONSTANT) return frame.albedoValue.rgb;
   return paletteAlbedo(z, normal);
 }
 
 void main() {
-  vec4 aperture = terrainAperture(texelPosition);
+  // Far fragments cover many texels: prefiltered textures keep their
+  // fetches few and local (and the far field free of aliasing).
+  float lod = terrainFragmentLod(texelPosition);
+  vec4 aperture = terrainApertureLod(texelPosition, lod);
   ShadingInputs s;
-  s.normal = surfaceNormal(texelPosition);
+  s.normal = surfaceNormal(texelPosition, lod);
   s.bentNormal = normalize(aperture.xyz);
   s.apertureRad = aperture.w;
-  s.albedo = albedoAt(texelPosition, worldPosition.z, s.normal);
+  s.albedo = albedoAt(texelPosition, lod, worldPosition.z, s.normal);
   s.sunDirection = frame.sunDirection.xyz;
   s.sunRadiusRad = frame.sunDirection.w;
   s.sunIrradiance = frame.sunIrradiance.rgb;

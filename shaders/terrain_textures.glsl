@@ -27,24 +27,25 @@ AAL_TERRAIN_PAGES(terrainHeight, AAL_TERRAIN_TEXTURE_BINDING)
 AAL_TERRAIN_PAGES(terrainAperture, AAL_TERRAIN_TEXTURE_BINDING + AAL_TERRAIN_TILE_PAGES)
 AAL_TERRAIN_PAGES(terrainAlbedo, AAL_TERRAIN_TEXTURE_BINDING + 2 * AAL_TERRAIN_TILE_PAGES)
 
-// Bilinear fetch (explicit LOD 0: valid in any control flow) from the
-// tile's page. Lavapipe runs every arm of a branch for every fetch (a
+// Trilinear fetch at an explicit LOD (valid in any control flow: 0 is the
+// DEM's own texels) from the tile's page. Lavapipe runs every arm of a branch for every fetch (a
 // four-way pick made the terrain pass 1.6x and the obscurance pass 2.7x
 // slower), so a pick is compiled in only where a scene needs it: the
 // *_paged variants (AAL_TERRAIN_PAGED) pick among four pages for every kind;
 // the *_aperture_pagesN ones (AAL_TERRAIN_APERTURE_PAGES N = 2 or 4) among N
 // for the apertures only (8 bytes a texel: they fill pages first); the
 // others read page 0 (scenes of one page per kind: all but the largest DEMs).
-#define AAL_TERRAIN_FETCH_FROM(name, n, t) \
-  textureLod(name##Page##n, vec3((t).uv, float((t).layer)), 0.0)
-#define AAL_TERRAIN_FETCH_PAGES1(name, t) AAL_TERRAIN_FETCH_FROM(name, 0, t)
-#define AAL_TERRAIN_FETCH_PAGES2(name, t) \
-  ((t).page == 0 ? AAL_TERRAIN_FETCH_FROM(name, 0, t) : AAL_TERRAIN_FETCH_FROM(name, 1, t))
-#define AAL_TERRAIN_FETCH_PAGES4(name, t)                        \
-  ((t).page == 0   ? AAL_TERRAIN_FETCH_FROM(name, 0, t)         \
-   : (t).page == 1 ? AAL_TERRAIN_FETCH_FROM(name, 1, t)         \
-   : (t).page == 2 ? AAL_TERRAIN_FETCH_FROM(name, 2, t)         \
-                   : AAL_TERRAIN_FETCH_FROM(name, 3, t))
+#define AAL_TERRAIN_FETCH_FROM(name, n, t, lod) \
+  textureLod(name##Page##n, vec3((t).uv, float((t).layer)), lod)
+#define AAL_TERRAIN_FETCH_PAGES1(name, t, lod) AAL_TERRAIN_FETCH_FROM(name, 0, t, lod)
+#define AAL_TERRAIN_FETCH_PAGES2(name, t, lod)                                   \
+  ((t).page == 0 ? AAL_TERRAIN_FETCH_FROM(name, 0, t, lod) \
+                 : AAL_TERRAIN_FETCH_FROM(name, 1, t, lod))
+#define AAL_TERRAIN_FETCH_PAGES4(name, t, lod)                    \
+  ((t).page == 0   ? AAL_TERRAIN_FETCH_FROM(name, 0, t, lod)     \
+   : (t).page == 1 ? AAL_TERRAIN_FETCH_FROM(name, 1, t, lod)     \
+   : (t).page == 2 ? AAL_TERRAIN_FETCH_FROM(name, 2, t, lod)     \
+                   : AAL_TERRAIN_FETCH_FROM(name, 3, t, lod))
 #if defined(AAL_TERRAIN_PAGED)
 #define AAL_TERRAIN_FETCH_HEIGHT AAL_TERRAIN_FETCH_PAGES4
 #define AAL_TERRAIN_FETCH_APERTURE AAL_TERRAIN_FETCH_PAGES4
@@ -69,22 +70,32 @@ TerrainTileTexel terrainTexel(vec2 texel, int layersPerPage) {
   return terrainTileTexel(tiles, texel);
 }
 
+// The fetches take a level of detail: 0 reads the DEM's own texels, l the
+// mip level whose texels span 2^l of them (every tile image has a full
+// chain, TerrainTileLayout::mipLevels), fractions blend two levels.
+
 // Height (m) at a DEM texel position, bilinear, clamped to the DEM's edge.
-float terrainHeight(vec2 texel) {
+float terrainHeightLod(vec2 texel, float lod) {
   TerrainTileTexel t = terrainTexel(texel, frame.tileLayers.x);
-  return AAL_TERRAIN_FETCH_HEIGHT(terrainHeight, t).r;
+  return AAL_TERRAIN_FETCH_HEIGHT(terrainHeight, t, lod).r;
+}
+float terrainHeight(vec2 texel) {
+  return terrainHeightLod(texel, 0.0);
 }
 
-// rgb bent normal, a arc length (rad), bilinear.
-vec4 terrainAperture(vec2 texel) {
+// rgb bent normal (not unit length above level 0: an average), a arc length (rad).
+vec4 terrainApertureLod(vec2 texel, float lod) {
   TerrainTileTexel t = terrainTexel(texel, frame.tileLayers.y);
-  return AAL_TERRAIN_FETCH_APERTURE(terrainAperture, t);
+  return AAL_TERRAIN_FETCH_APERTURE(terrainAperture, t, lod);
 }
 
-// Albedo image (linear RGB as stored), bilinear.
-vec3 terrainAlbedo(vec2 texel) {
+// Albedo image (linear RGB as stored).
+vec3 terrainAlbedoLod(vec2 texel, float lod) {
   TerrainTileTexel t = terrainTexel(texel, frame.tileLayers.z);
-  return AAL_TERRAIN_FETCH_ALBEDO(terrainAlbedo, t).rgb;
+  return AAL_TERRAIN_FETCH_ALBEDO(terrainAlbedo, t, lod).rgb;
+}
+vec3 terrainAlbedo(vec2 texel) {
+  return terrainAlbedoLod(texel, 0.0);
 }
 
 #endif

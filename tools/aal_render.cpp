@@ -410,9 +410,10 @@ int main(int argc, char** argv) {
       ->check(CLI::Range(size_t(2), size_t(1) << 28))
       ->capture_default_str();
   app.add_option("--max-tile", o.maxTileTexels,
-                 "split the DEM's textures into tiles of at most N texels across (tests; by "
-                 "default only DEMs beyond the device's largest image are tiled)")
-      ->check(CLI::Range(uint32_t(1), uint32_t(1) << 20));
+                 "split the DEM's textures into tiles of at most N texels across, rounded down "
+                 "to a multiple of 32 (tests; by default only DEMs beyond the device's largest "
+                 "image are tiled)")
+      ->check(CLI::Range(aal::kTerrainMipAlignment, uint32_t(1) << 20));
   app.add_flag("--stats", o.stats, "print per-pass GPU times and the triangle count");
   app.add_flag("-q,--quiet", o.quiet, "no progress messages");
   return aal::runTool(app, argc, argv, [&] { return run(o); });

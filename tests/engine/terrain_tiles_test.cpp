@@ -29,12 +29,15 @@ TerrainTileLimits lavapipeLimits(uint32_t maxTileTexels = 0) {
   return limits;
 }
 
-TEST(TerrainTiles, ADemThatFitsOneImageIsOneTileWithoutBorder) {
+TEST(TerrainTiles, ADemThatFitsOneImageIsOneTileWithItsBorder) {
   const TerrainTileLayout t = planTerrainTiles(300, 200, lavapipeLimits());
   EXPECT_EQ(t.tileCount(), 1u);
-  EXPECT_EQ(t.border, 0u);
-  EXPECT_EQ(t.imageWidth(), 300u);
-  EXPECT_EQ(t.imageHeight(), 200u);
+  EXPECT_EQ(t.border, 64u);
+  // 300 + 2 x 64 and 200 + 2 x 64, rounded up to whole texels of the
+  // coarsest mip level (32 DEM texels).
+  EXPECT_EQ(t.imageWidth(), 448u);
+  EXPECT_EQ(t.imageHeight(), 352u);
+  EXPECT_EQ(t.mipLevels, 6u);
   EXPECT_EQ(t.pagesOf(TerrainTexture::Aperture), 1u);
   // The forced size does not split a DEM that fits it.
   EXPECT_EQ(planTerrainTiles(300, 200, lavapipeLimits(300)).tileCount(), 1u);
@@ -44,15 +47,25 @@ TEST(TerrainTiles, AForcedTileSizeSplitsEvenly) {
   const TerrainTileLayout t = planTerrainTiles(300, 200, lavapipeLimits(64));
   EXPECT_EQ(t.tilesX, 5u);
   EXPECT_EQ(t.tilesY, 4u);
-  EXPECT_EQ(t.coreWidth, 60u);
-  EXPECT_EQ(t.coreHeight, 50u);
-  EXPECT_EQ(t.border, 2u);
-  EXPECT_EQ(t.imageWidth(), 64u);
+  // Cores are whole texels of the coarsest mip level, so that every tile's
+  // levels average the same DEM texels as the whole DEM's would.
+  EXPECT_EQ(t.coreWidth, 64u);
+  EXPECT_EQ(t.coreHeight, 64u);
+  EXPECT_EQ(t.border, 64u);
+  EXPECT_EQ(t.imageWidth(), 192u);
   for (const TerrainTexture kind :
        {TerrainTexture::Height, TerrainTexture::Aperture, TerrainTexture::Albedo}) {
     EXPECT_EQ(t.pagesOf(kind), 1u);
     EXPECT_EQ(t.layersPerPageOf(kind), 20u);
   }
+  // At most 100 texels: cores of 96, as few tiles as that allows.
+  const TerrainTileLayout u = planTerrainTiles(403, 344, lavapipeLimits(100));
+  EXPECT_EQ(u.tilesX, 5u);
+  EXPECT_EQ(u.tilesY, 4u);
+  EXPECT_EQ(u.coreWidth, 96u);
+  EXPECT_EQ(u.coreHeight, 96u);
+  // Below the alignment: cores of one coarsest texel.
+  EXPECT_EQ(planTerrainTiles(300, 200, lavapipeLimits(1)).coreWidth, 32u);
 }
 
 TEST(TerrainTiles, DemsBeyondTheDeviceAreTiledToFitItsImagesAndAllocations) {
@@ -61,11 +74,11 @@ TEST(TerrainTiles, DemsBeyondTheDeviceAreTiledToFitItsImagesAndAllocations) {
   EXPECT_GT(a.tileCount(), 1u);
   const TerrainTileLayout b = planTerrainTiles(20000, 20000, lavapipeLimits());
   EXPECT_EQ(b.tilesX, 2u);
-  EXPECT_EQ(b.coreWidth, 10000u);
-  // Each kind fills its pages: 20000^2's apertures take two pages, its
-  // heights one.
-  EXPECT_EQ(b.pagesOf(TerrainTexture::Aperture), 2u);
-  EXPECT_EQ(b.pagesOf(TerrainTexture::Height), 1u);
+  EXPECT_EQ(b.coreWidth, 10016u);
+  // Each kind fills its pages: 20000^2's apertures (10144^2 images with
+  // their mip levels, 1.1 GB) take a page each, its heights two a page.
+  EXPECT_EQ(b.pagesOf(TerrainTexture::Aperture), 4u);
+  EXPECT_EQ(b.pagesOf(TerrainTexture::Height), 2u);
   // The largest square DEM in lavapipe's four pages: one 12288^2 aperture
   // tile per page.
   const TerrainTileLayout c = planTerrainTiles(24576, 24576, lavapipeLimits());
@@ -76,22 +89,24 @@ TEST(TerrainTiles, DemsBeyondTheDeviceAreTiledToFitItsImagesAndAllocations) {
     EXPECT_GE(uint64_t{t.coreHeight} * t.tilesY, t.demHeight);
     // Every page fits an allocation.
     for (int kind = 0; kind < kTerrainTextureKinds; ++kind) {
-      EXPECT_LE(uint64_t{t.imageWidth()} * t.imageHeight() * kTerrainTextureBytes[kind] *
-                    t.layersPerPage[kind],
-                1ull << 31);
+      EXPECT_LE(t.layerTexels() * kTerrainTextureBytes[kind] * t.layersPerPage[kind], 1ull << 31);
+      EXPECT_GT(t.layerTexels(), uint64_t{t.imageWidth()} * t.imageHeight());  // the mip levels
       EXPECT_LE(t.pages[kind], kTerrainTilePages);
       EXPECT_GE(t.pages[kind] * t.layersPerPage[kind], t.tileCount());
     }
   }
-  // A device with 32768-texel images and allocations beyond 8 GiB: one image.
+  // A device with 32768-texel images and allocations beyond 11 GiB: one
+  // image for 32000^2 (32128^2 with its border); 32768^2 with its border
+  // no longer fits one.
   TerrainTileLimits big;
   big.maxImageDimension = 32768;
   big.maxAllocationBytes = uint64_t{64} << 30;
-  EXPECT_EQ(planTerrainTiles(32768, 32768, big).tileCount(), 1u);
+  EXPECT_EQ(planTerrainTiles(32000, 32000, big).tileCount(), 1u);
+  EXPECT_EQ(planTerrainTiles(32768, 32768, big).tileCount(), 4u);
 }
 
 TEST(TerrainTiles, TooManyPagesIsAClearError) {
-  // 32768^2 on lavapipe: 3x3 tiles, two per 2 GiB page, five pages.
+  // 32768^2 on lavapipe: 3x3 tiles, one aperture tile per 2 GiB page.
   EXPECT_THROW(planTerrainTiles(32768, 32768, lavapipeLimits()), std::runtime_error);
   try {
     planTerrainTiles(100000, 100000, lavapipeLimits());
@@ -199,7 +214,7 @@ class TileLookupParity : public VulkanTest {};
 TEST_F(TileLookupParity, GlslLookupMatchesCpp) {
   for (const uint32_t maxTile : {0u, 64u, 37u}) {
     TerrainTileLimits limits = lavapipeLimits(maxTile);
-    if (maxTile == 37) limits.maxArrayLayers = 16;  // 54 tiles in 4 pages
+    if (maxTile == 37) limits.maxArrayLayers = 18;  // 70 tiles of 32^2 in 4 pages
     const TerrainTileLayout layout = planTerrainTiles(300, 200, limits);
     const glm::ivec4 tiles[2] = {
         glm::ivec4(glm::uvec4(layout.coreWidth, layout.coreHeight, layout.tilesX, layout.tilesY)),
