@@ -108,7 +108,8 @@ DescriptorWrites terrainWrites(const Buffer& uniforms, const TerrainScene& scene
 
 // Which shader variants sample a scene's textures
 // (shaders/terrain_textures.glsl): page 0 only, a pick among two or four
-// pages for the apertures only, or among four for every kind. Lavapipe pays
+// pages for the apertures only, or among four for the apertures and two for
+// the heights and albedo. Lavapipe pays
 // for every page a fetch could pick, so each scene gets the least its pages
 // need.
 enum class TexturePaging { OnePage, TwoAperturePages, AperturePages, All };

@@ -73,11 +73,18 @@ TerrainTileLayout planTerrainTiles(uint32_t demWidth, uint32_t demHeight,
     t.layersPerPage[kind] = static_cast<uint32_t>(std::min<uint64_t>(layers, t.tileCount()));
     t.pages[kind] = ceilDiv(t.tileCount(), t.layersPerPage[kind]);
   }
-  if (*std::max_element(t.pages, t.pages + kTerrainTextureKinds) > kTerrainTilePages) {
+  // The shaders pick among all pages for the apertures but among half of
+  // them for the 4-byte kinds (terrain_textures.glsl), which fit twice as
+  // many layers a page: so they need no more wherever the apertures fit.
+  const uint32_t halfPages = kTerrainTilePages / 2;
+  if (t.pages[int(TerrainTexture::Aperture)] > kTerrainTilePages ||
+      t.pages[int(TerrainTexture::Height)] > halfPages ||
+      t.pages[int(TerrainTexture::Albedo)] > halfPages) {
     throw std::runtime_error(describeTerrainTiles(t) + ": more texture pages than the " +
-                             std::to_string(kTerrainTilePages) +
-                             " per kind the renderer binds (a smaller DEM, or a device with "
-                             "larger images or allocations, is needed)");
+                             std::to_string(kTerrainTilePages) + " of apertures and " +
+                             std::to_string(halfPages) +
+                             " of heights and albedo the renderer binds (a smaller DEM, or a "
+                             "device with larger images or allocations, is needed)");
   }
   return t;
 }

@@ -31,7 +31,8 @@ AAL_TERRAIN_PAGES(terrainAlbedo, AAL_TERRAIN_TEXTURE_BINDING + 2 * AAL_TERRAIN_T
 // DEM's own texels) from the tile's page. Lavapipe runs every arm of a branch for every fetch (a
 // four-way pick made the terrain pass 1.6x and the obscurance pass 2.7x
 // slower), so a pick is compiled in only where a scene needs it: the
-// *_paged variants (AAL_TERRAIN_PAGED) pick among four pages for every kind;
+// *_paged variants (AAL_TERRAIN_PAGED) pick among four pages for the
+// apertures and two for the heights and albedo;
 // the *_aperture_pagesN ones (AAL_TERRAIN_APERTURE_PAGES N = 2 or 4) among N
 // for the apertures only (8 bytes a texel: they fill pages first); the
 // others read page 0 (scenes of one page per kind: all but the largest DEMs).
@@ -47,9 +48,11 @@ AAL_TERRAIN_PAGES(terrainAlbedo, AAL_TERRAIN_TEXTURE_BINDING + 2 * AAL_TERRAIN_T
    : (t).page == 2 ? AAL_TERRAIN_FETCH_FROM(name, 2, t, lod)     \
                    : AAL_TERRAIN_FETCH_FROM(name, 3, t, lod))
 #if defined(AAL_TERRAIN_PAGED)
-#define AAL_TERRAIN_FETCH_HEIGHT AAL_TERRAIN_FETCH_PAGES4
+// Heights and albedo (4 bytes a texel) fill half the pages of the apertures
+// (8): two at most where the apertures fit four (planTerrainTiles checks).
+#define AAL_TERRAIN_FETCH_HEIGHT AAL_TERRAIN_FETCH_PAGES2
 #define AAL_TERRAIN_FETCH_APERTURE AAL_TERRAIN_FETCH_PAGES4
-#define AAL_TERRAIN_FETCH_ALBEDO AAL_TERRAIN_FETCH_PAGES4
+#define AAL_TERRAIN_FETCH_ALBEDO AAL_TERRAIN_FETCH_PAGES2
 #else
 #define AAL_TERRAIN_FETCH_HEIGHT AAL_TERRAIN_FETCH_PAGES1
 #define AAL_TERRAIN_FETCH_ALBEDO AAL_TERRAIN_FETCH_PAGES1
