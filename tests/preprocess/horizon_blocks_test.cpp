@@ -6,11 +6,13 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstring>
 #include <limits>
 #include <tuple>
 #include <utility>
 #include <vector>
 
+#include "bake.h"
 #include "bake_terrain.h"
 #include "horizon_sweep.h"
 #include "synthetic.h"
@@ -164,6 +166,113 @@ TEST(HorizonBlocks, OpposedSweepMatchesTheReferenceSweepsOfBothAzimuths) {
         EXPECT_TRUE(expectSameOpposedHorizons(terrain, phi, phi + kPi, o)) << phi;
       }
     }
+  }
+}
+
+// Runs the sweeps and bakes of its scope on the scalar path or, where the CPU
+// has AVX2, the AVX2 path; AVX2 is allowed again after.
+class Avx2Allowed {
+ public:
+  explicit Avx2Allowed(bool allowed) { setHorizonAvx2Allowed(allowed); }
+  ~Avx2Allowed() { setHorizonAvx2Allowed(true); }
+  Avx2Allowed(const Avx2Allowed&) = delete;
+  Avx2Allowed& operator=(const Avx2Allowed&) = delete;
+};
+
+bool cpuHasAvx2() {
+  const Avx2Allowed allowed(true);
+  return detail::horizonAvx2();
+}
+
+// Every texel's tangent from sweepHorizonBlocks, then both tangents from
+// sweepOpposedHorizonBlocks (NaN where not visited, and a last float that
+// says whether the opposed sweep paired).
+std::vector<float> blockTangents(const BakeTerrain& terrain, double phi,
+                                 const HorizonSweepOptions& o) {
+  const size_t texels = terrain.field->texelCount();
+  std::vector<float> out(3 * texels + 1, std::nanf(""));
+  sweepHorizonBlocks(terrain, phi, o, [&](const HorizonBlock& b) {
+    for (int j = 0; j < b.count; ++j) out[b.firstTexel + j * b.stride] = b.tanHorizon[j];
+  });
+  const bool paired =
+      sweepOpposedHorizonBlocks(terrain, phi, phi + kPi, o, [&](const HorizonBlock& b) {
+        for (int j = 0; j < b.count; ++j) {
+          const size_t i = b.firstTexel + j * b.stride;
+          out[texels + 2 * i] = b.tanHorizon[j];
+          out[texels + 2 * i + 1] = b.tanOpposite[j];
+        }
+      });
+  out.back() = paired ? 1.0f : 0.0f;
+  return out;
+}
+
+// The AVX2 walk (8 lines at a time, gathers, masked edge lanes) gives the
+// scalar walk's tangents bit for bit: along rows and columns, at the
+// diagonals and between, with clamped edges and curvature, on grids of one
+// and of several groups of lines, and where cells narrow row by row.
+TEST(HorizonBlocks, Avx2AndScalarWalksGiveTheSameTangents) {
+  if (!cpuHasAvx2()) GTEST_SKIP() << "no AVX2 on this CPU";
+  const double kCurve = (1 - 0.13) / (2 * 6371000.0);
+  const std::vector<double> azimuths = {0.0, kPi / 2, kPi,  3 * kPi / 2, kPi / 4, 3 * kPi / 4,
+                                        0.3, 1.9,     2.61, 4.4,         5.95};
+  for (auto [w, h, geographic] :
+       {std::tuple{45, 38, false}, std::tuple{100, 70, false}, std::tuple{40, 40, true},
+        std::tuple{67, 81, true}, std::tuple{1, 7, false}, std::tuple{17, 2, false}}) {
+    const Heightfield field = roughTerrain(w, h, geographic);
+    const BakeTerrain terrain = prepareBakeTerrain(field);
+    for (const HorizonSweepOptions& o :
+         {HorizonSweepOptions{false, 0.0, 0.0}, HorizonSweepOptions{true, 0.0, 0.0},
+          HorizonSweepOptions{false, kCurve, 0.0}, HorizonSweepOptions{true, kCurve, 0.0}}) {
+      for (double phi : azimuths) {
+        std::vector<float> scalar, avx2;
+        {
+          const Avx2Allowed allowed(false);
+          scalar = blockTangents(terrain, phi, o);
+        }
+        {
+          const Avx2Allowed allowed(true);
+          avx2 = blockTangents(terrain, phi, o);
+        }
+        ASSERT_EQ(scalar.size(), avx2.size());
+        EXPECT_EQ(std::memcmp(scalar.data(), avx2.data(), scalar.size() * sizeof(float)), 0)
+            << w << "x" << h << " phi " << phi << " clamp " << o.clampEdge << " curvature "
+            << o.curvature;
+      }
+    }
+  }
+}
+
+// The same for whole bakes: opposed and single azimuths, with the sky view
+// factor, clamped edges and curvature.
+TEST(HorizonBlocks, Avx2AndScalarBakesAgree) {
+  if (!cpuHasAvx2()) GTEST_SKIP() << "no AVX2 on this CPU";
+  const Heightfield field = roughTerrain(70, 53, true);
+  BakeOptions opposed;
+  opposed.azimuths = 32;
+  BakeOptions single;
+  single.azimuths = 15;
+  single.clampEdge = true;
+  single.curvature = true;
+  single.skyViewFactor = true;
+  for (const BakeOptions& o : {opposed, single}) {
+    BakeResult scalar, avx2;
+    {
+      const Avx2Allowed allowed(false);
+      scalar = bakeApertures(field, o);
+    }
+    {
+      const Avx2Allowed allowed(true);
+      avx2 = bakeApertures(field, o);
+    }
+    const std::vector<float>& a = scalar.aperture.texels;
+    const std::vector<float>& b = avx2.aperture.texels;
+    ASSERT_EQ(a.size(), b.size());
+    EXPECT_EQ(std::memcmp(a.data(), b.data(), a.size() * sizeof(float)), 0) << o.azimuths;
+    ASSERT_EQ(scalar.skyViewFactor.size(), avx2.skyViewFactor.size());
+    EXPECT_EQ(std::memcmp(scalar.skyViewFactor.data(), avx2.skyViewFactor.data(),
+                          scalar.skyViewFactor.size() * sizeof(float)),
+              0)
+        << o.azimuths;
   }
 }
 
