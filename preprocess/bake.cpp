@@ -3,12 +3,15 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <string>
 
 #include <tbb/parallel_for.h>
+#include <tbb/task_group.h>
 
 #include "bake_terrain.h"
 #include "horizon_blocks.h"
 #include "horizon_sweep.h"
+#include "huge_pages.h"
 #include "ray_bake.h"
 #include "sky_slice.h"
 
@@ -290,7 +293,7 @@ BakeResult bakeWindow(const Heightfield& field, const BakeTerrain& terrain, cons
   ApertureMap& map = result.aperture;
   map.width = terrain.window.width;
   map.height = terrain.window.height;
-  map.texels.assign(map.texelCount() * 4, 0.0f);
+  assignOnHugePages(map.texels, map.texelCount() * 4, 0.0f);
   if (o.skyViewFactor) result.skyViewFactor.assign(map.texelCount(), 0.0f);
 
   if (o.method == BakeMethod::Sweep) {
@@ -323,8 +326,20 @@ ApertureMapInfo bakeInfo(const Heightfield& field, const BakeOptions& o) {
 
 BakeResult bakeApertures(const Heightfield& field, const BakeOptions& o) {
   checkOptions(field, o);
-  BakeResult result = bakeWindow(field, prepareBakeTerrain(field), o);
-  result.aperture.info.sourceChecksum = heightfieldChecksum(field);
+  // The DEM's checksum is one serial pass over its bytes (5 ms at 1024^2,
+  // 2 % of the bake): a task beside the sweeps rather than a wait after them.
+  std::string checksum;
+  tbb::task_group beside;
+  beside.run([&] { checksum = heightfieldChecksum(field); });
+  BakeResult result;
+  try {
+    result = bakeWindow(field, prepareBakeTerrain(field), o);
+  } catch (...) {
+    beside.wait();
+    throw;
+  }
+  beside.wait();
+  result.aperture.info.sourceChecksum = checksum;
   return result;
 }
 

@@ -5,6 +5,8 @@
 
 #include <tbb/parallel_for.h>
 
+#include "huge_pages.h"
+
 namespace aal {
 
 BakeTerrain prepareBakeTerrain(const Heightfield& field) {
@@ -33,7 +35,7 @@ BakeTerrain prepareBakeTerrain(const Heightfield& field, const TexelWindow& wind
 
   // Central differences inside, one-sided at the edges of the field.
   t.window = window;
-  t.slopes.resize(2 * window.texelCount());
+  assignOnHugePages(t.slopes, 2 * window.texelCount(), 0.0f);
   const int w = field.width, h = field.height;
   tbb::parallel_for(window.row, window.row + window.height, [&](int row) {
     const int north = row > 0 ? row - 1 : row, south = row + 1 < h ? row + 1 : row;
