@@ -206,7 +206,7 @@ void TerrainScene::build(const Device& device, const Heightfield& field,
         const uint32_t layers = tiles_.layersIn(kind.texture, page);
         kind.pages.emplace_back(
             device, ImageDesc{tiles_.imageWidth(), tiles_.imageHeight(), kind.format, kTextureUsage,
-                              VK_IMAGE_ASPECT_COLOR_BIT, layers, true, tiles_.mipLevels});
+                              VK_IMAGE_ASPECT_COLOR_BIT, layers, true, kTerrainMipLevels});
         textureBytes_ += tiles_.layerTexels() * layers * kind.texelBytes();
       }
     }

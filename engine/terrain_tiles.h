@@ -66,9 +66,6 @@ struct TerrainTileLayout {
   uint32_t coreWidth = 0, coreHeight = 0;  // DEM texels owned by one tile
   uint32_t tilesX = 1, tilesY = 1;
   uint32_t border = kTerrainTileBorder;
-  // Mip levels of every tile image (kTerrainMipLevels), so that far terrain
-  // is fetched prefiltered (terrain_textures.glsl).
-  uint32_t mipLevels = kTerrainMipLevels;
   // Per TerrainTexture: tiles (layers) per page, and pages.
   uint32_t layersPerPage[kTerrainTextureKinds] = {1, 1, 1};
   uint32_t pages[kTerrainTextureKinds] = {1, 1, 1};
