@@ -74,8 +74,8 @@ TerrainTileTexel terrainTexel(vec2 texel, int layersPerPage) {
 }
 
 // The fetches take a level of detail: 0 reads the DEM's own texels, l the
-// mip level whose texels span 2^l of them (every tile image has a full
-// chain, TerrainTileLayout::mipLevels), fractions blend two levels.
+// mip level whose texels span 2^l of them (AAL_TERRAIN_MIP_LEVELS levels;
+// beyond the coarsest the sampler clamps), fractions blend two levels.
 
 // Height (m) at a DEM texel position, bilinear, clamped to the DEM's edge.
 float terrainHeightLod(vec2 texel, float lod) {
