@@ -8,6 +8,7 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <string>
 #include <vector>
 
 #include "../tools/run_tool.h"
@@ -45,6 +46,17 @@ Heightfield geographicField() {
   }
   field.cellSizeXM = field.rowCellSizeXM[static_cast<size_t>(field.height / 2)];
   return field;
+}
+
+// Expects `read` to throw InputError whose message names `name` (a tile).
+template <class Read>
+void expectInputErrorNaming(Read&& read, const std::string& name, const char* otherwise) {
+  try {
+    read();
+    ADD_FAILURE() << otherwise;
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find(name), std::string::npos) << e.what();
+  }
 }
 
 BakeOptions distanceLimited(double maxDistanceM, bool clampEdge = false) {
@@ -270,12 +282,8 @@ TEST(TiledBake, AFolderOfAnotherBakeIsAnError) {
   EXPECT_THROW(bakeTiled(field, distanceLimited(100), other, folder), InputError);
   // Without the index, a tile of another bake is found as such.
   fs::remove(fs::path(folder) / "index.txt");
-  try {
-    bakeTiled(field, distanceLimited(110), t, folder);
-    ADD_FAILURE() << "a tile of another bake was accepted";
-  } catch (const InputError& e) {
-    EXPECT_NE(std::string(e.what()).find("tile_0000_0000.exr"), std::string::npos) << e.what();
-  }
+  expectInputErrorNaming([&] { bakeTiled(field, distanceLimited(110), t, folder); },
+                         "tile_0000_0000.exr", "a tile of another bake was accepted");
 }
 
 TEST(TiledBake, CorruptOrMissingTilesAreNamed) {
@@ -289,32 +297,23 @@ TEST(TiledBake, CorruptOrMissingTilesAreNamed) {
 
   const fs::path tile = fs::path(folder) / apertureTileName(1, 2);
   fs::resize_file(tile, fs::file_size(tile) / 2);
-  for (const bool streaming : {false, true}) {
-    try {
-      if (streaming) {
+  expectInputErrorNaming([&] { readApertureMap(folder); }, "tile_0001_0002.exr",
+                         "a truncated tile was read");
+  expectInputErrorNaming(
+      [&] {
         ApertureMapReader reader(folder);
         std::vector<uint16_t> rows(100 * 70 * 4);
         reader.readHalfRows(0, 70, rows.data());
-      } else {
-        readApertureMap(folder);
-      }
-      ADD_FAILURE() << "a truncated tile was read";
-    } catch (const InputError& e) {
-      EXPECT_NE(std::string(e.what()).find("tile_0001_0002.exr"), std::string::npos) << e.what();
-    }
-  }
+      },
+      "tile_0001_0002.exr", "a truncated tile was streamed");
   // Resuming bakes the broken tile again.
   const TiledBakeSummary summary = bakeTiled(field, distanceLimited(100), t, folder);
   EXPECT_EQ(summary.baked, 1);
   EXPECT_EQ(readApertureMap(folder).texels, good.texels);
 
   fs::remove(tile);
-  try {
-    readApertureMap(folder);
-    ADD_FAILURE() << "a missing tile was not noticed";
-  } catch (const InputError& e) {
-    EXPECT_NE(std::string(e.what()).find("tile_0001_0002.exr"), std::string::npos) << e.what();
-  }
+  expectInputErrorNaming([&] { readApertureMap(folder); }, "tile_0001_0002.exr",
+                         "a missing tile was not noticed");
 }
 
 TEST(TiledBake, AFolderOfAnotherDemDoesNotMatch) {

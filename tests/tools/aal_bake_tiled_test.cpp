@@ -9,6 +9,7 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <utility>
 #include <vector>
 
 #include "aperture_map.h"
@@ -45,6 +46,18 @@ fs::path writeDem(const TempDir& dir, int width, int height, uint64_t seed = 1) 
 }
 
 const std::string kOptions = " --azimuths 16 --max-distance 200 -q";
+
+// Bakes `dem` into the single file a.exr and the tile folder a.tiles (tiles
+// of 32) in `dir`; {file, folder}, empty paths when a bake failed.
+std::pair<fs::path, fs::path> bakeSingleAndTiled(const TempDir& dir, const fs::path& dem) {
+  const fs::path single = dir.path() / "a.exr", folder = dir.path() / "a.tiles";
+  if (runTool("aal-bake", quoted(dem) + " -o " + quoted(single) + kOptions).exitCode != 0 ||
+      runTool("aal-bake", quoted(dem) + " -o " + quoted(folder) + " --tile-size 32" + kOptions)
+              .exitCode != 0) {
+    return {};
+  }
+  return {single, folder};
+}
 
 TEST(AalBakeTiled, FolderEqualsTheSingleFileBake) {
   TempDir dir;
@@ -144,12 +157,8 @@ std::vector<float> pixels(const fs::path& path) {
 TEST(AalBakeTiled, RenderReadsTheTileFolder) {
   TempDir dir;
   const fs::path dem = writeDem(dir, 90, 70), other = writeDem(dir, 90, 70, 2);
-  const fs::path single = dir.path() / "a.exr", folder = dir.path() / "a.tiles";
-  ASSERT_EQ(runTool("aal-bake", quoted(dem) + " -o " + quoted(single) + kOptions).exitCode, 0);
-  ASSERT_EQ(
-      runTool("aal-bake", quoted(dem) + " -o " + quoted(folder) + " --tile-size 32" + kOptions)
-          .exitCode,
-      0);
+  const auto [single, folder] = bakeSingleAndTiled(dir, dem);
+  ASSERT_FALSE(single.empty());
   const std::string view = " --size 64x48 --sun-azimuth 135 --sun-elevation 20";
   const fs::path fromFile = dir.path() / "file.exr", fromTiles = dir.path() / "tiles.exr";
   auto r = runTool("aal-render", quoted(dem) + " --aperture " + quoted(single) + " -o " +
@@ -171,12 +180,8 @@ TEST(AalBakeTiled, RenderReadsTheTileFolder) {
 TEST(AalBakeTiled, ViewerReadsTheTileFolder) {
   TempDir dir;
   const fs::path dem = writeDem(dir, 90, 70);
-  const fs::path single = dir.path() / "a.exr", folder = dir.path() / "a.tiles";
-  ASSERT_EQ(runTool("aal-bake", quoted(dem) + " -o " + quoted(single) + kOptions).exitCode, 0);
-  ASSERT_EQ(
-      runTool("aal-bake", quoted(dem) + " -o " + quoted(folder) + " --tile-size 32" + kOptions)
-          .exitCode,
-      0);
+  const auto [single, folder] = bakeSingleAndTiled(dir, dem);
+  ASSERT_FALSE(single.empty());
   const fs::path fromFile = dir.path() / "file.png", fromTiles = dir.path() / "tiles.png";
   const std::string flight = " --size 160x120 --frames 2 --screenshot ";
   auto r =
