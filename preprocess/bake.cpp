@@ -49,36 +49,6 @@ struct Slice {
 };
 
 #if AAL_HORIZON_AVX2
-// The slopes (east, north) of n <= 8 texels `stride` apart from `slopes`
-// (interleaved as in BakeTerrain); lanes from n on repeat the last texel's.
-__attribute__((target("avx2"), always_inline)) inline void slopesAvx2(const float* slopes,
-                                                                      ptrdiff_t stride, int n,
-                                                                      __m256& east, __m256& north) {
-  __m256 low, high;  // texels 0-3 and 4-7 as (east, north) pairs
-  if (stride == 1) {
-    const __m256i iota = _mm256_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7);
-    low = _mm256_maskload_ps(slopes, _mm256_cmpgt_epi32(_mm256_set1_epi32(2 * n), iota));
-    high = _mm256_maskload_ps(slopes + 8, _mm256_cmpgt_epi32(_mm256_set1_epi32(2 * n - 8), iota));
-  } else {
-    const auto at = [&](int k) {
-      return reinterpret_cast<const __m64*>(slopes + 2 * std::min(k, n - 1) * stride);
-    };
-    const __m128 zero = _mm_setzero_ps();
-    low =
-        _mm256_insertf128_ps(_mm256_castps128_ps256(_mm_loadh_pi(_mm_loadl_pi(zero, at(0)), at(1))),
-                             _mm_loadh_pi(_mm_loadl_pi(zero, at(2)), at(3)), 1);
-    high =
-        _mm256_insertf128_ps(_mm256_castps128_ps256(_mm_loadh_pi(_mm_loadl_pi(zero, at(4)), at(5))),
-                             _mm_loadh_pi(_mm_loadl_pi(zero, at(6)), at(7)), 1);
-  }
-  east = _mm256_castpd_ps(
-      _mm256_permute4x64_pd(_mm256_castps_pd(_mm256_shuffle_ps(low, high, _MM_SHUFFLE(2, 0, 2, 0))),
-                            _MM_SHUFFLE(3, 1, 2, 0)));
-  north = _mm256_castpd_ps(
-      _mm256_permute4x64_pd(_mm256_castps_pd(_mm256_shuffle_ps(low, high, _MM_SHUFFLE(3, 1, 3, 1))),
-                            _MM_SHUFFLE(3, 1, 2, 0)));
-}
-
 // The terms of slice s at 8 texels (sliceTerms), transposed.
 __attribute__((target("avx2"), always_inline)) inline void sliceTermsAvx2(__m256 terms[4],
                                                                           __m256 east, __m256 north,
@@ -97,16 +67,15 @@ __attribute__((target("avx2"), always_inline)) inline void sliceTermsAvx2(__m256
 // the same sums bit for bit. Without FMA: fused multiply-adds (which GCC
 // would form from these intrinsics) measured 1-3 % faster, within the
 // noise on 2 threads, and would make a bake's result depend on the CPU.
-__attribute__((target("avx2"))) void addSlicesAvx2(const BakeTerrain& terrain, float* sums,
-                                                   const HorizonBlock& b, const Slice& s,
-                                                   const Slice* opposite) {
+__attribute__((target("avx2"))) void addSlicesAvx2(float* sums, const HorizonBlock& b,
+                                                   const Slice& s, const Slice* opposite) {
   const __m256i iota = _mm256_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7);
   for (int j = 0; j < b.count; j += 8) {
     const int n = std::min(8, b.count - j);
     const __m256i mask = _mm256_cmpgt_epi32(_mm256_set1_epi32(n), iota);
     const size_t first = b.firstTexel + j * b.stride;
-    __m256 east, north;
-    slopesAvx2(terrain.slopes.data() + 2 * first, b.stride, n, east, north);
+    const __m256 east = _mm256_maskload_ps(b.slopeEast + j, mask);
+    const __m256 north = _mm256_maskload_ps(b.slopeNorth + j, mask);
     __m256 terms[4];
     sliceTermsAvx2(terms, east, north, b.tanHorizon + j, mask, s);
     if (opposite) {
@@ -166,9 +135,7 @@ void sweepAllAzimuths(const BakeTerrain& terrain, const BakeOptions& o, float* s
   const auto sliceTerms = [&](const HorizonBlock& b, const float* tanHorizon, const Slice& s,
                               float(*terms)[4]) {
     for (int j = 0; j < b.count; ++j) {
-      const size_t texel = b.firstTexel + j * b.stride;
-      const float tanPlane =
-          terrain.slopeEast(texel) * s.cosPhi + terrain.slopeNorth(texel) * s.sinPhi;
+      const float tanPlane = b.slopeEast[j] * s.cosPhi + b.slopeNorth[j] * s.sinPhi;
       skySliceTerms(terms[j], std::max(tanHorizon[j], tanPlane), s.dPhi, s.cosPhiDPhi,
                     s.sinPhiDPhi);
     }
@@ -178,29 +145,23 @@ void sweepAllAzimuths(const BakeTerrain& terrain, const BakeOptions& o, float* s
   // texels in loops that compile to vector code, reading and writing each
   // texel's sums once.
   const auto addSlices = [&](const HorizonBlock& b, const Slice& s, const Slice* opposite) {
-    // The texels a few steps on: their sums and slopes are a column apart
-    // or in another row, where the hardware prefetcher does not look. Along
-    // a row, one prefetch per cache line (4 texels' sums, 8 texels' slopes)
-    // and the last texel: 3 % faster at 1024² than one per texel.
+    // The texels a few steps on: their sums are a column apart or in
+    // another row, where the hardware prefetcher does not look. Along a row,
+    // one prefetch per cache line (4 texels' sums) and the last texel: 3 %
+    // faster at 1024² than one per texel.
     if (b.stride == 1 && b.aheadCount > 0) {
       const size_t first = b.aheadFirstTexel, last = first + b.aheadCount - 1;
       for (size_t texel = first; texel < last; texel += 4) __builtin_prefetch(sums + 4 * texel, 1);
-      for (size_t texel = first; texel < last; texel += 8) {
-        __builtin_prefetch(&terrain.slopes[2 * texel], 0);
-      }
       __builtin_prefetch(sums + 4 * last, 1);
-      __builtin_prefetch(&terrain.slopes[2 * last], 0);
     } else {
       for (int j = 0; j < b.aheadCount; ++j) {
-        const size_t texel = b.aheadFirstTexel + j * b.stride;
-        __builtin_prefetch(sums + 4 * texel, 1);
-        __builtin_prefetch(&terrain.slopes[2 * texel], 0);
+        __builtin_prefetch(sums + 4 * (b.aheadFirstTexel + j * b.stride), 1);
       }
     }
 #if AAL_HORIZON_AVX2
     // Not for the distance-limited sweep's blocks of one: 20 % slower there.
     if (avx2 && b.count > 1) {
-      addSlicesAvx2(terrain, sums, b, s, opposite);
+      addSlicesAvx2(sums, b, s, opposite);
       if (wantSvf) {
         addSvf(b, b.tanHorizon);
         if (opposite) addSvf(b, b.tanOpposite);
@@ -227,7 +188,11 @@ void sweepAllAzimuths(const BakeTerrain& terrain, const BakeOptions& o, float* s
       // The distance-limited sweep visits texel by texel: blocks of one.
       sweepHorizons(terrain, s.phi, sweep, [&](size_t texel, double tanHorizon) {
         const float tanH = std::max(static_cast<float>(tanHorizon), kNoHorizonTangent);
-        addSlices(HorizonBlock{texel, 1, 1, &tanH}, s, nullptr);
+        const float east = terrain.slopeEast(texel), north = terrain.slopeNorth(texel);
+        HorizonBlock b{texel, 1, 1, &tanH};
+        b.slopeEast = &east;
+        b.slopeNorth = &north;
+        addSlices(b, s, nullptr);
       });
     } else {
       sweepHorizonBlocks(terrain, s.phi, sweep,

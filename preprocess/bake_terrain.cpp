@@ -1,11 +1,6 @@
 #include "bake_terrain.h"
 
-#include <algorithm>
 #include <stdexcept>
-
-#include <tbb/parallel_for.h>
-
-#include "huge_pages.h"
 
 namespace aal {
 
@@ -31,27 +26,10 @@ BakeTerrain prepareBakeTerrain(const Heightfield& field, const TexelWindow& wind
     t.rowCellX[row] = field.cellSizeXAtRow(row);
     t.rowInvCellX[row] = 1.0 / t.rowCellX[row];
     t.rowY[row] = (0.5 * (field.height - 1) - row) * field.cellSizeYM;  // row 0 is north
+    t.uniformCellX = t.uniformCellX && t.rowCellX[row] == t.rowCellX[0];
   }
 
-  // Central differences inside, one-sided at the edges of the field.
   t.window = window;
-  assignOnHugePages(t.slopes, 2 * window.texelCount(), 0.0f);
-  const int w = field.width, h = field.height;
-  tbb::parallel_for(window.row, window.row + window.height, [&](int row) {
-    const int north = row > 0 ? row - 1 : row, south = row + 1 < h ? row + 1 : row;
-    const double dyNorth = (south - north) * field.cellSizeYM;
-    for (int col = window.col; col < window.col + window.width; ++col) {
-      const int west = col > 0 ? col - 1 : col, east = col + 1 < w ? col + 1 : col;
-      const double dx = (east - west) * t.rowCellX[row];
-      const size_t i = t.windowIndex(col, row);
-      t.slopes[2 * i] =
-          dx > 0 ? static_cast<float>((field.at(east, row) - field.at(west, row)) / dx) : 0.0f;
-      t.slopes[2 * i + 1] =
-          dyNorth > 0 ? static_cast<float>((field.at(col, north) - field.at(col, south)) / dyNorth)
-                      : 0.0f;
-    }
-  });
-  if (window.covers(field)) t.maxHeight = *std::max_element(field.z.begin(), field.z.end());
   return t;
 }
 

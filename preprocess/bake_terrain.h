@@ -1,6 +1,6 @@
-// What the bakers need of a heightfield, precomputed once: metric texel
-// positions in the world frame and the surface slope (for the tangent-plane
-// clamp of DESIGN §3).
+// What the bakers need of a heightfield: metric texel positions in the world
+// frame, precomputed once per row, and the surface slope (for the
+// tangent-plane clamp of DESIGN §3), computed where it is needed.
 #pragma once
 
 #include <vector>
@@ -26,22 +26,46 @@ struct BakeTerrain {
   // (east), y = rowY[row] (north), origin at the DEM centre.
   std::vector<double> rowCellX, rowInvCellX;
   std::vector<double> rowY;
+  bool uniformCellX = true;  // every row's rowCellX the same (not a geographic grid)
   double centreCol = 0;
   double cellY = 1;
   // The texels being baked: the whole field, or a tile of it. Positions,
-  // heights and horizons are always the whole field's; slopes, the sweep's
-  // visits and the bake's sums are indexed within the window (windowIndex).
+  // heights and horizons are always the whole field's; the sweep's visits
+  // and the bake's sums are indexed within the window (windowIndex).
   TexelWindow window;
-  // Height gradient per window texel in metres per metre, interleaved (one
-  // cache line serves both): [2i] = dz/dx (east), [2i + 1] = dz/dy (north).
-  std::vector<float> slopes;
-  // Tallest texel of the field, metres: for the ray baker, which bakes whole
-  // fields only; the terrain of a smaller window leaves it unset (a tiled
-  // bake would otherwise scan the whole DEM once per tile for nothing).
-  double maxHeight = 0;
 
-  float slopeEast(size_t texel) const { return slopes[2 * texel]; }
-  float slopeNorth(size_t texel) const { return slopes[2 * texel + 1]; }
+  // Height gradient at field texel (col, row) in metres per metre, dz/dx
+  // (east) and dz/dy (north): central differences inside, one-sided at the
+  // field's edges, 0 across a field one texel wide. Single precision, in
+  // exactly the operations of the block sweep, which computes the same
+  // values from the heights its walk loads anyway (horizon_blocks.h): no
+  // stored slopes, which cost 8 bytes per texel of memory and of traffic
+  // per azimuth pair.
+  float slopeEastAt(int col, int row) const {
+    const int west = col > 0 ? col - 1 : col, east = col + 1 < width ? col + 1 : col;
+    return (field->at(east, row) - field->at(west, row)) *
+           (differenceScale(west, east) * static_cast<float>(rowInvCellX[row]));
+  }
+  float slopeNorthAt(int col, int row) const {
+    const int north = row > 0 ? row - 1 : row, south = row + 1 < height ? row + 1 : row;
+    return (field->at(col, north) - field->at(col, south)) *
+           (differenceScale(north, south) * invCellYF());
+  }
+  // The same at window texel i (windowIndex).
+  float slopeEast(size_t texel) const {
+    return slopeEastAt(window.col + static_cast<int>(texel % window.width),
+                       window.row + static_cast<int>(texel / window.width));
+  }
+  float slopeNorth(size_t texel) const {
+    return slopeNorthAt(window.col + static_cast<int>(texel % window.width),
+                        window.row + static_cast<int>(texel / window.width));
+  }
+  // The factor of a difference between neighbours lo and hi (lo <= hi, at
+  // most two texels apart) that makes it one per texel.
+  static float differenceScale(int lo, int hi) {
+    return hi - lo == 2 ? 0.5f : (hi - lo == 1 ? 1.0f : 0.0f);
+  }
+  float invCellYF() const { return static_cast<float>(1.0 / cellY); }
   double x(int col, int row) const { return (col - centreCol) * rowCellX[row]; }
   double y(int row) const { return rowY[row]; }
   size_t windowIndex(int col, int row) const {
@@ -52,9 +76,7 @@ struct BakeTerrain {
 
 // zScale and cell sizes are taken as already applied to the heightfield.
 BakeTerrain prepareBakeTerrain(const Heightfield& field);
-// The same for the texels of `window` only (inside the field): its slopes
-// equal the whole field's there; maxHeight is set only when the window
-// covers the whole field.
+// The same for the texels of `window` only (inside the field).
 BakeTerrain prepareBakeTerrain(const Heightfield& field, const TexelWindow& window);
 
 }  // namespace aal

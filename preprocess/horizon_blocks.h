@@ -59,6 +59,13 @@ struct HorizonBlock {
   int aheadCount = 0;
   // sweepOpposedHorizonBlocks: the tangents of the opposite azimuth.
   const float* tanOpposite = nullptr;
+  // The surface's slopes at the texels, BakeTerrain::slopeEastAt and
+  // slopeNorthAt bit for bit: the walk computes them from the heights it
+  // loads anyway, so a bake needs no stored slopes.
+  const float* slopeEast = nullptr;
+  const float* slopeNorth = nullptr;
+  // Room for a block's texels in whole vectors of 8.
+  static constexpr int kPaddedTexels = (kLines + 7) / 8 * 8;
 };
 
 // Finite stand-in for -infinity: keeps the vector loops free of inf tests.
@@ -147,12 +154,15 @@ class BlockLineWalker {
   // Advances every line by sweep step `step` (steps in order from 0) and
   // writes the tangents of the texels with minor coordinates minorLo ..
   // minorHi (on the grid, between walked lines; none when minorLo > minorHi)
-  // to out[minor - minorLo].
-  void step(int step, int minorLo, int minorHi, float* out) {
+  // to out[minor - minorLo], and where east and north are given, their
+  // slopes (HorizonBlock::slopeEast, slopeNorth) there; those two have room
+  // for HorizonBlock::kPaddedTexels.
+  void step(int step, int minorLo, int minorHi, float* out, float* east = nullptr,
+            float* north = nullptr) {
 #if AAL_HORIZON_AVX2
-    if (avx2_) return stepAvx2(step, minorLo, minorHi, out);
+    if (avx2_) return stepAvx2(step, minorLo, minorHi, out, east, north);
 #endif
-    stepImpl<false>(step, minorLo, minorHi, out);
+    stepImpl<false>(step, minorLo, minorHi, out, east, north);
   }
 
  private:
@@ -163,10 +173,12 @@ class BlockLineWalker {
   // samples, hull updates and texels 4 or 8 lines at a time
   // (lineSamplesAvx2, walkAvx2).
   template <bool kAvx2>
-  [[gnu::always_inline]] inline void stepImpl(int step, int minorLo, int minorHi, float* out);
+  [[gnu::always_inline]] inline void stepImpl(int step, int minorLo, int minorHi, float* out,
+                                              float* east, float* north);
 #if AAL_HORIZON_AVX2
-  __attribute__((target("avx2"))) void stepAvx2(int step, int minorLo, int minorHi, float* out) {
-    stepImpl<true>(step, minorLo, minorHi, out);
+  __attribute__((target("avx2"))) void stepAvx2(int step, int minorLo, int minorHi, float* out,
+                                                float* east, float* north) {
+    stepImpl<true>(step, minorLo, minorHi, out, east, north);
   }
 #endif
   // What stepImpl gathers per step before the hull updates, for walkAvx2.
@@ -175,6 +187,11 @@ class BlockLineWalker {
     float w;
     bool offGridMajor;
     const float *heights, *nextSlice, *invCellX, *lineT;
+    // The slopes' neighbours: the slices at major - 1 and major + 1
+    // (heights where off the grid) and their difference's scale.
+    const float *majorLow, *majorHigh;
+    float majorScale;
+    float *east, *north;  // null: no slopes wanted
   };
 #if AAL_HORIZON_AVX2
   __attribute__((target("avx2"))) void lineSamplesAvx2(int step, int major, float* lineT,
@@ -214,7 +231,7 @@ class BlockLineWalker {
 template <bool kMajorIsColumn>
 template <bool kAvx2>
 inline void BlockLineWalker<kMajorIsColumn>::stepImpl(int step, int minorLo, int minorHi,
-                                                      float* out) {
+                                                      float* out, float* east, float* north) {
   constexpr int kMax = kPaddedLines;
   const int lines = lines_, majorLength = layout_.majorLength, minorMax = minorMax_;
   const float curvature = curvature_;
@@ -225,7 +242,7 @@ inline void BlockLineWalker<kMajorIsColumn>::stepImpl(int step, int minorLo, int
   const float w = static_cast<float>(layout_.fraction[step]);
 
   // Per step, index j of these holds minor coordinate base - 1 + j.
-  float heights[kMax + 2], nextSlice[kMax + 2], invCellX[kMax + 2];
+  float heights[kMax + 2], nextSlice[kMax + 2], backSlice[kMax + 2], invCellX[kMax + 2];
   float lineT[kMax], lineZ[kMax], lineCurvedZ[kMax];
   float riseToNear[kMax], runToNear[kMax], lineHorizon[kMax];
 
@@ -235,6 +252,9 @@ inline void BlockLineWalker<kMajorIsColumn>::stepImpl(int step, int minorLo, int
   const bool haveNextSlice = nextMajor >= 0 && nextMajor < majorLength;
   // The cell ahead is off the grid: no leaving slope (LineWalker::leavingSlope).
   const bool offGridMajor = wMajorNeighbour_ > 0.0f && !haveNextSlice;
+  // For the slopes, the slice behind too: the previous step's, in cache.
+  const int backMajor = major - dMajorNeighbour_;
+  const bool haveBackSlice = east && backMajor >= 0 && backMajor < majorLength;
   // The heights of steps ahead, a row or a column that the hardware
   // prefetcher does not foresee (the previous step's are on the next
   // slice): 6 % faster at 4096², the same at 1024² (in cache anyway).
@@ -264,6 +284,7 @@ inline void BlockLineWalker<kMajorIsColumn>::stepImpl(int step, int minorLo, int
     for (int j = 0; j < lines + 2; ++j) {
       heights[j] = heightAt(major, base - 1 + j);
       nextSlice[j] = haveNextSlice ? heightAt(nextMajor, base - 1 + j) : 0.0f;
+      backSlice[j] = haveBackSlice ? heightAt(backMajor, base - 1 + j) : 0.0f;
       invCellX[j] = static_cast<float>(
           terrain_.rowInvCellX[kMajorIsColumn ? static_cast<size_t>(base - 1 + j) : major]);
     }
@@ -272,10 +293,20 @@ inline void BlockLineWalker<kMajorIsColumn>::stepImpl(int step, int minorLo, int
       const int minor = std::clamp(base - 1 + j, 0, minorMax);
       heights[j] = heightAt(major, minor);
       nextSlice[j] = haveNextSlice ? heightAt(nextMajor, minor) : 0.0f;
+      backSlice[j] = haveBackSlice ? heightAt(backMajor, minor) : 0.0f;
       invCellX[j] = static_cast<float>(
           terrain_.rowInvCellX[kMajorIsColumn ? static_cast<size_t>(minor) : major]);
     }
   }
+
+  // The slices at major - 1 and major + 1 as BakeTerrain::slopeEastAt and
+  // slopeNorthAt read them: clamped to the grid.
+  const float* ahead = haveNextSlice ? nextSlice : heights;
+  const float* behind = haveBackSlice ? backSlice : heights;
+  const float* majorLow = dMajorNeighbour_ > 0 ? behind : ahead;
+  const float* majorHigh = dMajorNeighbour_ > 0 ? ahead : behind;
+  const float majorScale =
+      BakeTerrain::differenceScale(std::max(major - 1, 0), std::min(major + 1, majorLength - 1));
 
   // Line samples: distance along u and height, linear across the line.
   int lineFirst = lines, lineLast = -1;
@@ -299,7 +330,8 @@ inline void BlockLineWalker<kMajorIsColumn>::stepImpl(int step, int minorLo, int
   }
 #if AAL_HORIZON_AVX2
   if constexpr (kAvx2) {
-    walkAvx2({base, lineFirst, lineLast, w, offGridMajor, heights, nextSlice, invCellX, lineT},
+    walkAvx2({base, lineFirst, lineLast, w, offGridMajor, heights, nextSlice, invCellX, lineT,
+              majorLow, majorHigh, majorScale, east, north},
              minorLo, minorHi, out);
     return;
   }
@@ -367,6 +399,18 @@ inline void BlockLineWalker<kMajorIsColumn>::stepImpl(int step, int minorLo, int
     const bool offGrid = offGridMajor || (wMinorNeighbour_ > 0.0f &&
                                           (minorNeighbour < 0 || minorNeighbour > minorMax));
     out[i - texelFirst] = std::max(blend, offGrid ? kNoHorizonTangent : leaving);
+    if (!east) continue;
+    // The slopes, as BakeTerrain::slopeEastAt and slopeNorthAt compute them.
+    const int minor = base + i;
+    const float minorScale =
+        BakeTerrain::differenceScale(std::max(minor - 1, 0), std::min(minor + 1, minorMax));
+    if constexpr (kMajorIsColumn) {  // major: column, minor: row
+      east[i - texelFirst] = (majorHigh[i + 1] - majorLow[i + 1]) * (majorScale * invCellX[i + 1]);
+      north[i - texelFirst] = (heights[i] - heights[i + 2]) * (minorScale * invCellY_);
+    } else {  // major: row, minor: column
+      east[i - texelFirst] = (heights[i + 2] - heights[i]) * (minorScale * invCellX[i + 1]);
+      north[i - texelFirst] = (majorLow[i + 1] - majorHigh[i + 1]) * (majorScale * invCellY_);
+    }
   }
 }
 
@@ -423,9 +467,13 @@ __attribute__((target("avx2"))) inline void BlockLineWalker<kMajorIsColumn>::lin
       const __m128i nearRow = _mm_min_epi32(
           _mm256_cvttpd_epi32(_mm256_add_pd(_mm256_max_pd(minor, lowest), _mm256_set1_pd(0.5))),
           _mm_set1_epi32(minorMax));
+      // A gather only where rows differ: 4 % of the column walk's step at
+      // 16384² went to it.
       const __m256d cellX =
-          _mm256_mask_i32gather_pd(_mm256_setzero_pd(), terrain_.rowCellX.data(), nearRow,
-                                   _mm256_castsi256_pd(_mm256_set1_epi64x(-1)), 8);
+          terrain_.uniformCellX
+              ? _mm256_set1_pd(terrain_.rowCellX[0])
+              : _mm256_mask_i32gather_pd(_mm256_setzero_pd(), terrain_.rowCellX.data(), nearRow,
+                                         _mm256_castsi256_pd(_mm256_set1_epi64x(-1)), 8);
       t = _mm256_add_pd(
           _mm256_mul_pd(_mm256_mul_pd(_mm256_set1_pd(major - terrain_.centreCol), cellX), ux),
           _mm256_mul_pd(_mm256_mul_pd(_mm256_sub_pd(_mm256_set1_pd(rowCentre_), minor),
@@ -612,9 +660,42 @@ __attribute__((target("avx2"))) inline void BlockLineWalker<kMajorIsColumn>::wal
     } else {
       _mm256_maskstore_ps(out + j, _mm256_cmpgt_epi32(_mm256_set1_epi32(count - j), iota), result);
     }
+    if (!slice.east) continue;
+    // The slopes (the scalar loop's operations): the minor difference's
+    // scale is 1/2 but at the grid's edges.
+    const __m256i minor = _mm256_add_epi32(_mm256_set1_epi32(slice.base + i), iota);
+    const __m256i span = _mm256_sub_epi32(
+        _mm256_min_epi32(_mm256_add_epi32(minor, one), _mm256_set1_epi32(minorMax_)),
+        _mm256_max_epi32(_mm256_sub_epi32(minor, one), _mm256_setzero_si256()));
+    const __m256 minorScale = _mm256_blendv_ps(
+        _mm256_and_ps(_mm256_castsi256_ps(_mm256_cmpeq_epi32(span, one)), _mm256_set1_ps(1.0f)),
+        _mm256_set1_ps(0.5f), _mm256_castsi256_ps(_mm256_cmpeq_epi32(span, _mm256_set1_epi32(2))));
+    const __m256 minorLow = _mm256_loadu_ps(slice.heights + i);
+    const __m256 minorHigh = _mm256_loadu_ps(slice.heights + i + 2);
+    const __m256 majorLow = _mm256_loadu_ps(slice.majorLow + i + 1);
+    const __m256 majorHigh = _mm256_loadu_ps(slice.majorHigh + i + 1);
+    const __m256 majorScale = _mm256_set1_ps(slice.majorScale);
+    if constexpr (kMajorIsColumn) {
+      _mm256_storeu_ps(slice.east + j, _mm256_mul_ps(_mm256_sub_ps(majorHigh, majorLow),
+                                                     _mm256_mul_ps(majorScale, invCellX)));
+      _mm256_storeu_ps(slice.north + j, _mm256_mul_ps(_mm256_sub_ps(minorLow, minorHigh),
+                                                      _mm256_mul_ps(minorScale, invCellY)));
+    } else {
+      _mm256_storeu_ps(slice.east + j, _mm256_mul_ps(_mm256_sub_ps(minorHigh, minorLow),
+                                                     _mm256_mul_ps(minorScale, invCellX)));
+      _mm256_storeu_ps(slice.north + j, _mm256_mul_ps(_mm256_sub_ps(majorLow, majorHigh),
+                                                      _mm256_mul_ps(majorScale, invCellY)));
+    }
   }
 }
 #endif
+
+// A step's slopes (HorizonBlock::slopeEast, slopeNorth), zeroed once so
+// that the vector loops never meet stale lanes.
+struct BlockSlopes {
+  alignas(32) float east[HorizonBlock::kPaddedTexels] = {};
+  alignas(32) float north[HorizonBlock::kPaddedTexels] = {};
+};
 
 // The texels a group of lines hands over at each step, and what the blocks
 // point at.
@@ -635,13 +716,15 @@ struct GroupTexels {
     return static_cast<size_t>(kMajorIsColumn ? minor * width + major : major * width + minor);
   }
   // The block of `step`, with its texels kAheadSteps later.
-  HorizonBlock block(int step, const float* tanHorizon) const {
+  HorizonBlock block(int step, const float* tanHorizon, const BlockSlopes& slopes) const {
     const auto [lo, hi] = at(step);
     HorizonBlock b;
     b.firstTexel = texel(step, lo);
     b.stride = kMajorIsColumn ? width : 1;
     b.count = hi - lo + 1;
     b.tanHorizon = tanHorizon;
+    b.slopeEast = slopes.east;
+    b.slopeNorth = slopes.north;
     const int ahead = step + HorizonBlock::kAheadSteps;
     if (ahead < layout.majorLength) {
       const auto [aheadLo, aheadHi] = at(ahead);
@@ -678,10 +761,11 @@ void sweepBlocks(const BakeTerrain& terrain, const SweepLayout& layout, double u
     Walker walker(terrain, layout, ux, uy, options, s.hulls.data());
     walker.begin(first - 1, texels.count + 1);
     float tanHorizon[kLines];
+    BlockSlopes slopes;
     for (int step = 0; step < majorLength; ++step) {
       const auto [lo, hi] = texels.at(step);
-      walker.step(step, lo, hi, tanHorizon);
-      if (lo <= hi) visit(texels.block(step, tanHorizon));
+      walker.step(step, lo, hi, tanHorizon, slopes.east, slopes.north);
+      if (lo <= hi) visit(texels.block(step, tanHorizon, slopes));
     }
   });
 }
@@ -734,11 +818,12 @@ void sweepOpposedBlocks(const BakeTerrain& terrain, const SweepLayout& layout,
     Walker forward(terrain, layout, ux, uy, options, s.hulls.data());
     forward.begin(first - 1, texels.count + 1);
     float tanHorizon[kLines];
+    BlockSlopes slopes;
     for (int step = 0; step < majorLength; ++step) {
       const auto [lo, hi] = texels.at(step);
-      forward.step(step, lo, hi, tanHorizon);
+      forward.step(step, lo, hi, tanHorizon, slopes.east, slopes.north);
       if (lo > hi) continue;
-      HorizonBlock block = texels.block(step, tanHorizon);
+      HorizonBlock block = texels.block(step, tanHorizon, slopes);
       block.tanOpposite = s.opposite.data() + static_cast<size_t>(step) * kLines;
       visit(block);
     }

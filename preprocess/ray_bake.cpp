@@ -28,7 +28,7 @@ double nextUniform(uint64_t& state) {
 }  // namespace
 
 bool rayEscapes(const BakeTerrain& terrain, const BakeOptions& o, double x, double y, double z,
-                const double dir[3]) {
+                const double dir[3], double zMax) {
   const Heightfield& f = *terrain.field;
   const double horizontal = std::sqrt(dir[0] * dir[0] + dir[1] * dir[1]);
   if (horizontal < 1e-12) return dir[2] > 0;
@@ -36,7 +36,6 @@ bool rayEscapes(const BakeTerrain& terrain, const BakeOptions& o, double x, doub
   const double ex = dir[0] / horizontal, ey = dir[1] / horizontal;
   const double curvature = o.curvature ? (1.0 - o.refraction) / (2.0 * kEarthRadiusM) : 0.0;
   const double step = 0.25 * std::min(terrain.cellY, terrain.rowCellX[f.height / 2]);
-  const double zMax = terrain.maxHeight;
 
   const double rowCentre = 0.5 * (f.height - 1);
   // Fine steps near the start: the bilinear surface can rise above a ray
@@ -66,6 +65,7 @@ void bakeRays(const BakeTerrain& terrain, const BakeOptions& o, float* sums,
     throw std::invalid_argument("the ray method bakes whole fields only, not windows");
   }
   const Heightfield& f = *terrain.field;
+  const double zMax = *std::max_element(f.z.begin(), f.z.end());
   const int azimuthStrata = std::max(1, static_cast<int>(std::lround(std::sqrt(o.rays * 2.0))));
   const int elevationStrata = std::max(1, o.rays / azimuthStrata);
   const int rays = azimuthStrata * elevationStrata;
@@ -104,7 +104,7 @@ void bakeRays(const BakeTerrain& terrain, const BakeOptions& o, float* sums,
             const double dir[3] = {lx * t[0] + ly * b[0] + cosTheta * n[0],
                                    lx * t[1] + ly * b[1] + cosTheta * n[1],
                                    lx * t[2] + ly * b[2] + cosTheta * n[2]};
-            if (rayEscapes(terrain, o, x, y, z, dir)) {
+            if (rayEscapes(terrain, o, x, y, z, dir, zMax)) {
               ++escaped;
               sum[0] += dir[0];
               sum[1] += dir[1];

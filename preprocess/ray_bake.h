@@ -20,8 +20,9 @@ void bakeRays(const BakeTerrain& terrain, const BakeOptions& options, float* sum
               std::vector<float>& svf);
 
 // True when the ray from world point (x, y, z) in unit direction `dir`
-// leaves the terrain without passing under it. Exposed for tests.
+// leaves the terrain without passing under it; zMax is the field's tallest
+// height (a ray rising above it has escaped). Exposed for tests.
 bool rayEscapes(const BakeTerrain& terrain, const BakeOptions& options, double x, double y,
-                double z, const double dir[3]);
+                double z, const double dir[3], double zMax);
 
 }  // namespace aal

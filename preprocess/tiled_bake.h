@@ -12,8 +12,9 @@
 namespace aal {
 
 // Above this many texels (16384 x 16384) a DEM is baked tiled: at the
-// in-memory bake's ~28.5 bytes per texel the next size up, 32768 x 32768,
-// would need ~30 GB, more than a 24 GiB machine has.
+// in-memory bake's ~20 bytes per texel the next size up, 32768 x 32768,
+// would need ~22 GB, with the EXR writer's buffers and the system more than
+// a 24 GiB machine has.
 constexpr size_t kInMemoryBakeTexelLimit = size_t(16384) * 16384;
 constexpr int kDefaultTileSize = 4096;
 constexpr int kMinTileSize = 16, kMaxTileSize = 16384;
@@ -42,7 +43,7 @@ void checkTiledBakeOptions(const BakeOptions& bake, const TiledBakeOptions& tile
 // index of another DEM or other options is an InputError (nothing is
 // overwritten). bake.progress sees the fraction over all tiles; bake.cancel
 // stops between azimuths (BakeCancelled), keeping the finished tiles.
-// Memory: the DEM (held by the caller) plus ~24 bytes per texel of one tile.
+// Memory: the DEM (held by the caller) plus ~16 bytes per texel of one tile.
 TiledBakeSummary bakeTiled(const Heightfield& field, const BakeOptions& bake,
                            const TiledBakeOptions& tiled, const std::string& folder);
 

@@ -216,7 +216,7 @@ int main(int argc, char** argv) {
       "its\nbent normal (mean unoccluded direction) and arc length r = acos(1 - Omega/2pi), "
       "written as\nEXR (RGB = bent normal, A = r). Horizons come from the whole DEM (no "
       "distance limit\nunless --max-distance).\n\nAbove 16384x16384 texels (the in-memory bake's "
-      "~28.5 bytes per texel would not\nfit 24 GiB at the next size up) the DEM is baked in "
+      "~20 bytes per texel, ~22 GB at the\nnext size up, would not fit 24 GiB) the DEM is baked in "
       "tiles into the folder -o, and\n--max-distance is required: each tile is baked from "
       "itself plus the terrain within\nthat distance, equal to the in-memory bake. An "
       "interrupted tiled bake resumes from its\nfinished tiles when run again. aal-render and "

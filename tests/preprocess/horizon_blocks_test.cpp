@@ -5,6 +5,7 @@
 
 #include <gtest/gtest.h>
 
+#include <atomic>
 #include <cmath>
 #include <cstring>
 #include <limits>
@@ -240,6 +241,71 @@ TEST(HorizonBlocks, Avx2AndScalarWalksGiveTheSameTangents) {
       }
     }
   }
+}
+
+// The slopes every block carries (computed in the walk from the heights it
+// loads) are the terrain's, bit for bit, on both paths, for sweeps along
+// each axis both ways, diagonals, one-texel-wide grids and narrowing cells.
+TEST(HorizonBlocks, EveryBlockCarriesItsTexelsSlopes) {
+  const std::vector<double> azimuths = {0.0,         kPi / 2, kPi, 3 * kPi / 2, kPi / 4,
+                                        3 * kPi / 4, 0.3,     1.9, 2.61,        4.4};
+  for (auto [w, h, geographic] :
+       {std::tuple{45, 38, false}, std::tuple{100, 70, false}, std::tuple{67, 81, true},
+        std::tuple{1, 1, false}, std::tuple{1, 7, false}, std::tuple{17, 2, false}}) {
+    const Heightfield field = roughTerrain(w, h, geographic);
+    const BakeTerrain terrain = prepareBakeTerrain(field);
+    for (const bool avx2 : {false, true}) {
+      const Avx2Allowed allowed(avx2);
+      for (double phi : azimuths) {
+        std::atomic<size_t> checked = 0, wrong = 0;  // blocks come from several threads
+        const auto check = [&](const HorizonBlock& b) {
+          ASSERT_NE(b.slopeEast, nullptr);
+          ASSERT_NE(b.slopeNorth, nullptr);
+          for (int j = 0; j < b.count; ++j) {
+            const size_t i = b.firstTexel + j * b.stride;
+            const int col = static_cast<int>(i % w), row = static_cast<int>(i / w);
+            const float east = terrain.slopeEastAt(col, row);
+            const float north = terrain.slopeNorthAt(col, row);
+            wrong += std::memcmp(&b.slopeEast[j], &east, sizeof(float)) != 0 ||
+                     std::memcmp(&b.slopeNorth[j], &north, sizeof(float)) != 0;
+            ++checked;
+          }
+        };
+        sweepHorizonBlocks(terrain, phi, {}, check);
+        if (!sweepOpposedHorizonBlocks(terrain, phi, phi + kPi, {}, check)) {
+          checked += field.texelCount();  // the diagonal did not pair: nothing to check
+        }
+        EXPECT_EQ(checked.load(), 2 * field.texelCount()) << w << "x" << h << " phi " << phi;
+        EXPECT_EQ(wrong.load(), 0u) << w << "x" << h << " phi " << phi << " avx2 " << avx2;
+      }
+    }
+  }
+}
+
+// The terrain's slopes are the double-precision central differences (one-
+// sided at the edges) to single precision.
+TEST(HorizonBlocks, TerrainSlopesAreCentralDifferences) {
+  const Heightfield field = roughTerrain(23, 19, true);
+  const BakeTerrain terrain = prepareBakeTerrain(field);
+  double worst = 0;
+  for (int row = 0; row < field.height; ++row) {
+    for (int col = 0; col < field.width; ++col) {
+      const int west = std::max(col - 1, 0), east = std::min(col + 1, field.width - 1);
+      const int north = std::max(row - 1, 0), south = std::min(row + 1, field.height - 1);
+      const double dzdx = (double(field.at(east, row)) - field.at(west, row)) /
+                          ((east - west) * field.cellSizeXAtRow(row));
+      const double dzdy = (double(field.at(col, north)) - field.at(col, south)) /
+                          ((south - north) * field.cellSizeYM);
+      worst = std::max({worst, std::abs(terrain.slopeEastAt(col, row) - dzdx),
+                        std::abs(terrain.slopeNorthAt(col, row) - dzdy)});
+    }
+  }
+  EXPECT_LT(worst, 1e-5);
+  // A field one texel wide or tall has no slope across it.
+  const Heightfield line = roughTerrain(1, 5, false);
+  const BakeTerrain lineTerrain = prepareBakeTerrain(line);
+  EXPECT_EQ(lineTerrain.slopeEastAt(0, 2), 0.0f);
+  EXPECT_NE(lineTerrain.slopeNorthAt(0, 2), 0.0f);
 }
 
 // The same for whole bakes: opposed and single azimuths, with the sky view
