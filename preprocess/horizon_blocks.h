@@ -480,8 +480,8 @@ __attribute__((target("avx2"))) inline void BlockLineWalker<kMajorIsColumn>::lin
       const __m128i nearRow = _mm_min_epi32(
           _mm256_cvttpd_epi32(_mm256_add_pd(_mm256_max_pd(minor, lowest), _mm256_set1_pd(0.5))),
           _mm_set1_epi32(minorMax));
-      // A gather only where rows differ: 4 % of the column walk's step at
-      // 16384² went to it.
+      // A gather only where rows differ: at 16384² a tenth of the column
+      // walk's step samples fell just after it.
       const __m256d cellX =
           terrain_.uniformCellX
               ? _mm256_set1_pd(terrain_.rowCellX[0])
