@@ -10,6 +10,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstddef>
+#include <iterator>
 
 #if defined(__x86_64__) && defined(__GNUC__)
 #include <immintrin.h>
@@ -23,23 +25,29 @@ namespace aal {
 // atan(y) for 0 <= y <= 1 to within 3.3e-7 rad (in float; 2.5e-7 exact):
 // the odd minimax polynomial of degree 13, fitted for this project by the
 // Remez exchange on [0, 1].
+// Its coefficients of y^13, y^11, ..., y (Horner order), shared with the
+// AVX2 copy below.
+inline constexpr double kAtanUnitCoefficients[] = {
+    0.006811793290873252, -0.033604220565024996, 0.07962367236561659, -0.1323334209557463,
+    0.19807815564989179,  -0.3331736805474933,   0.9999961115495709};
+inline constexpr double kSliceHalfPi = 1.57079632679489661923;
+inline constexpr double kSliceQuarterPi = 0.78539816339744830962;
+
 template <class Real>
 inline Real atanUnit(Real y) {
   const Real y2 = y * y;
-  return y * (Real(0.9999961115495709) +
-              y2 * (Real(-0.3331736805474933) +
-                    y2 * (Real(0.19807815564989179) +
-                          y2 * (Real(-0.1323334209557463) +
-                                y2 * (Real(0.07962367236561659) +
-                                      y2 * (Real(-0.033604220565024996) +
-                                            y2 * Real(0.006811793290873252)))))));
+  Real p = Real(kAtanUnitCoefficients[0]);
+  for (size_t i = 1; i < std::size(kAtanUnitCoefficients); ++i) {
+    p = Real(kAtanUnitCoefficients[i]) + y2 * p;
+  }
+  return y * p;
 }
 
 // atan(x) to within 2e-6 rad, several times faster than std::atan: reduced
 // to |y| <= 1 by atan(x) = pi/2 - atan(1/x), then atanUnit.
 template <class Real>
 inline Real fastAtan(Real x) {
-  constexpr Real kHalfPi = Real(1.57079632679489661923);
+  constexpr Real kHalfPi = Real(kSliceHalfPi);
   // Branch-free (selects, not jumps): the horizon tangents that reach here
   // change sign and size from texel to texel, so branches mispredict.
   // Both candidates are computed and one is picked, since compilers will not
@@ -66,7 +74,7 @@ inline void skySliceTerms(float* term, float tanTheta0, float dPhi, float cosPhi
   const float inv = 1.0f / (1.0f + t * t);  // cos^2 theta0
   const float sinTheta = t * std::sqrt(inv);
   const float theta = fastAtan(t);
-  constexpr float kQuarterPi = 0.78539816339744830962f;
+  constexpr float kQuarterPi = static_cast<float>(kSliceQuarterPi);
   const float ic = kQuarterPi - 0.5f * theta - 0.5f * t * inv;  // sin(2 theta)/4 = t/(2(1+t^2))
   const float is = 0.5f * inv;
   term[0] = cosPhiDPhi * ic;
@@ -93,21 +101,19 @@ __attribute__((target("avx2"))) inline void skySliceTermsAvx2(__m256 terms[4], _
   const __m256 inverse = _mm256_div_ps(one, _mm256_max_ps(_mm256_set1_ps(1e-30f), a));
   const __m256 y = _mm256_blendv_ps(a, inverse, inverted);
   const __m256 y2 = _mm256_mul_ps(y, y);
-  // atanUnit's polynomial, its coefficients rounded as Real(c) rounds them.
-  const float coefficients[] = {
-      static_cast<float>(-0.033604220565024996), static_cast<float>(0.07962367236561659),
-      static_cast<float>(-0.1323334209557463),   static_cast<float>(0.19807815564989179),
-      static_cast<float>(-0.3331736805474933),   static_cast<float>(0.9999961115495709)};
-  __m256 p = _mm256_set1_ps(static_cast<float>(0.006811793290873252));
-  for (float c : coefficients) p = _mm256_add_ps(_mm256_set1_ps(c), _mm256_mul_ps(y2, p));
+  // atanUnit's polynomial, in its order.
+  __m256 p = _mm256_set1_ps(static_cast<float>(kAtanUnitCoefficients[0]));
+  for (size_t i = 1; i < std::size(kAtanUnitCoefficients); ++i) {
+    p = _mm256_add_ps(_mm256_set1_ps(static_cast<float>(kAtanUnitCoefficients[i])),
+                      _mm256_mul_ps(y2, p));
+  }
   const __m256 series = _mm256_mul_ps(y, p);
   const __m256 unsignedTheta = _mm256_blendv_ps(
-      series, _mm256_sub_ps(_mm256_set1_ps(static_cast<float>(1.57079632679489661923)), series),
-      inverted);
+      series, _mm256_sub_ps(_mm256_set1_ps(static_cast<float>(kSliceHalfPi)), series), inverted);
   const __m256 theta = _mm256_or_ps(unsignedTheta, _mm256_and_ps(sign, t));
-  const __m256 ic = _mm256_sub_ps(
-      _mm256_sub_ps(_mm256_set1_ps(0.78539816339744830962f), _mm256_mul_ps(half, theta)),
-      _mm256_mul_ps(_mm256_mul_ps(half, t), inv));
+  const __m256 ic = _mm256_sub_ps(_mm256_sub_ps(_mm256_set1_ps(static_cast<float>(kSliceQuarterPi)),
+                                                _mm256_mul_ps(half, theta)),
+                                  _mm256_mul_ps(_mm256_mul_ps(half, t), inv));
   terms[0] = _mm256_mul_ps(_mm256_set1_ps(cosPhiDPhi), ic);
   terms[1] = _mm256_mul_ps(_mm256_set1_ps(sinPhiDPhi), ic);
   terms[2] = _mm256_mul_ps(_mm256_set1_ps(dPhi), _mm256_mul_ps(half, inv));
