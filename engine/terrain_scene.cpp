@@ -69,32 +69,39 @@ void reduceHeights(const unsigned char* upper, const unsigned char* lower, unsig
   }
 }
 
+// Each channel of each RGBA texel from its 2 x 2 texels of the level above:
+// mean(upper left, upper right, lower left, lower right).
+template <class Channel, class Mean>
+void reduceRgba(const unsigned char* upper, const unsigned char* lower, unsigned char* out,
+                uint32_t width, Mean mean) {
+  const auto* a = reinterpret_cast<const Channel*>(upper);
+  const auto* b = reinterpret_cast<const Channel*>(lower);
+  auto* o = reinterpret_cast<Channel*>(out);
+  for (uint32_t i = 0; i < 4 * width; ++i) {
+    const uint32_t left = 8 * (i / 4) + i % 4;  // the channel in the left texel above
+    o[i] = mean(a[left], a[left + 4], b[left], b[left + 4]);
+  }
+}
+
 void reduceApertures(const unsigned char* upper, const unsigned char* lower, unsigned char* out,
                      uint32_t width) {
-  const auto* a = reinterpret_cast<const uint16_t*>(upper);
-  const auto* b = reinterpret_cast<const uint16_t*>(lower);
-  auto* o = reinterpret_cast<uint16_t*>(out);
   const auto value = [](uint16_t bits) {
     Imath::half h;
     h.setBits(bits);
     return float(h);
   };
-  for (uint32_t i = 0; i < 4 * width; ++i) {
-    const uint32_t c = i % 4, left = 8 * (i / 4) + c;
-    o[i] =
-        Imath::half(
-            ((value(a[left]) + value(a[left + 4])) + (value(b[left]) + value(b[left + 4]))) * 0.25f)
-            .bits();
-  }
+  reduceRgba<uint16_t>(
+      upper, lower, out, width, [&](uint16_t a, uint16_t b, uint16_t c, uint16_t d) {
+        return Imath::half(((value(a) + value(b)) + (value(c) + value(d))) * 0.25f).bits();
+      });
 }
 
 void reduceAlbedo(const unsigned char* upper, const unsigned char* lower, unsigned char* out,
                   uint32_t width) {
-  for (uint32_t i = 0; i < 4 * width; ++i) {
-    const uint32_t c = i % 4, left = 8 * (i / 4) + c;
-    out[i] = static_cast<unsigned char>(
-        (unsigned{upper[left]} + upper[left + 4] + lower[left] + lower[left + 4] + 2) / 4);
-  }
+  reduceRgba<unsigned char>(upper, lower, out, width,
+                            [](unsigned a, unsigned b, unsigned c, unsigned d) {
+                              return static_cast<unsigned char>((a + b + c + d + 2) / 4);
+                            });
 }
 
 }  // namespace

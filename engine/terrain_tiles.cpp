@@ -47,8 +47,7 @@ TerrainTileLayout planTerrainTiles(uint32_t demWidth, uint32_t demHeight,
   t.coreWidth = demWidth;
   t.coreHeight = demHeight;
   if (demWidth <= forced && demHeight <= forced && t.imageWidth() <= limits.maxImageDimension &&
-      t.imageHeight() <= limits.maxImageDimension &&
-      mipChainTexels(t.imageWidth(), t.imageHeight()) * widest <= allocation) {
+      t.imageHeight() <= limits.maxImageDimension && t.layerTexels() * widest <= allocation) {
     return t;
   }
 
