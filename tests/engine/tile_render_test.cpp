@@ -12,8 +12,10 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <cstring>
 #include <string>
 
+#include <Imath/half.h>
 #include <glm/vec3.hpp>
 
 #include "albedo_image.h"
@@ -136,11 +138,13 @@ Difference compare(const FrameResult& a, const FrameResult& reference, bool topV
 
 class TileRender : public VulkanTest {};
 
-// R32F texels of mip level `level` of layer `layer` of a texture page.
-std::vector<float> readLevel(const Device& device, const Image& page, uint32_t layer,
-                             uint32_t level) {
+// The texels of mip level `level` of layer `layer` of a texture page, as
+// bytes.
+std::vector<unsigned char> readLevelBytes(const Device& device, const Image& page, uint32_t layer,
+                                          uint32_t level, size_t bytesPerTexel) {
   const uint32_t w = page.desc().width >> level, h = page.desc().height >> level;
-  Buffer out(device, size_t{w} * h * 4, VK_BUFFER_USAGE_TRANSFER_DST_BIT, MemoryIntent::Readback);
+  const size_t bytes = size_t{w} * h * bytesPerTexel;
+  Buffer out(device, bytes, VK_BUFFER_USAGE_TRANSFER_DST_BIT, MemoryIntent::Readback);
   submitAndWait(device, [&](VkCommandBuffer cmd) {
     transitionImage(cmd, page, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL,
                     VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL);
@@ -152,9 +156,75 @@ std::vector<float> readLevel(const Device& device, const Image& page, uint32_t l
     transitionImage(cmd, page, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL,
                     VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL);
   });
-  std::vector<float> texels(size_t{w} * h);
-  out.read(texels.data(), texels.size() * 4);
+  std::vector<unsigned char> texels(bytes);
+  out.read(texels.data(), bytes);
   return texels;
+}
+
+// R32F texels of mip level `level` of layer `layer` of a texture page.
+std::vector<float> readLevel(const Device& device, const Image& page, uint32_t layer,
+                             uint32_t level) {
+  const std::vector<unsigned char> bytes = readLevelBytes(device, page, layer, level, 4);
+  std::vector<float> texels(bytes.size() / 4);
+  std::memcpy(texels.data(), bytes.data(), bytes.size());
+  return texels;
+}
+
+// Every level of every kind is the mean of the 2 x 2 texels of the level
+// above (read back from the device, the means recomputed here in double):
+// heights to float rounding, apertures to half-float rounding, albedo to
+// 8-bit rounding.
+TEST_F(TileRender, EveryMipLevelIsTheMeanOfTheLevelAbove) {
+  const Heightfield field = fbm();
+  BakeOptions bake;
+  bake.azimuths = 8;
+  const ApertureMap aperture = bakeApertures(field, bake).aperture;
+  const AlbedoImage colours = albedo();
+  const TerrainScene scene(device(), field, aperture, &colours, 400000);
+  struct Kind {
+    const Image& page;
+    int channels;
+    size_t channelBytes;
+    double tolerance;  // relative to max(1, |mean|)
+  };
+  const Kind kinds[] = {{scene.heightPages()[0], 1, 4, 1e-6},
+                        {scene.aperturePages()[0], 4, 2, 1e-3},
+                        {scene.albedoPages()[0], 4, 1, 0.51}};
+  for (const Kind& kind : kinds) {
+    const auto value = [&](const std::vector<unsigned char>& texels, size_t i) -> double {
+      if (kind.channelBytes == 4) {
+        float f;
+        std::memcpy(&f, &texels[4 * i], 4);
+        return f;
+      }
+      if (kind.channelBytes == 1) return texels[i];
+      Imath::half h;
+      h.setBits(static_cast<uint16_t>(texels[2 * i] | texels[2 * i + 1] << 8));
+      return float(h);
+    };
+    const size_t texelBytes = kind.channels * kind.channelBytes;
+    std::vector<unsigned char> upper = readLevelBytes(device(), kind.page, 0, 0, texelBytes);
+    for (uint32_t level = 1; level < kTerrainMipLevels; ++level) {
+      const std::vector<unsigned char> texels =
+          readLevelBytes(device(), kind.page, 0, level, texelBytes);
+      const uint32_t w = kind.page.desc().width >> level, h = kind.page.desc().height >> level;
+      double worst = 0;
+      for (uint32_t r = 0; r < h; ++r) {
+        for (uint32_t c = 0; c < w; ++c) {
+          for (int k = 0; k < kind.channels; ++k) {
+            const auto above = [&](uint32_t dr, uint32_t dc) {
+              return value(upper, (size_t{2 * r + dr} * 2 * w + 2 * c + dc) * kind.channels + k);
+            };
+            const double mean = (above(0, 0) + above(0, 1) + above(1, 0) + above(1, 1)) / 4;
+            const double got = value(texels, (size_t{r} * w + c) * kind.channels + k);
+            worst = std::max(worst, std::abs(got - mean) / std::max(1.0, std::abs(mean)));
+          }
+        }
+      }
+      EXPECT_LE(worst, kind.tolerance) << "bytes per texel " << texelBytes << " level " << level;
+      upper = texels;
+    }
+  }
 }
 
 // Every tile's mip levels hold the whole DEM's levels over the tile's
