@@ -79,6 +79,35 @@ void BM_RenderFrame(benchmark::State& state) {
 }
 BENCHMARK(BM_RenderFrame)->DenseRange(0, 3)->Unit(benchmark::kMillisecond)->UseRealTime();
 
+// Issue 15: the frame over jacksboro from three views (0: the framed start
+// view, 1: a flight 1.2 km above the ground looking ahead, 2: a lower one
+// in the middle of the DEM) with and without the obscurance passes, at a
+// geometric error of 1, 2, 4 (the default) and 8 pixels. The per-pass GPU
+// times of lavapipe are not reliable (it rasterizes when a rendering ends):
+// compare wall times, interleaved, e.g.
+//   bench_render --benchmark_filter='RenderView/.*/4' --benchmark_repetitions=5
+//     --benchmark_enable_random_interleaving=true
+void BM_RenderView(benchmark::State& state) {
+  Fixture& f = fixture();
+  aal::FrameSettings s = f.settings;
+  if (state.range(0) == 1) {
+    s.camera.position = {-12000, -12000, 1800};
+    s.camera.lookAt = {-9000, -9000, 1200};
+  } else if (state.range(0) == 2) {
+    s.camera.position = {-2000, -2000, 1500};
+    s.camera.lookAt = {1000, 1000, 900};
+  }
+  s.obscurance.enabled = state.range(1) != 0;
+  s.lod.maxErrorPixels = double(state.range(2));
+  double triangles = 0;
+  for (auto _ : state) triangles += double(f.renderer->render(*f.scene, s, false).triangles);
+  state.counters["triangles"] = triangles / static_cast<double>(state.iterations());
+}
+BENCHMARK(BM_RenderView)
+    ->ArgsProduct({{0, 1, 2}, {0, 1}, {1, 2, 4, 8}})
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime();
+
 // The approx frame with the obscurance passes (issue 6) for n = 0 (off), 8,
 // 16, 32 at half (second argument 1) or full resolution (0). Target: the
 // default n within 1.5x of the frame without the passes. Counters: GPU time

@@ -11,10 +11,16 @@ namespace aal {
 
 ComputePipeline::ComputePipeline(const Device& device, const std::string& shaderName,
                                  uint32_t storageBufferCount, uint32_t pushConstantBytes)
+    : ComputePipeline(
+          device, shaderName,
+          std::vector<VkDescriptorType>(storageBufferCount, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER),
+          pushConstantBytes) {}
+
+ComputePipeline::ComputePipeline(const Device& device, const std::string& shaderName,
+                                 const std::vector<VkDescriptorType>& bindings,
+                                 uint32_t pushConstantBytes)
     : device_(device.handle()),
-      layout_(device,
-              std::vector<VkDescriptorType>(storageBufferCount, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER),
-              VK_SHADER_STAGE_COMPUTE_BIT, pushConstantBytes) {
+      layout_(device, bindings, VK_SHADER_STAGE_COMPUTE_BIT, pushConstantBytes) {
   const ShaderModule module(device, shaderName);
   VkComputePipelineCreateInfo info{VK_STRUCTURE_TYPE_COMPUTE_PIPELINE_CREATE_INFO};
   info.stage = {VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO};
@@ -39,6 +45,12 @@ void ComputePipeline::record(VkCommandBuffer cmd, const std::vector<const Buffer
   for (size_t i = 0; i < buffers.size(); ++i) {
     writes.storageBuffer(static_cast<uint32_t>(i), *buffers[i]);
   }
+  record(cmd, writes, pushConstants, groupsX, groupsY, groupsZ);
+}
+
+void ComputePipeline::record(VkCommandBuffer cmd, const DescriptorWrites& writes,
+                             const void* pushConstants, uint32_t groupsX, uint32_t groupsY,
+                             uint32_t groupsZ) const {
   vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipeline_);
   writes.push(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, layout_);
   if (layout_.pushConstantBytes() > 0) {

@@ -63,6 +63,14 @@ DescriptorWrites& DescriptorWrites::sampledImage(uint32_t binding, VkImageView v
   return *this;
 }
 
+DescriptorWrites& DescriptorWrites::storageImage(uint32_t binding, VkImageView view) {
+  entries_.push_back({binding,
+                      VK_DESCRIPTOR_TYPE_STORAGE_IMAGE,
+                      {},
+                      {VK_NULL_HANDLE, view, VK_IMAGE_LAYOUT_GENERAL}});
+  return *this;
+}
+
 void DescriptorWrites::push(VkCommandBuffer cmd, VkPipelineBindPoint bindPoint,
                             const PipelineLayout& layout) const {
   std::vector<VkWriteDescriptorSet> writes(entries_.size());
@@ -72,7 +80,8 @@ void DescriptorWrites::push(VkCommandBuffer cmd, VkPipelineBindPoint bindPoint,
     writes[i].dstBinding = e.binding;
     writes[i].descriptorCount = 1;
     writes[i].descriptorType = e.type;
-    if (e.type == VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER) {
+    if (e.type == VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER ||
+        e.type == VK_DESCRIPTOR_TYPE_STORAGE_IMAGE) {
       writes[i].pImageInfo = &e.image;
     } else {
       writes[i].pBufferInfo = &e.buffer;
@@ -82,12 +91,14 @@ void DescriptorWrites::push(VkCommandBuffer cmd, VkPipelineBindPoint bindPoint,
                              static_cast<uint32_t>(writes.size()), writes.data());
 }
 
-Sampler::Sampler(const Device& device, VkFilter filter, bool mipmapped) : device_(device.handle()) {
+Sampler::Sampler(const Device& device, VkFilter filter, bool mipmapped, bool repeatU)
+    : device_(device.handle()) {
   VkSamplerCreateInfo info{VK_STRUCTURE_TYPE_SAMPLER_CREATE_INFO};
   info.magFilter = filter;
   info.minFilter = filter;
   info.mipmapMode = mipmapped ? VK_SAMPLER_MIPMAP_MODE_LINEAR : VK_SAMPLER_MIPMAP_MODE_NEAREST;
   info.addressModeU = info.addressModeV = info.addressModeW = VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE;
+  if (repeatU) info.addressModeU = VK_SAMPLER_ADDRESS_MODE_REPEAT;
   info.maxLod = mipmapped ? VK_LOD_CLAMP_NONE : 0.0f;
   AAL_VK_CHECK(vkCreateSampler(device_, &info, nullptr, &sampler_));
 }

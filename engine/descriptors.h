@@ -43,6 +43,8 @@ class DescriptorWrites {
   DescriptorWrites& uniformBuffer(uint32_t binding, const Buffer& buffer);
   DescriptorWrites& storageBuffer(uint32_t binding, const Buffer& buffer);
   DescriptorWrites& sampledImage(uint32_t binding, VkImageView view, VkSampler sampler);
+  // An image a compute shader writes, in VK_IMAGE_LAYOUT_GENERAL.
+  DescriptorWrites& storageImage(uint32_t binding, VkImageView view);
 
   void push(VkCommandBuffer cmd, VkPipelineBindPoint bindPoint, const PipelineLayout& layout) const;
 
@@ -59,8 +61,10 @@ class DescriptorWrites {
 // A linear (or nearest) sampler clamped to the edge.
 class Sampler {
  public:
-  // `mipmapped`: trilinear across an image's mip levels (else level 0 only).
-  Sampler(const Device& device, VkFilter filter, bool mipmapped = false);
+  // `mipmapped`: trilinear across an image's mip levels (else level 0 only);
+  // `repeatU`: the first coordinate wraps around instead (a table over
+  // azimuth).
+  Sampler(const Device& device, VkFilter filter, bool mipmapped = false, bool repeatU = false);
   ~Sampler();
   Sampler(const Sampler&) = delete;
   Sampler& operator=(const Sampler&) = delete;

@@ -64,7 +64,10 @@ void FrameSync::submit(uint32_t imageIndex) {
   // Reset only now: a frame abandoned before submitting (swapchain out of
   // date) must leave the fence signalled.
   AAL_VK_CHECK(vkResetFences(device_.handle(), 1, &done_));
-  const VkPipelineStageFlags waitStage = VK_PIPELINE_STAGE_TRANSFER_BIT;
+  // The swapchain image is first written by the last pass of the frame (a
+  // colour attachment) or, at a reduced resolution, by the upscaling blit.
+  const VkPipelineStageFlags waitStage =
+      VK_PIPELINE_STAGE_COLOR_ATTACHMENT_OUTPUT_BIT | VK_PIPELINE_STAGE_TRANSFER_BIT;
   VkSubmitInfo submit{VK_STRUCTURE_TYPE_SUBMIT_INFO};
   submit.waitSemaphoreCount = 1;
   submit.pWaitSemaphores = &acquired_;

@@ -26,7 +26,8 @@ class FrameSync {
   // Resets and begins the frame's command buffer (after waitForPreviousFrame).
   VkCommandBuffer beginCommands();
   // Ends and submits the commands: they wait for acquired() before the
-  // transfer stage (the first write to the swapchain image is a blit) and
+  // colour attachment output and transfer stages (the first write to the
+  // swapchain image is the frame's last pass, or the blit scaling it up) and
   // signal rendered(imageIndex) and the frame fence.
   void submit(uint32_t imageIndex);
 

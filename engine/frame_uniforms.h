@@ -25,9 +25,10 @@ struct FrameUniforms {
   glm::ivec4 tileGrid{0};         // tile core width, height, tiles across, down
   glm::ivec4 tileImage{0};        // tile border, 0, tile image width, height
   glm::ivec4 tileLayers{0};       // layers per page: heights, apertures, albedo, 0
+  glm::ivec4 extent{0};           // pixels drawn this frame: width, height, 0, 0
   PreethamSky sky;
 };
-static_assert(sizeof(FrameUniforms) == 2 * 64 + 14 * 16 + sizeof(PreethamSky),
+static_assert(sizeof(FrameUniforms) == 2 * 64 + 15 * 16 + sizeof(PreethamSky),
               "FrameUniforms must match the std140 Frame block of shaders/frame.glsl");
 
 }  // namespace aal

@@ -21,6 +21,15 @@ GraphicsPipeline::GraphicsPipeline(const Device& device, const GraphicsPipelineD
   stages[1].stage = VK_SHADER_STAGE_FRAGMENT_BIT;
   stages[1].module = fragment.handle();
   stages[1].pName = "main";
+  std::vector<VkSpecializationMapEntry> entries;
+  for (uint32_t i = 0; i < desc.specialization.size(); ++i) {
+    entries.push_back({i, i * uint32_t(sizeof(int32_t)), sizeof(int32_t)});
+  }
+  const VkSpecializationInfo specialization{static_cast<uint32_t>(entries.size()), entries.data(),
+                                            desc.specialization.size() * sizeof(int32_t),
+                                            desc.specialization.data()};
+  if (!entries.empty())
+    stages[0].pSpecializationInfo = stages[1].pSpecializationInfo = &specialization;
 
   VkPipelineVertexInputStateCreateInfo vertexInput{
       VK_STRUCTURE_TYPE_PIPELINE_VERTEX_INPUT_STATE_CREATE_INFO};

@@ -25,6 +25,9 @@ struct GraphicsPipelineDesc {
   VkCullModeFlags cullMode = VK_CULL_MODE_NONE;
   // Colour added to the target (ONE + ONE), alpha kept; else replaced.
   bool additiveBlend = false;
+  // Specialisation constants of both stages: constant_id i takes
+  // specialization[i] (32-bit ints and bools).
+  std::vector<int32_t> specialization;
 };
 
 class GraphicsPipeline {

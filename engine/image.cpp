@@ -110,9 +110,16 @@ LayoutUse useOf(VkImageLayout layout) {
 
 }  // namespace
 
-void transitionImage(VkCommandBuffer cmd, const Image& image, VkImageLayout from,
-                     VkImageLayout to) {
-  const LayoutUse src = useOf(from), dst = useOf(to);
+namespace {
+
+void transitionRange(VkCommandBuffer cmd, VkImage image, const VkImageSubresourceRange& range,
+                     VkImageLayout from, VkImageLayout to) {
+  LayoutUse src = useOf(from);
+  const LayoutUse dst = useOf(to);
+  // From UNDEFINED nothing is kept, but earlier work at the stage that comes
+  // next must be done (last frame's use of the image) and, for a swapchain
+  // image, the acquire semaphore waited for at that stage chains to it.
+  if (from == VK_IMAGE_LAYOUT_UNDEFINED) src.stage = dst.stage;
   VkImageMemoryBarrier2 barrier{VK_STRUCTURE_TYPE_IMAGE_MEMORY_BARRIER_2};
   barrier.srcStageMask = src.stage;
   barrier.srcAccessMask = src.access;
@@ -122,13 +129,25 @@ void transitionImage(VkCommandBuffer cmd, const Image& image, VkImageLayout from
   barrier.newLayout = to;
   barrier.srcQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
   barrier.dstQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
-  barrier.image = image.handle();
-  barrier.subresourceRange = {image.desc().aspect, 0, image.desc().mipLevels, 0,
-                              image.desc().layers};
+  barrier.image = image;
+  barrier.subresourceRange = range;
   VkDependencyInfo dependency{VK_STRUCTURE_TYPE_DEPENDENCY_INFO};
   dependency.imageMemoryBarrierCount = 1;
   dependency.pImageMemoryBarriers = &barrier;
   vkCmdPipelineBarrier2(cmd, &dependency);
+}
+
+}  // namespace
+
+void transitionImage(VkCommandBuffer cmd, const Image& image, VkImageLayout from,
+                     VkImageLayout to) {
+  transitionRange(cmd, image.handle(),
+                  {image.desc().aspect, 0, image.desc().mipLevels, 0, image.desc().layers}, from,
+                  to);
+}
+
+void transitionImage(VkCommandBuffer cmd, VkImage image, VkImageLayout from, VkImageLayout to) {
+  transitionRange(cmd, image, {VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, 1}, from, to);
 }
 
 void copyImageToBuffer(VkCommandBuffer cmd, const Image& image, const Buffer& buffer) {

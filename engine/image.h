@@ -56,5 +56,8 @@ void copyImageToBuffer(VkCommandBuffer cmd, const Image& image, const Buffer& bu
 // Records a layout transition of the whole image, every layer and level
 // (synchronization2), with conservative stage/access masks derived from the layouts.
 void transitionImage(VkCommandBuffer cmd, const Image& image, VkImageLayout from, VkImageLayout to);
+// The same for an image not made here (a swapchain image): one colour level
+// and layer.
+void transitionImage(VkCommandBuffer cmd, VkImage image, VkImageLayout from, VkImageLayout to);
 
 }  // namespace aal

@@ -1,6 +1,10 @@
 #include "terrain_renderer.h"
 
 #include <algorithm>
+#include <cmath>
+#include <map>
+#include <stdexcept>
+#include <string>
 
 #include <Imath/half.h>
 
@@ -20,7 +24,7 @@ namespace {
 
 constexpr VkFormat kHdrFormat = VK_FORMAT_R16G16B16A16_SFLOAT;
 constexpr VkFormat kDepthFormat = VK_FORMAT_D32_SFLOAT;
-constexpr VkFormat kDisplayFormat = VK_FORMAT_R8G8B8A8_UNORM;
+constexpr VkFormat kSkyTableFormat = VK_FORMAT_R16G16B16A16_SFLOAT;
 constexpr VkFormat kAmbientFormat = VK_FORMAT_R16G16B16A16_SFLOAT;
 constexpr VkFormat kSurfaceFormat = VK_FORMAT_R32G32_SFLOAT;
 constexpr VkFormat kTransferFormat = VK_FORMAT_R16G16B16A16_SFLOAT;
@@ -75,11 +79,11 @@ void beginRendering(VkCommandBuffer cmd, uint32_t width, uint32_t height,
 }
 
 // The frame's uniforms at binding 0, the terrain textures
-// (shaders/terrain_textures.glsl: heights, apertures, albedo, each
+// (shaders/terrain_textures.glsl: heights, apertures, albedo, slopes, each
 // kTerrainTilePages pages), then `rest`.
 std::vector<VkDescriptorType> terrainBindings(const std::vector<VkDescriptorType>& rest) {
   static_assert(AAL_TERRAIN_TEXTURE_BINDING == 1);
-  std::vector<VkDescriptorType> bindings(1 + 3 * kTerrainTilePages,
+  std::vector<VkDescriptorType> bindings(AAL_TERRAIN_TEXTURES_END,
                                          VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER);
   bindings[0] = VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER;
   bindings.insert(bindings.end(), rest.begin(), rest.end());
@@ -87,7 +91,8 @@ std::vector<VkDescriptorType> terrainBindings(const std::vector<VkDescriptorType
 }
 
 // Binding of the first descriptor after the terrain textures.
-constexpr uint32_t kAfterTerrainTextures = AAL_TERRAIN_TEXTURE_BINDING + 3 * kTerrainTilePages;
+static_assert(AAL_TERRAIN_TILE_PAGES == kTerrainTilePages);
+constexpr uint32_t kAfterTerrainTextures = AAL_TERRAIN_TEXTURES_END;
 
 // The frame's uniforms and the scene's texture pages; pages the scene does
 // not have repeat its first (the shaders never pick them).
@@ -96,8 +101,9 @@ DescriptorWrites terrainWrites(const Buffer& uniforms, const TerrainScene& scene
   DescriptorWrites writes;
   writes.uniformBuffer(0, uniforms);
   uint32_t binding = AAL_TERRAIN_TEXTURE_BINDING;
+  static_assert(AAL_TERRAIN_TEXTURE_KINDS == 4);
   for (const std::vector<Image>* pages :
-       {&scene.heightPages(), &scene.aperturePages(), &scene.albedoPages()}) {
+       {&scene.heightPages(), &scene.aperturePages(), &scene.albedoPages(), &scene.slopePages()}) {
     for (uint32_t page = 0; page < kTerrainTilePages; ++page) {
       const Image& image = page < pages->size() ? (*pages)[page] : pages->front();
       writes.sampledImage(binding++, image.view(), sampler);
@@ -141,108 +147,155 @@ const char* terrainFragmentShader(TexturePaging paging, bool gbuffer) {
   return gbuffer ? "terrain_gbuffer_paged.frag" : "terrain_paged.frag";
 }
 
-// The pipelines that sample the DEM's textures, in one TexturePaging's
-// shader variants.
-struct TerrainSamplingPipelines {
-  GraphicsPipeline terrain, terrainGBuffer, obscurance;
-
-  TerrainSamplingPipelines(const Device& device, TexturePaging paging)
-      : terrain(device, {terrainVertexShader(paging),
-                         terrainFragmentShader(paging, false),
-                         terrainBindings({VK_DESCRIPTOR_TYPE_STORAGE_BUFFER}),
-                         0,
-                         {kHdrFormat},
-                         kDepthFormat,
-                         true,
-                         true,
-                         VK_CULL_MODE_NONE}),
-        // With the obscurance pass the terrain also writes the ambient term
-        // and the surface point; without it the frame pays nothing for them.
-        terrainGBuffer(device, {terrainVertexShader(paging),
-                                terrainFragmentShader(paging, true),
-                                terrainBindings({VK_DESCRIPTOR_TYPE_STORAGE_BUFFER}),
-                                0,
-                                {kHdrFormat, kAmbientFormat, kSurfaceFormat},
-                                kDepthFormat,
-                                true,
-                                true,
-                                VK_CULL_MODE_NONE}),
-        // The obscurance pass reads heights and albedo, never apertures.
-        obscurance(device,
-                   {"fullscreen.vert",
-                    paging == TexturePaging::All ? "obscurance_paged.frag" : "obscurance.frag",
-                    terrainBindings({VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER,
-                                     VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER,
-                                     VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER}),
-                    0,
-                    {kTransferFormat},
-                    VK_FORMAT_UNDEFINED}) {}
-};
+// The constants of shaders/variant.glsl, in AAL_SPEC_* order.
+std::vector<int32_t> variantConstants(ShadingMode mode, int albedoSource, bool display) {
+  static_assert(AAL_SPEC_SHADING_MODE == 0 && AAL_SPEC_ALBEDO_SOURCE == 1 &&
+                AAL_SPEC_DISPLAY_OUTPUT == 2);
+  return {static_cast<int32_t>(mode), albedoSource, display ? 1 : 0};
+}
 
 }  // namespace
 
+// Pipelines are made for the variants frames ask for (shading mode, albedo
+// source, display or HDR output, texture paging) and kept: switching modes
+// costs one pipeline build the first time (lavapipe: ~0.1-0.3 s).
 struct TerrainRenderer::Passes {
-  GraphicsPipeline sky;
-  // Per TexturePaging: one page made with the renderer, the others for the
-  // first scene that needs them.
-  std::unique_ptr<TerrainSamplingPipelines> samplingByPaging[kTexturePagings];
-  GraphicsPipeline filter, composite, toneMap;
-  // terrainSampler: the DEM's mipmapped textures (terrain_textures.glsl).
-  Sampler terrainSampler, nearest;
+  const Device& device;
+  VkFormat displayFormat;
+  std::map<std::string, std::unique_ptr<GraphicsPipeline>> pipelines;
+  GraphicsPipeline skyTable, filter, composite, toneMap, upscale;
+  // terrainSampler: the DEM's mipmapped textures (terrain_textures.glsl);
+  // skySampler: the sky table, wrapping in azimuth.
+  Sampler terrainSampler, nearest, skySampler, linear;
 
-  // The terrain-sampling pipelines for `scene`.
-  const TerrainSamplingPipelines& sampling(const Device& device, const TerrainScene& scene) {
-    const TexturePaging paging = texturePagingOf(scene.tiles());
-    std::unique_ptr<TerrainSamplingPipelines>& pipelines = samplingByPaging[int(paging)];
-    if (!pipelines) pipelines = std::make_unique<TerrainSamplingPipelines>(device, paging);
-    return *pipelines;
-  }
-
-  explicit Passes(const Device& device)
-      // The sky is drawn after the terrain, at the far plane with the depth
-      // test on, so only the pixels the terrain left empty run its shader.
-      : sky(device, {"fullscreen.vert",
-                     "sky.frag",
+  Passes(const Device& d, VkFormat display)
+      : device(d),
+        displayFormat(display),
+        skyTable(d, {"fullscreen.vert",
+                     "sky_lut.frag",
                      {VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER},
                      0,
-                     {kHdrFormat},
-                     kDepthFormat,
-                     true,
-                     false}),
-        filter(device,
-               {"fullscreen.vert",
-                "obscurance_filter.frag",
-                {VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER},
-                0,
-                {kTransferFormat},
-                VK_FORMAT_UNDEFINED}),
-        composite(device,
-                  {"fullscreen.vert",
-                   "composite.frag",
-                   {VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER,
-                    VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER},
+                     {kSkyTableFormat},
+                     VK_FORMAT_UNDEFINED}),
+        filter(d, {"fullscreen.vert",
+                   "obscurance_filter.frag",
+                   {VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER},
                    0,
-                   {kHdrFormat},
-                   VK_FORMAT_UNDEFINED,
-                   false,
+                   {kTransferFormat},
+                   VK_FORMAT_UNDEFINED}),
+        composite(d, {"fullscreen.vert",
+                      "composite.frag",
+                      {VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER,
+                       VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER},
+                      0,
+                      {kHdrFormat},
+                      VK_FORMAT_UNDEFINED,
+                      false,
+                      false,
+                      VK_CULL_MODE_NONE,
+                      true}),
+        toneMap(d, {"fullscreen.vert",
+                    "tone_map.frag",
+                    {VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER},
+                    0,
+                    {display},
+                    VK_FORMAT_UNDEFINED}),
+        upscale(d, {"fullscreen.vert",
+                    "upscale.frag",
+                    {VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER},
+                    0,
+                    {display},
+                    VK_FORMAT_UNDEFINED}),
+        terrainSampler(d, VK_FILTER_LINEAR, true),
+        nearest(d, VK_FILTER_NEAREST),
+        skySampler(d, VK_FILTER_LINEAR, false, true),
+        linear(d, VK_FILTER_LINEAR) {}
+
+  const GraphicsPipeline& cached(const std::string& key, const GraphicsPipelineDesc& desc) {
+    std::unique_ptr<GraphicsPipeline>& p = pipelines[key];
+    if (!p) p = std::make_unique<GraphicsPipeline>(device, desc);
+    return *p;
+  }
+
+  // The terrain pass: forward into the display (or HDR) target, or with the
+  // obscurance pass into its three targets.
+  const GraphicsPipeline& terrain(TexturePaging paging, ShadingMode mode, int albedo, bool gbuffer,
+                                  bool display) {
+    display = display && !gbuffer;
+    const std::string key = "terrain/" + std::to_string(int(paging)) + "/" +
+                            std::to_string(int(mode)) + "/" + std::to_string(albedo) + "/" +
+                            (gbuffer   ? "g"
+                             : display ? "d"
+                                       : "h");
+    std::vector<VkFormat> formats{display ? displayFormat : kHdrFormat};
+    // With the obscurance pass the terrain also writes the ambient term and
+    // the surface point; without it the frame pays nothing for them.
+    if (gbuffer) formats = {kHdrFormat, kAmbientFormat, kSurfaceFormat};
+    return cached(
+        key, {terrainVertexShader(paging), terrainFragmentShader(paging, gbuffer),
+              terrainBindings({VK_DESCRIPTOR_TYPE_STORAGE_BUFFER}), 0, formats, kDepthFormat, true,
+              true, VK_CULL_MODE_NONE, false, variantConstants(mode, albedo, display)});
+  }
+
+  // The sky, after the terrain at the far plane with the depth test on, so
+  // only the pixels the terrain left empty run its shader.
+  const GraphicsPipeline& sky(ShadingMode mode, bool display) {
+    const std::string key = "sky/" + std::to_string(int(mode)) + (display ? "/d" : "/h");
+    return cached(key,
+                  {"fullscreen.vert",
+                   "sky.frag",
+                   {VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER},
+                   0,
+                   {display ? displayFormat : kHdrFormat},
+                   kDepthFormat,
+                   true,
                    false,
                    VK_CULL_MODE_NONE,
-                   true}),
-        toneMap(device,
-                {"fullscreen.vert",
-                 "tone_map.frag",
-                 {VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER},
-                 0,
-                 {kDisplayFormat},
-                 VK_FORMAT_UNDEFINED}),
-        terrainSampler(device, VK_FILTER_LINEAR, true),
-        nearest(device, VK_FILTER_NEAREST) {
-    samplingByPaging[int(TexturePaging::OnePage)] =
-        std::make_unique<TerrainSamplingPipelines>(device, TexturePaging::OnePage);
+                   false,
+                   variantConstants(mode, 0, display)});
+  }
+
+  // The composite writing display values (the mode decides raw or tone-mapped).
+  const GraphicsPipeline& compositeDisplay(ShadingMode mode) {
+    return cached(
+        "composite/" + std::to_string(int(mode)),
+        {"fullscreen.vert",
+         "composite_display.frag",
+         {VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER,
+          VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER},
+         0,
+         {displayFormat},
+         VK_FORMAT_UNDEFINED,
+         false,
+         false,
+         VK_CULL_MODE_NONE,
+         false,
+         variantConstants(mode, 0, true)});
+  }
+
+  // The obscurance pass reads heights and albedo, never apertures.
+  const GraphicsPipeline& obscurance(TexturePaging paging, ShadingMode mode, int albedo) {
+    const bool paged = paging == TexturePaging::All;
+    const std::string key = std::string("obscurance/") + (paged ? "p/" : "1/") +
+                            std::to_string(int(mode)) + "/" + std::to_string(albedo);
+    return cached(key, {"fullscreen.vert",
+                        paged ? "obscurance_paged.frag" : "obscurance.frag",
+                        terrainBindings({VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER,
+                                         VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER,
+                                         VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER}),
+                        0,
+                        {kTransferFormat},
+                        VK_FORMAT_UNDEFINED,
+                        false,
+                        false,
+                        VK_CULL_MODE_NONE,
+                        false,
+                        variantConstants(mode, albedo, false)});
   }
 };
 
-TerrainRenderer::TerrainRenderer(const Device& device, uint32_t width, uint32_t height)
+TerrainRenderer::TerrainRenderer(const Device& device, uint32_t width, uint32_t height,
+                                 VkFormat displayFormat)
     : device_(device),
       width_(width),
       height_(height),
@@ -251,8 +304,9 @@ TerrainRenderer::TerrainRenderer(const Device& device, uint32_t width, uint32_t 
                         VK_IMAGE_USAGE_TRANSFER_SRC_BIT}),
       depth_(device, {width, height, kDepthFormat, VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT,
                       VK_IMAGE_ASPECT_DEPTH_BIT}),
-      display_(device, {width, height, kDisplayFormat,
-                        VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT}),
+      display_(device, {width, height, displayFormat,
+                        VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT |
+                            VK_IMAGE_USAGE_SAMPLED_BIT}),
       ambient_(device, {width, height, kAmbientFormat,
                         VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_SAMPLED_BIT}),
       surface_(device, {width, height, kSurfaceFormat,
@@ -261,17 +315,25 @@ TerrainRenderer::TerrainRenderer(const Device& device, uint32_t width, uint32_t 
                          VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_SAMPLED_BIT}),
       filtered_(device, {width, height, kTransferFormat,
                          VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_SAMPLED_BIT}),
+      skyTable_(device, {AAL_SKY_LUT_WIDTH, AAL_SKY_LUT_HEIGHT, kSkyTableFormat,
+                         VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_SAMPLED_BIT}),
       uniforms_(device, sizeof(FrameUniforms), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT,
                 MemoryIntent::Upload),
       samples_(device, sizeof(ObscuranceSampleBlock), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT,
                MemoryIntent::Upload),
-      passes_(std::make_unique<Passes>(device)),
-      timer_(device, 7) {}
+      passes_(std::make_unique<Passes>(device, displayFormat)),
+      timer_(device, 8) {}
 
 TerrainRenderer::~TerrainRenderer() = default;
 
+int TerrainRenderer::albedoSourceOf(const TerrainScene& scene, const FrameSettings& s) {
+  return s.albedoValue       ? AAL_ALBEDO_CONSTANT
+         : scene.hasAlbedo() ? AAL_ALBEDO_IMAGE
+                             : AAL_ALBEDO_PALETTE;
+}
+
 bool TerrainRenderer::writeUniforms(const TerrainScene& scene, const FrameSettings& s) {
-  const double aspect = double(width_) / double(height_);
+  const double aspect = double(extent_.width) / double(extent_.height);
   // The depth range must hold the whole DEM: approximate it from the box.
   const glm::vec4 dem = scene.demInfo();
   const DepthRange range = depthRangeFor(s.camera, {(dem.x - 1.0) * dem.z, (dem.y - 1.0) * dem.w},
@@ -287,10 +349,8 @@ bool TerrainRenderer::writeUniforms(const TerrainScene& scene, const FrameSettin
   u.skyRadiance = glm::vec4(s.skyRadiance, s.hazeDensityPerM);
   u.dem = scene.demInfo();
   u.heights = {scene.minHeight(), scene.maxHeight(), 0.0f, s.waterAtSeaLevel ? 1.0f : 0.0f};
-  const int albedoSource = s.albedoValue       ? AAL_ALBEDO_CONSTANT
-                           : scene.hasAlbedo() ? AAL_ALBEDO_IMAGE
-                                               : AAL_ALBEDO_PALETTE;
-  u.grid = {kLodPatchQuads, scene.lod().levels(), static_cast<int>(s.mode), albedoSource};
+  u.grid = {kLodPatchQuads, scene.lod().levels(), static_cast<int>(s.mode),
+            albedoSourceOf(scene, s)};
   u.display = {s.exposure, isDebug(s.mode) ? 1.0f : 0.0f, 0.0f, 0.0f};
   u.albedoValue = glm::vec4(s.albedoValue.value_or(glm::vec3(0.0f)), 0.0f);
   const ObscuranceSettings& o = s.obscurance;
@@ -318,6 +378,7 @@ bool TerrainRenderer::writeUniforms(const TerrainScene& scene, const FrameSettin
   u.tileImage = glm::ivec4(glm::uvec4(tiles.border, 0, tiles.imageWidth(), tiles.imageHeight()));
   u.tileLayers = glm::ivec4(
       glm::uvec4(tiles.layersPerPage[0], tiles.layersPerPage[1], tiles.layersPerPage[2], 0));
+  u.extent = glm::ivec4(glm::uvec4(extent_.width, extent_.height, 0, 0));
   u.sky = s.sky;
   uniforms_.write(&u, sizeof u);
   return obscurance;
@@ -327,10 +388,10 @@ void TerrainRenderer::selectPatches(const TerrainScene& scene, const FrameSettin
   LodFrame frame;
   frame.cameraM = s.camera.position;
   frame.viewProj = viewProj_;
-  frame.viewportHeightPx = height_;
+  frame.viewportHeightPx = extent_.height;
   frame.verticalFovDeg = s.camera.verticalFovDeg;
   frame.triangleBudget = scene.triangleBudget();
-  frame.budgetScaleM = scene.lodBudgetScaleM();
+  frame.budgetErrorScale = scene.lodBudgetErrorScale();
   frame.settings = s.lod;
   selection_ = selectLodForFrame(scene.lod(), frame);
   // At least one instance, so the buffer exists when nothing is in view.
@@ -359,12 +420,54 @@ void TerrainRenderer::drawPatches(VkCommandBuffer cmd) const {
   }
 }
 
-void TerrainRenderer::record(VkCommandBuffer cmd, const TerrainScene& scene,
-                             const FrameSettings& s) {
+void TerrainRenderer::record(VkCommandBuffer cmd, const TerrainScene& scene, const FrameSettings& s,
+                             const FrameOutput& output) {
+  const float scale = std::clamp(output.resolutionScale, 0.05f, 1.0f);
+  if (scale < 1.0f && (output.image == VK_NULL_HANDLE || output.linear)) {
+    throw std::invalid_argument(
+        "TerrainRenderer::record: a reduced resolution needs an output image, not linear output");
+  }
+  extent_ = {std::max(1u, static_cast<uint32_t>(std::lround(width_ * scale))),
+             std::max(1u, static_cast<uint32_t>(std::lround(height_ * scale)))};
   const bool obscurance = writeUniforms(scene, s);
   selectPatches(scene, s);
+  const int albedo = albedoSourceOf(scene, s);
+  const TexturePaging paging = texturePagingOf(scene.tiles());
+  const bool linear = output.linear;
+  // The pass that writes display values: into the output image itself when
+  // it is drawn at full size, else into displayImage() (and scaled up).
+  const bool external = output.image != VK_NULL_HANDLE && !linear;
+  const bool intoOutput = external && extent_.width == width_ && extent_.height == height_;
+  VkRenderingAttachmentInfo display = colorAttachment(display_, false);
+  if (intoOutput) display.imageView = output.view;
+  // Without linear output or the obscurance pass the terrain and the sky
+  // write display values at once: no HDR target, no tone-map pass.
+  const bool direct = !linear && !obscurance;
   timer_.reset(cmd);
-  transitionImage(cmd, hdr_, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL);
+
+  // The sky table for this frame's sun (sky_lut.glsl).
+  transitionImage(cmd, skyTable_, VK_IMAGE_LAYOUT_UNDEFINED,
+                  VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL);
+  const VkRenderingAttachmentInfo table = colorAttachment(skyTable_, false);
+  timer_.begin(cmd, "sky table");
+  beginRendering(cmd, AAL_SKY_LUT_WIDTH, AAL_SKY_LUT_HEIGHT, &table, 1, nullptr);
+  passes_->skyTable.bind(cmd, DescriptorWrites().uniformBuffer(0, uniforms_), nullptr);
+  vkCmdDraw(cmd, 3, 1, 0, 0);
+  vkCmdEndRendering(cmd);
+  timer_.end(cmd);
+  transitionImage(cmd, skyTable_, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL,
+                  VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL);
+
+  if (intoOutput) {
+    transitionImage(cmd, output.image, VK_IMAGE_LAYOUT_UNDEFINED,
+                    VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL);
+  } else {
+    transitionImage(cmd, display_, VK_IMAGE_LAYOUT_UNDEFINED,
+                    VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL);
+  }
+  if (!direct) {
+    transitionImage(cmd, hdr_, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL);
+  }
   if (obscurance) {
     transitionImage(cmd, ambient_, VK_IMAGE_LAYOUT_UNDEFINED,
                     VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL);
@@ -372,17 +475,16 @@ void TerrainRenderer::record(VkCommandBuffer cmd, const TerrainScene& scene,
                     VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL);
   }
   transitionImage(cmd, depth_, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL);
-  transitionImage(cmd, display_, VK_IMAGE_LAYOUT_UNDEFINED,
-                  VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL);
 
   // Pass 1 and 2: the terrain, then the sky where the terrain left the far
   // plane. With the obscurance pass the terrain also writes what it and the
   // composite read (shaders/terrain_shading.glsl; cleared to "no surface":
   // ambient 0 at distance 0, texel -1), and the sky follows in a second
   // rendering with the colour and depth only.
-  VkRenderingAttachmentInfo colors[3] = {colorAttachment(hdr_, true),
+  VkRenderingAttachmentInfo colors[3] = {direct ? display : colorAttachment(hdr_, false),
                                          colorAttachment(ambient_, true),
                                          colorAttachment(surface_, true)};
+  colors[0].loadOp = VK_ATTACHMENT_LOAD_OP_CLEAR;
   colors[2].clearValue.color = {{-1.0f, -1.0f, 0.0f, 0.0f}};
   VkRenderingAttachmentInfo depth{VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO};
   depth.imageView = depth_.view();
@@ -390,10 +492,9 @@ void TerrainRenderer::record(VkCommandBuffer cmd, const TerrainScene& scene,
   depth.loadOp = VK_ATTACHMENT_LOAD_OP_CLEAR;
   depth.storeOp = obscurance ? VK_ATTACHMENT_STORE_OP_STORE : VK_ATTACHMENT_STORE_OP_DONT_CARE;
   depth.clearValue.depthStencil = {1.0f, 0};
-  beginRendering(cmd, width_, height_, colors, obscurance ? 3 : 1, &depth);
+  beginRendering(cmd, extent_.width, extent_.height, colors, obscurance ? 3 : 1, &depth);
   timer_.begin(cmd, "terrain");
-  const TerrainSamplingPipelines& sampling = passes_->sampling(device_, scene);
-  (obscurance ? sampling.terrainGBuffer : sampling.terrain)
+  passes_->terrain(paging, s.mode, albedo, obscurance, direct)
       .bind(cmd,
             terrainWrites(uniforms_, scene, passes_->terrainSampler.handle())
                 .storageBuffer(kAfterTerrainTextures, patches_),
@@ -411,36 +512,68 @@ void TerrainRenderer::record(VkCommandBuffer cmd, const TerrainScene& scene,
     colors[0].loadOp = VK_ATTACHMENT_LOAD_OP_LOAD;
     depth.loadOp = VK_ATTACHMENT_LOAD_OP_LOAD;
     depth.storeOp = VK_ATTACHMENT_STORE_OP_DONT_CARE;
-    beginRendering(cmd, width_, height_, colors, 1, &depth);
+    beginRendering(cmd, extent_.width, extent_.height, colors, 1, &depth);
   }
   timer_.begin(cmd, "sky");
-  passes_->sky.bind(cmd, DescriptorWrites().uniformBuffer(0, uniforms_), nullptr);
+  passes_->sky(s.mode, direct)
+      .bind(cmd,
+            DescriptorWrites()
+                .uniformBuffer(0, uniforms_)
+                .sampledImage(1, skyTable_.view(), passes_->skySampler.handle()),
+            nullptr);
   vkCmdDraw(cmd, 3, 1, 0, 0);
   timer_.end(cmd);
   vkCmdEndRendering(cmd);
 
-  if (obscurance) recordObscurance(cmd, scene, s.obscurance);
+  if (obscurance) recordObscurance(cmd, scene, s, linear, display);
 
-  // Last pass: tone map into the display image.
-  transitionImage(cmd, hdr_, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL,
+  // Last: the tone map into the display image, unless a pass wrote it.
+  if (linear) {
+    transitionImage(cmd, hdr_, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL,
+                    VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL);
+    beginRendering(cmd, extent_.width, extent_.height, &display, 1, nullptr);
+    timer_.begin(cmd, "tone map");
+    passes_->toneMap.bind(cmd,
+                          DescriptorWrites()
+                              .uniformBuffer(0, uniforms_)
+                              .sampledImage(1, hdr_.view(), passes_->nearest.handle()),
+                          nullptr);
+    vkCmdDraw(cmd, 3, 1, 0, 0);
+    timer_.end(cmd);
+    vkCmdEndRendering(cmd);
+  }
+  if (!intoOutput) {
+    transitionImage(cmd, display_, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL,
+                    VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL);
+  }
+  if (external && !intoOutput) recordUpscale(cmd, output);
+}
+
+void TerrainRenderer::recordUpscale(VkCommandBuffer cmd, const FrameOutput& output) {
+  transitionImage(cmd, display_, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL,
                   VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL);
-  const VkRenderingAttachmentInfo displayColor = colorAttachment(display_, false);
-  beginRendering(cmd, width_, height_, &displayColor, 1, nullptr);
-  timer_.begin(cmd, "tone map");
-  passes_->toneMap.bind(cmd,
+  transitionImage(cmd, output.image, VK_IMAGE_LAYOUT_UNDEFINED,
+                  VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL);
+  VkRenderingAttachmentInfo target = colorAttachment(display_, false);
+  target.imageView = output.view;
+  timer_.begin(cmd, "upscale");
+  beginRendering(cmd, width_, height_, &target, 1, nullptr);
+  passes_->upscale.bind(cmd,
                         DescriptorWrites()
                             .uniformBuffer(0, uniforms_)
-                            .sampledImage(1, hdr_.view(), passes_->nearest.handle()),
+                            .sampledImage(1, display_.view(), passes_->linear.handle()),
                         nullptr);
   vkCmdDraw(cmd, 3, 1, 0, 0);
-  timer_.end(cmd);
   vkCmdEndRendering(cmd);
-  transitionImage(cmd, display_, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL,
+  timer_.end(cmd);
+  transitionImage(cmd, display_, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL,
                   VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL);
 }
 
 void TerrainRenderer::recordObscurance(VkCommandBuffer cmd, const TerrainScene& scene,
-                                       const ObscuranceSettings& settings) {
+                                       const FrameSettings& frame, bool linear,
+                                       const VkRenderingAttachmentInfo& display) {
+  const ObscuranceSettings& settings = frame.obscurance;
   transitionImage(cmd, ambient_, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL,
                   VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL);
   transitionImage(cmd, surface_, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL,
@@ -449,15 +582,15 @@ void TerrainRenderer::recordObscurance(VkCommandBuffer cmd, const TerrainScene& 
                   VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL);
   // At half resolution the pass fills the top-left quarter of transfer_.
   const uint32_t scale = settings.halfResolution ? 2 : 1;
-  const uint32_t passWidth = (width_ + scale - 1) / scale,
-                 passHeight = (height_ + scale - 1) / scale;
+  const uint32_t passWidth = (extent_.width + scale - 1) / scale,
+                 passHeight = (extent_.height + scale - 1) / scale;
   const VkRenderingAttachmentInfo transfer = colorAttachment(transfer_, false);
   // Timestamps around the whole rendering: lavapipe rasterizes when a
   // rendering ends, so one inside it misses the work.
   timer_.begin(cmd, "obscurance");
   beginRendering(cmd, passWidth, passHeight, &transfer, 1, nullptr);
-  passes_->sampling(device_, scene)
-      .obscurance.bind(
+  passes_->obscurance(texturePagingOf(scene.tiles()), frame.mode, albedoSourceOf(scene, frame))
+      .bind(
           cmd,
           terrainWrites(uniforms_, scene, passes_->terrainSampler.handle())
               .uniformBuffer(kAfterTerrainTextures, samples_)
@@ -490,20 +623,28 @@ void TerrainRenderer::recordObscurance(VkCommandBuffer cmd, const TerrainScene& 
     result = &filtered_;
   }
 
-  // The composite blends onto the terrain pass's colour: order its writes
-  // before the blend's reads.
-  transitionImage(cmd, hdr_, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL,
-                  VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL);
-  VkRenderingAttachmentInfo hdr = colorAttachment(hdr_, false);
-  hdr.loadOp = VK_ATTACHMENT_LOAD_OP_LOAD;
+  DescriptorWrites writes;
+  writes.uniformBuffer(0, uniforms_)
+      .sampledImage(1, result->view(), passes_->nearest.handle())
+      .sampledImage(2, ambient_.view(), passes_->nearest.handle());
   timer_.begin(cmd, "composite");
-  beginRendering(cmd, width_, height_, &hdr, 1, nullptr);
-  passes_->composite.bind(cmd,
-                          DescriptorWrites()
-                              .uniformBuffer(0, uniforms_)
-                              .sampledImage(1, result->view(), passes_->nearest.handle())
-                              .sampledImage(2, ambient_.view(), passes_->nearest.handle()),
-                          nullptr);
+  if (linear) {
+    // Blended onto the terrain pass's colour: order its writes before the
+    // blend's reads.
+    transitionImage(cmd, hdr_, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL,
+                    VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL);
+    VkRenderingAttachmentInfo hdr = colorAttachment(hdr_, false);
+    hdr.loadOp = VK_ATTACHMENT_LOAD_OP_LOAD;
+    beginRendering(cmd, extent_.width, extent_.height, &hdr, 1, nullptr);
+    passes_->composite.bind(cmd, writes, nullptr);
+  } else {
+    // Read with the rest and written as display values: the tone map folded in.
+    transitionImage(cmd, hdr_, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL,
+                    VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL);
+    beginRendering(cmd, extent_.width, extent_.height, &display, 1, nullptr);
+    passes_->compositeDisplay(frame.mode)
+        .bind(cmd, writes.sampledImage(3, hdr_.view(), passes_->nearest.handle()), nullptr);
+  }
   vkCmdDraw(cmd, 3, 1, 0, 0);
   vkCmdEndRendering(cmd);
   timer_.end(cmd);
@@ -521,7 +662,7 @@ FrameResult TerrainRenderer::render(const TerrainScene& scene, const FrameSettin
   }
 
   submitAndWait(device_, [&](VkCommandBuffer cmd) {
-    record(cmd, scene, s);
+    record(cmd, scene, s, FrameOutput{.linear = wantLinear});
     copyImageToBuffer(cmd, display_, displayReadback);
     if (wantLinear) {
       transitionImage(cmd, hdr_, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL,

@@ -61,25 +61,49 @@ struct FrameResult {
   std::vector<uint32_t> patchesPerLevel;  // LOD patches drawn per level (0: finest)
 };
 
+// Where and how record() leaves a frame.
+struct FrameOutput {
+  // Keep the linear radiance in hdrImage() and tone-map it into the display
+  // image in a last pass (aal-render's EXR output); otherwise the passes
+  // write display values directly, the tone map folded into the last pass
+  // that writes each pixel.
+  bool linear = false;
+  // When set: the frame's display values go here (an image of the
+  // renderer's display format and size, such as a swapchain image), left in
+  // VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL. Otherwise into displayImage(),
+  // left in VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL. Not with `linear`.
+  VkImage image = VK_NULL_HANDLE;
+  VkImageView view = VK_NULL_HANDLE;
+  // Dynamic resolution: the fraction (0, 1] of the width and height drawn.
+  // Below 1 the passes draw a smaller picture into the top-left of their
+  // targets, scaled up (bilinear, shaders/upscale.frag) into `image` (which
+  // must be set).
+  float resolutionScale = 1.0f;
+};
+
 class TerrainRenderer {
  public:
   // Throws VulkanError when width/height are 0 or beyond the device limit.
-  TerrainRenderer(const Device& device, uint32_t width, uint32_t height);
+  // `displayFormat`: of displayImage(), an 8-bit UNORM RGBA or BGRA format
+  // (it holds sRGB-encoded values).
+  TerrainRenderer(const Device& device, uint32_t width, uint32_t height,
+                  VkFormat displayFormat = VK_FORMAT_R8G8B8A8_UNORM);
   ~TerrainRenderer();
 
   // Headless frame: records the passes, submits, waits and reads back.
   FrameResult render(const TerrainScene& scene, const FrameSettings& settings, bool wantLinear);
 
   // Records the frame's passes into `cmd` (the windowed viewer presents the
-  // result). Writes the frame's uniforms at once, so the previous frame's
-  // submission must have finished. Afterwards displayImage() is in
-  // VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL and hdrImage() in
+  // result; see FrameOutput for where it goes). Writes the frame's uniforms
+  // at once, so the previous frame's submission must have finished. With
+  // `output.linear` hdrImage() then holds the linear radiance, in
   // VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL.
-  void record(VkCommandBuffer cmd, const TerrainScene& scene, const FrameSettings& settings);
+  void record(VkCommandBuffer cmd, const TerrainScene& scene, const FrameSettings& settings,
+              const FrameOutput& output = {});
 
   // RGBA8 UNORM holding sRGB-encoded values (debug modes: raw values).
   const Image& displayImage() const { return display_; }
-  // RGBA16F linear radiance.
+  // RGBA16F linear radiance (after record(..., linear = true)).
   const Image& hdrImage() const { return hdr_; }
   uint32_t width() const { return width_; }
   uint32_t height() const { return height_; }
@@ -92,22 +116,28 @@ class TerrainRenderer {
   // Writes the frame's uniforms (and the obscurance sample set); returns
   // whether the obscurance pass runs this frame.
   bool writeUniforms(const TerrainScene& scene, const FrameSettings& settings);
+  // Scales the frame's passes up into the output image (dynamic resolution).
+  void recordUpscale(VkCommandBuffer cmd, const FrameOutput& output);
   // Selects the LOD patches for the camera and writes them to patches_.
   void selectPatches(const TerrainScene& scene, const FrameSettings& settings);
   // Draws the selected patches: whole nodes, then each quadrant's.
   void drawPatches(VkCommandBuffer cmd) const;
   // Obscurance/W, the 4x4 filter, then upsampling and composite onto hdr_
   // (DESIGN §6, §8).
-  void recordObscurance(VkCommandBuffer cmd, const TerrainScene& scene,
-                        const ObscuranceSettings& settings);
+  void recordObscurance(VkCommandBuffer cmd, const TerrainScene& scene, const FrameSettings& frame,
+                        bool linear, const VkRenderingAttachmentInfo& display);
+  // AAL_ALBEDO_* of the frame.
+  static int albedoSourceOf(const TerrainScene& scene, const FrameSettings& s);
 
   struct Passes;
   const Device& device_;
   uint32_t width_, height_;
+  VkExtent2D extent_{0, 0};  // drawn this frame: width_ x height_, or less (FrameOutput)
   Image hdr_, depth_, display_;
   // Terrain pass outputs for the obscurance pass and the composite (see
   // shaders/terrain.frag), and the per-pixel O/W.
   Image ambient_, surface_, transfer_, filtered_;
+  Image skyTable_;  // the sky's radiance per view direction (shaders/sky_lut.glsl)
   Buffer uniforms_, samples_;
   Buffer patches_;  // LodPatch instances of the frame (grows as needed)
   LodSelection selection_;

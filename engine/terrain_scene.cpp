@@ -7,6 +7,9 @@
 
 #include <Imath/half.h>
 
+#include "commands.h"
+#include "compute.h"
+#include "descriptors.h"
 #include "device.h"
 #include "upload.h"
 #include "vk_check.h"
@@ -105,6 +108,66 @@ void reduceAlbedo(const unsigned char* upper, const unsigned char* lower, unsign
 }
 
 }  // namespace
+
+namespace {
+
+// One mip level of one page, as a storage image view.
+class LevelView {
+ public:
+  LevelView(const Device& device, const Image& image, uint32_t level) : device_(device.handle()) {
+    VkImageViewCreateInfo info{VK_STRUCTURE_TYPE_IMAGE_VIEW_CREATE_INFO};
+    info.image = image.handle();
+    info.viewType = VK_IMAGE_VIEW_TYPE_2D_ARRAY;
+    info.format = image.desc().format;
+    info.subresourceRange = {VK_IMAGE_ASPECT_COLOR_BIT, level, 1, 0, image.desc().layers};
+    AAL_VK_CHECK(vkCreateImageView(device_, &info, nullptr, &view_));
+  }
+  ~LevelView() { vkDestroyImageView(device_, view_, nullptr); }
+  LevelView(const LevelView&) = delete;
+  LevelView& operator=(const LevelView&) = delete;
+  VkImageView handle() const { return view_; }
+
+ private:
+  VkDevice device_;
+  VkImageView view_ = VK_NULL_HANDLE;
+};
+
+}  // namespace
+
+void TerrainScene::computeSlopes(const Device& device, const Heightfield& field) {
+  struct Push {
+    int32_t level;
+    float cellSizeXM, cellSizeYM;
+  };
+  const ComputePipeline pipeline(
+      device, "slopes.comp",
+      {VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE}, sizeof(Push));
+  const Sampler nearest(device, VK_FILTER_NEAREST, true);
+  std::vector<std::unique_ptr<LevelView>> views;
+  for (const Image& page : slopes_) {
+    for (uint32_t level = 0; level < page.desc().mipLevels; ++level) {
+      views.push_back(std::make_unique<LevelView>(device, page, level));
+    }
+  }
+  submitAndWait(device, [&](VkCommandBuffer cmd) {
+    size_t view = 0;
+    for (size_t p = 0; p < slopes_.size(); ++p) {
+      const Image& page = slopes_[p];
+      transitionImage(cmd, page, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_GENERAL);
+      for (uint32_t level = 0; level < page.desc().mipLevels; ++level) {
+        const Push push{static_cast<int32_t>(level), static_cast<float>(field.cellSizeXM),
+                        static_cast<float>(field.cellSizeYM)};
+        const uint32_t w = page.desc().width >> level, h = page.desc().height >> level;
+        pipeline.record(cmd,
+                        DescriptorWrites()
+                            .sampledImage(0, heights_[p].view(), nearest.handle())
+                            .storageImage(1, views[view++]->handle()),
+                        &push, (w + 7) / 8, (h + 7) / 8, page.desc().layers);
+      }
+      transitionImage(cmd, page, VK_IMAGE_LAYOUT_GENERAL, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL);
+    }
+  });
+}
 
 TerrainTileLimits deviceTileLimits(const Device& device, const TerrainTiling& tiling) {
   VkPhysicalDeviceMaintenance3Properties maintenance3{
@@ -217,15 +280,24 @@ void TerrainScene::build(const Device& device, const Heightfield& field,
         textureBytes_ += tiles_.layerTexels() * layers * kind.texelBytes();
       }
     }
+    // Slopes: 4 bytes a texel, in the heights' pages and layers.
+    for (uint32_t page = 0; page < tiles_.pagesOf(TerrainTexture::Height); ++page) {
+      const uint32_t layers = tiles_.layersIn(TerrainTexture::Height, page);
+      slopes_.emplace_back(
+          device, ImageDesc{tiles_.imageWidth(), tiles_.imageHeight(), VK_FORMAT_R16G16_SFLOAT,
+                            kTextureUsage | VK_IMAGE_USAGE_STORAGE_BIT, VK_IMAGE_ASPECT_COLOR_BIT,
+                            layers, true, kTerrainMipLevels});
+      textureBytes_ += tiles_.layerTexels() * layers * 4;
+    }
   } catch (const VulkanError& e) {
     throw VulkanError("the DEM's textures (" + describeTerrainTiles(tiles_) + ", " +
-                      std::to_string(tiles_.texelsPerKind() * (hasAlbedo_ ? 16 : 12) >> 20) +
+                      std::to_string(tiles_.texelsPerKind() * (hasAlbedo_ ? 20 : 16) >> 20) +
                       " MiB) do not fit the device's memory: " + e.what());
   }
 
   lod_ = std::make_unique<LodQuadtree>(field);
   triangleBudget_ = triangleBudget;
-  lodBudgetScaleM_ = lodBudgetRangeScale(*lod_, triangleBudget);
+  lodBudgetErrorScale_ = aal::lodBudgetErrorScale(*lod_, triangleBudget);
   const std::vector<uint32_t> patchIndices = makeLodPatchIndices();
   indices_ = Buffer(device, patchIndices.size() * sizeof(uint32_t),
                     VK_BUFFER_USAGE_INDEX_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT,
@@ -249,6 +321,7 @@ void TerrainScene::build(const Device& device, const Heightfield& field,
   }
   upload.addBuffer(indices_, patchIndices.data(), patchIndices.size() * sizeof(uint32_t));
   upload.submit();
+  computeSlopes(device, field);
 
   demInfo_ = {static_cast<float>(field.width), static_cast<float>(field.height),
               static_cast<float>(field.cellSizeXM), static_cast<float>(field.cellSizeYM)};

@@ -33,7 +33,7 @@ class TerrainScene {
   // Uploads everything in one batch. The aperture map must belong to the DEM
   // (checkApertureMatchesDem). `albedo` may be null: a palette by height and
   // slope is used then. `triangleBudget` caps the triangles the LOD draws per
-  // frame (lodBudgetRangeScale; never below the crack-free minimum).
+  // frame (lodBudgetErrorScale; never coarser than the crack-free ranges allow).
   // `tiling` may ask for smaller tiles and fewer per page than the device
   // allows (tests, aal-render --max-tile). Throws
   // std::runtime_error (planTerrainTiles) when the DEM needs more texture
@@ -58,6 +58,10 @@ class TerrainScene {
   const std::vector<Image>& heightPages() const { return heights_; }
   const std::vector<Image>& aperturePages() const { return aperture_; }
   const std::vector<Image>& albedoPages() const { return albedo_; }
+  // Slopes of the heights (RG16F: dz/dx east, dz/dy north per mip level,
+  // shaders/slopes.comp), in the heights' tiles and pages: the terrain's
+  // normals in one fetch.
+  const std::vector<Image>& slopePages() const { return slopes_; }
   // Device memory of the textures (bytes).
   uint64_t textureBytes() const { return textureBytes_; }
   bool hasAlbedo() const { return hasAlbedo_; }
@@ -65,14 +69,16 @@ class TerrainScene {
   const Buffer& indices() const { return indices_; }
   const LodQuadtree& lod() const { return *lod_; }
   size_t triangleBudget() const { return triangleBudget_; }
-  // lodBudgetRangeScale of the quadtree and the budget (+inf: no limit).
-  double lodBudgetScaleM() const { return lodBudgetScaleM_; }
+  // lodBudgetErrorScale of the quadtree and the budget (+inf: no limit).
+  double lodBudgetErrorScale() const { return lodBudgetErrorScale_; }
   // width, height (texels), cell size x, y (metres)
   glm::vec4 demInfo() const { return demInfo_; }
   float minHeight() const { return minHeight_; }
   float maxHeight() const { return maxHeight_; }
 
  private:
+  // Fills slopes_ from heights_ on the device (after their upload).
+  void computeSlopes(const Device& device, const Heightfield& field);
   // `apertureRows` writes whole DEM rows of RGBA16F bent normal + arc length.
   void build(const Device& device, const Heightfield& field,
              const std::function<void(uint32_t firstRow, uint32_t endRow, void* destination)>&
@@ -80,13 +86,13 @@ class TerrainScene {
              const AlbedoImage* albedo, size_t triangleBudget, const TerrainTiling& tiling);
 
   TerrainTileLayout tiles_;
-  std::vector<Image> heights_, aperture_, albedo_;
+  std::vector<Image> heights_, aperture_, albedo_, slopes_;
   uint64_t textureBytes_ = 0;
   Buffer indices_;
   bool hasAlbedo_ = false;
   std::unique_ptr<LodQuadtree> lod_;
   size_t triangleBudget_ = 0;
-  double lodBudgetScaleM_ = 0;
+  double lodBudgetErrorScale_ = 0;
   glm::vec4 demInfo_{0.0f};
   float minHeight_ = 0, maxHeight_ = 0;
 };

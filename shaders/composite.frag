@@ -1,51 +1,5 @@
 #version 460
-// Upsampling and composite of W (DESIGN §5-§6). At half resolution each pass
-// pixel holds the point of the first image pixel of its 2x2 block: an image
-// pixel takes the pass pixels at its own position or, between two, both, of
-// those whose view distance is within AAL_OBSCURANCE_DEPTH_TOLERANCE of its
-// own (the same surface). The result, ambient x T x W, is added (blending
-// ONE + ONE) to the terrain pass's direct x T + in-scattering, giving
-// (direct + ambient W) T + L_sky (1 - T).
+// Composite of W added to the HDR target (see composite.glsl).
 #extension GL_GOOGLE_include_directive : require
 
-#include "frame.glsl"
-
-layout(set = 0, binding = 1) uniform sampler2D transferImage;  // rgb W or O, a distance (km)
-layout(set = 0, binding = 2) uniform sampler2D ambientImage;   // rgb ambient x T, a distance (km)
-
-layout(location = 0) in vec2 uv;  // unused: pixels are addressed by gl_FragCoord
-layout(location = 0) out vec4 color;
-
-void main() {
-  ivec2 pixel = ivec2(gl_FragCoord.xy);
-  vec4 ambient = texelFetch(ambientImage, pixel, 0);
-  if (ambient.a <= 0.0) {  // sky
-    color = vec4(0.0);
-    return;
-  }
-  int scale = frame.obscurancePass.z;
-  ivec2 size = (textureSize(ambientImage, 0) + scale - 1) / scale;
-  ivec2 first = pixel / scale;
-  // Odd pixels at half resolution lie between two pass pixels.
-  ivec2 last = min(first + (pixel - first * scale), size - 1);
-  float tolerance = float(AAL_OBSCURANCE_DEPTH_TOLERANCE) * ambient.a;
-  vec3 sum = vec3(0.0);
-  float count = 0.0;
-  vec3 nearest = vec3(1.0);  // fallback: the tap closest in depth
-  float nearestDifference = 1e30;
-  for (int y = first.y; y <= last.y; ++y) {
-    for (int x = first.x; x <= last.x; ++x) {
-      vec4 t = texelFetch(transferImage, ivec2(x, y), 0);
-      float difference = abs(t.a - ambient.a);
-      if (t.a > 0.0 && difference <= tolerance) {
-        sum += t.rgb;
-        count += 1.0;
-      } else if (t.a > 0.0 && difference < nearestDifference) {
-        nearest = t.rgb;
-        nearestDifference = difference;
-      }
-    }
-  }
-  vec3 w = count > 0.0 ? sum / count : nearest;
-  color = vec4(ambient.rgb * w, 0.0);
-}
+#include "composite.glsl"

@@ -21,6 +21,13 @@
 #define AAL_MODE_DEBUG_OBSCURANCE 8
 #define AAL_MODE_DEBUG_TRANSFER 9
 
+// Specialisation constant IDs of the pipelines that shade (shaders/variant.glsl):
+// lavapipe runs every arm of a branch, so the frame's shading mode, albedo
+// source and output are compiled in, not branched on.
+#define AAL_SPEC_SHADING_MODE 0
+#define AAL_SPEC_ALBEDO_SOURCE 1
+#define AAL_SPEC_DISPLAY_OUTPUT 2
+
 // Workgroup size of the shading parity compute shader.
 #define AAL_SHADING_PARITY_GROUP_SIZE 64
 
@@ -59,6 +66,12 @@
 #define AAL_TERRAIN_TILE_BORDER 64
 #define AAL_TERRAIN_TILE_PAGES 4
 #define AAL_TERRAIN_TEXTURE_BINDING 1
+// Kinds of DEM texture bound from AAL_TERRAIN_TEXTURE_BINDING, each in
+// AAL_TERRAIN_TILE_PAGES pages: heights, apertures, albedo, slopes.
+#define AAL_TERRAIN_TEXTURE_KINDS 4
+// The first binding after them.
+#define AAL_TERRAIN_TEXTURES_END \
+  (AAL_TERRAIN_TEXTURE_BINDING + AAL_TERRAIN_TEXTURE_KINDS * AAL_TERRAIN_TILE_PAGES)
 // Workgroup size of the tile lookup parity compute shader.
 #define AAL_TILE_PARITY_GROUP_SIZE 64
 
@@ -83,6 +96,10 @@
 #define AAL_FILMIC_E 0.02
 #define AAL_FILMIC_F 0.30
 #define AAL_FILMIC_W 11.2
+// The sky's radiance per view direction, drawn into a small table every frame
+// (shaders/sky_lut.glsl): azimuth across, sqrt(sin(elevation)) down.
+#define AAL_SKY_LUT_WIDTH 256
+#define AAL_SKY_LUT_HEIGHT 128
 // Workgroup size of the sky and tone-map parity compute shaders.
 #define AAL_SKY_PARITY_GROUP_SIZE 64
 

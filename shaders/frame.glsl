@@ -22,6 +22,7 @@ layout(set = 0, binding = 0, std140) uniform Frame {
   ivec4 tileGrid;        // tile core width, height (texels), tiles across, down (tile_lookup.glsl)
   ivec4 tileImage;       // tile border, 0, tile image width, height (texels)
   ivec4 tileLayers;      // tiles (layers) per page: heights, apertures, albedo, 0
+  ivec4 extent;          // pixels drawn this frame (dynamic resolution: fewer than the targets')
   PreethamSky sky;
 }
 frame;

@@ -21,7 +21,7 @@ void main() {
     return;
   }
   int scale = frame.obscurancePass.z;
-  ivec2 size = (textureSize(transferImage, 0) + scale - 1) / scale;
+  ivec2 size = (frame.extent.xy + scale - 1) / scale;
   float tolerance = float(AAL_OBSCURANCE_DEPTH_TOLERANCE) * centre.a;
   vec3 sum = vec3(0.0);
   float count = 0.0;

@@ -9,9 +9,10 @@
 #include "obscurance.glsl"
 #include "palette.glsl"
 #include "terrain_textures.glsl"
+#include "variant.glsl"
 
 // After the terrain textures (AAL_TERRAIN_TEXTURE_BINDING...).
-#define AAL_OBSCURANCE_BINDING (AAL_TERRAIN_TEXTURE_BINDING + 3 * AAL_TERRAIN_TILE_PAGES)
+#define AAL_OBSCURANCE_BINDING AAL_TERRAIN_TEXTURES_END
 layout(set = 0, binding = AAL_OBSCURANCE_BINDING, std140) uniform ObscuranceSamples {
   // xyz: unit-radius (X, Y, Z) of seed 000 eq. 8; set k's sample i at
   // k * AAL_OBSCURANCE_MAX_SAMPLES + i.
@@ -38,10 +39,10 @@ float obscuranceHeight(vec2 texel) {
 // its normal would cost four more fetches in the loop (which made the pass
 // 2.5x slower on lavapipe), so the shaded point's normal stands in.
 vec3 obscuranceAlbedo(vec2 texel, float heightM, vec3 normal) {
-  if (frame.grid.w == AAL_ALBEDO_IMAGE) {
+  if (kAlbedoSource == AAL_ALBEDO_IMAGE) {
     return terrainAlbedo(texel);
   }
-  if (frame.grid.w == AAL_ALBEDO_CONSTANT) return frame.albedoValue.rgb;
+  if (kAlbedoSource == AAL_ALBEDO_CONSTANT) return frame.albedoValue.rgb;
   return paletteAlbedo(heightM, normal);
 }
 
@@ -53,7 +54,7 @@ void main() {
   // At half resolution each pass pixel takes the surface point of the first
   // image pixel of its 2x2 block.
   ivec2 pixel = ivec2(gl_FragCoord.xy);
-  ivec2 source = min(pixel * frame.obscurancePass.z, textureSize(surfaceImage, 0) - 1);
+  ivec2 source = min(pixel * frame.obscurancePass.z, frame.extent.xy - 1);
   vec2 texel = texelFetch(surfaceImage, source, 0).xy;
   float distanceKm = texelFetch(ambientImage, source, 0).a;
   if (texel.x < 0.0) {
@@ -64,7 +65,7 @@ void main() {
   int set = frame.obscurancePass.y != 0 ? interleavePatternIndex(pixel) : 0;
   vec4 e = estimateObscurance(texel, frame.dem.zw, set, int(frame.obscurance.y), frame.obscurance.x,
                               int(frame.obscurance.z), 0.0);
-  transfer = vec4(frame.grid.z == AAL_MODE_DEBUG_OBSCURANCE ? vec3(e.a) : e.rgb, distanceKm);
+  transfer = vec4(kShadingMode == AAL_MODE_DEBUG_OBSCURANCE ? vec3(e.a) : e.rgb, distanceKm);
 }
 
 #endif

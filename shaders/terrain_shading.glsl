@@ -1,7 +1,9 @@
-// Terrain shading: ambient aperture lighting (DESIGN §5) plus aerial
-// perspective; the body of terrain.frag (forward: the radiance) and
-// terrain_gbuffer.frag (AAL_TERRAIN_GBUFFER: also what the obscurance pass
-// and the composite read, DESIGN §6, §8).
+// Terrain shading: ambient aperture lighting (docs/rendering.md) plus aerial
+// perspective; the body of terrain.frag (forward: the radiance, or its
+// display value when kDisplayOutput) and terrain_gbuffer.frag
+// (AAL_TERRAIN_GBUFFER: also what the obscurance pass and the composite
+// read, docs/obscurance.md). The mode and albedo source are specialisation
+// constants (variant.glsl).
 #ifndef AAL_TERRAIN_SHADING_GLSL
 #define AAL_TERRAIN_SHADING_GLSL
 
@@ -9,6 +11,8 @@
 #include "palette.glsl"
 #include "shading.glsl"
 #include "terrain_textures.glsl"
+#include "tone_map.glsl"
+#include "variant.glsl"
 
 layout(location = 0) in vec3 worldPosition;
 layout(location = 1) in vec2 texelPosition;
@@ -29,20 +33,16 @@ float terrainFragmentLod(vec2 texel) {
   return max(0.0, 0.5 * log2(max(dot(dx, dx), dot(dy, dy))));
 }
 
-// Normal from central differences of the heights at level of detail `lod`,
-// one of its texels (2^lod of the DEM's) apart.
+// Normal from the slope texture at level of detail `lod`: central
+// differences of the heights one of its texels (2^lod of the DEM's) apart.
 vec3 surfaceNormal(vec2 texel, float lod) {
-  float step = exp2(lod);
-  float dx = terrainHeightLod(texel + vec2(step, 0), lod) -
-             terrainHeightLod(texel - vec2(step, 0), lod);
-  float dy = terrainHeightLod(texel - vec2(0, step), lod) -
-             terrainHeightLod(texel + vec2(0, step), lod);  // north: row - 1
-  return normalize(vec3(-dx / (2.0 * step * frame.dem.z), -dy / (2.0 * step * frame.dem.w), 1.0));
+  vec2 slope = terrainSlopeLod(texel, lod);
+  return normalize(vec3(-slope, 1.0));
 }
 
 vec3 albedoAt(vec2 texel, float lod, float z, vec3 normal) {
-  if (frame.grid.w == AAL_ALBEDO_IMAGE) return terrainAlbedoLod(texel, lod);
-  if (frame.grid.w == AAL_ALBEDO_CONSTANT) return frame.albedoValue.rgb;
+  if (kAlbedoSource == AAL_ALBEDO_IMAGE) return terrainAlbedoLod(texel, lod);
+  if (kAlbedoSource == AAL_ALBEDO_CONSTANT) return frame.albedoValue.rgb;
   return paletteAlbedo(z, normal);
 }
 
@@ -65,7 +65,7 @@ void main() {
   float distance = length(worldPosition - frame.cameraPos.xyz);
   float transmittance = exp(-frame.skyRadiance.w * distance);
   vec3 inScattered = frame.skyRadiance.rgb * (1.0 - transmittance);
-  int mode = frame.grid.z;
+  const int mode = kShadingMode;
 #ifdef AAL_TERRAIN_GBUFFER
   surfaceOut = texelPosition;
   ambientOut = vec4(0.0, 0.0, 0.0, distance * 1e-3);
@@ -79,7 +79,8 @@ void main() {
   }
 #else
   vec3 radiance = shade(s, mode);
-  if (frame.display.y < 0.5) radiance = radiance * transmittance + inScattered;
+  if (!kRawOutput) radiance = radiance * transmittance + inScattered;
+  if (kDisplayOutput) radiance = displayValue(radiance, frame.display.x, kRawOutput);
   color = vec4(radiance, 1.0);
 #endif
 }

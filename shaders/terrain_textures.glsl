@@ -1,5 +1,5 @@
-// The DEM's textures (heights, apertures, albedo) as every pass samples
-// them: a texel position of the whole DEM goes through the tile lookup
+// The DEM's textures (heights, apertures, albedo, slopes) as every pass
+// samples them: a texel position of the whole DEM goes through the tile lookup
 // (tile_lookup.glsl, engine/terrain_tiles.h) to a layer of one of
 // AAL_TERRAIN_TILE_PAGES 2D array images per kind. A single-tile scene has
 // one page of one layer whose image is the DEM: the same fetches as one
@@ -26,6 +26,10 @@
 AAL_TERRAIN_PAGES(terrainHeight, AAL_TERRAIN_TEXTURE_BINDING)
 AAL_TERRAIN_PAGES(terrainAperture, AAL_TERRAIN_TEXTURE_BINDING + AAL_TERRAIN_TILE_PAGES)
 AAL_TERRAIN_PAGES(terrainAlbedo, AAL_TERRAIN_TEXTURE_BINDING + 2 * AAL_TERRAIN_TILE_PAGES)
+AAL_TERRAIN_PAGES(terrainSlope, AAL_TERRAIN_TEXTURE_BINDING + 3 * AAL_TERRAIN_TILE_PAGES)
+#if AAL_TERRAIN_TEXTURE_KINDS != 4
+#error "terrain_textures.glsl declares four kinds"
+#endif
 
 // Trilinear fetch at an explicit LOD (valid in any control flow: 0 is the
 // DEM's own texels) from the tile's page. Lavapipe runs every arm of a branch for every fetch (a
@@ -99,6 +103,14 @@ vec3 terrainAlbedoLod(vec2 texel, float lod) {
 }
 vec3 terrainAlbedo(vec2 texel) {
   return terrainAlbedoLod(texel, 0.0);
+}
+
+// Slope of the heights (dz/dx east, dz/dy north; m/m) at level of detail
+// `lod`: the central differences of each level's heights one level texel
+// apart (slopes.comp), laid out in tiles and pages as the heights.
+vec2 terrainSlopeLod(vec2 texel, float lod) {
+  TerrainTileTexel t = terrainTexel(texel, frame.tileLayers.x);
+  return AAL_TERRAIN_FETCH_HEIGHT(terrainSlope, t, lod).rg;
 }
 
 #endif

@@ -10,7 +10,7 @@
 #include "lod.glsl"
 #include "terrain_textures.glsl"
 
-layout(set = 0, binding = AAL_TERRAIN_TEXTURE_BINDING + 3 * AAL_TERRAIN_TILE_PAGES,
+layout(set = 0, binding = AAL_TERRAIN_TEXTURES_END,
        std430) readonly buffer Patches {
   LodPatch patches[];
 };

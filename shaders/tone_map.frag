@@ -12,6 +12,6 @@ layout(location = 0) in vec2 uv;
 layout(location = 0) out vec4 color;
 
 void main() {
-  vec3 hdr = textureLod(hdrImage, uv, 0.0).rgb;
-  color = vec4(frame.display.y > 0.5 ? clamp(hdr, 0.0, 1.0) : toneMap(hdr, frame.display.x), 1.0);
+  vec3 hdr = texelFetch(hdrImage, ivec2(gl_FragCoord.xy), 0).rgb;
+  color = vec4(displayValue(hdr, frame.display.x, frame.display.y > 0.5), 1.0);
 }

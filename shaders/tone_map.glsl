@@ -31,4 +31,10 @@ vec3 toneMap(vec3 linearHdr, float exposure) {
   return linearToSrgb(clamp(filmicCurve(linearHdr * exposure), 0.0, 1.0));
 }
 
+// What the display shows of linear HDR radiance: toneMap, or for debug views
+// (`raw`) the values themselves clamped to [0, 1].
+vec3 displayValue(vec3 linearHdr, float exposure, bool raw) {
+  return raw ? clamp(linearHdr, 0.0, 1.0) : toneMap(linearHdr, exposure);
+}
+
 #endif

@@ -9,6 +9,9 @@
 #include <glm/common.hpp>
 #include <glm/geometric.hpp>
 
+#include "config.h"
+#include "height_mips.h"
+
 namespace aal {
 
 namespace {
@@ -68,7 +71,7 @@ class Selector {
     const int root = tree_.levels() - 1;
     select(root, 0, 0);
     LodSelection s;
-    s.scaleM = ranges_.scaleM;
+    s.errorScale = ranges_.errorScale;
     s.patchesPerLevel.assign(static_cast<size_t>(tree_.levels()), 0);
     s.wholeCount = static_cast<uint32_t>(whole_.size());
     s.patches = whole_;
@@ -140,7 +143,10 @@ LodQuadtree::LodQuadtree(const Heightfield& field)
               hi = std::max(hi, *mx);
             }
             return glm::vec2(lo, hi);
-          }) {}
+          }) {
+  measureErrors(field);
+  summarise();
+}
 
 LodQuadtree::LodQuadtree(int width, int height, glm::dvec2 cellSizeM,
                          const std::function<glm::vec2(int, int)>& leafHeights)
@@ -155,6 +161,12 @@ LodQuadtree::LodQuadtree(int width, int height, glm::dvec2 cellSizeM,
     for (int i = 0; i < leavesX; ++i) heights_[0][size_t(j) * leavesX + i] = leafHeights(i, j);
   });
   buildInnerNodes();
+  // Without the heights: the surface lies within the node's height range.
+  errors_.resize(heights_.size());
+  for (size_t level = 0; level < heights_.size(); ++level) {
+    for (const glm::vec2& h : heights_[level]) errors_[level].push_back(level == 0 ? 0 : h.y - h.x);
+  }
+  summarise();
 }
 
 void LodQuadtree::buildInnerNodes() {
@@ -177,7 +189,69 @@ void LodQuadtree::buildInnerNodes() {
       }
     }
   }
-  for (int level = 0; level < levels; ++level) {
+}
+
+void LodQuadtree::measureErrors(const Heightfield& field) {
+  // The vertex shader reads level l's heights at level l's grid points
+  // (shaders/terrain_vertex.glsl), so a patch is the triangulation of those
+  // heights. Level l - 1's triangles tile level l's (both split their quads
+  // north-west to south-east), so the difference of the two surfaces is
+  // linear on level l - 1's triangles and largest at its vertices: a node's
+  // error is the largest difference there plus its children's errors, down
+  // to level 0, which is the DEM's own surface.
+  const HeightMips mips(field, AAL_TERRAIN_MIP_LEVELS);
+  errors_.assign(heights_.size(), {});
+  errors_[0].assign(heights_[0].size(), 0.0f);
+  constexpr int n = kLodPatchQuads, fine = 2 * kLodPatchQuads + 1;
+  for (int level = 1; level < levels(); ++level) {
+    const int nx = nodesAcross(level), ny = nodesDown(level);
+    const int cx = nodesAcross(level - 1), cy = nodesDown(level - 1);
+    errors_[size_t(level)].assign(size_t(nx) * ny, 0.0f);
+    const double step = double(1 << level), fineStep = 0.5 * step;
+    const double lastColumn = field.width - 1, lastRow = field.height - 1;
+    tbb::parallel_for(0, nx * ny, [&](int node) {
+      const int i = node % nx, j = node / nx;
+      const double column0 = double(i) * n * step, row0 = double(j) * n * step;
+      // Level l's vertex heights over the node, then level l - 1's at its
+      // grid points against the triangles through them.
+      std::vector<float> vertex(size_t(n + 1) * (n + 1));
+      for (int b = 0; b <= n; ++b) {
+        for (int a = 0; a <= n; ++a) {
+          vertex[size_t(b) * (n + 1) + a] = mips.at(level, std::min(column0 + a * step, lastColumn),
+                                                    std::min(row0 + b * step, lastRow));
+        }
+      }
+      const auto v = [&](int a, int b) { return vertex[size_t(b) * (n + 1) + a]; };
+      float worst = 0;
+      for (int y = 0; y < fine; ++y) {
+        for (int x = 0; x < fine; ++x) {
+          const int a = x / 2, b = y / 2;
+          const bool oddX = x % 2 != 0, oddY = y % 2 != 0;
+          const float coarse = oddX && oddY ? 0.5f * (v(a, b) + v(a + 1, b + 1))  // on the diagonal
+                               : oddX       ? 0.5f * (v(a, b) + v(a + 1, b))
+                               : oddY       ? 0.5f * (v(a, b) + v(a, b + 1))
+                                            : v(a, b);
+          const float finer = mips.at(level - 1, std::min(column0 + x * fineStep, lastColumn),
+                                      std::min(row0 + y * fineStep, lastRow));
+          worst = std::max(worst, std::abs(coarse - finer));
+        }
+      }
+      float children = 0;
+      for (int q = 0; q < 4; ++q) {
+        const int ci = 2 * i + q % 2, cj = 2 * j + q / 2;
+        if (ci < cx && cj < cy) {
+          children = std::max(children, errors_[size_t(level - 1)][size_t(cj) * cx + ci]);
+        }
+      }
+      errors_[size_t(level)][size_t(node)] = worst + children;
+    });
+  }
+}
+
+void LodQuadtree::summarise() {
+  maxDiagonalM_.clear();
+  maxErrorM_.clear();
+  for (int level = 0; level < levels(); ++level) {
     double worst = 0;
     for (int j = 0; j < nodesDown(level); ++j) {
       for (int i = 0; i < nodesAcross(level); ++i) {
@@ -186,6 +260,8 @@ void LodQuadtree::buildInnerNodes() {
       }
     }
     maxDiagonalM_.push_back(worst);
+    const std::vector<float>& e = errors_[size_t(level)];
+    maxErrorM_.push_back(e.empty() ? 0.0 : double(*std::max_element(e.begin(), e.end())));
   }
 }
 
@@ -201,6 +277,10 @@ glm::vec2 LodQuadtree::nodeHeights(int level, int i, int j) const {
   return heights_[size_t(level)][size_t(j) * nodesAcross(level) + i];
 }
 
+float LodQuadtree::nodeErrorM(int level, int i, int j) const {
+  return errors_[size_t(level)][size_t(j) * nodesAcross(level) + i];
+}
+
 LodBox LodQuadtree::nodeBox(int level, int i, int j) const {
   const int size = nodeTexels(level);
   const int c0 = i * size, c1 = std::min(c0 + size, width_ - 1);
@@ -213,18 +293,31 @@ LodBox LodQuadtree::nodeBox(int level, int i, int j) const {
 }
 
 size_t LodQuadtree::memoryBytes() const {
-  size_t bytes = sizeof(*this) + maxDiagonalM_.size() * sizeof(double);
+  size_t bytes = sizeof(*this) + (maxDiagonalM_.size() + maxErrorM_.size()) * sizeof(double);
   for (const auto& level : heights_) bytes += level.capacity() * sizeof(glm::vec2);
+  for (const auto& level : errors_) bytes += level.capacity() * sizeof(float);
   return bytes;
 }
 
-LodRanges makeLodRanges(const LodQuadtree& tree, double scaleM, bool morph) {
+LodRanges makeLodRanges(const LodQuadtree& tree, double errorScale, bool morph) {
   LodRanges r;
-  r.scaleM = std::min(scaleM, kUnboundedRangeM);
+  r.errorScale = std::max(0.0, errorScale);
   const int root = tree.levels() - 1;
+  const glm::dvec2 cell = tree.cellSizeM();
+  constexpr double f = kLodMorphFraction;
   double previous = 0;
   for (int level = 0; level <= root; ++level) {
-    const double range = level == root ? kUnboundedRangeM * 4 : r.scaleM * double(1 << level);
+    double range = kUnboundedRangeM * 4;
+    if (level < root) {
+      // Crack-free: D_(l-1) <= (1 - f)(range_l - range_(l-1)) (Strugar §3.2).
+      range = level == 0 ? std::max(cell.x, cell.y)
+                         : previous + tree.maxNodeDiagonalM(level - 1) / (1.0 - f);
+      // Level l + 1 acceptable where level l starts morphing into it:
+      // range_l - f (range_l - range_(l-1)) >= P e_(l+1).
+      const double acceptable = r.errorScale * tree.maxErrorM(level + 1);
+      range = std::max(range, (acceptable - f * previous) / (1.0 - f));
+      range = std::min(range, kUnboundedRangeM);
+    }
     r.rangeM.push_back(range);
     // Strugar §3.3: the morph covers the last kLodMorphFraction of the
     // level's own distance band [range_(l-1), range_l]. The root has no
@@ -232,35 +325,21 @@ LodRanges makeLodRanges(const LodQuadtree& tree, double scaleM, bool morph) {
     if (level == root || !morph) {
       r.morphM.emplace_back(kLodNoMorph, 2 * kLodNoMorph);
     } else {
-      r.morphM.emplace_back(range - kLodMorphFraction * (range - previous), range);
+      r.morphM.emplace_back(range - f * (range - previous), range);
     }
     previous = range;
   }
   return r;
 }
 
-double lodMinimumRangeScale(const LodQuadtree& tree) {
-  // D_l <= (1 - f)(range_(l+1) - range_l) = (1 - f) K 2^l for l + 1 below the root.
-  const glm::dvec2 cell = tree.cellSizeM();
-  double k = std::max(cell.x, cell.y);
-  for (int level = 0; level + 2 < tree.levels(); ++level) {
-    k = std::max(k, tree.maxNodeDiagonalM(level) / ((1.0 - kLodMorphFraction) * (1 << level)));
-  }
-  return k;
-}
-
-double lodPixelRangeScale(const LodQuadtree& tree, double viewportHeightPx, double verticalFovDeg,
-                          double maxQuadPixels) {
-  // A level-l quad (2^l cells of c metres) d metres away covers about
-  // 2^l c f / d pixels, f = (H / 2) / tan(fov / 2) the focal length in
-  // pixels; it is drawn from range_(l-1) = K 2^(l-1) on, where it covers
-  // 2 c f / K pixels at most.
-  const glm::dvec2 cell = tree.cellSizeM();
+double lodViewErrorScale(double viewportHeightPx, double verticalFovDeg, double maxErrorPixels) {
+  // An error of e metres d metres away covers about e f / d pixels, f =
+  // (H / 2) / tan(fov / 2) the focal length in pixels.
   const double focalPx = 0.5 * viewportHeightPx / std::tan(0.5 * verticalFovDeg * kPi / 180.0);
-  return 2.0 * std::max(cell.x, cell.y) * focalPx / maxQuadPixels;
+  return focalPx / maxErrorPixels;
 }
 
-double lodBudgetRangeScale(const LodQuadtree& tree, size_t triangleBudget) {
+double lodBudgetErrorScale(const LodQuadtree& tree, size_t triangleBudget) {
   const glm::dvec2 cell = tree.cellSizeM();
   const glm::dvec2 extent((tree.demWidth() - 1) * cell.x, (tree.demHeight() - 1) * cell.y);
   std::vector<glm::dvec3> cameras;
@@ -282,15 +361,20 @@ double lodBudgetRangeScale(const LodQuadtree& tree, size_t triangleBudget) {
     }
     return most;
   };
-  const double lo = lodMinimumRangeScale(tree);
-  // Level 0 unmorphed over the whole DEM box from any of the cameras.
-  const double full = glm::length(tree.nodeBox(tree.levels() - 1, 0, 0).max -
-                                  tree.nodeBox(tree.levels() - 1, 0, 0).min) /
-                      (1.0 - kLodMorphFraction);
-  if (worst(std::max(full, lo)) <= triangleBudget) return std::numeric_limits<double>::infinity();
-  if (worst(lo) > triangleBudget) return lo;
-  double a = lo, b = std::max(full, lo);  // worst(a) fits, worst(b) does not
-  for (int step = 0; step < 30 && b > a * 1.001; ++step) {
+  // Beyond this scale every level's range reaches past the whole DEM (or
+  // no error is worth refining for): as fine as the selection gets.
+  const LodBox root = tree.nodeBox(tree.levels() - 1, 0, 0);
+  double smallestError = std::numeric_limits<double>::infinity();
+  for (int level = 1; level < tree.levels(); ++level) {
+    if (tree.maxErrorM(level) > 0) smallestError = std::min(smallestError, tree.maxErrorM(level));
+  }
+  if (!std::isfinite(smallestError)) return std::numeric_limits<double>::infinity();
+  const double finest =
+      2.0 * glm::length(root.max - root.min) / ((1.0 - kLodMorphFraction) * smallestError);
+  if (worst(finest) <= triangleBudget) return std::numeric_limits<double>::infinity();
+  double a = finest * 1e-6, b = finest;  // worst(a) fits, worst(b) does not
+  if (worst(a) > triangleBudget) return worst(0) <= triangleBudget ? a * 1e-3 : 0;
+  for (int step = 0; step < 40 && b > a * 1.001; ++step) {
     const double mid = std::sqrt(a * b);
     (worst(mid) <= triangleBudget ? a : b) = mid;
   }
@@ -303,17 +387,16 @@ LodSelection selectLod(const LodQuadtree& tree, const LodRanges& ranges, glm::dv
 }
 
 LodSelection selectLodForFrame(const LodQuadtree& tree, const LodFrame& frame) {
-  const double minimum = lodMinimumRangeScale(tree);
-  const double pixel = lodPixelRangeScale(tree, frame.viewportHeightPx, frame.verticalFovDeg,
-                                          frame.settings.maxQuadPixels);
-  double scale = std::max(minimum, std::min(frame.budgetScaleM, pixel));
+  double scale = std::min(frame.budgetErrorScale,
+                          lodViewErrorScale(frame.viewportHeightPx, frame.verticalFovDeg,
+                                            frame.settings.maxErrorPixels));
   LodSelection s;
   for (int attempt = 0; attempt < 16; ++attempt) {
     s = selectLod(tree, makeLodRanges(tree, scale, frame.settings.morph), frame.cameraM,
                   &frame.viewProj);
-    if (s.triangles <= frame.triangleBudget || scale <= minimum) break;
-    scale = std::max(minimum, std::min(scale, kUnboundedRangeM) * 0.95 *
-                                  std::sqrt(double(frame.triangleBudget) / double(s.triangles)));
+    if (s.triangles <= frame.triangleBudget || scale <= 0) break;
+    scale *= 0.8 * std::sqrt(double(frame.triangleBudget) / double(s.triangles));
+    if (attempt == 14) scale = 0;  // the coarsest selection there is
   }
   return s;
 }

@@ -1,21 +1,27 @@
 // Quadtree level of detail for the terrain (CDLOD: Strugar 2009,
 // "Continuous Distance-Dependent Level of Detail for Rendering Heightmaps",
-// JGT 14(4); DESIGN §8). The DEM is covered by a quadtree whose leaves
+// JGT 14(4); docs/rendering.md). The DEM is covered by a quadtree whose leaves
 // (level 0) span kLodPatchQuads DEM cells; a node of level l spans
 // kLodPatchQuads * 2^l cells and is drawn as one patch (terrain/lod_patch.h)
 // with quads 2^l cells wide. Every frame the CPU selects nodes by their
-// distance to the camera — level l within range_l = K 2^l, so a quad covers
-// about the same number of pixels at every level — and culls the ones outside
-// the view frustum; the vertex shader morphs each patch onto the coarser grid
-// over the last kLodMorphFraction of its range, so levels switch without
-// popping and neighbouring levels meet without cracks or T-junctions.
+// distance to the camera — level l within range_l of it — and culls the ones
+// outside the view frustum; the vertex shader morphs each patch onto the
+// coarser grid over the last kLodMorphFraction of its range, so levels switch
+// without popping and neighbouring levels meet without cracks or T-junctions.
+//
+// The ranges come from the geometric error of each level (issue 15): every
+// node knows how far its drawn surface may lie from the DEM's (a bound, in
+// metres, of the height difference), and a level is drawn only where its
+// largest error projects to at most LodSettings::maxErrorPixels on screen. The
+// per-pixel normals, apertures and albedo come from textures, so a coarse
+// mesh over smooth or distant terrain loses little of the picture.
 //
 // Crack-free by construction: a node of level l touches only areas of level l
 // or l + 1, and where it touches level l + 1 its vertices are fully morphed
 // while the coarser ones are not morphing yet, when every node of level l is
 // no wider (3D box diagonal D_l) than (1 - kLodMorphFraction) of the distance
-// between range_l and range_(l+1) (Strugar §3.2). lodMinimumRangeScale gives
-// the smallest K with that property; every range scale used is at least it.
+// between range_l and range_(l+1) (Strugar §3.2). makeLodRanges keeps every
+// pair of ranges at least that far apart.
 #pragma once
 
 #include <array>
@@ -39,9 +45,14 @@ constexpr double kLodMorphFraction = 0.3;
 
 // Per-frame choices that are the user's (FrameSettings::lod).
 struct LodSettings {
-  // The viewport's part of the ranges: the largest quad drawn covers about
-  // this many pixels (a level's quads cover between half this and this).
-  double maxQuadPixels = 1.0;
+  // The largest geometric error of the drawn surface, in pixels on screen
+  // (a height error e metres at distance d covers e f / d pixels, f the focal
+  // length in pixels): a level is drawn only where its nodes' largest error
+  // covers at most this many. The bound is a worst case (the largest height
+  // difference over the level); 4 pixels kept the tone-mapped picture within
+  // 0.6 % RMSE of the finest mesh in every view measured (docs/performance.md)
+  // with 3-14x fewer triangles.
+  double maxErrorPixels = 4.0;
   // Debugging only: false draws the selected levels without morphing, which
   // opens cracks between levels on rough terrain (the crack test checks that
   // it does).
@@ -54,15 +65,20 @@ struct LodBox {
 };
 
 // The quadtree of one DEM: per node the height range of its texels (its
-// edges included, so a vertex's height always lies in its node's box).
-// Memory: 8 bytes per node, about 0.01 bytes per DEM texel.
+// edges included, so a vertex's height always lies in its node's box) and
+// its geometric error. Memory: 12 bytes per node, about 0.012 bytes per DEM
+// texel.
 class LodQuadtree {
  public:
-  // Throws std::invalid_argument for DEMs under 2 x 2 texels.
+  // Throws std::invalid_argument for DEMs under 2 x 2 texels. The errors are
+  // those of the surface the vertex shader draws from the prefiltered heights
+  // (terrain/height_mips.h): a bound on the height difference between a
+  // node's unmorphed patch and the DEM's triangulated surface.
   explicit LodQuadtree(const Heightfield& field);
   // The same for a DEM known only by its size, cell size and the height
   // range (min, max) of each leaf's texels: leafHeights(i, j) for leaf
-  // column i, row j (texels [i, i + 1] * kLodPatchQuads, clamped).
+  // column i, row j (texels [i, i + 1] * kLodPatchQuads, clamped). Without
+  // the heights, a node's error is taken as its height range.
   LodQuadtree(int width, int height, glm::dvec2 cellSizeM,
               const std::function<glm::vec2(int, int)>& leafHeights);
 
@@ -77,6 +93,11 @@ class LodQuadtree {
   LodBox nodeBox(int level, int i, int j) const;
   // Largest 3D box diagonal of the nodes of `level` (m).
   double maxNodeDiagonalM(int level) const { return maxDiagonalM_[static_cast<size_t>(level)]; }
+  // Bound on how far (m, vertically) node (i, j)'s drawn patch lies from the
+  // DEM's surface; 0 at level 0, which draws the DEM's own texels.
+  float nodeErrorM(int level, int i, int j) const;
+  // The largest of nodeErrorM over the nodes of `level`.
+  double maxErrorM(int level) const { return maxErrorM_[static_cast<size_t>(level)]; }
 
   int demWidth() const { return width_; }
   int demHeight() const { return height_; }
@@ -87,30 +108,38 @@ class LodQuadtree {
   int width_ = 0, height_ = 0;
   double cellXM_ = 1, cellYM_ = 1;
   std::vector<std::vector<glm::vec2>> heights_;  // [level][j * nodesAcross + i]: min, max
-  std::vector<double> maxDiagonalM_;
+  std::vector<std::vector<float>> errors_;       // [level][j * nodesAcross + i]
+  std::vector<double> maxDiagonalM_, maxErrorM_;
   void buildInnerNodes();
+  void measureErrors(const Heightfield& field);
+  void summarise();
 };
 
-// Selection distances per level for range scale K (range_l = K 2^l).
+// Selection distances per level for an error scale P (pixels per metre of
+// height error per metre of distance: the focal length in pixels over the
+// pixels of error allowed). Level l + 1 takes over, morphing, where its
+// largest error e_(l+1) covers at most one allowed error: the morph of level
+// l towards it starts no closer than P e_(l+1). Every range is at least the
+// one before plus D_(l-1) / (1 - kLodMorphFraction) (crack-free; see the
+// top), the finest at least one cell; P = 0 gives the closest ranges that
+// allows, the coarsest selection.
 struct LodRanges {
-  double scaleM = 0;              // K
+  double errorScale = 0;          // P
   std::vector<double> rangeM;     // range_l; the root's is unbounded
   std::vector<glm::vec2> morphM;  // morph start and end per level (kLodNoMorph: none)
 };
-LodRanges makeLodRanges(const LodQuadtree& tree, double scaleM, bool morph = true);
+LodRanges makeLodRanges(const LodQuadtree& tree, double errorScale, bool morph = true);
 
-// The smallest K that keeps the selection crack-free (see the top).
-double lodMinimumRangeScale(const LodQuadtree& tree);
-// The K at which the largest quad covers `maxQuadPixels` pixels in a viewport
-// `viewportHeightPx` high with vertical field of view `verticalFovDeg`.
-double lodPixelRangeScale(const LodQuadtree& tree, double viewportHeightPx, double verticalFovDeg,
-                          double maxQuadPixels);
-// The largest K at which a camera anywhere over the DEM, near the ground and
+// The error scale P at which `maxErrorPixels` of error are allowed in a
+// viewport `viewportHeightPx` high with vertical field of view
+// `verticalFovDeg`.
+double lodViewErrorScale(double viewportHeightPx, double verticalFovDeg, double maxErrorPixels);
+// The largest P at which a camera anywhere over the DEM, near the ground and
 // looking in every direction (no frustum culling), selects at most
-// `triangleBudget` triangles; +infinity when the whole DEM at full resolution
-// fits. Cameras sampled on a 5 x 5 grid; bisection on K. At least
-// lodMinimumRangeScale, even when that exceeds the budget.
-double lodBudgetRangeScale(const LodQuadtree& tree, size_t triangleBudget);
+// `triangleBudget` triangles; +infinity when any P fits. Cameras sampled on a
+// 5 x 5 grid; bisection on P. 0 when even the coarsest selection exceeds the
+// budget.
+double lodBudgetErrorScale(const LodQuadtree& tree, size_t triangleBudget);
 
 // The patches to draw: whole nodes first, then the nodes drawn by quadrant,
 // quadrant 0 (north-west) to 3 (south-east).
@@ -120,7 +149,7 @@ struct LodSelection {
   std::array<uint32_t, 4> quadrantCount{};
   size_t triangles = 0;                   // as drawn (degenerate ones past the DEM edge included)
   std::vector<uint32_t> patchesPerLevel;  // whole nodes and quadrants, per level
-  double scaleM = 0;                      // the K it was selected with
+  double errorScale = 0;                  // the P it was selected with
 };
 
 // Strugar's LODSelect (§3.1): nodes within their level's range, refined where
@@ -129,16 +158,15 @@ struct LodSelection {
 LodSelection selectLod(const LodQuadtree& tree, const LodRanges& ranges, glm::dvec3 cameraM,
                        const glm::mat4* viewProj);
 
-// The frame's selection: K = min(budget scale, pixel scale), at least the
-// crack-free minimum; should the selection still exceed `triangleBudget`
-// (a camera the budget's samples missed), K shrinks for this frame until it
-// fits or reaches the minimum.
+// The frame's selection: P = min(budget scale, view scale); should the
+// selection still exceed `triangleBudget` (a camera the budget's samples
+// missed), P shrinks for this frame until it fits or reaches 0.
 struct LodFrame {
   glm::dvec3 cameraM{0.0};
   glm::mat4 viewProj{1.0f};
   double viewportHeightPx = 720, verticalFovDeg = 45;
   size_t triangleBudget = 0;
-  double budgetScaleM = 0;  // lodBudgetRangeScale of the tree and budget
+  double budgetErrorScale = 0;  // lodBudgetErrorScale of the tree and budget
   LodSettings settings;
 };
 LodSelection selectLodForFrame(const LodQuadtree& tree, const LodFrame& frame);

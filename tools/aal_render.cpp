@@ -53,6 +53,7 @@ struct Options {
   std::optional<double> cellSize, zScale;
   int device = -1;
   size_t triangleBudget = 2'000'000;
+  double lodErrorPixels = aal::LodSettings{}.maxErrorPixels;
   uint32_t maxTileTexels = 0;
   bool stats = false;
   bool quiet = false;
@@ -236,6 +237,7 @@ int run(const Options& o) {
   if (!o.camera.empty()) settings.camera.position = aal::parseTriple("--camera", o.camera);
   if (!o.lookAt.empty()) settings.camera.lookAt = aal::parseTriple("--look-at", o.lookAt);
   settings.camera.verticalFovDeg = o.fovDeg;
+  settings.lod.maxErrorPixels = o.lodErrorPixels;
   settings.sunDirection = light.sunDirection;
   settings.sunRadiusRad = static_cast<float>(o.sunRadiusDeg * M_PI / 180.0);
   settings.sunIrradiance = light.sunIrradiance;
@@ -408,6 +410,12 @@ int main(int argc, char** argv) {
   app.add_option("--triangles", o.triangleBudget,
                  "per-frame triangle budget of the terrain's quadtree LOD")
       ->check(CLI::Range(size_t(2), size_t(1) << 28))
+      ->capture_default_str();
+  app.add_option("--lod-error", o.lodErrorPixels,
+                 "largest geometric error of the terrain mesh in pixels: the quadtree LOD "
+                 "refines where a coarser level's height error would cover more on screen "
+                 "(smaller: more triangles; the shading's detail comes from textures)")
+      ->check(CLI::Range(1e-3, 1e3))
       ->capture_default_str();
   app.add_option("--max-tile", o.maxTileTexels,
                  "split the DEM's textures into tiles of at most N texels across, rounded down "

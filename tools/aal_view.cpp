@@ -37,6 +37,7 @@ struct Options {
   bool noVsync = false, stats = false, noObscurance = false;
   int device = -1, azimuths = 64;
   size_t triangleBudget = 2'000'000;
+  double lodErrorPixels = aal::LodSettings{}.maxErrorPixels;
 };
 
 // Scripted-run options checked before anything is loaded or opened.
@@ -131,6 +132,7 @@ int run(const Options& o) {
   v.obscurance = !o.noObscurance;
   v.device = o.device;
   v.triangleBudget = o.triangleBudget;
+  v.lodErrorPixels = o.lodErrorPixels;
   v.bakeAzimuths = o.azimuths;
   v.frames = o.frames.value_or(0);
   if (!o.cameraPath.empty()) v.cameraPath = aal::CameraPath::load(o.cameraPath);
@@ -208,6 +210,10 @@ int main(int argc, char** argv) {
   app.add_option("--triangles", o.triangleBudget,
                  "per-frame triangle budget of the terrain's quadtree LOD")
       ->check(CLI::Range(size_t(2), size_t(1) << 28))
+      ->capture_default_str();
+  app.add_option("--lod-error", o.lodErrorPixels,
+                 "largest geometric error of the terrain mesh in pixels (the panel sets it)")
+      ->check(CLI::Range(1e-3, 1e3))
       ->capture_default_str();
   app.add_option("--azimuths", o.azimuths, "azimuths of a background bake")
       ->check(CLI::Range(4, 4096))

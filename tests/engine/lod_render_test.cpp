@@ -87,7 +87,7 @@ HoleCount countHoles(const Device& device, const Heightfield& f, const Camera& c
   s.mode = ShadingMode::DebugVisible;
   s.camera = camera;
   // Coarse quads, so that several levels share the screen.
-  s.lod.maxQuadPixels = 12;
+  s.lod.maxErrorPixels = 4;
   s.lod.morph = morph;
   const FrameResult frame = renderer.render(scene, s, false);
   const std::vector<bool> mask = mustBeTerrain(f, camera);

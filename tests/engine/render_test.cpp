@@ -135,9 +135,12 @@ TEST_F(Render, JacksboroRendersTerrainAndSky) {
   // within the scene's budget.
   EXPECT_GT(frame.triangles, 0u);
   EXPECT_LE(frame.triangles, 200000u);
-  // terrain, sky, obscurance, obscurance filter, composite, tone map.
-  ASSERT_EQ(frame.passMilliseconds.size(), 6u);
-  EXPECT_EQ(frame.passMilliseconds[2].first, "obscurance");
+  // sky table, terrain, sky, obscurance, obscurance filter, composite (which
+  // writes the display values: no tone-map pass).
+  std::vector<std::string> passes;
+  for (const auto& [name, ms] : frame.passMilliseconds) passes.push_back(name);
+  EXPECT_EQ(passes, (std::vector<std::string>{"sky table", "terrain", "sky", "obscurance",
+                                              "obscurance filter", "composite"}));
 }
 
 // Golden images: small renders compared within a tolerance; on failure the
@@ -177,6 +180,10 @@ TEST_F(Render, GoldenRidgeAtDusk) {
   FrameSettings s = topView(f, ShadingMode::Approx, 250, 12);
   s.camera.position = {1500, -1800, 1200};
   s.camera.verticalFovDeg = 50;
+  // A golden of the shading: the mesh within a pixel of the DEM's (at 96 x
+  // 96 the default 4 pixels of geometric error lower the 63 degree crest
+  // visibly; the LOD's own picture error is tested in lod_quality_test.cpp).
+  s.lod.maxErrorPixels = 1;
   expectMatchesGolden(renderer.render(scene, s, false), "ridge-dusk");
 }
 

@@ -265,6 +265,74 @@ TEST_F(TileRender, EveryTilesMipLevelsAreTheWholeDemsLevels) {
   }
 }
 
+// RG16F slopes (dz/dx east, dz/dy north) of mip level `level` of a slope page.
+std::vector<glm::vec2> readSlopes(const Device& device, const Image& page, uint32_t layer,
+                                  uint32_t level) {
+  const std::vector<unsigned char> bytes = readLevelBytes(device, page, layer, level, 4);
+  std::vector<glm::vec2> slopes(bytes.size() / 4);
+  for (size_t i = 0; i < slopes.size(); ++i) {
+    Imath::half x, y;
+    x.setBits(static_cast<uint16_t>(bytes[4 * i] | bytes[4 * i + 1] << 8));
+    y.setBits(static_cast<uint16_t>(bytes[4 * i + 2] | bytes[4 * i + 3] << 8));
+    slopes[i] = {float(x), float(y)};
+  }
+  return slopes;
+}
+
+// The slope texture (shaders/slopes.comp) holds, at every level of every
+// tile, the central differences of that level's heights one texel apart
+// (recomputed here in double from the heights read back; the image's edge
+// takes its own texel for the missing neighbour), to half-float rounding;
+// and each tile's slopes equal the single image's over the tile's window,
+// the tile image's outermost texels (which no fetch reaches) aside.
+TEST_F(TileRender, SlopesAreEachLevelsCentralDifferencesInEveryTile) {
+  const Heightfield field = fbm();
+  const TerrainScene single(device(), field, nullptr, 400000);
+  const TerrainScene tiled(device(), field, nullptr, 400000, {kTile, 0});
+  const TerrainTileLayout& whole = single.tiles();
+  const TerrainTileLayout& t = tiled.tiles();
+  ASSERT_EQ(tiled.slopePages().size(), tiled.heightPages().size());
+  for (uint32_t level = 0; level < kTerrainMipLevels; ++level) {
+    const double span = 2.0 * double(1 << level);
+    const std::vector<glm::vec2> reference = readSlopes(device(), single.slopePages()[0], 0, level);
+    const uint32_t referenceWidth = whole.imageWidth() >> level;
+    const uint32_t referenceHeight = whole.imageHeight() >> level;
+    double worst = 0;
+    size_t compared = 0, different = 0;
+    for (uint32_t tile = 0; tile < t.tileCount(); ++tile) {
+      const std::vector<float> heights = readLevel(device(), tiled.heightPages()[0], tile, level);
+      const std::vector<glm::vec2> slopes =
+          readSlopes(device(), tiled.slopePages()[0], tile, level);
+      const uint32_t w = t.imageWidth() >> level, h = t.imageHeight() >> level;
+      const auto height = [&](int64_t c, int64_t r) {
+        return double(heights[size_t(std::clamp<int64_t>(r, 0, h - 1)) * w +
+                              size_t(std::clamp<int64_t>(c, 0, w - 1))]);
+      };
+      const uint32_t offsetX = (tile % t.tilesX) * t.coreWidth >> level;
+      const uint32_t offsetY = (tile / t.tilesX) * t.coreHeight >> level;
+      for (uint32_t r = 0; r < h; ++r) {
+        for (uint32_t c = 0; c < w; ++c) {
+          const glm::vec2 got = slopes[size_t{r} * w + c];
+          const int64_t x = c, y = r;
+          const double east = (height(x + 1, y) - height(x - 1, y)) / (span * kCellM);
+          const double north = (height(x, y - 1) - height(x, y + 1)) / (span * kCellM);
+          worst = std::max({worst, std::abs(got.x - east) / std::max(1.0, std::abs(east)),
+                            std::abs(got.y - north) / std::max(1.0, std::abs(north))});
+          if (r == 0 || c == 0 || r + 1 == h || c + 1 == w || offsetY + r >= referenceHeight ||
+              offsetX + c >= referenceWidth) {
+            continue;
+          }
+          ++compared;
+          if (got != reference[size_t{offsetY + r} * referenceWidth + offsetX + c]) ++different;
+        }
+      }
+    }
+    EXPECT_LE(worst, 1e-3) << "level " << level;
+    EXPECT_GT(compared, 0u);
+    EXPECT_EQ(different, 0u) << "level " << level << ": " << different << " of " << compared;
+  }
+}
+
 TEST_F(TileRender, TiledTexturesRenderAsOneImageInEveryMode) {
   const Heightfield field = fbm();
   BakeOptions bake;

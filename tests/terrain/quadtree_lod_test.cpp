@@ -23,6 +23,8 @@ namespace aal {
 namespace {
 
 constexpr int kQuads = kLodPatchQuads;
+// One pixel of error at 1280 x 720 with a 40 degree field of view.
+const double kViewScale = lodViewErrorScale(720, 40, 1);
 
 // Rough fBm: 1025 x 1025 texels, 10 m cells, about 300 m of relief.
 const Heightfield& roughDem() {
@@ -184,23 +186,28 @@ TEST(QuadtreeLod, NodeHeightsBoundTheirTexels) {
 TEST(QuadtreeLod, SelectionCoversTheDemOnceWithoutCulling) {
   const Heightfield& f = roughDem();
   const LodQuadtree tree(f);
-  const double k = lodMinimumRangeScale(tree);
-  for (const glm::dvec3& camera : lowCameras(f)) {
-    const LodSelection s = selectLod(tree, makeLodRanges(tree, k), camera, nullptr);
-    // Coverage at the finest piece size (a quadrant of a leaf, 16 texels).
-    const int cell = kQuads / 2, n = (f.width - 1) / cell;
-    std::vector<int> covered(size_t(n) * n, 0);
-    for (const Piece& p : pieces(s)) {
-      const glm::ivec2 lo(p.lo() / float(cell)), hi(p.hi() / float(cell));
-      for (int y = lo.y; y < std::min(hi.y, n); ++y) {
-        for (int x = lo.x; x < std::min(hi.x, n); ++x) ++covered[size_t(y) * n + x];
+  int mostLevels = 0;
+  // From the coarsest ranges to one pixel of error (level 0 everywhere on
+  // this small rough DEM).
+  for (double scale : {0.0, kViewScale / 16, kViewScale}) {
+    for (const glm::dvec3& camera : lowCameras(f)) {
+      const LodSelection s = selectLod(tree, makeLodRanges(tree, scale), camera, nullptr);
+      // Coverage at the finest piece size (a quadrant of a leaf, 16 texels).
+      const int cell = kQuads / 2, n = (f.width - 1) / cell;
+      std::vector<int> covered(size_t(n) * n, 0);
+      for (const Piece& p : pieces(s)) {
+        const glm::ivec2 lo(p.lo() / float(cell)), hi(p.hi() / float(cell));
+        for (int y = lo.y; y < std::min(hi.y, n); ++y) {
+          for (int x = lo.x; x < std::min(hi.x, n); ++x) ++covered[size_t(y) * n + x];
+        }
       }
+      EXPECT_EQ(std::count(covered.begin(), covered.end(), 1), ptrdiff_t(covered.size()));
+      int levelsUsed = 0;
+      for (uint32_t c : s.patchesPerLevel) levelsUsed += c > 0;
+      mostLevels = std::max(mostLevels, levelsUsed);
     }
-    EXPECT_EQ(std::count(covered.begin(), covered.end(), 1), ptrdiff_t(covered.size()));
-    int levelsUsed = 0;
-    for (uint32_t c : s.patchesPerLevel) levelsUsed += c > 0;
-    EXPECT_GE(levelsUsed, 4);
   }
+  EXPECT_GE(mostLevels, 4);
 }
 
 // For every pair of drawn pieces that share an edge: their levels differ by
@@ -255,17 +262,19 @@ double worstSeamGap(const Heightfield& f, const LodSelection& s, glm::vec3 camer
 TEST(QuadtreeLod, MorphedPatchesMeetAcrossLevelsWithoutCracks) {
   const Heightfield& f = roughDem();
   const LodQuadtree tree(f);
-  const double minimum = lodMinimumRangeScale(tree);
-  for (double k : {minimum, 1.7 * minimum}) {
+  // The coarsest ranges (tight against the crack-free bound), several
+  // levels on screen, one pixel of error.
+  for (double scale : {0.0, kViewScale / 16, kViewScale}) {
+    int seams = 0;
     for (const glm::dvec3& camera : lowCameras(f)) {
-      const LodSelection s = selectLod(tree, makeLodRanges(tree, k), camera, nullptr);
-      int jump = 0, seams = 0;
+      const LodSelection s = selectLod(tree, makeLodRanges(tree, scale), camera, nullptr);
+      int jump = 0;
       const double gap = worstSeamGap(f, s, glm::vec3(camera), &jump, &seams);
       EXPECT_LE(jump, 1);
-      EXPECT_GT(seams, 50);
       // The same points up to float rounding of positions ~5 km out.
-      EXPECT_LT(gap, 2e-3) << "camera " << camera.x << ", " << camera.y;
+      EXPECT_LT(gap, 2e-3) << "camera " << camera.x << ", " << camera.y << ", scale " << scale;
     }
+    EXPECT_GT(seams, 100) << "scale " << scale;
   }
 }
 
@@ -275,8 +284,7 @@ TEST(QuadtreeLod, WithoutMorphingTheLevelsLeaveCracks) {
   const Heightfield& f = roughDem();
   const LodQuadtree tree(f);
   const glm::dvec3 camera = lowCameras(f)[0];
-  const LodSelection s =
-      selectLod(tree, makeLodRanges(tree, lodMinimumRangeScale(tree), false), camera, nullptr);
+  const LodSelection s = selectLod(tree, makeLodRanges(tree, 0, false), camera, nullptr);
   int jump = 0, seams = 0;
   EXPECT_GT(worstSeamGap(f, s, glm::vec3(camera), &jump, &seams), 0.5);
 }
@@ -320,7 +328,7 @@ std::optional<float> surfaceHeight(const Heightfield& f, const std::vector<Piece
 double largestStepChange(bool morph) {
   const Heightfield& f = roughDem();
   const LodQuadtree tree(f);
-  const LodRanges ranges = makeLodRanges(tree, lodMinimumRangeScale(tree), morph);
+  const LodRanges ranges = makeLodRanges(tree, 0, morph);
   std::vector<glm::vec2> points;
   for (int i = 0; i < 400; ++i)
     points.emplace_back(-1500.0f + 7.3f * float(i), 900.0f - 3.1f * float(i));
@@ -366,7 +374,7 @@ TEST(QuadtreeLod, TrianglesStayWithinTheBudgetWhateverTheDemSize) {
       const LodQuadtree tree = syntheticTree(size);
       LodFrame frame;
       frame.triangleBudget = budget;
-      frame.budgetScaleM = lodBudgetRangeScale(tree, budget);
+      frame.budgetErrorScale = lodBudgetErrorScale(tree, budget);
       frame.viewportHeightPx = 720;
       frame.verticalFovDeg = 40;
       size_t most = 0;
@@ -383,8 +391,8 @@ TEST(QuadtreeLod, TrianglesStayWithinTheBudgetWhateverTheDemSize) {
           most = std::max(most, s.triangles);
         }
       }
-      std::printf("%5d^2, budget %7zu: levels %2d, K %.0f m, at most %7zu triangles in view\n",
-                  size, budget, tree.levels(), std::min(frame.budgetScaleM, 1e12), most);
+      std::printf("%5d^2, budget %7zu: levels %2d, P %.3g, at most %7zu triangles in view\n", size,
+                  budget, tree.levels(), frame.budgetErrorScale, most);
       // The budget is spent, not wasted: with culling a view draws a good
       // part of it (the budget holds for a camera looking every way).
       EXPECT_GT(most, budget / 10) << size;
@@ -396,7 +404,7 @@ TEST(QuadtreeLod, FrustumCullingDropsNodesBehindTheCamera) {
   const LodQuadtree tree = syntheticTree(8192);
   const glm::dvec3 position(0, 0, 900);
   const View v = viewFrom(tree, position, position + glm::dvec3(0, 1, -0.15));  // looking north
-  const LodRanges ranges = makeLodRanges(tree, lodMinimumRangeScale(tree) * 2);
+  const LodRanges ranges = makeLodRanges(tree, kViewScale);
   const LodSelection culled = selectLod(tree, ranges, position, &v.viewProj);
   const LodSelection all = selectLod(tree, ranges, position, nullptr);
   EXPECT_LT(culled.triangles, all.triangles / 2);

@@ -75,33 +75,14 @@ void swapchainBarrier(VkCommandBuffer cmd, VkImage image, VkImageLayout from, Vk
   vkCmdPipelineBarrier2(cmd, &dependency);
 }
 
-// Copies the renderer's display image (RGBA8, sRGB-encoded values) into the
-// UNORM swapchain image: no second encoding; the blit swizzles RGBA to BGRA.
-// Leaves the swapchain image in TRANSFER_DST_OPTIMAL.
-void blitToSwapchain(VkCommandBuffer cmd, const Image& display, VkImage target, VkExtent2D extent) {
-  // Chained to the acquire semaphore, which the submission waits for at the
-  // transfer stage.
-  swapchainBarrier(cmd, target, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL,
-                   VK_PIPELINE_STAGE_2_TRANSFER_BIT, 0, VK_PIPELINE_STAGE_2_TRANSFER_BIT,
-                   VK_ACCESS_2_TRANSFER_WRITE_BIT);
-  VkImageBlit region{};
-  region.srcSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
-  region.srcOffsets[1] = {static_cast<int32_t>(display.desc().width),
-                          static_cast<int32_t>(display.desc().height), 1};
-  region.dstSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
-  region.dstOffsets[1] = {static_cast<int32_t>(extent.width), static_cast<int32_t>(extent.height),
-                          1};
-  vkCmdBlitImage(cmd, display.handle(), VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, target,
-                 VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 1, &region, VK_FILTER_LINEAR);
-}
-
-// Copies the swapchain image as blitted (before the UI) into `buffer`.
+// Copies the swapchain image as drawn (before the UI) into `buffer`; the
+// image stays ready for the UI pass.
 void readBackSwapchainImage(VkCommandBuffer cmd, VkImage image, VkExtent2D extent,
                             const Buffer& buffer) {
-  swapchainBarrier(cmd, image, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL,
-                   VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, VK_PIPELINE_STAGE_2_TRANSFER_BIT,
-                   VK_ACCESS_2_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_2_TRANSFER_BIT,
-                   VK_ACCESS_2_TRANSFER_READ_BIT);
+  swapchainBarrier(
+      cmd, image, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL,
+      VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT, VK_ACCESS_2_COLOR_ATTACHMENT_WRITE_BIT,
+      VK_PIPELINE_STAGE_2_TRANSFER_BIT, VK_ACCESS_2_TRANSFER_READ_BIT);
   VkBufferImageCopy region{};
   region.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
   region.imageExtent = {extent.width, extent.height, 1};
@@ -109,15 +90,8 @@ void readBackSwapchainImage(VkCommandBuffer cmd, VkImage image, VkExtent2D exten
                          &region);
   // Only the copy's reads must finish before the UI pass writes.
   swapchainBarrier(cmd, image, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL,
-                   VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, VK_PIPELINE_STAGE_2_TRANSFER_BIT, 0,
-                   VK_PIPELINE_STAGE_2_TRANSFER_BIT, 0);
-}
-
-// The swapchain image from the blit to the UI render pass.
-void prepareForUi(VkCommandBuffer cmd, VkImage image) {
-  swapchainBarrier(cmd, image, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL,
-                   VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL, VK_PIPELINE_STAGE_2_TRANSFER_BIT,
-                   VK_ACCESS_2_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT,
+                   VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL, VK_PIPELINE_STAGE_2_TRANSFER_BIT, 0,
+                   VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT,
                    VK_ACCESS_2_COLOR_ATTACHMENT_READ_BIT | VK_ACCESS_2_COLOR_ATTACHMENT_WRITE_BIT);
 }
 
@@ -173,7 +147,7 @@ Viewer::Viewer(const ViewerOptions& options, std::shared_ptr<const Heightfield> 
   swapchainFramebuffer_ = window_.framebufferSize();
   obscurance_.enabled = options.obscurance;
   renderer_ = std::make_unique<TerrainRenderer>(device_, swapchain_.extent().width,
-                                                swapchain_.extent().height);
+                                                swapchain_.extent().height, swapchain_.format());
   showTerrain(std::move(field), options.dem, options.aperture);
 }
 
@@ -339,27 +313,32 @@ FrameSettings Viewer::frameSettings() const {
   s.mode = terrain_->bake ? ShadingMode::BaselineLambert : mode_;
   applyViewLighting(lighting_, *terrain_->field, s);
   s.obscurance = obscurance_;
+  s.lod.maxErrorPixels = options_.lodErrorPixels;
   return s;
 }
 
 void Viewer::recordFrame(VkCommandBuffer cmd, uint32_t imageIndex, const FrameSettings& settings) {
-  renderer_->record(cmd, *terrain_->scene, settings);
-  const VkImage target = swapchain_.image(imageIndex);
-  blitToSwapchain(cmd, renderer_->displayImage(), target, swapchain_.extent());
+  // The renderer's last pass writes the swapchain image itself (no copy);
+  // it is left ready for the UI pass.
+  FrameOutput output;
+  output.image = swapchain_.image(imageIndex);
+  output.view = swapchain_.view(imageIndex);
+  renderer_->record(cmd, *terrain_->scene, settings, output);
   if (!pendingScreenshot_.empty()) {
-    // What is presented (without the panel); the display image where the
-    // swapchain cannot be read.
+    // What is presented (without the panel); the renderer's display image
+    // where the swapchain cannot be read (it then holds the same picture:
+    // record it once more there).
     const VkExtent2D extent = swapchain_.extent();
     screenshotBuffer_ = Buffer(device_, VkDeviceSize(extent.width) * extent.height * 4,
                                VK_BUFFER_USAGE_TRANSFER_DST_BIT, MemoryIntent::Readback);
     screenshotFromSwapchain_ = swapchain_.readable();
     if (screenshotFromSwapchain_) {
-      readBackSwapchainImage(cmd, target, extent, screenshotBuffer_);
+      readBackSwapchainImage(cmd, output.image, extent, screenshotBuffer_);
     } else {
+      renderer_->record(cmd, *terrain_->scene, settings);
       copyImageToBuffer(cmd, renderer_->displayImage(), screenshotBuffer_);
     }
   }
-  prepareForUi(cmd, target);
   ui_.record(cmd, imageIndex);
 }
 
@@ -390,7 +369,7 @@ void Viewer::saveScreenshot(const std::string& path) {
   frame.display.resize(size_t(frame.width) * frame.height * 4);
   screenshotBuffer_.read(frame.display.data(), frame.display.size());
   screenshotBuffer_ = Buffer();
-  if (screenshotFromSwapchain_ && swapchain_.format() == VK_FORMAT_B8G8R8A8_UNORM) {
+  if (swapchain_.format() == VK_FORMAT_B8G8R8A8_UNORM) {  // either source holds BGRA
     for (size_t i = 0; i < frame.display.size(); i += 4) {
       std::swap(frame.display[i], frame.display[i + 2]);
     }
@@ -417,8 +396,10 @@ void Viewer::recreateSwapchain() {
   ui_.onSwapchainRecreated(swapchain_);
   sync_.resize(swapchain_.imageCount());
   const VkExtent2D extent = swapchain_.extent();
-  if (renderer_->width() != extent.width || renderer_->height() != extent.height) {
-    renderer_ = std::make_unique<TerrainRenderer>(device_, extent.width, extent.height);
+  if (renderer_->width() != extent.width || renderer_->height() != extent.height ||
+      renderer_->displayImage().desc().format != swapchain_.format()) {
+    renderer_ = std::make_unique<TerrainRenderer>(device_, extent.width, extent.height,
+                                                  swapchain_.format());
   }
   swapchainStale_ = false;
 }

@@ -46,6 +46,7 @@ struct ViewerOptions {
   bool obscurance = true;  // the obscurance pass on at the start
   int device = -1;
   size_t triangleBudget = 2'000'000;
+  double lodErrorPixels = LodSettings{}.maxErrorPixels;
   int bakeAzimuths = 64;
   // Scripted runs: render `frames` frames (0: run until the window closes),
   // along `cameraPath` when given, then save `screenshot` when given.
