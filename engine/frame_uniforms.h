@@ -26,9 +26,12 @@ struct FrameUniforms {
   glm::ivec4 tileImage{0};        // tile border, 0, tile image width, height
   glm::ivec4 tileLayers{0};       // layers per page: heights, apertures, albedo, 0
   glm::ivec4 extent{0};           // pixels drawn this frame: width, height, 0, 0
+  glm::mat4 previousViewProj{1.0f};  // the previous frame's (obscurance reuse)
+  glm::ivec4 history{-1, 0, 0, 0};   // subset (-1: all), history valid, previous extent
+  glm::vec4 pixelAngle{0.0f};        // x: 2 tan(fov / 2) / extent height
   PreethamSky sky;
 };
-static_assert(sizeof(FrameUniforms) == 2 * 64 + 15 * 16 + sizeof(PreethamSky),
+static_assert(sizeof(FrameUniforms) == 3 * 64 + 17 * 16 + sizeof(PreethamSky),
               "FrameUniforms must match the std140 Frame block of shaders/frame.glsl");
 
 }  // namespace aal

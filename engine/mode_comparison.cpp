@@ -1,5 +1,6 @@
 #include "mode_comparison.h"
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <filesystem>
@@ -93,6 +94,11 @@ Comparison compareModes(TerrainRenderer& renderer, const TerrainScene& scene,
 
   for (const ComparedMode& m : modes) {
     FrameSettings s = settings;
+    // The reference traces the DEM's own surface: the GPU draws the finest
+    // mesh the budget allows, so that the errors are the shading's.
+    s.lod.maxErrorPixels = s.lod.maxErrorPixels > 0
+                               ? std::min(s.lod.maxErrorPixels, kComparisonLodErrorPixels)
+                               : kComparisonLodErrorPixels;
     s.mode = m.mode;
     s.obscurance.enabled = m.obscurance;
     s.albedoValue = options.albedo;

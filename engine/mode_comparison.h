@@ -61,8 +61,12 @@ struct Comparison {
   double referenceSeconds = 0;
 };
 
+// The geometric error (pixels) the GPU modes are drawn with, at most.
+constexpr double kComparisonLodErrorPixels = 0.25;
+
 // Renders the reference and each of `modes` at the renderer's size, both
-// with options.albedo as the ground's albedo. `progress` (may be empty) gets
+// with options.albedo as the ground's albedo; the GPU with a mesh within
+// kComparisonLodErrorPixels of the DEM. `progress` (may be empty) gets
 // the reference's finished fraction.
 Comparison compareModes(TerrainRenderer& renderer, const TerrainScene& scene,
                         const Heightfield& field, const FrameSettings& settings,

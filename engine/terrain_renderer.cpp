@@ -26,8 +26,12 @@ constexpr VkFormat kHdrFormat = VK_FORMAT_R16G16B16A16_SFLOAT;
 constexpr VkFormat kDepthFormat = VK_FORMAT_D32_SFLOAT;
 constexpr VkFormat kSkyTableFormat = VK_FORMAT_R16G16B16A16_SFLOAT;
 constexpr VkFormat kAmbientFormat = VK_FORMAT_R16G16B16A16_SFLOAT;
-constexpr VkFormat kSurfaceFormat = VK_FORMAT_R32G32_SFLOAT;
+constexpr VkFormat kSurfaceFormat = VK_FORMAT_R32G32B32A32_SFLOAT;
 constexpr VkFormat kTransferFormat = VK_FORMAT_R16G16B16A16_SFLOAT;
+// Obscurance reuse: means per sample (open, occluders' albedo), and the
+// surface point (texel) and sample count they belong to.
+constexpr VkFormat kHistoryMeansFormat = VK_FORMAT_R16G16B16A16_SFLOAT;
+constexpr VkFormat kHistoryPointsFormat = VK_FORMAT_R32G32B32A32_SFLOAT;
 
 bool isDebug(ShadingMode mode) {
   return mode == ShadingMode::DebugVisible || mode == ShadingMode::DebugBentNormal ||
@@ -274,23 +278,23 @@ struct TerrainRenderer::Passes {
   }
 
   // The obscurance pass reads heights and albedo, never apertures.
-  const GraphicsPipeline& obscurance(TexturePaging paging, ShadingMode mode, int albedo) {
+  // `temporal`: the variant that reads and writes the history of samples.
+  const GraphicsPipeline& obscurance(TexturePaging paging, ShadingMode mode, int albedo,
+                                     bool temporal) {
     const bool paged = paging == TexturePaging::All;
     const std::string key = std::string("obscurance/") + (paged ? "p/" : "1/") +
-                            std::to_string(int(mode)) + "/" + std::to_string(albedo);
-    return cached(key, {"fullscreen.vert",
-                        paged ? "obscurance_paged.frag" : "obscurance.frag",
-                        terrainBindings({VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER,
-                                         VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER,
-                                         VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER}),
-                        0,
-                        {kTransferFormat},
-                        VK_FORMAT_UNDEFINED,
-                        false,
-                        false,
-                        VK_CULL_MODE_NONE,
-                        false,
-                        variantConstants(mode, albedo, false)});
+                            (temporal ? "t/" : "") + std::to_string(int(mode)) + "/" +
+                            std::to_string(albedo);
+    std::vector<VkDescriptorType> rest(temporal ? 5 : 3, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER);
+    rest[0] = VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER;
+    std::vector<VkFormat> formats{kTransferFormat};
+    if (temporal) formats.insert(formats.end(), {kHistoryMeansFormat, kHistoryPointsFormat});
+    const char* shader =
+        temporal ? (paged ? "obscurance_temporal_paged.frag" : "obscurance_temporal.frag")
+                 : (paged ? "obscurance_paged.frag" : "obscurance.frag");
+    return cached(
+        key, {"fullscreen.vert", shader, terrainBindings(rest), 0, formats, VK_FORMAT_UNDEFINED,
+              false, false, VK_CULL_MODE_NONE, false, variantConstants(mode, albedo, false)});
   }
 };
 
@@ -325,6 +329,30 @@ TerrainRenderer::TerrainRenderer(const Device& device, uint32_t width, uint32_t 
       timer_(device, 8) {}
 
 TerrainRenderer::~TerrainRenderer() = default;
+
+void TerrainRenderer::prepareHistory(VkCommandBuffer cmd) {
+  if (!historyMeans_[0]) {
+    for (int i = 0; i < 2; ++i) {
+      const VkImageUsageFlags usage =
+          VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_SAMPLED_BIT;
+      historyMeans_[i] =
+          std::make_unique<Image>(device_, ImageDesc{width_, height_, kHistoryMeansFormat, usage});
+      historyPoints_[i] =
+          std::make_unique<Image>(device_, ImageDesc{width_, height_, kHistoryPointsFormat, usage});
+      // Read before anything was written: sampled, never used (the history
+      // is not valid yet).
+      transitionImage(cmd, *historyMeans_[i], VK_IMAGE_LAYOUT_UNDEFINED,
+                      VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL);
+      transitionImage(cmd, *historyPoints_[i], VK_IMAGE_LAYOUT_UNDEFINED,
+                      VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL);
+    }
+  }
+  const int write = 1 - historyRead_;
+  transitionImage(cmd, *historyMeans_[write], VK_IMAGE_LAYOUT_UNDEFINED,
+                  VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL);
+  transitionImage(cmd, *historyPoints_[write], VK_IMAGE_LAYOUT_UNDEFINED,
+                  VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL);
+}
 
 int TerrainRenderer::albedoSourceOf(const TerrainScene& scene, const FrameSettings& s) {
   return s.albedoValue       ? AAL_ALBEDO_CONSTANT
@@ -379,6 +407,31 @@ bool TerrainRenderer::writeUniforms(const TerrainScene& scene, const FrameSettin
   u.tileLayers = glm::ivec4(
       glm::uvec4(tiles.layersPerPage[0], tiles.layersPerPage[1], tiles.layersPerPage[2], 0));
   u.extent = glm::ivec4(glm::uvec4(extent_.width, extent_.height, 0, 0));
+  u.pixelAngle = glm::vec4(
+      float(2.0 * std::tan(0.5 * s.camera.verticalFovDeg * AAL_PI / 180.0) / extent_.height), 0, 0,
+      0);
+  u.previousViewProj = previousViewProj_;
+  u.history = {-1, 0, int(previousExtent_.width), int(previousExtent_.height)};
+  if (obscurance && o.history != ObscuranceSettings::History::None) {
+    // The samples kept from the previous frame belong to the same terrain,
+    // settings and occluders' albedo, or to nothing.
+    const HistoryKey key{scene.id(),
+                         u.obscurance.x,
+                         o.samples,
+                         o.steps,
+                         o.interleaved,
+                         o.halfResolution,
+                         albedoSourceOf(scene, s),
+                         s.albedoValue.value_or(glm::vec3(-1.0f))};
+    historyValid_ = historyValid_ && key == historyKey_;
+    historyKey_ = key;
+    u.history.y = historyValid_ ? 1 : 0;
+    if (historyValid_ && o.history == ObscuranceSettings::History::Reuse) {
+      u.history.x = int(historySubset_++ % AAL_OBSCURANCE_SUBSETS);
+    }
+  } else {
+    historyValid_ = false;
+  }
   u.sky = s.sky;
   uniforms_.write(&u, sizeof u);
   return obscurance;
@@ -547,6 +600,9 @@ void TerrainRenderer::record(VkCommandBuffer cmd, const TerrainScene& scene, con
                     VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL);
   }
   if (external && !intoOutput) recordUpscale(cmd, output);
+  // What the next frame's obscurance reuse reprojects with.
+  previousViewProj_ = viewProj_;
+  previousExtent_ = extent_;
 }
 
 void TerrainRenderer::recordUpscale(VkCommandBuffer cmd, const FrameOutput& output) {
@@ -584,22 +640,44 @@ void TerrainRenderer::recordObscurance(VkCommandBuffer cmd, const TerrainScene& 
   const uint32_t scale = settings.halfResolution ? 2 : 1;
   const uint32_t passWidth = (extent_.width + scale - 1) / scale,
                  passHeight = (extent_.height + scale - 1) / scale;
-  const VkRenderingAttachmentInfo transfer = colorAttachment(transfer_, false);
+  const bool temporal = settings.history != ObscuranceSettings::History::None;
+  if (temporal) prepareHistory(cmd);
+  const int write = 1 - historyRead_;
+  VkRenderingAttachmentInfo targets[3] = {colorAttachment(transfer_, false), {}, {}};
+  DescriptorWrites writes =
+      terrainWrites(uniforms_, scene, passes_->terrainSampler.handle())
+          .uniformBuffer(kAfterTerrainTextures, samples_)
+          .sampledImage(kAfterTerrainTextures + 1, surface_.view(), passes_->nearest.handle())
+          .sampledImage(kAfterTerrainTextures + 2, ambient_.view(), passes_->nearest.handle());
+  if (temporal) {
+    targets[1] = colorAttachment(*historyMeans_[write], false);
+    targets[2] = colorAttachment(*historyPoints_[write], false);
+    writes
+        .sampledImage(kAfterTerrainTextures + 3, historyMeans_[historyRead_]->view(),
+                      passes_->nearest.handle())
+        .sampledImage(kAfterTerrainTextures + 4, historyPoints_[historyRead_]->view(),
+                      passes_->nearest.handle());
+  }
   // Timestamps around the whole rendering: lavapipe rasterizes when a
   // rendering ends, so one inside it misses the work.
   timer_.begin(cmd, "obscurance");
-  beginRendering(cmd, passWidth, passHeight, &transfer, 1, nullptr);
-  passes_->obscurance(texturePagingOf(scene.tiles()), frame.mode, albedoSourceOf(scene, frame))
-      .bind(
-          cmd,
-          terrainWrites(uniforms_, scene, passes_->terrainSampler.handle())
-              .uniformBuffer(kAfterTerrainTextures, samples_)
-              .sampledImage(kAfterTerrainTextures + 1, surface_.view(), passes_->nearest.handle())
-              .sampledImage(kAfterTerrainTextures + 2, ambient_.view(), passes_->nearest.handle()),
-          nullptr);
+  beginRendering(cmd, passWidth, passHeight, targets, temporal ? 3 : 1, nullptr);
+  passes_
+      ->obscurance(texturePagingOf(scene.tiles()), frame.mode, albedoSourceOf(scene, frame),
+                   temporal)
+      .bind(cmd, writes, nullptr);
   vkCmdDraw(cmd, 3, 1, 0, 0);
   vkCmdEndRendering(cmd);
   timer_.end(cmd);
+  if (temporal) {
+    // What this frame wrote is what the next one reads.
+    transitionImage(cmd, *historyMeans_[write], VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL,
+                    VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL);
+    transitionImage(cmd, *historyPoints_[write], VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL,
+                    VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL);
+    historyRead_ = write;
+    historyValid_ = true;
+  }
 
   transitionImage(cmd, transfer_, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL,
                   VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL);
@@ -623,8 +701,8 @@ void TerrainRenderer::recordObscurance(VkCommandBuffer cmd, const TerrainScene& 
     result = &filtered_;
   }
 
-  DescriptorWrites writes;
-  writes.uniformBuffer(0, uniforms_)
+  DescriptorWrites composite;
+  composite.uniformBuffer(0, uniforms_)
       .sampledImage(1, result->view(), passes_->nearest.handle())
       .sampledImage(2, ambient_.view(), passes_->nearest.handle());
   timer_.begin(cmd, "composite");
@@ -636,14 +714,14 @@ void TerrainRenderer::recordObscurance(VkCommandBuffer cmd, const TerrainScene& 
     VkRenderingAttachmentInfo hdr = colorAttachment(hdr_, false);
     hdr.loadOp = VK_ATTACHMENT_LOAD_OP_LOAD;
     beginRendering(cmd, extent_.width, extent_.height, &hdr, 1, nullptr);
-    passes_->composite.bind(cmd, writes, nullptr);
+    passes_->composite.bind(cmd, composite, nullptr);
   } else {
     // Read with the rest and written as display values: the tone map folded in.
     transitionImage(cmd, hdr_, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL,
                     VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL);
     beginRendering(cmd, extent_.width, extent_.height, &display, 1, nullptr);
     passes_->compositeDisplay(frame.mode)
-        .bind(cmd, writes.sampledImage(3, hdr_.view(), passes_->nearest.handle()), nullptr);
+        .bind(cmd, composite.sampledImage(3, hdr_.view(), passes_->nearest.handle()), nullptr);
   }
   vkCmdDraw(cmd, 3, 1, 0, 0);
   vkCmdEndRendering(cmd);

@@ -126,6 +126,9 @@ class TerrainRenderer {
   // (DESIGN §6, §8).
   void recordObscurance(VkCommandBuffer cmd, const TerrainScene& scene, const FrameSettings& frame,
                         bool linear, const VkRenderingAttachmentInfo& display);
+  // Makes the obscurance history's images on first use and readies the one
+  // this frame writes.
+  void prepareHistory(VkCommandBuffer cmd);
   // AAL_ALBEDO_* of the frame.
   static int albedoSourceOf(const TerrainScene& scene, const FrameSettings& s);
 
@@ -138,6 +141,25 @@ class TerrainRenderer {
   // shaders/terrain.frag), and the per-pixel O/W.
   Image ambient_, surface_, transfer_, filtered_;
   Image skyTable_;  // the sky's radiance per view direction (shaders/sky_lut.glsl)
+  // Obscurance reuse (ObscuranceSettings::History): the means and points the
+  // previous frame wrote (index historyRead_) and this one writes (the
+  // other); made on first use.
+  struct HistoryKey {
+    uint64_t scene = 0;
+    float radiusM = 0;
+    int samples = 0, steps = 0;
+    bool interleaved = false, halfResolution = false;
+    int albedoSource = 0;
+    glm::vec3 albedoValue{0.0f};
+    bool operator==(const HistoryKey&) const = default;
+  };
+  std::unique_ptr<Image> historyMeans_[2], historyPoints_[2];
+  int historyRead_ = 0;
+  bool historyValid_ = false;
+  HistoryKey historyKey_;
+  uint32_t historySubset_ = 0;
+  glm::mat4 previousViewProj_{1.0f};
+  VkExtent2D previousExtent_{0, 0};
   Buffer uniforms_, samples_;
   Buffer patches_;  // LodPatch instances of the frame (grows as needed)
   LodSelection selection_;

@@ -1,6 +1,7 @@
 #include "terrain_scene.h"
 
 #include <algorithm>
+#include <atomic>
 #include <cstring>
 #include <stdexcept>
 #include <string>
@@ -231,6 +232,8 @@ void TerrainScene::build(const Device& device, const Heightfield& field,
                          const DemRows& apertureRows, const AlbedoImage* albedo,
                          size_t triangleBudget, const TerrainTiling& tiling) {
   if (triangleBudget < 2) throw std::invalid_argument("triangle budget must be at least 2");
+  static std::atomic<uint64_t> scenes{0};
+  id_ = ++scenes;
   const uint32_t w = static_cast<uint32_t>(field.width), h = static_cast<uint32_t>(field.height);
   tiles_ = planTerrainTiles(w, h, deviceTileLimits(device, tiling));
   hasAlbedo_ = albedo != nullptr;

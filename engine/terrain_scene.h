@@ -74,6 +74,9 @@ class TerrainScene {
   // width, height (texels), cell size x, y (metres)
   glm::vec4 demInfo() const { return demInfo_; }
   float minHeight() const { return minHeight_; }
+  // Unique among the scenes of the process (what the renderer's kept
+  // obscurance samples belong to).
+  uint64_t id() const { return id_; }
   float maxHeight() const { return maxHeight_; }
 
  private:
@@ -95,6 +98,7 @@ class TerrainScene {
   double lodBudgetErrorScale_ = 0;
   glm::vec4 demInfo_{0.0f};
   float minHeight_ = 0, maxHeight_ = 0;
+  uint64_t id_ = 0;
 };
 
 }  // namespace aal

@@ -51,6 +51,12 @@ Window::Window(int width, int height, const std::string& title) {
   glfwSetScrollCallback(window_, onScroll);
   glfwSetKeyCallback(window_, onKey);
   glfwSetDropCallback(window_, onDrop);
+  glfwSetCursorPosCallback(window_, [](GLFWwindow* w, double, double) { ++owner(w).activity_; });
+  glfwSetMouseButtonCallback(window_, [](GLFWwindow* w, int, int, int) { ++owner(w).activity_; });
+  glfwSetCharCallback(window_, [](GLFWwindow* w, unsigned) { ++owner(w).activity_; });
+  glfwSetWindowFocusCallback(window_, [](GLFWwindow* w, int) { ++owner(w).activity_; });
+  glfwSetWindowRefreshCallback(window_, [](GLFWwindow* w) { ++owner(w).activity_; });
+  glfwSetFramebufferSizeCallback(window_, [](GLFWwindow* w, int, int) { ++owner(w).activity_; });
 }
 
 Window::~Window() {
@@ -137,14 +143,23 @@ std::vector<std::string> Window::takeDroppedPaths() {
 
 void Window::onScroll(GLFWwindow* window, double, double y) {
   owner(window).wheelSteps_ += y;
+  ++owner(window).activity_;
 }
 
 void Window::onKey(GLFWwindow* window, int key, int, int action, int) {
   if (action == GLFW_PRESS) owner(window).keyPresses_.push_back(key);
+  ++owner(window).activity_;
 }
 
 void Window::onDrop(GLFWwindow* window, int count, const char** paths) {
   for (int i = 0; i < count; ++i) owner(window).droppedPaths_.emplace_back(paths[i]);
+  ++owner(window).activity_;
+}
+
+bool Window::takeActivity() {
+  const bool any = activity_ > 0;
+  activity_ = 0;
+  return any;
 }
 
 Surface::Surface(VkInstance instance, const Window& window) : instance_(instance) {

@@ -67,6 +67,10 @@ class Window {
   double takeWheelSteps();
   std::vector<int> takeKeyPresses();
   std::vector<std::string> takeDroppedPaths();
+  // Whether any input or window event (keys, mouse, wheel, characters,
+  // focus, resizing, exposure, drops) arrived since the last call: an idle
+  // viewer draws nothing until one does.
+  bool takeActivity();
 
  private:
   static void onScroll(GLFWwindow* window, double x, double y);
@@ -77,6 +81,7 @@ class Window {
   double wheelSteps_ = 0;
   std::vector<int> keyPresses_;
   std::vector<std::string> droppedPaths_;
+  unsigned activity_ = 0;
 };
 
 // A VkSurfaceKHR for a window, destroyed with its instance still alive.

@@ -40,6 +40,10 @@
 // The 4x4 filter skips neighbours whose view distance differs from the
 // centre's by more than this fraction of it (seed 000 §4.2).
 #define AAL_OBSCURANCE_DEPTH_TOLERANCE 0.05
+// Temporal reuse of obscurance samples (the viewer while the view moves,
+// shaders/obscurance_pass.glsl): each frame evaluates one of this many parts
+// of every pixel's sample set.
+#define AAL_OBSCURANCE_SUBSETS 4
 // Albedo sources (Frame.grid.w): palette by height and slope, image, constant.
 #define AAL_ALBEDO_PALETTE 0
 #define AAL_ALBEDO_IMAGE 1

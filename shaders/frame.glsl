@@ -23,6 +23,10 @@ layout(set = 0, binding = 0, std140) uniform Frame {
   ivec4 tileImage;       // tile border, 0, tile image width, height (texels)
   ivec4 tileLayers;      // tiles (layers) per page: heights, apertures, albedo, 0
   ivec4 extent;          // pixels drawn this frame (dynamic resolution: fewer than the targets')
+  mat4 previousViewProj;  // the previous frame's viewProj (obscurance reuse)
+  ivec4 history;         // obscurance reuse: subset (-1: every sample), history valid (0/1),
+                         // previous extent (pixels)
+  vec4 pixelAngle;       // x: 2 tan(fov / 2) / extent height: a pixel's size per metre away
   PreethamSky sky;
 }
 frame;

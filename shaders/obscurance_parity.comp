@@ -57,6 +57,10 @@ vec3 obscuranceAlbedo(vec2 texel, float heightM, vec3 normal) {
   return albedo[p.y * size.x + p.x].rgb;
 }
 
+vec2 obscuranceSlope(vec2 texel, vec2 cellSizeM) {
+  return obscuranceHeightSlope(texel, cellSizeM);
+}
+
 vec3 obscuranceSampleOffset(int set, int i) {
   return offsets[set * samples + i].xyz;
 }

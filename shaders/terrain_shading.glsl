@@ -22,7 +22,9 @@ layout(location = 1) in vec2 texelPosition;
 layout(location = 0) out vec4 color;
 #ifdef AAL_TERRAIN_GBUFFER
 layout(location = 1) out vec4 ambientOut;  // rgb ambient x transmittance, a view distance (km)
-layout(location = 2) out vec2 surfaceOut;  // texel position: the obscurance pass's point x
+// xy: texel position (the obscurance pass's point x); z: the drawn surface's
+// height there (the mesh's, which the obscurance reuse reprojects with)
+layout(location = 2) out vec4 surfaceOut;
 #endif
 
 // The level of detail of a fragment's fetches: its footprint on the DEM
@@ -67,7 +69,7 @@ void main() {
   vec3 inScattered = frame.skyRadiance.rgb * (1.0 - transmittance);
   const int mode = kShadingMode;
 #ifdef AAL_TERRAIN_GBUFFER
-  surfaceOut = texelPosition;
+  surfaceOut = vec4(texelPosition, worldPosition.z, 0.0);
   ambientOut = vec4(0.0, 0.0, 0.0, distance * 1e-3);
   if (mode == AAL_MODE_DEBUG_OBSCURANCE || mode == AAL_MODE_DEBUG_TRANSFER) {
     color = vec4(0.0, 0.0, 0.0, 1.0);

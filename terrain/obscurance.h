@@ -33,6 +33,13 @@ struct ObscuranceSettings {
   // O/W at half the image resolution (one point per 2x2 pixels), filtered and
   // upsampled with the depth test; false: at every pixel.
   bool halfResolution = true;
+  // Temporal reuse (the viewer, docs/obscurance.md): None: every frame on its
+  // own. Refresh: every sample evaluated, and kept for the next frames.
+  // Reuse (while the view moves): a quarter of each pixel's samples
+  // evaluated and averaged with the earlier frames' for the same surface
+  // points (reprojected; new points start afresh).
+  enum class History { None, Refresh, Reuse };
+  History history = History::None;
 };
 
 // Default R: kDefaultObscuranceRadiusCells cells of the coarser axis (the near

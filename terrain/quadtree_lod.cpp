@@ -332,6 +332,10 @@ LodRanges makeLodRanges(const LodQuadtree& tree, double errorScale, bool morph) 
   return r;
 }
 
+double lodAutomaticErrorPixels(double viewportHeightPx) {
+  return std::max(1.0, 4.0 * viewportHeightPx / 720.0);
+}
+
 double lodViewErrorScale(double viewportHeightPx, double verticalFovDeg, double maxErrorPixels) {
   // An error of e metres d metres away covers about e f / d pixels, f =
   // (H / 2) / tan(fov / 2) the focal length in pixels.
@@ -389,7 +393,9 @@ LodSelection selectLod(const LodQuadtree& tree, const LodRanges& ranges, glm::dv
 LodSelection selectLodForFrame(const LodQuadtree& tree, const LodFrame& frame) {
   double scale = std::min(frame.budgetErrorScale,
                           lodViewErrorScale(frame.viewportHeightPx, frame.verticalFovDeg,
-                                            frame.settings.maxErrorPixels));
+                                            frame.settings.maxErrorPixels > 0
+                                                ? frame.settings.maxErrorPixels
+                                                : lodAutomaticErrorPixels(frame.viewportHeightPx)));
   LodSelection s;
   for (int attempt = 0; attempt < 16; ++attempt) {
     s = selectLod(tree, makeLodRanges(tree, scale, frame.settings.morph), frame.cameraM,

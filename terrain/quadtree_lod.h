@@ -48,11 +48,10 @@ struct LodSettings {
   // The largest geometric error of the drawn surface, in pixels on screen
   // (a height error e metres at distance d covers e f / d pixels, f the focal
   // length in pixels): a level is drawn only where its nodes' largest error
-  // covers at most this many. The bound is a worst case (the largest height
-  // difference over the level); 4 pixels kept the tone-mapped picture within
-  // 0.6 % RMSE of the finest mesh in every view measured (docs/performance.md)
-  // with 3-14x fewer triangles.
-  double maxErrorPixels = 4.0;
+  // covers at most this many. 0: automatic, lodAutomaticErrorPixels of the
+  // viewport. The bound is a worst case (the largest height difference over
+  // the level).
+  double maxErrorPixels = 0;
   // Debugging only: false draws the selected levels without morphing, which
   // opens cracks between levels on rough terrain (the crack test checks that
   // it does).
@@ -130,6 +129,13 @@ struct LodRanges {
 };
 LodRanges makeLodRanges(const LodQuadtree& tree, double errorScale, bool morph = true);
 
+// The automatic error allowed in a viewport `viewportHeightPx` high: 4 pixels
+// at 720 lines, in proportion to the height (so that the picture's error is
+// the same fraction of it at any size), at least one. At 1280x720 it kept the
+// tone-mapped picture within 0.8 % RMSE of the finest mesh's in every view
+// measured (docs/performance.md) with 1.3-9x fewer triangles; 4 pixels at
+// 640x360 did not (1.1-1.4 %).
+double lodAutomaticErrorPixels(double viewportHeightPx);
 // The error scale P at which `maxErrorPixels` of error are allowed in a
 // viewport `viewportHeightPx` high with vertical field of view
 // `verticalFovDeg`.

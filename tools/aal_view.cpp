@@ -38,6 +38,7 @@ struct Options {
   int device = -1, azimuths = 64;
   size_t triangleBudget = 2'000'000;
   double lodErrorPixels = aal::LodSettings{}.maxErrorPixels;
+  std::optional<double> targetFps;
 };
 
 // Scripted-run options checked before anything is loaded or opened.
@@ -133,6 +134,8 @@ int run(const Options& o) {
   v.device = o.device;
   v.triangleBudget = o.triangleBudget;
   v.lodErrorPixels = o.lodErrorPixels;
+  // Scripted runs measure and take screenshots: full resolution unless asked.
+  v.targetFps = o.targetFps.value_or(o.frames ? 0.0 : 30.0);
   v.bakeAzimuths = o.azimuths;
   v.frames = o.frames.value_or(0);
   if (!o.cameraPath.empty()) v.cameraPath = aal::CameraPath::load(o.cameraPath);
@@ -212,9 +215,14 @@ int main(int argc, char** argv) {
       ->check(CLI::Range(size_t(2), size_t(1) << 28))
       ->capture_default_str();
   app.add_option("--lod-error", o.lodErrorPixels,
-                 "largest geometric error of the terrain mesh in pixels (the panel sets it)")
-      ->check(CLI::Range(1e-3, 1e3))
-      ->capture_default_str();
+                 "largest geometric error of the terrain mesh in pixels (default: 4 at 720 "
+                 "lines, in proportion to the window's height)")
+      ->check(CLI::Range(1e-3, 1e3));
+  app.add_option("--target-fps", o.targetFps,
+                 "while the view changes, draw fewer pixels (down to half the width and height, "
+                 "scaled up) to keep this frame rate; at rest every pixel. 0: off. Default 30, "
+                 "off in scripted runs (--frames)")
+      ->check(CLI::Range(0.0, 1000.0));
   app.add_option("--azimuths", o.azimuths, "azimuths of a background bake")
       ->check(CLI::Range(4, 4096))
       ->capture_default_str();

@@ -8,6 +8,7 @@
 #include <OpenImageIO/imageio.h>
 
 #include <cmath>
+#include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <set>
@@ -115,6 +116,58 @@ TEST(AalView, ScriptedFlightShowsTerrainWithoutValidationMessages) {
     bottomGreenMinusBlue += double(p.rgba[bottom + 1]) - p.rgba[bottom + 2];
   }
   EXPECT_GT(bottomGreenMinusBlue, topGreenMinusBlue) << "no terrain at the bottom";
+}
+
+// "drawn N frames, M idle iterations" of --stats.
+std::pair<int, int> drawnAndIdle(const std::string& out) {
+  const size_t at = out.find("drawn      ");
+  if (at == std::string::npos) return {-1, -1};
+  int drawn = -1, idle = -1;
+  std::sscanf(out.c_str() + at, "drawn %d frames, %d idle", &drawn, &idle);
+  return {drawn, idle};
+}
+
+TEST(AalView, AnIdleViewerDrawsNothing) {
+  TempDir dir;
+  // No input under Xvfb and nothing animated: after the first frames the
+  // viewer waits for events instead of drawing the same picture again.
+  const auto r = view(dir, quoted(kDem) + " --size 320x240 --timeout 3 --stats");
+  ASSERT_EQ(r.exitCode, 0) << r.out;
+  const auto [drawn, idle] = drawnAndIdle(r.out);
+  EXPECT_GE(drawn, 1) << r.out;
+  // The background bake's progress bar redraws a few times a second until
+  // the map is ready (jacksboro: well under a second), then nothing.
+  EXPECT_LE(drawn, 12) << r.out;
+  EXPECT_GE(idle, 15) << r.out;
+}
+
+TEST(AalView, DynamicResolutionDrawsFewerPixelsWhileTheViewMoves) {
+  TempDir dir;
+  const fs::path path = dir.path() / "path.txt", shot = dir.path() / "shot.png";
+  writeText(path, kPath);
+  // A target no machine meets: every moving frame at the smallest scale; the
+  // screenshot (the last frame) at full resolution.
+  const auto r =
+      view(dir, quoted(kDem) + " --size 320x240 --frames 12 --camera-path " + quoted(path) +
+                    " --target-fps 1000 --screenshot " + quoted(shot) + " --stats");
+  ASSERT_EQ(r.exitCode, 0) << r.out;
+  EXPECT_NE(r.out.find("validation on, 0 messages"), std::string::npos) << r.out;
+  int reduced = -1;
+  const size_t at = r.out.find("resolution ");
+  ASSERT_NE(at, std::string::npos) << r.out;
+  const size_t comma = r.out.find(", ", at);
+  ASSERT_NE(comma, std::string::npos) << r.out;
+  std::sscanf(r.out.c_str() + comma, ", %d frames reduced", &reduced);
+  EXPECT_GE(reduced, 8) << r.out;
+  EXPECT_NE(r.out.find("target 1000 fps"), std::string::npos) << r.out;
+  const Picture p = readPng(shot);
+  EXPECT_EQ(p.width, 320);
+  EXPECT_GT(greenSpread(p, 120, 240), 4.0) << "flat colour where the terrain should be";
+  // Off by default in scripted runs.
+  const auto plain = view(
+      dir, quoted(kDem) + " --size 320x240 --frames 3 --camera-path " + quoted(path) + " --stats");
+  ASSERT_EQ(plain.exitCode, 0) << plain.out;
+  EXPECT_NE(plain.out.find("0 frames reduced (target 0 fps: off)"), std::string::npos) << plain.out;
 }
 
 TEST(AalView, UsesTheCachedApertureMapOnTheSecondRunAndPresentsWithoutVsync) {

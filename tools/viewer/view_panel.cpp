@@ -99,8 +99,13 @@ void statusLines(const ViewPanelModel& m) {
   if (!m.message.empty()) ImGui::TextWrapped("%s", m.message.c_str());
 }
 
-void timings(const ViewPanelModel& m) {
+void timings(ViewPanelModel& m) {
   ImGui::Text("%.1f fps, %.1f ms per frame", m.framesPerSecond, m.frameMs);
+  ImGui::Text("resolution %.0f %% (drawn only when the view changes)", m.resolutionScale * 100);
+  float target = static_cast<float>(m.targetFps);
+  if (ImGui::SliderFloat("target fps", &target, 0.0f, 60.0f, target > 0 ? "%.0f" : "off")) {
+    m.targetFps = target < 1 ? 0 : target;
+  }
   for (const auto& [pass, ms] : m.passMs) ImGui::Text("  gpu %-10s %7.2f ms", pass.c_str(), ms);
 }
 

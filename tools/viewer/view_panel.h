@@ -29,6 +29,8 @@ struct ViewPanelModel {
   std::string message;                 // last message (load errors, screenshots)
   double framesPerSecond = 0, frameMs = 0;
   std::vector<std::pair<std::string, double>> passMs;  // GPU time per pass
+  float resolutionScale = 1;                           // of the last frame (dynamic resolution)
+  double targetFps = 0;  // edited: the dynamic resolution's target (0: off)
   double speedMps = 0, heightAboveGroundM = 0;
   // Obscurance radius R: the DEM's default (used when radiusM is 0) and the
   // largest allowed (the shorter side of the DEM).

@@ -4,6 +4,7 @@
 
 #include <cmath>
 #include <cstdio>
+#include <cstring>
 #include <ctime>
 #include <filesystem>
 #include <map>
@@ -34,6 +35,11 @@ struct Viewer::Timing {
   using Clock = std::chrono::steady_clock;
   Clock::time_point start = Clock::now(), last = start;
   double smoothedFrameMs = 0;
+  // Frames drawn and loop iterations that drew nothing (nothing changed);
+  // the sum of the resolution scales of the counted frames.
+  int drawn = 0, idle = 0;
+  double scaleSum = 0;
+  int scaled = 0;  // counted frames drawn below full resolution
   std::vector<std::pair<std::string, double>> lastPassMs;
   // Scripted frames, for --stats: wall time from the first counted frame.
   Clock::time_point firstCounted;
@@ -42,12 +48,18 @@ struct Viewer::Timing {
   std::map<std::string, double> passSumsMs;
   int passFrames = 0;
 
+  // Seconds since the last call (at most a quarter second: after a rest the
+  // camera and the animated time must not jump).
   double tick() {
     const Clock::time_point now = Clock::now();
     const double dt = std::chrono::duration<double>(now - last).count();
     last = now;
-    smoothedFrameMs = smoothedFrameMs == 0 ? dt * 1e3 : 0.9 * smoothedFrameMs + 0.1 * dt * 1e3;
-    return dt;
+    return std::min(dt, 0.25);
+  }
+  // A drawn frame took `ms` from the start of its loop iteration.
+  void frameDrawn(double ms) {
+    smoothedFrameMs = smoothedFrameMs == 0 ? ms : 0.9 * smoothedFrameMs + 0.1 * ms;
+    ++drawn;
   }
   double elapsedS() const { return std::chrono::duration<double>(Clock::now() - start).count(); }
 };
@@ -119,6 +131,30 @@ const char* presentModeName(VkPresentModeKHR mode) {
 constexpr int kMinimisedIterations = 3;
 constexpr int kMaxMinimiseIterations = 5;
 
+// Whether two frames show the same picture (the viewer redraws only when
+// not; the per-frame GPU data, such as the patch list, follows from these).
+bool sameView(const FrameSettings& a, const FrameSettings& b) {
+  const auto sameCamera = [](const Camera& x, const Camera& y) {
+    return x.position == y.position && x.lookAt == y.lookAt && x.verticalFovDeg == y.verticalFovDeg;
+  };
+  const auto sameObscurance = [](const ObscuranceSettings& x, const ObscuranceSettings& y) {
+    return x.enabled == y.enabled && x.radiusM == y.radiusM && x.samples == y.samples &&
+           x.steps == y.steps && x.interleaved == y.interleaved &&
+           x.halfResolution == y.halfResolution;
+  };
+  return sameCamera(a.camera, b.camera) && a.mode == b.mode && a.sunDirection == b.sunDirection &&
+         a.sunRadiusRad == b.sunRadiusRad && a.sunIrradiance == b.sunIrradiance &&
+         a.skyRadiance == b.skyRadiance && std::memcmp(&a.sky, &b.sky, sizeof a.sky) == 0 &&
+         a.hazeDensityPerM == b.hazeDensityPerM && a.exposure == b.exposure &&
+         a.waterAtSeaLevel == b.waterAtSeaLevel && sameObscurance(a.obscurance, b.obscurance) &&
+         a.albedoValue == b.albedoValue && a.lod.maxErrorPixels == b.lod.maxErrorPixels &&
+         a.lod.morph == b.lod.morph;
+}
+
+// How long an idle viewer sleeps between looks at the clock (the --timeout,
+// a running bake's progress bar) when no event wakes it.
+constexpr double kIdleWaitS = 0.1;
+
 BakeOptions viewerBakeOptions(int azimuths) {
   BakeOptions options;
   options.azimuths = azimuths;
@@ -143,7 +179,8 @@ Viewer::Viewer(const ViewerOptions& options, std::shared_ptr<const Heightfield> 
       lighting_(options.lighting.value_or(defaultViewLighting(*field))),
       mode_(options.mode),
       vsync_(options.vsync),
-      timing_(std::make_unique<Timing>()) {
+      timing_(std::make_unique<Timing>()),
+      resolution_(options.targetFps) {
   swapchainFramebuffer_ = window_.framebufferSize();
   obscurance_.enabled = options.obscurance;
   renderer_ = std::make_unique<TerrainRenderer>(device_, swapchain_.extent().width,
@@ -238,6 +275,16 @@ void Viewer::handleKeys() {
   for (const std::string& path : window_.takeDroppedPaths()) openDroppedDem(path);
 }
 
+bool Viewer::cameraDriven() const {
+  if (looking_) return true;
+  if (!ui_.wantsKeyboard()) {
+    for (int key : {GLFW_KEY_W, GLFW_KEY_A, GLFW_KEY_S, GLFW_KEY_D, GLFW_KEY_Q, GLFW_KEY_E}) {
+      if (window_.keyDown(key)) return true;
+    }
+  }
+  return window_.mouseButtonDown(GLFW_MOUSE_BUTTON_RIGHT) && !ui_.wantsMouse();
+}
+
 void Viewer::updateCamera(double dtSeconds) {
   const CameraPath* path = options_.cameraPath ? &*options_.cameraPath : nullptr;
   if (path && options_.frames > 0) {
@@ -290,6 +337,8 @@ void Viewer::drawUi() {
   model.frameMs = timing_->smoothedFrameMs;
   model.framesPerSecond = model.frameMs > 0 ? 1e3 / model.frameMs : 0;
   model.passMs = timing_->lastPassMs;
+  model.resolutionScale = lastScale_;
+  model.targetFps = resolution_.targetFps();
   model.speedMps = camera_->speedMps();
   model.heightAboveGroundM = camera_->heightAboveGround();
   const glm::dvec2 extent = demExtentM(field);
@@ -304,6 +353,7 @@ void Viewer::drawUi() {
   }
   if (actions.screenshot) pendingScreenshot_ = nextScreenshotName();
   if (actions.vsyncChanged) swapchainStale_ = true;
+  if (model.targetFps != resolution_.targetFps()) resolution_.setTargetFps(model.targetFps);
 }
 
 FrameSettings Viewer::frameSettings() const {
@@ -317,12 +367,14 @@ FrameSettings Viewer::frameSettings() const {
   return s;
 }
 
-void Viewer::recordFrame(VkCommandBuffer cmd, uint32_t imageIndex, const FrameSettings& settings) {
-  // The renderer's last pass writes the swapchain image itself (no copy);
-  // it is left ready for the UI pass.
+void Viewer::recordFrame(VkCommandBuffer cmd, uint32_t imageIndex, const FrameSettings& settings,
+                         float resolutionScale) {
+  // The renderer's last pass writes the swapchain image itself (no copy), or
+  // scales its smaller picture up into it; it is left ready for the UI pass.
   FrameOutput output;
   output.image = swapchain_.image(imageIndex);
   output.view = swapchain_.view(imageIndex);
+  output.resolutionScale = resolutionScale;
   renderer_->record(cmd, *terrain_->scene, settings, output);
   if (!pendingScreenshot_.empty()) {
     // What is presented (without the panel); the renderer's display image
@@ -342,6 +394,20 @@ void Viewer::recordFrame(VkCommandBuffer cmd, uint32_t imageIndex, const FrameSe
   ui_.record(cmd, imageIndex);
 }
 
+bool Viewer::frameNeeded(const FrameSettings& settings) {
+  if (options_.frames > 0 || swapchainStale_ || !pendingScreenshot_.empty()) return true;
+  if (!lastDrawn_ || !sameView(settings, *lastDrawn_) || lastScale_ < 1.0f) return true;
+  if (terrain_->scene.get() != lastDrawnScene_ || message_ != lastDrawnMessage_) return true;
+  // Input reaches the panel too: draw a few frames for ImGui to follow it.
+  if (window_.takeActivity()) uiSettleFrames_ = 3;
+  if (uiSettleFrames_ > 0) {
+    --uiSettleFrames_;
+    return true;
+  }
+  // A running bake's progress bar moves a few times a second.
+  return terrain_->bake && timing_->elapsedS() - lastBakeFrameS_ > 0.25;
+}
+
 bool Viewer::drawFrame() {
   sync_.waitForPreviousFrame();
   timing_->lastPassMs = renderer_->passMilliseconds();
@@ -351,9 +417,24 @@ bool Viewer::drawFrame() {
   if (status == SwapchainStatus::SurfaceLost) recreateSurface();
   if (status != SwapchainStatus::Ok) return false;
 
-  const FrameSettings settings = frameSettings();
-  recordFrame(sync_.beginCommands(), imageIndex, settings);
+  FrameSettings settings = frameSettings();
+  // The view changes while the settings do (camera, time of day, panel):
+  // then the dynamic resolution keeps the frame rate and the obscurance pass
+  // reuses earlier frames' samples; a screenshot and the first frame at rest
+  // get every pixel and every sample.
+  const bool moving = lastDrawn_ && !sameView(settings, *lastDrawn_);
+  settings.obscurance.history = moving && pendingScreenshot_.empty()
+                                    ? ObscuranceSettings::History::Reuse
+                                    : ObscuranceSettings::History::Refresh;
+  const float scale = pendingScreenshot_.empty() ? resolution_.scaleFor(moving) : 1.0f;
+  recordFrame(sync_.beginCommands(), imageIndex, settings, scale);
   sync_.submit(imageIndex);
+  lastDrawn_ = settings;
+  lastScale_ = scale;
+  lastDrawnScene_ = terrain_->scene.get();
+  lastDrawnMessage_ = message_;
+  if (terrain_->bake) lastBakeFrameS_ = timing_->elapsedS();
+  frameMoving_ = moving;
   status = swapchain_.present(imageIndex, sync_.rendered(imageIndex));
   if (status == SwapchainStatus::OutOfDate) swapchainStale_ = true;
   if (status == SwapchainStatus::SurfaceLost) recreateSurface();
@@ -425,6 +506,8 @@ void Viewer::finishScriptedFrame() {
   ++t.counted;
   for (const auto& [pass, ms] : t.lastPassMs) t.passSumsMs[pass] += ms;
   if (!t.lastPassMs.empty()) ++t.passFrames;
+  t.scaleSum += lastScale_;
+  if (lastScale_ < 1.0f) ++t.scaled;
   if (scriptedFrame_ >= options_.frames) window_.requestClose();
 }
 
@@ -477,6 +560,15 @@ void Viewer::printStats() const {
   std::printf("triangles  %zu (last frame)\n", renderer_->lodSelection().triangles);
   std::printf("frames     %d\n", t.counted);
   std::printf("baking     %d frames drawn while the aperture map was baked\n", t.whileBaking);
+  std::printf("drawn      %d frames, %d idle iterations (nothing changed, nothing drawn)\n",
+              t.drawn, t.idle);
+  if (t.counted > 0) {
+    std::printf(
+        "resolution %.0f %% of the pixels' width on average, %d frames reduced (target "
+        "%.0f fps%s)\n",
+        100 * t.scaleSum / t.counted, t.scaled, resolution_.targetFps(),
+        resolution_.targetFps() > 0 ? "" : ": off");
+  }
   if (t.counted > 1) {
     // Intervals between counted frames: the first frame's set-up is excluded.
     const double seconds =
@@ -495,6 +587,7 @@ void Viewer::printStats() const {
 int Viewer::run() {
   while (!window_.shouldClose()) {
     window_.pollEvents();
+    const Timing::Clock::time_point start = Timing::Clock::now();
     const double dt = timing_->tick();
     if (options_.timeoutS > 0 && timing_->elapsedS() > options_.timeoutS) window_.requestClose();
     const VkExtent2D framebuffer = window_.framebufferSize();
@@ -512,11 +605,22 @@ int Viewer::run() {
     updateBake();
     advanceViewTime(lighting_, dt);
     updateCamera(dt);
+    // Moving keys held or the mouse looking around move the camera every
+    // iteration; otherwise an unchanged view waits for the next event.
+    if (!cameraDriven() && !frameNeeded(frameSettings())) {
+      ++timing_->idle;
+      window_.waitEvents(kIdleWaitS);
+      continue;
+    }
     drawUi();
     const bool lastScripted =
         options_.frames > 0 && !terrain_->bake && scriptedFrame_ == options_.frames - 1;
     if (lastScripted && !options_.screenshot.empty()) pendingScreenshot_ = options_.screenshot;
     if (!drawFrame()) continue;
+    const double frameMs =
+        std::chrono::duration<double, std::milli>(Timing::Clock::now() - start).count();
+    timing_->frameDrawn(frameMs);
+    resolution_.frameFinished(frameMs, frameMoving_);
     if (terrain_->bake) ++timing_->whileBaking;
     finishScriptedFrame();
   }

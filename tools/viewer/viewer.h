@@ -15,6 +15,7 @@
 #include "camera_controller.h"
 #include "camera_path.h"
 #include "device.h"
+#include "dynamic_resolution.h"
 #include "frame_sync.h"
 #include "instance.h"
 #include "swapchain.h"
@@ -47,6 +48,8 @@ struct ViewerOptions {
   int device = -1;
   size_t triangleBudget = 2'000'000;
   double lodErrorPixels = LodSettings{}.maxErrorPixels;
+  // Dynamic resolution while the view changes (DynamicResolution); 0: off.
+  double targetFps = 30;
   int bakeAzimuths = 64;
   // Scripted runs: render `frames` frames (0: run until the window closes),
   // along `cameraPath` when given, then save `screenshot` when given.
@@ -86,9 +89,16 @@ class Viewer {
   void updateBake();
   void handleKeys();
   void updateCamera(double dtSeconds);
+  // Keys or the mouse are moving the camera (it changes every iteration).
+  bool cameraDriven() const;
   void drawUi();
+  // Whether this iteration must draw: scripted runs always; otherwise only
+  // when the view, the settings, the window or the panel changed (an idle
+  // viewer uses no CPU).
+  bool frameNeeded(const FrameSettings& settings);
   bool drawFrame();
-  void recordFrame(VkCommandBuffer cmd, uint32_t imageIndex, const FrameSettings& settings);
+  void recordFrame(VkCommandBuffer cmd, uint32_t imageIndex, const FrameSettings& settings,
+                   float resolutionScale);
   FrameSettings frameSettings() const;
   void recreateSwapchain();
   void recreateSurface();
@@ -126,6 +136,14 @@ class Viewer {
   int minimiseIterations_ = -1;
   int minimisedIterations_ = 0;
   std::unique_ptr<Timing> timing_;
+  DynamicResolution resolution_;
+  std::optional<FrameSettings> lastDrawn_;  // the settings of the last frame drawn
+  float lastScale_ = 1.0f;                  // its resolution scale
+  int uiSettleFrames_ = 0;                  // frames still drawn after input (ImGui follows it)
+  std::string lastDrawnMessage_;
+  double lastBakeFrameS_ = 0;  // when a frame last showed the bake's progress
+  const TerrainScene* lastDrawnScene_ = nullptr;
+  bool frameMoving_ = false;  // the last frame drawn showed a changed view
   glm::dvec2 lastCursor_{0.0};
   bool looking_ = false;
 };
