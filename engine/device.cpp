@@ -129,6 +129,12 @@ Device::Device(const Instance& instance, int deviceIndex,
   features13.synchronization2 = VK_TRUE;
   VkPhysicalDeviceFeatures2 features{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_FEATURES_2};
   features.pNext = &features13;
+  // Where there is one: the renderer draws the sky in the terrain's
+  // rendering with the G-buffer's other targets masked off.
+  VkPhysicalDeviceFeatures supported{};
+  vkGetPhysicalDeviceFeatures(physical_, &supported);
+  independentBlend_ = supported.independentBlend == VK_TRUE;
+  features.features.independentBlend = supported.independentBlend;
 
   VkDeviceCreateInfo info{VK_STRUCTURE_TYPE_DEVICE_CREATE_INFO};
   info.pNext = &features;

@@ -39,6 +39,8 @@ class Device {
   VkQueue queue() const { return queue_; }
   uint32_t queueFamily() const { return queueFamily_; }
   const VkPhysicalDeviceProperties& properties() const { return properties_; }
+  // The independentBlend feature is on (per-attachment blend and write masks).
+  bool independentBlend() const { return independentBlend_; }
   const VkPhysicalDeviceMemoryProperties& memoryProperties() const { return memory_; }
   std::string name() const { return properties_.deviceName; }
 
@@ -51,6 +53,7 @@ class Device {
   VkQueue queue_ = VK_NULL_HANDLE;
   uint32_t queueFamily_ = 0;
   VkPhysicalDeviceProperties properties_{};
+  bool independentBlend_ = false;
   VkPhysicalDeviceMemoryProperties memory_{};
 };
 

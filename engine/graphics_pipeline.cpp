@@ -54,7 +54,8 @@ GraphicsPipeline::GraphicsPipeline(const Device& device, const GraphicsPipelineD
   depth.depthWriteEnable = desc.depthWrite;
   depth.depthCompareOp = VK_COMPARE_OP_LESS_OR_EQUAL;
   std::vector<VkPipelineColorBlendAttachmentState> blendAttachments(desc.colorFormats.size());
-  for (auto& b : blendAttachments) {
+  for (size_t i = 0; i < blendAttachments.size(); ++i) {
+    VkPipelineColorBlendAttachmentState& b = blendAttachments[i];
     if (desc.additiveBlend) {
       b.blendEnable = VK_TRUE;
       b.srcColorBlendFactor = VK_BLEND_FACTOR_ONE;
@@ -66,6 +67,7 @@ GraphicsPipeline::GraphicsPipeline(const Device& device, const GraphicsPipelineD
     }
     b.colorWriteMask = VK_COLOR_COMPONENT_R_BIT | VK_COLOR_COMPONENT_G_BIT |
                        VK_COLOR_COMPONENT_B_BIT | VK_COLOR_COMPONENT_A_BIT;
+    if ((desc.writtenColors >> i & 1u) == 0) b.colorWriteMask = 0;
   }
   VkPipelineColorBlendStateCreateInfo blend{
       VK_STRUCTURE_TYPE_PIPELINE_COLOR_BLEND_STATE_CREATE_INFO};

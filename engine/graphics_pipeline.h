@@ -28,6 +28,9 @@ struct GraphicsPipelineDesc {
   // Specialisation constants of both stages: constant_id i takes
   // specialization[i] (32-bit ints and bools).
   std::vector<int32_t> specialization;
+  // Bit i set: colour attachment i is written (else its write mask is 0 and
+  // it keeps what it holds).
+  uint32_t writtenColors = ~0u;
 };
 
 class GraphicsPipeline {

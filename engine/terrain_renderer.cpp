@@ -242,21 +242,27 @@ struct TerrainRenderer::Passes {
   }
 
   // The sky, after the terrain at the far plane with the depth test on, so
-  // only the pixels the terrain left empty run its shader.
-  const GraphicsPipeline& sky(ShadingMode mode, bool display) {
-    const std::string key = "sky/" + std::to_string(int(mode)) + (display ? "/d" : "/h");
+  // only the pixels the terrain left empty run its shader; with the
+  // G-buffer in the same rendering (one rendering fewer: lavapipe loads and
+  // stores its targets at each), writing only the colour.
+  const GraphicsPipeline& sky(ShadingMode mode, bool display, bool gbuffer) {
+    const std::string key =
+        "sky/" + std::to_string(int(mode)) + (display ? "/d" : "/h") + (gbuffer ? "/g" : "");
+    std::vector<VkFormat> formats{display ? displayFormat : kHdrFormat};
+    if (gbuffer) formats = {kHdrFormat, kAmbientFormat, kSurfaceFormat};
     return cached(key,
                   {"fullscreen.vert",
                    "sky.frag",
                    {VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER},
                    0,
-                   {display ? displayFormat : kHdrFormat},
+                   formats,
                    kDepthFormat,
                    true,
                    false,
                    VK_CULL_MODE_NONE,
                    false,
-                   variantConstants(mode, 0, display)});
+                   variantConstants(mode, 0, display),
+                   1u});
   }
 
   // The composite writing display values (the mode decides raw or tone-mapped).
@@ -529,11 +535,14 @@ void TerrainRenderer::record(VkCommandBuffer cmd, const TerrainScene& scene, con
   }
   transitionImage(cmd, depth_, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL);
 
-  // Pass 1 and 2: the terrain, then the sky where the terrain left the far
-  // plane. With the obscurance pass the terrain also writes what it and the
-  // composite read (shaders/terrain_shading.glsl; cleared to "no surface":
-  // ambient 0 at distance 0, texel -1), and the sky follows in a second
-  // rendering with the colour and depth only.
+  // Pass 1 and 2, one rendering: the terrain, then the sky where the terrain
+  // left the far plane. With the obscurance pass the terrain also writes
+  // what it and the composite read (shaders/terrain_shading.glsl; cleared to
+  // "no surface": ambient 0 at distance 0, texel -1), which the sky leaves
+  // as they are (its other targets masked off; without independent blend
+  // state the sky follows in a second rendering with the colour and depth
+  // only).
+  const bool skyApart = obscurance && !device_.independentBlend();
   VkRenderingAttachmentInfo colors[3] = {direct ? display : colorAttachment(hdr_, false),
                                          colorAttachment(ambient_, true),
                                          colorAttachment(surface_, true)};
@@ -543,7 +552,7 @@ void TerrainRenderer::record(VkCommandBuffer cmd, const TerrainScene& scene, con
   depth.imageView = depth_.view();
   depth.imageLayout = VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL;
   depth.loadOp = VK_ATTACHMENT_LOAD_OP_CLEAR;
-  depth.storeOp = obscurance ? VK_ATTACHMENT_STORE_OP_STORE : VK_ATTACHMENT_STORE_OP_DONT_CARE;
+  depth.storeOp = skyApart ? VK_ATTACHMENT_STORE_OP_STORE : VK_ATTACHMENT_STORE_OP_DONT_CARE;
   depth.clearValue.depthStencil = {1.0f, 0};
   beginRendering(cmd, extent_.width, extent_.height, colors, obscurance ? 3 : 1, &depth);
   timer_.begin(cmd, "terrain");
@@ -555,7 +564,7 @@ void TerrainRenderer::record(VkCommandBuffer cmd, const TerrainScene& scene, con
   vkCmdBindIndexBuffer(cmd, scene.indices().handle(), 0, VK_INDEX_TYPE_UINT32);
   drawPatches(cmd);
   timer_.end(cmd);
-  if (obscurance) {
+  if (skyApart) {
     vkCmdEndRendering(cmd);
     // Order the terrain's colour and depth writes before the sky's.
     transitionImage(cmd, hdr_, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL,
@@ -568,7 +577,7 @@ void TerrainRenderer::record(VkCommandBuffer cmd, const TerrainScene& scene, con
     beginRendering(cmd, extent_.width, extent_.height, colors, 1, &depth);
   }
   timer_.begin(cmd, "sky");
-  passes_->sky(s.mode, direct)
+  passes_->sky(s.mode, direct, obscurance && !skyApart)
       .bind(cmd,
             DescriptorWrites()
                 .uniformBuffer(0, uniforms_)
