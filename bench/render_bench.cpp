@@ -49,10 +49,7 @@ struct Fixture {
     renderer = std::make_unique<aal::TerrainRenderer>(device, 1280, 720);
     const aal::SkyLighting light = aal::makeSkyLighting(250, 25, 2.5);
     settings.camera = aal::defaultCamera(field, 1280.0 / 720.0);
-    settings.sunDirection = light.sunDirection;
-    settings.sunIrradiance = light.sunIrradiance;
-    settings.skyRadiance = light.skyRadiance;
-    settings.sky = light.sky;
+    applySkyLighting(light, settings);
     settings.exposure = 0.07f;
   }
 };

@@ -304,6 +304,13 @@ struct TerrainRenderer::Passes {
   }
 };
 
+void applySkyLighting(const SkyLighting& light, FrameSettings& settings) {
+  settings.sunDirection = light.sunDirection;
+  settings.sunIrradiance = light.sunIrradiance;
+  settings.skyRadiance = light.skyRadiance;
+  settings.sky = light.sky;
+}
+
 TerrainRenderer::TerrainRenderer(const Device& device, uint32_t width, uint32_t height,
                                  VkFormat displayFormat)
     : device_(device),

@@ -21,6 +21,7 @@
 #include "obscurance.h"
 #include "quadtree_lod.h"
 #include "shading.h"
+#include "sky_lighting.h"
 #include "sky_model.h"
 
 namespace aal {
@@ -51,6 +52,11 @@ struct FrameSettings {
   // is the scene's.
   LodSettings lod;
 };
+
+// The sun and sky of `light` (direction, irradiance, average sky radiance,
+// the sky model) into `settings`; the sun's radius, haze and exposure are the
+// caller's.
+void applySkyLighting(const SkyLighting& light, FrameSettings& settings);
 
 struct FrameResult {
   uint32_t width = 0, height = 0;

@@ -84,7 +84,7 @@ vec4 obscuranceSums(vec2 texel, vec2 cellSizeM, int set, int first, int count, f
   return vec4(open, occludedAlbedo);
 }
 
-// rgb: W, a: O from the sums' means per sample (sums / n): seed 000 eq. 9,
+// rgb: W, a: O from the sums' means per sample (sums / n): Umenhoffer et al.'s eq. 9,
 // W = sum S_i / (n - sum (1 - S_i) a(p_i)).
 vec4 obscuranceFromMeans(vec4 means) {
   vec3 w = means.x > 0.0 ? means.x / (1.0 - means.yzw) : vec3(0.0);

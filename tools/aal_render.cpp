@@ -238,11 +238,8 @@ int run(const Options& o) {
   if (!o.lookAt.empty()) settings.camera.lookAt = aal::parseTriple("--look-at", o.lookAt);
   settings.camera.verticalFovDeg = o.fovDeg;
   settings.lod.maxErrorPixels = o.lodErrorPixels;
-  settings.sunDirection = light.sunDirection;
+  applySkyLighting(light, settings);
   settings.sunRadiusRad = static_cast<float>(o.sunRadiusDeg * M_PI / 180.0);
-  settings.sunIrradiance = light.sunIrradiance;
-  settings.skyRadiance = light.skyRadiance;
-  settings.sky = light.sky;
   const double visibilityM =
       o.visibilityKm ? *o.visibilityKm * 1000 : aal::defaultVisibilityM(field);
   settings.hazeDensityPerM = static_cast<float>(aal::hazeDensityForVisibility(visibilityM));

@@ -53,10 +53,7 @@ FrameSettings view(ShadingMode mode, bool obscurance) {
   s.camera.lookAt = {0, 0, 500};
   s.camera.verticalFovDeg = 50;
   const SkyLighting light = makeSkyLighting(45, 12, 2.5);
-  s.sunDirection = light.sunDirection;
-  s.sunIrradiance = light.sunIrradiance;
-  s.skyRadiance = light.skyRadiance;
-  s.sky = light.sky;
+  applySkyLighting(light, s);
   s.exposure = 0.07f;
   s.hazeDensityPerM = 1e-4f;
   s.obscurance.enabled = obscurance;

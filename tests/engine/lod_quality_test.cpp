@@ -54,10 +54,7 @@ TEST_F(LodQuality, DefaultErrorKeepsThePictureWithinOnePercentOfTheFinestMesh) {
     s.camera.position = v.position;
     s.camera.lookAt = v.lookAt;
     s.camera.verticalFovDeg = 40;
-    s.sunDirection = light.sunDirection;
-    s.sunIrradiance = light.sunIrradiance;
-    s.skyRadiance = light.skyRadiance;
-    s.sky = light.sky;
+    applySkyLighting(light, s);
     s.exposure = 0.07f;
     s.obscurance.enabled = false;
     const FrameResult coarse = renderer.render(scene, s, false);  // the default error

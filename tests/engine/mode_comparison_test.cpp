@@ -43,10 +43,7 @@ FrameSettings obliqueView(const Heightfield& f, double sunAzimuthDeg, double sun
   s.camera.lookAt = {0, 0, 200};
   s.camera.verticalFovDeg = 45;
   const SkyLighting light = makeSkyLighting(sunAzimuthDeg, sunElevationDeg, 2.5);
-  s.sunDirection = light.sunDirection;
-  s.sunIrradiance = light.sunIrradiance;
-  s.skyRadiance = light.skyRadiance;
-  s.sky = light.sky;
+  applySkyLighting(light, s);
   s.exposure = 0.07f;
   s.obscurance.enabled = false;  // the reference has no near-field term to match W against
   return s;

@@ -45,10 +45,7 @@ FrameSettings view(glm::dvec3 position, glm::dvec3 lookAt, ObscuranceSettings::H
   s.camera.lookAt = lookAt;
   s.camera.verticalFovDeg = 40;
   const SkyLighting light = makeSkyLighting(200, 35, 2.5);
-  s.sunDirection = light.sunDirection;
-  s.sunIrradiance = light.sunIrradiance;
-  s.skyRadiance = light.skyRadiance;
-  s.sky = light.sky;
+  applySkyLighting(light, s);
   s.obscurance.radiusM = 60;
   s.obscurance.history = history;
   return s;

@@ -66,10 +66,7 @@ FrameSettings topView(ShadingMode mode) {
   s.camera.lookAt = {0, 0, 0};
   s.camera.verticalFovDeg = 2 * std::atan(0.5 * (kSize - 1) * kCellM / 50000) * 180 / M_PI;
   const SkyLighting light = makeSkyLighting(200, 35, 2.5);
-  s.sunDirection = light.sunDirection;
-  s.sunIrradiance = light.sunIrradiance;
-  s.skyRadiance = light.skyRadiance;
-  s.sky = light.sky;
+  applySkyLighting(light, s);
   s.exposure = 0.07f;
   s.obscurance.radiusM = kRadiusM;
   return s;

@@ -53,11 +53,8 @@ FrameSettings topView(const Heightfield& f, ShadingMode mode, double sunAzimuthD
   s.camera.lookAt = {0, 0, 0};
   s.camera.verticalFovDeg = 2 * std::atan(0.55 * (f.width - 1) * f.cellSizeXM / 8000) * 180 / M_PI;
   const SkyLighting light = makeSkyLighting(sunAzimuthDeg, sunElevationDeg, 2.5);
-  s.sunDirection = light.sunDirection;
+  applySkyLighting(light, s);
   s.sunRadiusRad = sunRadiusRad;
-  s.sunIrradiance = light.sunIrradiance;
-  s.skyRadiance = light.skyRadiance;
-  s.sky = light.sky;
   s.exposure = 0.07f;
   return s;
 }

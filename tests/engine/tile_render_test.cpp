@@ -64,10 +64,7 @@ FrameSettings lighting(ShadingMode mode) {
   FrameSettings s;
   s.mode = mode;
   const SkyLighting light = makeSkyLighting(230, 25, 2.5);
-  s.sunDirection = light.sunDirection;
-  s.sunIrradiance = light.sunIrradiance;
-  s.skyRadiance = light.skyRadiance;
-  s.sky = light.sky;
+  applySkyLighting(light, s);
   s.exposure = 0.07f;
   s.obscurance.radiusM = 400;  // about 13 texels: samples cross the seams
   return s;

@@ -64,11 +64,8 @@ void advanceViewTime(ViewLighting& l, double dtSeconds) {
 
 void applyViewLighting(const ViewLighting& l, const Heightfield& field, FrameSettings& s) {
   const SkyLighting light = viewSkyLighting(l);
-  s.sunDirection = light.sunDirection;
+  applySkyLighting(light, s);
   s.sunRadiusRad = static_cast<float>(l.sunRadiusDeg * M_PI / 180.0);
-  s.sunIrradiance = light.sunIrradiance;
-  s.skyRadiance = light.skyRadiance;
-  s.sky = light.sky;
   s.hazeDensityPerM = static_cast<float>(hazeDensityForVisibility(defaultVisibilityM(field)));
   s.waterAtSeaLevel = field.geo.crs != CrsKind::None;
   s.exposure = clearDayExposure(l.turbidity) * std::exp2(l.exposureStops);

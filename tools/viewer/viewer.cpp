@@ -397,7 +397,7 @@ void Viewer::recordFrame(VkCommandBuffer cmd, uint32_t imageIndex, const FrameSe
 bool Viewer::frameNeeded(const FrameSettings& settings) {
   if (options_.frames > 0 || swapchainStale_ || !pendingScreenshot_.empty()) return true;
   if (!lastDrawn_ || !sameView(settings, *lastDrawn_) || lastScale_ < 1.0f) return true;
-  if (terrain_->scene.get() != lastDrawnScene_ || message_ != lastDrawnMessage_) return true;
+  if (terrain_->scene->id() != lastDrawnScene_ || message_ != lastDrawnMessage_) return true;
   // Input reaches the panel too: draw a few frames for ImGui to follow it.
   if (window_.takeActivity()) uiSettleFrames_ = 3;
   if (uiSettleFrames_ > 0) {
@@ -431,7 +431,7 @@ bool Viewer::drawFrame() {
   sync_.submit(imageIndex);
   lastDrawn_ = settings;
   lastScale_ = scale;
-  lastDrawnScene_ = terrain_->scene.get();
+  lastDrawnScene_ = terrain_->scene->id();
   lastDrawnMessage_ = message_;
   if (terrain_->bake) lastBakeFrameS_ = timing_->elapsedS();
   frameMoving_ = moving;

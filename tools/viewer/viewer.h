@@ -141,9 +141,9 @@ class Viewer {
   float lastScale_ = 1.0f;                  // its resolution scale
   int uiSettleFrames_ = 0;                  // frames still drawn after input (ImGui follows it)
   std::string lastDrawnMessage_;
-  double lastBakeFrameS_ = 0;  // when a frame last showed the bake's progress
-  const TerrainScene* lastDrawnScene_ = nullptr;
-  bool frameMoving_ = false;  // the last frame drawn showed a changed view
+  double lastBakeFrameS_ = 0;    // when a frame last showed the bake's progress
+  uint64_t lastDrawnScene_ = 0;  // TerrainScene::id of the last frame drawn
+  bool frameMoving_ = false;     // the last frame drawn showed a changed view
   glm::dvec2 lastCursor_{0.0};
   bool looking_ = false;
 };
