@@ -1,17 +1,20 @@
-// Shared pieces of the libFuzzer targets: a per-process scratch file (the
-// GeoTIFF, PNG and EXR readers need a path) and options that keep hostile
-// headers from asking for gigabytes.
+// Shared pieces of the libFuzzer targets: inputs become GDAL in-memory files
+// (/vsimem/), options keep hostile headers from asking for gigabytes, and
+// only the drivers of the formats we ship seeds for are registered, so that
+// the fuzzers test our side of the GDAL boundary (terrain/io/dem_source.h),
+// not Debian's build of every GDAL driver.
 #pragma once
-
-#include <unistd.h>
 
 #include <cstddef>
 #include <cstdint>
-#include <cstdio>
-#include <filesystem>
+#include <set>
 #include <string>
 
+#include <cpl_vsi.h>
+#include <gdal_priv.h>
+
 #include "dem_options.h"
+#include "gdal_session.h"
 
 namespace aal::fuzz {
 
@@ -25,39 +28,39 @@ inline DemLoadOptions options() {
   return o;
 }
 
-// The scratch folder of this process, removed when the process exits.
-class ScratchFolder {
+// GDAL with the GTiff, PNG, AAIGrid, SRTMHGT and MEM drivers only (VRT
+// would let an input name any file on the machine).
+inline void initGdal() {
+  static const bool done = [] {
+    ensureGdal();
+    const std::set<std::string> keep = {"GTiff", "PNG", "AAIGrid", "SRTMHGT", "MEM"};
+    GDALDriverManager* manager = GetGDALDriverManager();
+    for (int i = manager->GetDriverCount() - 1; i >= 0; --i) {
+      GDALDriver* driver = manager->GetDriver(i);
+      if (keep.count(driver->GetDescription()) == 0) {
+        manager->DeregisterDriver(driver);
+        delete driver;
+      }
+    }
+    return true;
+  }();
+  (void)done;
+}
+
+// The input as /vsimem/NAME for the lifetime of this object (not copied).
+class MemoryFile {
  public:
-  ScratchFolder() {
-    std::error_code error;
-    const std::filesystem::path base = std::filesystem::is_directory("/dev/shm", error)
-                                           ? std::filesystem::path("/dev/shm")
-                                           : std::filesystem::temp_directory_path();
-    path_ = base / ("aal-fuzz-" + std::to_string(::getpid()));
-    std::filesystem::create_directories(path_, error);
+  MemoryFile(const std::string& name, const uint8_t* data, size_t size) : path_("/vsimem/" + name) {
+    VSIFCloseL(VSIFileFromMemBuffer(path_.c_str(), const_cast<GByte*>(data),
+                                    static_cast<vsi_l_offset>(size), FALSE));
   }
-  ~ScratchFolder() {
-    std::error_code error;
-    std::filesystem::remove_all(path_, error);
-  }
-  const std::filesystem::path& path() const { return path_; }
+  ~MemoryFile() { VSIUnlink(path_.c_str()); }
+  MemoryFile(const MemoryFile&) = delete;
+  MemoryFile& operator=(const MemoryFile&) = delete;
+  const std::string& path() const { return path_; }
 
  private:
-  std::filesystem::path path_;
+  std::string path_;
 };
-
-// PATH/NAME in a folder owned by this process, so that the file name itself
-// (an SRTM tile name) is free.
-inline std::string scratchPath(const std::string& name) {
-  static const ScratchFolder folder;
-  return (folder.path() / name).string();
-}
-
-inline void writeScratch(const std::string& path, const uint8_t* data, size_t size) {
-  FILE* file = std::fopen(path.c_str(), "wb");
-  if (!file) std::abort();
-  if (size > 0 && std::fwrite(data, 1, size, file) != size) std::abort();
-  std::fclose(file);
-}
 
 }  // namespace aal::fuzz

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Builds the libFuzzer targets of the DEM parsers (clang, ASan + UBSan) in
+# Builds the libFuzzer targets at the GDAL boundary (clang, ASan + UBSan) in
 # build-fuzz/ and runs each for a bounded time. Fails if any finds a crash,
 # a sanitizer report, a leak, a timeout or an unexpected exception.
 #   scripts/fuzz.sh [SECONDS]     seconds per target (default 20)
@@ -10,7 +10,7 @@ set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
 seconds=${1:-20}
 build_dir=${AAL_FUZZ_BUILD_DIR:-$root/build-fuzz}
-targets=(geotiff hgt ascii_grid load_dem)
+targets=(load_dem raster)
 
 "$root/scripts/install-deps.sh"
 if ! command -v clang++ >/dev/null 2>&1; then

@@ -14,9 +14,10 @@ packages=(
   libglfw3-dev libimgui-dev libstb-dev xvfb xauth
   # fonts for text in plots (OpenImageIO render_text)
   fonts-dejavu-core
-  # math, images, geodesy, georeferencing
+  # math, images, geodesy, geodata (GDAL reads every DEM; gdal-bin for
+  # scripts/bench-io.sh's comparison with gdalinfo)
   libglm-dev libopenimageio-dev openimageio-tools libgeographiclib-dev
-  libgeotiff-dev libtiff-dev
+  libgdal-dev gdal-bin
   # parallelism, command line, tests, benchmarks
   libtbb-dev libcli11-dev libgtest-dev libgmock-dev libbenchmark-dev
   # fuzzing the DEM parsers (scripts/fuzz.sh): clang with libFuzzer

@@ -11,6 +11,7 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -20,12 +21,21 @@ enum class CrsKind { None, Geographic, Projected };
 
 struct GeoReference {
   CrsKind crs = CrsKind::None;
-  int epsg = 0;  // 0 when the file names none
+  int epsg = 0;  // 0 when the CRS has no EPSG code
+  // The CRS as WKT (OGC WKT2), exactly as the file gave it; empty when the
+  // grid is not georeferenced, or when only `epsg` names the CRS (then the
+  // EPSG definition is used). Outputs carry it (terrain/io/raster_writer.h).
+  std::string wkt;
+  std::string crsName;  // e.g. "WGS 84 / UTM zone 16N"; empty when unknown
   // CRS coordinates of the centre of texel (0, 0) and the spacing between
-  // texel centres (degrees for geographic grids, CRS units for projected
-  // ones). x grows east with the column, y shrinks south with the row.
+  // texel centres, in the CRS's own units. x grows east with the column, y
+  // shrinks south with the row.
   double originX = 0, originY = 0, stepX = 0, stepY = 0;
   double linearUnitM = 1.0;  // metres per projected CRS unit (0.3048 for feet)
+  // Geographic CRSs: degrees per CRS angular unit (0.9 for grads) and the
+  // prime meridian's longitude east of Greenwich (2.337... for Paris).
+  double angularUnitDeg = 1.0;
+  double primeMeridianDeg = 0.0;
   // Geographic centre of the DEM (WGS84 degrees), when it can be known.
   bool hasCenter = false;
   double centerLatDeg = 0, centerLonDeg = 0;
@@ -47,7 +57,12 @@ struct Heightfield {
 
   GeoReference geo;
   std::string source;  // path it was read from, or a description
-  std::string format;  // e.g. "GeoTIFF", "SRTM HGT", "synthetic"
+  std::string format;  // e.g. "GeoTIFF", "SRTMHGT File Format", "synthetic"
+  std::string driver;  // GDAL driver's short name ("GTiff"); empty when not from a file
+  // The file's nodata value as stored, and its vertical unit as it names
+  // it (empty when the file does not say; metres were then assumed).
+  std::optional<double> nodata;
+  std::string zUnitName;
 
   size_t texelCount() const { return static_cast<size_t>(width) * static_cast<size_t>(height); }
   size_t index(int x, int y) const {

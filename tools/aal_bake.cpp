@@ -5,6 +5,7 @@
 #include <csignal>
 #include <cstdio>
 #include <filesystem>
+#include <limits>
 #include <optional>
 #include <string>
 #include <thread>
@@ -16,8 +17,8 @@
 #include "aperture_map.h"
 #include "atomic_file.h"
 #include "bake.h"
-#include "dem_format.h"
 #include "dem_loader.h"
+#include "dem_source.h"
 #include "geotiff_writer.h"
 #include "progress.h"
 #include "tiled_bake.h"
@@ -32,6 +33,26 @@ std::atomic<bool> gInterrupted{false};
 extern "C" void onInterrupt(int signal) {
   gInterrupted.store(true);
   std::signal(signal, SIG_DFL);
+}
+
+// A per-texel result as a GeoTIFF placed like the DEM; the DEM's voids are
+// nodata there (the DEM's own nodata value when float holds it, else NaN).
+void writeGisRaster(const std::string& path, std::vector<float> values,
+                    const aal::Heightfield& field, bool cog) {
+  aal::RasterWriteOptions options;
+  options.cog = cog;
+  if (field.voidCount > 0 || field.nodata) {
+    const bool fits = field.nodata && std::isfinite(static_cast<float>(*field.nodata));
+    const float nodata =
+        fits ? static_cast<float>(*field.nodata) : std::numeric_limits<float>::quiet_NaN();
+    options.nodata = nodata;
+    for (size_t i = 0; i < values.size(); ++i) {
+      if (field.isVoid(static_cast<int>(i % field.width), static_cast<int>(i / field.width))) {
+        values[i] = nodata;
+      }
+    }
+  }
+  aal::writeFloatGeoTiff(path, field.width, field.height, values.data(), field.geo, options);
 }
 
 struct Options {
@@ -51,6 +72,7 @@ struct Options {
   int threads = 0;
   bool quiet = false;
   bool fullFloat = false;
+  bool cog = false;
   int tileSize = 0;  // 0: tiled only above the in-memory limit
 };
 
@@ -174,12 +196,10 @@ int run(const Options& o) {
     aal::writeApertureMap(o.output, result.aperture, !o.fullFloat);
   }
   if (!o.svfPath.empty()) {
-    aal::writeFloatGeoTiff(o.svfPath, field.width, field.height, result.skyViewFactor.data(),
-                           field.geo);
+    writeGisRaster(o.svfPath, std::move(result.skyViewFactor), field, o.cog);
   }
   if (!o.visiblePath.empty()) {
-    const std::vector<float> visible = visibleFractions(result.aperture);
-    aal::writeFloatGeoTiff(o.visiblePath, field.width, field.height, visible.data(), field.geo);
+    writeGisRaster(o.visiblePath, visibleFractions(result.aperture), field, o.cog);
   }
 
   // A resumed tiled bake counts only the texels it baked.
@@ -254,9 +274,12 @@ int main(int argc, char** argv) {
   app.add_option("--max-distance", o.maxDistance,
                  "only terrain within this many metres counts (0 = all; slower when set)")
       ->check(CLI::NonNegativeNumber);
-  app.add_option("--svf", o.svfPath, "also write the sky-view factor (Zaksek) as float32 GeoTIFF");
-  app.add_option("--visible", o.visiblePath,
-                 "also write the visible fraction Omega/2pi as float32 GeoTIFF");
+  app.add_option("--svf", o.svfPath,
+                 "also write the sky-view factor (Zaksek) as a float32 GeoTIFF placed like the DEM "
+                 "(its voids nodata)");
+  app.add_option(
+      "--visible", o.visiblePath,
+      "also write the visible fraction Omega/2pi as a float32 GeoTIFF placed like the DEM");
   app.add_option("--threads", o.threads, "worker threads (default: all cores)")
       ->check(CLI::Range(1, 1024));
   app.add_option("--tile-size", o.tileSize,
@@ -264,6 +287,8 @@ int main(int argc, char** argv) {
                  "--max-distance); DEMs above 16384x16384 texels are always baked tiled, in "
                  "tiles of 4096")
       ->check(CLI::Range(aal::kMinTileSize, aal::kMaxTileSize));
+  app.add_flag("--cog", o.cog,
+               "write --svf and --visible as cloud-optimized GeoTIFFs (tiled, with overviews)");
   app.add_flag("--float", o.fullFloat, "store 32-bit floats instead of 16-bit halves");
   app.add_flag("-q,--quiet", o.quiet, "no progress and no summary");
 

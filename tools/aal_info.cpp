@@ -1,13 +1,14 @@
 // aal-info: what aperture reads from a DEM file, like gdalinfo: format, size,
 // CRS, metric cell size, geographic centre, height range and voids.
+#include <cmath>
 #include <cstdio>
 #include <optional>
 #include <string>
 
 #include <CLI/CLI.hpp>
 
-#include "dem_format.h"
 #include "dem_loader.h"
+#include "dem_source.h"
 #include "dem_summary.h"
 #include "tool_main.h"
 
@@ -46,9 +47,40 @@ std::string jsonString(const std::string& text) {
   return out + "\"";
 }
 
+// A JSON number, or a string for NaN and infinities (JSON has no such numbers).
+std::string jsonNumber(double value) {
+  char text[64];
+  if (std::isnan(value)) return "\"nan\"";
+  if (std::isinf(value)) return value > 0 ? "\"inf\"" : "\"-inf\"";
+  std::snprintf(text, sizeof text, "%.17g", value);
+  return text;
+}
+
+std::string jsonStringOrNull(const std::string& text) {
+  return text.empty() ? "null" : jsonString(text);
+}
+
+std::string horizontalUnit(const aal::GeoReference& geo) {
+  switch (geo.crs) {
+    case aal::CrsKind::Geographic: return geo.angularUnitDeg == 1.0 ? "degree" : "angular unit";
+    case aal::CrsKind::Projected: {
+      if (geo.linearUnitM == 1.0) return "metre";
+      if (geo.linearUnitM == 0.3048) return "foot";
+      if (std::abs(geo.linearUnitM - 1200.0 / 3937.0) < 1e-12) return "US survey foot";
+      char text[64];
+      std::snprintf(text, sizeof text, "%.10g m", geo.linearUnitM);
+      return text;
+    }
+    case aal::CrsKind::None: break;
+  }
+  return {};
+}
+
 void printJson(const aal::Heightfield& f, const aal::DemSummary& s) {
-  std::printf("{\"format\": %s, \"width\": %d, \"height\": %d, \"crs\": \"%s\", ",
-              jsonString(f.format).c_str(), f.width, f.height, crsName(f.geo.crs));
+  std::printf("{\"format\": %s, \"driver\": %s, \"width\": %d, \"height\": %d, \"crs\": \"%s\", ",
+              jsonString(f.format).c_str(), jsonStringOrNull(f.driver).c_str(), f.width, f.height,
+              crsName(f.geo.crs));
+  std::printf("\"crs_name\": %s, ", jsonStringOrNull(f.geo.crsName).c_str());
   if (f.geo.epsg > 0) {
     std::printf("\"epsg\": %d, ", f.geo.epsg);
   } else {
@@ -61,18 +93,23 @@ void printJson(const aal::Heightfield& f, const aal::DemSummary& s) {
   } else {
     std::printf("\"center_lat\": null, \"center_lon\": null, ");
   }
+  std::printf("\"nodata\": %s, ", f.nodata ? jsonNumber(*f.nodata).c_str() : "null");
+  std::printf("\"units\": {\"horizontal\": %s, \"vertical\": %s}, ",
+              jsonStringOrNull(horizontalUnit(f.geo)).c_str(),
+              jsonStringOrNull(f.zUnitName).c_str());
+  std::printf("\"z_scale\": %.17g, ", f.zScale);
   std::printf("\"z_min\": %.9g, \"z_max\": %.9g, \"voids\": %zu}\n", s.zMinM, s.zMaxM, f.voidCount);
 }
 
 void printText(const aal::Heightfield& f, const aal::DemSummary& s) {
   std::printf("file       %s\n", f.source.c_str());
-  std::printf("format     %s\n", f.format.c_str());
+  std::printf("format     %s (GDAL driver %s)\n", f.format.c_str(), f.driver.c_str());
   std::printf("size       %d x %d (%zu texels)\n", f.width, f.height, f.texelCount());
-  if (f.geo.epsg > 0) {
-    std::printf("crs        %s (EPSG:%d)\n", crsName(f.geo.crs), f.geo.epsg);
-  } else {
-    std::printf("crs        %s\n", crsName(f.geo.crs));
-  }
+  std::string crs = crsName(f.geo.crs);
+  if (!f.geo.crsName.empty()) crs += ", " + f.geo.crsName;
+  if (f.geo.epsg > 0) crs += " (EPSG:" + std::to_string(f.geo.epsg) + ")";
+  if (f.geo.crs != aal::CrsKind::None) crs += ", in " + horizontalUnit(f.geo);
+  std::printf("crs        %s\n", crs.c_str());
   if (f.rowCellSizeXM.empty()) {
     std::printf("cell size  x %.4f m, y %.4f m\n", f.cellSizeXM, f.cellSizeYM);
   } else {
@@ -85,7 +122,9 @@ void printText(const aal::Heightfield& f, const aal::DemSummary& s) {
   } else {
     std::printf("centre     unknown\n");
   }
-  std::printf("heights    %.3f .. %.3f m (z scale %g)\n", s.zMinM, s.zMaxM, f.zScale);
+  std::printf("heights    %.3f .. %.3f m (z scale %g%s)\n", s.zMinM, s.zMaxM, f.zScale,
+              f.zUnitName.empty() ? "" : (", file unit " + f.zUnitName).c_str());
+  if (f.nodata) std::printf("nodata     %s\n", jsonNumber(*f.nodata).c_str());
   std::printf("voids      %zu texels (%.3f%%), filled with the nearest valid height\n", f.voidCount,
               100.0 * static_cast<double>(f.voidCount) / f.texelCount());
 }
@@ -101,8 +140,9 @@ int main(int argc, char** argv) {
   Options o;
   app.add_option("DEM", o.dem, "elevation file")->required();
   app.add_flag("--json", o.json,
-               "print one JSON object with the keys format, width, height, crs, epsg, "
-               "cell_size_m [x, y], center_lat, center_lon, z_min, z_max, voids");
+               "print one JSON object with the keys format, driver, width, height, crs, "
+               "crs_name, epsg, cell_size_m [x, y], center_lat, center_lon, nodata, units "
+               "{horizontal, vertical}, z_scale, z_min, z_max, voids");
   app.add_option("--cell-size", o.cellSizeM,
                  "metres between texel centres; overrides the file's georeferencing");
   app.add_option("--z-scale", o.zScale,

@@ -4,15 +4,9 @@
 #include <cstdio>
 #include <iostream>
 
-#include "ascii_grid_reader.h"
-#include "dem_format.h"
+#include "dem_source.h"
 #include "errors.h"
-#include "exr_header.h"
 #include "georeference.h"
-#include "geotiff_reader.h"
-#include "hgt_reader.h"
-#include "image_band.h"
-#include "png_header.h"
 #include "void_fill.h"
 
 namespace aal {
@@ -29,27 +23,6 @@ void checkOptions(const DemLoadOptions& options) {
   if (options.zScale && !(*options.zScale > 0.0 && std::isfinite(*options.zScale))) {
     throw InputError("--z-scale must be a positive number, got " + std::to_string(*options.zScale));
   }
-}
-
-RawDem readRaw(const std::string& path, const DemLoadOptions& options) {
-  switch (detectDemFormat(path)) {
-    case DemFormat::GeoTiff: return readGeoTiff(path, options);
-    case DemFormat::Hgt: return readHgt(path, options);
-    case DemFormat::AsciiGrid: return readAsciiGrid(path, options);
-    case DemFormat::Png: {
-      checkPngStructure(path, options);
-      RawDem dem = readImageBand(path, "png", std::nullopt, options);
-      dem.format = "PNG";
-      return dem;
-    }
-    case DemFormat::OpenExr: {
-      checkExrHeader(path, options);
-      RawDem dem = readImageBand(path, "openexr", std::nullopt, options);
-      dem.format = "OpenEXR";
-      return dem;
-    }
-  }
-  throw std::logic_error("unhandled DEM format");
 }
 
 // Heights times the z scale; products beyond float range become voids.
@@ -76,6 +49,9 @@ void applySpacing(const RawDem& raw, const std::string& path, const DemLoadOptio
     // Validates the georeferencing even when --cell-size overrides it, and
     // gives the geographic centre.
     MetricSpacing spacing = metricSpacing(path, raw.geo, raw.width, raw.height);
+    if (!spacing.scaleNote.empty() && !options.cellSizeM && options.warn) {
+      options.warn(path + ": " + spacing.scaleNote);
+    }
     field.geo.hasCenter = spacing.hasCenter;
     field.geo.centerLatDeg = spacing.centerLatDeg;
     field.geo.centerLonDeg = spacing.centerLonDeg;
@@ -135,6 +111,9 @@ Heightfield heightfieldFromRaw(RawDem raw, const std::string& path, const DemLoa
   field.geo = raw.geo;
   field.source = path;
   field.format = raw.format;
+  field.driver = raw.driver;
+  field.nodata = raw.nodata;
+  field.zUnitName = raw.zUnitName;
   applySpacing(raw, path, options, field);
   field.voidCount = voids;
   if (voids > 0) {
@@ -148,7 +127,7 @@ Heightfield heightfieldFromRaw(RawDem raw, const std::string& path, const DemLoa
 
 Heightfield loadDem(const std::string& path, const DemLoadOptions& options) {
   checkOptions(options);
-  return heightfieldFromRaw(readRaw(path, options), path, options);
+  return heightfieldFromRaw(DemSource(path, options).readAll(), path, options);
 }
 
 }  // namespace aal

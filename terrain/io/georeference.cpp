@@ -4,12 +4,17 @@
 #include <cmath>
 #include <cstdio>
 
+#include <memory>
+#include <utility>
+
+#include <ogr_spatialref.h>
 #include <GeographicLib/Constants.hpp>
 #include <GeographicLib/Ellipsoid.hpp>
+#include <GeographicLib/Geodesic.hpp>
 #include <GeographicLib/Math.hpp>
-#include <GeographicLib/UTMUPS.hpp>
 
 #include "errors.h"
+#include "gdal_session.h"
 
 namespace aal {
 
@@ -45,38 +50,83 @@ void checkCellSize(const std::string& path, const char* axis, double cellM) {
 
 MetricSpacing geographicSpacing(const std::string& path, const GeoReference& geo, int width,
                                 int height) {
-  const double northDeg = geo.originY;
-  const double southDeg = geo.originY - (height - 1) * geo.stepY;
+  const double unit = geo.angularUnitDeg;
+  const double northDeg = geo.originY * unit;
+  const double southDeg = (geo.originY - (height - 1) * geo.stepY) * unit;
+  const double stepXDeg = geo.stepX * unit, stepYDeg = geo.stepY * unit;
   if (!(southDeg >= -90.0 - kLatitudeSlackDeg && northDeg <= 90.0 + kLatitudeSlackDeg)) {
     inconsistent(path, "rows span latitudes " + number(southDeg) + " to " + number(northDeg) +
                            " degrees, beyond +-90");
   }
-  if ((width - 1) * geo.stepX > 360.0 + 1e-9) {
-    inconsistent(path, "columns span " + number((width - 1) * geo.stepX) +
+  if ((width - 1) * stepXDeg > 360.0 + 1e-9) {
+    inconsistent(path, "columns span " + number((width - 1) * stepXDeg) +
                            " degrees of longitude, more than 360");
   }
   MetricSpacing s;
   s.rowCellSizeXM.resize(static_cast<size_t>(height));
   for (int row = 0; row < height; ++row) {
-    const double latDeg = std::clamp(geo.originY - row * geo.stepY, -90.0, 90.0);
+    const double latDeg = std::clamp(northDeg - row * stepYDeg, -90.0, 90.0);
     // On a row at a pole the true spacing is 0; keep it positive so that
     // slopes stay finite.
     s.rowCellSizeXM[static_cast<size_t>(row)] =
-        std::max(parallelArcM(latDeg, geo.stepX), kMinCellSizeM);
+        std::max(parallelArcM(latDeg, stepXDeg), kMinCellSizeM);
   }
   const double centerLatDeg = std::clamp(0.5 * (northDeg + southDeg), -90.0, 90.0);
-  s.cellSizeXM = std::max(parallelArcM(centerLatDeg, geo.stepX), kMinCellSizeM);
+  s.cellSizeXM = std::max(parallelArcM(centerLatDeg, stepXDeg), kMinCellSizeM);
   s.cellSizeYM =
       height > 1
           ? meridianArcM(std::clamp(southDeg, -90.0, 90.0), std::clamp(northDeg, -90.0, 90.0)) /
                 (height - 1)
-          : wgs84().MeridionalCurvatureRadius(centerLatDeg) * geo.stepY * kDegToRad;
+          : wgs84().MeridionalCurvatureRadius(centerLatDeg) * stepYDeg * kDegToRad;
   checkCellSize(path, "y", s.cellSizeYM);
   checkCellSize(path, "x", s.cellSizeXM);
   s.hasCenter = true;
   s.centerLatDeg = centerLatDeg;
-  s.centerLonDeg = GeographicLib::Math::AngNormalize(geo.originX + 0.5 * (width - 1) * geo.stepX);
+  s.centerLonDeg = GeographicLib::Math::AngNormalize(
+      (geo.originX + 0.5 * (width - 1) * geo.stepX) * unit + geo.primeMeridianDeg);
   return s;
+}
+
+std::unique_ptr<OGRSpatialReference> crsOf(const GeoReference& geo) {
+  ensureGdal();
+  auto srs = std::make_unique<OGRSpatialReference>();
+  const OGRErr error = !geo.wkt.empty() ? srs->importFromWkt(geo.wkt.c_str())
+                       : geo.epsg > 0   ? srs->importFromEPSG(geo.epsg)
+                                        : OGRERR_FAILURE;
+  if (error != OGRERR_NONE) return nullptr;
+  srs->SetAxisMappingStrategy(OAMS_TRADITIONAL_GIS_ORDER);
+  return srs;
+}
+
+// CRS coordinates to WGS84 longitude (x) and latitude (y), through PROJ.
+class ToWgs84 {
+ public:
+  explicit ToWgs84(const OGRSpatialReference& source) {
+    wgs84_.importFromEPSG(4326);
+    wgs84_.SetAxisMappingStrategy(OAMS_TRADITIONAL_GIS_ORDER);
+    transform_.reset(OGRCreateCoordinateTransformation(&source, &wgs84_));
+  }
+  bool valid() const { return transform_ != nullptr; }
+  // Longitude and latitude in degrees, or nothing when PROJ cannot map the point.
+  std::optional<std::pair<double, double>> operator()(double x, double y) const {
+    if (!transform_->Transform(1, &x, &y)) return std::nullopt;
+    if (!(std::isfinite(x) && std::isfinite(y) && std::abs(y) <= 90.0)) return std::nullopt;
+    return std::make_pair(x, y);
+  }
+
+ private:
+  OGRSpatialReference wgs84_;
+  std::unique_ptr<OGRCoordinateTransformation> transform_;
+};
+
+// Ground distance in metres between two CRS points (geodesic on WGS84).
+std::optional<double> groundDistanceM(const ToWgs84& toWgs84, double x0, double y0, double x1,
+                                      double y1) {
+  const auto a = toWgs84(x0, y0), b = toWgs84(x1, y1);
+  if (!a || !b) return std::nullopt;
+  double distance = 0;
+  GeographicLib::Geodesic::WGS84().Inverse(a->second, a->first, b->second, b->first, distance);
+  return distance;
 }
 
 MetricSpacing projectedSpacing(const std::string& path, const GeoReference& geo, int width,
@@ -89,21 +139,35 @@ MetricSpacing projectedSpacing(const std::string& path, const GeoReference& geo,
   s.cellSizeYM = geo.stepY * geo.linearUnitM;
   checkCellSize(path, "x", s.cellSizeXM);
   checkCellSize(path, "y", s.cellSizeYM);
-  const std::optional<UtmUpsZone> zone = utmUpsZoneFromEpsg(geo.epsg);
-  if (zone) {
-    const double xM = (geo.originX + 0.5 * (width - 1) * geo.stepX) * geo.linearUnitM;
-    const double yM = (geo.originY - 0.5 * (height - 1) * geo.stepY) * geo.linearUnitM;
-    try {
-      GeographicLib::UTMUPS::Reverse(zone->zone, zone->north, xM, yM, s.centerLatDeg,
-                                     s.centerLonDeg);
-      s.hasCenter = true;
-    } catch (const GeographicLib::GeographicErr&) {
-      const std::string name =
-          zone->zone == 0 ? std::string("UPS") : "UTM zone " + std::to_string(zone->zone);
-      inconsistent(path, "centre (" + number(xM) + ", " + number(yM) + ") m lies outside " + name +
-                             (zone->north ? " north" : " south") + " (EPSG " +
-                             std::to_string(geo.epsg) + ")");
-    }
+  const std::unique_ptr<OGRSpatialReference> srs = crsOf(geo);
+  if (!srs || srs->IsLocal()) return s;
+  const ToWgs84 toWgs84(*srs);
+  if (!toWgs84.valid()) return s;
+  const double x = geo.originX + 0.5 * (width - 1) * geo.stepX;
+  const double y = geo.originY - 0.5 * (height - 1) * geo.stepY;
+  const auto centre = toWgs84(x, y);
+  if (!centre) return s;
+  s.hasCenter = true;
+  s.centerLonDeg = GeographicLib::Math::AngNormalize(centre->first);
+  s.centerLatDeg = centre->second;
+  // Ground spacing at the centre: conformal projections far from their
+  // standard lines (Web Mercator above all) stretch the grid's nominal
+  // spacing; the terrain's slopes need the ground's.
+  const auto groundX = groundDistanceM(toWgs84, x - 0.5 * geo.stepX, y, x + 0.5 * geo.stepX, y);
+  const auto groundY = groundDistanceM(toWgs84, x, y - 0.5 * geo.stepY, x, y + 0.5 * geo.stepY);
+  if (!groundX || !groundY) return s;
+  const double scaleX = s.cellSizeXM / *groundX, scaleY = s.cellSizeYM / *groundY;
+  if (std::abs(scaleX - 1.0) > kProjectionScaleTolerance ||
+      std::abs(scaleY - 1.0) > kProjectionScaleTolerance) {
+    s.scaleNote = std::string("its projection (") + (srs->GetName() ? srs->GetName() : "?") +
+                  ") stretches distances by " + number(scaleX) + " x " + number(scaleY) +
+                  " at the DEM's centre: using the ground spacing there, " + number(*groundX) +
+                  " x " + number(*groundY) + " m, instead of the grid's " + number(s.cellSizeXM) +
+                  " x " + number(s.cellSizeYM) + " m";
+    s.cellSizeXM = *groundX;
+    s.cellSizeYM = *groundY;
+    checkCellSize(path, "x", s.cellSizeXM);
+    checkCellSize(path, "y", s.cellSizeYM);
   }
   return s;
 }
@@ -134,16 +198,6 @@ MetricSpacing metricSpacing(const std::string& path, const GeoReference& geo, in
     case CrsKind::None: break;
   }
   inconsistent(path, "no coordinate reference system");
-}
-
-std::optional<UtmUpsZone> utmUpsZoneFromEpsg(int epsg) {
-  if (epsg == 32661) return UtmUpsZone{0, true};
-  if (epsg == 32761) return UtmUpsZone{0, false};
-  if (epsg >= 32601 && epsg <= 32660) return UtmUpsZone{epsg - 32600, true};
-  if (epsg >= 32701 && epsg <= 32760) return UtmUpsZone{epsg - 32700, false};
-  if (epsg >= 26901 && epsg <= 26923) return UtmUpsZone{epsg - 26900, true};
-  if (epsg >= 25828 && epsg <= 25838) return UtmUpsZone{epsg - 25800, true};
-  return std::nullopt;
 }
 
 }  // namespace aal

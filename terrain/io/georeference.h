@@ -1,8 +1,8 @@
 // Metric spacing and geographic centre of a georeferenced grid (DESIGN §1,
-// §3 "Geographic DEMs"). Geographic grids are measured on the WGS84
-// ellipsoid with GeographicLib; projected grids use their pixel scale times
-// the CRS's linear unit; UTM/UPS grids get their centre from
-// GeographicLib::UTMUPS.
+// §3 "Geographic DEMs"; docs/dem-input.md). Geographic grids are measured on
+// the WGS84 ellipsoid with GeographicLib; projected grids use their pixel
+// scale times the CRS's linear unit, checked against the geodesic distance
+// at the centre; the centre of any CRS comes from PROJ (through GDAL's OGR).
 #pragma once
 
 #include <optional>
@@ -26,14 +26,24 @@ struct MetricSpacing {
   std::vector<double> rowCellSizeXM;  // empty for projected grids
   bool hasCenter = false;             // centre known in WGS84 lat/lon
   double centerLatDeg = 0, centerLonDeg = 0;
+  // Set when the projection's scale at the centre differs from 1 by more
+  // than kProjectionScaleTolerance and the ground spacing replaced the
+  // grid's: says so, with both, for a warning.
+  std::string scaleNote;
 };
+
+// Projected grids whose ground spacing at the centre differs from the
+// nominal one by more than this fraction get the ground spacing (UTM's
+// scale stays within 0.1 %, Web Mercator's is 1/cos(latitude)).
+constexpr double kProjectionScaleTolerance = 0.01;
 
 // Spacing and centre of a width x height grid described by `geo` (crs must
 // be Geographic or Projected; geo.stepX and geo.stepY > 0). Throws
 // InputError("PATH: inconsistent georeferencing: ...") when the grid leaves
 // the valid latitude range, spans more than 360 degrees of longitude, has a
-// non-positive or non-finite step or an absurd metric cell size, or has a
-// UTM/UPS code whose centre is outside that zone's valid range.
+// non-positive or non-finite step or an absurd metric cell size. Projected
+// grids whose CRS PROJ cannot map to WGS84 (local or engineering CRSs) have
+// no centre.
 MetricSpacing metricSpacing(const std::string& path, const GeoReference& geo, int width,
                             int height);
 
@@ -43,15 +53,5 @@ double parallelArcM(double latDeg, double dLonDeg);
 // North-south distance along a meridian between two latitudes, metres
 // (WGS84 meridian arc).
 double meridianArcM(double lat0Deg, double lat1Deg);
-
-struct UtmUpsZone {
-  int zone = 0;  // 1..60 for UTM, 0 for UPS
-  bool north = true;
-};
-// The UTM/UPS zone an EPSG code names: WGS84 UTM 326zz/327zz, UPS 32661
-// (north) / 32761 (south), NAD83 UTM 269zz (zones 1-23) and ETRS89 UTM
-// 258zz (zones 28-38), whose ellipsoid (GRS80) matches WGS84 to well under
-// a millimetre. Empty for any other code.
-std::optional<UtmUpsZone> utmUpsZoneFromEpsg(int epsg);
 
 }  // namespace aal

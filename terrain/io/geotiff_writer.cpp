@@ -1,113 +1,53 @@
 #include "geotiff_writer.h"
 
-#include <algorithm>
 #include <cmath>
-#include <cstdarg>
-#include <cstdio>
-#include <memory>
-#include <mutex>
 #include <stdexcept>
 #include <vector>
 
-#include <geotiff/geotiff.h>
-#include <geotiff/geovalues.h>
-#include <geotiff/xtiffio.h>
-#include <tiffio.h>
+#include <cpl_string.h>
+#include <gdal_priv.h>
+#include <ogr_spatialref.h>
 
 #include "atomic_file.h"
 #include "dem_options.h"
-#include "tiff_handles.h"
+#include "gdal_session.h"
 
 namespace aal {
 
 namespace {
 
-constexpr int kUserDefined = 32767;
-constexpr int kRowsPerStrip = 16;
-
-int linearUnitCode(double linearUnitM) {
-  if (linearUnitM == 1.0) return 9001;
-  if (linearUnitM == 0.3048) return 9002;
-  if (linearUnitM == 1200.0 / 3937.0) return 9003;
-  return kUserDefined;
+[[noreturn]] void fail(const std::string& path, const std::string& what) {
+  throw std::runtime_error("cannot write " + path + ": " + what + ": " + gdalLastError());
 }
 
-bool writeGeoKeys(TIFF* tif, const GeoReference& geo) {
-  // Tie point on the north-west corner of texel (0, 0) (PixelIsArea).
-  const double scale[3] = {geo.stepX, geo.stepY, 0.0};
-  const double tiePoint[6] = {
-      0.0, 0.0, 0.0, geo.originX - 0.5 * geo.stepX, geo.originY + 0.5 * geo.stepY, 0.0};
-  if (!TIFFSetField(tif, TIFFTAG_GEOPIXELSCALE, 3, scale) ||
-      !TIFFSetField(tif, TIFFTAG_GEOTIEPOINTS, 6, tiePoint)) {
-    return false;
-  }
-  GtifHandle gtif(GTIFNew(tif));
-  if (!gtif) return false;
-  GTIFKeySet(gtif.get(), GTRasterTypeGeoKey, TYPE_SHORT, 1, RasterPixelIsArea);
-  if (geo.crs == CrsKind::Geographic) {
-    GTIFKeySet(gtif.get(), GTModelTypeGeoKey, TYPE_SHORT, 1, ModelTypeGeographic);
-    GTIFKeySet(gtif.get(), GeographicTypeGeoKey, TYPE_SHORT, 1, geo.epsg > 0 ? geo.epsg : 4326);
-    GTIFKeySet(gtif.get(), GeogAngularUnitsGeoKey, TYPE_SHORT, 1, Angular_Degree);
-  } else {
-    GTIFKeySet(gtif.get(), GTModelTypeGeoKey, TYPE_SHORT, 1, ModelTypeProjected);
-    GTIFKeySet(gtif.get(), ProjectedCSTypeGeoKey, TYPE_SHORT, 1,
-               geo.epsg > 0 && geo.epsg < kUserDefined ? geo.epsg : kUserDefined);
-    const int unit = linearUnitCode(geo.linearUnitM);
-    GTIFKeySet(gtif.get(), ProjLinearUnitsGeoKey, TYPE_SHORT, 1, unit);
-    if (unit == kUserDefined) {
-      GTIFKeySet(gtif.get(), ProjLinearUnitSizeGeoKey, TYPE_DOUBLE, 1, geo.linearUnitM);
-    }
-  }
-  return GTIFWriteKeys(gtif.get()) != 0;
+// The CRS `geo` names: its WKT, else its EPSG code, else a local CRS in its
+// linear unit (a grid measured in metres or feet with no known CRS).
+OGRSpatialReference crsOf(const GeoReference& geo) {
+  OGRSpatialReference srs;
+  if (!geo.wkt.empty() && srs.importFromWkt(geo.wkt.c_str()) == OGRERR_NONE) return srs;
+  srs.Clear();
+  const int epsg = geo.epsg > 0 ? geo.epsg : geo.crs == CrsKind::Geographic ? 4326 : 0;
+  if (epsg > 0 && srs.importFromEPSG(epsg) == OGRERR_NONE) return srs;
+  srs.Clear();
+  srs.SetLocalCS("unnamed");
+  srs.SetLinearUnits(geo.linearUnitM == 1.0 ? SRS_UL_METER : "unit", geo.linearUnitM);
+  return srs;
 }
 
-void writeTiff(const std::string& path, int width, int height, const float* data,
-               const GeoReference& geo) {
-  TiffMessages messages;
-  // BigTIFF when the pixels alone come near the 4 GiB offset limit.
-  const double bytes = 4.0 * width * height;
-  const char* mode = bytes > 3.5e9 ? "w8" : "w";
-  TiffHandle tif = openTiff(path, mode, messages);
-  const auto fail = [&](const std::string& what) {
-    throw std::runtime_error("cannot write " + path + ": " + what +
-                             (messages.errors.empty() ? "" : ": " + messages.errors));
-  };
-  if (!tif) fail("cannot create the file");
-  TIFF* t = tif.get();
-  TIFFSetField(t, TIFFTAG_IMAGEWIDTH, static_cast<uint32_t>(width));
-  TIFFSetField(t, TIFFTAG_IMAGELENGTH, static_cast<uint32_t>(height));
-  TIFFSetField(t, TIFFTAG_SAMPLESPERPIXEL, 1);
-  TIFFSetField(t, TIFFTAG_BITSPERSAMPLE, 32);
-  TIFFSetField(t, TIFFTAG_SAMPLEFORMAT, SAMPLEFORMAT_IEEEFP);
-  TIFFSetField(t, TIFFTAG_PHOTOMETRIC, PHOTOMETRIC_MINISBLACK);
-  TIFFSetField(t, TIFFTAG_PLANARCONFIG, PLANARCONFIG_CONTIG);
-  TIFFSetField(t, TIFFTAG_COMPRESSION, COMPRESSION_ADOBE_DEFLATE);
-  TIFFSetField(t, TIFFTAG_PREDICTOR, PREDICTOR_FLOATINGPOINT);
-  TIFFSetField(t, TIFFTAG_ROWSPERSTRIP, static_cast<uint32_t>(kRowsPerStrip));
-  if (geo.crs != CrsKind::None && !writeGeoKeys(t, geo)) fail("cannot write the GeoTIFF tags");
-
-  // libtiff's predictor works in place: hand it a copy of each strip.
-  std::vector<float> strip(static_cast<size_t>(width) * kRowsPerStrip);
-  for (int row = 0, index = 0; row < height; row += kRowsPerStrip, ++index) {
-    const int rows = std::min(kRowsPerStrip, height - row);
-    const size_t count = static_cast<size_t>(width) * static_cast<size_t>(rows);
-    std::copy(data + static_cast<size_t>(row) * static_cast<size_t>(width),
-              data + static_cast<size_t>(row) * static_cast<size_t>(width) + count, strip.begin());
-    if (TIFFWriteEncodedStrip(t, static_cast<uint32_t>(index), strip.data(),
-                              static_cast<tmsize_t>(count * sizeof(float))) < 0) {
-      fail("cannot write rows " + std::to_string(row));
-    }
+void place(GDALDataset& dataset, const GeoReference& geo, const std::string& path) {
+  if (geo.crs == CrsKind::None) return;
+  double transform[6] = {geo.originX - 0.5 * geo.stepX, geo.stepX, 0.0,
+                         geo.originY + 0.5 * geo.stepY, 0.0,       -geo.stepY};
+  const OGRSpatialReference srs = crsOf(geo);
+  if (dataset.SetGeoTransform(transform) != CE_None || dataset.SetSpatialRef(&srs) != CE_None) {
+    fail(path, "cannot set its georeferencing");
   }
-  if (!TIFFWriteDirectory(t)) fail("cannot finish the file");
-  TIFF* raw = tif.release();
-  TIFFClose(raw);
-  if (!messages.errors.empty()) fail("libtiff reported an error");
 }
 
 }  // namespace
 
 void writeFloatGeoTiff(const std::string& path, int width, int height, const float* data,
-                       const GeoReference& geo) {
+                       const GeoReference& geo, const RasterWriteOptions& options) {
   if (width < 1 || height < 1 || width > kMaxDemSide || height > kMaxDemSide || !data) {
     throw std::invalid_argument("writeFloatGeoTiff: size must be in [1, " +
                                 std::to_string(kMaxDemSide) + "] and data non-null");
@@ -118,8 +58,46 @@ void writeFloatGeoTiff(const std::string& path, int width, int height, const flo
         geo.linearUnitM > 0.0)) {
     throw std::invalid_argument("writeFloatGeoTiff: georeference needs finite positive steps");
   }
+  ensureGdal();
   AtomicOutput output(path);
-  writeTiff(output.temporaryPath().string(), width, height, data, geo);
+  const std::string temporary = output.temporaryPath().string();
+  CPLErrorReset();
+  CPLStringList creation;
+  creation.SetNameValue("COMPRESS", "DEFLATE");
+  creation.SetNameValue("BIGTIFF", "IF_SAFER");
+  creation.SetNameValue("NUM_THREADS", "ALL_CPUS");
+  GDALDriver* gtiff = GetGDALDriverManager()->GetDriverByName(options.cog ? "MEM" : "GTiff");
+  if (!options.cog) {
+    creation.SetNameValue("PREDICTOR", "3");
+    creation.SetNameValue("TILED", "YES");
+  }
+  if (gtiff == nullptr) fail(path, "GDAL has no GTiff driver");
+  GDALDatasetUniquePtr dataset(gtiff->Create(options.cog ? "" : temporary.c_str(), width, height, 1,
+                                             GDT_Float32, options.cog ? nullptr : creation.List()));
+  if (!dataset) fail(path, "cannot create it");
+  place(*dataset, geo, path);
+  GDALRasterBand& band = *dataset->GetRasterBand(1);
+  if (options.nodata && band.SetNoDataValue(*options.nodata) != CE_None) {
+    fail(path, "cannot set its nodata value");
+  }
+  if (band.RasterIO(GF_Write, 0, 0, width, height, const_cast<float*>(data), width, height,
+                    GDT_Float32, 0, 0, nullptr) != CE_None) {
+    fail(path, "cannot write its samples");
+  }
+  if (options.cog) {
+    GDALDriver* cog = GetGDALDriverManager()->GetDriverByName("COG");
+    if (cog == nullptr) fail(path, "GDAL has no COG driver");
+    creation.SetNameValue("PREDICTOR", "YES");
+    GDALDatasetUniquePtr copy(cog->CreateCopy(temporary.c_str(), dataset.get(), FALSE,
+                                              creation.List(), nullptr, nullptr));
+    if (!copy) fail(path, "cannot write it as a COG");
+    copy->FlushCache();
+    copy.reset();
+  } else {
+    dataset->FlushCache();
+  }
+  dataset.reset();
+  if (CPLGetLastErrorType() == CE_Failure) fail(path, "GDAL failed");
   output.commit();
 }
 

@@ -1,24 +1,32 @@
-// Float32 GeoTIFF output for per-texel results (sky-view factor, visible
-// sky) that GIS tools open next to the DEM they came from.
+// Float32 GeoTIFF output, through GDAL, for per-texel results (sky-view
+// factor, visible sky) that GIS tools open next to the DEM they came from.
 #pragma once
 
+#include <optional>
 #include <string>
 
 #include "heightfield.h"
 
 namespace aal {
 
+struct RasterWriteOptions {
+  // A cloud-optimized GeoTIFF (GDAL's COG driver: tiled, overviews, ordered
+  // for HTTP range reads) instead of a plain tiled GeoTIFF.
+  bool cog = false;
+  // The band's nodata value: texels holding it are voids for GIS tools.
+  std::optional<double> nodata;
+};
+
 // Writes width x height floats (row 0 = north, row-major) as a single-band
-// float32 GeoTIFF (deflate, floating-point predictor) carrying `geo`:
-// geographic grids with GeographicTypeGeoKey geo.epsg (4326 when 0) in
-// degrees; projected grids with ProjectedCSTypeGeoKey geo.epsg (user-defined
-// when 0) and their linear unit; PixelIsArea with the tie point on the
-// north-west corner of texel (0, 0). crs None writes a plain float TIFF.
-// The file is written to a temporary name and renamed into place
-// (atomic_file.h). Throws std::invalid_argument for sizes outside
-// [1, kMaxDemSide], a null `data` or a georeference without finite
+// float32 GeoTIFF (DEFLATE with the floating-point predictor, 256-texel
+// tiles, BigTIFF when needed, compressed on every core) placed by `geo`: its
+// WKT when it has one, else its EPSG code (4326 for a geographic grid
+// without one), else a local CRS in its linear unit; PixelIsArea. crs None
+// writes a plain float TIFF. The file is written to a temporary name and
+// renamed into place (atomic_file.h). Throws std::invalid_argument for sizes
+// outside [1, kMaxDemSide], a null `data` or a georeference without finite
 // positive steps, std::runtime_error when writing fails.
 void writeFloatGeoTiff(const std::string& path, int width, int height, const float* data,
-                       const GeoReference& geo);
+                       const GeoReference& geo, const RasterWriteOptions& options = {});
 
 }  // namespace aal

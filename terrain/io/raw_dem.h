@@ -1,4 +1,4 @@
-// What each format reader (terrain/io/*_reader.h) hands to loadDem: samples
+// What the reader (terrain/io/dem_source.h) hands to loadDem: samples
 // as stored in the file, voids flagged but not filled, no scale applied, and
 // the georeferencing the file states. loadDem turns it into a Heightfield.
 #pragma once
@@ -6,6 +6,7 @@
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -23,8 +24,11 @@ struct RawDem {
   GeoReference geo;               // crs None when the file states no georeferencing
   double zUnitM = 1.0;            // metres per stored height unit, from the file
   bool zUnitFromFile = false;     // the file stated its vertical unit
-  std::string format;             // "GeoTIFF", "TIFF", "SRTM HGT", "ESRI ASCII grid", ...
-  std::string sampleType;         // as stored: "int16", "float32", "text", ...
+  std::string format;             // GDAL driver's long name: "GeoTIFF", "Arc/Info ASCII Grid", ...
+  std::string driver;             // GDAL driver's short name: "GTiff", "AAIGrid", ...
+  std::string sampleType;         // as stored: "int16", "float32", ...
+  std::optional<double> nodata;   // the file's nodata value, as stored
+  std::string zUnitName;          // the file's vertical unit as it says it; empty when silent
 
   size_t texelCount() const { return static_cast<size_t>(width) * static_cast<size_t>(height); }
   // Allocates z and voidMask for width x height (call checkDemSize first).

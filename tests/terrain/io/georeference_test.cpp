@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <GeographicLib/Geodesic.hpp>
+#include <GeographicLib/UTMUPS.hpp>
 
 #include <cmath>
 
@@ -97,17 +98,40 @@ TEST(Georeference, InconsistentGridsAreRefused) {
                       {"cell size in y", "outside"});
 }
 
-TEST(Georeference, UtmAndUpsCodes) {
-  EXPECT_EQ(utmUpsZoneFromEpsg(32616)->zone, 16);
-  EXPECT_TRUE(utmUpsZoneFromEpsg(32616)->north);
-  EXPECT_FALSE(utmUpsZoneFromEpsg(32734)->north);
-  EXPECT_EQ(utmUpsZoneFromEpsg(32661)->zone, 0);
-  EXPECT_FALSE(utmUpsZoneFromEpsg(32761)->north);
-  EXPECT_EQ(utmUpsZoneFromEpsg(26917)->zone, 17);
-  EXPECT_EQ(utmUpsZoneFromEpsg(25832)->zone, 32);
-  EXPECT_FALSE(utmUpsZoneFromEpsg(4326));
-  EXPECT_FALSE(utmUpsZoneFromEpsg(32600));
-  EXPECT_FALSE(utmUpsZoneFromEpsg(2274));
+TEST(Georeference, UtmAndUpsCentresAgreeWithGeographicLib) {
+  // PROJ (through OGR) against GeographicLib's own UTM/UPS inverse.
+  struct Case {
+    int epsg, zone;
+    bool north;
+    double x, y;
+  };
+  for (const Case& c :
+       {Case{32616, 16, true, 741000.0, 4053000.0}, Case{32734, 34, false, 400000.0, 7000000.0},
+        Case{32661, 0, true, 2000000.0, 1500000.0}, Case{25832, 32, true, 500000.0, 5500000.0}}) {
+    GeoReference geo;
+    geo.crs = CrsKind::Projected;
+    geo.epsg = c.epsg;
+    geo.stepX = geo.stepY = 30.0;
+    geo.originX = c.x - 30.0;  // a 3 x 3 grid centred on (x, y)
+    geo.originY = c.y + 30.0;
+    const MetricSpacing s = metricSpacing("u.tif", geo, 3, 3);
+    double lat = 0, lon = 0;
+    GeographicLib::UTMUPS::Reverse(c.zone, c.north, c.x, c.y, lat, lon);
+    ASSERT_TRUE(s.hasCenter) << c.epsg;
+    EXPECT_NEAR(s.centerLatDeg, lat, 1e-7) << c.epsg;
+    EXPECT_NEAR(s.centerLonDeg, lon, 1e-7) << c.epsg;
+    EXPECT_DOUBLE_EQ(s.cellSizeXM, 30.0) << "UTM's scale stays within 0.1 %";
+    EXPECT_TRUE(s.scaleNote.empty());
+  }
+}
+
+TEST(Georeference, LocalCrsHasNoCentre) {
+  GeoReference geo;
+  geo.crs = CrsKind::Projected;  // no WKT, no code: a grid in metres
+  geo.stepX = geo.stepY = 2.0;
+  const MetricSpacing s = metricSpacing("l.asc", geo, 3, 3);
+  EXPECT_FALSE(s.hasCenter);
+  EXPECT_DOUBLE_EQ(s.cellSizeYM, 2.0);
 }
 
 }  // namespace

@@ -5,6 +5,7 @@
 
 #include "dem_loader.h"
 #include "dem_test_util.h"
+#include "gdal_raster.h"
 #include "geotiff_writer.h"
 
 namespace aal {
@@ -46,17 +47,17 @@ TEST_F(GeoTiffWriter, GeographicGridRoundTrips) {
 TEST_F(GeoTiffWriter, ProjectedGridsKeepCodeAndUnit) {
   GeoReference geo;
   geo.crs = CrsKind::Projected;
-  geo.epsg = 32616;
-  geo.originX = 741000.5;
-  geo.originY = 4053000.25;
+  geo.epsg = 2229;  // California zone V, US survey feet
+  geo.originX = 6500000.5;
+  geo.originY = 1900000.25;
   geo.stepX = geo.stepY = 10.0;
-  geo.linearUnitM = 0.3048;
+  geo.linearUnitM = 1200.0 / 3937.0;
   const std::vector<float> data = pattern(5, 4);
   writeFloatGeoTiff(path("ft.tif"), 5, 4, data.data(), geo);
   Heightfield f = loadDem(path("ft.tif"), warnings_.options());
-  EXPECT_EQ(f.geo.epsg, 32616);
-  EXPECT_DOUBLE_EQ(f.geo.linearUnitM, 0.3048);
-  EXPECT_DOUBLE_EQ(f.cellSizeXM, 3.048);
+  EXPECT_EQ(f.geo.epsg, 2229);
+  EXPECT_NEAR(f.geo.linearUnitM, 1200.0 / 3937.0, 1e-15);
+  EXPECT_NEAR(f.cellSizeXM, 3.048006, 1e-6);
   EXPECT_NEAR(f.geo.originX, geo.originX, 1e-9);
   EXPECT_NEAR(f.geo.originY, geo.originY, 1e-9);
 
@@ -73,8 +74,47 @@ TEST_F(GeoTiffWriter, NoGeoreferenceWritesAPlainTiff) {
   const std::vector<float> data = pattern(3, 2);
   writeFloatGeoTiff(path("plain.tif"), 3, 2, data.data(), GeoReference{});
   const Heightfield f = loadDem(path("plain.tif"), warnings_.options());
-  EXPECT_EQ(f.format, "TIFF");
+  EXPECT_EQ(f.geo.crs, CrsKind::None);
   EXPECT_EQ(f.z, data);
+}
+
+TEST_F(GeoTiffWriter, CarriesTheDemsCrsNodataAndWritesCogs) {
+  // An ESRI-WKT CRS read from a DEM goes out as the same CRS.
+  test::GdalRaster r;
+  r.width = 1100;  // more than one 512-texel COG tile: overviews
+  r.height = 700;
+  r.hasTransform = true;
+  const double t[6] = {1113194.9, 100, 0, 8399737.9, 0, -100};
+  std::copy(t, t + 6, r.transform);
+  r.crs = "EPSG:3857";
+  ASSERT_TRUE(test::writeGdalRaster(path("dem.tif"), r));
+  const Heightfield dem = loadDem(path("dem.tif"), warnings_.options());
+  std::vector<float> data(dem.z.begin(), dem.z.end());
+  data[5] = -9999.0f;
+  RasterWriteOptions options;
+  options.cog = true;
+  options.nodata = -9999.0;
+  writeFloatGeoTiff(path("svf.tif"), dem.width, dem.height, data.data(), dem.geo, options);
+
+  GDALDatasetUniquePtr in(GDALDataset::Open(path("svf.tif").c_str(), GDAL_OF_RASTER));
+  ASSERT_TRUE(in);
+  const char* layout = in->GetMetadataItem("LAYOUT", "IMAGE_STRUCTURE");
+  ASSERT_NE(layout, nullptr);
+  EXPECT_STREQ(layout, "COG");
+  double written[6];
+  ASSERT_EQ(in->GetGeoTransform(written), CE_None);
+  for (int i = 0; i < 6; ++i) EXPECT_NEAR(written[i], t[i], 1e-6) << i;
+  OGRSpatialReference expected;
+  expected.importFromEPSG(3857);
+  ASSERT_NE(in->GetSpatialRef(), nullptr);
+  EXPECT_TRUE(in->GetSpatialRef()->IsSame(&expected));
+  int hasNodata = 0;
+  EXPECT_EQ(in->GetRasterBand(1)->GetNoDataValue(&hasNodata), -9999.0);
+  EXPECT_TRUE(hasNodata);
+  EXPECT_GT(in->GetRasterBand(1)->GetOverviewCount(), 0);
+  const Heightfield back = loadDem(path("svf.tif"), warnings_.options());
+  EXPECT_EQ(back.voidCount, 1u);
+  EXPECT_EQ(back.at(10, 10), dem.at(10, 10));
 }
 
 TEST_F(GeoTiffWriter, ReplacesAnExistingFileAndLeavesNoTemporaryFile) {

@@ -1,0 +1,430 @@
+#include "dem_source.h"
+
+#include <algorithm>
+#include <cctype>
+#include <cmath>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <limits>
+#include <stdexcept>
+#include <vector>
+
+#include <cpl_conv.h>
+#include <gdal_priv.h>
+#include <ogr_spatialref.h>
+#include <tbb/parallel_for.h>
+
+#include "errors.h"
+#include "gdal_session.h"
+
+namespace aal {
+
+namespace {
+
+constexpr double kRadToDeg = 180.0 / 3.14159265358979323846;
+
+[[noreturn]] void refuse(const std::string& path, const std::string& why) {
+  throw InputError(path + ": " + why);
+}
+
+std::string oneBandHint(const std::string& path) {
+  return "a DEM is one band of heights; if one of its bands holds them, take it with "
+         "`gdal_translate -b N " +
+         path + " dem.tif`";
+}
+
+std::string lowerCase(std::string text) {
+  std::transform(text.begin(), text.end(), text.begin(),
+                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  return text;
+}
+
+// Metres per vertical unit for the names files use (GDAL's band unit type,
+// a vertical CRS's unit); nothing for names it does not know.
+std::optional<double> metresPerUnit(const std::string& name) {
+  const std::string unit = lowerCase(name);
+  if (unit == "m" || unit == "metre" || unit == "meter" || unit == "metres" || unit == "meters") {
+    return 1.0;
+  }
+  if (unit == "ft" || unit == "foot" || unit == "feet" || unit == "international foot" ||
+      unit == "foot (international)") {
+    return 0.3048;
+  }
+  if (unit == "us survey foot" || unit == "us-ft" || unit == "ftus" || unit == "us_survey_foot" ||
+      unit == "foot_us" || unit == "us survey feet") {
+    return 1200.0 / 3937.0;
+  }
+  if (unit == "km" || unit == "kilometre" || unit == "kilometer") return 1000.0;
+  if (unit == "cm" || unit == "centimetre" || unit == "centimeter") return 0.01;
+  if (unit == "mm" || unit == "millimetre" || unit == "millimeter") return 0.001;
+  return std::nullopt;
+}
+
+std::string sampleTypeName(GDALDataType type, bool signedBytes) {
+  if (type == GDT_Byte) return signedBytes ? "int8" : "uint8";
+  return lowerCase(GDALGetDataTypeName(type));
+}
+
+// Samples float32 holds exactly, which GDAL can convert straight into the
+// heights without a float64 buffer.
+bool exactInFloat(GDALDataType type) {
+  return type == GDT_Byte || type == GDT_UInt16 || type == GDT_Int16 || type == GDT_Float32;
+}
+
+std::string subdatasetList(GDALDataset& dataset) {
+  CSLConstList items = dataset.GetMetadata("SUBDATASETS");
+  std::vector<std::string> names;
+  for (CSLConstList item = items; item != nullptr && *item != nullptr; ++item) {
+    const std::string entry = *item;
+    const size_t equals = entry.find('=');
+    if (equals != std::string::npos && entry.find("_NAME=") != std::string::npos) {
+      names.push_back(entry.substr(equals + 1));
+    }
+  }
+  if (names.empty()) return {};
+  std::string text = std::to_string(names.size()) + " subdatasets; open one of them instead:";
+  for (size_t i = 0; i < std::min<size_t>(names.size(), 5); ++i) text += "\n  '" + names[i] + "'";
+  if (names.size() > 5) text += "\n  ...";
+  return text;
+}
+
+GDALDatasetUniquePtr openDataset(const std::string& path) {
+  namespace fs = std::filesystem;
+  ensureGdal();
+  std::error_code error;
+  const bool gdalPath = path.rfind("/vsi", 0) == 0 || path.find(':') != std::string::npos;
+  if (!gdalPath && !fs::exists(path, error)) refuse(path, "no such file");
+  CPLErrorReset();
+  GDALDatasetUniquePtr dataset(GDALDataset::Open(path.c_str(), GDAL_OF_RASTER | GDAL_OF_READONLY));
+  if (dataset) return dataset;
+  const std::string details = gdalLastError("unrecognised format");
+  if (!gdalPath) {
+    if (fs::is_directory(path, error)) refuse(path, "is a folder, not a DEM file");
+    std::ifstream probe(path, std::ios::binary);
+    if (!probe) refuse(path, std::string("cannot be read: ") + std::strerror(errno));
+    if (fs::file_size(path, error) == 0) refuse(path, "is empty");
+  }
+  refuse(path, "not a raster GDAL can read (" + details + ")");
+}
+
+}  // namespace
+
+std::string demFormatsHelp() {
+  return "DEMs are read with GDAL: GeoTIFF and COG (sparse ones too), VRT mosaics, SRTM .hgt,\n"
+         "Arc/Info ASCII grids (.asc with .prj), DTED, ERDAS IMG, NetCDF, PNG and every other\n"
+         "raster GDAL opens (`gdalinfo --formats`). Band 1 holds the heights; nodata, masks and\n"
+         "alpha bands are voids; scale, offset and vertical units (feet) are applied; any CRS.\n"
+         "Palette, RGB and complex images are refused: take one band with gdal_translate -b N.";
+}
+
+struct DemSource::Impl {
+  GDALDatasetUniquePtr dataset;
+  GDALRasterBand* band = nullptr;
+  GDALDataType type = GDT_Unknown;
+  bool signedBytes = false;  // GDAL 3.6 reads int8 TIFFs as bytes marked SIGNEDBYTE
+  bool southUp = false;      // rows run south to north in the file
+  bool readMask = false;     // a mask band says which samples are void
+  // An alpha band (0 = void) of any sample type: GDAL takes only 8- and
+  // 16-bit alpha bands as masks, but gdalwarp -dstalpha gives a float32 DEM
+  // a float32 alpha band.
+  int alphaBand = 0;
+  double scale = 1.0, offset = 0.0;
+  size_t maxTexels = kMaxDemTexels;
+};
+
+namespace {
+
+void describeCrs(const std::string& path, const OGRSpatialReference& srs,
+                 const DemLoadOptions& options, RawDem& dem) {
+  GeoReference& geo = dem.geo;
+  if (srs.IsGeocentric())
+    refuse(path, "has a geocentric CRS; a DEM needs a geographic or projected one");
+  const char* key = nullptr;
+  if (srs.IsGeographic()) {
+    geo.crs = CrsKind::Geographic;
+    geo.angularUnitDeg = srs.GetAngularUnits(nullptr) * kRadToDeg;
+    geo.primeMeridianDeg = srs.GetPrimeMeridian(nullptr);
+    key = "GEOGCS";
+  } else if (srs.IsProjected() || srs.IsLocal()) {
+    geo.crs = CrsKind::Projected;
+    geo.linearUnitM = srs.GetLinearUnits(nullptr);
+    key = srs.IsProjected() ? "PROJCS" : nullptr;
+  } else {
+    if (options.warn) {
+      options.warn(path +
+                   " has a CRS that is neither geographic nor projected; its placement is "
+                   "ignored");
+    }
+    return;
+  }
+  const char* authority = srs.GetAuthorityName(key);
+  const char* code = srs.GetAuthorityCode(key);
+  if (authority == nullptr || code == nullptr) {
+    OGRSpatialReference identified(srs);
+    if (identified.AutoIdentifyEPSG() == OGRERR_NONE) {
+      authority = identified.GetAuthorityName(key);
+      code = identified.GetAuthorityCode(key);
+      if (authority != nullptr && code != nullptr && std::strcmp(authority, "EPSG") == 0) {
+        geo.epsg = std::atoi(code);
+      }
+    }
+  } else if (std::strcmp(authority, "EPSG") == 0) {
+    geo.epsg = std::atoi(code);
+  }
+  char* wkt = nullptr;
+  const char* const wktOptions[] = {"FORMAT=WKT2_2019", nullptr};
+  if (srs.exportToWkt(&wkt, wktOptions) == OGRERR_NONE && wkt != nullptr) geo.wkt = wkt;
+  CPLFree(wkt);
+  if (srs.GetName() != nullptr) geo.crsName = srs.GetName();
+  if (srs.IsCompound() || srs.IsVertical()) {
+    const char* unitName = nullptr;
+    const double unit = srs.GetTargetLinearUnits("VERT_CS", &unitName);
+    if (unit > 0.0 && std::isfinite(unit)) {
+      dem.zUnitM = unit;
+      dem.zUnitFromFile = true;
+      dem.zUnitName = unitName != nullptr ? unitName : "";
+    }
+  }
+}
+
+void describePlacement(const std::string& path, GDALDataset& dataset, const DemLoadOptions& options,
+                       RawDem& dem, bool& southUp) {
+  double gt[6];
+  const bool hasTransform = dataset.GetGeoTransform(gt) == CE_None;
+  if (!hasTransform) {
+    if (dataset.GetGCPCount() > 0) {
+      refuse(path,
+             "is placed by ground control points only; warp it onto a grid first: "
+             "`gdalwarp " +
+                 path + " dem.tif`");
+    }
+    return;
+  }
+  if (gt[2] != 0.0 || gt[4] != 0.0) {
+    refuse(path,
+           "is a rotated or sheared grid; warp it north-up first: `gdalwarp " + path + " dem.tif`");
+  }
+  GeoReference& geo = dem.geo;
+  southUp = gt[5] > 0.0;
+  geo.stepX = gt[1];
+  geo.stepY = std::abs(gt[5]);
+  geo.originX = gt[0] + 0.5 * gt[1];
+  geo.originY = southUp ? gt[3] + (dem.height - 0.5) * gt[5] : gt[3] + 0.5 * gt[5];
+  const OGRSpatialReference* srs = dataset.GetSpatialRef();
+  if (srs != nullptr && !srs->IsEmpty()) {
+    describeCrs(path, *srs, options, dem);
+    return;
+  }
+  // A grid with coordinates but no CRS (an ASCII grid without .prj): its
+  // coordinates are taken as metres, as every GIS would measure them.
+  geo.crs = CrsKind::Projected;
+  if (options.warn) {
+    std::string text =
+        path + " has no coordinate reference system: taking its coordinates as metres";
+    if (geo.stepX < 0.01 || geo.stepY < 0.01) {
+      text += " (its cell size, " + std::to_string(geo.stepX) +
+              ", looks like degrees: give it a CRS, e.g. a .prj, or --cell-size)";
+    }
+    options.warn(text);
+  }
+}
+
+void describeHeights(const std::string& path, GDALRasterBand& band, const DemLoadOptions& options,
+                     RawDem& dem) {
+  if (dem.zUnitFromFile) return;  // a vertical CRS said it
+  const char* unitType = band.GetUnitType();
+  if (unitType == nullptr || *unitType == '\0') return;
+  dem.zUnitName = unitType;
+  if (const std::optional<double> unit = metresPerUnit(unitType)) {
+    dem.zUnitM = *unit;
+    dem.zUnitFromFile = true;
+  } else if (options.warn) {
+    options.warn(path + " states its heights in \"" + std::string(unitType) +
+                 "\", a unit aperture does not know: taking them as metres (give --z-scale)");
+  }
+}
+
+std::optional<double> nodataOf(GDALRasterBand& band, GDALDataType type) {
+  int has = 0;
+  double value = 0;
+  if (type == GDT_Int64) {
+    const int64_t v = band.GetNoDataValueAsInt64(&has);
+    value = static_cast<double>(v);
+  } else if (type == GDT_UInt64) {
+    const uint64_t v = band.GetNoDataValueAsUInt64(&has);
+    value = static_cast<double>(v);
+  } else {
+    value = band.GetNoDataValue(&has);
+  }
+  if (!has) return std::nullopt;
+  return value;
+}
+
+}  // namespace
+
+DemSource::DemSource(const std::string& path, const DemLoadOptions& options)
+    : path_(path), impl_(std::make_unique<Impl>()) {
+  impl_->dataset = openDataset(path);
+  GDALDataset& dataset = *impl_->dataset;
+  impl_->maxTexels = options.maxTexels;
+  const int bands = dataset.GetRasterCount();
+  if (bands == 0) {
+    const std::string subdatasets = subdatasetList(dataset);
+    refuse(path, subdatasets.empty() ? "has no raster band" : "holds " + subdatasets);
+  }
+  GDALRasterBand& band = *dataset.GetRasterBand(1);
+  impl_->band = &band;
+  impl_->type = band.GetRasterDataType();
+  const GDALColorInterp colour = band.GetColorInterpretation();
+  if (GDALDataTypeIsComplex(impl_->type)) {
+    refuse(path, "has complex samples (" + sampleTypeName(impl_->type, false) + "), not heights; " +
+                     oneBandHint(path));
+  }
+  if (band.GetColorTable() != nullptr || colour == GCI_PaletteIndex) {
+    refuse(path, "is a palette image: its samples index colours, they are not heights; " +
+                     oneBandHint(path));
+  }
+  int alphaBands = 0;
+  for (int i = 2; i <= bands; ++i) {
+    if (dataset.GetRasterBand(i)->GetColorInterpretation() == GCI_AlphaBand) {
+      ++alphaBands;
+      if (impl_->alphaBand == 0) impl_->alphaBand = i;
+    }
+  }
+  const int colourBands = bands - alphaBands;
+  if (colourBands >= 3 && (colour == GCI_RedBand || colour == GCI_YCbCr_YBand ||
+                           colour == GCI_HueBand || colour == GCI_CyanBand)) {
+    refuse(path, "is a colour (RGB) image, not heights; " + oneBandHint(path));
+  }
+  if (colourBands > 1 && options.warn) {
+    options.warn(path + " has " + std::to_string(colourBands) +
+                 " bands; heights are read from band 1 (`gdal_translate -b N` takes another)");
+  }
+  checkDemSize(path, dataset.GetRasterXSize(), dataset.GetRasterYSize(), options.maxTexels);
+
+  RawDem& d = description_;
+  d.width = dataset.GetRasterXSize();
+  d.height = dataset.GetRasterYSize();
+  GDALDriver* driver = dataset.GetDriver();
+  d.driver = driver != nullptr ? driver->GetDescription() : "";
+  const char* longName = driver != nullptr ? driver->GetMetadataItem(GDAL_DMD_LONGNAME) : nullptr;
+  d.format = longName != nullptr ? longName : d.driver;
+  const char* pixelType = band.GetMetadataItem("PIXELTYPE", "IMAGE_STRUCTURE");
+  impl_->signedBytes =
+      impl_->type == GDT_Byte && pixelType != nullptr && std::strcmp(pixelType, "SIGNEDBYTE") == 0;
+  d.sampleType = sampleTypeName(impl_->type, impl_->signedBytes);
+  d.nodata = nodataOf(band, impl_->type);
+  int hasScale = 0, hasOffset = 0;
+  const double scale = band.GetScale(&hasScale), offset = band.GetOffset(&hasOffset);
+  if (hasScale && std::isfinite(scale) && scale != 0.0) impl_->scale = scale;
+  if (hasOffset && std::isfinite(offset)) impl_->offset = offset;
+  const int maskFlags = band.GetMaskFlags();
+  impl_->readMask =
+      impl_->alphaBand == 0 && (maskFlags & GMF_ALL_VALID) == 0 && maskFlags != GMF_NODATA;
+  describePlacement(path, dataset, options, d, impl_->southUp);
+  describeHeights(path, band, options, d);
+}
+
+DemSource::~DemSource() = default;
+
+RawDem DemSource::read(int column, int row, int w, int h) const {
+  const RawDem& whole = description_;
+  if (column < 0 || row < 0 || w < 1 || h < 1 || column > whole.width - w ||
+      row > whole.height - h) {
+    throw std::invalid_argument("DemSource::read: window outside the raster");
+  }
+  checkDemSize(path_, w, h, impl_->maxTexels);
+  RawDem dem;
+  dem.geo = whole.geo;
+  dem.zUnitM = whole.zUnitM;
+  dem.zUnitFromFile = whole.zUnitFromFile;
+  dem.format = whole.format;
+  dem.driver = whole.driver;
+  dem.sampleType = whole.sampleType;
+  dem.nodata = whole.nodata;
+  dem.zUnitName = whole.zUnitName;
+  if (dem.geo.crs != CrsKind::None) {
+    dem.geo.originX += column * dem.geo.stepX;
+    dem.geo.originY -= row * dem.geo.stepY;
+  }
+  dem.allocate(w, h);
+
+  GDALRasterBand& band = *impl_->band;
+  const int fileRow = impl_->southUp ? whole.height - row - h : row;
+  const auto failed = [&] {
+    refuse(path_, "cannot read its samples (truncated or corrupt?): " + gdalLastError());
+  };
+  const bool direct = exactInFloat(impl_->type) && !impl_->signedBytes && impl_->scale == 1.0 &&
+                      impl_->offset == 0.0;
+  const size_t texels = dem.texelCount();
+  // Nodata compared in the sample's own precision, as GDAL's masks do.
+  const bool hasNodata = whole.nodata.has_value() && !std::isnan(*whole.nodata);
+  const float nodataFloat = hasNodata ? static_cast<float>(*whole.nodata) : 0.0f;
+  CPLErrorReset();
+  if (direct) {
+    if (band.RasterIO(GF_Read, column, fileRow, w, h, dem.z.data(), w, h, GDT_Float32, 0, 0,
+                      nullptr) != CE_None) {
+      failed();
+    }
+  } else {
+    // float64 through a band of rows: integers past 2^24 and scale/offset
+    // in double precision, then rounded once to float.
+    const int bandRows =
+        std::max(1, std::min(h, static_cast<int>((size_t{32} << 20) / (sizeof(double) * w))));
+    std::vector<double> samples(static_cast<size_t>(bandRows) * w);
+    const double nodata = hasNodata ? *whole.nodata : 0.0;
+    for (int r = 0; r < h; r += bandRows) {
+      const int rows = std::min(bandRows, h - r);
+      if (band.RasterIO(GF_Read, column, fileRow + r, w, rows, samples.data(), w, rows, GDT_Float64,
+                        0, 0, nullptr) != CE_None) {
+        failed();
+      }
+      float* out = dem.z.data() + static_cast<size_t>(r) * w;
+      const size_t count = static_cast<size_t>(rows) * w;
+      tbb::parallel_for(size_t{0}, count, size_t{1} << 16, [&](size_t i) {
+        const size_t end = std::min(count, i + (size_t{1} << 16));
+        for (; i < end; ++i) {
+          double v = samples[i];
+          if (impl_->signedBytes && v >= 128.0) v -= 256.0;
+          const bool isNodata =
+              hasNodata &&
+              (impl_->type == GDT_Float32 ? static_cast<float>(v) == nodataFloat : v == nodata);
+          out[i] = isNodata ? std::numeric_limits<float>::quiet_NaN()
+                            : static_cast<float>(v * impl_->scale + impl_->offset);
+        }
+      });
+    }
+  }
+  // Mask or alpha as bytes, 0 = void (alpha rounds to the nearest byte).
+  GDALRasterBand* mask = impl_->alphaBand > 0 ? impl_->dataset->GetRasterBand(impl_->alphaBand)
+                         : impl_->readMask    ? band.GetMaskBand()
+                                              : nullptr;
+  if (mask != nullptr && mask->RasterIO(GF_Read, column, fileRow, w, h, dem.voidMask.data(), w, h,
+                                        GDT_Byte, 0, 0, nullptr) != CE_None) {
+    failed();
+  }
+  const bool maskRead = mask != nullptr, compareNodata = direct && hasNodata;
+  tbb::parallel_for(size_t{0}, texels, size_t{1} << 16, [&](size_t i) {
+    const size_t end = std::min(texels, i + (size_t{1} << 16));
+    for (; i < end; ++i) {
+      const bool isVoid = (maskRead && dem.voidMask[i] == 0) || !std::isfinite(dem.z[i]) ||
+                          (compareNodata && dem.z[i] == nodataFloat);
+      dem.voidMask[i] = isVoid ? 1 : 0;
+      if (isVoid) dem.z[i] = 0.0f;
+    }
+  });
+  if (impl_->southUp) {
+    for (int r = 0; r < h / 2; ++r) {
+      std::swap_ranges(dem.z.begin() + static_cast<ptrdiff_t>(r) * w,
+                       dem.z.begin() + static_cast<ptrdiff_t>(r + 1) * w,
+                       dem.z.begin() + static_cast<ptrdiff_t>(h - 1 - r) * w);
+      std::swap_ranges(dem.voidMask.begin() + static_cast<ptrdiff_t>(r) * w,
+                       dem.voidMask.begin() + static_cast<ptrdiff_t>(r + 1) * w,
+                       dem.voidMask.begin() + static_cast<ptrdiff_t>(h - 1 - r) * w);
+    }
+  }
+  return dem;
+}
+
+}  // namespace aal

@@ -1,0 +1,54 @@
+// An elevation raster opened through GDAL (docs/dem-input.md): what it is
+// (size, georeferencing, units, nodata) known at once, its samples read a
+// window at a time, so that a caller needs in memory only what it uses.
+#pragma once
+
+#include <memory>
+#include <optional>
+#include <string>
+
+#include "dem_options.h"
+#include "raw_dem.h"
+
+namespace aal {
+
+// The supported formats and what is refused, for the tools' --help.
+std::string demFormatsHelp();
+
+class DemSource {
+ public:
+  // Opens `path` with GDAL and checks that it is a DEM: one band of real
+  // numbers (extra bands are ignored with a warning, an alpha band becomes
+  // voids), not a palette, RGB or complex image. Throws InputError("PATH:
+  // ...") for missing, unreadable or unrecognised files, what is not a DEM
+  // (saying how to get one band), sizes beyond options.maxTexels, rotated
+  // grids and CRSs aperture cannot place (geocentric).
+  DemSource(const std::string& path, const DemLoadOptions& options);
+  ~DemSource();
+  DemSource(const DemSource&) = delete;
+  DemSource& operator=(const DemSource&) = delete;
+
+  const std::string& path() const { return path_; }
+  int width() const { return description_.width; }
+  int height() const { return description_.height; }
+  // Everything but the samples: width, height, geo (of the whole raster),
+  // zUnitM, format, driver, sampleType, nodata, zUnitName.
+  const RawDem& description() const { return description_; }
+
+  // Samples of columns [column, column + width) and rows [row, row + height)
+  // (row 0 = north), scale and offset applied, voids (nodata, mask or alpha
+  // zero, NaN, +-inf, beyond float) flagged; geo placed at the window's
+  // texel (0, 0). Decodes on every core (GDAL_NUM_THREADS). Throws
+  // std::invalid_argument for a window outside the raster, InputError for
+  // truncated or corrupt data. Not thread-safe: one reader per thread.
+  RawDem read(int column, int row, int width, int height) const;
+  RawDem readAll() const { return read(0, 0, width(), height()); }
+
+ private:
+  struct Impl;
+  std::string path_;
+  RawDem description_;
+  std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace aal

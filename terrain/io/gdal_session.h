@@ -1,0 +1,19 @@
+// GDAL set-up shared by every reader and writer (docs/dem-input.md): the
+// drivers registered once, GDAL's own messages kept off stderr (they reach
+// the user inside our errors instead), decoding on every core.
+#pragma once
+
+#include <string>
+
+namespace aal {
+
+// Registers GDAL's drivers once per process (thread-safe), sends GDAL's
+// error messages to CPLGetLastErrorMsg only, and sets GDAL_NUM_THREADS to
+// ALL_CPUS unless the user set it, so that compressed GeoTIFFs decode and
+// encode on every core.
+void ensureGdal();
+
+// GDAL's last error message on this thread, or `fallback` when it has none.
+std::string gdalLastError(const std::string& fallback = "no details from GDAL");
+
+}  // namespace aal
