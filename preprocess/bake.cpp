@@ -22,7 +22,11 @@ namespace {
 constexpr double kTwoPi = 6.28318530717958647692;
 
 void checkOptions(const Heightfield& field, const BakeOptions& o) {
-  if (field.width < 1 || field.height < 1 || field.z.size() != field.texelCount()) {
+  // The whole field, or a band of its rows (Heightfield::firstRow).
+  const bool rows = field.width > 0 && field.z.size() % static_cast<size_t>(field.width) == 0 &&
+                    field.firstRow >= 0 && field.residentRows() >= 1 &&
+                    field.firstRow + field.residentRows() <= field.height;
+  if (field.width < 1 || field.height < 1 || !rows) {
     throw std::invalid_argument("bake: empty or inconsistent heightfield");
   }
   if (o.azimuths < 4 || o.azimuths > 4096) {
@@ -291,6 +295,9 @@ ApertureMapInfo bakeInfo(const Heightfield& field, const BakeOptions& o) {
 
 BakeResult bakeApertures(const Heightfield& field, const BakeOptions& o) {
   checkOptions(field, o);
+  if (field.z.size() != field.texelCount()) {
+    throw std::invalid_argument("bake: a band of rows bakes only as windows");
+  }
   // The DEM's checksum is one serial pass over its bytes (5 ms at 1024^2,
   // 2 % of the bake): a task beside the sweeps rather than a wait after them.
   std::string checksum;

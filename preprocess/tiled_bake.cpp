@@ -2,12 +2,18 @@
 
 #include <algorithm>
 #include <filesystem>
+#include <functional>
 #include <optional>
 #include <stdexcept>
 #include <system_error>
 #include <vector>
 
+#include "bake_terrain.h"
+#include "dem_loader.h"
+#include "dem_source.h"
 #include "errors.h"
+#include "heightfield_checksum.h"
+#include "horizon_sweep.h"
 
 namespace aal {
 
@@ -99,7 +105,14 @@ bool tileFinished(const ApertureTileIndex& index, const std::string& folder, int
 
 }  // namespace
 
-TiledBakeSummary bakeTiled(const Heightfield& field, const BakeOptions& bake,
+namespace {
+
+// Gives the field a tile row is baked from: the whole DEM, or a band of its
+// rows that holds the tile row and the terrain within the max distance.
+using TileRowTerrain = std::function<const Heightfield&(int firstRow, int rows)>;
+
+TiledBakeSummary bakeTiles(const Heightfield& geometry, const std::string& checksum,
+                           const TileRowTerrain& terrainFor, const BakeOptions& bake,
                            const TiledBakeOptions& tiled, const std::string& folder) {
   checkTiledBakeOptions(bake, tiled);
   std::error_code error;
@@ -111,20 +124,21 @@ TiledBakeSummary bakeTiled(const Heightfield& field, const BakeOptions& bake,
   removeLeftovers(folder);
 
   ApertureTileIndex index;
-  index.map.width = field.width;
-  index.map.height = field.height;
-  index.map.info = bakeInfo(field, bake);
+  index.map.width = geometry.width;
+  index.map.height = geometry.height;
+  index.map.info = bakeInfo(geometry, bake);
   index.map.info.source = tiled.sourceName;
-  index.map.info.sourceChecksum = heightfieldChecksum(field);
+  index.map.info.sourceChecksum = checksum;
   index.tileSize = tiled.tileSize;
   checkExistingIndex(folder, index);
 
   TiledBakeSummary summary;
   summary.tiles = index.rows() * index.columns();
-  const double total = static_cast<double>(field.texelCount());
+  const double total = static_cast<double>(geometry.texelCount());
   double done = 0;  // texels of finished tiles
   BakeOptions tile = bake;
   for (int row = 0; row < index.rows(); ++row) {
+    const Heightfield* field = nullptr;  // read when a tile of this row needs baking
     for (int column = 0; column < index.columns(); ++column) {
       const TexelWindow window{column * tiled.tileSize, row * tiled.tileSize,
                                index.tileWidth(column), index.tileHeight(row)};
@@ -135,7 +149,8 @@ TiledBakeSummary bakeTiled(const Heightfield& field, const BakeOptions& bake,
         if (bake.progress) {
           tile.progress = [&](double f) { bake.progress((done + f * texels) / total); };
         }
-        BakeResult result = bakeApertureWindow(field, window, tile);
+        if (field == nullptr) field = &terrainFor(window.row, window.height);
+        BakeResult result = bakeApertureWindow(*field, window, tile);
         ApertureMapInfo& info = result.aperture.info;
         info.source = index.map.info.source;
         info.sourceChecksum = index.map.info.sourceChecksum;
@@ -151,6 +166,52 @@ TiledBakeSummary bakeTiled(const Heightfield& field, const BakeOptions& bake,
   }
   writeApertureTileIndex(folder, index);
   return summary;
+}
+
+}  // namespace
+
+TiledBakeSummary bakeTiled(const Heightfield& field, const BakeOptions& bake,
+                           const TiledBakeOptions& tiled, const std::string& folder) {
+  checkTiledBakeOptions(bake, tiled);
+  return bakeTiles(
+      field, heightfieldChecksum(field), [&](int, int) -> const Heightfield& { return field; },
+      bake, tiled, folder);
+}
+
+int bandHaloRows(const Heightfield& geometry, const BakeOptions& bake) {
+  // The sweep of a window walks at most stepsCovering(max distance) steps
+  // before it, each moving a line by at most one row; the slopes reach one
+  // row further, the lines' interpolation one more.
+  return detail::stepsCovering(prepareBakeTerrain(geometry), bake.maxDistanceM) + 3;
+}
+
+TiledBakeSummary bakeTiledInBands(const DemSource& source, const Heightfield& geometry,
+                                  const BakeOptions& bake, const TiledBakeOptions& tiled,
+                                  const std::string& folder) {
+  checkTiledBakeOptions(bake, tiled);
+  // One pass for the DEM's checksum (and its voids, refused before any tile).
+  HeightfieldHasher hasher(geometry.width, geometry.height);
+  const int chunk =
+      std::max(1, static_cast<int>((size_t{64} << 20) / (sizeof(float) * geometry.width)));
+  for (int row = 0; row < geometry.height; row += chunk) {
+    const Heightfield rows =
+        readDemRows(source, geometry, row, std::min(chunk, geometry.height - row));
+    hasher.add(rows.z.data(), rows.z.size());
+    if (bake.progress) bake.progress(0.0);
+    if (bake.cancel && bake.cancel->load(std::memory_order_relaxed)) throw BakeCancelled();
+  }
+  const int halo = bandHaloRows(geometry, bake);
+  Heightfield band;
+  return bakeTiles(
+      geometry, hasher.hex(),
+      [&](int firstRow, int rows) -> const Heightfield& {
+        const int top = std::max(0, firstRow - halo);
+        const int bottom = std::min(geometry.height, firstRow + rows + halo);
+        band = Heightfield{};  // free the previous band first
+        band = readDemRows(source, geometry, top, bottom - top);
+        return band;
+      },
+      bake, tiled, folder);
 }
 
 }  // namespace aal

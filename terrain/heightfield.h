@@ -64,9 +64,18 @@ struct Heightfield {
   std::optional<double> nodata;
   std::string zUnitName;
 
+  // The first row held in z and voidMask: 0 but in a row band of a DEM read
+  // in parts (a tiled bake of a DEM larger than memory, preprocess/
+  // tiled_bake.h), whose z holds only rows [firstRow, firstRow +
+  // residentRows()). index() and at() take the whole DEM's rows either way.
+  int firstRow = 0;
+
   size_t texelCount() const { return static_cast<size_t>(width) * static_cast<size_t>(height); }
+  int residentRows() const {
+    return width > 0 ? static_cast<int>(z.size() / static_cast<size_t>(width)) : 0;
+  }
   size_t index(int x, int y) const {
-    return static_cast<size_t>(y) * static_cast<size_t>(width) + static_cast<size_t>(x);
+    return static_cast<size_t>(y - firstRow) * static_cast<size_t>(width) + static_cast<size_t>(x);
   }
   float at(int x, int y) const { return z[index(x, y)]; }
   bool isVoid(int x, int y) const { return !voidMask.empty() && voidMask[index(x, y)] != 0; }

@@ -5,6 +5,7 @@
 #include <csignal>
 #include <cstdio>
 #include <filesystem>
+#include <fstream>
 #include <limits>
 #include <optional>
 #include <string>
@@ -55,6 +56,22 @@ void writeGisRaster(const std::string& path, std::vector<float> values,
   aal::writeFloatGeoTiff(path, field.width, field.height, values.data(), field.geo, options);
 }
 
+// Whether the in-memory load (heights, void mask, the fill's distances:
+// ~9 bytes per texel) fits in 80 % of the memory available now
+// (/proc/meminfo MemAvailable; assumed to fit when unknown).
+bool fitsInMemory(const aal::Heightfield& geometry) {
+  std::ifstream meminfo("/proc/meminfo");
+  std::string key;
+  double kilobytes = 0;
+  while (meminfo >> key >> kilobytes) {
+    if (key == "MemAvailable:") {
+      return 9.0 * static_cast<double>(geometry.texelCount()) <= 0.8 * kilobytes * 1024.0;
+    }
+    meminfo.ignore(256, '\n');
+  }
+  return true;
+}
+
 struct Options {
   std::string dem;
   std::string output;
@@ -73,6 +90,7 @@ struct Options {
   bool quiet = false;
   bool fullFloat = false;
   bool cog = false;
+  bool lowMemory = false;
   int tileSize = 0;  // 0: tiled only above the in-memory limit
 };
 
@@ -106,6 +124,9 @@ void checkOutputs(const Options& o, bool tiled) {
 // Tiled when asked, or when the DEM is above the in-memory limit; then the
 // options must suit a tiled bake.
 bool checkTiling(const Options& o, const aal::Heightfield& field) {
+  if (o.lowMemory && o.tileSize == 0 && field.texelCount() <= aal::kInMemoryBakeTexelLimit) {
+    throw aal::InputError("--low-memory reads the DEM in bands for a tiled bake: give --tile-size");
+  }
   const bool tooLarge = field.texelCount() > aal::kInMemoryBakeTexelLimit;
   if (o.tileSize == 0 && !tooLarge) return false;
   const std::string why =
@@ -137,9 +158,21 @@ int run(const Options& o) {
   aal::DemLoadOptions load;
   load.cellSizeM = o.cellSize;
   load.zScale = o.zScale;
-  aal::Heightfield field = aal::loadDem(o.dem, load);
-  const bool tiled = checkTiling(o, field);
+  const auto readStart = std::chrono::steady_clock::now();
+  const aal::DemSource dem(o.dem, load);
+  const aal::Heightfield geometry = aal::demGeometry(dem, load);
+  const bool tiled = checkTiling(o, geometry);
   if (tiled != askedTiled) checkOutputs(o, tiled);
+  // A tiled bake of a DEM that does not fit in memory reads it in bands.
+  const bool inBands = tiled && (o.lowMemory || !fitsInMemory(geometry));
+  aal::Heightfield field;
+  if (!inBands) {
+    aal::DemLoadOptions quiet = load;
+    quiet.warn = nullptr;  // demGeometry has said it
+    field = aal::heightfieldFromRaw(dem.readAll(), o.dem, quiet);
+  }
+  const double readSeconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - readStart).count();
 
   aal::BakeOptions bake;
   bake.method = o.method == "rays" ? aal::BakeMethod::Rays : aal::BakeMethod::Sweep;
@@ -170,7 +203,9 @@ int run(const Options& o) {
   tiling.halfFloat = !o.fullFloat;
   tiling.sourceName = source;
   try {
-    if (tiled) {
+    if (inBands) {
+      tiles = aal::bakeTiledInBands(dem, geometry, bake, tiling, o.output);
+    } else if (tiled) {
       tiles = aal::bakeTiled(field, bake, tiling, o.output);
     } else {
       result = aal::bakeApertures(field, bake);
@@ -191,6 +226,7 @@ int run(const Options& o) {
   const double seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 
+  const auto writeStart = std::chrono::steady_clock::now();
   if (!tiled) {
     result.aperture.info.source = source;
     aal::writeApertureMap(o.output, result.aperture, !o.fullFloat);
@@ -202,12 +238,16 @@ int run(const Options& o) {
     writeGisRaster(o.visiblePath, visibleFractions(result.aperture), field, o.cog);
   }
 
+  const double writeSeconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - writeStart).count();
+
   // A resumed tiled bake counts only the texels it baked.
-  double texels = static_cast<double>(field.texelCount());
+  double texels = static_cast<double>(geometry.texelCount());
   std::string layout;
   if (tiled) {
-    layout = ", " + std::to_string(tiling.tileSize) + "-texel tiles (" +
-             std::to_string(tiles.baked) + " baked, " + std::to_string(tiles.resumed) + " resumed)";
+    layout = ", " + std::to_string(tiling.tileSize) + "-texel tiles" +
+             (inBands ? " read in bands" : "") + " (" + std::to_string(tiles.baked) + " baked, " +
+             std::to_string(tiles.resumed) + " resumed)";
     if (tiles.tiles > 0) texels *= static_cast<double>(tiles.baked) / tiles.tiles;
   }
   const double work = texels * (bake.method == aal::BakeMethod::Sweep ? o.azimuths : o.rays);
@@ -218,12 +258,14 @@ int run(const Options& o) {
       std::snprintf(rate, sizeof rate, "%.3g texel-%s/s", work / seconds,
                     bake.method == aal::BakeMethod::Sweep ? "azimuths" : "rays");
     }
-    std::fprintf(stderr, "aal-bake: %s %dx%d%s, %s, %s in %.2f s (%s) -> %s\n", source.c_str(),
-                 field.width, field.height, layout.c_str(), o.method.c_str(),
+    std::fprintf(stderr,
+                 "aal-bake: %s %dx%d%s, %s, %s in %.2f s (%s); DEM read in %.2f s, output "
+                 "written in %.2f s -> %s\n",
+                 source.c_str(), geometry.width, geometry.height, layout.c_str(), o.method.c_str(),
                  (bake.method == aal::BakeMethod::Sweep ? std::to_string(o.azimuths) + " azimuths"
                                                         : std::to_string(o.rays) + " rays")
                      .c_str(),
-                 seconds, rate, o.output.c_str());
+                 seconds, rate, readSeconds, writeSeconds, o.output.c_str());
   }
   return aal::kExitOk;
 }
@@ -287,6 +329,11 @@ int main(int argc, char** argv) {
                  "--max-distance); DEMs above 16384x16384 texels are always baked tiled, in "
                  "tiles of 4096")
       ->check(CLI::Range(aal::kMinTileSize, aal::kMaxTileSize));
+  app.add_flag("--low-memory", o.lowMemory,
+               "read the DEM one band of rows at a time (a tile row plus --max-distance): a "
+               "tiled bake then needs memory for one band, not the DEM; automatic when the DEM "
+               "does not fit in memory; the DEM must have no voids (gdal_fillnodata.py fills "
+               "them)");
   app.add_flag("--cog", o.cog,
                "write --svf and --visible as cloud-optimized GeoTIFFs (tiled, with overviews)");
   app.add_flag("--float", o.fullFloat, "store 32-bit floats instead of 16-bit halves");

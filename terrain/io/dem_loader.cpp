@@ -89,25 +89,15 @@ void warnAboutDefaults(const RawDem& raw, const std::string& path, const DemLoad
   options.warn(path + " " + text);
 }
 
-}  // namespace
-
-void warnOnStderr(const std::string& message) {
-  std::cerr << "warning: " << message << "\n";
+double zScaleOf(const RawDem& raw, const DemLoadOptions& options) {
+  return options.zScale.value_or(raw.zUnitFromFile ? raw.zUnitM : kDefaultZScale);
 }
 
-Heightfield heightfieldFromRaw(RawDem raw, const std::string& path, const DemLoadOptions& options) {
-  checkOptions(options);
-  const double zScale = options.zScale.value_or(raw.zUnitFromFile ? raw.zUnitM : kDefaultZScale);
-  const size_t voids = scaleHeights(raw, zScale);
-  if (voids == raw.texelCount()) {
-    throw InputError(path + ": every texel is void (nodata); nothing to use");
-  }
-  warnAboutDefaults(raw, path, options);
-
+Heightfield geometryOf(const RawDem& raw, const std::string& path, const DemLoadOptions& options) {
   Heightfield field;
   field.width = raw.width;
   field.height = raw.height;
-  field.zScale = zScale;
+  field.zScale = zScaleOf(raw, options);
   field.geo = raw.geo;
   field.source = path;
   field.format = raw.format;
@@ -115,6 +105,47 @@ Heightfield heightfieldFromRaw(RawDem raw, const std::string& path, const DemLoa
   field.nodata = raw.nodata;
   field.zUnitName = raw.zUnitName;
   applySpacing(raw, path, options, field);
+  return field;
+}
+
+}  // namespace
+
+void warnOnStderr(const std::string& message) {
+  std::cerr << "warning: " << message << "\n";
+}
+
+Heightfield demGeometry(const DemSource& source, const DemLoadOptions& options) {
+  checkOptions(options);
+  warnAboutDefaults(source.description(), source.path(), options);
+  return geometryOf(source.description(), source.path(), options);
+}
+
+Heightfield readDemRows(const DemSource& source, const Heightfield& geometry, int firstRow,
+                        int rows) {
+  RawDem raw = source.read(0, firstRow, source.width(), rows);
+  const size_t voids = scaleHeights(raw, geometry.zScale);
+  if (voids > 0) {
+    throw InputError(source.path() + ": has voids (" + std::to_string(voids) + " in rows " +
+                     std::to_string(firstRow) + " to " + std::to_string(firstRow + rows - 1) +
+                     "); a DEM read in parts cannot be filled, since filling needs the whole "
+                     "DEM: fill them first, e.g. `gdal_fillnodata.py " +
+                     source.path() + " filled.tif`");
+  }
+  Heightfield band = geometry;
+  band.firstRow = firstRow;
+  band.z = std::move(raw.z);
+  return band;
+}
+
+Heightfield heightfieldFromRaw(RawDem raw, const std::string& path, const DemLoadOptions& options) {
+  checkOptions(options);
+  const size_t voids = scaleHeights(raw, zScaleOf(raw, options));
+  if (voids == raw.texelCount()) {
+    throw InputError(path + ": every texel is void (nodata); nothing to use");
+  }
+  warnAboutDefaults(raw, path, options);
+
+  Heightfield field = geometryOf(raw, path, options);
   field.voidCount = voids;
   if (voids > 0) {
     fillVoidsNearest(raw.z, raw.voidMask, raw.width, raw.height, field.cellSizeXM,

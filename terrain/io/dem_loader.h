@@ -31,4 +31,18 @@ Heightfield loadDem(const std::string& path, const DemLoadOptions& options = {})
 // and for windows of a DemSource.
 Heightfield heightfieldFromRaw(RawDem raw, const std::string& path, const DemLoadOptions& options);
 
+class DemSource;
+
+// A heightfield without heights: size, z scale, metric spacing and
+// georeferencing of the DEM `source` opened, as loadDem would give them
+// (same checks and warnings). For work on parts of a DEM larger than memory.
+Heightfield demGeometry(const DemSource& source, const DemLoadOptions& options);
+
+// Rows [firstRow, firstRow + rows) of the DEM, every column, as a band of
+// `geometry` (demGeometry of the same source): Heightfield::firstRow set, z
+// holding those rows in metres. Throws InputError when a void falls in them:
+// filling voids needs the whole DEM, so a DEM read in parts must have none.
+Heightfield readDemRows(const DemSource& source, const Heightfield& geometry, int firstRow,
+                        int rows);
+
 }  // namespace aal

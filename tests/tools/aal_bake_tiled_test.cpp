@@ -9,6 +9,7 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <limits>
 #include <utility>
 #include <vector>
 
@@ -75,6 +76,63 @@ TEST(AalBakeTiled, FolderEqualsTheSingleFileBake) {
   EXPECT_EQ(a.texels, b.texels);
   EXPECT_EQ(a.info.sourceChecksum, b.info.sourceChecksum);
   EXPECT_EQ(b.info.source, dem.filename().string());
+}
+
+// A DEM read in bands of rows (--low-memory): each tile row's band holds
+// only its rows and the rows within the max distance, yet every tile equals
+// the single-file bake, on a projected and on a geographic grid (whose x
+// spacing changes with the row).
+TEST(AalBakeTiled, BandsOfRowsEqualTheSingleFileBake) {
+  TempDir dir;
+  for (const bool geographic : {false, true}) {
+    SyntheticTerrainOptions s;
+    s.width = 70;
+    s.height = 160;
+    s.cellSizeM = 30;
+    s.seed = 4;
+    s.featureSizeTexels = 16;
+    const Heightfield field = makeSyntheticTerrain(s);
+    GeoReference geo;
+    geo.crs = geographic ? CrsKind::Geographic : CrsKind::Projected;
+    geo.epsg = geographic ? 4326 : 32616;
+    geo.originX = geographic ? -84.4 : 500000;
+    geo.originY = geographic ? 60.0 : 4000000;
+    geo.stepX = geo.stepY = geographic ? 1.0 / 1200 : 30;
+    const fs::path dem = dir.path() / (geographic ? "geo.tif" : "utm.tif");
+    writeFloatGeoTiff(dem.string(), s.width, s.height, field.z.data(), geo);
+    const std::string options = " --azimuths 32 --max-distance 250 -q";
+    const fs::path single = dir.path() / "single.exr", folder = dir.path() / "bands";
+    fs::remove_all(folder);
+    ASSERT_EQ(runTool("aal-bake", quoted(dem) + " -o " + quoted(single) + options).exitCode, 0);
+    const auto r = runTool("aal-bake", quoted(dem) + " -o " + quoted(folder) +
+                                           " --tile-size 32 --low-memory --azimuths 32 "
+                                           "--max-distance 250");
+    ASSERT_EQ(r.exitCode, 0) << r.out;
+    EXPECT_NE(r.out.find("32-texel tiles read in bands (15 baked"), std::string::npos) << r.out;
+    const ApertureMap a = readApertureMap(single.string()), b = readApertureMap(folder.string());
+    EXPECT_EQ(a.texels, b.texels) << (geographic ? "geographic" : "projected");
+    EXPECT_EQ(a.info.sourceChecksum, b.info.sourceChecksum);
+  }
+}
+
+TEST(AalBakeTiled, BandsRefuseVoidsAndNeedTiles) {
+  TempDir dir;
+  std::vector<float> z(40 * 40, 100.0f);
+  z[40 * 20 + 7] = std::numeric_limits<float>::quiet_NaN();
+  GeoReference geo;
+  geo.crs = CrsKind::Projected;
+  geo.stepX = geo.stepY = 30;
+  const fs::path dem = dir.path() / "holes.tif", folder = dir.path() / "t";
+  writeFloatGeoTiff(dem.string(), 40, 40, z.data(), geo);
+  auto r = runTool("aal-bake", quoted(dem) + " -o " + quoted(folder) +
+                                   " --tile-size 16 --low-memory --max-distance 100 -q");
+  EXPECT_EQ(r.exitCode, 2) << r.out;
+  EXPECT_NE(r.out.find("gdal_fillnodata.py"), std::string::npos) << r.out;
+  EXPECT_FALSE(fs::exists(folder / apertureTileName(0, 0)));
+  r = runTool("aal-bake", quoted(dem) + " -o " + quoted(dir.path() / "a.exr") +
+                              " --low-memory --max-distance 100 -q");
+  EXPECT_EQ(r.exitCode, 2) << r.out;
+  EXPECT_NE(r.out.find("--tile-size"), std::string::npos) << r.out;
 }
 
 TEST(AalBakeTiled, RunningAgainResumesFromTheFinishedTiles) {
