@@ -17,6 +17,8 @@ packages=(
   # math, images, geodesy, georeferencing
   libglm-dev libopenimageio-dev openimageio-tools libgeographiclib-dev
   libgeotiff-dev libtiff-dev
+  # aperture maps (EXR) without OpenImageIO
+  libopenexr-dev libimath-dev
   # parallelism, command line, tests, benchmarks
   libtbb-dev libcli11-dev libgtest-dev libgmock-dev libbenchmark-dev
   # fuzzing the DEM parsers (scripts/fuzz.sh): clang with libFuzzer
