@@ -29,7 +29,8 @@ AlbedoImage loadAlbedoImage(const std::string& path, int width, int height,
   if (spec.width < 1 || spec.height < 1 || spec.nchannels < 1) {
     throw InputError("albedo image " + path + " is empty");
   }
-  const bool encoded = !spec.format.is_floating_point();
+  // The file's own sample type: spec() is the buffer's, float after read().
+  const bool encoded = !source.nativespec().format.is_floating_point();
   OIIO::ImageBuf image = source;
   if (spec.width != width || spec.height != height) {
     if (note) {
