@@ -23,6 +23,9 @@ if(NOT AAL_GLSLANG_VALIDATOR)
 endif()
 aal_find_package(glfw3 libglfw3-dev CONFIG)
 aal_find_package(glm libglm-dev CONFIG)
+# Aperture maps are EXR files, read and written with OpenEXR's own library.
+aal_find_package(Imath libimath-dev CONFIG)
+aal_find_package(OpenEXR libopenexr-dev CONFIG)
 aal_find_package(OpenImageIO libopenimageio-dev CONFIG)
 # Debian's OpenImageIO config lists /usr/include/opencv4 although OpenCV's
 # headers are optional; drop include folders that do not exist.

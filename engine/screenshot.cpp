@@ -5,9 +5,8 @@
 #include <filesystem>
 #include <stdexcept>
 
-#include <OpenImageIO/imageio.h>
-
 #include "atomic_file.h"
+#include "image_files.h"
 #include "terrain_renderer.h"
 
 namespace aal {
@@ -33,17 +32,16 @@ bool wantsLinearOutput(const std::string& path) {
 void writeFrame(const std::string& path, const FrameResult& frame) {
   AtomicOutput output(path);
   const std::string temporary = output.temporaryPath().string();
-  auto out = OIIO::ImageOutput::create(temporary);
-  if (!out) throw std::runtime_error("cannot write " + path + ": " + OIIO::geterror());
-  const bool linear = wantsLinearOutput(path);
-  OIIO::ImageSpec spec(static_cast<int>(frame.width), static_cast<int>(frame.height), 4,
-                       linear ? OIIO::TypeDesc::FLOAT : OIIO::TypeDesc::UINT8);
-  if (!out->open(temporary, spec))
-    throw std::runtime_error("cannot write " + path + ": " + out->geterror());
-  const bool ok = linear ? out->write_image(OIIO::TypeDesc::FLOAT, frame.linear.data())
-                         : out->write_image(OIIO::TypeDesc::UINT8, frame.display.data());
-  if (!ok || !out->close())
-    throw std::runtime_error("cannot write " + path + ": " + out->geterror());
+  const int width = static_cast<int>(frame.width), height = static_cast<int>(frame.height);
+  try {
+    if (wantsLinearOutput(path)) {
+      writeImageFile(temporary, width, height, 4, frame.linear.data(), /*eightBit=*/false);
+    } else {
+      writeImageFile(temporary, width, height, 4, frame.display.data());
+    }
+  } catch (const ImageFileError& e) {
+    throw std::runtime_error("cannot write " + path + ": " + e.what());
+  }
   output.commit();
 }
 

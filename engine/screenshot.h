@@ -1,5 +1,6 @@
 // Writing rendered frames: PNG (8-bit, display-encoded) or EXR (linear HDR),
-// chosen by the file extension, via a temporary file renamed into place.
+// chosen by the file extension, via a temporary file renamed into place,
+// through the image plugin (image_files.h).
 #pragma once
 
 #include <string>

@@ -18,6 +18,8 @@ packages=(
   # scripts/bench-io.sh's comparison with gdalinfo)
   libglm-dev libopenimageio-dev openimageio-tools libgeographiclib-dev
   libgdal-dev gdal-bin
+  # aperture maps (EXR) without OpenImageIO
+  libopenexr-dev libimath-dev
   # parallelism, command line, tests, benchmarks
   libtbb-dev libcli11-dev libgtest-dev libgmock-dev libbenchmark-dev
   # fuzzing the DEM parsers (scripts/fuzz.sh): clang with libFuzzer

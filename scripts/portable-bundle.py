@@ -5,10 +5,12 @@ packages (docs/performance.md, "On a GPU").
 
 Usage: scripts/portable-bundle.py OUT_DIR BINARY...
 
-Copies the binaries, the compiled shaders and every library they load into
-OUT_DIR (binaries and shaders/ at the top, libraries in lib/), except the C
-runtime (libc, libm, libstdc++, libgcc_s, the loader: the target's newer ones
-serve, and its GPU driver needs them). OpenImageIO links many codec libraries
+Copies the binaries, the image plugin beside them (aal_oiio_images.so, which
+the tools open to read and write images: terrain/image_files.h), the compiled
+shaders and every library they load into OUT_DIR (binaries, the plugin and
+shaders/ at the top, libraries in lib/), except the C runtime (libc, libm,
+libstdc++, libgcc_s, the loader: the target's newer ones serve, and its GPU
+driver needs them). OpenImageIO links many codec libraries
 that our tools never call (video, DICOM, OpenVDB, camera raw, HEIF, OpenCV,
 PROJ via libgeotiff); with their dependencies they are ~300 MB, so each is
 replaced by a stand-in that defines the symbols the kept libraries import
@@ -112,6 +114,9 @@ def main():
     out_dir, binaries = sys.argv[1], sys.argv[2:]
     lib_dir = os.path.join(out_dir, "lib")
     os.makedirs(lib_dir, exist_ok=True)
+    plugin = os.path.join(os.path.dirname(os.path.abspath(binaries[0])), "aal_oiio_images.so")
+    if os.path.exists(plugin) and plugin not in map(os.path.abspath, binaries):
+        binaries.append(plugin)
     for binary in binaries:
         shutil.copy(binary, out_dir)
     shader_dir = os.path.join(os.path.dirname(os.path.abspath(binaries[0])), "..", "shaders")

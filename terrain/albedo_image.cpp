@@ -4,10 +4,8 @@
 #include <cmath>
 #include <filesystem>
 
-#include <OpenImageIO/imagebuf.h>
-#include <OpenImageIO/imagebufalgo.h>
-
 #include "errors.h"
+#include "image_files.h"
 
 namespace aal {
 
@@ -21,42 +19,39 @@ float srgbToLinear(float v) {
 AlbedoImage loadAlbedoImage(const std::string& path, int width, int height,
                             const std::function<void(const std::string&)>& note) {
   if (!std::filesystem::exists(path)) throw InputError("albedo image " + path + " does not exist");
-  OIIO::ImageBuf source(path);
-  if (!source.read(0, 0, true, OIIO::TypeDesc::FLOAT)) {
-    throw InputError("cannot read albedo image " + path + ": " + source.geterror());
+  ImagePixels image;
+  try {
+    image = readImageFile(path);
+  } catch (const ImageFileError& e) {
+    throw InputError("cannot read albedo image " + path + ": " + e.what());
   }
-  const OIIO::ImageSpec& spec = source.spec();
-  if (spec.width < 1 || spec.height < 1 || spec.nchannels < 1) {
+  if (image.width < 1 || image.height < 1 || image.channels < 1) {
     throw InputError("albedo image " + path + " is empty");
   }
-  const bool encoded = !spec.format.is_floating_point();
-  OIIO::ImageBuf image = source;
-  if (spec.width != width || spec.height != height) {
+  const int channels = image.channels;
+  const bool encoded = image.integerSamples;
+  if (image.width != width || image.height != height) {
     if (note) {
-      note("albedo image " + path + " is " + std::to_string(spec.width) + "x" +
-           std::to_string(spec.height) + ", the DEM " + std::to_string(width) + "x" +
+      note("albedo image " + path + " is " + std::to_string(image.width) + "x" +
+           std::to_string(image.height) + ", the DEM " + std::to_string(width) + "x" +
            std::to_string(height) + ": resampled to the DEM");
     }
-    OIIO::ImageSpec target(width, height, spec.nchannels, OIIO::TypeDesc::FLOAT);
-    image = OIIO::ImageBufAlgo::resize(source, "triangle", 0.0f,
-                                       OIIO::ROI(0, width, 0, height, 0, 1, 0, spec.nchannels));
-    if (image.has_error())
-      throw InputError("cannot resample albedo image " + path + ": " + image.geterror());
+    try {
+      image = resizeImage(image, width, height);
+    } catch (const ImageFileError& e) {
+      throw InputError("cannot resample albedo image " + path + ": " + e.what());
+    }
   }
   AlbedoImage albedo;
   albedo.width = width;
   albedo.height = height;
   albedo.rgb.resize(static_cast<size_t>(width) * height * 3);
-  std::vector<float> pixel(static_cast<size_t>(spec.nchannels));
-  size_t i = 0;
-  for (int y = 0; y < height; ++y) {
-    for (int x = 0; x < width; ++x, ++i) {
-      image.getpixel(x, y, pixel.data(), spec.nchannels);
-      for (int c = 0; c < 3; ++c) {
-        float v = pixel[static_cast<size_t>(std::min(c, spec.nchannels < 3 ? 0 : c))];
-        if (encoded) v = srgbToLinear(std::clamp(v, 0.0f, 1.0f));
-        albedo.rgb[3 * i + c] = std::clamp(v, 0.0f, 1.0f);
-      }
+  for (size_t i = 0; i < albedo.rgb.size() / 3; ++i) {
+    const float* pixel = image.values.data() + i * static_cast<size_t>(channels);
+    for (int c = 0; c < 3; ++c) {
+      float v = pixel[channels < 3 ? 0 : c];
+      if (encoded) v = srgbToLinear(std::clamp(v, 0.0f, 1.0f));
+      albedo.rgb[3 * i + c] = std::clamp(v, 0.0f, 1.0f);
     }
   }
   return albedo;

@@ -13,12 +13,12 @@ struct AlbedoImage {
   std::vector<float> rgb;
 };
 
-// Reads any image OpenImageIO can (PNG, JPEG, TIFF, EXR, ...). 8- and 16-bit
-// images are taken as sRGB-encoded and linearized; float images as linear.
-// Grey images are replicated to RGB; a fourth channel is ignored. When the
-// image's size differs from width x height it is resampled (bilinear) and
-// `note` is told so. Throws InputError naming the file when it cannot be
-// read.
+// Reads any image OpenImageIO can (PNG, JPEG, TIFF, EXR, ...) through the
+// image plugin (image_files.h). 8- and 16-bit images are taken as
+// sRGB-encoded and linearized; float images as linear. Grey images are
+// replicated to RGB; a fourth channel is ignored. When the image's size
+// differs from width x height it is resampled (bilinear) and `note` is told
+// so. Throws InputError naming the file when it cannot be read.
 AlbedoImage loadAlbedoImage(const std::string& path, int width, int height,
                             const std::function<void(const std::string&)>& note);
 

@@ -4,19 +4,34 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <ctime>
 #include <filesystem>
 #include <fstream>
 #include <map>
 #include <memory>
+#include <mutex>
 #include <optional>
 #include <sstream>
 #include <stdexcept>
 #include <string>
+#include <thread>
 
-#include <OpenImageIO/imageio.h>
+#include <Imath/half.h>
+#include <OpenEXR/ImfChannelList.h>
+#include <OpenEXR/ImfDoubleAttribute.h>
+#include <OpenEXR/ImfFloatAttribute.h>
+#include <OpenEXR/ImfFrameBuffer.h>
+#include <OpenEXR/ImfHeader.h>
+#include <OpenEXR/ImfInputFile.h>
+#include <OpenEXR/ImfIntAttribute.h>
+#include <OpenEXR/ImfOutputFile.h>
+#include <OpenEXR/ImfStandardAttributes.h>
+#include <OpenEXR/ImfStringAttribute.h>
+#include <OpenEXR/ImfThreading.h>
 
 #include "atomic_file.h"
 #include "errors.h"
+#include "heightfield_checksum.h"
 
 namespace aal {
 
@@ -25,108 +40,212 @@ float ApertureMap::visibleFraction(size_t texel) const {
 }
 
 std::string heightfieldChecksum(const Heightfield& field) {
-  uint64_t hash = 0xcbf29ce484222325ull;
-  auto mix = [&hash](const void* data, size_t bytes) {
-    const auto* p = static_cast<const unsigned char*>(data);
-    for (size_t i = 0; i < bytes; ++i) {
-      hash ^= p[i];
-      hash *= 0x100000001b3ull;
-    }
-  };
-  mix(&field.width, sizeof field.width);
-  mix(&field.height, sizeof field.height);
-  mix(field.z.data(), field.z.size() * sizeof(float));
-  char text[17];
-  std::snprintf(text, sizeof text, "%016llx", static_cast<unsigned long long>(hash));
+  HeightfieldHasher hasher(field.width, field.height);
+  hasher.add(field.z.data(), field.z.size());
+  return hasher.hex();
+}
+
+namespace {
+
+// The file format is the one OpenImageIO wrote before this file used OpenEXR
+// directly (docs/baking.md): scanlines, ZIP, channels R, G, B, A of halves or
+// floats, int, float and string `aal:` attributes and a capture date.
+constexpr const char* kChannels[4] = {"R", "G", "B", "A"};
+
+// OpenEXR compresses and decompresses the chunks of a file in parallel on its
+// global thread pool, which is empty until it is given a size.
+void useEveryCoreForExr() {
+  static std::once_flag once;
+  std::call_once(once, [] {
+    Imf::setGlobalThreadCount(static_cast<int>(std::max(1u, std::thread::hardware_concurrency())));
+  });
+}
+
+// "YYYY:MM:DD HH:MM:SS", local time: the capDate OpenImageIO wrote.
+std::string captureDate() {
+  const std::time_t now = std::time(nullptr);
+  std::tm local{};
+  localtime_r(&now, &local);
+  char text[32];
+  std::strftime(text, sizeof text, "%Y:%m:%d %H:%M:%S", &local);
   return text;
 }
 
-void writeApertureMap(const std::string& path, const ApertureMap& map, bool halfFloat) {
-  AtomicOutput output(path);
-  OIIO::ImageSpec spec(map.width, map.height, 4,
-                       halfFloat ? OIIO::TypeDesc::HALF : OIIO::TypeDesc::FLOAT);
-  spec.channelnames = {"R", "G", "B", "A"};
-  spec.attribute("compression", "zip");
-  const ApertureMapInfo& i = map.info;
-  spec.attribute("aal:version", i.version);
-  spec.attribute("aal:azimuths", i.azimuths);
-  spec.attribute("aal:method", i.method);
-  spec.attribute("aal:cellSizeX", static_cast<float>(i.cellSizeX));
-  spec.attribute("aal:cellSizeY", static_cast<float>(i.cellSizeY));
-  spec.attribute("aal:zScale", static_cast<float>(i.zScale));
-  spec.attribute("aal:source", i.source);
-  spec.attribute("aal:sourceSize",
-                 std::to_string(i.sourceWidth) + "x" + std::to_string(i.sourceHeight));
-  spec.attribute("aal:sourceChecksum", i.sourceChecksum);
-  spec.attribute("aal:edge", i.edge);
-  spec.attribute("aal:curvature", i.curvature ? 1 : 0);
-  spec.attribute("aal:refraction", static_cast<float>(i.refraction));
-  spec.attribute("aal:maxDistance", static_cast<float>(i.maxDistanceM));
-  if (i.originCol != 0 || i.originRow != 0 || map.width != i.sourceWidth ||
-      map.height != i.sourceHeight) {
-    spec.attribute("aal:tileOrigin",
-                   std::to_string(i.originCol) + "," + std::to_string(i.originRow));
+// A frame buffer that puts rows [firstRow, endRow) of the file's data window
+// at `destination`, as `type` components, texels `texelBytes` and rows
+// `rowBytes` apart (the channels in R, G, B, A order within a texel).
+Imf::FrameBuffer rowsFrameBuffer(const Imath::Box2i& dataWindow, int firstRow, int endRow,
+                                 Imf::PixelType type, const void* destination, size_t texelBytes,
+                                 size_t rowBytes) {
+  const size_t componentBytes = type == Imf::HALF ? 2 : 4;
+  const int width = dataWindow.max.x - dataWindow.min.x + 1;
+  const Imath::V2i origin(dataWindow.min.x, dataWindow.min.y + firstRow);
+  Imf::FrameBuffer frame;
+  for (int c = 0; c < 4; ++c) {
+    frame.insert(kChannels[c],
+                 Imf::Slice::Make(type, static_cast<const char*>(destination) + c * componentBytes,
+                                  origin, width, endRow - firstRow, texelBytes, rowBytes));
   }
+  return frame;
+}
 
-  auto out = OIIO::ImageOutput::create(output.temporaryPath().string());
-  if (!out || !out->open(output.temporaryPath().string(), spec)) {
-    throw std::runtime_error("cannot write aperture map " + path + ": " + OIIO::geterror());
-  }
-  // In blocks of rows, so that converting to half never copies the whole map.
-  constexpr int kRows = 64;
-  for (int y = 0; y < map.height; y += kRows) {
-    const int end = std::min(map.height, y + kRows);
-    const float* rows = map.texels.data() + static_cast<size_t>(y) * map.width * 4;
-    if (!out->write_scanlines(y, end, 0, OIIO::TypeDesc::FLOAT, rows)) {
-      throw std::runtime_error("cannot write aperture map " + path + ": " + out->geterror());
+}  // namespace
+
+void writeApertureMap(const std::string& path, const ApertureMap& map, bool halfFloat) {
+  useEveryCoreForExr();
+  AtomicOutput output(path);
+  const std::string temporary = output.temporaryPath().string();
+  try {
+    Imf::Header header(map.width, map.height);
+    header.compression() = Imf::ZIP_COMPRESSION;
+    for (const char* name : kChannels) {
+      header.channels().insert(name, Imf::Channel(halfFloat ? Imf::HALF : Imf::FLOAT));
     }
-  }
-  if (!out->close()) {
-    throw std::runtime_error("cannot write aperture map " + path + ": " + out->geterror());
+    const ApertureMapInfo& i = map.info;
+    header.insert("aal:version", Imf::IntAttribute(i.version));
+    header.insert("aal:azimuths", Imf::IntAttribute(i.azimuths));
+    header.insert("aal:method", Imf::StringAttribute(i.method));
+    header.insert("aal:cellSizeX", Imf::FloatAttribute(static_cast<float>(i.cellSizeX)));
+    header.insert("aal:cellSizeY", Imf::FloatAttribute(static_cast<float>(i.cellSizeY)));
+    header.insert("aal:zScale", Imf::FloatAttribute(static_cast<float>(i.zScale)));
+    header.insert("aal:source", Imf::StringAttribute(i.source));
+    header.insert("aal:sourceSize", Imf::StringAttribute(std::to_string(i.sourceWidth) + "x" +
+                                                         std::to_string(i.sourceHeight)));
+    header.insert("aal:sourceChecksum", Imf::StringAttribute(i.sourceChecksum));
+    header.insert("aal:edge", Imf::StringAttribute(i.edge));
+    header.insert("aal:curvature", Imf::IntAttribute(i.curvature ? 1 : 0));
+    header.insert("aal:refraction", Imf::FloatAttribute(static_cast<float>(i.refraction)));
+    header.insert("aal:maxDistance", Imf::FloatAttribute(static_cast<float>(i.maxDistanceM)));
+    if (i.originCol != 0 || i.originRow != 0 || map.width != i.sourceWidth ||
+        map.height != i.sourceHeight) {
+      header.insert("aal:tileOrigin", Imf::StringAttribute(std::to_string(i.originCol) + "," +
+                                                           std::to_string(i.originRow)));
+    }
+    Imf::addCapDate(header, captureDate());
+    if (map.texels.size() != map.texelCount() * 4) {
+      throw std::invalid_argument("the map has " + std::to_string(map.texels.size()) +
+                                  " floats, not 4 per texel");
+    }
+    Imf::OutputFile file(temporary.c_str(), header);
+    // OpenEXR writes only the channels' own pixel type: halves are converted
+    // here, a block of rows at a time, so that the map is never copied whole.
+    // A block is 16 of the ZIP chunks (16 rows each) the thread pool compresses.
+    constexpr int kBlockRows = 256;
+    const Imf::PixelType type = halfFloat ? Imf::HALF : Imf::FLOAT;
+    const size_t texelBytes = halfFloat ? 4 * sizeof(Imath::half) : 4 * sizeof(float);
+    const size_t rowFloats = static_cast<size_t>(map.width) * 4;
+    std::vector<Imath::half> halves(halfFloat ? rowFloats * kBlockRows : 0);
+    for (int y = 0; y < map.height; y += kBlockRows) {
+      const int end = std::min(map.height, y + kBlockRows);
+      const float* rows = map.texels.data() + static_cast<size_t>(y) * rowFloats;
+      const void* block = rows;
+      if (halfFloat) {
+        std::copy(rows, rows + static_cast<size_t>(end - y) * rowFloats, halves.begin());
+        block = halves.data();
+      }
+      file.setFrameBuffer(rowsFrameBuffer(header.dataWindow(), y, end, type, block, texelBytes,
+                                          texelBytes * static_cast<size_t>(map.width)));
+      file.writePixels(end - y);
+    }
+  } catch (const std::exception& e) {
+    throw std::runtime_error("cannot write aperture map " + path + ": " + e.what());
   }
   output.commit();
 }
 
 namespace {
 
-std::unique_ptr<OIIO::ImageInput> openApertureMap(const std::string& path,
-                                                  ApertureMapHeader& header) {
+int intAttribute(const Imf::Header& header, const char* name, int fallback) {
+  const auto* a = header.findTypedAttribute<Imf::IntAttribute>(name);
+  return a ? a->value() : fallback;
+}
+
+double floatAttribute(const Imf::Header& header, const char* name, double fallback) {
+  if (const auto* a = header.findTypedAttribute<Imf::FloatAttribute>(name)) return a->value();
+  if (const auto* a = header.findTypedAttribute<Imf::DoubleAttribute>(name)) return a->value();
+  return fallback;
+}
+
+std::string stringAttribute(const Imf::Header& header, const char* name,
+                            const std::string& fallback = "") {
+  const auto* a = header.findTypedAttribute<Imf::StringAttribute>(name);
+  return a ? a->value() : fallback;
+}
+
+void throwUnreadable(const std::string& path, const std::string& error) {
+  throw InputError("cannot read aperture map " + path + " (truncated or corrupt): " + error);
+}
+
+std::unique_ptr<Imf::InputFile> openApertureMap(const std::string& path,
+                                                ApertureMapHeader& header) {
   if (!std::filesystem::exists(path)) throw InputError("aperture map " + path + " does not exist");
-  auto in = OIIO::ImageInput::open(path);
-  if (!in) throw InputError("cannot read aperture map " + path + ": " + OIIO::geterror());
-  const OIIO::ImageSpec& spec = in->spec();
-  if (spec.nchannels != 4) {
-    throw InputError("aperture map " + path + " has " + std::to_string(spec.nchannels) +
+  useEveryCoreForExr();
+  std::unique_ptr<Imf::InputFile> in;
+  try {
+    in = std::make_unique<Imf::InputFile>(path.c_str());
+  } catch (const std::exception& e) {
+    throw InputError("cannot read aperture map " + path + ": " + e.what());
+  }
+  const Imf::Header& exr = in->header();
+  std::string channels;
+  int channelCount = 0;
+  for (auto c = exr.channels().begin(); c != exr.channels().end(); ++c, ++channelCount) {
+    channels += (channels.empty() ? "" : ", ") + std::string(c.name());
+  }
+  if (channelCount != 4) {
+    throw InputError("aperture map " + path + " has " + std::to_string(channelCount) +
                      " channels, expected 4 (bent normal RGB + arc length A)");
   }
-  if (!spec.find_attribute("aal:version")) {
+  for (const char* name : kChannels) {
+    if (!exr.channels().findChannel(name)) {
+      throw InputError("aperture map " + path + " has channels " + channels +
+                       ", expected R, G, B (bent normal) and A (arc length)");
+    }
+  }
+  if (exr.find("aal:version") == exr.end()) {
     throw InputError("aperture map " + path + " has no aal: attributes: not made by aal-bake");
   }
-  header.width = spec.width;
-  header.height = spec.height;
+  const Imath::Box2i& window = exr.dataWindow();
+  header.width = window.max.x - window.min.x + 1;
+  header.height = window.max.y - window.min.y + 1;
   ApertureMapInfo& i = header.info;
-  i.version = spec.get_int_attribute("aal:version");
-  i.azimuths = spec.get_int_attribute("aal:azimuths");
-  i.method = spec.get_string_attribute("aal:method");
-  i.cellSizeX = spec.get_float_attribute("aal:cellSizeX");
-  i.cellSizeY = spec.get_float_attribute("aal:cellSizeY");
-  i.zScale = spec.get_float_attribute("aal:zScale", 1.0f);
-  i.source = spec.get_string_attribute("aal:source");
-  i.sourceChecksum = spec.get_string_attribute("aal:sourceChecksum");
-  i.edge = spec.get_string_attribute("aal:edge", "open");
-  i.curvature = spec.get_int_attribute("aal:curvature") != 0;
-  i.refraction = spec.get_float_attribute("aal:refraction");
-  i.maxDistanceM = spec.get_float_attribute("aal:maxDistance");
-  if (std::sscanf(spec.get_string_attribute("aal:sourceSize").c_str(), "%dx%d", &i.sourceWidth,
+  i.version = intAttribute(exr, "aal:version", 0);
+  i.azimuths = intAttribute(exr, "aal:azimuths", 0);
+  i.method = stringAttribute(exr, "aal:method");
+  i.cellSizeX = floatAttribute(exr, "aal:cellSizeX", 0);
+  i.cellSizeY = floatAttribute(exr, "aal:cellSizeY", 0);
+  i.zScale = floatAttribute(exr, "aal:zScale", 1);
+  i.source = stringAttribute(exr, "aal:source");
+  i.sourceChecksum = stringAttribute(exr, "aal:sourceChecksum");
+  i.edge = stringAttribute(exr, "aal:edge", "open");
+  i.curvature = intAttribute(exr, "aal:curvature", 0) != 0;
+  i.refraction = floatAttribute(exr, "aal:refraction", 0);
+  i.maxDistanceM = floatAttribute(exr, "aal:maxDistance", 0);
+  if (std::sscanf(stringAttribute(exr, "aal:sourceSize").c_str(), "%dx%d", &i.sourceWidth,
                   &i.sourceHeight) != 2) {
     throw InputError("aperture map " + path + " has a malformed aal:sourceSize attribute");
   }
-  if (const std::string origin = spec.get_string_attribute("aal:tileOrigin"); !origin.empty()) {
+  if (const std::string origin = stringAttribute(exr, "aal:tileOrigin"); !origin.empty()) {
     if (std::sscanf(origin.c_str(), "%d,%d", &i.originCol, &i.originRow) != 2) {
       throw InputError("aperture map " + path + " has a malformed aal:tileOrigin attribute");
     }
   }
   return in;
+}
+
+// Rows [firstRow, endRow) of an open map (rows counted from the top of its
+// data window) into `destination`; see rowsFrameBuffer.
+void readRows(Imf::InputFile& in, const std::string& path, int firstRow, int endRow,
+              Imf::PixelType type, void* destination, size_t texelBytes, size_t rowBytes) {
+  if (firstRow == endRow) return;
+  try {
+    const Imath::Box2i& window = in.header().dataWindow();
+    in.setFrameBuffer(
+        rowsFrameBuffer(window, firstRow, endRow, type, destination, texelBytes, rowBytes));
+    in.readPixels(window.min.y + firstRow, window.min.y + endRow - 1);
+  } catch (const std::exception& e) {
+    throwUnreadable(path, e.what());
+  }
 }
 
 bool isFolder(const std::string& path) {
@@ -139,17 +258,13 @@ std::string tilePath(const std::string& folder, int row, int column) {
 }
 
 // Opens tile (row, column) of a tiled map and checks it belongs there.
-std::unique_ptr<OIIO::ImageInput> openApertureTile(const ApertureTileIndex& index,
-                                                   const std::string& folder, int row, int column) {
+std::unique_ptr<Imf::InputFile> openApertureTile(const ApertureTileIndex& index,
+                                                 const std::string& folder, int row, int column) {
   const std::string path = tilePath(folder, row, column);
   ApertureMapHeader header;
   auto in = openApertureMap(path, header);
   checkApertureTile(index, row, column, header, path);
   return in;
-}
-
-void throwUnreadable(const std::string& path, const std::string& error) {
-  throw InputError("cannot read aperture map " + path + " (truncated or corrupt): " + error);
 }
 
 // Every tile of a tiled map into one map of floats.
@@ -160,18 +275,15 @@ ApertureMap readTiledApertureMap(const std::string& folder) {
   map.height = index.map.height;
   map.info = index.map.info;
   map.texels.resize(map.texelCount() * 4);
-  const OIIO::stride_t rowBytes = static_cast<OIIO::stride_t>(map.width) * 4 * sizeof(float);
+  const size_t rowBytes = static_cast<size_t>(map.width) * 4 * sizeof(float);
   for (int row = 0; row < index.rows(); ++row) {
     for (int column = 0; column < index.columns(); ++column) {
       auto in = openApertureTile(index, folder, row, column);
       float* corner = map.texels.data() + (static_cast<size_t>(row) * index.tileSize * map.width +
                                            static_cast<size_t>(column) * index.tileSize) *
                                               4;
-      if (!in->read_scanlines(0, 0, 0, index.tileHeight(row), 0, 0, 4, OIIO::TypeDesc::FLOAT,
-                              corner, 4 * sizeof(float), rowBytes) ||
-          in->has_error()) {
-        throwUnreadable(tilePath(folder, row, column), in->geterror());
-      }
+      readRows(*in, tilePath(folder, row, column), 0, index.tileHeight(row), Imf::FLOAT, corner,
+               4 * sizeof(float), rowBytes);
     }
   }
   return map;
@@ -318,24 +430,22 @@ ApertureMap readApertureMap(const std::string& path) {
   map.height = header.height;
   map.info = header.info;
   map.texels.resize(map.texelCount() * 4);
-  if (!in->read_image(0, 0, 0, 4, OIIO::TypeDesc::FLOAT, map.texels.data())) {
-    throw InputError("cannot read aperture map " + path +
-                     " (truncated or corrupt): " + in->geterror());
-  }
+  readRows(*in, path, 0, map.height, Imf::FLOAT, map.texels.data(), 4 * sizeof(float),
+           static_cast<size_t>(map.width) * 4 * sizeof(float));
   return map;
 }
 
 struct ApertureMapReader::Impl {
-  std::unique_ptr<OIIO::ImageInput> input;  // a single file
+  std::unique_ptr<Imf::InputFile> input;  // a single file
   // A tiled map: its index and the open tiles of one row of tiles.
   std::optional<ApertureTileIndex> tiles;
   int openTileRow = -1;
-  std::vector<std::unique_ptr<OIIO::ImageInput>> rowTiles;
+  std::vector<std::unique_ptr<Imf::InputFile>> rowTiles;
 
   void readTiledRows(const std::string& folder, int firstRow, int endRow, void* destination) {
     const ApertureTileIndex& index = *tiles;
-    const OIIO::stride_t texelBytes = 4 * sizeof(uint16_t);
-    const OIIO::stride_t rowBytes = texelBytes * index.map.width;
+    const size_t texelBytes = 4 * sizeof(uint16_t);
+    const size_t rowBytes = texelBytes * static_cast<size_t>(index.map.width);
     for (int row = firstRow; row < endRow;) {
       const int tileRow = row / index.tileSize;
       const int top = tileRow * index.tileSize;
@@ -349,14 +459,11 @@ struct ApertureMapReader::Impl {
         openTileRow = tileRow;
       }
       for (int column = 0; column < index.columns(); ++column) {
-        OIIO::ImageInput& in = *rowTiles[static_cast<size_t>(column)];
-        char* corner = static_cast<char*>(destination) + (row - firstRow) * rowBytes +
-                       static_cast<OIIO::stride_t>(column) * index.tileSize * texelBytes;
-        if (!in.read_scanlines(0, 0, row - top, bandEnd - top, 0, 0, 4, OIIO::TypeDesc::HALF,
-                               corner, texelBytes, rowBytes) ||
-            in.has_error()) {
-          throwUnreadable(tilePath(folder, tileRow, column), in.geterror());
-        }
+        char* corner = static_cast<char*>(destination) +
+                       static_cast<size_t>(row - firstRow) * rowBytes +
+                       static_cast<size_t>(column) * index.tileSize * texelBytes;
+        readRows(*rowTiles[static_cast<size_t>(column)], tilePath(folder, tileRow, column),
+                 row - top, bandEnd - top, Imf::HALF, corner, texelBytes, rowBytes);
       }
       row = bandEnd;
     }
@@ -389,12 +496,9 @@ void ApertureMapReader::readHalfRows(int firstRow, int endRow, void* destination
     impl_->readTiledRows(path_, firstRow, endRow, destination);
     return;
   }
-  if (!impl_->input->read_scanlines(0, 0, firstRow, endRow, 0, 0, 4, OIIO::TypeDesc::HALF,
-                                    destination) ||
-      impl_->input->has_error()) {
-    throw InputError("cannot read aperture map " + path_ +
-                     " (truncated or corrupt): " + impl_->input->geterror());
-  }
+  const size_t texelBytes = 4 * sizeof(uint16_t);
+  readRows(*impl_->input, path_, firstRow, endRow, Imf::HALF, destination, texelBytes,
+           texelBytes * static_cast<size_t>(header_.width));
 }
 
 void checkApertureMatchesDem(const ApertureMapHeader& map, const std::string& mapPath,

@@ -6,12 +6,11 @@
 #include <cstdio>
 #include <filesystem>
 #include <stdexcept>
-
-#include <OpenImageIO/imagebuf.h>
-#include <OpenImageIO/imagebufalgo.h>
+#include <vector>
 
 #include "atomic_file.h"
 #include "caps.h"
+#include "image_files.h"
 
 namespace aal {
 
@@ -44,23 +43,39 @@ Colour divergingColour(double t) {
           white[2] + a * (end[2] - white[2])};
 }
 
-void fillRect(OIIO::ImageBuf& image, int x0, int y0, int x1, int y1, const Colour& c) {
-  OIIO::ImageBufAlgo::fill(image, {c[0], c[1], c[2]}, OIIO::ROI(x0, x1, y0, y1, 0, 1, 0, 3));
+// RGB floats, rows top to bottom.
+struct Picture {
+  int width, height;
+  std::vector<float> rgb;
+
+  Picture(int w, int h) : width(w), height(h), rgb(static_cast<size_t>(w) * h * 3) {}
+  void set(int x, int y, const Colour& c) {
+    if (x < 0 || y < 0 || x >= width || y >= height) return;
+    std::copy(c.begin(), c.end(), rgb.begin() + (static_cast<size_t>(y) * width + x) * 3);
+  }
+};
+
+// Pixels [x0, x1) x [y0, y1) (set() clips to the picture).
+void fillRect(Picture& image, int x0, int y0, int x1, int y1, const Colour& c) {
+  for (int y = y0; y < y1; ++y) {
+    for (int x = x0; x < x1; ++x) image.set(x, y, c);
+  }
 }
 
 class Labeller {
  public:
-  Labeller(OIIO::ImageBuf& image, std::string font) : image_(image), font_(std::move(font)) {}
-  void text(int x, int y, const std::string& s, int size,
-            OIIO::ImageBufAlgo::TextAlignX align = OIIO::ImageBufAlgo::TextAlignX::Left) {
-    const float black[3] = {0.0f, 0.0f, 0.0f};
-    if (!OIIO::ImageBufAlgo::render_text(image_, x, y, s, size, font_, black, align)) {
-      throw std::runtime_error("cannot render plot text: " + image_.geterror());
+  Labeller(Picture& image, std::string font) : image_(image), font_(std::move(font)) {}
+  void text(int x, int y, const std::string& s, int size, TextAlign align = TextAlign::Left) {
+    try {
+      drawText(image_.rgb.data(), image_.width, image_.height, x, y, s, size, font_, {0, 0, 0},
+               align);
+    } catch (const ImageFileError& e) {
+      throw std::runtime_error(std::string("cannot render plot text: ") + e.what());
     }
   }
 
  private:
-  OIIO::ImageBuf& image_;
+  Picture& image_;
   std::string font_;
 };
 
@@ -70,7 +85,7 @@ std::string formatNumber(const char* format, double value) {
   return buffer;
 }
 
-void drawPanel(OIIO::ImageBuf& image, Labeller& label, int left, int top, double r0,
+void drawPanel(Picture& image, Labeller& label, int left, int top, double r0,
                const CapErrorPlotOptions& o) {
   const int n = o.panelPixels;
   // Data: x = d in [0, pi], y = r1 in [0, maxRadius] (bottom to top).
@@ -84,7 +99,7 @@ void drawPanel(OIIO::ImageBuf& image, Labeller& label, int left, int top, double
       const double scale = capArea(std::min(r0, r1));
       const double signedError = scale > 0 ? (approx - exact) / scale : 0.0;
       const Colour c = divergingColour(signedError / o.colourRange);
-      image.setpixel(left + px, top + py, c.data());
+      image.set(left + px, top + py, c);
     }
   }
   const Colour black{0, 0, 0};
@@ -94,27 +109,25 @@ void drawPanel(OIIO::ImageBuf& image, Labeller& label, int left, int top, double
   fillRect(image, left + n, top, left + n + 1, top + n, black);
 
   label.text(left + n / 2, top - 10, "r0 = " + formatNumber("%.0f", r0 * kDeg) + " deg", 18,
-             OIIO::ImageBufAlgo::TextAlignX::Center);
+             TextAlign::Center);
   for (int deg = 0; deg <= 180; deg += 45) {  // d axis ticks
     const int x = left + static_cast<int>(std::lround(n * deg / 180.0));
     fillRect(image, x, top + n, x + 1, top + n + 6, black);
-    label.text(x, top + n + 22, std::to_string(deg), 14, OIIO::ImageBufAlgo::TextAlignX::Center);
+    label.text(x, top + n + 22, std::to_string(deg), 14, TextAlign::Center);
   }
-  label.text(left + n / 2, top + n + 44, "d (degrees)", 15, OIIO::ImageBufAlgo::TextAlignX::Center);
+  label.text(left + n / 2, top + n + 44, "d (degrees)", 15, TextAlign::Center);
   const double maxDeg = o.maxRadiusRad * kDeg;
   for (int i = 0; i <= 4; ++i) {  // r1 axis ticks
     const double deg = maxDeg * i / 4;
     const int y = top + n - static_cast<int>(std::lround(n * i / 4.0));
     fillRect(image, left - 6, y, left, y + 1, black);
-    label.text(left - 9, y + 5, formatNumber("%.0f", deg), 14,
-               OIIO::ImageBufAlgo::TextAlignX::Right);
+    label.text(left - 9, y + 5, formatNumber("%.0f", deg), 14, TextAlign::Right);
   }
   label.text(left - 62, top + n / 2 - 5, "r1", 15);
   label.text(left - 62, top + n / 2 + 13, "(deg)", 12);
 }
 
-void drawLegend(OIIO::ImageBuf& image, Labeller& label, int left, int top, int height,
-                double range) {
+void drawLegend(Picture& image, Labeller& label, int left, int top, int height, double range) {
   for (int py = 0; py < height; ++py) {
     const double t = 1.0 - 2.0 * (py + 0.5) / height;
     fillRect(image, left, top + py, left + kLegendWidth, top + py + 1, divergingColour(t));
@@ -142,12 +155,12 @@ void writeCapErrorPlot(const std::string& path, const CapErrorPlotOptions& optio
   const int titleHeight = 50;
   const int height = titleHeight + rows * (kMarginTop + n + kMarginBottom);
 
-  OIIO::ImageBuf image(OIIO::ImageSpec(width, height, 3, OIIO::TypeDesc::FLOAT));
+  Picture image(width, height);
   fillRect(image, 0, 0, width, height, {1, 1, 1});
   Labeller label(image, findFont());
   label.text(width / 2, 30,
              "Oat's approximate cap intersection: (approx - exact) / area of smaller cap", 17,
-             OIIO::ImageBufAlgo::TextAlignX::Center);
+             TextAlign::Center);
 
   for (int i = 0; i < panels; ++i) {
     const int col = i % columns, row = i / columns;
@@ -160,8 +173,11 @@ void writeCapErrorPlot(const std::string& path, const CapErrorPlotOptions& optio
              options.colourRange);
 
   AtomicOutput output(path);
-  if (!image.write(output.temporaryPath().string(), OIIO::TypeDesc::UINT8)) {
-    throw std::runtime_error("cannot write plot " + path + ": " + image.geterror());
+  try {
+    writeImageFile(output.temporaryPath().string(), width, height, 3, image.rgb.data(),
+                   /*eightBit=*/true);
+  } catch (const ImageFileError& e) {
+    throw std::runtime_error("cannot write plot " + path + ": " + e.what());
   }
   output.commit();
 }

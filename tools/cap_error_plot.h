@@ -14,9 +14,9 @@ struct CapErrorPlotOptions {
   double colourRange = 0.2;  // legend spans [-range, +range] of the smaller cap's area
 };
 
-// Renders the plot and writes it with OpenImageIO (any format it can write;
-// PNG recommended). Throws std::runtime_error when the file cannot be written
-// or no font is available for the labels.
+// Renders the plot and writes it through the image plugin (image_files.h:
+// any format OpenImageIO writes; PNG recommended). Throws std::runtime_error
+// when the file cannot be written or no font is available for the labels.
 void writeCapErrorPlot(const std::string& path, const CapErrorPlotOptions& options);
 
 }  // namespace aal

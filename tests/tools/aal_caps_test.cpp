@@ -84,5 +84,22 @@ TEST(AalCaps, TableAndPlotAreWritten) {
   EXPECT_EQ(files, 2u);
 }
 
+// OpenImageIO and its ~260 libraries come with the image plugin, loaded for
+// the plot alone (issue 16).
+TEST(AalCaps, StartsWithoutOpenImageIo) {
+  const auto ldd = test::runShell("ldd " + test::quoted(test::binDir() / "aal-caps"));
+  ASSERT_EQ(ldd.exitCode, 0) << ldd.out;
+  EXPECT_EQ(ldd.out.find("OpenImageIO"), std::string::npos) << ldd.out;
+  const std::string missing = "/nonexistent/aal_oiio_images.so";
+  const auto numbers = runTool("aal-caps", "0.5 0.7 0.9 --json", "AAL_IMAGE_PLUGIN=" + missing);
+  EXPECT_EQ(numbers.exitCode, 0) << numbers.out;
+  test::TempDir dir;
+  const auto plot = runTool("aal-caps", "--plot " + test::quoted(dir.path() / "p.png"),
+                            "AAL_IMAGE_PLUGIN=" + missing);
+  EXPECT_EQ(plot.exitCode, 1) << plot.out;
+  EXPECT_NE(plot.out.find("cannot load the image plugin " + missing), std::string::npos)
+      << plot.out;
+}
+
 }  // namespace
 }  // namespace aal

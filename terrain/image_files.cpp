@@ -1,0 +1,90 @@
+#include "image_files.h"
+
+#include <dlfcn.h>
+
+#include <cstdlib>
+#include <filesystem>
+#include <system_error>
+
+#include "image_plugin.h"
+
+namespace aal {
+
+std::string imagePluginPath() {
+  if (const char* path = std::getenv("AAL_IMAGE_PLUGIN"); path && *path) return path;
+  std::error_code error;
+  const std::filesystem::path executable = std::filesystem::read_symlink("/proc/self/exe", error);
+  if (error) {
+    throw std::runtime_error("cannot find the image plugin: /proc/self/exe: " + error.message() +
+                             " (set AAL_IMAGE_PLUGIN to the path of " AAL_IMAGE_PLUGIN_FILE ")");
+  }
+  return (executable.parent_path() / AAL_IMAGE_PLUGIN_FILE).string();
+}
+
+const ImagePlugin& openImagePlugin(const std::string& path) {
+  const std::string cannot = "cannot load the image plugin " + path + ": ";
+  const std::string how = " (it is built with the tools as " AAL_IMAGE_PLUGIN_FILE
+                          ", next to them; AAL_IMAGE_PLUGIN names another path)";
+  // dlerror() starts with the path: say it once.
+  auto why = [&path] {
+    const char* error = dlerror();
+    std::string text = error ? error : "unknown error";
+    if (text.rfind(path + ": ", 0) == 0) text.erase(0, path.size() + 2);
+    return text;
+  };
+  // Never closed: OpenImageIO keeps threads and caches until the process ends.
+  void* library = dlopen(path.c_str(), RTLD_NOW | RTLD_LOCAL);
+  if (!library) throw std::runtime_error(cannot + why() + how);
+  void* entry = dlsym(library, kImagePluginEntry);
+  if (!entry) throw std::runtime_error(cannot + "not an image plugin: " + why());
+  const ImagePlugin* plugin = reinterpret_cast<ImagePluginEntry>(entry)();
+  if (!plugin || plugin->version != kImagePluginVersion) {
+    throw std::runtime_error(cannot + "made for another version of aperture (table version " +
+                             std::to_string(plugin ? plugin->version : 0) + ", expected " +
+                             std::to_string(kImagePluginVersion) + ")" + how);
+  }
+  return *plugin;
+}
+
+namespace {
+
+const ImagePlugin& plugin() {
+  // Loaded on first use; a failed load throws and is tried again next time.
+  static const ImagePlugin& loaded = openImagePlugin(imagePluginPath());
+  return loaded;
+}
+
+void check(const std::string& error) {
+  if (!error.empty()) throw ImageFileError(error);
+}
+
+}  // namespace
+
+ImagePixels readImageFile(const std::string& path) {
+  ImagePixels image;
+  check(plugin().read(path, image));
+  return image;
+}
+
+ImagePixels resizeImage(const ImagePixels& image, int width, int height) {
+  ImagePixels resized;
+  check(plugin().resize(image, width, height, resized));
+  return resized;
+}
+
+void writeImageFile(const std::string& path, int width, int height, int channels,
+                    const uint8_t* samples) {
+  check(plugin().write(path, width, height, channels, samples, false, false));
+}
+
+void writeImageFile(const std::string& path, int width, int height, int channels,
+                    const float* samples, bool eightBit) {
+  check(plugin().write(path, width, height, channels, samples, true, !eightBit));
+}
+
+void drawText(float* rgb, int width, int height, int x, int y, const std::string& text, int size,
+              const std::string& fontPath, const std::array<float, 3>& colour, TextAlign align) {
+  check(plugin().drawText(rgb, width, height, x, y, text, size, fontPath, colour.data(), align));
+}
+
+}  // namespace aal

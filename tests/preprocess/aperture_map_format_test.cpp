@@ -1,0 +1,263 @@
+// The aperture map's file format is the one OpenImageIO wrote before
+// terrain/aperture_map.cpp used OpenEXR directly (issue 16): maps written by
+// either read the same in both, and a broken file is an InputError.
+#include <gtest/gtest.h>
+
+#include <Imath/half.h>
+#include <OpenImageIO/imageio.h>
+
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <iterator>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "../tools/run_tool.h"
+#include "aperture_map.h"
+#include "bake.h"
+#include "bake_test_util.h"
+#include "errors.h"
+
+namespace aal {
+namespace {
+
+// 70 x 45: several ZIP chunks of 16 rows, the last one partial.
+ApertureMap bakedMap() {
+  const Heightfield field = test::makeField(
+      70, 45, 30.0, [](double x, double y) { return 200 * std::sin(x / 300) * std::cos(y / 200); });
+  BakeOptions options;
+  options.azimuths = 16;
+  ApertureMap map = bakeApertures(field, options).aperture;
+  map.info.source = "wavy.tif";
+  map.info.curvature = true;
+  map.info.refraction = 0.13;
+  map.info.maxDistanceM = 1500;
+  map.info.edge = "clamp";
+  return map;
+}
+
+// What writeApertureMap did with OpenImageIO before issue 16.
+void writeWithOiio(const std::string& path, const ApertureMap& map, bool halfFloat) {
+  OIIO::ImageSpec spec(map.width, map.height, 4,
+                       halfFloat ? OIIO::TypeDesc::HALF : OIIO::TypeDesc::FLOAT);
+  spec.channelnames = {"R", "G", "B", "A"};
+  spec.attribute("compression", "zip");
+  const ApertureMapInfo& i = map.info;
+  spec.attribute("aal:version", i.version);
+  spec.attribute("aal:azimuths", i.azimuths);
+  spec.attribute("aal:method", i.method);
+  spec.attribute("aal:cellSizeX", static_cast<float>(i.cellSizeX));
+  spec.attribute("aal:cellSizeY", static_cast<float>(i.cellSizeY));
+  spec.attribute("aal:zScale", static_cast<float>(i.zScale));
+  spec.attribute("aal:source", i.source);
+  spec.attribute("aal:sourceSize",
+                 std::to_string(i.sourceWidth) + "x" + std::to_string(i.sourceHeight));
+  spec.attribute("aal:sourceChecksum", i.sourceChecksum);
+  spec.attribute("aal:edge", i.edge);
+  spec.attribute("aal:curvature", i.curvature ? 1 : 0);
+  spec.attribute("aal:refraction", static_cast<float>(i.refraction));
+  spec.attribute("aal:maxDistance", static_cast<float>(i.maxDistanceM));
+  if (i.originCol != 0 || i.originRow != 0 || map.width != i.sourceWidth ||
+      map.height != i.sourceHeight) {
+    spec.attribute("aal:tileOrigin",
+                   std::to_string(i.originCol) + "," + std::to_string(i.originRow));
+  }
+  auto out = OIIO::ImageOutput::create(path);
+  ASSERT_TRUE(out && out->open(path, spec)) << OIIO::geterror();
+  ASSERT_TRUE(out->write_image(OIIO::TypeDesc::FLOAT, map.texels.data())) << out->geterror();
+  ASSERT_TRUE(out->close());
+}
+
+struct OiioImage {
+  OIIO::ImageSpec spec;
+  std::vector<unsigned char> pixels;  // as stored: halves or floats
+};
+
+OiioImage readWithOiio(const std::string& path) {
+  auto in = OIIO::ImageInput::open(path);
+  EXPECT_TRUE(in) << OIIO::geterror();
+  if (!in) return {};
+  OiioImage image{in->spec(), {}};
+  image.pixels.resize(image.spec.image_bytes());
+  EXPECT_TRUE(in->read_image(0, 0, 0, 4, image.spec.format, image.pixels.data())) << in->geterror();
+  return image;
+}
+
+std::string fileBytes(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  return std::string(std::istreambuf_iterator<char>(in), {});
+}
+
+void expectSameInfo(const ApertureMapInfo& a, const ApertureMapInfo& b) {
+  EXPECT_EQ(a.version, b.version);
+  EXPECT_EQ(a.azimuths, b.azimuths);
+  EXPECT_EQ(a.method, b.method);
+  EXPECT_EQ(static_cast<float>(a.cellSizeX), static_cast<float>(b.cellSizeX));
+  EXPECT_EQ(static_cast<float>(a.cellSizeY), static_cast<float>(b.cellSizeY));
+  EXPECT_EQ(static_cast<float>(a.zScale), static_cast<float>(b.zScale));
+  EXPECT_EQ(a.source, b.source);
+  EXPECT_EQ(a.sourceWidth, b.sourceWidth);
+  EXPECT_EQ(a.sourceHeight, b.sourceHeight);
+  EXPECT_EQ(a.sourceChecksum, b.sourceChecksum);
+  EXPECT_EQ(a.edge, b.edge);
+  EXPECT_EQ(a.curvature, b.curvature);
+  EXPECT_EQ(static_cast<float>(a.refraction), static_cast<float>(b.refraction));
+  EXPECT_EQ(static_cast<float>(a.maxDistanceM), static_cast<float>(b.maxDistanceM));
+  EXPECT_EQ(a.originCol, b.originCol);
+  EXPECT_EQ(a.originRow, b.originRow);
+}
+
+class ApertureMapFormat : public testing::TestWithParam<bool> {};
+
+TEST_P(ApertureMapFormat, NewMapsReadInOiioAsTheOldOnes) {
+  const bool halfFloat = GetParam();
+  test::TempDir dir;
+  ApertureMap map = bakedMap();
+  const std::string fresh = (dir.path() / "new.exr").string();
+  const std::string old = (dir.path() / "old.exr").string();
+  writeApertureMap(fresh, map, halfFloat);
+  writeWithOiio(old, map, halfFloat);
+  // Byte for byte the same file (header, ZIP level, chunks) but for the
+  // capture date, "YYYY:MM:DD HH:MM:SS", when the two writes straddle a second.
+  const std::string freshBytes = fileBytes(fresh), oldBytes = fileBytes(old);
+  ASSERT_EQ(freshBytes.size(), oldBytes.size());
+  size_t differing = 0;
+  for (size_t i = 0; i < freshBytes.size(); ++i) differing += freshBytes[i] != oldBytes[i];
+  EXPECT_LE(differing, 19u);
+
+  const OiioImage a = readWithOiio(fresh), b = readWithOiio(old);
+  EXPECT_EQ(a.spec.width, 70);
+  EXPECT_EQ(a.spec.height, 45);
+  EXPECT_EQ(a.spec.format, halfFloat ? OIIO::TypeDesc::HALF : OIIO::TypeDesc::FLOAT);
+  EXPECT_EQ(a.spec.format, b.spec.format);
+  EXPECT_EQ(a.spec.channelnames, b.spec.channelnames);
+  EXPECT_EQ(a.spec.get_string_attribute("compression"), "zip");
+  // Every attribute but the date: same name, type and value.
+  EXPECT_EQ(a.spec.extra_attribs.size(), b.spec.extra_attribs.size());
+  for (const OIIO::ParamValue& attribute : b.spec.extra_attribs) {
+    if (attribute.name() == "DateTime") continue;
+    const OIIO::ParamValue* same = a.spec.find_attribute(attribute.name());
+    ASSERT_TRUE(same) << attribute.name();
+    EXPECT_EQ(same->type(), attribute.type()) << attribute.name();
+    EXPECT_EQ(same->get_string(), attribute.get_string()) << attribute.name();
+  }
+  EXPECT_TRUE(a.spec.find_attribute("DateTime"));
+  EXPECT_EQ(a.spec.get_int_attribute("aal:curvature"), 1);
+  EXPECT_EQ(a.spec.get_string_attribute("aal:edge"), "clamp");
+  ASSERT_EQ(a.pixels.size(), b.pixels.size());
+  EXPECT_EQ(std::memcmp(a.pixels.data(), b.pixels.data(), a.pixels.size()), 0);
+  if (halfFloat) {
+    const auto* halves = reinterpret_cast<const Imath::half*>(a.pixels.data());
+    for (size_t i = 0; i < map.texels.size(); ++i) {
+      ASSERT_EQ(halves[i].bits(), Imath::half(map.texels[i]).bits()) << i;
+    }
+  } else {
+    EXPECT_EQ(std::memcmp(a.pixels.data(), map.texels.data(), a.pixels.size()), 0);
+  }
+}
+
+TEST_P(ApertureMapFormat, OldMapsReadAsInOiio) {
+  const bool halfFloat = GetParam();
+  test::TempDir dir;
+  ApertureMap map = bakedMap();
+  // A tile of a tiled bake: its place in the DEM in aal:tileOrigin.
+  map.info.originCol = 64;
+  map.info.originRow = 32;
+  map.info.sourceWidth = 200;
+  map.info.sourceHeight = 100;
+  const std::string old = (dir.path() / "old.exr").string();
+  writeWithOiio(old, map, halfFloat);
+
+  const ApertureMap back = readApertureMap(old);
+  EXPECT_EQ(back.width, 70);
+  EXPECT_EQ(back.height, 45);
+  expectSameInfo(back.info, map.info);
+  std::vector<float> floats(map.texels.size());
+  {
+    auto in = OIIO::ImageInput::open(old);
+    ASSERT_TRUE(in);
+    ASSERT_TRUE(in->read_image(0, 0, 0, 4, OIIO::TypeDesc::FLOAT, floats.data()));
+  }
+  EXPECT_EQ(back.texels, floats);
+
+  ApertureMapReader reader(old);
+  EXPECT_EQ(reader.header().width, 70);
+  expectSameInfo(reader.header().info, map.info);
+  std::vector<uint16_t> halves(map.texels.size()), expected(map.texels.size());
+  {
+    auto in = OIIO::ImageInput::open(old);
+    ASSERT_TRUE(in);
+    ASSERT_TRUE(in->read_image(0, 0, 0, 4, OIIO::TypeDesc::HALF, expected.data()));
+  }
+  // Bands that start and end inside ZIP chunks.
+  const size_t rowHalves = 70 * 4;
+  for (int first = 0; first < 45; first += 7) {
+    const int end = std::min(45, first + 7);
+    reader.readHalfRows(first, end, halves.data() + first * rowHalves);
+  }
+  EXPECT_EQ(halves, expected);
+}
+
+INSTANTIATE_TEST_SUITE_P(HalfAndFloat, ApertureMapFormat, testing::Bool(),
+                         [](const testing::TestParamInfo<bool>& p) {
+                           return p.param ? "Half" : "Float";
+                         });
+
+// Cut anywhere (in the magic number, the header, the offset table, the
+// pixels), a map is an InputError naming it, from readApertureMap and from
+// ApertureMapReader, never a crash (AAL_SANITIZE=ON scripts/test.sh runs it
+// under ASan).
+TEST(ApertureMapFile, TruncatedAnywhereIsAnInputErrorNamingIt) {
+  test::TempDir dir;
+  const std::string good = (dir.path() / "good.exr").string();
+  writeApertureMap(good, bakedMap(), true);
+  const auto size = std::filesystem::file_size(good);
+  std::vector<uintmax_t> cuts = {0, 2, 4, 100, 400};
+  for (uintmax_t cut = 600; cut < size; cut += (size - 600) / 17) cuts.push_back(cut);
+  cuts.push_back(size - 1);
+  for (const uintmax_t cut : cuts) {
+    SCOPED_TRACE("cut at " + std::to_string(cut) + " of " + std::to_string(size) + " bytes");
+    const std::string path = (dir.path() / ("cut" + std::to_string(cut) + ".exr")).string();
+    std::filesystem::copy_file(good, path);
+    std::filesystem::resize_file(path, cut);
+    try {
+      readApertureMap(path);
+      FAIL() << "no error";
+    } catch (const InputError& e) {
+      EXPECT_NE(std::string(e.what()).find(path), std::string::npos) << e.what();
+    }
+    try {
+      ApertureMapReader reader(path);
+      const ApertureMapHeader& header = reader.header();
+      std::vector<uint16_t> halves(static_cast<size_t>(header.width) * header.height * 4);
+      reader.readHalfRows(0, header.height, halves.data());
+      FAIL() << "no error";
+    } catch (const InputError& e) {
+      EXPECT_NE(std::string(e.what()).find(path), std::string::npos) << e.what();
+    }
+  }
+}
+
+TEST(ApertureMapFile, ThreeChannelsAreAnInputError) {
+  test::TempDir dir;
+  const std::string path = (dir.path() / "rgb.exr").string();
+  auto out = OIIO::ImageOutput::create(path);
+  OIIO::ImageSpec spec(4, 4, 3, OIIO::TypeDesc::HALF);
+  spec.attribute("aal:version", 1);
+  std::vector<float> pixels(48, 0.5f);
+  ASSERT_TRUE(out->open(path, spec));
+  ASSERT_TRUE(out->write_image(OIIO::TypeDesc::FLOAT, pixels.data()));
+  out->close();
+  try {
+    readApertureMap(path);
+    FAIL() << "no error";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find(path), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("3 channels"), std::string::npos) << e.what();
+  }
+}
+
+}  // namespace
+}  // namespace aal
