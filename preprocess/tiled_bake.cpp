@@ -157,7 +157,7 @@ TiledBakeSummary bakeTiles(const Heightfield& geometry, const std::string& check
         info.originCol = window.col;
         info.originRow = window.row;
         writeApertureMap((fs::path(folder) / apertureTileName(row, column)).string(),
-                         result.aperture, tiled.halfFloat);
+                         result.aperture, tiled.halfFloat, tiled.compression);
         ++summary.baked;
       }
       done += texels;

@@ -21,7 +21,8 @@ constexpr int kMinTileSize = 16, kMaxTileSize = 16384;
 
 struct TiledBakeOptions {
   int tileSize = kDefaultTileSize;
-  bool halfFloat = true;   // as writeApertureMap
+  bool halfFloat = true;  // as writeApertureMap
+  MapCompression compression = kDefaultMapCompression;
   std::string sourceName;  // aal:source (the DEM's file name)
 };
 

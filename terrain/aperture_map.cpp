@@ -91,13 +91,16 @@ Imf::FrameBuffer rowsFrameBuffer(const Imath::Box2i& dataWindow, int firstRow, i
 
 }  // namespace
 
-void writeApertureMap(const std::string& path, const ApertureMap& map, bool halfFloat) {
+void writeApertureMap(const std::string& path, const ApertureMap& map, bool halfFloat,
+                      MapCompression compression) {
   useEveryCoreForExr();
   AtomicOutput output(path);
   const std::string temporary = output.temporaryPath().string();
   try {
     Imf::Header header(map.width, map.height);
-    header.compression() = Imf::ZIP_COMPRESSION;
+    header.compression() = compression == MapCompression::Zip   ? Imf::ZIP_COMPRESSION
+                           : compression == MapCompression::Rle ? Imf::RLE_COMPRESSION
+                                                                : Imf::NO_COMPRESSION;
     for (const char* name : kChannels) {
       header.channels().insert(name, Imf::Channel(halfFloat ? Imf::HALF : Imf::FLOAT));
     }

@@ -55,7 +55,15 @@ std::string heightfieldChecksum(const Heightfield& field);
 
 // Writes the map as EXR via a temporary file renamed into place. halfFloat
 // stores 16-bit floats (bent normal to ~1e-3, arc length to ~1e-3 rad).
-void writeApertureMap(const std::string& path, const ApertureMap& map, bool halfFloat);
+// How the EXR's chunks are compressed. On this project's maps (halves of
+// noisy normals) zlib gains little and costs much: a 4096^2 half map writes
+// in 3.3 s as ZIP (79 MB), 0.64 s as RLE (108 MB), 0.23 s uncompressed
+// (134 MB) on 2 cores (docs/performance.md). Every EXR reader reads each.
+enum class MapCompression { Rle, Zip, None };
+constexpr MapCompression kDefaultMapCompression = MapCompression::Rle;
+
+void writeApertureMap(const std::string& path, const ApertureMap& map, bool halfFloat,
+                      MapCompression compression = kDefaultMapCompression);
 
 struct ApertureMapHeader {
   int width = 0, height = 0;
