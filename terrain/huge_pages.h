@@ -1,4 +1,4 @@
-// Large bake buffers backed by 2 MiB pages where the kernel offers them
+// Large buffers (bake sums, DEMs read by GDAL) backed by 2 MiB pages where the kernel offers them
 // (Linux transparent huge pages in "madvise" mode, Debian's default): one
 // page fault per 2 MiB instead of per 4 KiB when the buffer is first
 // written, and fewer TLB misses while the sweeps stride across it. The
