@@ -9,6 +9,7 @@
 #include <cmath>
 #include <fstream>
 #include <limits>
+#include <utility>
 
 #include "dem_loader.h"
 #include "dem_source.h"
@@ -407,6 +408,31 @@ TEST_F(GdalDem, HgtTileIsGeographicWithVoids) {
   EXPECT_TRUE(f.isVoid(7, 9));
   EXPECT_EQ(f.at(1200, 0), 1200.0f);
   EXPECT_NEAR(f.cellSizeYM, meridianArcM(36.0, 37.0) / 1200, 1e-6);
+}
+
+TEST_F(GdalDem, ErdasImgNetCdfAndDtedRead) {
+  // A 1 x 1 degree DTED level 0 cell: 121 x 121 posts, geographic WGS84.
+  test::GdalRaster r;
+  r.width = r.height = 121;
+  r.type = GDT_Int16;
+  r.hasTransform = true;
+  const double step = 1.0 / 120;
+  const double t[6] = {-85 - step / 2, step, 0, 37 + step / 2, 0, -step};
+  std::copy(t, t + 6, r.transform);
+  r.crs = "EPSG:4326";
+  r.value = [](int, int c, int row) { return 200.0 + c + 2 * row; };
+  for (const auto& [driver, name] : {std::pair<std::string, std::string>{"HFA", "dem.img"},
+                                     {"netCDF", "dem.nc"},
+                                     {"DTED", "dem.dt0"}}) {
+    const std::string p = write(name, r, driver);
+    const Heightfield f = loadDem(p, warnings_.options());
+    EXPECT_EQ(f.driver, driver) << name;
+    EXPECT_EQ(f.geo.crs, CrsKind::Geographic) << name;
+    EXPECT_EQ(f.at(10, 20), 250.0f) << name;
+    EXPECT_NEAR(f.geo.centerLatDeg, 36.5, 1e-6) << name;
+    EXPECT_NEAR(f.geo.centerLonDeg, -84.5, 1e-6) << name;
+    expectGdalStatistics(p, f, 1e-3);
+  }
 }
 
 TEST_F(GdalDem, VrtMosaicReadsAsOne) {
