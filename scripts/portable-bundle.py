@@ -11,12 +11,15 @@ shaders and every library they load into OUT_DIR (binaries, the plugin and
 shaders/ at the top, libraries in lib/), except the C runtime (libc, libm,
 libstdc++, libgcc_s, the loader: the target's newer ones serve, and its GPU
 driver needs them). OpenImageIO links many codec libraries
-that our tools never call (video, DICOM, OpenVDB, camera raw, HEIF, OpenCV,
-PROJ via libgeotiff); with their dependencies they are ~300 MB, so each is
-replaced by a stand-in that defines the symbols the kept libraries import
-(functions that return a pointer to zeros: version strings read as empty).
-Run on the target with LD_LIBRARY_PATH=OUT_DIR/lib and
-AAL_SHADER_DIR=OUT_DIR/shaders.
+that our tools never call (video, DICOM, OpenVDB, camera raw, HEIF, OpenCV);
+with their dependencies they are ~300 MB, so each is replaced by a stand-in
+that defines the symbols the kept libraries import (functions that return a
+pointer to zeros: version strings read as empty). PROJ is kept: GDAL places
+every DEM with it (docs/dem-input.md), and its database (proj.db) and GDAL's
+data files are copied to OUT_DIR/share/proj and OUT_DIR/share/gdal.
+Run on the target with LD_LIBRARY_PATH=OUT_DIR/lib,
+AAL_SHADER_DIR=OUT_DIR/shaders, PROJ_DATA=OUT_DIR/share/proj and
+GDAL_DATA=OUT_DIR/share/gdal.
 """
 import os
 import re
@@ -29,8 +32,8 @@ STAND_INS = [
     "libopencv_core.so.406", "libopencv_imgproc.so.406", "libopencv_videoio.so.406",
     "libdcmimage.so.17", "libdcmimgle.so.17", "libdcmdata.so.17", "liboflog.so.17",
     "libofstd.so.17", "libavcodec.so.59", "libavformat.so.59", "libavutil.so.57",
-    "libswscale.so.6", "libheif.so.1", "libopenvdb.so.10.0", "libraw_r.so.20",
-    "libproj.so.25"]
+    "libswscale.so.6", "libheif.so.1", "libopenvdb.so.10.0", "libraw_r.so.20"]
+DATA_DIRS = {"proj": "/usr/share/proj", "gdal": "/usr/share/gdal"}
 C_RUNTIME = {"libc.so.6", "libm.so.6", "ld-linux-x86-64.so.2", "libpthread.so.0",
              "libdl.so.2", "librt.so.1", "libstdc++.so.6", "libgcc_s.so.1"}
 
@@ -48,7 +51,12 @@ def find_library(name):
         path = os.path.join(directory, name)
         if os.path.exists(path):
             return path
-    sys.exit(f"portable-bundle: {name} not found in {LIBRARY_DIRS}")
+    # Elsewhere on the loader's path (GDAL's armadillo sits in /usr/lib).
+    for line in run("ldconfig", "-p").splitlines():
+        fields = line.split()
+        if fields and fields[0] == name and "x86-64" in line:
+            return fields[-1]
+    sys.exit(f"portable-bundle: {name} not found in {LIBRARY_DIRS} nor by ldconfig")
 
 
 def kept_libraries(binaries):
@@ -122,6 +130,8 @@ def main():
     shader_dir = os.path.join(os.path.dirname(os.path.abspath(binaries[0])), "..", "shaders")
     shutil.copytree(shader_dir, os.path.join(out_dir, "shaders"), dirs_exist_ok=True,
                     ignore=shutil.ignore_patterns("CMakeFiles", "*.cmake"))
+    for name, source in DATA_DIRS.items():
+        shutil.copytree(source, os.path.join(out_dir, "share", name), dirs_exist_ok=True)
     kept = kept_libraries(binaries)
     for name, path in kept.items():
         shutil.copy(os.path.realpath(path), os.path.join(lib_dir, name))
