@@ -178,11 +178,13 @@ TiledBakeSummary bakeTiled(const Heightfield& field, const BakeOptions& bake,
       bake, tiled, folder);
 }
 
-int bandHaloRows(const Heightfield& geometry, const BakeOptions& bake) {
-  // The sweep of a window walks at most stepsCovering(max distance) steps
-  // before it, each moving a line by at most one row; the slopes reach one
-  // row further, the lines' interpolation one more.
-  return detail::stepsCovering(prepareBakeTerrain(geometry), bake.maxDistanceM) + 3;
+int bandHaloRows(const Heightfield& geometry, const BakeOptions& bake, int tileSize) {
+  // Every line that reaches the tile is walked from stepsCovering(max
+  // distance) steps before the tile to its far side, moving by up to one row
+  // a step: lines advancing by columns drift up to the tile's width plus
+  // those steps in rows (the points beyond the max distance are read, then
+  // ignored). The slopes reach one row further, the interpolation one more.
+  return detail::stepsCovering(prepareBakeTerrain(geometry), bake.maxDistanceM) + tileSize + 3;
 }
 
 TiledBakeSummary bakeTiledInBands(const DemSource& source, const Heightfield& geometry,
@@ -200,7 +202,7 @@ TiledBakeSummary bakeTiledInBands(const DemSource& source, const Heightfield& ge
     if (bake.progress) bake.progress(0.0);
     if (bake.cancel && bake.cancel->load(std::memory_order_relaxed)) throw BakeCancelled();
   }
-  const int halo = bandHaloRows(geometry, bake);
+  const int halo = bandHaloRows(geometry, bake, tiled.tileSize);
   Heightfield band;
   return bakeTiles(
       geometry, hasher.hex(),

@@ -51,17 +51,18 @@ TiledBakeSummary bakeTiled(const Heightfield& field, const BakeOptions& bake,
 class DemSource;
 
 // The same bake, bit for bit, with the DEM read from `source` one band of
-// rows at a time: a tile row plus the rows within the max distance above and
-// below it (bandHaloRows), every column. Memory: one band (4 bytes per
-// texel of it) plus one tile, whatever the DEM's size; the DEM is read once
-// more than the tile rows for its checksum. `geometry` is demGeometry of
-// the source. The DEM must have no voids (filling them needs all of it):
+// rows at a time: a tile row plus the rows its sweeps read above and below
+// it (bandHaloRows), every column. Memory: one band (4 bytes per texel of
+// about three tile rows) plus one tile, whatever the DEM's height; the DEM
+// is read once more for its checksum. `geometry` is demGeometry of the
+// source. The DEM must have no voids (filling them needs all of it):
 // InputError naming gdal_fillnodata.py otherwise, before any tile.
 TiledBakeSummary bakeTiledInBands(const DemSource& source, const Heightfield& geometry,
                                   const BakeOptions& bake, const TiledBakeOptions& tiled,
                                   const std::string& folder);
 
-// Rows above and below a tile row that its tiles' sweeps can reach.
-int bandHaloRows(const Heightfield& geometry, const BakeOptions& bake);
+// Rows above and below a tile row that its tiles' sweeps read: the tile
+// size plus the max distance's steps (+ 3).
+int bandHaloRows(const Heightfield& geometry, const BakeOptions& bake, int tileSize);
 
 }  // namespace aal
