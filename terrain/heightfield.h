@@ -8,6 +8,7 @@
 #pragma once
 
 #include <algorithm>
+#include <cmath>
 
 #include <cstddef>
 #include <cstdint>
@@ -86,6 +87,9 @@ struct Heightfield {
   // the grid: the surface through the texel centres that the bakers' rays,
   // the reference renderer and the viewer's camera all march or stand on.
   double bilinearHeight(double col, double row) const {
+    // NaN passes std::clamp and would become an index: take texel 0.
+    if (std::isnan(col)) col = 0.0;
+    if (std::isnan(row)) row = 0.0;
     col = std::clamp(col, 0.0, static_cast<double>(width - 1));
     row = std::clamp(row, 0.0, static_cast<double>(height - 1));
     const int c0 = std::min(static_cast<int>(col), std::max(width - 2, 0));

@@ -36,8 +36,11 @@ void checkObscuranceSettings(const ObscuranceSettings& s, glm::dvec2 demExtentM)
 }
 
 float bilinearHeight(const Heightfield& field, glm::vec2 texel) {
-  const float x = std::clamp(texel.x, 0.0f, static_cast<float>(field.width - 1));
-  const float y = std::clamp(texel.y, 0.0f, static_cast<float>(field.height - 1));
+  // NaN passes std::clamp and would become an index: take texel 0.
+  const float x =
+      std::clamp(std::isnan(texel.x) ? 0.0f : texel.x, 0.0f, static_cast<float>(field.width - 1));
+  const float y =
+      std::clamp(std::isnan(texel.y) ? 0.0f : texel.y, 0.0f, static_cast<float>(field.height - 1));
   const int x0 = std::min(static_cast<int>(x), field.width - 1);
   const int y0 = std::min(static_cast<int>(y), field.height - 1);
   const int x1 = std::min(x0 + 1, field.width - 1), y1 = std::min(y0 + 1, field.height - 1);

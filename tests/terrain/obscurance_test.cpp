@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <limits>
 #include <random>
 
 #include <glm/geometric.hpp>
@@ -399,6 +400,22 @@ TEST(Obscurance, SettingsOutsideTheSupportedRangeAreInputErrors) {
   }
   EXPECT_FLOAT_EQ(defaultObscuranceRadiusM({30, 20}, extent), 300.0f);
   EXPECT_FLOAT_EQ(defaultObscuranceRadiusM({500, 500}, extent), 3000.0f);
+}
+
+// Issue 17, item 4: a NaN position passed std::clamp and became an index.
+TEST(Heightfield, BilinearHeightAtNanIsTheFirstTexelsNotACrash) {
+  Heightfield f;
+  f.width = 3;
+  f.height = 2;
+  f.z = {7, 1, 2, 3, 4, 5};
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  EXPECT_EQ(f.bilinearHeight(nan, nan), 7.0);
+  EXPECT_EQ(f.bilinearHeight(nan, 1.0), 3.0);
+  EXPECT_EQ(f.bilinearHeight(2.0, nan), 2.0);
+  EXPECT_EQ(f.bilinearHeight(1e300, -1e300), 2.0);  // clamped to the grid
+  const float nanf = std::numeric_limits<float>::quiet_NaN();
+  EXPECT_EQ(bilinearHeight(f, {nanf, nanf}), 7.0f);
+  EXPECT_EQ(bilinearHeight(f, {2.0f, nanf}), 2.0f);
 }
 
 }  // namespace

@@ -91,6 +91,19 @@ TEST(AalBake, QuietPrintsNothing) {
   EXPECT_EQ(r.out, "");
 }
 
+TEST(AalBake, NonFiniteNumbersExitWithTwoBeforeWork) {
+  TempDir dir;
+  const fs::path dem = writeDem(dir, 16);
+  for (const std::string args :
+       {"--max-distance nan", "--refraction nan --curvature", "--cell-size nan"}) {
+    const auto r =
+        runTool("aal-bake", quoted(dem) + " -o " + quoted(dir.path() / "a.exr") + " " + args);
+    EXPECT_EQ(r.exitCode, 2) << args << "\n" << r.out;
+    EXPECT_NE(r.out.find("every number must be finite"), std::string::npos) << r.out;
+  }
+  EXPECT_FALSE(fs::exists(dir.path() / "a.exr"));
+}
+
 TEST(AalBake, JacksboroBakesWithoutNan) {
   TempDir dir;
   const fs::path out = dir.path() / "j.exr";

@@ -186,6 +186,20 @@ TEST(AalSynth, WritesAGeoTiffThatLoadsBackExactly) {
   EXPECT_EQ(info.out.find("warning"), std::string::npos) << info.out;
 }
 
+TEST(AalSynth, NonFiniteNumbersExitWithTwo) {
+  test::TempDir dir;
+  const std::string out = (dir.path() / "x.tif").string();
+  for (const std::string args : {"--size 16 --amplitude nan", "--size 16 --cell-size nan"}) {
+    const auto r = runTool("aal-synth", "-o '" + out + "' " + args);
+    EXPECT_EQ(r.exitCode, 2) << args << "\n" << r.out;
+    EXPECT_NE(r.out.find("every number must be finite"), std::string::npos) << r.out;
+  }
+  EXPECT_FALSE(std::filesystem::exists(out));
+  const auto info = runTool("aal-info", "'" + kJacksboro + "' --z-scale nan");
+  EXPECT_EQ(info.exitCode, 2) << info.out;
+  EXPECT_NE(info.out.find("--z-scale nan"), std::string::npos) << info.out;
+}
+
 TEST(AalSynth, SeedsDecideTheHeights) {
   test::TempDir dir;
   const auto write = [&](const std::string& name, int seed) {

@@ -88,6 +88,30 @@ TEST(AalRender, BadInputExitsWithTwo) {
   EXPECT_FALSE(fs::exists(dir.path() / "x.png"));
 }
 
+// Issue 17, items 4 and 5: NaN passed every range check (exit 0 with an
+// EXR full of NaN) and, cast to an index, crashed the reference renderer.
+TEST(AalRender, NonFiniteNumbersExitWithTwoAndSayWhich) {
+  TempDir dir;
+  const std::string out = " -o " + quoted(dir.path() / "x.exr") + " --size 64x36";
+  for (const std::string& args :
+       {out + " --mode reference --fov nan", out + " --sun-elevation nan --sun-azimuth 10",
+        out + " --sun-azimuth NaN --sun-elevation 20", out + " --ev inf",
+        out + " --lat nan --lon 10", out + " --sun-radius nan",
+        out + " --camera 1e999,0,0 --look-at 0,0,0", out + " --fov=nan"}) {
+    const auto r = render(dir, args);
+    EXPECT_EQ(r.exitCode, 2) << args << "\n" << r.out;
+    EXPECT_NE(r.out.find("every number must be finite"), std::string::npos) << args << r.out;
+  }
+  EXPECT_FALSE(fs::exists(dir.path() / "x.exr"));
+}
+
+TEST(AalRender, ACameraFarBeyondTheDemDoesNotCrashTheReference) {
+  TempDir dir;
+  const auto r = render(dir, "-o " + quoted(dir.path() / "far.exr") +
+                                 " --size 32x18 --mode reference --camera 1e300,0,0");
+  EXPECT_EQ(r.exitCode, 0) << r.out;
+}
+
 TEST(AalRender, BadObscuranceOptionsExitWithTwoAndSayWhy) {
   TempDir dir;
   const std::string out = " -o " + quoted(dir.path() / "x.png") + " --size 32x18";
