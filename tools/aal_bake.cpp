@@ -1,5 +1,6 @@
 // aal-bake: aperture maps (bent normal + visible-sky cap) from a DEM.
 #include <atomic>
+#include <cctype>
 #include <chrono>
 #include <cmath>
 #include <csignal>
@@ -25,6 +26,7 @@
 #include "tiled_bake.h"
 #include "tool_main.h"
 #include "tool_options.h"
+#include "tool_paths.h"
 
 namespace {
 
@@ -120,6 +122,14 @@ void checkOutputs(const Options& o, bool tiled) {
   if (tiled) {
     requireWritableFolder(o.output);
   } else {
+    // Checked before the bake, not by the EXR writer after it.
+    std::string extension = std::filesystem::path(o.output).extension().string();
+    for (char& c : extension) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+    if (extension != ".exr") {
+      throw aal::InputError("-o " + o.output +
+                            ": an aperture map is an OpenEXR file (.exr), or the folder of a "
+                            "tiled bake (--tile-size)");
+    }
     aal::requireWritableOutput(o.output);
   }
   for (const std::string& path : {o.svfPath, o.visiblePath}) {
@@ -161,6 +171,8 @@ int run(const Options& o) {
   // Outputs are checked before minutes of work, not after (again once the
   // DEM's size has decided the tiling).
   const bool askedTiled = o.tileSize > 0 || std::filesystem::is_directory(o.output);
+  aal::checkDistinctFiles({{"DEM", o.dem}},
+                          {{"-o", o.output}, {"--svf", o.svfPath}, {"--visible", o.visiblePath}});
   checkOutputs(o, askedTiled);
   aal::DemLoadOptions load;
   load.cellSizeM = o.cellSize;

@@ -15,6 +15,7 @@
 #include "cap_error_plot.h"
 #include "tool_main.h"
 #include "tool_options.h"
+#include "tool_paths.h"
 
 namespace {
 
@@ -113,6 +114,7 @@ int sweep(const Options& o) {
     }
     maxRadius = o.degrees ? *o.maxRadius / kDeg : *o.maxRadius;
   }
+  aal::checkDistinctFiles({}, {{"--table", o.tablePath}, {"--plot", o.plotPath}});
   if (!o.tablePath.empty()) aal::requireWritableOutput(o.tablePath);
   if (!o.plotPath.empty()) aal::requireWritableOutput(o.plotPath);
 

@@ -32,6 +32,7 @@
 #include "tone_map.h"
 #include "tool_main.h"
 #include "tool_options.h"
+#include "tool_paths.h"
 
 namespace {
 
@@ -184,6 +185,8 @@ int run(const Options& o) {
   if (reference && !o.compare.empty()) {
     throw aal::InputError("--compare renders the reference itself: leave out --mode reference");
   }
+  aal::checkDistinctFiles({{"DEM", o.dem}, {"--aperture", o.aperture}, {"--albedo", o.albedo}},
+                          {{"-o", o.output}});
   if (!o.output.empty()) {
     if (!aal::isSupportedImageOutput(o.output)) {
       throw aal::InputError("output " + o.output + " must end in .png or .exr");

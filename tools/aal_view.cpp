@@ -9,6 +9,7 @@
 #include "screenshot.h"
 #include "tool_main.h"
 #include "tool_options.h"
+#include "tool_paths.h"
 #include "viewer/viewer.h"
 
 namespace {
@@ -46,6 +47,9 @@ void checkScript(const Options& o) {
   if (o.frames && *o.frames < 1) {
     throw aal::InputError("--frames must be at least 1, got " + std::to_string(*o.frames));
   }
+  aal::checkDistinctFiles(
+      {{"DEM", o.dem}, {"--aperture", o.aperture}, {"--camera-path", o.cameraPath}},
+      {{"--screenshot", o.screenshot}});
   if (!o.screenshot.empty()) {
     if (!o.frames) throw aal::InputError("--screenshot needs --frames N (saved after frame N)");
     if (!aal::isSupportedImageOutput(o.screenshot) || aal::wantsLinearOutput(o.screenshot)) {
@@ -169,7 +173,8 @@ int main(int argc, char** argv) {
   std::string modes;
   for (const auto& [name, mode] : aal::shadingModeNames())
     modes += (modes.empty() ? "" : ", ") + name;
-  app.add_option("dem", o.dem, "input DEM (GeoTIFF, SRTM .hgt, ESRI ASCII, PNG, EXR)")->required();
+  app.add_option("dem", o.dem, "input DEM (any raster GDAL reads: GeoTIFF, VRT, .hgt, .asc, ...)")
+      ->required();
   app.add_option("--aperture", o.aperture, "aperture map baked from this DEM by aal-bake");
   app.add_option("--size", o.size, "window size WIDTHxHEIGHT (screen coordinates)")
       ->capture_default_str();

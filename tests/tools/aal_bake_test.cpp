@@ -91,6 +91,46 @@ TEST(AalBake, QuietPrintsNothing) {
   EXPECT_EQ(r.out, "");
 }
 
+std::string bytesOf(const fs::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  return std::string(std::istreambuf_iterator<char>(in), {});
+}
+
+// Issue 17, items 1 and 2: `aal-bake d.tif -o d.tif` turned the DEM into an
+// aperture map (exit 0); `-o a.tif` wrote a map nothing reads.
+TEST(AalBake, OutputsThatAreInputsOrEachOtherOrNotExrExitWithTwo) {
+  TempDir dir;
+  const fs::path dem = writeDem(dir, 16);
+  const std::string before = bytesOf(dem);
+  fs::create_symlink(dem, dir.path() / "link.exr");
+  fs::create_hard_link(dem, dir.path() / "hard.exr");
+  const std::string in = quoted(dem) + " -q ";
+  struct Case {
+    std::string args, says;
+  };
+  for (const Case& c :
+       {Case{"-o " + quoted(dem), "is the input DEM"},
+        Case{"-o " + quoted(dir.path() / "link.exr"), "is the input DEM"},
+        Case{"-o " + quoted(dir.path() / "hard.exr"), "is the input DEM"},
+        Case{"-o " + quoted(dir.path() / "." / "dem.tif"), "is the input DEM"},
+        Case{"-o " + quoted(dir.path() / "b.exr") + " --svf " + quoted(dir.path() / "b.exr"),
+             "is also the output of -o"},
+        Case{"-o " + quoted(dir.path() / "c.exr") + " --svf " + quoted(dir.path() / "s.tif") +
+                 " --visible " + quoted(dir.path() / "s.tif"),
+             "is also the output of --svf"},
+        Case{"-o " + quoted(dir.path() / "a.tif"), "OpenEXR file (.exr)"},
+        Case{"-o " + quoted(dir.path() / "a"), "OpenEXR file (.exr)"}}) {
+    const auto r = runTool("aal-bake", in + c.args);
+    EXPECT_EQ(r.exitCode, 2) << c.args << "\n" << r.out;
+    EXPECT_NE(r.out.find(c.says), std::string::npos) << c.args << "\n" << r.out;
+  }
+  EXPECT_EQ(bytesOf(dem), before);
+  for (const char* name : {"a.tif", "a", "b.exr", "c.exr", "s.tif"}) {
+    EXPECT_FALSE(fs::exists(dir.path() / name)) << name;
+  }
+  EXPECT_EQ(runTool("aal-bake", in + "-o " + quoted(dir.path() / "UPPER.EXR")).exitCode, 0);
+}
+
 TEST(AalBake, NonFiniteNumbersExitWithTwoBeforeWork) {
   TempDir dir;
   const fs::path dem = writeDem(dir, 16);

@@ -49,6 +49,16 @@ TEST(AalCaps, BadArgumentsExitWithTwo) {
   }
 }
 
+// Issue 17, item 1: one file for both outputs.
+TEST(AalCaps, TableAndPlotInOneFileExitWithTwo) {
+  test::TempDir dir;
+  const std::string same = test::quoted(dir.path() / "x.png");
+  const auto r = runTool("aal-caps", "--table " + same + " --plot " + same);
+  EXPECT_EQ(r.exitCode, 2) << r.out;
+  EXPECT_NE(r.out.find("is also the output of --table"), std::string::npos) << r.out;
+  EXPECT_FALSE(std::filesystem::exists(dir.path() / "x.png"));
+}
+
 TEST(AalCaps, UnwritableOutputFailsBeforeWork) {
   const auto r = runTool("aal-caps", "--table /nonexistent-folder/t.csv");
   EXPECT_NE(r.exitCode, 0);

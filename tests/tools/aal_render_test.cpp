@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cstdlib>
 #include <filesystem>
+#include <fstream>
 #include <utility>
 #include <vector>
 
@@ -103,6 +104,22 @@ TEST(AalRender, NonFiniteNumbersExitWithTwoAndSayWhich) {
     EXPECT_NE(r.out.find("every number must be finite"), std::string::npos) << args << r.out;
   }
   EXPECT_FALSE(fs::exists(dir.path() / "x.exr"));
+}
+
+// Issue 17, item 1: `aal-render DEM --aperture a.exr -o a.exr` overwrote
+// the map it read.
+TEST(AalRender, AnOutputThatIsAnInputExitsWithTwo) {
+  TempDir dir;
+  const fs::path map = dir.path() / "a.exr", albedo = dir.path() / "albedo.png";
+  std::ofstream(map, std::ios::binary) << "not really a map";
+  std::ofstream(albedo, std::ios::binary) << "not really an image";
+  for (const std::string& args : {"--aperture " + quoted(map) + " -o " + quoted(map),
+                                  "--albedo " + quoted(albedo) + " -o " + quoted(albedo)}) {
+    const auto r = render(dir, args + " --size 32x18");
+    EXPECT_EQ(r.exitCode, 2) << args << "\n" << r.out;
+    EXPECT_NE(r.out.find("writing it would destroy it"), std::string::npos) << r.out;
+  }
+  EXPECT_EQ(fs::file_size(map), 16u);
 }
 
 TEST(AalRender, ACameraFarBeyondTheDemDoesNotCrashTheReference) {

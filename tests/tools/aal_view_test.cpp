@@ -251,6 +251,14 @@ TEST(AalView, BadCommandLineExitsWithTwoBeforeOpeningAWindow) {
     EXPECT_EQ(r.exitCode, 2) << args << "\n" << r.out;
     EXPECT_EQ(r.out.find("aal-render"), std::string::npos) << args << "\n" << r.out;
   }
+  // Issue 17, item 1: a screenshot that would overwrite an input.
+  const fs::path png = dir.path() / "dem.png";
+  fs::copy_file(kDem, dir.path() / "dem.tif");
+  fs::create_symlink(dir.path() / "dem.tif", png);
+  const auto alias = runTool("aal-view", quoted(png) + " --frames 1 --screenshot " + quoted(png),
+                             "-u DISPLAY -u WAYLAND_DISPLAY");
+  EXPECT_EQ(alias.exitCode, 2) << alias.out;
+  EXPECT_NE(alias.out.find("is the input DEM"), std::string::npos) << alias.out;
   const auto frames = runTool("aal-view", dem + " --frames 0", "-u DISPLAY");
   EXPECT_NE(frames.out.find("--frames"), std::string::npos) << frames.out;
   const auto path =
