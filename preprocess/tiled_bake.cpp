@@ -8,6 +8,7 @@
 #include <system_error>
 #include <vector>
 
+#include "atomic_file.h"
 #include "bake_terrain.h"
 #include "dem_loader.h"
 #include "dem_source.h"
@@ -38,17 +39,6 @@ void checkTiledBakeOptions(const BakeOptions& bake, const TiledBakeOptions& tile
 }
 
 namespace {
-
-// Removes temporary files a killed run left behind (AtomicOutput names
-// them ".NAME.tmp-PID-N.EXT").
-void removeLeftovers(const fs::path& folder) {
-  std::error_code error;
-  for (const fs::directory_entry& entry : fs::directory_iterator(folder, error)) {
-    const std::string name = entry.path().filename().string();
-    const bool ours = name.rfind(".tile_", 0) == 0 || name.rfind(".index.tmp-", 0) == 0;
-    if (ours && name.find(".tmp-") != std::string::npos) fs::remove(entry.path(), error);
-  }
-}
 
 // Throws InputError when the folder's index (from a finished run) is not
 // that of this bake.
@@ -121,7 +111,8 @@ TiledBakeSummary bakeTiles(const Heightfield& geometry, const std::string& check
     throw std::runtime_error("cannot create the output folder " + folder +
                              (error ? ": " + error.message() : ""));
   }
-  removeLeftovers(folder);
+  // What a killed run left behind; a running bake's temporaries stay.
+  removeDeadTemporaries(folder);
 
   ApertureTileIndex index;
   index.map.width = geometry.width;

@@ -1,8 +1,11 @@
 #include "atomic_file.h"
 
+#include <signal.h>
 #include <unistd.h>
 
 #include <atomic>
+#include <cctype>
+#include <cerrno>
 #include <fstream>
 #include <stdexcept>
 #include <string>
@@ -29,8 +32,40 @@ void checkOutputWritable(const fs::path& path) {
   }
 }
 
+namespace {
+
+// The PID in ".NAME.tmp-PID-N[.EXT]", or 0 when the name is not ours.
+pid_t temporaryOwner(const std::string& name) {
+  if (name.empty() || name[0] != '.') return 0;
+  const size_t tag = name.rfind(".tmp-");
+  if (tag == std::string::npos) return 0;
+  size_t i = tag + 5;
+  long pid = 0;
+  const size_t digits = i;
+  while (i < name.size() && std::isdigit(static_cast<unsigned char>(name[i])) && pid < 1 << 30) {
+    pid = pid * 10 + (name[i++] - '0');
+  }
+  if (i == digits || i >= name.size() || name[i] != '-') return 0;
+  const size_t counter = ++i;
+  while (i < name.size() && std::isdigit(static_cast<unsigned char>(name[i]))) ++i;
+  if (i == counter || (i < name.size() && name[i] != '.')) return 0;
+  return static_cast<pid_t>(pid);
+}
+
+}  // namespace
+
+void removeDeadTemporaries(const fs::path& folder) {
+  std::error_code error;
+  for (const fs::directory_entry& entry : fs::directory_iterator(folder, error)) {
+    const pid_t owner = temporaryOwner(entry.path().filename().string());
+    if (owner <= 0 || !entry.is_regular_file(error)) continue;
+    if (::kill(owner, 0) != 0 && errno == ESRCH) fs::remove(entry.path(), error);
+  }
+}
+
 AtomicOutput::AtomicOutput(fs::path path) : final_(std::move(path)) {
   checkOutputWritable(final_);
+  removeDeadTemporaries(final_.has_parent_path() ? final_.parent_path() : fs::path("."));
   static std::atomic<unsigned> counter{0};
   const std::string unique = std::to_string(::getpid()) + "-" + std::to_string(counter++);
   // Built with += : GCC 12 reports a false -Wrestrict for chained + here.

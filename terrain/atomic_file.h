@@ -11,6 +11,12 @@ namespace aal {
 // folder, no permission, is a folder). Call it before long work starts.
 void checkOutputWritable(const std::filesystem::path& path);
 
+// Removes the temporary files (".NAME.tmp-PID-N.EXT") in `folder` whose
+// process is gone: what a killed run left behind. Files of live processes,
+// other files and sub-folders are kept; errors are ignored (a hint of
+// tidiness, not a guarantee). AtomicOutput calls it on its folder.
+void removeDeadTemporaries(const std::filesystem::path& folder);
+
 class AtomicOutput {
  public:
   // Checks that `path` is writable (see checkOutputWritable) and picks a
