@@ -335,15 +335,7 @@ RawDem DemSource::read(int column, int row, int w, int h) const {
     throw std::invalid_argument("DemSource::read: window outside the raster");
   }
   checkDemSize(path_, w, h, impl_->maxTexels);
-  RawDem dem;
-  dem.geo = whole.geo;
-  dem.zUnitM = whole.zUnitM;
-  dem.zUnitFromFile = whole.zUnitFromFile;
-  dem.format = whole.format;
-  dem.driver = whole.driver;
-  dem.sampleType = whole.sampleType;
-  dem.nodata = whole.nodata;
-  dem.zUnitName = whole.zUnitName;
+  RawDem dem = whole;  // the description: everything but the samples
   if (dem.geo.crs != CrsKind::None) {
     dem.geo.originX += column * dem.geo.stepX;
     dem.geo.originY -= row * dem.geo.stepY;

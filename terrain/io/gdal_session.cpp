@@ -5,6 +5,7 @@
 #include <cpl_conv.h>
 #include <cpl_error.h>
 #include <gdal.h>
+#include <ogr_spatialref.h>
 
 namespace aal {
 
@@ -17,6 +18,17 @@ void ensureGdal() {
       CPLSetConfigOption("GDAL_NUM_THREADS", "ALL_CPUS");
     }
   });
+}
+
+std::unique_ptr<OGRSpatialReference> spatialReferenceOf(const GeoReference& geo) {
+  ensureGdal();
+  auto srs = std::make_unique<OGRSpatialReference>();
+  const OGRErr error = !geo.wkt.empty() ? srs->importFromWkt(geo.wkt.c_str())
+                       : geo.epsg > 0   ? srs->importFromEPSG(geo.epsg)
+                                        : OGRERR_FAILURE;
+  if (error != OGRERR_NONE) return nullptr;
+  srs->SetAxisMappingStrategy(OAMS_TRADITIONAL_GIS_ORDER);
+  return srs;
 }
 
 std::string gdalLastError(const std::string& fallback) {

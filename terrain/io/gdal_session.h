@@ -3,7 +3,12 @@
 // the user inside our errors instead), decoding on every core.
 #pragma once
 
+#include <memory>
 #include <string>
+
+#include "heightfield.h"
+
+class OGRSpatialReference;
 
 namespace aal {
 
@@ -12,6 +17,10 @@ namespace aal {
 // ALL_CPUS unless the user set it, so that compressed GeoTIFFs decode and
 // encode on every core.
 void ensureGdal();
+
+// The CRS `geo` names: its WKT, else its EPSG code; null when it names none
+// or OGR cannot read it. Axes in the traditional GIS order (x east, y north).
+std::unique_ptr<OGRSpatialReference> spatialReferenceOf(const GeoReference& geo);
 
 // GDAL's last error message on this thread, or `fallback` when it has none.
 std::string gdalLastError(const std::string& fallback = "no details from GDAL");

@@ -87,17 +87,6 @@ MetricSpacing geographicSpacing(const std::string& path, const GeoReference& geo
   return s;
 }
 
-std::unique_ptr<OGRSpatialReference> crsOf(const GeoReference& geo) {
-  ensureGdal();
-  auto srs = std::make_unique<OGRSpatialReference>();
-  const OGRErr error = !geo.wkt.empty() ? srs->importFromWkt(geo.wkt.c_str())
-                       : geo.epsg > 0   ? srs->importFromEPSG(geo.epsg)
-                                        : OGRERR_FAILURE;
-  if (error != OGRERR_NONE) return nullptr;
-  srs->SetAxisMappingStrategy(OAMS_TRADITIONAL_GIS_ORDER);
-  return srs;
-}
-
 // CRS coordinates to WGS84 longitude (x) and latitude (y), through PROJ.
 class ToWgs84 {
  public:
@@ -139,7 +128,7 @@ MetricSpacing projectedSpacing(const std::string& path, const GeoReference& geo,
   s.cellSizeYM = geo.stepY * geo.linearUnitM;
   checkCellSize(path, "x", s.cellSizeXM);
   checkCellSize(path, "y", s.cellSizeYM);
-  const std::unique_ptr<OGRSpatialReference> srs = crsOf(geo);
+  const std::unique_ptr<OGRSpatialReference> srs = spatialReferenceOf(geo);
   if (!srs || srs->IsLocal()) return s;
   const ToWgs84 toWgs84(*srs);
   if (!toWgs84.valid()) return s;

@@ -2,7 +2,6 @@
 
 #include <cmath>
 #include <stdexcept>
-#include <vector>
 
 #include <cpl_string.h>
 #include <gdal_priv.h>
@@ -20,14 +19,13 @@ namespace {
   throw std::runtime_error("cannot write " + path + ": " + what + ": " + gdalLastError());
 }
 
-// The CRS `geo` names: its WKT, else its EPSG code, else a local CRS in its
-// linear unit (a grid measured in metres or feet with no known CRS).
+// The CRS `geo` names (spatialReferenceOf), else WGS84 for a geographic
+// grid, else a local CRS in its linear unit (a grid measured in metres or
+// feet with no known CRS).
 OGRSpatialReference crsOf(const GeoReference& geo) {
+  if (const auto named = spatialReferenceOf(geo)) return *named;
   OGRSpatialReference srs;
-  if (!geo.wkt.empty() && srs.importFromWkt(geo.wkt.c_str()) == OGRERR_NONE) return srs;
-  srs.Clear();
-  const int epsg = geo.epsg > 0 ? geo.epsg : geo.crs == CrsKind::Geographic ? 4326 : 0;
-  if (epsg > 0 && srs.importFromEPSG(epsg) == OGRERR_NONE) return srs;
+  if (geo.crs == CrsKind::Geographic && srs.importFromEPSG(4326) == OGRERR_NONE) return srs;
   srs.Clear();
   srs.SetLocalCS("unnamed");
   srs.SetLinearUnits(geo.linearUnitM == 1.0 ? SRS_UL_METER : "unit", geo.linearUnitM);
@@ -66,14 +64,17 @@ void writeFloatGeoTiff(const std::string& path, int width, int height, const flo
   creation.SetNameValue("COMPRESS", "DEFLATE");
   creation.SetNameValue("BIGTIFF", "IF_SAFER");
   creation.SetNameValue("NUM_THREADS", "ALL_CPUS");
-  GDALDriver* gtiff = GetGDALDriverManager()->GetDriverByName(options.cog ? "MEM" : "GTiff");
+  // A COG is copied from an in-memory raster (the COG driver cannot Create).
+  GDALDriver* driver = GetGDALDriverManager()->GetDriverByName(options.cog ? "MEM" : "GTiff");
+  if (driver == nullptr)
+    fail(path, options.cog ? "GDAL has no MEM driver" : "GDAL has no GTiff driver");
   if (!options.cog) {
     creation.SetNameValue("PREDICTOR", "3");
     creation.SetNameValue("TILED", "YES");
   }
-  if (gtiff == nullptr) fail(path, "GDAL has no GTiff driver");
-  GDALDatasetUniquePtr dataset(gtiff->Create(options.cog ? "" : temporary.c_str(), width, height, 1,
-                                             GDT_Float32, options.cog ? nullptr : creation.List()));
+  GDALDatasetUniquePtr dataset(driver->Create(options.cog ? "" : temporary.c_str(), width, height,
+                                              1, GDT_Float32,
+                                              options.cog ? nullptr : creation.List()));
   if (!dataset) fail(path, "cannot create it");
   place(*dataset, geo, path);
   GDALRasterBand& band = *dataset->GetRasterBand(1);

@@ -71,6 +71,20 @@ test::GdalRaster utm(int width, int height) {
   return r;
 }
 
+// The one-degree tile N36W085 (sample centres on its edges, as SRTM and
+// DTED have them): posts x posts int16 samples, WGS84.
+test::GdalRaster oneDegreeTile(int posts) {
+  test::GdalRaster r;
+  r.width = r.height = posts;
+  r.type = GDT_Int16;
+  r.hasTransform = true;
+  const double step = 1.0 / (posts - 1);
+  const double t[6] = {-85 - step / 2, step, 0, 37 + step / 2, 0, -step};
+  std::copy(t, t + 6, r.transform);
+  r.crs = "EPSG:4326";
+  return r;
+}
+
 TEST_F(GdalDem, AlphaBandIsVoidsNotHeights) {
   // What `gdalwarp -dstalpha -co TILED=YES` writes: heights 0..1000 m and
   // an alpha band, 0 outside the warped footprint.
@@ -390,14 +404,7 @@ TEST_F(GdalDem, SouthUpGridIsFlipped) {
 }
 
 TEST_F(GdalDem, HgtTileIsGeographicWithVoids) {
-  test::GdalRaster r;
-  r.width = r.height = 1201;
-  r.type = GDT_Int16;
-  r.hasTransform = true;
-  const double h = 1.0 / 1200;
-  const double t[6] = {-85 - h / 2, h, 0, 37 + h / 2, 0, -h};
-  std::copy(t, t + 6, r.transform);
-  r.crs = "EPSG:4326";
+  test::GdalRaster r = oneDegreeTile(1201);
   r.value = [](int, int c, int row) { return c == 7 && row == 9 ? -32768.0 : c - row; };
   const std::string p = write("N36W085.hgt", r, "SRTMHGT");
   const Heightfield f = loadDem(p, warnings_.options());
@@ -411,15 +418,7 @@ TEST_F(GdalDem, HgtTileIsGeographicWithVoids) {
 }
 
 TEST_F(GdalDem, ErdasImgNetCdfAndDtedRead) {
-  // A 1 x 1 degree DTED level 0 cell: 121 x 121 posts, geographic WGS84.
-  test::GdalRaster r;
-  r.width = r.height = 121;
-  r.type = GDT_Int16;
-  r.hasTransform = true;
-  const double step = 1.0 / 120;
-  const double t[6] = {-85 - step / 2, step, 0, 37 + step / 2, 0, -step};
-  std::copy(t, t + 6, r.transform);
-  r.crs = "EPSG:4326";
+  test::GdalRaster r = oneDegreeTile(121);  // a DTED level 0 cell
   r.value = [](int, int c, int row) { return 200.0 + c + 2 * row; };
   for (const auto& [driver, name] : {std::pair<std::string, std::string>{"HFA", "dem.img"},
                                      {"netCDF", "dem.nc"},
