@@ -23,6 +23,8 @@ namespace {
 constexpr double kDegToRad = 3.14159265358979323846 / 180.0;
 // Latitudes may pass the pole by rounding noise only.
 constexpr double kLatitudeSlackDeg = 1e-9;
+// 25 times the Earth's circumference.
+constexpr double kMaxProjectedCoordinateM = 1e9;
 
 const GeographicLib::Ellipsoid& wgs84() {
   static const GeographicLib::Ellipsoid ellipsoid(GeographicLib::Constants::WGS84_a(),
@@ -128,6 +130,19 @@ MetricSpacing projectedSpacing(const std::string& path, const GeoReference& geo,
   s.cellSizeYM = geo.stepY * geo.linearUnitM;
   checkCellSize(path, "x", s.cellSizeXM);
   checkCellSize(path, "y", s.cellSizeYM);
+  // No map of the Earth has coordinates beyond a few times its circumference.
+  // Farther ones are a damaged georeference, and PROJ must never see them:
+  // GDAL's Web Mercator shortcut wraps longitudes 360 degrees at a time, so
+  // x = 1e18 m would loop for days.
+  const double farthestM =
+      std::max({std::abs(geo.originX), std::abs(geo.originX + width * geo.stepX),
+                std::abs(geo.originY), std::abs(geo.originY - height * geo.stepY)}) *
+      geo.linearUnitM;
+  if (!(farthestM <= kMaxProjectedCoordinateM)) {
+    inconsistent(path, "its corners lie " + number(farthestM) +
+                           " m from the projection's origin, beyond any map of the Earth (" +
+                           number(kMaxProjectedCoordinateM) + " m)");
+  }
   const std::unique_ptr<OGRSpatialReference> srs = spatialReferenceOf(geo);
   if (!srs || srs->IsLocal()) return s;
   const ToWgs84 toWgs84(*srs);

@@ -357,6 +357,24 @@ TEST_F(GdalDem, EsriWebMercatorGetsItsGroundSpacing) {
   EXPECT_TRUE(warnings_.any("stretches distances"));
 }
 
+TEST_F(GdalDem, CoordinatesBeyondTheEarthAreRefusedBeforeProj) {
+  // Found by fuzz_load_dem: GDAL's Web Mercator shortcut wraps longitudes a
+  // turn at a time, so x = 1e18 m hung the loader in PROJ's transform.
+  test::GdalRaster r;
+  r.width = r.height = 4;
+  r.hasTransform = true;
+  const double t[6] = {1e18, 30, 0, 80, 0, -30};
+  std::copy(t, t + 6, r.transform);
+  r.crs = "EPSG:3857";
+  const std::string far = write("far.tif", r);
+  test::expectMessage(test::inputErrorOf([&] { loadDem(far); }),
+                      {far, "beyond any map of the Earth"});
+  // A legitimate far corner: Web Mercator's own edge, 2.0e7 m.
+  const double edge[6] = {-20037508.34, 30, 0, 80, 0, -30};
+  std::copy(edge, edge + 6, r.transform);
+  EXPECT_NO_THROW(loadDem(write("edge.tif", r), warnings_.options()));
+}
+
 TEST_F(GdalDem, CentreOfAnyProjectedCrs) {
   // ETRS89 / LAEA Europe: its false origin (4321000, 3210000) is 52 N, 10 E.
   test::GdalRaster r;
