@@ -23,9 +23,10 @@ fs::path apertureCacheDirectory() {
 }
 
 fs::path cachedAperturePath(const Heightfield& field, const BakeOptions& o) {
-  char name[160];
-  std::snprintf(name, sizeof name, "%s-%s-a%d-r%d-%s-c%d-k%.3f-d%.0f.exr",
-                heightfieldChecksum(field).c_str(),
+  // The heights' checksum does not see the cell size: the name carries it.
+  char name[200];
+  std::snprintf(name, sizeof name, "%s-s%.9gx%.9g-%s-a%d-r%d-%s-c%d-k%.3f-d%.0f.exr",
+                heightfieldChecksum(field).c_str(), field.cellSizeXM, field.cellSizeYM,
                 o.method == BakeMethod::Sweep ? "sweep" : "rays", o.azimuths, o.rays,
                 o.clampEdge ? "clamp" : "open", o.curvature ? 1 : 0, o.refraction, o.maxDistanceM);
   return apertureCacheDirectory() / name;

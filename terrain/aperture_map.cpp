@@ -303,6 +303,12 @@ std::string apertureTileName(int row, int column) {
 namespace {
 
 constexpr const char* kIndexName = "index.txt";
+
+std::string formatMetres(double metres) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%.6g", metres);
+  return text;
+}
 constexpr const char* kIndexMagic = "aal-aperture-tiles 1";
 
 }  // namespace
@@ -515,6 +521,18 @@ void checkApertureMatchesDem(const ApertureMapHeader& map, const std::string& ma
   if (map.info.sourceChecksum != heightfieldChecksum(field)) {
     throw InputError(pair + ": it was baked from other heights (" + map.info.source +
                      "); bake it again with aal-bake");
+  }
+  // The heights' checksum does not see the cell size, yet the horizons scale
+  // with it. The header stores it as a float and the tile index in 17 digits.
+  const auto differs = [](double baked, double now) {
+    return baked > 0 && std::abs(baked - now) > 1e-6 * std::max(baked, now);
+  };
+  if (differs(map.info.cellSizeX, field.cellSizeXM) ||
+      differs(map.info.cellSizeY, field.cellSizeYM)) {
+    throw InputError(pair + ": it was baked for cells of " + formatMetres(map.info.cellSizeX) +
+                     " x " + formatMetres(map.info.cellSizeY) + " m, the DEM has " +
+                     formatMetres(field.cellSizeXM) + " x " + formatMetres(field.cellSizeYM) +
+                     " m; give the bake's --cell-size, or bake it again with this one");
   }
 }
 

@@ -25,14 +25,32 @@ void checkOptions(const DemLoadOptions& options) {
   }
 }
 
-// Heights times the z scale; products beyond float range become voids.
-size_t scaleHeights(RawDem& raw, double zScale) {
+[[noreturn]] void refuseHeight(const std::string& path, const RawDem& raw, size_t texel,
+                               int firstRow, double zScale) {
+  char text[512];
+  std::snprintf(text, sizeof text,
+                ": height %.6g m (stored %.6g, z scale %.6g) at column %zu, row %zu is beyond any "
+                "terrain (|height| <= %.0f m). If it marks missing data, declare it nodata: "
+                "`gdal_translate -a_nodata %.9g DEM fixed.tif`; if the heights are in other "
+                "units, give --z-scale",
+                raw.z[texel] * zScale, double{raw.z[texel]}, zScale,
+                texel % static_cast<size_t>(raw.width),
+                texel / static_cast<size_t>(raw.width) + static_cast<size_t>(firstRow), kMaxHeightM,
+                double{raw.z[texel]});
+  throw InputError(path + text);
+}
+
+// Heights times the z scale; non-finite products become voids, heights
+// beyond kMaxHeightM are refused (float horizons lose all precision near
+// such spikes: a 1e30 m one gave its neighbours a full sky).
+size_t scaleHeights(RawDem& raw, double zScale, const std::string& path, int firstRow = 0) {
   size_t voids = 0;
   for (size_t i = 0; i < raw.z.size(); ++i) {
     if (!raw.voidMask[i]) {
-      const float scaled = static_cast<float>(raw.z[i] * zScale);
-      if (std::isfinite(scaled)) {
-        raw.z[i] = scaled;
+      const double scaled = raw.z[i] * zScale;
+      if (std::isfinite(scaled) && std::isfinite(raw.z[i])) {
+        if (!(std::abs(scaled) <= kMaxHeightM)) refuseHeight(path, raw, i, firstRow, zScale);
+        raw.z[i] = static_cast<float>(scaled);
         continue;
       }
       raw.voidMask[i] = 1;
@@ -123,7 +141,7 @@ Heightfield demGeometry(const DemSource& source, const DemLoadOptions& options) 
 Heightfield readDemRows(const DemSource& source, const Heightfield& geometry, int firstRow,
                         int rows) {
   RawDem raw = source.read(0, firstRow, source.width(), rows);
-  const size_t voids = scaleHeights(raw, geometry.zScale);
+  const size_t voids = scaleHeights(raw, geometry.zScale, source.path(), firstRow);
   if (voids > 0) {
     throw InputError(source.path() + ": has voids (" + std::to_string(voids) + " in rows " +
                      std::to_string(firstRow) + " to " + std::to_string(firstRow + rows - 1) +
@@ -139,7 +157,7 @@ Heightfield readDemRows(const DemSource& source, const Heightfield& geometry, in
 
 Heightfield heightfieldFromRaw(RawDem raw, const std::string& path, const DemLoadOptions& options) {
   checkOptions(options);
-  const size_t voids = scaleHeights(raw, zScaleOf(raw, options));
+  const size_t voids = scaleHeights(raw, zScaleOf(raw, options), path);
   if (voids == raw.texelCount()) {
     throw InputError(path + ": every texel is void (nodata); nothing to use");
   }

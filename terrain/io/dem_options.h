@@ -15,6 +15,10 @@ namespace aal {
 constexpr int kMaxDemSide = 65536;
 constexpr size_t kMaxDemTexels = size_t{1} << 31;
 
+// Largest height magnitude accepted, after the z scale: 1000 km, 50 times
+// the Earth's relief. Beyond it a height is a fill value or wrong units.
+constexpr double kMaxHeightM = 1e6;
+
 // Cell size and z scale assumed when a file has no georeferencing and the
 // user gave neither: one metre per texel, heights in metres.
 constexpr double kDefaultCellSizeM = 1.0;

@@ -262,6 +262,33 @@ TEST(AalRender, RefusesAnApertureMapOfAnotherDem) {
   EXPECT_NE(r.out.find("jacksboro_fault_dem.tif"), std::string::npos) << r.out;
 }
 
+TEST(AalRender, RefusesAnApertureMapBakedForAnotherCellSize) {
+  TempDir dir;
+  const fs::path dem = dir.path() / "d.tif", map = dir.path() / "d.exr";
+  ASSERT_EQ(runTool("aal-synth", "-o " + quoted(dem) + " --size 32").exitCode, 0);
+  ASSERT_EQ(runTool("aal-bake", quoted(dem) + " --cell-size 10 -o " + quoted(map) + " -q").exitCode,
+            0);
+  const std::string png = " -o " + quoted(dir.path() / "x.png") + " --size 32x18";
+  const auto r =
+      runTool("aal-render", quoted(dem) + " --cell-size 20 --aperture " + quoted(map) + png);
+  EXPECT_EQ(r.exitCode, 2) << r.out;
+  EXPECT_NE(r.out.find("baked for cells of 10 x 10 m, the DEM has 20 x 20 m"), std::string::npos)
+      << r.out;
+  EXPECT_EQ(runTool("aal-render", quoted(dem) + " --cell-size 10 --aperture " + quoted(map) + png)
+                .exitCode,
+            0);
+  // The bake cache keeps one entry per cell size, not one for both.
+  const std::string cache = "AAL_CACHE_DIR=" + quoted(dir.path() / "cache");
+  for (const char* cell : {"10", "20", "10"}) {
+    const auto run = runTool("aal-render", quoted(dem) + " --cell-size " + cell + png, cache);
+    ASSERT_EQ(run.exitCode, 0) << run.out;
+    EXPECT_EQ(run.out.find("rebaking"), std::string::npos) << run.out;
+  }
+  size_t cached = 0;
+  for ([[maybe_unused]] const auto& e : fs::directory_iterator(dir.path() / "cache")) ++cached;
+  EXPECT_EQ(cached, 2u);
+}
+
 TEST(AalRender, NoVulkanDriverSaysHowToGetOne) {
   TempDir dir;
   const auto r =

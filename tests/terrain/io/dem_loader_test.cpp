@@ -105,13 +105,36 @@ TEST_F(DemLoader, LowerTexelLimitIsHonoured) {
                       {"has 4 texels, more than the limit of 3"});
 }
 
-TEST_F(DemLoader, HeightsBeyondFloatRangeAfterScalingBecomeVoids) {
+TEST_F(DemLoader, HeightsBeyondAnyTerrainAreRefusedWithTheirPlace) {
+  // A 3e38 m spike (an undeclared fill value) gave its neighbours a full sky.
+  test::writeBytes(path("spike.asc"),
+                   "ncols 3\nnrows 2\nxllcorner 0\nyllcorner 0\ncellsize 5\n"
+                   "1 2 3\n4 3e38 6\n");
+  test::expectMessage(
+      test::inputErrorOf([&] { loadDem(path("spike.asc")); }),
+      {path("spike.asc"), "height 3e+38 m", "column 1, row 1", "gdal_translate -a_nodata 3"});
+  // The bound applies after the z scale: 4 units of 1e6 m is 4000 km.
   test::writeBytes(path("g.asc"), kAsc);
   DemLoadOptions o;
-  o.zScale = 1e38;
-  const Heightfield f = loadDem(path("g.asc"), o);
-  EXPECT_EQ(f.voidCount, 1u);  // 4e38 overflows; 3e38 is still a float
-  EXPECT_TRUE(f.isVoid(1, 1));
+  o.zScale = 1e6;
+  test::expectMessage(test::inputErrorOf([&] { loadDem(path("g.asc"), o); }),
+                      {"height 2e+06 m (stored 2, z scale 1e+06) at column 1, row 0"});
+  o.zScale = 1e5;  // 400 km: far, but a height
+  EXPECT_EQ(loadDem(path("g.asc"), o).at(1, 1), 4e5f);
+}
+
+TEST_F(DemLoader, NonFiniteHeightsAreVoids) {
+  test::GdalRaster r;
+  r.width = r.height = 3;
+  r.value = [](int, int c, int row) {
+    if (c == 1 && row == 0) return std::numeric_limits<double>::quiet_NaN();
+    return c == 2 && row == 2 ? -std::numeric_limits<double>::infinity() : 1.0;
+  };
+  ASSERT_TRUE(test::writeGdalRaster(path("nan.tif"), r));
+  const Heightfield f = loadDem(path("nan.tif"), warnings_.options());
+  EXPECT_EQ(f.voidCount, 2u);
+  EXPECT_TRUE(f.isVoid(1, 0));
+  EXPECT_TRUE(f.isVoid(2, 2));
   EXPECT_TRUE(test::allFinite(f));
 }
 
