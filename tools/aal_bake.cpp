@@ -22,6 +22,7 @@
 #include "dem_loader.h"
 #include "dem_source.h"
 #include "geotiff_writer.h"
+#include "memory_budget.h"
 #include "progress.h"
 #include "tiled_bake.h"
 #include "tool_main.h"
@@ -60,18 +61,11 @@ void writeGisRaster(const std::string& path, std::vector<float> values,
 
 // Whether the in-memory load (heights, void mask, the fill's distances:
 // ~9 bytes per texel) fits in 80 % of the memory available now
-// (/proc/meminfo MemAvailable; assumed to fit when unknown).
+// (terrain/io/memory_budget.h; assumed to fit when unknown).
 bool fitsInMemory(const aal::Heightfield& geometry) {
-  std::ifstream meminfo("/proc/meminfo");
-  std::string key;
-  double kilobytes = 0;
-  while (meminfo >> key >> kilobytes) {
-    if (key == "MemAvailable:") {
-      return 9.0 * static_cast<double>(geometry.texelCount()) <= 0.8 * kilobytes * 1024.0;
-    }
-    meminfo.ignore(256, '\n');
-  }
-  return true;
+  const std::optional<uint64_t> available = aal::availableMemoryBytes();
+  return !available ||
+         9.0 * static_cast<double>(geometry.texelCount()) <= 0.8 * static_cast<double>(*available);
 }
 
 struct Options {

@@ -98,7 +98,7 @@ void printJson(const aal::Heightfield& f, const aal::DemSummary& s) {
               jsonStringOrNull(horizontalUnit(f.geo)).c_str(),
               jsonStringOrNull(f.zUnitName).c_str());
   std::printf("\"z_scale\": %.17g, ", f.zScale);
-  std::printf("\"z_min\": %.9g, \"z_max\": %.9g, \"voids\": %zu}\n", s.zMinM, s.zMaxM, f.voidCount);
+  std::printf("\"z_min\": %.9g, \"z_max\": %.9g, \"voids\": %zu}\n", s.zMinM, s.zMaxM, s.voids);
 }
 
 void printText(const aal::Heightfield& f, const aal::DemSummary& s) {
@@ -125,8 +125,8 @@ void printText(const aal::Heightfield& f, const aal::DemSummary& s) {
   std::printf("heights    %.3f .. %.3f m (z scale %g%s)\n", s.zMinM, s.zMaxM, f.zScale,
               f.zUnitName.empty() ? "" : (", file unit " + f.zUnitName).c_str());
   if (f.nodata) std::printf("nodata     %s\n", jsonNumber(*f.nodata).c_str());
-  std::printf("voids      %zu texels (%.3f%%), filled with the nearest valid height\n", f.voidCount,
-              100.0 * static_cast<double>(f.voidCount) / f.texelCount());
+  std::printf("voids      %zu texels (%.3f%%), filled with the nearest valid height\n", s.voids,
+              100.0 * static_cast<double>(s.voids) / f.texelCount());
 }
 
 }  // namespace
@@ -155,8 +155,10 @@ int main(int argc, char** argv) {
     options.warn = [](const std::string& message) {
       std::fprintf(stderr, "aal-info: warning: %s\n", message.c_str());
     };
-    const aal::Heightfield field = aal::loadDem(o.dem, options);
-    const aal::DemSummary summary = aal::summarizeDem(field);
+    // A band of rows at a time: aal-info needs no memory for the whole DEM.
+    const aal::DemSource source(o.dem, options);
+    const aal::Heightfield field = aal::demGeometry(source, options);
+    const aal::DemSummary summary = aal::summarizeDem(source, field);
     if (o.json) {
       printJson(field, summary);
     } else {

@@ -40,27 +40,6 @@ void checkOptions(const DemLoadOptions& options) {
   throw InputError(path + text);
 }
 
-// Heights times the z scale; non-finite products become voids, heights
-// beyond kMaxHeightM are refused (float horizons lose all precision near
-// such spikes: a 1e30 m one gave its neighbours a full sky).
-size_t scaleHeights(RawDem& raw, double zScale, const std::string& path, int firstRow = 0) {
-  size_t voids = 0;
-  for (size_t i = 0; i < raw.z.size(); ++i) {
-    if (!raw.voidMask[i]) {
-      const double scaled = raw.z[i] * zScale;
-      if (std::isfinite(scaled) && std::isfinite(raw.z[i])) {
-        if (!(std::abs(scaled) <= kMaxHeightM)) refuseHeight(path, raw, i, firstRow, zScale);
-        raw.z[i] = static_cast<float>(scaled);
-        continue;
-      }
-      raw.voidMask[i] = 1;
-    }
-    raw.z[i] = 0.0f;
-    ++voids;
-  }
-  return voids;
-}
-
 void applySpacing(const RawDem& raw, const std::string& path, const DemLoadOptions& options,
                   Heightfield& field) {
   if (raw.geo.crs != CrsKind::None) {
@@ -127,6 +106,27 @@ Heightfield geometryOf(const RawDem& raw, const std::string& path, const DemLoad
 }
 
 }  // namespace
+
+// Heights times the z scale; non-finite products become voids, heights
+// beyond kMaxHeightM are refused (float horizons lose all precision near
+// such spikes: a 1e30 m one gave its neighbours a full sky).
+size_t scaleHeights(RawDem& raw, double zScale, const std::string& path, int firstRow) {
+  size_t voids = 0;
+  for (size_t i = 0; i < raw.z.size(); ++i) {
+    if (!raw.voidMask[i]) {
+      const double scaled = raw.z[i] * zScale;
+      if (std::isfinite(scaled) && std::isfinite(raw.z[i])) {
+        if (!(std::abs(scaled) <= kMaxHeightM)) refuseHeight(path, raw, i, firstRow, zScale);
+        raw.z[i] = static_cast<float>(scaled);
+        continue;
+      }
+      raw.voidMask[i] = 1;
+    }
+    raw.z[i] = 0.0f;
+    ++voids;
+  }
+  return voids;
+}
 
 void warnOnStderr(const std::string& message) {
   std::cerr << "warning: " << message << "\n";

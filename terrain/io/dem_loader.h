@@ -1,5 +1,5 @@
 // Loading a DEM file into a Heightfield: format detection, reading,
-// georeferencing to metric spacing, void filling (DESIGN §1, §3).
+// georeferencing to metric spacing, void filling (docs/dem-input.md).
 #pragma once
 
 #include <string>
@@ -44,5 +44,10 @@ Heightfield demGeometry(const DemSource& source, const DemLoadOptions& options);
 // filling voids needs the whole DEM, so a DEM read in parts must have none.
 Heightfield readDemRows(const DemSource& source, const Heightfield& geometry, int firstRow,
                         int rows);
+
+// Heights of `raw` (rows from firstRow of the DEM at `path`) times zScale,
+// in place; non-finite ones flagged as voids (set to 0) and counted.
+// Throws InputError naming the texel when a height exceeds kMaxHeightM.
+size_t scaleHeights(RawDem& raw, double zScale, const std::string& path, int firstRow = 0);
 
 }  // namespace aal

@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cctype>
 #include <cmath>
+#include <cstdio>
+#include <cstdlib>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
@@ -11,12 +13,14 @@
 #include <vector>
 
 #include <cpl_conv.h>
+#include <cpl_vsi.h>
 #include <gdal_priv.h>
 #include <ogr_spatialref.h>
 #include <tbb/parallel_for.h>
 
 #include "errors.h"
 #include "gdal_session.h"
+#include "memory_budget.h"
 
 namespace aal {
 
@@ -26,6 +30,57 @@ constexpr double kRadToDeg = 180.0 / 3.14159265358979323846;
 
 [[noreturn]] void refuse(const std::string& path, const std::string& why) {
   throw InputError(path + ": " + why);
+}
+
+// A TIFF's blocks must lie in the file and cannot together hold more bytes
+// than it has: a 370 kB file whose strips all point at one place claimed
+// 46340^2 heights and had a reader fill 10 GB with copies. Sparse blocks
+// (offset 0) hold nothing. Above a million blocks the count itself would
+// cost seconds; the memory check in read() still stands there.
+void checkTiffBlocksFitTheFile(const std::string& path, GDALDataset& dataset,
+                               GDALRasterBand& band) {
+  GDALDriver* driver = dataset.GetDriver();
+  if (driver == nullptr || std::strcmp(driver->GetDescription(), "GTiff") != 0) return;
+  char** files = dataset.GetFileList();
+  VSIStatBufL stat{};
+  const bool known = files != nullptr && files[0] != nullptr && VSIStatL(files[0], &stat) == 0;
+  const std::string file = known ? files[0] : path;
+  CSLDestroy(files);
+  if (!known) return;
+  int blockW = 0, blockH = 0;
+  band.GetBlockSize(&blockW, &blockH);
+  if (blockW < 1 || blockH < 1) return;
+  const int64_t columns = (dataset.GetRasterXSize() + int64_t{blockW} - 1) / blockW;
+  const int64_t rows = (dataset.GetRasterYSize() + int64_t{blockH} - 1) / blockH;
+  if (columns * rows > 1000000) return;
+  const auto item = [&](const char* what, int64_t x, int64_t y) -> uint64_t {
+    char key[64];
+    std::snprintf(key, sizeof key, "%s_%lld_%lld", what, static_cast<long long>(x),
+                  static_cast<long long>(y));
+    const char* value = band.GetMetadataItem(key, "TIFF");
+    return value != nullptr ? std::strtoull(value, nullptr, 10) : 0;
+  };
+  const uint64_t fileBytes = static_cast<uint64_t>(stat.st_size);
+  uint64_t claimed = 0;
+  for (int64_t y = 0; y < rows; ++y) {
+    for (int64_t x = 0; x < columns; ++x) {
+      const uint64_t offset = item("BLOCK_OFFSET", x, y);
+      if (offset == 0) continue;
+      const uint64_t bytes = item("BLOCK_SIZE", x, y);
+      if (offset > fileBytes || bytes > fileBytes - offset) {
+        refuse(path, "is truncated or corrupt: block " + std::to_string(x) + ", " +
+                         std::to_string(y) + " lies at bytes " + std::to_string(offset) + " to " +
+                         std::to_string(offset + bytes) + " of a " + std::to_string(fileBytes) +
+                         "-byte file");
+      }
+      claimed += bytes;
+    }
+  }
+  if (claimed > fileBytes) {
+    refuse(path, "is corrupt: its blocks claim " + std::to_string(claimed) +
+                     " bytes in all, more than the file's " + std::to_string(fileBytes) +
+                     " (blocks that share bytes)");
+  }
 }
 
 std::string oneBandHint(const std::string& path) {
@@ -302,6 +357,7 @@ DemSource::DemSource(const std::string& path, const DemLoadOptions& options)
                  " bands; heights are read from band 1 (`gdal_translate -b N` takes another)");
   }
   checkDemSize(path, dataset.GetRasterXSize(), dataset.GetRasterYSize(), options.maxTexels);
+  checkTiffBlocksFitTheFile(path, dataset, band);
 
   RawDem& d = description_;
   d.width = dataset.GetRasterXSize();
@@ -335,6 +391,12 @@ RawDem DemSource::read(int column, int row, int w, int h) const {
     throw std::invalid_argument("DemSource::read: window outside the raster");
   }
   checkDemSize(path_, w, h, impl_->maxTexels);
+  const bool wholeRaster = w == whole.width && h == whole.height;
+  requireMemory(path_, static_cast<double>(w) * h * (sizeof(float) + sizeof(uint8_t)),
+                (wholeRaster ? "its " : "a window of ") + std::to_string(w) + " x " +
+                    std::to_string(h) + " heights and void mask",
+                "aal-bake bakes it a band at a time (--low-memory); for the other tools cut it "
+                "(`gdal_translate -srcwin`) or coarsen it (`gdal_translate -outsize 50% 50%`)");
   RawDem dem = whole;  // the description: everything but the samples
   if (dem.geo.crs != CrsKind::None) {
     dem.geo.originX += column * dem.geo.stepX;

@@ -162,6 +162,19 @@ TEST(AalInfo, BadInputExitsWithTwoAndNamesTheFile) {
   EXPECT_EQ(runTool("aal-info", "").exitCode, 2);  // DEM is required
 }
 
+TEST(AalInfo, ReadsInBandsWithinAMemoryLimitThatRefusesAWholeLoad) {
+  // Jacksboro's heights and void mask take 693 kB; aal-info needs a band.
+  const std::string limit = "AAL_MEMORY_LIMIT=300K";
+  const auto info = runTool("aal-info", "'" + kJacksboro + "' --json", limit);
+  ASSERT_EQ(info.exitCode, 0) << info.out;
+  const auto whole = runTool("aal-info", "'" + kJacksboro + "' --json");
+  EXPECT_EQ(jsonLine(info.out), jsonLine(whole.out));
+  const auto render =
+      runTool("aal-render", "'" + kJacksboro + "' --mode reference -o x.png", limit);
+  EXPECT_EQ(render.exitCode, 2) << render.out;
+  EXPECT_NE(render.out.find("needs 693 kB, but only 307 kB"), std::string::npos) << render.out;
+}
+
 TEST(AalSynth, WritesAGeoTiffThatLoadsBackExactly) {
   test::TempDir dir;
   const std::string path = (dir.path() / "synth.tif").string();

@@ -4,10 +4,13 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
+#include <algorithm>
+#include <cmath>
 #include <filesystem>
 
 #include "dem_loader.h"
 #include "dem_source.h"
+#include "dem_summary.h"
 #include "dem_test_util.h"
 #include "gdal_raster.h"
 
@@ -136,6 +139,79 @@ TEST_F(DemLoader, NonFiniteHeightsAreVoids) {
   EXPECT_TRUE(f.isVoid(1, 0));
   EXPECT_TRUE(f.isVoid(2, 2));
   EXPECT_TRUE(test::allFinite(f));
+}
+
+// Sets AAL_MEMORY_LIMIT for one test.
+class MemoryLimit {
+ public:
+  explicit MemoryLimit(const char* value) { setenv("AAL_MEMORY_LIMIT", value, 1); }
+  ~MemoryLimit() { unsetenv("AAL_MEMORY_LIMIT"); }
+};
+
+test::GdalRaster bumpyWithVoids() {
+  test::GdalRaster r;
+  r.width = 300;
+  r.height = 200;
+  r.value = [](int, int c, int row) {
+    if ((c * 7 + row * 3) % 41 == 0) return -9999.0;
+    return std::sin(0.05 * c) * 100.0 + row * 0.5 + (c == 250 && row == 170 ? 900.0 : 0.0);
+  };
+  r.extra = [](GDALDataset& ds) { ds.GetRasterBand(1)->SetNoDataValue(-9999); };
+  return r;
+}
+
+TEST_F(DemLoader, MemoryBeyondTheLimitIsRefusedWithTheNumbers) {
+  ASSERT_TRUE(test::writeGdalRaster(path("d.tif"), bumpyWithVoids()));
+  const MemoryLimit limit("100K");
+  // 300 x 200 texels of 5 bytes: 300 kB.
+  test::expectMessage(
+      test::inputErrorOf([&] { loadDem(path("d.tif")); }),
+      {path("d.tif"), "holding its 300 x 200 heights and void mask needs 300 kB",
+       "only 102 kB of memory is available (AAL_MEMORY_LIMIT)", "gdal_translate -srcwin"});
+  // A summary reads bands that fit.
+  const DemSource source(path("d.tif"), {});
+  EXPECT_NO_THROW(summarizeDem(source, demGeometry(source, {}), 16 << 10));
+}
+
+TEST_F(DemLoader, MemoryLimitMustBeASize) {
+  ASSERT_TRUE(test::writeGdalRaster(path("d.tif"), bumpyWithVoids()));
+  for (const char* bad : {"abc", "-5", "0", "12Q", "1e30G"}) {
+    const MemoryLimit limit(bad);
+    test::expectMessage(test::inputErrorOf([&] { loadDem(path("d.tif")); }),
+                        {"AAL_MEMORY_LIMIT must be a positive size", bad});
+  }
+  const MemoryLimit limit("2M");
+  EXPECT_EQ(loadDem(path("d.tif")).width, 300);
+}
+
+TEST_F(DemLoader, SummaryInBandsEqualsTheWholeLoad) {
+  ASSERT_TRUE(test::writeGdalRaster(path("d.tif"), bumpyWithVoids()));
+  const Heightfield whole = loadDem(path("d.tif"));
+  float lo = 1e30f, hi = -1e30f;
+  for (size_t i = 0; i < whole.z.size(); ++i) {
+    if (whole.voidMask[i]) continue;
+    lo = std::min(lo, whole.z[i]);
+    hi = std::max(hi, whole.z[i]);
+  }
+  ASSERT_GT(whole.voidCount, 1000u);
+  const DemSource source(path("d.tif"), {});
+  // One row per band, and all at once.
+  for (const size_t bandBytes : {size_t{1}, size_t{64} << 20}) {
+    const DemSummary s = summarizeDem(source, demGeometry(source, {}), bandBytes);
+    EXPECT_EQ(s.voids, whole.voidCount);
+    EXPECT_EQ(s.zMinM, lo);
+    EXPECT_EQ(s.zMaxM, hi);
+  }
+  EXPECT_GT(hi, 950.0f);  // the spike at row 170 is in a late band
+}
+
+TEST_F(DemLoader, SummaryRefusesASpikeNamingItsRow) {
+  test::GdalRaster r = bumpyWithVoids();
+  r.value = [](int, int c, int row) { return c == 3 && row == 150 ? 3e38 : 1.0; };
+  ASSERT_TRUE(test::writeGdalRaster(path("spike.tif"), r));
+  const DemSource source(path("spike.tif"), {});
+  test::expectMessage(test::inputErrorOf([&] { summarizeDem(source, demGeometry(source, {}), 1); }),
+                      {"at column 3, row 150 is beyond any terrain"});
 }
 
 TEST(DemFormats, HelpNamesTheCommonFormatsAndTheWayOut) {
