@@ -2,6 +2,7 @@
 
 #include <cstring>
 
+#include "errors.h"
 #include "instance.h"
 #include "vk_check.h"
 
@@ -93,8 +94,9 @@ Device::Device(const Instance& instance, int deviceIndex,
   int chosen = -1;
   if (deviceIndex >= 0) {
     if (deviceIndex >= static_cast<int>(devices.size()) || !devices[deviceIndex].usable) {
-      throw VulkanError("device " + std::to_string(deviceIndex) +
-                        " is not available; devices:" + describeDevices(devices));
+      // The user's choice (--device), not the system, is at fault: exit 2.
+      throw InputError("--device " + std::to_string(deviceIndex) +
+                       " is not available; devices:" + describeDevices(devices));
     }
     chosen = deviceIndex;
   } else {

@@ -27,7 +27,8 @@ std::vector<PhysicalDeviceInfo> listPhysicalDevices(const Instance& instance);
 class Device {
  public:
   // deviceIndex < 0 picks the best usable device (discrete > integrated >
-  // virtual > CPU). Throws VulkanError with a helpful message when none fits.
+  // virtual > CPU). Throws VulkanError with a helpful message when none fits,
+  // InputError when deviceIndex names no usable device (the user chose it).
   Device(const Instance& instance, int deviceIndex = -1,
          const std::vector<const char*>& extraExtensions = {});
   ~Device();

@@ -2,7 +2,9 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cerrno>
 #include <cmath>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <stdexcept>
@@ -158,7 +160,8 @@ void writeComparison(const std::string& folder, const Comparison& c, float expos
   {
     std::ofstream file(out.temporaryPath());
     file << csv;
-    if (!file) throw std::runtime_error("cannot write " + path("errors.csv"));
+    file.flush();
+    if (!file) throw out.failure(std::strerror(errno));
   }
   out.commit();
 }

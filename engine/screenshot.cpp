@@ -40,7 +40,7 @@ void writeFrame(const std::string& path, const FrameResult& frame) {
       writeImageFile(temporary, width, height, 4, frame.display.data());
     }
   } catch (const ImageFileError& e) {
-    throw std::runtime_error("cannot write " + path + ": " + e.what());
+    throw output.failure(e.what());
   }
   output.commit();
 }

@@ -1,9 +1,11 @@
 #include "aperture_map.h"
 
 #include <algorithm>
+#include <cerrno>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <cstring>
 #include <ctime>
 #include <filesystem>
 #include <fstream>
@@ -151,7 +153,7 @@ void writeApertureMap(const std::string& path, const ApertureMap& map, bool half
       file.writePixels(end - y);
     }
   } catch (const std::exception& e) {
-    throw std::runtime_error("cannot write aperture map " + path + ": " + e.what());
+    throw output.failure(e.what(), "aperture map");
   }
   output.commit();
 }
@@ -339,7 +341,7 @@ void writeApertureTileIndex(const std::string& folder, const ApertureTileIndex& 
   std::ofstream out(output.temporaryPath());
   out << text.str();
   out.close();
-  if (!out) throw std::runtime_error("cannot write " + path.string());
+  if (!out) throw output.failure(std::strerror(errno));
   output.commit();
 }
 

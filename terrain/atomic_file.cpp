@@ -94,4 +94,29 @@ void AtomicOutput::commit() {
   committed_ = true;
 }
 
+std::runtime_error AtomicOutput::failure(const std::string& detail, const std::string& what) const {
+  std::string message = detail;
+  // Writers name the file they were given; the user knows the output's name.
+  for (const std::string& name : {temporary_.string(), temporary_.filename().string()}) {
+    for (size_t at = message.find(name); at != std::string::npos;
+         at = message.find(name, at + final_.string().size())) {
+      message.replace(at, name.size(), final_.string());
+    }
+  }
+  std::string lower = message;
+  for (char& c : lower) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  const fs::path folder = final_.has_parent_path() ? final_.parent_path() : fs::path(".");
+  std::error_code error;
+  const fs::space_info space = fs::space(folder, error);
+  // GDAL and OpenEXR report a full disk as "error writing tag data" or
+  // "file output failed"; say it in plain words (the limit is a few blocks).
+  if (!error && space.available < (uintmax_t{1} << 20) &&
+      lower.find("no space left") == std::string::npos) {
+    message += "; no space left on device (" + std::to_string(space.available) + " bytes free in " +
+               folder.string() + ")";
+  }
+  return std::runtime_error("cannot write " + (what.empty() ? "" : what + " ") + final_.string() +
+                            ": " + message);
+}
+
 }  // namespace aal

@@ -4,6 +4,8 @@
 #pragma once
 
 #include <filesystem>
+#include <stdexcept>
+#include <string>
 
 namespace aal {
 
@@ -33,6 +35,12 @@ class AtomicOutput {
 
   // Renames the temporary file onto the final path.
   void commit();
+
+  // The error to throw when writing the temporary failed with `detail`:
+  // "cannot write [WHAT ]FINAL: DETAIL", with the temporary's name replaced
+  // by the output's and "no space left on device" said when the output's
+  // file system is full and `detail` does not say so.
+  std::runtime_error failure(const std::string& detail, const std::string& what = "") const;
 
  private:
   std::filesystem::path final_;

@@ -2,12 +2,19 @@
 // resizing and text through OpenImageIO, in a module of its own so that only
 // the processes that touch such files load OpenImageIO and its ~260
 // libraries (docs/performance.md, "Start-up and image I/O").
+#include <OpenImageIO/filesystem.h>
 #include <OpenImageIO/imagebuf.h>
 #include <OpenImageIO/imagebufalgo.h>
 #include <OpenImageIO/imageio.h>
 
+#include <fcntl.h>
+#include <unistd.h>
+
+#include <cerrno>
+#include <cstring>
 #include <exception>
 #include <string>
+#include <vector>
 
 #include "image_plugin.h"
 
@@ -69,6 +76,26 @@ std::string resize(const ImagePixels& image, int width, int height, ImagePixels&
   });
 }
 
+// Writes `bytes` to `path`, every error reported: OpenImageIO's PNG writer
+// ignores a failed fwrite, and a full disk left a truncated PNG with exit 0.
+std::string writeAll(const std::string& path, const std::vector<unsigned char>& bytes) {
+  const int fd = ::open(path.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
+  if (fd < 0) return std::strerror(errno);
+  size_t done = 0;
+  while (done < bytes.size()) {
+    const ssize_t n = ::write(fd, bytes.data() + done, bytes.size() - done);
+    if (n < 0 && errno == EINTR) continue;
+    if (n <= 0) {
+      const int error = n < 0 ? errno : EIO;
+      ::close(fd);
+      return std::strerror(error);
+    }
+    done += static_cast<size_t>(n);
+  }
+  if (::close(fd) != 0) return std::strerror(errno);
+  return "";
+}
+
 std::string write(const std::string& path, int width, int height, int channels, const void* samples,
                   bool floatSamples, bool floatFile) {
   return guarded([&]() -> std::string {
@@ -76,12 +103,16 @@ std::string write(const std::string& path, int width, int height, int channels, 
     if (!out) return OIIO::geterror();
     const OIIO::ImageSpec spec(width, height, channels,
                                floatFile ? OIIO::TypeDesc::FLOAT : OIIO::TypeDesc::UINT8);
+    // Encoded in memory, then written with checked system calls.
+    std::vector<unsigned char> bytes;
+    OIIO::Filesystem::IOVecOutput proxy(bytes);
+    const bool inMemory = out->supports("ioproxy") && out->set_ioproxy(&proxy);
     if (!out->open(path, spec)) return out->geterror();
     if (!out->write_image(floatSamples ? OIIO::TypeDesc::FLOAT : OIIO::TypeDesc::UINT8, samples) ||
         !out->close()) {
       return out->geterror();
     }
-    return "";
+    return inMemory ? writeAll(path, bytes) : "";
   });
 }
 

@@ -315,9 +315,9 @@ int main(int argc, char** argv) {
       ->check(CLI::Range(16, 1 << 20))
       ->capture_default_str();
   app.add_option("--cell-size", o.cellSize, "texel spacing in metres (overrides the file)")
-      ->check(CLI::PositiveNumber);
+      ->check(aal::kPositive);
   app.add_option("--z-scale", o.zScale, "metres per height unit (overrides the file)")
-      ->check(CLI::PositiveNumber);
+      ->check(aal::kPositive);
   app.add_option("--edge", o.edge,
                  "beyond the DEM: open sky, or terrain continuing flat at the edge height")
       ->check(CLI::IsMember({"open", "clamp"}))
@@ -329,7 +329,7 @@ int main(int argc, char** argv) {
       ->capture_default_str();
   app.add_option("--max-distance", o.maxDistance,
                  "only terrain within this many metres counts (0 = all; slower when set)")
-      ->check(CLI::NonNegativeNumber);
+      ->check(aal::kNonNegative);
   app.add_option("--svf", o.svfPath,
                  "also write the sky-view factor (Zaksek) as a float32 GeoTIFF placed like the DEM "
                  "(its voids nodata)");

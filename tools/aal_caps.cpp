@@ -1,7 +1,10 @@
 // aal-caps: exact vs approximate (Oat) spherical-cap intersection, for one
 // configuration or as an error table and plot over a grid.
+#include <cerrno>
 #include <cmath>
 #include <cstdio>
+#include <cstring>
+#include <filesystem>
 #include <fstream>
 #include <iostream>
 #include <optional>
@@ -84,7 +87,7 @@ void writeTable(const std::string& path, const std::vector<aal::CapErrorSample>&
                     s.dRad, s.exact, s.approx, s.absError, s.relError, s.partial ? 1 : 0);
       out << line;
     }
-    if (!out.flush()) throw std::runtime_error("cannot write table " + path);
+    if (!out.flush()) throw output.failure(std::strerror(errno), "table");
   }
   output.commit();
 }
@@ -116,7 +119,14 @@ int sweep(const Options& o) {
   }
   aal::checkDistinctFiles({}, {{"--table", o.tablePath}, {"--plot", o.plotPath}});
   if (!o.tablePath.empty()) aal::requireWritableOutput(o.tablePath);
-  if (!o.plotPath.empty()) aal::requireWritableOutput(o.plotPath);
+  if (!o.plotPath.empty()) {
+    // Found before the sweep, not by the image writer after it.
+    const std::filesystem::path extension = std::filesystem::path(o.plotPath).extension();
+    if (extension != ".png" && extension != ".PNG") {
+      throw aal::InputError("--plot " + o.plotPath + " must end in .png (the plot is a PNG)");
+    }
+    aal::requireWritableOutput(o.plotPath);
+  }
 
   const std::vector<aal::CapErrorSample> samples =
       aal::sweepCapError(o.steps, 2 * o.steps, maxRadius);
@@ -155,7 +165,7 @@ int main(int argc, char** argv) {
   app.add_flag("--degrees", o.degrees, "angles are in degrees instead of radians");
   app.add_flag("--json", o.json, "print one JSON object {exact, approx, abs_error, rel_error}");
   app.add_option("--table", o.tablePath, "write the error table over the grid as CSV");
-  app.add_option("--plot", o.plotPath, "write a picture of the error over (d, r1) for four r0");
+  app.add_option("--plot", o.plotPath, "write a PNG picture of the error over (d, r1) for four r0");
   app.add_option("--max-radius", o.maxRadius,
                  "largest cap radius of the sweep (default pi, i.e. 180 degrees)");
   app.add_option("--steps", o.steps, "radius steps of the sweep grid (distance: twice as many)")

@@ -207,6 +207,7 @@ int run(const Options& o) {
   load.cellSizeM = o.cellSize;
   load.zScale = o.zScale;
   const aal::Heightfield field = aal::loadDem(o.dem, load);
+  aal::requireRenderableDem(field);
   const aal::ObscuranceSettings obscurance = obscuranceFor(o, field);
   // The aperture map is streamed from its file into the GPU when the scene
   // is built, so it never sits in host memory as floats.
@@ -239,6 +240,7 @@ int run(const Options& o) {
   settings.camera = aal::defaultCamera(field, aspect);
   if (!o.camera.empty()) settings.camera.position = aal::parseTriple("--camera", o.camera);
   if (!o.lookAt.empty()) settings.camera.lookAt = aal::parseTriple("--look-at", o.lookAt);
+  aal::requireCameraDirection(settings.camera.position, settings.camera.lookAt);
   settings.camera.verticalFovDeg = o.fovDeg;
   settings.lod.maxErrorPixels = o.lodErrorPixels;
   applySkyLighting(light, settings);
@@ -402,11 +404,11 @@ int main(int argc, char** argv) {
       }()))
       ->capture_default_str();
   app.add_option("--cell-size", o.cellSize, "texel spacing in metres (as given to aal-bake)")
-      ->check(CLI::PositiveNumber);
+      ->check(aal::kPositive);
   app.add_option("--z-scale", o.zScale, "metres per height unit (as given to aal-bake)")
-      ->check(CLI::PositiveNumber);
+      ->check(aal::kPositive);
   app.add_option("--device", o.device, "Vulkan device index (default: the best one)")
-      ->check(CLI::NonNegativeNumber);
+      ->check(aal::kNonNegative);
   app.add_option("--triangles", o.triangleBudget,
                  "per-frame triangle budget of the terrain's quadtree LOD")
       ->check(CLI::Range(size_t(2), size_t(1) << 28))

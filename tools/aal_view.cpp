@@ -197,7 +197,7 @@ int main(int argc, char** argv) {
                  "metres); with --frames spread over the N frames, else played in real time");
   app.add_option("--screenshot", o.screenshot, "save the last scripted frame as this PNG");
   app.add_option("--timeout", o.timeoutS, "close the window after this many seconds")
-      ->check(CLI::PositiveNumber);
+      ->check(aal::kPositive);
   app.add_option("--drop", o.drop,
                  "after the first frame, open this DEM as if it were dropped on the window");
   // Test hooks: what the user does to the window, scripted. FRAME counts
@@ -214,7 +214,7 @@ int main(int argc, char** argv) {
   app.add_flag("--no-vsync", o.noVsync, "present without waiting for vsync (MAILBOX/IMMEDIATE)");
   app.add_flag("--stats", o.stats, "print frame time, FPS and GPU time per pass at the end");
   app.add_option("--device", o.device, "Vulkan device index (default: the best one)")
-      ->check(CLI::NonNegativeNumber);
+      ->check(aal::kNonNegative);
   app.add_option("--triangles", o.triangleBudget,
                  "per-frame triangle budget of the terrain's quadtree LOD")
       ->check(CLI::Range(size_t(2), size_t(1) << 28))

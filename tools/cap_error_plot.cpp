@@ -177,7 +177,7 @@ void writeCapErrorPlot(const std::string& path, const CapErrorPlotOptions& optio
     writeImageFile(output.temporaryPath().string(), width, height, 3, image.rgb.data(),
                    /*eightBit=*/true);
   } catch (const ImageFileError& e) {
-    throw std::runtime_error("cannot write plot " + path + ": " + e.what());
+    throw output.failure(e.what(), "plot");
   }
   output.commit();
 }

@@ -44,8 +44,57 @@ inline void checkFiniteNumbers(const CLI::App& app) {
   }
 }
 
+// The value of an option that takes one, before CLI11 sees it: its range
+// checks would otherwise answer "inf" with "not in range 0 to" DBL_MAX in
+// full, 309 digits.
+inline void checkFiniteArguments(const CLI::App& app, int argc, char** argv) {
+  for (int i = 1; i < argc; ++i) {
+    std::string name = argv[i], value;
+    if (name.size() < 2 || name[0] != '-') continue;
+    if (const size_t equals = name.find('='); equals != std::string::npos) {
+      value = name.substr(equals + 1);
+      name.resize(equals);
+    } else if (i + 1 < argc) {
+      value = argv[i + 1];
+    }
+    const CLI::Option* option = app.get_option_no_throw(name);
+    if (option == nullptr || option->get_type_size() == 0 || value.empty()) continue;
+    const char* begin = value.c_str();
+    char* end = nullptr;
+    const double number = std::strtod(begin, &end);
+    if (end != begin && *end == '\0' && !std::isfinite(number)) {
+      throw InputError(name + " " + value +
+                       ": every number must be finite (not NaN, infinite or beyond 1.8e308)");
+    }
+  }
+}
+
+// Range checks that name the bound the user missed, without printing the
+// type's limit ("0.000000 to 1.797...e308" in full is CLI11's way).
+inline CLI::Validator numberAbove(double bound, bool inclusive, const char* name) {
+  return CLI::Validator(
+      [bound, inclusive](std::string& text) -> std::string {
+        const char* begin = text.c_str();
+        char* end = nullptr;
+        const double number = std::strtod(begin, &end);
+        if (end == begin || *end != '\0') return "'" + text + "' is not a number";
+        if (inclusive ? number >= bound : number > bound) return {};
+        return "must be " + std::string(inclusive ? "at least " : "greater than ") +
+               (bound == 0 ? "0" : std::to_string(bound)) + ", got " + text;
+      },
+      name);
+}
+inline const CLI::Validator kPositive = numberAbove(0.0, false, "POSITIVE");
+inline const CLI::Validator kNonNegative = numberAbove(0.0, true, "NONNEGATIVE");
+
 // Parses the command line with `app` and runs `body`; returns the exit code.
 inline int runTool(CLI::App& app, int argc, char** argv, const std::function<int()>& body) {
+  try {
+    checkFiniteArguments(app, argc, argv);
+  } catch (const InputError& e) {
+    std::cerr << app.get_name() << ": " << e.what() << "\n";
+    return kExitBadInput;
+  }
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

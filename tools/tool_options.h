@@ -8,10 +8,12 @@
 #include <string>
 #include <utility>
 
+#include <glm/geometric.hpp>
 #include <glm/vec3.hpp>
 
 #include "atomic_file.h"
 #include "errors.h"
+#include "heightfield.h"
 
 namespace aal {
 
@@ -49,6 +51,23 @@ inline std::pair<uint32_t, uint32_t> parseSize(const std::string& text,
     throw InputError(name + " must be WIDTHxHEIGHT with positive sides, got '" + text + "'");
   }
   return {static_cast<uint32_t>(w), static_cast<uint32_t>(h)};
+}
+
+// Throws InputError unless `field` has a surface to light: the renderers
+// draw cells between texels and derive ranges (obscurance radius, camera
+// distance) from its extent, which a single row or column does not have.
+inline void requireRenderableDem(const Heightfield& field) {
+  if (field.width >= 2 && field.height >= 2) return;
+  throw InputError(field.source + ": " + std::to_string(field.width) + " x " +
+                   std::to_string(field.height) +
+                   " texels have no surface to render; rendering needs at least 2 x 2 "
+                   "(aal-bake and aal-info take any size)");
+}
+
+// Throws InputError when the camera has no direction: --camera at --look-at.
+inline void requireCameraDirection(const glm::dvec3& position, const glm::dvec3& lookAt) {
+  if (glm::length(lookAt - position) >= 1e-6) return;
+  throw InputError("--camera and --look-at are the same point; the camera needs a direction");
 }
 
 }  // namespace aal

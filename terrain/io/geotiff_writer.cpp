@@ -15,8 +15,13 @@ namespace aal {
 
 namespace {
 
-[[noreturn]] void fail(const std::string& path, const std::string& what) {
-  throw std::runtime_error("cannot write " + path + ": " + what + ": " + gdalLastError());
+// What went wrong and GDAL's last message; writeFloatGeoTiff names the file.
+struct GdalWriteError : std::runtime_error {
+  using std::runtime_error::runtime_error;
+};
+
+[[noreturn]] void fail(const std::string& what) {
+  throw GdalWriteError(what + ": " + gdalLastError());
 }
 
 // The CRS `geo` names (spatialReferenceOf), else WGS84 for a geographic
@@ -32,13 +37,13 @@ OGRSpatialReference crsOf(const GeoReference& geo) {
   return srs;
 }
 
-void place(GDALDataset& dataset, const GeoReference& geo, const std::string& path) {
+void place(GDALDataset& dataset, const GeoReference& geo) {
   if (geo.crs == CrsKind::None) return;
   double transform[6] = {geo.originX - 0.5 * geo.stepX, geo.stepX, 0.0,
                          geo.originY + 0.5 * geo.stepY, 0.0,       -geo.stepY};
   const OGRSpatialReference srs = crsOf(geo);
   if (dataset.SetGeoTransform(transform) != CE_None || dataset.SetSpatialRef(&srs) != CE_None) {
-    fail(path, "cannot set its georeferencing");
+    fail("cannot set its georeferencing");
   }
 }
 
@@ -59,46 +64,50 @@ void writeFloatGeoTiff(const std::string& path, int width, int height, const flo
   ensureGdal();
   AtomicOutput output(path);
   const std::string temporary = output.temporaryPath().string();
-  CPLErrorReset();
-  CPLStringList creation;
-  creation.SetNameValue("COMPRESS", "DEFLATE");
-  creation.SetNameValue("BIGTIFF", "IF_SAFER");
-  creation.SetNameValue("NUM_THREADS", "ALL_CPUS");
-  // A COG is copied from an in-memory raster (the COG driver cannot Create).
-  GDALDriver* driver = GetGDALDriverManager()->GetDriverByName(options.cog ? "MEM" : "GTiff");
-  if (driver == nullptr)
-    fail(path, options.cog ? "GDAL has no MEM driver" : "GDAL has no GTiff driver");
-  if (!options.cog) {
-    creation.SetNameValue("PREDICTOR", "3");
-    creation.SetNameValue("TILED", "YES");
+  try {
+    CPLErrorReset();
+    CPLStringList creation;
+    creation.SetNameValue("COMPRESS", "DEFLATE");
+    creation.SetNameValue("BIGTIFF", "IF_SAFER");
+    creation.SetNameValue("NUM_THREADS", "ALL_CPUS");
+    // A COG is copied from an in-memory raster (the COG driver cannot Create).
+    GDALDriver* driver = GetGDALDriverManager()->GetDriverByName(options.cog ? "MEM" : "GTiff");
+    if (driver == nullptr)
+      fail(options.cog ? "GDAL has no MEM driver" : "GDAL has no GTiff driver");
+    if (!options.cog) {
+      creation.SetNameValue("PREDICTOR", "3");
+      creation.SetNameValue("TILED", "YES");
+    }
+    GDALDatasetUniquePtr dataset(driver->Create(options.cog ? "" : temporary.c_str(), width, height,
+                                                1, GDT_Float32,
+                                                options.cog ? nullptr : creation.List()));
+    if (!dataset) fail("cannot create it");
+    place(*dataset, geo);
+    GDALRasterBand& band = *dataset->GetRasterBand(1);
+    if (options.nodata && band.SetNoDataValue(*options.nodata) != CE_None) {
+      fail("cannot set its nodata value");
+    }
+    if (band.RasterIO(GF_Write, 0, 0, width, height, const_cast<float*>(data), width, height,
+                      GDT_Float32, 0, 0, nullptr) != CE_None) {
+      fail("cannot write its samples");
+    }
+    if (options.cog) {
+      GDALDriver* cog = GetGDALDriverManager()->GetDriverByName("COG");
+      if (cog == nullptr) fail("GDAL has no COG driver");
+      creation.SetNameValue("PREDICTOR", "YES");
+      GDALDatasetUniquePtr copy(cog->CreateCopy(temporary.c_str(), dataset.get(), FALSE,
+                                                creation.List(), nullptr, nullptr));
+      if (!copy) fail("cannot write it as a COG");
+      copy->FlushCache();
+      copy.reset();
+    } else {
+      dataset->FlushCache();
+    }
+    dataset.reset();
+    if (CPLGetLastErrorType() == CE_Failure) fail("GDAL failed");
+  } catch (const GdalWriteError& e) {
+    throw output.failure(e.what());
   }
-  GDALDatasetUniquePtr dataset(driver->Create(options.cog ? "" : temporary.c_str(), width, height,
-                                              1, GDT_Float32,
-                                              options.cog ? nullptr : creation.List()));
-  if (!dataset) fail(path, "cannot create it");
-  place(*dataset, geo, path);
-  GDALRasterBand& band = *dataset->GetRasterBand(1);
-  if (options.nodata && band.SetNoDataValue(*options.nodata) != CE_None) {
-    fail(path, "cannot set its nodata value");
-  }
-  if (band.RasterIO(GF_Write, 0, 0, width, height, const_cast<float*>(data), width, height,
-                    GDT_Float32, 0, 0, nullptr) != CE_None) {
-    fail(path, "cannot write its samples");
-  }
-  if (options.cog) {
-    GDALDriver* cog = GetGDALDriverManager()->GetDriverByName("COG");
-    if (cog == nullptr) fail(path, "GDAL has no COG driver");
-    creation.SetNameValue("PREDICTOR", "YES");
-    GDALDatasetUniquePtr copy(cog->CreateCopy(temporary.c_str(), dataset.get(), FALSE,
-                                              creation.List(), nullptr, nullptr));
-    if (!copy) fail(path, "cannot write it as a COG");
-    copy->FlushCache();
-    copy.reset();
-  } else {
-    dataset->FlushCache();
-  }
-  dataset.reset();
-  if (CPLGetLastErrorType() == CE_Failure) fail(path, "GDAL failed");
   output.commit();
 }
 

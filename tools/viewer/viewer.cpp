@@ -17,6 +17,7 @@
 #include "lighting_defaults.h"
 #include "obscurance.h"
 #include "screenshot.h"
+#include "tool_options.h"
 #include "view_panel.h"
 #include "vk_check.h"
 
@@ -164,7 +165,9 @@ BakeOptions viewerBakeOptions(int azimuths) {
 }  // namespace
 
 std::shared_ptr<const Heightfield> loadViewerDem(const std::string& path) {
-  return std::make_shared<const Heightfield>(loadDem(path));
+  auto field = std::make_shared<const Heightfield>(loadDem(path));
+  requireRenderableDem(*field);
+  return field;
 }
 
 Viewer::Viewer(const ViewerOptions& options, std::shared_ptr<const Heightfield> field)

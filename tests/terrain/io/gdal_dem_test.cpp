@@ -511,7 +511,8 @@ TEST_F(GdalDem, SubdatasetsAreNamed) {
 // of `dataRows` rows of zeros at the file's end: a hostile header costs a
 // few bytes per strip.
 std::string stripTiff(int side, int dataRows,
-                      const std::function<uint32_t(int, uint32_t)>& stripOffset) {
+                      const std::function<uint32_t(int, uint32_t)>& stripOffset,
+                      uint32_t stripBytes = 0) {
   std::string b = std::string("II*\0", 4);
   const auto u16 = [&](uint16_t v) { b.append(reinterpret_cast<const char*>(&v), 2); };
   const auto u32 = [&](uint32_t v) { b.append(reinterpret_cast<const char*>(&v), 4); };
@@ -533,7 +534,7 @@ std::string stripTiff(int side, int dataRows,
   tag(339, 3, 1, 3);           // SampleFormat: IEEE float
   u32(0);
   for (int row = 0; row < side; ++row) u32(stripOffset(row, data));
-  for (int row = 0; row < side; ++row) u32(rowBytes);
+  for (int row = 0; row < side; ++row) u32(stripBytes > 0 ? stripBytes : rowBytes);
   b.append(static_cast<size_t>(rowBytes) * dataRows, '\0');
   return b;
 }
@@ -559,6 +560,46 @@ TEST_F(GdalDem, StripPastTheEndIsRefusedBeforeAllocating) {
   const std::string good = path("good.tif");
   test::writeBytes(good, stripTiff(64, 64, inOrder));
   EXPECT_EQ(loadDem(good, warnings_.options()).width, 64);
+}
+
+TEST_F(GdalDem, UncompressedStripsShorterThanTheirRowsAreRefused) {
+  // 512 rows of 2 kB declared, 16 bytes stored each: no codec, no way.
+  const std::string p = path("short.tif");
+  test::writeBytes(p, stripTiff(
+                          512, 4, [](int row, uint32_t data) { return data + 16u * row; }, 16));
+  test::expectMessage(test::inputErrorOf([&] { DemSource(p, warnings_.options()); }),
+                      {p,
+                       "declares 1048576 bytes of samples, but its uncompressed blocks of 8192 "
+                       "bytes only 8192 bytes can hold"});
+}
+
+// CRC-32 of PNG chunks (ISO 3309), bit by bit: a test needs a few bytes.
+uint32_t crc32(const std::string& bytes) {
+  uint32_t crc = 0xffffffffu;
+  for (const unsigned char byte : bytes) {
+    crc ^= byte;
+    for (int bit = 0; bit < 8; ++bit) crc = (crc >> 1) ^ (0xedb88320u & (0u - (crc & 1u)));
+  }
+  return ~crc;
+}
+
+TEST_F(GdalDem, PngClaimingMoreThanZlibCanHoldIsRefused) {
+  std::string png = "\x89PNG\r\n\x1a\n";
+  const auto chunk = [&](const std::string& type, const std::string& data) {
+    const auto be32 = [](uint32_t v) {
+      return std::string{static_cast<char>(v >> 24), static_cast<char>(v >> 16),
+                         static_cast<char>(v >> 8), static_cast<char>(v)};
+    };
+    png += be32(static_cast<uint32_t>(data.size())) + type + data + be32(crc32(type + data));
+  };
+  const std::string side = std::string("\0\0", 2) + "\x9c\x40";  // 40000
+  chunk("IHDR", side + side + std::string("\x10\0\0\0\0", 5));   // 16-bit grey
+  chunk("IDAT", std::string(200, 'x'));
+  chunk("IEND", "");
+  const std::string p = path("claims.png");
+  test::writeBytes(p, png);
+  test::expectMessage(test::inputErrorOf([&] { DemSource(p, warnings_.options()); }),
+                      {p, "declares 3200000000 bytes of samples, but at zlib's best ratio"});
 }
 
 TEST_F(GdalDem, TruncatedFileIsAnInputError) {

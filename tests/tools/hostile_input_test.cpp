@@ -1,0 +1,256 @@
+// The standard hostile cases, run against every tool they apply to (issue 17):
+// numbers that are not finite, outputs that alias inputs or each other, a
+// tiny file whose header claims gigabytes, and writes that fail half way
+// (a file-size limit, a full disk). Each ends with a clear message, the
+// right exit code and nothing left behind.
+#include <gtest/gtest.h>
+
+#include <sys/mount.h>
+
+#include <algorithm>
+#include <cerrno>
+#include <cstdint>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <string>
+#include <vector>
+
+#include "run_tool.h"
+
+namespace aal {
+namespace {
+
+namespace fs = std::filesystem;
+using test::quoted;
+using test::runTool;
+using test::TempDir;
+
+const fs::path kDem = fs::path(AAL_TEST_SOURCE_DIR) / "heightmaps" / "jacksboro_fault_dem.tif";
+
+// Every entry in `folder`, names only: what a failed run must not add to.
+std::vector<std::string> entriesOf(const fs::path& folder) {
+  std::vector<std::string> names;
+  for (const auto& entry : fs::directory_iterator(folder)) {
+    names.push_back(entry.path().filename().string());
+  }
+  std::sort(names.begin(), names.end());
+  return names;
+}
+
+struct ToolCase {
+  std::string tool, arguments;  // arguments hold X where the hostile value goes
+};
+
+std::string withValue(std::string text, const std::string& value) {
+  const size_t at = text.find('X');
+  if (at != std::string::npos) text.replace(at, 1, value);
+  return text;
+}
+
+TEST(HostileInput, NumbersThatAreNotFiniteExitWithTwoInEveryTool) {
+  TempDir dir;
+  const std::string dem = quoted(kDem), out = quoted(dir.path() / "out");
+  const std::vector<ToolCase> cases = {
+      {"aal-bake", dem + " -o " + out + ".exr --max-distance X"},
+      {"aal-render", dem + " -o " + out + ".png --size 32x18 --fov X"},
+      {"aal-view", dem + " --sun-elevation X --sun-azimuth 10"},
+      {"aal-caps", "--table " + out + ".csv --max-radius X"},
+      {"aal-info", dem + " --cell-size X"},
+      {"aal-synth", "-o " + out + ".tif --amplitude X"},
+  };
+  for (const ToolCase& c : cases) {
+    for (const std::string value : {"nan", "inf", "-inf", "1e999", "-NaN"}) {
+      const std::string arguments = withValue(c.arguments, value);
+      const auto r = runTool(c.tool, arguments);
+      EXPECT_EQ(r.exitCode, 2) << c.tool << " " << arguments << "\n" << r.out;
+      EXPECT_NE(r.out.find("every number must be finite"), std::string::npos)
+          << c.tool << " " << arguments << "\n"
+          << r.out;
+    }
+  }
+  // The form --option=value too.
+  EXPECT_EQ(runTool("aal-render", dem + " -o " + out + ".png --fov=nan").exitCode, 2);
+  EXPECT_TRUE(entriesOf(dir.path()).empty());
+}
+
+TEST(HostileInput, RangeErrorsNameTheBoundNotTheTypesLimit) {
+  // CLI11's own check printed "not in range 0.000000 to" and DBL_MAX in
+  // full: 309 digits.
+  for (const std::string& arguments :
+       {quoted(kDem) + " -o x.exr --max-distance -5", quoted(kDem) + " -o x.exr --max-distance=inf",
+        quoted(kDem) + " -o x.exr --cell-size 0"}) {
+    const auto r = runTool("aal-bake", arguments);
+    EXPECT_EQ(r.exitCode, 2) << arguments << "\n" << r.out;
+    EXPECT_LT(r.out.size(), 200u) << r.out;
+    EXPECT_EQ(r.out.find("179769313486231570814527423731704356798070567525844996598917476803157"),
+              std::string::npos)
+        << r.out;
+  }
+  EXPECT_NE(runTool("aal-bake", quoted(kDem) + " -o x.exr --max-distance -5")
+                .out.find("--max-distance: must be at least 0, got -5"),
+            std::string::npos);
+}
+
+TEST(HostileInput, OutputsThatAliasInputsOrEachOtherExitWithTwoInEveryTool) {
+  TempDir dir;
+  const fs::path map = dir.path() / "m.exr", table = dir.path() / "t.png";
+  std::ofstream(map, std::ios::binary) << "a map we must not lose";
+  const std::vector<ToolCase> cases = {
+      {"aal-bake", quoted(kDem) + " -o " + quoted(map) + " --svf " + quoted(map)},
+      {"aal-render", quoted(kDem) + " --aperture " + quoted(map) + " -o " + quoted(map)},
+      {"aal-view",
+       quoted(kDem) + " --aperture " + quoted(map) + " --frames 1 --screenshot " + quoted(map)},
+      {"aal-caps", "--table " + quoted(table) + " --plot " + quoted(table)},
+  };
+  for (const ToolCase& c : cases) {
+    const auto r = runTool(c.tool, c.arguments);
+    EXPECT_EQ(r.exitCode, 2) << c.tool << " " << c.arguments << "\n" << r.out;
+  }
+  EXPECT_EQ(fs::file_size(map), 22u);
+  EXPECT_EQ(entriesOf(dir.path()), std::vector<std::string>{"m.exr"});
+}
+
+// A 1 MB TIFF whose 65536 strips of one row all point at the same bytes: it
+// claims 65536 x 4096 float heights (1 GB) that it does not hold.
+void writeSharedStripTiff(const fs::path& path) {
+  const uint32_t width = 4096, height = 65536, rowBytes = 4 * width, tags = 9;
+  const uint32_t offsets = 8 + 2 + tags * 12 + 4, counts = offsets + 4 * height,
+                 data = counts + 4 * height;
+  std::string b("II*\0", 4);
+  const auto u16 = [&](uint16_t v) { b.append(reinterpret_cast<const char*>(&v), 2); };
+  const auto u32 = [&](uint32_t v) { b.append(reinterpret_cast<const char*>(&v), 4); };
+  const auto tag = [&](uint16_t id, uint16_t type, uint32_t count, uint32_t value) {
+    u16(id), u16(type), u32(count), u32(value);
+  };
+  u32(8);
+  u16(tags);
+  tag(256, 4, 1, width);
+  tag(257, 4, 1, height);
+  tag(258, 3, 1, 32);
+  tag(259, 3, 1, 1);
+  tag(262, 3, 1, 1);
+  tag(273, 4, height, offsets);
+  tag(278, 4, 1, 1);
+  tag(279, 4, height, counts);
+  tag(339, 3, 1, 3);
+  u32(0);
+  for (uint32_t row = 0; row < height; ++row) u32(data);
+  for (uint32_t row = 0; row < height; ++row) u32(rowBytes);
+  b.append(rowBytes, '\0');
+  std::ofstream(path, std::ios::binary) << b;
+}
+
+TEST(HostileInput, ATinyFileClaimingAHugeDemIsRefusedAtOnceByEveryTool) {
+  TempDir dir;
+  const fs::path claims = dir.path() / "claims.tif";
+  writeSharedStripTiff(claims);
+  const std::string out = quoted(dir.path() / "out");
+  const std::vector<ToolCase> cases = {
+      {"aal-info", quoted(claims)},
+      {"aal-bake", quoted(claims) + " -o " + out + ".exr"},
+      {"aal-render", quoted(claims) + " --mode reference --size 32x18 -o " + out + ".png"},
+  };
+  for (const ToolCase& c : cases) {
+    // Refused at open, before the 1 GB of heights is allocated.
+    const auto r = runTool(c.tool, c.arguments);
+    EXPECT_EQ(r.exitCode, 2) << c.tool << "\n" << r.out;
+    EXPECT_NE(r.out.find("its blocks claim 1073741824 bytes in all"), std::string::npos)
+        << c.tool << "\n"
+        << r.out;
+  }
+  EXPECT_EQ(entriesOf(dir.path()), std::vector<std::string>{"claims.tif"});
+}
+
+// Runs `tool` with writes limited to `kilobytes` per file (ulimit -f, with
+// SIGXFSZ ignored so that a write past it fails with EFBIG, as on a full disk).
+test::ToolResult runWithFileSizeLimit(const std::string& tool, const std::string& arguments,
+                                      int kilobytes) {
+  return test::runShell("trap '' XFSZ; ulimit -f " + std::to_string(kilobytes) + "; " +
+                        (test::binDir() / tool).string() + " " + arguments);
+}
+
+TEST(HostileInput, AWriteThatFailsHalfWayExitsWithOneAndLeavesNothing) {
+  TempDir dir;
+  const fs::path out = dir.path() / "out";
+  const std::vector<ToolCase> cases = {
+      // A PNG's failed write went unnoticed: exit 0 and a truncated file.
+      {"aal-render",
+       quoted(kDem) +
+           " --mode reference --size 640x360 --reference-sun-rays 1 --reference-sky-rays 1 -q -o " +
+           quoted(out) + ".png"},
+      {"aal-render",
+       quoted(kDem) +
+           " --mode reference --size 640x360 --reference-sun-rays 1 --reference-sky-rays 1 -q -o " +
+           quoted(out) + ".exr"},
+      {"aal-bake", quoted(kDem) + " -q -o " + quoted(out) + ".exr"},
+      {"aal-bake", quoted(kDem) + " -q -o " + quoted(out) + ".exr --svf " + quoted(out) + ".tif"},
+      {"aal-caps", "--table " + quoted(out) + ".csv"},
+      {"aal-synth", "--size 512 -o " + quoted(out) + ".tif"},
+  };
+  for (const ToolCase& c : cases) {
+    const auto r = runWithFileSizeLimit(c.tool, c.arguments, 16);
+    EXPECT_EQ(r.exitCode, 1) << c.tool << " " << c.arguments << "\n" << r.out;
+    EXPECT_NE(r.out.find("cannot write"), std::string::npos) << r.out;
+    // Named by the output the user gave, not by our temporary.
+    EXPECT_EQ(r.out.find(".tmp-"), std::string::npos) << r.out;
+    EXPECT_TRUE(entriesOf(dir.path()).empty()) << c.tool << " " << c.arguments << " left "
+                                               << ::testing::PrintToString(entriesOf(dir.path()));
+  }
+}
+
+TEST(HostileInput, AFullDiskIsSaidInPlainWords) {
+  TempDir dir;
+  const fs::path disk = dir.path() / "disk";
+  fs::create_directory(disk);
+  if (::mount("tmpfs", disk.c_str(), "tmpfs", 0, "size=64k") != 0) {
+    GTEST_SKIP() << "cannot mount a small tmpfs here (" << std::strerror(errno)
+                 << "); needs root, as in the CI container";
+  }
+  const std::vector<ToolCase> cases = {
+      {"aal-render",
+       quoted(kDem) +
+           " --mode reference --size 640x360 --reference-sun-rays 1 --reference-sky-rays 1 -q -o " +
+           quoted(disk / "r.png")},
+      {"aal-bake", quoted(kDem) + " -q -o " + quoted(disk / "a.exr")},
+      {"aal-synth", "--size 512 -o " + quoted(disk / "s.tif")},
+      {"aal-caps", "--table " + quoted(disk / "t.csv")},
+  };
+  for (const ToolCase& c : cases) {
+    const auto r = runTool(c.tool, c.arguments);
+    EXPECT_EQ(r.exitCode, 1) << c.tool << "\n" << r.out;
+    std::string lower = r.out;
+    for (char& ch : lower) ch = static_cast<char>(std::tolower(static_cast<unsigned char>(ch)));
+    EXPECT_NE(lower.find("no space left on device"), std::string::npos) << r.out;
+    EXPECT_EQ(r.out.find(".tmp-"), std::string::npos) << r.out;
+    EXPECT_TRUE(entriesOf(disk).empty()) << ::testing::PrintToString(entriesOf(disk));
+  }
+  ::umount(disk.c_str());
+}
+
+TEST(HostileInput, MistakesOfUseExitWithTwo) {
+  TempDir dir;
+  const fs::path one = dir.path() / "one.asc";
+  std::ofstream(one) << "ncols 1\nnrows 1\nxllcorner 0\nyllcorner 0\ncellsize 5\n7\n";
+  const std::string png = " --size 32x18 -o " + quoted(dir.path() / "r.png");
+  struct Case {
+    std::string tool, arguments, message;
+  };
+  for (const Case& c : std::vector<Case>{
+           {"aal-render", quoted(one) + png,
+            "1 x 1 texels have no surface to render; rendering needs at least 2 x 2"},
+           {"aal-render", quoted(kDem) + png + " --camera 100,100,500 --look-at 100,100,500",
+            "--camera and --look-at are the same point"},
+           {"aal-render", quoted(kDem) + png + " --device 9", "--device 9 is not available"},
+           {"aal-caps", "--table " + quoted(dir.path() / "t.csv") + " --plot p.txt",
+            "--plot p.txt must end in .png"},
+       }) {
+    const auto r = runTool(c.tool, c.arguments);
+    EXPECT_EQ(r.exitCode, 2) << c.tool << " " << c.arguments << "\n" << r.out;
+    EXPECT_NE(r.out.find(c.message), std::string::npos) << r.out;
+  }
+  EXPECT_EQ(entriesOf(dir.path()), std::vector<std::string>{"one.asc"});
+}
+
+}  // namespace
+}  // namespace aal
