@@ -149,6 +149,9 @@ void sweepAllAzimuths(const BakeTerrain& terrain, const BakeOptions& o, float* s
   // texels in loops that compile to vector code, reading and writing each
   // texel's sums once.
   const auto addSlices = [&](const HorizonBlock& b, const Slice& s, const Slice* opposite) {
+    // Here as well as between azimuths: one azimuth of a 32768^2 DEM takes
+    // a minute. TBB carries the exception out of the sweep's parallel_for.
+    checkCancel(o);
     // The texels a few steps on: their sums are a column apart or in
     // another row, where the hardware prefetcher does not look. Along a row,
     // one prefetch per cache line (4 texels' sums) and the last texel: 3 %

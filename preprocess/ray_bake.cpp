@@ -70,11 +70,15 @@ void bakeRays(const BakeTerrain& terrain, const BakeOptions& o, float* sums,
   const int elevationStrata = std::max(1, o.rays / azimuthStrata);
   const int rays = azimuthStrata * elevationStrata;
 
-  // Rows in blocks so that progress and cancellation are handled here, on
-  // the calling thread.
+  // Rows in blocks so that progress is reported here, on the calling
+  // thread. Cancellation is polled per azimuth stratum as well: at 2^20 rays
+  // a texel takes seconds (TBB carries the exception out of parallel_for).
+  const auto checkCancel = [&] {
+    if (o.cancel && o.cancel->load(std::memory_order_relaxed)) throw BakeCancelled();
+  };
   const int block = std::max(1, f.height / 100);
   for (int first = 0; first < f.height; first += block) {
-    if (o.cancel && o.cancel->load()) throw BakeCancelled();
+    checkCancel();
     const int last = std::min(f.height, first + block);
     tbb::parallel_for(first, last, [&](int row) {
       for (int col = 0; col < f.width; ++col) {
@@ -95,6 +99,7 @@ void bakeRays(const BakeTerrain& terrain, const BakeOptions& o, float* sums,
         int escaped = 0;
         double sum[3] = {0, 0, 0};
         for (int a = 0; a < azimuthStrata; ++a) {
+          checkCancel();
           for (int e = 0; e < elevationStrata; ++e) {
             // Uniform in solid angle: cos(theta) uniform in (0, 1].
             const double cosTheta = 1.0 - (e + nextUniform(rng)) / elevationStrata;

@@ -22,6 +22,7 @@
 #include "dem_loader.h"
 #include "dem_source.h"
 #include "geotiff_writer.h"
+#include "interrupt.h"
 #include "memory_budget.h"
 #include "progress.h"
 #include "tiled_bake.h"
@@ -30,14 +31,6 @@
 #include "tool_paths.h"
 
 namespace {
-
-std::atomic<bool> gInterrupted{false};
-
-// First Ctrl-C: stop the bake cleanly (no output); a second one kills.
-extern "C" void onInterrupt(int signal) {
-  gInterrupted.store(true);
-  std::signal(signal, SIG_DFL);
-}
 
 // A per-texel result as a GeoTIFF placed like the DEM; the DEM's voids are
 // nodata there (the DEM's own nodata value when float holds it, else NaN).
@@ -201,7 +194,8 @@ int run(const Options& o) {
   }
   aal::ProgressBar progress("aal-bake", !o.quiet);
   bake.progress = [&](double fraction) { progress.update(fraction); };
-  bake.cancel = &gInterrupted;
+  // First Ctrl-C or SIGTERM: stop cleanly, nothing written; a second kills.
+  bake.cancel = &aal::interruptFlag();
 
   const int threads =
       o.threads > 0 ? o.threads : static_cast<int>(std::thread::hardware_concurrency());
@@ -241,15 +235,23 @@ int run(const Options& o) {
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 
   const auto writeStart = std::chrono::steady_clock::now();
-  if (!tiled) {
-    result.aperture.info.source = source;
-    aal::writeApertureMap(o.output, result.aperture, !o.fullFloat, compressionOf(o));
-  }
-  if (!o.svfPath.empty()) {
-    writeGisRaster(o.svfPath, std::move(result.skyViewFactor), field, o.cog);
-  }
-  if (!o.visiblePath.empty()) {
-    writeGisRaster(o.visiblePath, visibleFractions(result.aperture), field, o.cog);
+  // The writers poll the interrupt too: each output is whole or absent.
+  try {
+    if (!tiled) {
+      result.aperture.info.source = source;
+      aal::writeApertureMap(o.output, result.aperture, !o.fullFloat, compressionOf(o));
+    }
+    if (!o.svfPath.empty()) {
+      writeGisRaster(o.svfPath, std::move(result.skyViewFactor), field, o.cog);
+    }
+    if (!o.visiblePath.empty()) {
+      writeGisRaster(o.visiblePath, visibleFractions(result.aperture), field, o.cog);
+    }
+  } catch (const aal::Interrupted&) {
+    std::fprintf(stderr,
+                 "aal-bake: interrupted while writing; the outputs written before are kept, the "
+                 "one being written was removed\n");
+    return aal::kExitFailure;
   }
 
   const double writeSeconds =
@@ -358,7 +360,6 @@ int main(int argc, char** argv) {
   app.add_flag("--float", o.fullFloat, "store 32-bit floats instead of 16-bit halves");
   app.add_flag("-q,--quiet", o.quiet, "no progress and no summary");
 
-  std::signal(SIGINT, onInterrupt);
-  std::signal(SIGTERM, onInterrupt);
+  aal::installInterruptHandler();
   return aal::runTool(app, argc, argv, [&] { return run(o); });
 }

@@ -1,5 +1,6 @@
 #include "geotiff_writer.h"
 
+#include <algorithm>
 #include <cmath>
 #include <stdexcept>
 
@@ -10,6 +11,7 @@
 #include "atomic_file.h"
 #include "dem_options.h"
 #include "gdal_session.h"
+#include "interrupt.h"
 
 namespace aal {
 
@@ -87,9 +89,16 @@ void writeFloatGeoTiff(const std::string& path, int width, int height, const flo
     if (options.nodata && band.SetNoDataValue(*options.nodata) != CE_None) {
       fail("cannot set its nodata value");
     }
-    if (band.RasterIO(GF_Write, 0, 0, width, height, const_cast<float*>(data), width, height,
-                      GDT_Float32, 0, 0, nullptr) != CE_None) {
-      fail("cannot write its samples");
+    // Bands of rows, so that an interrupt is heard within one band.
+    const int bandRows = std::max(1, static_cast<int>((size_t{16} << 20) / (4 * size_t(width))));
+    for (int row = 0; row < height; row += bandRows) {
+      const int rows = std::min(bandRows, height - row);
+      if (band.RasterIO(GF_Write, 0, row, width, rows,
+                        const_cast<float*>(data) + static_cast<size_t>(row) * width, width, rows,
+                        GDT_Float32, 0, 0, nullptr) != CE_None) {
+        fail("cannot write its samples");
+      }
+      throwIfInterrupted();
     }
     if (options.cog) {
       GDALDriver* cog = GetGDALDriverManager()->GetDriverByName("COG");

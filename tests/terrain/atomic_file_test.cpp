@@ -67,5 +67,21 @@ TEST(AtomicOutput, CommitRenamesAndAnAbandonedOutputLeavesNothing) {
   EXPECT_FALSE(fs::exists(output.temporaryPath()));
 }
 
+TEST(AtomicOutput, FailuresNameTheOutputNotItsTemporary) {
+  test::TempDir dir;
+  const fs::path final = dir.path() / "map.exr";
+  const AtomicOutput output(final);
+  const std::string detail = "Failed to write pixel data to image file \"" +
+                             output.temporaryPath().string() + "\" (" +
+                             output.temporaryPath().filename().string() + ")";
+  const std::string message = output.failure(detail, "aperture map").what();
+  EXPECT_EQ(message, "cannot write aperture map " + final.string() +
+                         ": Failed to write pixel data to image file \"" + final.string() + "\" (" +
+                         final.string() + ")");
+  EXPECT_EQ(message.find(".tmp-"), std::string::npos);
+  // Room on the disk: nothing about space is added.
+  EXPECT_EQ(std::string(output.failure("GDAL failed").what()).find("no space"), std::string::npos);
+}
+
 }  // namespace
 }  // namespace aal
