@@ -6,6 +6,7 @@
 #include <vector>
 
 #include <glm/geometric.hpp>
+#include <glm/trigonometric.hpp>
 #include <glm/vec4.hpp>
 
 #include "buffer.h"
@@ -39,6 +40,37 @@ TEST_F(ShadingParity, GlslShadeMatchesCppForEveryMode) {
   std::vector<Query> queries;
   std::vector<ShadingInputs> inputs;
   std::vector<ShadingMode> modes;
+  const auto add = [&](const ShadingInputs& in, int mode) {
+    inputs.push_back(in);
+    modes.push_back(static_cast<ShadingMode>(mode));
+    queries.push_back({glm::vec4(in.albedo, float(mode)), glm::vec4(in.normal, 0),
+                       glm::vec4(in.bentNormal, in.apertureRad),
+                       glm::vec4(in.sunDirection, in.sunRadiusRad), glm::vec4(in.sunIrradiance, 0),
+                       glm::vec4(in.skyRadiance, 0), glm::vec4(in.transfer, 0)});
+  };
+  // The cases of the CPU copy's closed-form tests (tests/terrain/shading_test.cpp):
+  // apertures below pi/2 and bent normals 20 and 50 degrees from N, the sun
+  // inside, on the rim of and outside the aperture. With those passing, this
+  // test carries the closed forms over to the GLSL copy.
+  for (const float r : {0.3f, 0.8f, 1.2f, 1.5707963f}) {
+    for (const float tiltDeg : {20.0f, 50.0f}) {
+      for (const float sunOffset : {-0.5f * r, 0.0f, 0.1f}) {
+        for (const int mode : {AAL_MODE_APPROX, AAL_MODE_EXACT, AAL_MODE_DEBUG_SKY_FILL}) {
+          const float beta = glm::radians(tiltDeg), d = r + sunOffset;
+          ShadingInputs in;
+          in.albedo = {0.3f, 0.5f, 0.7f};
+          in.bentNormal = {std::sin(beta), 0, std::cos(beta)};
+          in.apertureRad = r;
+          const glm::vec3 across = glm::normalize(glm::vec3(-std::cos(beta), 1, std::sin(beta)));
+          in.sunDirection = std::cos(d) * in.bentNormal + std::sin(d) * across;
+          in.sunIrradiance = {100, 90, 80};
+          in.skyRadiance = {5, 6, 9};
+          in.transfer = {0.9f, 0.8f, 0.6f};
+          add(in, mode);
+        }
+      }
+    }
+  }
   for (int mode = AAL_MODE_APPROX; mode <= AAL_MODE_DEBUG_TRANSFER; ++mode) {
     for (int i = 0; i < 500; ++i) {
       ShadingInputs in;
@@ -54,13 +86,7 @@ TEST_F(ShadingParity, GlslShadeMatchesCppForEveryMode) {
       in.sunIrradiance = {100 * unit(rng), 90 * unit(rng), 80 * unit(rng)};
       in.skyRadiance = {5 * unit(rng), 6 * unit(rng), 9 * unit(rng)};
       in.transfer = {unit(rng), unit(rng), unit(rng)};
-      inputs.push_back(in);
-      modes.push_back(static_cast<ShadingMode>(mode));
-      queries.push_back({glm::vec4(in.albedo, float(mode)), glm::vec4(in.normal, 0),
-                         glm::vec4(in.bentNormal, in.apertureRad),
-                         glm::vec4(in.sunDirection, in.sunRadiusRad),
-                         glm::vec4(in.sunIrradiance, 0), glm::vec4(in.skyRadiance, 0),
-                         glm::vec4(in.transfer, 0)});
+      add(in, mode);
     }
   }
   const uint32_t count = static_cast<uint32_t>(queries.size());

@@ -64,16 +64,13 @@ TEST(CapIntersection, ExactMatchesMonteCarloOverAllRadii) {
   std::mt19937_64 rng(12345);
   std::uniform_real_distribution<double> angle(0.0, kPi);
   constexpr int kSamples = 200000;
-  int checked = 0;
   for (int i = 0; i < 60; ++i) {
     const CapConfig c{angle(rng), angle(rng), angle(rng)};
     const auto [estimate, sigma] = monteCarloIntersection(c, kSamples, rng);
     // 5 sigma: a correct formula fails this about once in 3 million configurations.
     EXPECT_NEAR(capIntersectionExact(c.r0, c.r1, c.d), estimate, 5 * sigma)
         << "r0=" << c.r0 << " r1=" << c.r1 << " d=" << c.d;
-    ++checked;
   }
-  EXPECT_EQ(checked, 60);
 }
 
 TEST(CapIntersection, ExactMatchesMonteCarloForLargeCaps) {

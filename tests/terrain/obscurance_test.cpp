@@ -209,13 +209,11 @@ TEST(ObscuranceSamples, DiscrepancyOfAKnownSetMatchesBruteForce) {
   EXPECT_NEAR(l2StarDiscrepancy(points), std::sqrt(sum / trials), 2e-3);
 }
 
-TEST(ObscuranceSamples, DeterministicAndOnlyForSupportedCounts) {
-  EXPECT_EQ(obscuranceSampleOffsets(16), obscuranceSampleOffsets(16));
+TEST(ObscuranceSamples, OnlyForSupportedCounts) {
   EXPECT_TRUE(isSupportedObscuranceSampleCount(32));
   EXPECT_FALSE(isSupportedObscuranceSampleCount(12));
   EXPECT_THROW(obscuranceUnitCubePoints(12), std::invalid_argument);
   EXPECT_THROW(obscuranceSampleOffsets(0), std::invalid_argument);
-  EXPECT_EQ(obscuranceCellSampleOffsets(16, 5), obscuranceCellSampleOffsets(16, 5));
   EXPECT_THROW(obscuranceCellSampleOffsets(16, 16), std::invalid_argument);
   EXPECT_THROW(obscuranceCellUnitCubePoints(16, -1), std::invalid_argument);
   EXPECT_THROW(obscuranceCellShifts(24), std::invalid_argument);

@@ -4,8 +4,10 @@
 
 #include <cmath>
 #include <random>
+#include <vector>
 
 #include <glm/geometric.hpp>
+#include <glm/vec3.hpp>
 
 #include "caps.h"
 
@@ -83,6 +85,135 @@ TEST(Shading, BaselinesIgnoreTheAperture) {
   const glm::vec3 ao = shade(in, ShadingMode::BaselineAo);
   EXPECT_NEAR(ao.r, 0.3f / kPi * (100.0f * std::cos(kPi / 4) + kPi * 5.0f * (1 - std::cos(0.2f))),
               1e-3f);
+}
+
+// Closed forms of the sky and sun terms (issue 17), by quadrature over the
+// sphere here rather than by the shading code's helpers: the same error in
+// terrain/shading.cpp and shaders/shading.glsl passes their parity test, and
+// at r = pi/2 with N = B the sky term cannot tell sin^2 r from sin r.
+
+// A unit vector at polar angle theta and azimuth phi about `axis`.
+glm::dvec3 around(const glm::dvec3& axis, double theta, double phi) {
+  const glm::dvec3 helper = std::abs(axis.z) < 0.9 ? glm::dvec3(0, 0, 1) : glm::dvec3(1, 0, 0);
+  const glm::dvec3 u = glm::normalize(glm::cross(helper, axis)), v = glm::cross(axis, u);
+  return std::cos(theta) * axis + std::sin(theta) * (std::cos(phi) * u + std::sin(phi) * v);
+}
+
+// The integral of g(omega) d omega over the cap of arc length r about `axis`,
+// midpoint rule in (theta, phi) with d omega = sin theta d theta d phi.
+template <class G>
+double capIntegral(const glm::dvec3& axis, double r, const G& g, int steps = 600) {
+  double sum = 0;
+  const double dTheta = r / steps, dPhi = 2 * std::acos(-1.0) / (2 * steps);
+  for (int i = 0; i < steps; ++i) {
+    const double theta = (i + 0.5) * dTheta;
+    for (int j = 0; j < 2 * steps; ++j) {
+      sum += g(around(axis, theta, (j + 0.5) * dPhi)) * std::sin(theta) * dTheta * dPhi;
+    }
+  }
+  return sum;
+}
+
+struct TiltedAperture {
+  glm::dvec3 normal, bent;
+  double radius, tiltRad;
+};
+
+// N = up, B tilted from it by `tiltDeg` towards azimuth 30 degrees: the
+// apertures of the tests, r below and at pi/2.
+std::vector<TiltedAperture> tiltedApertures() {
+  std::vector<TiltedAperture> out;
+  for (const double r : {0.3, 0.8, 1.2, double(kPi) / 2}) {
+    for (const double tiltDeg : {0.0, 20.0, 50.0}) {
+      const double beta = tiltDeg * kPi / 180, az = 30 * kPi / 180;
+      out.push_back({{0, 0, 1},
+                     {std::sin(beta) * std::cos(az), std::sin(beta) * std::sin(az), std::cos(beta)},
+                     r,
+                     beta});
+    }
+  }
+  return out;
+}
+
+ShadingInputs inputsFor(const TiltedAperture& a, const glm::dvec3& sun) {
+  ShadingInputs in = openGround();
+  in.albedo = glm::vec3(0.3f, 0.5f, 0.7f);
+  in.normal = glm::vec3(a.normal);
+  in.bentNormal = glm::vec3(a.bent);
+  in.apertureRad = float(a.radius);
+  in.sunDirection = glm::vec3(sun);
+  in.transfer = glm::vec3(0.9f, 0.8f, 0.6f);
+  return in;
+}
+
+TEST(Shading, SkyTermIsTheIrradianceOfAUniformCapAboutTheBentNormal) {
+  // E_sky = L_sky times the cosine-weighted solid angle of the aperture
+  // (DESIGN §5; Lambertian surface, uniform sky). Where the cap lies above
+  // N's horizon (tilt + r <= pi/2) that is the irradiance itself, the
+  // integral of max(0, N.w). Where it dips below, the model takes the cap's
+  // vector irradiance pi sin^2(r) B projected on N: the integral of N.w,
+  // the part below the horizon counting negatively.
+  for (const TiltedAperture& a : tiltedApertures()) {
+    const bool aboveHorizon = a.tiltRad + a.radius <= kPi / 2 + 1e-9;
+    const double cosineArea = capIntegral(a.bent, a.radius, [&](const glm::dvec3& w) {
+      const double c = glm::dot(a.normal, w);
+      return aboveHorizon ? std::max(0.0, c) : c;
+    });
+    // The sun well outside the aperture: none of the sky is its share.
+    const glm::dvec3 sun = around(a.bent, a.radius + 0.1, 1.0);
+    const ShadingInputs in = inputsFor(a, sun);
+    for (ShadingMode mode : {ShadingMode::Approx, ShadingMode::Exact}) {
+      const ShadingTerms t = shadingTerms(in, mode);
+      ASSERT_EQ(t.sunFraction, 0.0f);
+      const double expected = 5.0 * cosineArea;
+      EXPECT_NEAR(t.skyIrradiance.g, expected, 1e-4 * kPi * 5.0)
+          << "r " << a.radius << " tilt " << a.tiltRad << " mode " << int(mode);
+      EXPECT_NEAR(t.ambient.b, 0.7 / kPi * expected * 0.6, 1e-4 * 0.7 * 5.0)
+          << "r " << a.radius << " tilt " << a.tiltRad;
+    }
+    EXPECT_NEAR(shade(in, ShadingMode::DebugSkyFill).r, cosineArea / kPi, 1e-4)
+        << "r " << a.radius << " tilt " << a.tiltRad;
+  }
+}
+
+TEST(Shading, SunTermIsTheLambertIrradianceOfTheVisiblePartOfTheDisk) {
+  // direct = a/pi E_sun (1/A_s) integral over the sun's disk of
+  // [w inside the aperture] max(0, N.w): the sun well inside the aperture,
+  // across its rim (half hidden) and just outside, leaning partly towards N.
+  const double sunRadius = 0.004653;
+  int halfHiddenAndLit = 0;  // the cases that tell the centroid's Lambert term apart
+  for (const TiltedAperture& a : tiltedApertures()) {
+    for (const double offset : {-0.5 * a.radius, 0.0, 3 * sunRadius}) {
+      const double d = a.radius + offset;
+      const glm::dvec3 sun = around(a.bent, d, 2.0);
+      const auto visible = [&](const glm::dvec3& w) {
+        return std::atan2(glm::length(glm::cross(w, a.bent)), glm::dot(w, a.bent)) <= a.radius;
+      };
+      // The disk's own quadrature as the area: its discretisation cancels.
+      const double area = capIntegral(
+          sun, sunRadius, [](const glm::dvec3&) { return 1.0; }, 200);
+      const double fraction =
+          capIntegral(
+              sun, sunRadius, [&](const glm::dvec3& w) { return visible(w) ? 1.0 : 0.0; }, 200) /
+          area;
+      const double lambert = capIntegral(
+                                 sun, sunRadius,
+                                 [&](const glm::dvec3& w) {
+                                   return visible(w) ? std::max(0.0, glm::dot(a.normal, w)) : 0.0;
+                                 },
+                                 200) /
+                             area;
+      ShadingInputs in = inputsFor(a, sun);
+      in.sunRadiusRad = float(sunRadius);
+      const ShadingTerms t = shadingTerms(in, ShadingMode::Exact);
+      EXPECT_NEAR(t.sunFraction, fraction, 2e-3)
+          << "r " << a.radius << " tilt " << a.tiltRad << " sun " << d;
+      EXPECT_NEAR(t.direct.r, 0.3 / kPi * 100.0 * lambert, 1e-3 * 0.3 / kPi * 100.0)
+          << "r " << a.radius << " tilt " << a.tiltRad << " sun " << d;
+      halfHiddenAndLit += fraction > 0.3 && fraction < 0.7 && lambert > 0.1;
+    }
+  }
+  EXPECT_GE(halfHiddenAndLit, 8);
 }
 
 TEST(Shading, DebugViewsShowTheirQuantities) {

@@ -34,6 +34,16 @@ OIIO::ImageSpec specOf(const fs::path& path) {
   return in->spec();
 }
 
+// The decoded 8-bit pixels of an image, empty when it cannot be read.
+std::vector<uint8_t> pixelsOf(const fs::path& path) {
+  auto in = OIIO::ImageInput::open(path.string());
+  if (!in) return {};
+  const OIIO::ImageSpec& spec = in->spec();
+  std::vector<uint8_t> pixels(spec.image_pixels() * spec.nchannels);
+  if (!in->read_image(0, 0, 0, spec.nchannels, OIIO::TypeDesc::UINT8, pixels.data())) return {};
+  return pixels;
+}
+
 TEST(AalRender, BakesCachesAndWritesAPng) {
   TempDir dir;
   const fs::path out = dir.path() / "a.png";
@@ -43,13 +53,18 @@ TEST(AalRender, BakesCachesAndWritesAPng) {
   EXPECT_EQ(specOf(out).height, 36);
   EXPECT_NE(r.out.find("gpu terrain"), std::string::npos) << r.out;
   EXPECT_NE(r.out.find("triangles"), std::string::npos) << r.out;
-  size_t cached = 0;
-  for ([[maybe_unused]] const auto& e : fs::directory_iterator(dir.path() / "cache")) ++cached;
-  EXPECT_EQ(cached, 1u);
-  // The second run uses the cache: same picture.
+  std::vector<fs::path> cached;
+  for (const auto& e : fs::directory_iterator(dir.path() / "cache")) cached.push_back(e.path());
+  ASSERT_EQ(cached.size(), 1u);
+  const fs::file_time_type baked = fs::last_write_time(cached[0]);
+  // The second run reads the cache (a rebake would rewrite the entry) and
+  // draws the same picture.
   const fs::path again = dir.path() / "b.png";
   ASSERT_EQ(render(dir, "-o " + quoted(again) + " --size 64x36").exitCode, 0);
-  EXPECT_EQ(fs::file_size(out), fs::file_size(again));
+  EXPECT_TRUE(fs::last_write_time(cached[0]) == baked) << "the second run rewrote the cache entry";
+  const std::vector<uint8_t> first = pixelsOf(out), second = pixelsOf(again);
+  ASSERT_EQ(first.size(), 64u * 36 * 4);
+  EXPECT_TRUE(first == second) << "the cached map's picture differs";
 }
 
 TEST(AalRender, ExrIsLinearHdr) {
@@ -199,14 +214,6 @@ TEST(AalRender, ObscuranceAndTransferViewsAreLinearInExr) {
   EXPECT_LE(meanW, 1.0);
   EXPECT_EQ(minOff, 1.0f);
   EXPECT_EQ(meanOff, 1.0);
-}
-
-std::vector<uint8_t> pixelsOf(const fs::path& path) {
-  auto in = OIIO::ImageInput::open(path.string());
-  if (!in) return {};
-  std::vector<uint8_t> pixels(in->spec().image_pixels() * size_t(in->spec().nchannels));
-  in->read_image(0, 0, 0, -1, OIIO::TypeDesc::UINT8, pixels.data());
-  return pixels;
 }
 
 // --max-tile splits the DEM's textures into tiles (docs/rendering.md): the
