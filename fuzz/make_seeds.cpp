@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "gdal_raster.h"
+#include "hostile_files.h"
 
 namespace fs = std::filesystem;
 
@@ -84,6 +85,13 @@ int main(int argc, char** argv) {
   png.extra = [](GDALDataset& ds) { ds.GetRasterBand(1)->SetNoDataValue(0); };
   seed("image.png", 3, png, "PNG");
   writeFile(out / "load_dem" / "grid.asc", std::string("\x02", 1) + kAsciiGrid);
+  // The oversize cases: headers that claim more than their files hold.
+  writeFile(out / "load_dem" / "shared_strips.tif",
+            std::string("\x00", 1) + aal::test::sharedStripTiff(64, 256));
+  writeFile(out / "load_dem" / "claims.png",
+            std::string("\x03", 1) + aal::test::pngClaiming(40000, 40000));
+  aal::test::GdalRaster far = placed("EPSG:3857", 1e18, 80, 30);
+  seed("far_mercator.tif", 0, far, "GTiff");
   fs::remove_all(scratch);
 
   // raster: bytes the FuzzedDataProvider turns into a raster description.

@@ -16,6 +16,7 @@
 #include <string>
 #include <vector>
 
+#include "hostile_files.h"
 #include "run_tool.h"
 
 namespace aal {
@@ -111,40 +112,11 @@ TEST(HostileInput, OutputsThatAliasInputsOrEachOtherExitWithTwoInEveryTool) {
   EXPECT_EQ(entriesOf(dir.path()), std::vector<std::string>{"m.exr"});
 }
 
-// A 1 MB TIFF whose 65536 strips of one row all point at the same bytes: it
-// claims 65536 x 4096 float heights (1 GB) that it does not hold.
-void writeSharedStripTiff(const fs::path& path) {
-  const uint32_t width = 4096, height = 65536, rowBytes = 4 * width, tags = 9;
-  const uint32_t offsets = 8 + 2 + tags * 12 + 4, counts = offsets + 4 * height,
-                 data = counts + 4 * height;
-  std::string b("II*\0", 4);
-  const auto u16 = [&](uint16_t v) { b.append(reinterpret_cast<const char*>(&v), 2); };
-  const auto u32 = [&](uint32_t v) { b.append(reinterpret_cast<const char*>(&v), 4); };
-  const auto tag = [&](uint16_t id, uint16_t type, uint32_t count, uint32_t value) {
-    u16(id), u16(type), u32(count), u32(value);
-  };
-  u32(8);
-  u16(tags);
-  tag(256, 4, 1, width);
-  tag(257, 4, 1, height);
-  tag(258, 3, 1, 32);
-  tag(259, 3, 1, 1);
-  tag(262, 3, 1, 1);
-  tag(273, 4, height, offsets);
-  tag(278, 4, 1, 1);
-  tag(279, 4, height, counts);
-  tag(339, 3, 1, 3);
-  u32(0);
-  for (uint32_t row = 0; row < height; ++row) u32(data);
-  for (uint32_t row = 0; row < height; ++row) u32(rowBytes);
-  b.append(rowBytes, '\0');
-  std::ofstream(path, std::ios::binary) << b;
-}
-
 TEST(HostileInput, ATinyFileClaimingAHugeDemIsRefusedAtOnceByEveryTool) {
   TempDir dir;
   const fs::path claims = dir.path() / "claims.tif";
-  writeSharedStripTiff(claims);
+  // 65536 strips of 4096 floats, all at the same bytes: 1 GB claimed by 1 MB.
+  std::ofstream(claims, std::ios::binary) << test::sharedStripTiff(4096, 65536);
   const std::string out = quoted(dir.path() / "out");
   const std::vector<ToolCase> cases = {
       {"aal-info", quoted(claims)},

@@ -17,6 +17,7 @@
 #include "dem_test_util.h"
 #include "gdal_raster.h"
 #include "georeference.h"
+#include "hostile_files.h"
 
 namespace aal {
 namespace {
@@ -506,98 +507,44 @@ TEST_F(GdalDem, SubdatasetsAreNamed) {
   EXPECT_EQ(f.at(2, 1), 12.0f);
 }
 
-// A classic little-endian float32 TIFF of side x side texels in strips of
-// one row, strip `row` at stripOffset(row, data), where `data` is the start
-// of `dataRows` rows of zeros at the file's end: a hostile header costs a
-// few bytes per strip.
-std::string stripTiff(int side, int dataRows,
-                      const std::function<uint32_t(int, uint32_t)>& stripOffset,
-                      uint32_t stripBytes = 0) {
-  std::string b = std::string("II*\0", 4);
-  const auto u16 = [&](uint16_t v) { b.append(reinterpret_cast<const char*>(&v), 2); };
-  const auto u32 = [&](uint32_t v) { b.append(reinterpret_cast<const char*>(&v), 4); };
-  const uint32_t rowBytes = 4u * side, tags = 9, ifdEnd = 8 + 2 + tags * 12 + 4;
-  const uint32_t offsets = ifdEnd, counts = offsets + 4u * side, data = counts + 4u * side;
-  u32(8);
-  u16(tags);
-  const auto tag = [&](uint16_t id, uint16_t type, uint32_t count, uint32_t value) {
-    u16(id), u16(type), u32(count), u32(value);  // SHORT values sit left-justified
-  };
-  tag(256, 4, 1, side);        // ImageWidth
-  tag(257, 4, 1, side);        // ImageLength
-  tag(258, 3, 1, 32);          // BitsPerSample
-  tag(259, 3, 1, 1);           // Compression: none
-  tag(262, 3, 1, 1);           // Photometric: min is black
-  tag(273, 4, side, offsets);  // StripOffsets
-  tag(278, 4, 1, 1);           // RowsPerStrip
-  tag(279, 4, side, counts);   // StripByteCounts
-  tag(339, 3, 1, 3);           // SampleFormat: IEEE float
-  u32(0);
-  for (int row = 0; row < side; ++row) u32(stripOffset(row, data));
-  for (int row = 0; row < side; ++row) u32(stripBytes > 0 ? stripBytes : rowBytes);
-  b.append(static_cast<size_t>(rowBytes) * dataRows, '\0');
-  return b;
-}
-
 TEST_F(GdalDem, StripsThatShareBytesAreRefusedBeforeAllocating) {
   // The adversarial case: 370 kB claiming 46340^2 texels took 10.6 GB. Here
   // 2048^2 (16 MB of floats) from 40 kB; the check is the same.
   const std::string p = path("shared.tif");
-  test::writeBytes(p, stripTiff(2048, 1, [](int, uint32_t data) { return data; }));
+  test::writeBytes(p, test::sharedStripTiff(2048, 2048));
   test::expectMessage(test::inputErrorOf([&] { DemSource(p, warnings_.options()); }),
                       {p, "its blocks claim 16777216 bytes in all, more than the file's"});
 }
 
 TEST_F(GdalDem, StripPastTheEndIsRefusedBeforeAllocating) {
   const std::string p = path("past.tif");
-  const auto inOrder = [](int row, uint32_t data) { return data + 256u * row; };
-  test::writeBytes(p, stripTiff(64, 64, [&](int row, uint32_t data) {
+  const auto inOrder = [](uint32_t row, uint32_t data) { return data + 256u * row; };
+  test::writeBytes(p, test::stripTiff(64, 64, 64, [&](uint32_t row, uint32_t data) {
                      return row == 5 ? 1000000u : inOrder(row, data);
                    }));
   test::expectMessage(test::inputErrorOf([&] { DemSource(p, warnings_.options()); }),
                       {p, "truncated or corrupt: block 0, 5 lies at bytes 1000000 to 1000256"});
   // Every strip in its own place: a DEM.
   const std::string good = path("good.tif");
-  test::writeBytes(good, stripTiff(64, 64, inOrder));
+  test::writeBytes(good, test::stripTiff(64, 64, 64, inOrder));
   EXPECT_EQ(loadDem(good, warnings_.options()).width, 64);
 }
 
 TEST_F(GdalDem, UncompressedStripsShorterThanTheirRowsAreRefused) {
   // 512 rows of 2 kB declared, 16 bytes stored each: no codec, no way.
   const std::string p = path("short.tif");
-  test::writeBytes(p, stripTiff(
-                          512, 4, [](int row, uint32_t data) { return data + 16u * row; }, 16));
+  test::writeBytes(
+      p, test::stripTiff(
+             512, 512, 4, [](uint32_t row, uint32_t data) { return data + 16u * row; }, 16));
   test::expectMessage(test::inputErrorOf([&] { DemSource(p, warnings_.options()); }),
                       {p,
                        "declares 1048576 bytes of samples, but its uncompressed blocks of 8192 "
                        "bytes only 8192 bytes can hold"});
 }
 
-// CRC-32 of PNG chunks (ISO 3309), bit by bit: a test needs a few bytes.
-uint32_t crc32(const std::string& bytes) {
-  uint32_t crc = 0xffffffffu;
-  for (const unsigned char byte : bytes) {
-    crc ^= byte;
-    for (int bit = 0; bit < 8; ++bit) crc = (crc >> 1) ^ (0xedb88320u & (0u - (crc & 1u)));
-  }
-  return ~crc;
-}
-
 TEST_F(GdalDem, PngClaimingMoreThanZlibCanHoldIsRefused) {
-  std::string png = "\x89PNG\r\n\x1a\n";
-  const auto chunk = [&](const std::string& type, const std::string& data) {
-    const auto be32 = [](uint32_t v) {
-      return std::string{static_cast<char>(v >> 24), static_cast<char>(v >> 16),
-                         static_cast<char>(v >> 8), static_cast<char>(v)};
-    };
-    png += be32(static_cast<uint32_t>(data.size())) + type + data + be32(crc32(type + data));
-  };
-  const std::string side = std::string("\0\0", 2) + "\x9c\x40";  // 40000
-  chunk("IHDR", side + side + std::string("\x10\0\0\0\0", 5));   // 16-bit grey
-  chunk("IDAT", std::string(200, 'x'));
-  chunk("IEND", "");
   const std::string p = path("claims.png");
-  test::writeBytes(p, png);
+  test::writeBytes(p, test::pngClaiming(40000, 40000));
   test::expectMessage(test::inputErrorOf([&] { DemSource(p, warnings_.options()); }),
                       {p, "declares 3200000000 bytes of samples, but at zlib's best ratio"});
 }
