@@ -266,6 +266,19 @@ TEST(AalView, BadCommandLineExitsWithTwoBeforeOpeningAWindow) {
   EXPECT_NE(path.out.find("line 1"), std::string::npos) << path.out;
 }
 
+// Issue 17, item 12: these exited 1, as if the system had failed.
+TEST(AalView, ATinyDemAndAMissingDeviceExitWithTwo) {
+  TempDir dir;
+  const fs::path one = dir.path() / "one.asc";
+  writeText(one, "ncols 1\nnrows 1\nxllcorner 0\nyllcorner 0\ncellsize 5\n7\n");
+  const auto tiny = view(dir, quoted(one) + " --frames 2");
+  EXPECT_EQ(tiny.exitCode, 2) << tiny.out;
+  EXPECT_NE(tiny.out.find("1 x 1 texels have no surface to render"), std::string::npos) << tiny.out;
+  const auto device = view(dir, quoted(kDem) + " --frames 2 --device 9");
+  EXPECT_EQ(device.exitCode, 2) << device.out;
+  EXPECT_NE(device.out.find("--device 9 is not available"), std::string::npos) << device.out;
+}
+
 TEST(AalView, HelpExplainsTheControls) {
   const auto r = runTool("aal-view", "--help");
   ASSERT_EQ(r.exitCode, 0);
