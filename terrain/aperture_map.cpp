@@ -428,13 +428,13 @@ std::string apertureTileName(int row, int column) {
 
 namespace {
 
-constexpr const char* kIndexName = "index.txt";
 constexpr const char* kIndexMagic = "aal-aperture-tiles 1";
 
 }  // namespace
 
-void writeApertureTileIndex(const std::string& folder, const ApertureTileIndex& index) {
-  const std::filesystem::path path = std::filesystem::path(folder) / kIndexName;
+void writeApertureTileIndex(const std::string& folder, const ApertureTileIndex& index,
+                            const std::string& name) {
+  const std::filesystem::path path = std::filesystem::path(folder) / name;
   AtomicOutput output(path);
   std::ostringstream text;
   text.precision(17);
@@ -463,11 +463,11 @@ void writeApertureTileIndex(const std::string& folder, const ApertureTileIndex& 
   output.commit();
 }
 
-ApertureTileIndex readApertureTileIndex(const std::string& folder) {
-  const std::filesystem::path path = std::filesystem::path(folder) / kIndexName;
+ApertureTileIndex readApertureTileIndex(const std::string& folder, const std::string& name) {
+  const std::filesystem::path path = std::filesystem::path(folder) / name;
   std::ifstream in(path);
   if (!in) {
-    throw InputError("aperture map folder " + folder + " has no " + kIndexName +
+    throw InputError("aperture map folder " + folder + " has no " + name +
                      ": not a tiled bake, or its bake has not finished (run the same aal-bake "
                      "command again to resume it)");
   }

@@ -95,10 +95,14 @@ struct ApertureTileIndex {
 
 // "tile_0002_0013.exr" for tile row 2, column 13.
 std::string apertureTileName(int row, int column);
-// index.txt in `folder`, written via a temporary file renamed into place.
-void writeApertureTileIndex(const std::string& folder, const ApertureTileIndex& index);
-// Throws InputError naming the folder when index.txt is missing or malformed.
-ApertureTileIndex readApertureTileIndex(const std::string& folder);
+// index.txt in `folder`, written via a temporary file renamed into place;
+// `name` another file of the same format (a tiled bake's manifest.txt).
+void writeApertureTileIndex(const std::string& folder, const ApertureTileIndex& index,
+                            const std::string& name = "index.txt");
+// Throws InputError naming the folder when index.txt (or `name`) is
+// missing or malformed.
+ApertureTileIndex readApertureTileIndex(const std::string& folder,
+                                        const std::string& name = "index.txt");
 // Throws InputError naming the tile's file unless the header is that of
 // tile (row, column) of `index` (size, origin, DEM checksum, attributes).
 void checkApertureTile(const ApertureTileIndex& index, int row, int column,
