@@ -38,10 +38,20 @@ fs::path findCachedAperture(const Heightfield& field, const std::string& demPath
   std::error_code error;
   if (!fs::exists(path, error)) return {};
   try {
-    const ApertureMapReader reader(path.string());
+    ApertureMapReader reader(path.string());
     checkApertureMatchesDem(reader.header(), path.string(), field, demPath);
+    // Only a map whose every pixel verifies is used: the header alone
+    // survives a truncation (issue 17).
+    if (!reader.header().pixelChecksum) {
+      throw InputError("aperture map " + path.string() +
+                       " has no pixel checksum (aal:pixelChecksum): written before maps "
+                       "carried one");
+    }
+    reader.verify();
     return path;
-  } catch (const InputError& e) {
+  } catch (const std::exception& e) {
+    // Anything wrong with an entry (a bad_alloc for a damaged header's size
+    // too) makes it unusable, never fatal.
     if (whyUnusable) *whyUnusable = e.what();
   }
   return {};
@@ -55,9 +65,14 @@ CachedAperture cachedOrBakedAperture(const Heightfield& field, const std::string
   if (fs::path found = findCachedAperture(field, demPath, options, &whyUnusable); !found.empty()) {
     return {found, {}};
   }
-  // A damaged or stale cache entry is replaced, not fatal.
-  if (!whyUnusable.empty() && !quiet) {
-    std::fprintf(stderr, "note: rebaking (cache entry unusable: %s)\n", whyUnusable.c_str());
+  // A damaged or stale cache entry is replaced (atomically, by the
+  // writer's rename), not fatal; said even when quiet, as a DEM's warnings.
+  if (!whyUnusable.empty()) {
+    for (char& c : whyUnusable) {
+      if (c == '\n' || c == '\r') c = ' ';  // one line
+    }
+    std::fprintf(stderr, "warning: rebaking the cached aperture map %s: %s\n", path.c_str(),
+                 whyUnusable.c_str());
   }
   ProgressBar progress("baking apertures", !quiet);
   // The caller's hook (e.g. aal-view's progress bar) still hears every step.

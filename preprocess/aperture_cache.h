@@ -18,8 +18,10 @@ std::filesystem::path apertureCacheDirectory();
 // Cache file for this DEM (its loaded heights) and these bake options.
 std::filesystem::path cachedAperturePath(const Heightfield& field, const BakeOptions& options);
 
-// The cache entry for this DEM and these options when it exists and matches
-// the DEM, else empty (with the reason in *whyUnusable for a bad entry).
+// The cache entry for this DEM and these options when it exists, matches
+// the DEM and verifies: every pixel decodes and matches aal:pixelChecksum
+// (an entry without one is not verified). Else empty, with the reason in
+// *whyUnusable for an entry that exists. Reads the whole map.
 std::filesystem::path findCachedAperture(const Heightfield& field, const std::string& demPath,
                                          const BakeOptions& options,
                                          std::string* whyUnusable = nullptr);
@@ -31,8 +33,10 @@ struct CachedAperture {
   ApertureMap map;             // filled only when not cached
 };
 
-// The cached map when present and valid, else a fresh bake (with progress on
-// stderr unless quiet) written to the cache atomically. `demPath` names the
+// The cached map when present and verified (findCachedAperture), else a
+// fresh bake (with progress on stderr unless quiet) written to the cache
+// atomically; an unusable entry is replaced, with a warning line on stderr
+// naming it and why. `demPath` names the
 // DEM in the map's aal:source. options.progress, when set, is called too;
 // options.cancel stops the bake (BakeCancelled) before anything is written.
 CachedAperture cachedOrBakedAperture(const Heightfield& field, const std::string& demPath,

@@ -1,11 +1,20 @@
 #include "tiled_bake.h"
 
+#include <fcntl.h>
+#include <sys/file.h>
+#include <unistd.h>
+
 #include <algorithm>
+#include <cerrno>
+#include <cstdio>
+#include <cstring>
 #include <filesystem>
 #include <functional>
 #include <optional>
 #include <stdexcept>
+#include <string>
 #include <system_error>
+#include <utility>
 #include <vector>
 
 #include "atomic_file.h"
@@ -19,6 +28,32 @@
 namespace aal {
 
 namespace fs = std::filesystem;
+
+TiledBakeLock::TiledBakeLock(const std::string& folder) {
+  const fs::path path = fs::path(folder) / kTiledBakeLockName;
+  fd_ = ::open(path.c_str(), O_RDWR | O_CREAT | O_CLOEXEC, 0644);
+  if (fd_ < 0) {
+    throw std::runtime_error("cannot open the lock file " + path.string() + ": " +
+                             std::strerror(errno));
+  }
+  // The file stays empty: a refused bake changes nothing in the folder.
+  if (::flock(fd_, LOCK_EX | LOCK_NB) != 0) {
+    const int error = errno;
+    ::close(fd_);
+    fd_ = -1;
+    if (error == EWOULDBLOCK) {
+      throw TiledBakeBusy("another aal-bake is baking into " + folder + " (it holds " +
+                          path.string() +
+                          "): wait for it to finish and run this command again, or bake into "
+                          "another folder");
+    }
+    throw std::runtime_error("cannot lock " + path.string() + ": " + std::strerror(error));
+  }
+}
+
+TiledBakeLock::~TiledBakeLock() {
+  if (fd_ >= 0) ::close(fd_);
+}
 
 void checkTiledBakeOptions(const BakeOptions& bake, const TiledBakeOptions& tiled) {
   if (tiled.tileSize < kMinTileSize || tiled.tileSize > kMaxTileSize) {
@@ -40,31 +75,98 @@ void checkTiledBakeOptions(const BakeOptions& bake, const TiledBakeOptions& tile
 
 namespace {
 
-// Throws InputError when the folder's index (from a finished run) is not
-// that of this bake.
-void checkExistingIndex(const std::string& folder, const ApertureTileIndex& want) {
-  if (!fs::exists(fs::path(folder) / "index.txt")) return;
-  const ApertureTileIndex have = readApertureTileIndex(folder);
-  // The index describes the whole map as tile (0, 0) of one tile would.
+// "fbm.tif, 300x200, heights checksum 0123456789abcdef": whose bake it is.
+std::string describeDem(const ApertureMapHeader& map) {
+  return (map.info.source.empty() ? std::string("a DEM") : map.info.source) + ", " +
+         std::to_string(map.info.sourceWidth) + "x" + std::to_string(map.info.sourceHeight) +
+         ", heights checksum " + map.info.sourceChecksum;
+}
+
+std::string pickAnotherFolder(const std::string& folder) {
+  return ": bake into another folder, or delete " + folder + " first";
+}
+
+// Throws InputError unless `have`, what the folder's record `name` says, is
+// this bake: the same DEM (size, checksum), options and tile size.
+void checkSameBake(const std::string& folder, const std::string& name,
+                   const ApertureTileIndex& have, const ApertureTileIndex& want) {
+  const std::string whose = " (its " + name + ": " + describeDem(have.map) + ")";
+  if (have.map.width != want.map.width || have.map.height != want.map.height ||
+      have.map.info.sourceChecksum != want.map.info.sourceChecksum) {
+    throw InputError(folder + " holds the tiled bake of another DEM" + whose + ", not of " +
+                     describeDem(want.map) + pickAnotherFolder(folder));
+  }
+  // The record describes the whole map as tile (0, 0) of one tile would.
   ApertureTileIndex whole = want;
   whole.tileSize = std::max(want.map.width, want.map.height);
   try {
-    checkApertureTile(whole, 0, 0, have.map, folder + "/index.txt");
+    checkApertureTile(whole, 0, 0, have.map, folder + "/" + name);
   } catch (const InputError&) {
-    throw InputError(folder +
-                     " holds a finished tiled bake of another DEM or with other "
-                     "options: remove it or write to another folder");
+    throw InputError(folder + " holds a tiled bake of this DEM with other options" + whose +
+                     pickAnotherFolder(folder));
   }
   if (have.tileSize != want.tileSize) {
-    throw InputError(folder + " holds a tiled bake with tiles of " + std::to_string(have.tileSize) +
-                     ", not " + std::to_string(want.tileSize) +
-                     ": remove it or write to another folder");
+    throw InputError(folder + " holds a tiled bake of this DEM in tiles of " +
+                     std::to_string(have.tileSize) + ", not " + std::to_string(want.tileSize) +
+                     whose + pickAnotherFolder(folder));
+  }
+}
+
+// (row, column) of a file named as apertureTileName names tiles, else nothing.
+std::optional<std::pair<int, int>> tileOfName(const std::string& name) {
+  int row = -1, column = -1;
+  if (std::sscanf(name.c_str(), "tile_%4d_%4d.exr", &row, &column) != 2 || row < 0 || column < 0 ||
+      apertureTileName(row, column) != name) {
+    return std::nullopt;
+  }
+  return std::pair{row, column};
+}
+
+// Throws InputError, having touched nothing, unless the folder is empty of
+// bakes or holds this bake's: its index.txt (finished) and manifest.txt
+// (started) must describe this bake; a folder with neither (a bake
+// interrupted before manifests existed) must have no readable tile of
+// another bake.
+void checkFolderHoldsThisBake(const std::string& folder, const ApertureTileIndex& want) {
+  bool recorded = false;
+  for (const char* name : {"index.txt", kTiledBakeManifestName}) {
+    if (!fs::exists(fs::path(folder) / name)) continue;
+    checkSameBake(folder, name, readApertureTileIndex(folder, name), want);
+    recorded = true;
+  }
+  if (recorded) return;
+  std::vector<std::string> tiles;  // in name order: the first tile is named
+  std::error_code error;
+  for (const fs::directory_entry& entry : fs::directory_iterator(folder, error)) {
+    const std::string name = entry.path().filename().string();
+    if (tileOfName(name)) tiles.push_back(name);
+  }
+  std::sort(tiles.begin(), tiles.end());
+  for (const std::string& name : tiles) {
+    const std::string path = (fs::path(folder) / name).string();
+    std::optional<ApertureMapReader> reader;
+    try {
+      reader.emplace(path);
+    } catch (const InputError&) {
+      continue;  // unreadable: nobody's, baked again at its turn
+    }
+    const auto [row, column] = *tileOfName(name);
+    try {
+      if (row >= want.rows() || column >= want.columns()) {
+        throw InputError("aperture tile " + path + " lies outside this bake");
+      }
+      checkApertureTile(want, row, column, reader->header(), path);
+    } catch (const InputError& e) {
+      throw InputError(folder + " holds another tiled bake (its " + name + ": " +
+                       describeDem(reader->header()) + "): " + e.what() +
+                       pickAnotherFolder(folder));
+    }
   }
 }
 
 // Whether tile (row, column) is already in the folder, finished and
-// readable. A tile of another bake is an InputError; an unreadable one is
-// baked again.
+// verified. A tile of another bake is an InputError; an unreadable one, or
+// one whose pixels do not match their checksum, is baked again.
 bool tileFinished(const ApertureTileIndex& index, const std::string& folder, int row, int column) {
   const std::string path = (fs::path(folder) / apertureTileName(row, column)).string();
   if (!fs::exists(path)) return false;
@@ -79,18 +181,22 @@ bool tileFinished(const ApertureTileIndex& index, const std::string& folder, int
   } catch (const InputError& e) {
     throw InputError(std::string(e.what()) + ": remove the folder or write to another one");
   }
-  // Every row must decode.
-  const int width = reader->header().width, height = reader->header().height;
-  constexpr int kRows = 64;
-  std::vector<uint16_t> rows(static_cast<size_t>(width) * kRows * 4);
   try {
-    for (int y = 0; y < height; y += kRows) {
-      reader->readHalfRows(y, std::min(height, y + kRows), rows.data());
-    }
+    reader->verify();
   } catch (const InputError&) {
     return false;
   }
   return true;
+}
+
+// Creates the output folder (not its parents) when missing.
+void createFolder(const std::string& folder) {
+  std::error_code error;
+  fs::create_directory(folder, error);
+  if (!fs::is_directory(folder)) {
+    throw std::runtime_error("cannot create the output folder " + folder +
+                             (error ? ": " + error.message() : ""));
+  }
 }
 
 }  // namespace
@@ -105,14 +211,11 @@ TiledBakeSummary bakeTiles(const Heightfield& geometry, const std::string& check
                            const TileRowTerrain& terrainFor, const BakeOptions& bake,
                            const TiledBakeOptions& tiled, const std::string& folder) {
   checkTiledBakeOptions(bake, tiled);
-  std::error_code error;
-  fs::create_directory(folder, error);
-  if (!fs::is_directory(folder)) {
-    throw std::runtime_error("cannot create the output folder " + folder +
-                             (error ? ": " + error.message() : ""));
-  }
-  // What a killed run left behind; a running bake's temporaries stay.
-  removeDeadTemporaries(folder);
+  createFolder(folder);
+  // Held to the end: a second bake into this folder stops here, before it
+  // could sweep this one's temporaries or write a tile (issue 17).
+  std::optional<TiledBakeLock> ownLock;
+  if (!tiled.lock) ownLock.emplace(folder);
 
   ApertureTileIndex index;
   index.map.width = geometry.width;
@@ -121,7 +224,13 @@ TiledBakeSummary bakeTiles(const Heightfield& geometry, const std::string& check
   index.map.info.source = tiled.sourceName;
   index.map.info.sourceChecksum = checksum;
   index.tileSize = tiled.tileSize;
-  checkExistingIndex(folder, index);
+  // Another bake's folder is refused before anything in it is touched.
+  checkFolderHoldsThisBake(folder, index);
+  // What a killed run left behind; a running bake's temporaries stay.
+  removeDeadTemporaries(folder);
+  if (!fs::exists(fs::path(folder) / kTiledBakeManifestName)) {
+    writeApertureTileIndex(folder, index, kTiledBakeManifestName);
+  }
 
   TiledBakeSummary summary;
   summary.tiles = index.rows() * index.columns();
@@ -182,6 +291,11 @@ TiledBakeSummary bakeTiledInBands(const DemSource& source, const Heightfield& ge
                                   const BakeOptions& bake, const TiledBakeOptions& tiled,
                                   const std::string& folder) {
   checkTiledBakeOptions(bake, tiled);
+  // An existing folder is locked before the checksum pass, so that a busy
+  // one fails at once (bakeTiles creates and locks a new one).
+  std::optional<TiledBakeLock> ownLock;
+  TiledBakeOptions locked = tiled;
+  if (!locked.lock && fs::is_directory(folder)) locked.lock = &ownLock.emplace(folder);
   // One pass for the DEM's checksum (and its voids, refused before any tile).
   HeightfieldHasher hasher(geometry.width, geometry.height);
   const int chunk =
@@ -204,7 +318,7 @@ TiledBakeSummary bakeTiledInBands(const DemSource& source, const Heightfield& ge
         band = readDemRows(source, geometry, top, bottom - top);
         return band;
       },
-      bake, tiled, folder);
+      bake, locked, folder);
 }
 
 }  // namespace aal

@@ -5,11 +5,43 @@
 // in-memory bake bit for bit. docs/baking.md.
 #pragma once
 
+#include <stdexcept>
 #include <string>
 
 #include "bake.h"
 
 namespace aal {
+
+// The file in a tile folder whose flock a bake holds while it runs. It is
+// left in place: removing it would let a third bake lock a new file while a
+// second still holds the old one.
+constexpr const char* kTiledBakeLockName = ".aal-bake.lock";
+// Written into the folder before any tile, in index.txt's format: whose
+// bake the folder holds while it has no index.txt yet.
+constexpr const char* kTiledBakeManifestName = "manifest.txt";
+
+// Another process holds the folder's lock: a runtime condition (exit 1), not
+// bad input; the same command succeeds once that bake has finished.
+class TiledBakeBusy : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+// An exclusive, non-blocking flock on FOLDER/.aal-bake.lock, held while the
+// object lives (the kernel drops it when the process dies). The folder must
+// exist. Throws TiledBakeBusy, naming the folder, when another process (or
+// another open of the file) holds it, std::runtime_error when the file
+// cannot be opened.
+class TiledBakeLock {
+ public:
+  explicit TiledBakeLock(const std::string& folder);
+  ~TiledBakeLock();
+  TiledBakeLock(const TiledBakeLock&) = delete;
+  TiledBakeLock& operator=(const TiledBakeLock&) = delete;
+
+ private:
+  int fd_ = -1;
+};
 
 // Above this many texels (16384 x 16384) a DEM is baked tiled: at the
 // in-memory bake's ~20 bytes per texel the next size up, 32768 x 32768,
@@ -24,6 +56,9 @@ struct TiledBakeOptions {
   bool halfFloat = true;  // as writeApertureMap
   MapCompression compression = kDefaultMapCompression;
   std::string sourceName;  // aal:source (the DEM's file name)
+  // The folder's lock when the caller took it already (aal-bake does, before
+  // loading the DEM); else the bake takes it.
+  const TiledBakeLock* lock = nullptr;
 };
 
 struct TiledBakeSummary {
@@ -38,12 +73,16 @@ struct TiledBakeSummary {
 void checkTiledBakeOptions(const BakeOptions& bake, const TiledBakeOptions& tiled);
 
 // Bakes `field` into `folder` (created if missing; its parent must exist):
-// one EXR per tile, written as it finishes, then index.txt. Tiles already
-// in the folder from an interrupted run of the same bake are kept
-// (checked: readable, same DEM checksum, options and place); a tile or
-// index of another DEM or other options is an InputError (nothing is
-// overwritten). bake.progress sees the fraction over all tiles; bake.cancel
-// stops between azimuths (BakeCancelled), keeping the finished tiles.
+// one EXR per tile, written as it finishes, then index.txt. The folder is
+// locked for the whole bake (TiledBakeLock: TiledBakeBusy when another bake
+// holds it, before anything is touched). A folder whose index.txt or
+// manifest.txt (or, without either, a tile) is of another DEM, other
+// options or another tile size is an InputError saying whose bake it holds;
+// nothing is touched. Tiles already in the folder from an interrupted run
+// of the same bake are kept when they verify (every pixel decodes and
+// matches its checksum), else baked again. bake.progress sees the fraction
+// over all tiles; bake.cancel stops between azimuths (BakeCancelled),
+// keeping the finished tiles.
 // Memory: the DEM (held by the caller) plus ~16 bytes per texel of one tile.
 TiledBakeSummary bakeTiled(const Heightfield& field, const BakeOptions& bake,
                            const TiledBakeOptions& tiled, const std::string& folder);
@@ -56,7 +95,8 @@ class DemSource;
 // about three tile rows) plus one tile, whatever the DEM's height; the DEM
 // is read once more for its checksum. `geometry` is demGeometry of the
 // source. The DEM must have no voids (filling them needs all of it):
-// InputError naming gdal_fillnodata.py otherwise, before any tile.
+// InputError naming gdal_fillnodata.py otherwise, before any tile. An
+// existing folder is locked before the checksum pass.
 TiledBakeSummary bakeTiledInBands(const DemSource& source, const Heightfield& geometry,
                                   const BakeOptions& bake, const TiledBakeOptions& tiled,
                                   const std::string& folder);

@@ -9,6 +9,7 @@
 #include <ctime>
 #include <filesystem>
 #include <fstream>
+#include <functional>
 #include <map>
 #include <memory>
 #include <mutex>
@@ -20,6 +21,7 @@
 
 #include <Imath/half.h>
 #include <OpenEXR/ImfChannelList.h>
+#include <OpenEXR/ImfConvert.h>
 #include <OpenEXR/ImfDoubleAttribute.h>
 #include <OpenEXR/ImfFloatAttribute.h>
 #include <OpenEXR/ImfFrameBuffer.h>
@@ -30,11 +32,14 @@
 #include <OpenEXR/ImfStandardAttributes.h>
 #include <OpenEXR/ImfStringAttribute.h>
 #include <OpenEXR/ImfThreading.h>
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
 
 #include "atomic_file.h"
 #include "errors.h"
 #include "heightfield_checksum.h"
 #include "interrupt.h"
+#include "pixel_checksum.h"
 
 namespace aal {
 
@@ -92,6 +97,34 @@ Imf::FrameBuffer rowsFrameBuffer(const Imath::Box2i& dataWindow, int firstRow, i
   return frame;
 }
 
+// Rows converted or checked a block at a time, so that a map is never
+// copied whole; a block is 16 of the ZIP chunks (16 rows each) OpenEXR's
+// thread pool compresses or decodes in parallel.
+constexpr int kBlockRows = 256;
+
+// aal:pixelChecksum of the map as writeApertureMap stores it. OpenEXR writes
+// the header before the pixels, so this is a pass of its own.
+uint64_t storedPixelChecksum(const ApertureMap& map, bool halfFloat) {
+  const size_t rowFloats = static_cast<size_t>(map.width) * 4;
+  std::vector<uint64_t> hashes(static_cast<size_t>(map.height));
+  tbb::parallel_for(tbb::blocked_range<int>(0, map.height), [&](const tbb::blocked_range<int>& r) {
+    std::vector<Imath::half> halves(halfFloat ? rowFloats : 0);
+    for (int y = r.begin(); y < r.end(); ++y) {
+      const float* row = map.texels.data() + static_cast<size_t>(y) * rowFloats;
+      if (halfFloat) {
+        std::copy(row, row + rowFloats, halves.begin());  // as the writer converts
+        hashes[static_cast<size_t>(y)] =
+            PixelChecksum::rowHash(y, halves.data(), rowFloats * sizeof(Imath::half));
+      } else {
+        hashes[static_cast<size_t>(y)] = PixelChecksum::rowHash(y, row, rowFloats * sizeof(float));
+      }
+    }
+  });
+  PixelChecksum sum(map.height);
+  for (int y = 0; y < map.height; ++y) sum.addRowHash(y, hashes[static_cast<size_t>(y)]);
+  return sum.value();
+}
+
 }  // namespace
 
 void writeApertureMap(const std::string& path, const ApertureMap& map, bool halfFloat,
@@ -132,11 +165,11 @@ void writeApertureMap(const std::string& path, const ApertureMap& map, bool half
       throw std::invalid_argument("the map has " + std::to_string(map.texels.size()) +
                                   " floats, not 4 per texel");
     }
+    header.insert("aal:pixelChecksum",
+                  Imf::StringAttribute(checksumHex(storedPixelChecksum(map, halfFloat))));
     Imf::OutputFile file(temporary.c_str(), header);
     // OpenEXR writes only the channels' own pixel type: halves are converted
-    // here, a block of rows at a time, so that the map is never copied whole.
-    // A block is 16 of the ZIP chunks (16 rows each) the thread pool compresses.
-    constexpr int kBlockRows = 256;
+    // here, a block of rows at a time.
     const Imf::PixelType type = halfFloat ? Imf::HALF : Imf::FLOAT;
     const size_t texelBytes = halfFloat ? 4 * sizeof(Imath::half) : 4 * sizeof(float);
     const size_t rowFloats = static_cast<size_t>(map.width) * 4;
@@ -185,17 +218,31 @@ void throwUnreadable(const std::string& path, const std::string& error) {
   throw InputError("cannot read aperture map " + path + " (truncated or corrupt): " + error);
 }
 
-std::unique_ptr<Imf::InputFile> openApertureMap(const std::string& path,
-                                                ApertureMapHeader& header) {
+size_t componentBytes(Imf::PixelType type) {
+  return type == Imf::HALF ? sizeof(Imath::half) : sizeof(float);
+}
+
+// An open map file, and the checksum of the rows read from it so far.
+struct OpenMap {
+  std::unique_ptr<Imf::InputFile> file;
+  std::string path;
+  int width = 0, height = 0;
+  Imf::PixelType stored = Imf::HALF;  // the four channels' type, when checked
+  std::optional<uint64_t> expected;   // aal:pixelChecksum
+  std::optional<PixelChecksum> sum;   // with `expected`
+};
+
+OpenMap openApertureMap(const std::string& path, ApertureMapHeader& header) {
   if (!std::filesystem::exists(path)) throw InputError("aperture map " + path + " does not exist");
   useEveryCoreForExr();
-  std::unique_ptr<Imf::InputFile> in;
+  OpenMap map;
+  map.path = path;
   try {
-    in = std::make_unique<Imf::InputFile>(path.c_str());
+    map.file = std::make_unique<Imf::InputFile>(path.c_str());
   } catch (const std::exception& e) {
     throw InputError("cannot read aperture map " + path + ": " + e.what());
   }
-  const Imf::Header& exr = in->header();
+  const Imf::Header& exr = map.file->header();
   std::string channels;
   int channelCount = 0;
   for (auto c = exr.channels().begin(); c != exr.channels().end(); ++c, ++channelCount) {
@@ -239,21 +286,101 @@ std::unique_ptr<Imf::InputFile> openApertureMap(const std::string& path,
       throw InputError("aperture map " + path + " has a malformed aal:tileOrigin attribute");
     }
   }
-  return in;
+  map.width = header.width;
+  map.height = header.height;
+  map.stored = exr.channels().findChannel("R")->type;
+  if (exr.find("aal:pixelChecksum") != exr.end()) {
+    header.pixelChecksum = parseChecksumHex(stringAttribute(exr, "aal:pixelChecksum"));
+    if (!header.pixelChecksum) {
+      throw InputError("aperture map " + path + " has a malformed aal:pixelChecksum attribute");
+    }
+    // The checksum is of the bytes writeApertureMap stores: four channels
+    // of halves, or of floats.
+    for (const char* name : kChannels) {
+      const Imf::PixelType type = exr.channels().findChannel(name)->type;
+      if (type != map.stored || type == Imf::UINT) {
+        throw InputError("aperture map " + path +
+                         " has an aal:pixelChecksum but not four channels of halves or of "
+                         "floats: not written by aal-bake");
+      }
+    }
+    map.expected = header.pixelChecksum;
+    map.sum.emplace(header.height);
+  }
+  return map;
 }
 
-// Rows [firstRow, endRow) of an open map (rows counted from the top of its
-// data window) into `destination`; see rowsFrameBuffer.
-void readRows(Imf::InputFile& in, const std::string& path, int firstRow, int endRow,
-              Imf::PixelType type, void* destination, size_t texelBytes, size_t rowBytes) {
-  if (firstRow == endRow) return;
+// Decodes rows [firstRow, endRow) of an open map (counted from the top of
+// its data window) as `type` into `destination`, interleaved RGBA texels,
+// rows `rowBytes` apart.
+void decodeRows(OpenMap& map, int firstRow, int endRow, Imf::PixelType type, void* destination,
+                size_t rowBytes) {
   try {
-    const Imath::Box2i& window = in.header().dataWindow();
-    in.setFrameBuffer(
-        rowsFrameBuffer(window, firstRow, endRow, type, destination, texelBytes, rowBytes));
-    in.readPixels(window.min.y + firstRow, window.min.y + endRow - 1);
+    const Imath::Box2i& window = map.file->header().dataWindow();
+    map.file->setFrameBuffer(rowsFrameBuffer(window, firstRow, endRow, type, destination,
+                                             4 * componentBytes(type), rowBytes));
+    map.file->readPixels(window.min.y + firstRow, window.min.y + endRow - 1);
   } catch (const std::exception& e) {
-    throwUnreadable(path, e.what());
+    throwUnreadable(map.path, e.what());
+  }
+}
+
+// Adds decoded rows [firstRow, endRow), in the file's own type and
+// `rowBytes` apart, to the map's checksum, calling `convert(row)` (when
+// given) on each once it is hashed: on all cores, in one pass over the rows
+// while they are in the CPU's caches.
+void addRows(OpenMap& map, int firstRow, int endRow, const void* rows, size_t rowBytes,
+             const std::function<void(int)>& convert = {}) {
+  const size_t bytes = static_cast<size_t>(map.width) * 4 * componentBytes(map.stored);
+  std::vector<uint64_t> hashes(static_cast<size_t>(endRow - firstRow));
+  tbb::parallel_for(firstRow, endRow, [&](int y) {
+    const size_t i = static_cast<size_t>(y - firstRow);
+    hashes[i] = PixelChecksum::rowHash(y, static_cast<const char*>(rows) + i * rowBytes, bytes);
+    if (convert) convert(y);
+  });
+  for (int y = firstRow; y < endRow; ++y) {
+    map.sum->addRowHash(y, hashes[static_cast<size_t>(y - firstRow)]);
+  }
+}
+
+// Rows [firstRow, endRow) of an open map as `type` into `destination` (see
+// decodeRows), checked against aal:pixelChecksum once every row has been read.
+void readRows(OpenMap& map, int firstRow, int endRow, Imf::PixelType type, void* destination,
+              size_t rowBytes) {
+  if (firstRow == endRow) return;
+  if (!map.sum || type == map.stored) {
+    decodeRows(map, firstRow, endRow, type, destination, rowBytes);
+    if (map.sum) addRows(map, firstRow, endRow, destination, rowBytes);
+  } else {
+    // The checksum is of the stored values: decode those, then convert as
+    // OpenEXR does (Imf::floatToHalf; halves widen exactly).
+    const size_t texels = static_cast<size_t>(map.width) * 4;
+    const size_t storedRowBytes = texels * componentBytes(map.stored);
+    const int blockRows = std::min(endRow - firstRow, kBlockRows);
+    std::vector<char> block(storedRowBytes * static_cast<size_t>(blockRows));
+    for (int y = firstRow; y < endRow; y += blockRows) {
+      const int end = std::min(endRow, y + blockRows);
+      decodeRows(map, y, end, map.stored, block.data(), storedRowBytes);
+      addRows(map, y, end, block.data(), storedRowBytes, [&](int row) {
+        const char* from = block.data() + static_cast<size_t>(row - y) * storedRowBytes;
+        char* to = static_cast<char*>(destination) + static_cast<size_t>(row - firstRow) * rowBytes;
+        if (type == Imf::FLOAT) {
+          const auto* halves = reinterpret_cast<const Imath::half*>(from);
+          std::copy(halves, halves + texels, reinterpret_cast<float*>(to));
+        } else {
+          const auto* floats = reinterpret_cast<const float*>(from);
+          std::transform(floats, floats + texels, reinterpret_cast<Imath::half*>(to),
+                         Imf::floatToHalf);
+        }
+      });
+    }
+  }
+  if (map.sum && map.sum->complete() && map.sum->value() != *map.expected) {
+    throw InputError("aperture map " + map.path +
+                     " is corrupt: its pixels do not match the checksum in its header "
+                     "(aal:pixelChecksum " +
+                     checksumHex(*map.expected) + ", pixels " + checksumHex(map.sum->value()) +
+                     "); bake it again with aal-bake");
   }
 }
 
@@ -267,13 +394,13 @@ std::string tilePath(const std::string& folder, int row, int column) {
 }
 
 // Opens tile (row, column) of a tiled map and checks it belongs there.
-std::unique_ptr<Imf::InputFile> openApertureTile(const ApertureTileIndex& index,
-                                                 const std::string& folder, int row, int column) {
+OpenMap openApertureTile(const ApertureTileIndex& index, const std::string& folder, int row,
+                         int column) {
   const std::string path = tilePath(folder, row, column);
   ApertureMapHeader header;
-  auto in = openApertureMap(path, header);
+  OpenMap tile = openApertureMap(path, header);
   checkApertureTile(index, row, column, header, path);
-  return in;
+  return tile;
 }
 
 // Every tile of a tiled map into one map of floats.
@@ -287,12 +414,11 @@ ApertureMap readTiledApertureMap(const std::string& folder) {
   const size_t rowBytes = static_cast<size_t>(map.width) * 4 * sizeof(float);
   for (int row = 0; row < index.rows(); ++row) {
     for (int column = 0; column < index.columns(); ++column) {
-      auto in = openApertureTile(index, folder, row, column);
+      OpenMap tile = openApertureTile(index, folder, row, column);
       float* corner = map.texels.data() + (static_cast<size_t>(row) * index.tileSize * map.width +
                                            static_cast<size_t>(column) * index.tileSize) *
                                               4;
-      readRows(*in, tilePath(folder, row, column), 0, index.tileHeight(row), Imf::FLOAT, corner,
-               4 * sizeof(float), rowBytes);
+      readRows(tile, 0, index.tileHeight(row), Imf::FLOAT, corner, rowBytes);
     }
   }
   return map;
@@ -308,19 +434,19 @@ std::string apertureTileName(int row, int column) {
 
 namespace {
 
-constexpr const char* kIndexName = "index.txt";
-
 std::string formatMetres(double metres) {
   char text[32];
   std::snprintf(text, sizeof text, "%.6g", metres);
   return text;
 }
+
 constexpr const char* kIndexMagic = "aal-aperture-tiles 1";
 
 }  // namespace
 
-void writeApertureTileIndex(const std::string& folder, const ApertureTileIndex& index) {
-  const std::filesystem::path path = std::filesystem::path(folder) / kIndexName;
+void writeApertureTileIndex(const std::string& folder, const ApertureTileIndex& index,
+                            const std::string& name) {
+  const std::filesystem::path path = std::filesystem::path(folder) / name;
   AtomicOutput output(path);
   std::ostringstream text;
   text.precision(17);
@@ -349,11 +475,11 @@ void writeApertureTileIndex(const std::string& folder, const ApertureTileIndex& 
   output.commit();
 }
 
-ApertureTileIndex readApertureTileIndex(const std::string& folder) {
-  const std::filesystem::path path = std::filesystem::path(folder) / kIndexName;
+ApertureTileIndex readApertureTileIndex(const std::string& folder, const std::string& name) {
+  const std::filesystem::path path = std::filesystem::path(folder) / name;
   std::ifstream in(path);
   if (!in) {
-    throw InputError("aperture map folder " + folder + " has no " + kIndexName +
+    throw InputError("aperture map folder " + folder + " has no " + name +
                      ": not a tiled bake, or its bake has not finished (run the same aal-bake "
                      "command again to resume it)");
   }
@@ -439,23 +565,23 @@ void checkApertureTile(const ApertureTileIndex& index, int row, int column,
 ApertureMap readApertureMap(const std::string& path) {
   if (isFolder(path)) return readTiledApertureMap(path);
   ApertureMapHeader header;
-  auto in = openApertureMap(path, header);
+  OpenMap file = openApertureMap(path, header);
   ApertureMap map;
   map.width = header.width;
   map.height = header.height;
   map.info = header.info;
   map.texels.resize(map.texelCount() * 4);
-  readRows(*in, path, 0, map.height, Imf::FLOAT, map.texels.data(), 4 * sizeof(float),
+  readRows(file, 0, map.height, Imf::FLOAT, map.texels.data(),
            static_cast<size_t>(map.width) * 4 * sizeof(float));
   return map;
 }
 
 struct ApertureMapReader::Impl {
-  std::unique_ptr<Imf::InputFile> input;  // a single file
+  std::optional<OpenMap> input;  // a single file
   // A tiled map: its index and the open tiles of one row of tiles.
   std::optional<ApertureTileIndex> tiles;
   int openTileRow = -1;
-  std::vector<std::unique_ptr<Imf::InputFile>> rowTiles;
+  std::vector<OpenMap> rowTiles;
 
   void readTiledRows(const std::string& folder, int firstRow, int endRow, void* destination) {
     const ApertureTileIndex& index = *tiles;
@@ -477,8 +603,8 @@ struct ApertureMapReader::Impl {
         char* corner = static_cast<char*>(destination) +
                        static_cast<size_t>(row - firstRow) * rowBytes +
                        static_cast<size_t>(column) * index.tileSize * texelBytes;
-        readRows(*rowTiles[static_cast<size_t>(column)], tilePath(folder, tileRow, column),
-                 row - top, bandEnd - top, Imf::HALF, corner, texelBytes, rowBytes);
+        readRows(rowTiles[static_cast<size_t>(column)], row - top, bandEnd - top, Imf::HALF, corner,
+                 rowBytes);
       }
       row = bandEnd;
     }
@@ -511,9 +637,20 @@ void ApertureMapReader::readHalfRows(int firstRow, int endRow, void* destination
     impl_->readTiledRows(path_, firstRow, endRow, destination);
     return;
   }
-  const size_t texelBytes = 4 * sizeof(uint16_t);
-  readRows(*impl_->input, path_, firstRow, endRow, Imf::HALF, destination, texelBytes,
-           texelBytes * static_cast<size_t>(header_.width));
+  readRows(*impl_->input, firstRow, endRow, Imf::HALF, destination,
+           4 * sizeof(uint16_t) * static_cast<size_t>(header_.width));
+}
+
+void ApertureMapReader::verify() {
+  // Bands of up to kBlockRows rows and 64 MiB of halves.
+  const size_t rowBytes = 4 * sizeof(uint16_t) * static_cast<size_t>(header_.width);
+  const int band =
+      std::min(header_.height,
+               static_cast<int>(std::clamp<size_t>((size_t{64} << 20) / rowBytes, 1, kBlockRows)));
+  std::vector<char> rows(rowBytes * static_cast<size_t>(band));
+  for (int y = 0; y < header_.height; y += band) {
+    readHalfRows(y, std::min(header_.height, y + band), rows.data());
+  }
 }
 
 void checkApertureMatchesDem(const ApertureMapHeader& map, const std::string& mapPath,

@@ -15,6 +15,7 @@
 
 #include <algorithm>
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -53,8 +54,6 @@ struct ApertureMap {
 // the DEM an aperture map was baked from (and keys bake caches).
 std::string heightfieldChecksum(const Heightfield& field);
 
-// Writes the map as EXR via a temporary file renamed into place. halfFloat
-// stores 16-bit floats (bent normal to ~1e-3, arc length to ~1e-3 rad).
 // How the EXR's chunks are compressed. On this project's maps (halves of
 // noisy normals) zlib gains little and costs much: a 4096^2 half map writes
 // in 3.3 s as ZIP (79 MB), 0.64 s as RLE (108 MB), 0.23 s uncompressed
@@ -62,18 +61,25 @@ std::string heightfieldChecksum(const Heightfield& field);
 enum class MapCompression { Rle, Zip, None };
 constexpr MapCompression kDefaultMapCompression = MapCompression::Rle;
 
+// Writes the map as EXR via a temporary file renamed into place. halfFloat
+// stores 16-bit floats (bent normal to ~1e-3, arc length to ~1e-3 rad). The
+// header carries aal:pixelChecksum, the checksum of the pixels as stored
+// (pixel_checksum.h).
 void writeApertureMap(const std::string& path, const ApertureMap& map, bool halfFloat,
                       MapCompression compression = kDefaultMapCompression);
 
 struct ApertureMapHeader {
   int width = 0, height = 0;
   ApertureMapInfo info;
+  // aal:pixelChecksum; maps written before it existed have none (nor has a
+  // tiled map's folder: each tile has its own).
+  std::optional<uint64_t> pixelChecksum;
 };
 
 // Reads a map written by writeApertureMap, or a tiled map's folder (whole).
 // Throws InputError naming the file when it is missing, unreadable, not 4
-// channels or lacks the aal: attributes, or when a tile does not belong to
-// its folder's index.
+// channels or lacks the aal: attributes, when its pixels do not match its
+// aal:pixelChecksum, or when a tile does not belong to its folder's index.
 ApertureMap readApertureMap(const std::string& path);
 
 // The index of a tiled map (index.txt in its folder).
@@ -89,10 +95,14 @@ struct ApertureTileIndex {
 
 // "tile_0002_0013.exr" for tile row 2, column 13.
 std::string apertureTileName(int row, int column);
-// index.txt in `folder`, written via a temporary file renamed into place.
-void writeApertureTileIndex(const std::string& folder, const ApertureTileIndex& index);
-// Throws InputError naming the folder when index.txt is missing or malformed.
-ApertureTileIndex readApertureTileIndex(const std::string& folder);
+// index.txt in `folder`, written via a temporary file renamed into place;
+// `name` another file of the same format (a tiled bake's manifest.txt).
+void writeApertureTileIndex(const std::string& folder, const ApertureTileIndex& index,
+                            const std::string& name = "index.txt");
+// Throws InputError naming the folder when index.txt (or `name`) is
+// missing or malformed.
+ApertureTileIndex readApertureTileIndex(const std::string& folder,
+                                        const std::string& name = "index.txt");
 // Throws InputError naming the tile's file unless the header is that of
 // tile (row, column) of `index` (size, origin, DEM checksum, attributes).
 void checkApertureTile(const ApertureTileIndex& index, int row, int column,
@@ -112,8 +122,13 @@ class ApertureMapReader {
 
   const ApertureMapHeader& header() const { return header_; }
   // Rows [firstRow, endRow) as RGBA 16-bit halves, tightly packed (8 bytes
-  // per texel). Throws InputError when the file is truncated or corrupt.
+  // per texel). Throws InputError when the file is truncated or corrupt, and
+  // with the read that completes the map's rows (in any order and bands)
+  // when they do not match aal:pixelChecksum.
   void readHalfRows(int firstRow, int endRow, void* destination);
+  // Reads every row once for the checks of readHalfRows alone (a map
+  // without aal:pixelChecksum is only decoded).
+  void verify();
 
  private:
   struct Impl;

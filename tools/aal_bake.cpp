@@ -161,6 +161,10 @@ int run(const Options& o) {
   aal::checkDistinctFiles({{"DEM", o.dem}},
                           {{"-o", o.output}, {"--svf", o.svfPath}, {"--visible", o.visiblePath}});
   checkOutputs(o, askedTiled);
+  // A folder another bake is writing is refused before the DEM is read
+  // (exit 1, TiledBakeBusy); the lock is held to the end of the bake.
+  std::optional<aal::TiledBakeLock> lock;
+  if (askedTiled && std::filesystem::is_directory(o.output)) lock.emplace(o.output);
   aal::DemLoadOptions load;
   load.cellSizeM = o.cellSize;
   load.zScale = o.zScale;
@@ -210,6 +214,7 @@ int run(const Options& o) {
   tiling.halfFloat = !o.fullFloat;
   tiling.compression = compressionOf(o);
   tiling.sourceName = source;
+  tiling.lock = lock ? &*lock : nullptr;
   try {
     if (inBands) {
       tiles = aal::bakeTiledInBands(dem, geometry, bake, tiling, o.output);
@@ -298,7 +303,9 @@ int main(int argc, char** argv) {
       "tiles into the folder -o, and\n--max-distance is required: each tile is baked from "
       "itself plus the terrain within\nthat distance, equal to the in-memory bake. An "
       "interrupted tiled bake resumes from its\nfinished tiles when run again. aal-render and "
-      "aal-view read the folder as the map.\n\n" +
+      "aal-view read the folder as the map. A folder\nholds one bake: while another aal-bake "
+      "runs in it a bake is refused (exit 1), and so is\na bake of another DEM or with other "
+      "options (exit 2).\n\n" +
           aal::demFormatsHelp(),
       "aal-bake");
   Options o;

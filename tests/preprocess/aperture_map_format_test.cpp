@@ -11,6 +11,7 @@
 #include <fstream>
 #include <iterator>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -19,6 +20,7 @@
 #include "bake.h"
 #include "bake_test_util.h"
 #include "errors.h"
+#include "pixel_checksum.h"
 
 namespace aal {
 namespace {
@@ -38,8 +40,10 @@ ApertureMap bakedMap() {
   return map;
 }
 
-// What writeApertureMap did with OpenImageIO before issue 16.
-void writeWithOiio(const std::string& path, const ApertureMap& map, bool halfFloat) {
+// What writeApertureMap did with OpenImageIO before issue 16, plus the pixel
+// checksum when one is given (issue 17).
+void writeWithOiio(const std::string& path, const ApertureMap& map, bool halfFloat,
+                   const std::string& pixelChecksum = "") {
   OIIO::ImageSpec spec(map.width, map.height, 4,
                        halfFloat ? OIIO::TypeDesc::HALF : OIIO::TypeDesc::FLOAT);
   spec.channelnames = {"R", "G", "B", "A"};
@@ -64,6 +68,7 @@ void writeWithOiio(const std::string& path, const ApertureMap& map, bool halfFlo
     spec.attribute("aal:tileOrigin",
                    std::to_string(i.originCol) + "," + std::to_string(i.originRow));
   }
+  if (!pixelChecksum.empty()) spec.attribute("aal:pixelChecksum", pixelChecksum);
   auto out = OIIO::ImageOutput::create(path);
   ASSERT_TRUE(out && out->open(path, spec)) << OIIO::geterror();
   ASSERT_TRUE(out->write_image(OIIO::TypeDesc::FLOAT, map.texels.data())) << out->geterror();
@@ -118,9 +123,12 @@ TEST_P(ApertureMapFormat, NewMapsReadInOiioAsTheOldOnes) {
   const std::string fresh = (dir.path() / "new.exr").string();
   const std::string old = (dir.path() / "old.exr").string();
   writeApertureMap(fresh, map, halfFloat, MapCompression::Zip);
-  writeWithOiio(old, map, halfFloat);
+  const std::optional<uint64_t> checksum = ApertureMapReader(fresh).header().pixelChecksum;
+  ASSERT_TRUE(checksum.has_value());
+  writeWithOiio(old, map, halfFloat, checksumHex(*checksum));
   // Byte for byte the same file (header, ZIP level, chunks) but for the
-  // capture date, "YYYY:MM:DD HH:MM:SS", when the two writes straddle a second.
+  // capture date, "YYYY:MM:DD HH:MM:SS", when the two writes straddle a second;
+  // OpenImageIO wrote the checksum as it is given.
   const std::string freshBytes = fileBytes(fresh), oldBytes = fileBytes(old);
   ASSERT_EQ(freshBytes.size(), oldBytes.size());
   size_t differing = 0;

@@ -12,6 +12,8 @@
 #include "bake.h"
 #include "bake_test_util.h"
 #include "errors.h"
+#include "map_test_util.h"
+#include "pixel_checksum.h"
 
 namespace aal {
 namespace {
@@ -115,6 +117,78 @@ TEST(ApertureMap, BadFilesGiveInputErrors) {
   const std::string junk = (dir.path() / "junk.exr").string();
   std::ofstream(junk) << "not an image";
   EXPECT_THROW(readApertureMap(junk), InputError);
+}
+
+// Issue 17, item 8: every map carries the checksum of its pixels as stored.
+TEST(ApertureMap, CarriesTheChecksumOfItsPixels) {
+  test::TempDir dir;
+  const BakeResult r = bakeApertures(smallField(), BakeOptions{});
+  for (const bool halfFloat : {true, false}) {
+    const std::string path = (dir.path() / (halfFloat ? "h.exr" : "f.exr")).string();
+    writeApertureMap(path, r.aperture, halfFloat);
+    ApertureMapReader reader(path);
+    ASSERT_TRUE(reader.header().pixelChecksum.has_value());
+    PixelChecksum sum(10);
+    const size_t rowFloats = 20 * 4;
+    for (int row = 0; row < 10; ++row) {
+      const float* floats = r.aperture.texels.data() + row * rowFloats;
+      std::vector<Imath::half> halves(floats, floats + rowFloats);
+      if (halfFloat) {
+        sum.addRow(row, halves.data(), rowFloats * 2);
+      } else {
+        sum.addRow(row, floats, rowFloats * 4);
+      }
+    }
+    EXPECT_EQ(*reader.header().pixelChecksum, sum.value()) << path;
+    EXPECT_NO_THROW(reader.verify());
+    EXPECT_NO_THROW(readApertureMap(path));
+  }
+}
+
+// A map whose pixel data changed by one bit (uncompressed, so that it still
+// decodes) is refused by every reader, naming the file and the checksum;
+// each row band decodes, and the band that completes the rows throws.
+TEST(ApertureMap, AFlippedPixelBitIsRefused) {
+  test::TempDir dir;
+  const BakeResult r = bakeApertures(smallField(), BakeOptions{});
+  for (const bool halfFloat : {true, false}) {
+    SCOPED_TRACE(halfFloat ? "halves" : "floats");
+    const std::string path = (dir.path() / (halfFloat ? "h.exr" : "f.exr")).string();
+    writeApertureMap(path, r.aperture, halfFloat, MapCompression::None);
+    // The file ends with the last row's R channel: the second-last byte is
+    // in the last texel's red value, its lowest bit a mantissa bit.
+    test::flipByteFromEnd(path, 2);
+    auto expectRefused = [&](auto&& read) {
+      try {
+        read();
+        ADD_FAILURE() << "a map with a flipped bit was read";
+      } catch (const InputError& e) {
+        EXPECT_NE(std::string(e.what()).find(path), std::string::npos) << e.what();
+        EXPECT_NE(std::string(e.what()).find("checksum"), std::string::npos) << e.what();
+      }
+    };
+    expectRefused([&] { readApertureMap(path); });
+    expectRefused([&] { ApertureMapReader(path).verify(); });
+    ApertureMapReader reader(path);
+    std::vector<uint16_t> halves(20 * 10 * 4);
+    // Rows 8 and 9 (with the flipped bit) first: nothing to compare yet.
+    EXPECT_NO_THROW(reader.readHalfRows(8, 10, halves.data()));
+    EXPECT_NO_THROW(reader.readHalfRows(0, 5, halves.data()));
+    expectRefused([&] { reader.readHalfRows(3, 8, halves.data()); });
+  }
+}
+
+// Maps written before the checksum existed have none and read as before.
+TEST(ApertureMap, AMapWithoutAChecksumIsRead) {
+  test::TempDir dir;
+  const BakeResult r = bakeApertures(smallField(), BakeOptions{});
+  const std::string path = (dir.path() / "old.exr").string();
+  writeApertureMap(path, r.aperture, /*halfFloat=*/false);
+  test::removePixelChecksum(path);
+  ApertureMapReader reader(path);
+  EXPECT_FALSE(reader.header().pixelChecksum.has_value());
+  EXPECT_NO_THROW(reader.verify());
+  EXPECT_EQ(readApertureMap(path).texels, r.aperture.texels);
 }
 
 }  // namespace

@@ -4,10 +4,18 @@
 
 #include <gtest/gtest.h>
 
+#include <fcntl.h>
+#include <sys/file.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <atomic>
 #include <cmath>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
+#include <map>
 #include <string>
 #include <vector>
 
@@ -280,8 +288,10 @@ TEST(TiledBake, AFolderOfAnotherBakeIsAnError) {
   TiledBakeOptions other = t;
   other.tileSize = 48;
   EXPECT_THROW(bakeTiled(field, distanceLimited(100), other, folder), InputError);
-  // Without the index, a tile of another bake is found as such.
+  // Without the index and the manifest (a bake interrupted before manifests
+  // existed), a tile of another bake is found as such.
   fs::remove(fs::path(folder) / "index.txt");
+  fs::remove(fs::path(folder) / kTiledBakeManifestName);
   expectInputErrorNaming([&] { bakeTiled(field, distanceLimited(110), t, folder); },
                          "tile_0000_0000.exr", "a tile of another bake was accepted");
 }
@@ -355,6 +365,157 @@ TEST(TiledBake, RejectsWhatItCannotBake) {
   EXPECT_THROW(checkTiledBakeOptions(o, t), std::invalid_argument);
   EXPECT_THROW(bakeApertureWindow(field, TexelWindow{30, 0, 16, 16}, distanceLimited(100)),
                std::invalid_argument);  // outside the field
+}
+
+// Every file in `folder` with its bytes.
+using FolderContents = std::map<std::string, std::string>;
+FolderContents folderContents(const fs::path& folder) {
+  FolderContents files;
+  for (const fs::directory_entry& entry : fs::directory_iterator(folder)) {
+    std::ifstream in(entry.path(), std::ios::binary);
+    files[entry.path().filename().string()] =
+        std::string(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+  }
+  return files;
+}
+
+// The names of the files added, removed or changed from `before` to `after`.
+std::vector<std::string> changedFiles(const FolderContents& before, const FolderContents& after) {
+  std::vector<std::string> changed;
+  for (const auto& [name, bytes] : before) {
+    const auto now = after.find(name);
+    if (now == after.end() || now->second != bytes) changed.push_back(name);
+  }
+  for (const auto& [name, bytes] : after) {
+    if (!before.count(name)) changed.push_back(name);
+  }
+  return changed;
+}
+
+// The PID of a process that has exited and been reaped.
+pid_t deadPid() {
+  const pid_t child = ::fork();
+  if (child == 0) ::_exit(0);
+  int status = 0;
+  ::waitpid(child, &status, 0);
+  return child;
+}
+
+// A folder as a bake of `field` interrupted past half way leaves it: tiles
+// of 32 (4 x 3), the manifest, no index, and a temporary of a killed run
+// that a bake's sweep would remove.
+void interruptedBake(const Heightfield& field, const std::string& folder) {
+  BakeOptions o = distanceLimited(100);
+  std::atomic<bool> cancel{false};
+  o.cancel = &cancel;
+  o.progress = [&](double fraction) {
+    if (fraction > 0.5) cancel = true;
+  };
+  TiledBakeOptions t;
+  t.tileSize = 32;
+  t.sourceName = "first.tif";
+  EXPECT_THROW(bakeTiled(field, o, t, folder), BakeCancelled);
+  ASSERT_TRUE(fs::exists(fs::path(folder) / apertureTileName(0, 0)));
+  ASSERT_TRUE(fs::exists(fs::path(folder) / kTiledBakeManifestName));
+  ASSERT_FALSE(fs::exists(fs::path(folder) / "index.txt"));
+  std::ofstream(fs::path(folder) / (".tile_0002_0000.tmp-" + std::to_string(deadPid()) + "-0.exr"))
+      << "killed";
+}
+
+// Issue 17, item 10: a second bake into a folder that a running bake holds
+// (its flock) is refused before it touches anything: before the sweep that
+// deleted the first bake's temporary tile.
+TEST(TiledBake, ASecondBakeIntoALockedFolderIsRefusedTouchingNothing) {
+  test::TempDir dir;
+  const Heightfield field = fbmField(100, 70);
+  const std::string folder = (dir.path() / "tiles").string();
+  interruptedBake(field, folder);
+  const auto before = folderContents(folder);
+  {
+    // As a running bake holds it: the same file, another open of it.
+    const TiledBakeLock running(folder);
+    TiledBakeOptions t;
+    t.tileSize = 32;
+    t.sourceName = "first.tif";
+    try {
+      bakeTiled(field, distanceLimited(100), t, folder);
+      ADD_FAILURE() << "baked into a locked folder";
+    } catch (const TiledBakeBusy& e) {
+      EXPECT_NE(std::string(e.what()).find(folder), std::string::npos) << e.what();
+      EXPECT_NE(std::string(e.what()).find("another aal-bake"), std::string::npos) << e.what();
+    }
+    EXPECT_EQ(changedFiles(before, folderContents(folder)), std::vector<std::string>{});
+    EXPECT_THROW(TiledBakeLock{folder}, TiledBakeBusy);
+  }
+  {
+    // A lock held with flock by hand (another program) counts too.
+    const int fd = ::open((fs::path(folder) / kTiledBakeLockName).c_str(), O_RDWR);
+    ASSERT_GE(fd, 0);
+    ASSERT_EQ(::flock(fd, LOCK_EX | LOCK_NB), 0);
+    TiledBakeOptions t;
+    t.tileSize = 32;
+    t.sourceName = "first.tif";
+    EXPECT_THROW(bakeTiled(field, distanceLimited(100), t, folder), TiledBakeBusy);
+    ::close(fd);
+  }
+  EXPECT_EQ(changedFiles(before, folderContents(folder)), std::vector<std::string>{});
+  // Released, the same bake resumes (and sweeps the killed run's temporary).
+  TiledBakeOptions t;
+  t.tileSize = 32;
+  t.sourceName = "first.tif";
+  const TiledBakeSummary summary = bakeTiled(field, distanceLimited(100), t, folder);
+  EXPECT_GT(summary.resumed, 0);
+  EXPECT_EQ(summary.resumed + summary.baked, 12);
+  for (const auto& [name, bytes] : folderContents(folder)) {
+    EXPECT_EQ(name.find(".tmp-"), std::string::npos) << name;
+  }
+}
+
+// A bake of another DEM into a folder holding a bake (interrupted or
+// finished) is refused, saying whose bake it holds; nothing is touched.
+TEST(TiledBake, ABakeOfAnotherDemIntoTheFolderIsRefusedTouchingNothing) {
+  test::TempDir dir;
+  const Heightfield first = fbmField(100, 70);
+  Heightfield second = first;
+  second.z[123] += 5.0f;  // the same size: only the checksum tells them apart
+  const std::string folder = (dir.path() / "tiles").string();
+  interruptedBake(first, folder);
+  TiledBakeOptions t;
+  t.tileSize = 32;
+  t.sourceName = "second.tif";
+  auto expectRefused = [&](const Heightfield& field, const BakeOptions& o,
+                           const TiledBakeOptions& tiling, const std::string& says) {
+    const auto before = folderContents(folder);
+    try {
+      bakeTiled(field, o, tiling, folder);
+      ADD_FAILURE() << "baked into another bake's folder";
+    } catch (const InputError& e) {
+      EXPECT_NE(std::string(e.what()).find(says), std::string::npos) << e.what();
+      EXPECT_NE(std::string(e.what()).find("first.tif"), std::string::npos) << e.what();
+      EXPECT_NE(std::string(e.what()).find("another folder"), std::string::npos) << e.what();
+    }
+    EXPECT_EQ(changedFiles(before, folderContents(folder)), std::vector<std::string>{});
+  };
+  expectRefused(second, distanceLimited(100), t, "another DEM");
+  expectRefused(fbmField(90, 70), distanceLimited(100), t, "another DEM");
+  // The same DEM with other options or tiles is another bake too.
+  TiledBakeOptions sameDem = t;
+  sameDem.sourceName = "first.tif";
+  expectRefused(first, distanceLimited(110), sameDem, "other options");
+  sameDem.tileSize = 48;
+  expectRefused(first, distanceLimited(100), sameDem, "tiles of 32");
+  sameDem.tileSize = 32;
+  // Without a manifest (a bake interrupted before manifests existed), its
+  // tiles tell.
+  fs::rename(fs::path(folder) / kTiledBakeManifestName, dir.path() / "manifest.txt");
+  expectRefused(second, distanceLimited(100), t, "the DEM it was baked from differ");
+  expectRefused(first, distanceLimited(110), sameDem, "the bake options differ");
+  fs::rename(dir.path() / "manifest.txt", fs::path(folder) / kTiledBakeManifestName);
+
+  // Finished, the same.
+  bakeTiled(first, distanceLimited(100), sameDem, folder);
+  ASSERT_TRUE(fs::exists(fs::path(folder) / "index.txt"));
+  expectRefused(second, distanceLimited(100), t, "another DEM");
 }
 
 }  // namespace

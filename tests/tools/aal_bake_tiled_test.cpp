@@ -4,12 +4,17 @@
 
 #include <OpenImageIO/imageio.h>
 
+#include <fcntl.h>
+#include <sys/file.h>
 #include <unistd.h>
 
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <limits>
+#include <map>
+#include <string>
 #include <utility>
 #include <vector>
 
@@ -251,6 +256,96 @@ TEST(AalBakeTiled, ViewerReadsTheTileFolder) {
   const std::vector<float> a = pixels(fromFile), b = pixels(fromTiles);
   ASSERT_FALSE(a.empty());
   EXPECT_EQ(a, b);
+}
+
+// Every file in `folder` with its bytes.
+using FolderContents = std::map<std::string, std::string>;
+FolderContents folderContents(const fs::path& folder) {
+  FolderContents files;
+  for (const fs::directory_entry& entry : fs::directory_iterator(folder)) {
+    std::ifstream in(entry.path(), std::ios::binary);
+    files[entry.path().filename().string()] =
+        std::string(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+  }
+  return files;
+}
+
+// The names of the files added, removed or changed from `before` to `after`.
+std::vector<std::string> changedFiles(const FolderContents& before, const FolderContents& after) {
+  std::vector<std::string> changed;
+  for (const auto& [name, bytes] : before) {
+    const auto now = after.find(name);
+    if (now == after.end() || now->second != bytes) changed.push_back(name);
+  }
+  for (const auto& [name, bytes] : after) {
+    if (!before.count(name)) changed.push_back(name);
+  }
+  return changed;
+}
+
+// Issue 17, item 10: a second aal-bake into a folder that a running one
+// holds exits with 1 (the folder is busy: run it again later), before it
+// reads the DEM, touching nothing; in memory and in bands alike.
+TEST(AalBakeTiled, ABusyFolderExitsWithOneTouchingNothing) {
+  TempDir dir;
+  const fs::path dem = writeDem(dir, 90, 70);
+  const fs::path folder = dir.path() / "a.tiles";
+  const std::string command = quoted(dem) + " -o " + quoted(folder) + " --tile-size 32" + kOptions;
+  ASSERT_EQ(runTool("aal-bake", command).exitCode, 0);
+  // As a running bake leaves it: some tiles, no index yet.
+  fs::remove(folder / "index.txt");
+  fs::remove(folder / apertureTileName(2, 2));
+  const auto before = folderContents(folder);
+  const int lock = ::open((folder / ".aal-bake.lock").c_str(), O_RDWR | O_CREAT, 0644);
+  ASSERT_GE(lock, 0);
+  ASSERT_EQ(::flock(lock, LOCK_EX | LOCK_NB), 0);
+  for (const char* how : {"", " --low-memory"}) {
+    const auto r = runTool("aal-bake", command + how);
+    EXPECT_EQ(r.exitCode, 1) << how << "\n" << r.out;
+    EXPECT_NE(r.out.find("another aal-bake"), std::string::npos) << r.out;
+    EXPECT_NE(r.out.find(folder.string()), std::string::npos) << r.out;
+    EXPECT_EQ(changedFiles(before, folderContents(folder)), std::vector<std::string>{}) << how;
+  }
+  ::close(lock);
+  const auto r = runTool("aal-bake", command);
+  EXPECT_EQ(r.exitCode, 0) << r.out;
+  EXPECT_TRUE(fs::exists(folder / "index.txt"));
+}
+
+// A bake of another DEM into a folder holding a bake is refused (exit 2),
+// saying whose bake the folder holds, and leaves its files as they were.
+TEST(AalBakeTiled, AFolderOfAnotherDemExitsWithTwoTouchingNothing) {
+  TempDir dir;
+  const fs::path first = writeDem(dir, 90, 70, 1), second = writeDem(dir, 90, 70, 2);
+  const fs::path folder = dir.path() / "a.tiles";
+  ASSERT_EQ(
+      runTool("aal-bake", quoted(first) + " -o " + quoted(folder) + " --tile-size 32" + kOptions)
+          .exitCode,
+      0);
+  // Finished; interrupted; interrupted before manifests existed, its first
+  // tile unreadable (which the bake of the other DEM used to bake again as
+  // its own, taking the folder over).
+  for (const int state : {0, 1, 2}) {
+    if (state == 1) fs::remove(folder / "index.txt");
+    if (state == 2) {
+      fs::remove(folder / "manifest.txt");
+      fs::resize_file(folder / apertureTileName(0, 0), 100);
+    }
+    const auto before = folderContents(folder);
+    for (const char* how : {"", " --low-memory"}) {
+      const auto r = runTool("aal-bake", quoted(second) + " -o " + quoted(folder) +
+                                             " --tile-size 32" + kOptions + how);
+      EXPECT_EQ(r.exitCode, 2) << how << "\n" << r.out;
+      EXPECT_NE(r.out.find(state == 2 ? "another tiled bake" : "another DEM"), std::string::npos)
+          << r.out;
+      EXPECT_NE(r.out.find(": dem1.tif, 90x70, heights checksum"), std::string::npos) << r.out;
+      if (state == 2) {
+        EXPECT_NE(r.out.find("tile_0000_0001.exr"), std::string::npos) << r.out;
+      }
+      EXPECT_NE(r.out.find("another folder"), std::string::npos) << r.out;
+      EXPECT_EQ(changedFiles(before, folderContents(folder)), std::vector<std::string>{}) << how;
+    }
+  }
 }
 
 }  // namespace

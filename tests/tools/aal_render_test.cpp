@@ -356,5 +356,57 @@ TEST(AalRender, ReferenceAndCompareRefuseWhatTheyCannotDo) {
   }
 }
 
+// Issue 17, item 8: a truncated cache entry made every later render of its
+// DEM exit 2 until it was deleted by hand. Now it is rebaked and replaced,
+// with one warning line naming it.
+TEST(AalRender, ADamagedCacheEntryIsRebakedWithAWarning) {
+  TempDir dir;
+  const fs::path first = dir.path() / "a.png";
+  ASSERT_EQ(render(dir, "-o " + quoted(first) + " --size 64x36").exitCode, 0);
+  std::vector<fs::path> entries;
+  for (const auto& e : fs::directory_iterator(dir.path() / "cache")) entries.push_back(e.path());
+  ASSERT_EQ(entries.size(), 1u);
+  const fs::path entry = entries[0];
+  fs::resize_file(entry, fs::file_size(entry) / 2);
+  const fs::path second = dir.path() / "b.png";
+  const auto r = render(dir, "-o " + quoted(second) + " --size 64x36 -q");
+  ASSERT_EQ(r.exitCode, 0) << r.out;
+  EXPECT_EQ(r.out.rfind("warning: rebaking the cached aperture map " + entry.string(), 0), 0u)
+      << r.out;
+  EXPECT_NE(r.out.find("truncated or corrupt"), std::string::npos) << r.out;
+  EXPECT_EQ(std::count(r.out.begin(), r.out.end(), '\n'), 1) << r.out;
+  EXPECT_EQ(fs::file_size(first), fs::file_size(second));
+  // Replaced: the next render uses it without a word.
+  const auto again = render(dir, "-o " + quoted(second) + " --size 64x36 -q");
+  ASSERT_EQ(again.exitCode, 0) << again.out;
+  EXPECT_EQ(again.out, "");
+}
+
+// A map given with --aperture whose pixels do not match the checksum in its
+// header is refused (exit 2), naming it.
+TEST(AalRender, RefusesAnApertureMapWhosePixelsDoNotMatchTheirChecksum) {
+  TempDir dir;
+  const fs::path map = dir.path() / "map.exr";
+  ASSERT_EQ(runTool("aal-bake",
+                    quoted(kDem) + " -o " + quoted(map) + " --azimuths 16 --compression none -q")
+                .exitCode,
+            0);
+  // Uncompressed, the file ends with the last texel's red half: flip a
+  // mantissa bit of it (the map still decodes).
+  {
+    std::fstream file(map, std::ios::binary | std::ios::in | std::ios::out);
+    file.seekg(-2, std::ios::end);
+    const char byte = static_cast<char>(file.get() ^ 1);
+    file.seekp(-2, std::ios::end);
+    file.put(byte);
+  }
+  const auto r =
+      render(dir, "-o " + quoted(dir.path() / "x.png") + " --size 64x36 --aperture " + quoted(map));
+  EXPECT_EQ(r.exitCode, 2) << r.out;
+  EXPECT_NE(r.out.find(map.string()), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("checksum"), std::string::npos) << r.out;
+  EXPECT_FALSE(fs::exists(dir.path() / "x.png"));
+}
+
 }  // namespace
 }  // namespace aal

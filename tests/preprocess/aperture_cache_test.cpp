@@ -1,0 +1,129 @@
+// The bake cache (preprocess/aperture_cache.h): an entry is used only when
+// every pixel verifies; a damaged one is rebaked and replaced with one
+// warning line (issue 17, item 8: a truncated entry made every later render
+// of its DEM exit 2 until it was deleted by hand).
+#include "aperture_cache.h"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdlib>
+#include <filesystem>
+#include <string>
+
+#include "../tools/run_tool.h"
+#include "bake_test_util.h"
+#include "map_test_util.h"
+
+namespace aal {
+namespace {
+
+namespace fs = std::filesystem;
+
+// Points the cache at a fresh folder for one test.
+class ApertureCache : public testing::Test {
+ protected:
+  void SetUp() override {
+    if (const char* old = std::getenv("AAL_CACHE_DIR")) saved_ = old;
+    ::setenv("AAL_CACHE_DIR", (dir_.path() / "cache").c_str(), 1);
+  }
+  void TearDown() override {
+    if (saved_.empty()) {
+      ::unsetenv("AAL_CACHE_DIR");
+    } else {
+      ::setenv("AAL_CACHE_DIR", saved_.c_str(), 1);
+    }
+  }
+
+  // The cache's answer for field_, with what it said on stderr.
+  CachedAperture lookUp(std::string* said = nullptr) {
+    testing::internal::CaptureStderr();
+    CachedAperture cached = cachedOrBakedAperture(field_, "wavy.tif", options_, /*quiet=*/true);
+    const std::string err = testing::internal::GetCapturedStderr();
+    if (said) *said = err;
+    return cached;
+  }
+
+  // The cache entry, baked and written by a first look-up.
+  fs::path bakedEntry() {
+    const CachedAperture first = lookUp();
+    EXPECT_FALSE(first.path.empty());
+    return first.path;
+  }
+
+  // Expects a look-up to rebake the damaged entry at `path`: one warning line
+  // naming it and `why`, and an entry equal to a fresh bake.
+  void expectRebaked(const fs::path& path, const std::string& why) {
+    std::string said;
+    const CachedAperture again = lookUp(&said);
+    ASSERT_EQ(again.path, path);
+    EXPECT_EQ(said.rfind("warning: ", 0), 0u) << said;
+    EXPECT_EQ(std::count(said.begin(), said.end(), '\n'), 1) << said;
+    EXPECT_NE(said.find(path.string()), std::string::npos) << said;
+    EXPECT_NE(said.find(why), std::string::npos) << said;
+    EXPECT_EQ(readApertureMap(path.string()).texels, fresh_.texels);
+    // The replaced entry verifies: the next look-up says nothing.
+    std::string next;
+    EXPECT_EQ(lookUp(&next).path, path);
+    EXPECT_EQ(next, "");
+  }
+
+  test::TempDir dir_;
+  std::string saved_;
+  const BakeOptions options_ = [] {
+    BakeOptions o;
+    o.azimuths = 16;
+    return o;
+  }();
+  const Heightfield field_ = test::makeField(
+      48, 40, 30.0, [](double x, double y) { return 150 * std::sin(x / 200) * std::cos(y / 150); });
+  // What a fresh bake's entry holds.
+  const ApertureMap fresh_ = [this] {
+    ApertureMap map = bakeApertures(field_, options_).aperture;
+    const std::string path = (dir_.path() / "fresh.exr").string();
+    writeApertureMap(path, map, /*halfFloat=*/true);
+    return readApertureMap(path);
+  }();
+};
+
+TEST_F(ApertureCache, AVerifiedEntryIsUsedAsIs) {
+  const fs::path path = bakedEntry();
+  const auto written = fs::last_write_time(path);
+  std::string said;
+  EXPECT_EQ(lookUp(&said).path, path);
+  EXPECT_EQ(said, "");
+  EXPECT_EQ(fs::last_write_time(path), written);
+  EXPECT_EQ(findCachedAperture(field_, "wavy.tif", options_), path);
+}
+
+TEST_F(ApertureCache, ATruncatedEntryIsRebakedAndReplaced) {
+  const fs::path path = bakedEntry();
+  fs::resize_file(path, fs::file_size(path) * 2 / 3);
+  std::string why;
+  EXPECT_TRUE(findCachedAperture(field_, "wavy.tif", options_, &why).empty());
+  EXPECT_NE(why.find("truncated or corrupt"), std::string::npos) << why;
+  expectRebaked(path, "truncated or corrupt");
+}
+
+TEST_F(ApertureCache, AnEntryWithAFlippedPixelByteIsRebaked) {
+  const fs::path path = bakedEntry();
+  // A byte of the last rows' RLE data: the pixels change (or no longer decode).
+  test::flipByteFromEnd(path.string(), 7);
+  expectRebaked(path, path.string());
+  for (const std::streamoff fromEnd : {1, 40, 300}) {
+    test::flipByteFromEnd(path.string(), fromEnd);
+    expectRebaked(path, path.string());
+  }
+}
+
+TEST_F(ApertureCache, AnEntryWithoutAPixelChecksumIsRebaked) {
+  const fs::path path = bakedEntry();
+  test::removePixelChecksum(path.string());
+  // Readable, but not verified.
+  EXPECT_NO_THROW(readApertureMap(path.string()));
+  expectRebaked(path, "no pixel checksum");
+}
+
+}  // namespace
+}  // namespace aal
