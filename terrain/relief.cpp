@@ -98,8 +98,8 @@ void boxFilter4(std::vector<float>& w, const std::vector<uint8_t>& voids, int wi
 std::array<double, 4> multidirectionalWeights(double aspectDegrees) {
   std::array<double, 4> w{};
   for (size_t i = 0; i < w.size(); ++i) {
-    const double s = std::sin((aspectDegrees - kMultidirectionalAzimuthsDeg[i]) * kDeg);
-    w[i] = s * s;
+    const double c = std::cos((aspectDegrees - kMultidirectionalAzimuthsDeg[i]) * kDeg);
+    w[i] = c * c;
   }
   return w;
 }

@@ -31,7 +31,7 @@ namespace aal {
 enum class ReliefLighting {
   Sun,               // one sun (sunAzimuthDeg, sunElevationDeg) plus sky fill
   SkyOnly,           // the sky term alone: sin^2(r) max(0, N.B) W, 1 on open flat ground
-  Multidirectional,  // suns at 225, 270, 315, 360 deg weighted by aspect (gdaldem's)
+  Multidirectional,  // suns at 225, 270, 315, 360 deg weighted by aspect, as gdaldem
 };
 
 struct ReliefSettings {
@@ -61,10 +61,14 @@ struct ReliefImage {
   bool isVoid(size_t i) const { return value[i] != value[i]; }
 };
 
-// Mark's (1992) oblique weights as gdaldem -multidirectional uses them:
-// w(a) = sin^2(aspect - a) for the suns at a = 225, 270, 315, 360 deg; they
-// sum to 2, so the relief is sum w_i v_i / 2. Aspect in degrees clockwise
-// from north, the direction the slope faces.
+// The weights of gdaldem hillshade -multidirectional (after Mark 1992,
+// "Multidirectional, oblique-weighted, shaded-relief image of the Island of
+// Hawaii", USGS OF 92-422): w(a) = cos^2(aspect - a) for the suns at a =
+// 225, 270, 315, 360 deg, so the sun along the fall line counts most and the
+// one across it not at all. gdaldem writes them as sin^2 of its
+// mathematical aspect (counter-clockwise from east), which is the same. They
+// sum to 2; the relief is sum w_i v_i / 2. Aspect in degrees clockwise from
+// north, the direction the slope faces.
 std::array<double, 4> multidirectionalWeights(double aspectDeg);
 inline constexpr std::array<double, 4> kMultidirectionalAzimuthsDeg = {225, 270, 315, 360};
 

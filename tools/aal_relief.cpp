@@ -7,6 +7,7 @@
 #include <cstdio>
 #include <limits>
 #include <optional>
+#include <sstream>
 #include <string>
 #include <vector>
 
@@ -46,6 +47,7 @@ struct Options {
   int obscuranceSamples = 16, obscuranceSteps = 1;
   std::string colorRelief, palette;
   std::string format = "byte";
+  std::string stretch;
   std::optional<double> waterLevel;
   std::string waterMask;
   bool cog = false;
@@ -95,6 +97,20 @@ std::pair<int, int> outputSize(const std::string& text, const aal::Heightfield& 
   return {static_cast<int>(w), static_cast<int>(h)};
 }
 
+// --stretch LOW,HIGH: the relief values mapped to the full 8-bit range.
+std::pair<double, double> parseStretch(const std::string& text) {
+  if (text.empty()) return {0.0, 1.0};
+  std::istringstream in(text);
+  double low = 0, high = 0;
+  char comma = 0;
+  if (!(in >> low >> comma >> high) || comma != ',' || !in.eof() || !(low >= 0) || !(high <= 1) ||
+      !(low < high)) {
+    throw aal::InputError("--stretch must be LOW,HIGH with 0 <= LOW < HIGH <= 1, got '" + text +
+                          "'");
+  }
+  return {low, high};
+}
+
 void checkOptions(const Options& o) {
   aal::checkDistinctFiles({{"DEM", o.dem},
                            {"--aperture", o.aperture},
@@ -129,6 +145,10 @@ void checkOptions(const Options& o) {
   if (colour && o.format == "float") {
     throw aal::InputError("colour relief is 8-bit RGB: leave out --format float");
   }
+  if (!o.stretch.empty() && o.format == "float") {
+    throw aal::InputError("--stretch is for 8-bit output: --format float keeps the values");
+  }
+  parseStretch(o.stretch);
   if (o.waterLevel && !o.waterMask.empty()) {
     throw aal::InputError("give --water-level or --water-mask, not both");
   }
@@ -224,6 +244,10 @@ int run(const Options& o) {
   write.cog = o.cog;
   const bool voids = field.voidCount > 0;
   const size_t pixels = relief.value.size();
+  const auto [low, high] = parseStretch(o.stretch);
+  auto stretched = [low, high](float v) {
+    return static_cast<float>(std::clamp((v - low) / (high - low), 0.0, 1.0));
+  };
   if (ramp) {
     // Colour from the ramp at the pixel's height, times the shading; voids
     // take the ramp's nv colour, else transparent black (an alpha band).
@@ -249,7 +273,7 @@ int run(const Options& o) {
         c = !relief.water.empty() && relief.water[i]
                 ? glm::vec4(kWaterRgb[0], kWaterRgb[1], kWaterRgb[2], 255)
                 : aal::rampColor(resolved, relief.heightM[i]);
-        c = glm::vec4(glm::vec3(c) * relief.value[i], c.a);
+        c = glm::vec4(glm::vec3(c) * stretched(relief.value[i]), c.a);
       }
       for (int b = 0; b < bands; ++b) {
         rgb[i * bands + b] = static_cast<uint8_t>(std::clamp(std::lround(c[b]), 0L, 255L));
@@ -266,8 +290,9 @@ int run(const Options& o) {
     // gdaldem's scale: 1 + 254 v, 0 reserved for nodata.
     std::vector<uint8_t> grey(pixels);
     for (size_t i = 0; i < pixels; ++i) {
-      grey[i] =
-          relief.isVoid(i) ? 0 : static_cast<uint8_t>(1 + std::lround(254.0 * relief.value[i]));
+      grey[i] = relief.isVoid(i)
+                    ? 0
+                    : static_cast<uint8_t>(1 + std::lround(254.0 * stretched(relief.value[i])));
     }
     if (voids || field.nodata) write.nodata = 0;
     aal::writeGeoTiff(
@@ -362,6 +387,9 @@ int main(int argc, char** argv) {
   app.add_option("--format", o.format, "grey output: byte (1..254, 0 nodata) or float (0..1)")
       ->check(CLI::IsMember({"byte", "float"}))
       ->capture_default_str();
+  app.add_option("--stretch", o.stretch,
+                 "LOW,HIGH: relief values from LOW to HIGH fill the 8-bit range (default 0,1); "
+                 "e.g. 0.65,1 for --sky-only, whose values on gentle terrain stay near 1");
   app.add_option("--water-level", o.waterLevel,
                  "heights at or below this many metres are water: lit flat (blue in colour "
                  "maps); no water by default");

@@ -140,17 +140,29 @@ TEST(Relief, VoidsAreNaNAndEverythingElseIsInRange) {
   }
 }
 
-// Mark's weights sin^2(aspect - a) sum to 2 whatever the aspect, and favour
-// light across the slope: a west-facing slope (aspect 270) gets none from 270.
+// gdaldem's weights cos^2(aspect - a) sum to 2 whatever the aspect and
+// favour light along the fall line: a west-facing slope (aspect 270) is lit
+// by the sun at 270 alone with weight 1, none from 360.
 TEST(Relief, MultidirectionalWeights) {
   for (double aspect = 0; aspect < 360; aspect += 7.5) {
     const std::array<double, 4> w = multidirectionalWeights(aspect);
     EXPECT_NEAR(w[0] + w[1] + w[2] + w[3], 2.0, 1e-12) << aspect;
   }
   const std::array<double, 4> west = multidirectionalWeights(270);
-  EXPECT_NEAR(west[1], 0.0, 1e-12);
-  EXPECT_NEAR(west[3], 1.0, 1e-12);
+  EXPECT_NEAR(west[1], 1.0, 1e-12);
+  EXPECT_NEAR(west[3], 0.0, 1e-12);
   EXPECT_NEAR(west[0], 0.5, 1e-12);
+  EXPECT_NEAR(west[2], 0.5, 1e-12);
+  // gdaldem's own form: with the gradient (gx east, gy south), w270 =
+  // gx^2 / (gx^2 + gy^2), w360 = gy^2 / (...), w225 = 0.5 - gx gy / (...).
+  const double gx = 0.3, gy = -0.7, g2 = gx * gx + gy * gy;
+  // The slope faces down the gradient: towards (-gx east, +gy north).
+  const double aspect = std::atan2(-gx, gy) / kDeg;
+  const std::array<double, 4> w = multidirectionalWeights(aspect);
+  EXPECT_NEAR(w[0], 0.5 - gx * gy / g2, 1e-12);
+  EXPECT_NEAR(w[1], gx * gx / g2, 1e-12);
+  EXPECT_NEAR(w[2], 0.5 + gx * gy / g2, 1e-12);
+  EXPECT_NEAR(w[3], gy * gy / g2, 1e-12);
   // On flat ground every sun gives sin e: the weighted mean is sin e too.
   const Heightfield f = plane(8, 10, 0, 0);
   ReliefSettings s = sunAt(0, 30, 0.0f);

@@ -251,6 +251,21 @@ TEST(AalRelief, MultidirectionalOnFlatGroundIsSinOfTheElevation) {
   for (const double v : md.samples[0]) ASSERT_NEAR(v, 0.5, 1e-4);
 }
 
+// 8-bit output is gdaldem's 1 + 254 v; --stretch maps [LOW, HIGH] onto it.
+TEST(AalRelief, ByteOutputAndStretch) {
+  TempDir dir;
+  const fs::path dem = writePlane(dir, 16, 0), out = dir.path() / "b.tif";
+  const std::string common = " --sky 0 --sun-elevation 30 -o " + quoted(out);
+  auto r = runTool("aal-relief", quoted(dem) + common, cacheEnv(dir));
+  ASSERT_EQ(r.exitCode, 0) << r.out;
+  const Raster plain = readRaster(out);
+  for (const double v : plain.samples[0]) ASSERT_EQ(v, 128);  // 1 + 254 * 0.5
+  r = runTool("aal-relief", quoted(dem) + common + " --stretch 0.1,0.6", cacheEnv(dir));
+  ASSERT_EQ(r.exitCode, 0) << r.out;
+  const Raster stretched = readRaster(out);
+  for (const double v : stretched.samples[0]) ASSERT_EQ(v, 204);  // 1 + 254 * 0.8
+}
+
 TEST(AalRelief, BadInputIsRefusedWithExitTwo) {
   TempDir dir;
   const fs::path dem = writePlane(dir, 16, 0), out = dir.path() / "r.tif",
@@ -271,6 +286,7 @@ TEST(AalRelief, BadInputIsRefusedWithExitTwo) {
       {quoted(dem) + " -o " + quoted(out) + " --palette rainbow", "unknown palette"},
       {quoted(dem) + " -o " + quoted(out) + " --palette earth --format float", "8-bit RGB"},
       {quoted(dem) + " -o " + quoted(out) + " --time yesterday", "ISO 8601"},
+      {quoted(dem) + " -o " + quoted(out) + " --stretch 0.8,0.2", "--stretch"},
       {quoted(dem) + " -o " + quoted(out) + " --sun-elevation nan", "finite"},
       {quoted(dem) + " -o " + quoted(out) + " --water-mask " +
            quoted(writePlane(dir, 8, 0, -1, -1, "m.tif")),
