@@ -3,6 +3,7 @@
 // the closed forms (docs/relief.md).
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -249,6 +250,42 @@ TEST(AalRelief, MultidirectionalOnFlatGroundIsSinOfTheElevation) {
   ASSERT_EQ(r.exitCode, 0) << r.out;
   const Raster md = readRaster(out);
   for (const double v : md.samples[0]) ASSERT_NEAR(v, 0.5, 1e-4);
+}
+
+// A tiled bake's folder (DEMs beyond one image are baked so) gives the
+// same relief as the single-file map of the same bake. A bumpy DEM, so that
+// the apertures differ from texel to texel.
+TEST(AalRelief, TiledApertureFolderGivesTheSameRelief) {
+  TempDir dir;
+  std::vector<float> z(48 * 48);
+  for (size_t i = 0; i < z.size(); ++i) {
+    z[i] = static_cast<float>(50 * std::sin(0.3 * double(i % 48)) * std::cos(0.2 * double(i / 48)));
+  }
+  GeoReference geo;
+  geo.crs = CrsKind::Projected;
+  geo.epsg = 32616;
+  geo.originX = 500005;
+  geo.originY = 4000005;
+  geo.stepX = geo.stepY = kCell;
+  const fs::path dem = dir.path() / "bumps.tif", folder = dir.path() / "tiles",
+                 single = dir.path() / "single.exr";
+  writeFloatGeoTiff(dem.string(), 48, 48, z.data(), geo);
+  const std::string bake = " --azimuths 16 --max-distance 200 -q";
+  ASSERT_EQ(runTool("aal-bake", quoted(dem) + " -o " + quoted(folder) + " --tile-size 16" + bake)
+                .exitCode,
+            0);
+  ASSERT_EQ(runTool("aal-bake", quoted(dem) + " -o " + quoted(single) + bake).exitCode, 0);
+  const fs::path a = dir.path() / "a.tif", b = dir.path() / "b.tif";
+  for (const auto& [map, out] : {std::pair{folder, a}, std::pair{single, b}}) {
+    const auto r = runTool("aal-relief", quoted(dem) + " --aperture " + quoted(map) + " -o " +
+                                             quoted(out) + " --format float -q");
+    ASSERT_EQ(r.exitCode, 0) << r.out;
+  }
+  const Raster ra = readRaster(a), rb = readRaster(b);
+  EXPECT_EQ(ra.samples, rb.samples);
+  double lo = 1, hi = 0;  // not a constant image
+  for (const double v : ra.samples[0]) lo = std::min(lo, v), hi = std::max(hi, v);
+  EXPECT_GT(hi - lo, 0.2);
 }
 
 // 8-bit output is gdaldem's 1 + 254 v; --stretch maps [LOW, HIGH] onto it.
