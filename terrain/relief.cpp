@@ -136,7 +136,7 @@ ReliefImage shadeRelief(const Heightfield& field, const ApertureMap& map, const 
   image.height = s.outHeight > 0 ? s.outHeight : field.height;
   const size_t pixels = static_cast<size_t>(image.width) * image.height;
   image.value.assign(pixels, 0.0f);
-  image.heightM.assign(pixels, 0.0f);
+  if (s.keepHeights) image.heightM.assign(pixels, 0.0f);
   const bool anyWater = s.waterLevelM.has_value() || !s.waterMask.empty();
   if (anyWater) image.water.assign(pixels, 0);
 
@@ -237,7 +237,7 @@ ReliefImage shadeRelief(const Heightfield& field, const ApertureMap& map, const 
       int tc, tr;
       texelOf(x, y, col, row, tc, tr);
       const double height = field.bilinearHeight(col, row);
-      image.heightM[i] = static_cast<float>(height);
+      if (s.keepHeights) image.heightM[i] = static_cast<float>(height);
       if (field.isVoid(tc, tr)) {
         image.value[i] = std::numeric_limits<float>::quiet_NaN();
         continue;

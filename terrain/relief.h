@@ -46,6 +46,7 @@ struct ReliefSettings {
   ShadingMode mode = ShadingMode::Approx;            // Approx or Exact
   ObscuranceSettings obscurance;  // enabled, radiusM (> 0), samples, steps are used
   float obscuranceAlbedo = 0.2f;  // the surroundings' albedo in W
+  bool keepHeights = false;       // fill ReliefImage::heightM (colour relief)
   // Water (issue 19 item 4): none unless asked. Texels at or below
   // waterLevelM, or flagged in waterMask (DEM-sized, non-zero = water), are
   // lit as a horizontal surface and flagged in ReliefImage::water.
@@ -56,7 +57,7 @@ struct ReliefSettings {
 struct ReliefImage {
   int width = 0, height = 0;
   std::vector<float> value;    // [0, 1]; NaN where the DEM has a void
-  std::vector<float> heightM;  // bilinear DEM height at the pixel (for colour)
+  std::vector<float> heightM;  // bilinear DEM height at the pixel; empty unless keepHeights
   std::vector<uint8_t> water;  // 1 = water; empty when no water was asked for
   bool isVoid(size_t i) const { return value[i] != value[i]; }
 };

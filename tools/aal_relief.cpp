@@ -219,6 +219,7 @@ int run(const Options& o) {
                                              : aal::defaultObscuranceRadiusM(
                                                    {field.cellSizeXM, field.cellSizeYM}, extent);
   aal::checkObscuranceSettings(s.obscurance, extent);
+  s.keepHeights = ramp.has_value();
   s.waterLevelM = o.waterLevel;
   if (!o.waterMask.empty()) s.waterMask = readWaterMask(o.waterMask, field);
 
@@ -384,7 +385,9 @@ int main(int argc, char** argv) {
     palettes += (palettes.empty() ? "" : ", ") + n;
   app.add_option("--palette", o.palette,
                  "built-in colour ramp over the DEM's height range: " + palettes);
-  app.add_option("--format", o.format, "grey output: byte (1..254, 0 nodata) or float (0..1)")
+  app.add_option(
+         "--format", o.format,
+         "grey output: byte (1 + 254 v: 1..255, 0 = nodata) or float (v in 0..1, NaN = nodata)")
       ->check(CLI::IsMember({"byte", "float"}))
       ->capture_default_str();
   app.add_option("--stretch", o.stretch,
