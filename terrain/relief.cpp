@@ -230,6 +230,34 @@ ReliefImage shadeRelief(const Heightfield& field, const ApertureMap& map, const 
     boxFilter4(transfer, voids, image.width, image.height);
   }
 
+  // One shaded point per output pixel, at its centre, or when the output is
+  // coarser than the DEM, n x n points on the texels it covers, averaged
+  // (a mean, not a sample: no aliasing of ridges finer than a pixel).
+  const int subX = std::max(1, static_cast<int>(std::ceil(scaleX - 1e-9)));
+  const int subY = std::max(1, static_cast<int>(std::ceil(scaleY - 1e-9)));
+  // The value at one point (texel position col, row) of pixel i.
+  auto shadePoint = [&](size_t i, double col, double row, int tc, int tr, double height) {
+    ShadingInputs in = base;
+    const bool water = anyWater && isWater(tc, tr, height);
+    in.normal = water ? glm::vec3(0, 0, 1) : surfaceNormal(field, col, row);
+    sampleAperture(map, col, row, in.bentNormal, in.apertureRad);
+    in.transfer = glm::vec3(obscure ? transfer[i] : 1.0f);
+    if (suns.empty()) {
+      in.sunDirection = -in.bentNormal;
+      return shade(in, s.mode).r;
+    }
+    if (suns.size() == 1) {
+      in.sunDirection = suns[0];
+      return shade(in, s.mode).r;
+    }
+    const std::array<double, 4> w = multidirectionalWeights(aspectDeg(in.normal));
+    double sum = 0;
+    for (size_t k = 0; k < suns.size(); ++k) {
+      in.sunDirection = suns[k];
+      sum += w[k] * shade(in, s.mode).r;
+    }
+    return static_cast<float>(sum / 2);
+  };
   forRows(passes - 1, [&](int y) {
     for (int x = 0; x < image.width; ++x) {
       const size_t i = static_cast<size_t>(y) * image.width + x;
@@ -242,27 +270,27 @@ ReliefImage shadeRelief(const Heightfield& field, const ApertureMap& map, const 
         image.value[i] = std::numeric_limits<float>::quiet_NaN();
         continue;
       }
-      ShadingInputs in = base;
-      const bool water = anyWater && isWater(tc, tr, height);
-      in.normal = water ? glm::vec3(0, 0, 1) : surfaceNormal(field, col, row);
-      if (water) image.water[i] = 1;
-      sampleAperture(map, col, row, in.bentNormal, in.apertureRad);
-      in.transfer = glm::vec3(obscure ? transfer[i] : 1.0f);
+      if (anyWater && isWater(tc, tr, height)) image.water[i] = 1;
       float v = 0;
-      if (suns.empty()) {
-        in.sunDirection = -in.bentNormal;
-        v = shade(in, s.mode).r;
-      } else if (suns.size() == 1) {
-        in.sunDirection = suns[0];
-        v = shade(in, s.mode).r;
+      if (subX == 1 && subY == 1) {
+        v = shadePoint(i, col, row, tc, tr, height);
       } else {
-        const std::array<double, 4> w = multidirectionalWeights(aspectDeg(in.normal));
         double sum = 0;
-        for (size_t k = 0; k < suns.size(); ++k) {
-          in.sunDirection = suns[k];
-          sum += w[k] * shade(in, s.mode).r;
+        int n = 0;
+        for (int sy = 0; sy < subY; ++sy) {
+          const double r =
+              std::clamp((y + (sy + 0.5) / subY) * scaleY - 0.5, 0.0, field.height - 1.0);
+          const int pr = std::clamp(static_cast<int>(std::lround(r)), 0, field.height - 1);
+          for (int sx = 0; sx < subX; ++sx) {
+            const double c =
+                std::clamp((x + (sx + 0.5) / subX) * scaleX - 0.5, 0.0, field.width - 1.0);
+            const int pc = std::clamp(static_cast<int>(std::lround(c)), 0, field.width - 1);
+            if (field.isVoid(pc, pr)) continue;
+            sum += shadePoint(i, c, r, pc, pr, field.bilinearHeight(c, r));
+            ++n;
+          }
         }
-        v = static_cast<float>(sum / 2);
+        v = static_cast<float>(sum / std::max(n, 1));
       }
       image.value[i] = std::clamp(v, 0.0f, 1.0f);
     }

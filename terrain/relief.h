@@ -37,7 +37,10 @@ enum class ReliefLighting {
 struct ReliefSettings {
   // Output grid: the DEM's extent in outWidth x outHeight pixels (0: the
   // DEM's size, one pixel per texel). Pixel centres map to continuous texel
-  // positions (i + 0.5) W / outWidth - 0.5.
+  // positions (i + 0.5) W / outWidth - 0.5. A pixel coarser than a texel
+  // averages ceil(W / outWidth) x ceil(H / outHeight) points spread over it
+  // (at 1/2 exactly the 2 x 2 texels' values); W (obscurance) is taken at
+  // its centre.
   int outWidth = 0, outHeight = 0;
   ReliefLighting lighting = ReliefLighting::Sun;
   double sunAzimuthDeg = 315, sunElevationDeg = 45;  // clockwise from north; above horizon

@@ -234,6 +234,35 @@ TEST(Relief, ResampledOutputKeepsTheExtent) {
   for (const float v : r.value) ASSERT_NEAR(v, expected, 2e-5);
 }
 
+// At half the resolution a pixel is the mean of its 2 x 2 texels' values,
+// not the value at its centre.
+TEST(Relief, CoarserPixelsAverageTheirTexels) {
+  Heightfield f = plane(16, 10, 0, 0);
+  for (int r = 0; r < 16; ++r) {
+    for (int c = 0; c < 16; ++c) f.z[f.index(c, r)] = 20.0f * float((c * 7 + r * 3) % 5);
+  }
+  ApertureMap m = openAperture(f, {0, 0, 1});
+  for (size_t i = 0; i < f.texelCount(); ++i) m.texels[4 * i + 3] = 0.8f + 0.05f * float(i % 7);
+  ReliefSettings s = sunAt(300, 35, 0.3f);
+  s.obscurance.enabled = false;
+  const ReliefImage full = shadeRelief(f, m, s);
+  s.outWidth = s.outHeight = 8;
+  const ReliefImage half = shadeRelief(f, m, s);
+  double differs = 0;
+  for (int y = 0; y < 8; ++y) {
+    for (int x = 0; x < 8; ++x) {
+      double mean = 0;
+      for (int dy = 0; dy < 2; ++dy) {
+        for (int dx = 0; dx < 2; ++dx) mean += full.value[f.index(2 * x + dx, 2 * y + dy)] / 4;
+      }
+      const float v = half.value[static_cast<size_t>(y) * 8 + x];
+      ASSERT_NEAR(v, mean, 1e-6) << x << " " << y;
+      differs = std::max(differs, double(std::abs(v - full.value[f.index(2 * x, 2 * y)])));
+    }
+  }
+  EXPECT_GT(differs, 0.05);  // the texels differ: a sample would not be the mean
+}
+
 TEST(Relief, RefusesAMismatchedMap) {
   const Heightfield f = plane(8, 10, 0, 0);
   ApertureMap m = openAperture(f, {0, 0, 1});
