@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <vector>
@@ -15,6 +16,7 @@
 #include "gdal_session.h"
 #include "geotiff_writer.h"
 #include "run_tool.h"
+#include "solar_position.h"
 
 namespace aal {
 namespace {
@@ -286,6 +288,32 @@ TEST(AalRelief, TiledApertureFolderGivesTheSameRelief) {
   double lo = 1, hi = 0;  // not a constant image
   for (const double v : ra.samples[0]) lo = std::min(lo, v), hi = std::max(hi, v);
   EXPECT_GT(hi - lo, 0.2);
+}
+
+// --time places the sun by the NOAA position at --lat/--lon: the same relief
+// as that azimuth and elevation given by hand.
+TEST(AalRelief, TimeGivesTheSolarPosition) {
+  TempDir dir;
+  const fs::path dem = writePlane(dir, 16, 25), a = dir.path() / "a.tif", b = dir.path() / "b.tif";
+  const std::string time = "2024-06-21T15:00:00Z";
+  const SolarPosition sun = solarPosition(*parseIso8601Utc(time), 36.1, -84.2);
+  char given[128];
+  std::snprintf(given, sizeof given, " --sun-azimuth %.17g --sun-elevation %.17g", sun.azimuthDeg,
+                sun.elevationDeg);
+  const std::string common = " --format float -q --sky 0.3";
+  auto r = runTool(
+      "aal-relief",
+      quoted(dem) + " -o " + quoted(a) + common + " --time " + time + " --lat 36.1 --lon -84.2",
+      cacheEnv(dir));
+  ASSERT_EQ(r.exitCode, 0) << r.out;
+  r = runTool("aal-relief", quoted(dem) + " -o " + quoted(b) + common + given, cacheEnv(dir));
+  ASSERT_EQ(r.exitCode, 0) << r.out;
+  const Raster ra = readRaster(a), rb = readRaster(b);
+  EXPECT_EQ(ra.samples, rb.samples);
+  // And not the default sun's relief: the time matters.
+  r = runTool("aal-relief", quoted(dem) + " -o " + quoted(b) + common, cacheEnv(dir));
+  ASSERT_EQ(r.exitCode, 0) << r.out;
+  EXPECT_NE(ra.samples, readRaster(b).samples);
 }
 
 // 8-bit output is gdaldem's 1 + 254 v; --stretch maps [LOW, HIGH] onto it.
