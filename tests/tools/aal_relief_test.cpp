@@ -331,6 +331,24 @@ TEST(AalRelief, ByteOutputAndStretch) {
   for (const double v : stretched.samples[0]) ASSERT_EQ(v, 204);  // 1 + 254 * 0.8
 }
 
+// A write that fails half way (a file-size limit, as a full disk) exits 1,
+// names the output and leaves nothing behind (issue 17's rule).
+TEST(AalRelief, AWriteThatFailsHalfWayExitsWithOneAndLeavesNothing) {
+  TempDir inputs, outputs;
+  const fs::path dem = fs::path(AAL_TEST_SOURCE_DIR) / "heightmaps" / "jacksboro_fault_dem.tif";
+  const fs::path map = inputs.path() / "a.exr", out = outputs.path() / "relief.tif";
+  ASSERT_EQ(runTool("aal-bake", quoted(dem) + " -o " + quoted(map) + " --azimuths 8 -q").exitCode,
+            0);
+  const auto r =
+      test::runShell("trap '' XFSZ; ulimit -f 16; " + quoted(test::binDir() / "aal-relief") + " " +
+                     quoted(dem) + " --aperture " + quoted(map) + " -q -o " + quoted(out));
+  EXPECT_EQ(r.exitCode, 1) << r.out;
+  EXPECT_NE(r.out.find("cannot write"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("relief.tif"), std::string::npos) << r.out;
+  EXPECT_EQ(r.out.find(".tmp-"), std::string::npos) << r.out;
+  EXPECT_TRUE(fs::is_empty(outputs.path()));
+}
+
 TEST(AalRelief, BadInputIsRefusedWithExitTwo) {
   TempDir dir;
   const fs::path dem = writePlane(dir, 16, 0), out = dir.path() / "r.tif",
