@@ -10,6 +10,8 @@
 #include <glm/geometric.hpp>
 #include <glm/vec4.hpp>
 
+#include <Imath/half.h>
+
 #include "interrupt.h"
 #include "obscurance_samples.h"
 #include "solar_position.h"
@@ -39,18 +41,38 @@ glm::vec3 surfaceNormal(const Heightfield& field, double col, double row) {
   return glm::normalize(glm::vec3(glm::dvec3(-east, -north, 1.0)));
 }
 
-// Bilinear bent normal (renormalised) and arc length at a texel position.
-void sampleAperture(const ApertureMap& map, double col, double row, glm::vec3& bent, float& arc) {
-  col = std::clamp(col, 0.0, map.width - 1.0);
-  row = std::clamp(row, 0.0, map.height - 1.0);
-  const int c0 = std::min(static_cast<int>(col), std::max(map.width - 2, 0));
-  const int r0 = std::min(static_cast<int>(row), std::max(map.height - 2, 0));
-  const int c1 = std::min(c0 + 1, map.width - 1), r1 = std::min(r0 + 1, map.height - 1);
-  const float tc = static_cast<float>(col - c0), tr = static_cast<float>(row - r0);
-  auto at = [&](int c, int r) {
+// Texel (c, r) of an aperture map as (bent normal, arc length).
+struct FloatTexels {
+  const ApertureMap& map;
+  glm::vec4 operator()(int c, int r) const {
     const float* t = &map.texels[4 * (static_cast<size_t>(r) * map.width + c)];
     return glm::vec4(t[0], t[1], t[2], t[3]);
-  };
+  }
+};
+struct HalfTexels {
+  const HalfApertureMap& map;
+  glm::vec4 operator()(int c, int r) const {
+    const uint16_t* t = &map.texels[4 * (static_cast<size_t>(r) * map.width + c)];
+    glm::vec4 v;
+    for (int k = 0; k < 4; ++k) {
+      Imath::half h;
+      h.setBits(t[k]);
+      v[k] = static_cast<float>(h);
+    }
+    return v;
+  }
+};
+
+// Bilinear bent normal (renormalised) and arc length at a texel position.
+template <class Texels>
+void sampleAperture(const Texels& at, int width, int height, double col, double row,
+                    glm::vec3& bent, float& arc) {
+  col = std::clamp(col, 0.0, width - 1.0);
+  row = std::clamp(row, 0.0, height - 1.0);
+  const int c0 = std::min(static_cast<int>(col), std::max(width - 2, 0));
+  const int r0 = std::min(static_cast<int>(row), std::max(height - 2, 0));
+  const int c1 = std::min(c0 + 1, width - 1), r1 = std::min(r0 + 1, height - 1);
+  const float tc = static_cast<float>(col - c0), tr = static_cast<float>(row - r0);
   const glm::vec4 top = at(c0, r0) + (at(c1, r0) - at(c0, r0)) * tc;
   const glm::vec4 bottom = at(c0, r1) + (at(c1, r1) - at(c0, r1)) * tc;
   const glm::vec4 v = top + (bottom - top) * tr;
@@ -115,15 +137,11 @@ GeoReference resampledGeoReference(const GeoReference& geo, int demWidth, int de
   return out;
 }
 
-ReliefImage shadeRelief(const Heightfield& field, const ApertureMap& map, const ReliefSettings& s,
-                        const std::function<void(double)>& progress) {
-  if (field.width < 2 || field.height < 2 || map.width != field.width ||
-      map.height != field.height || map.texels.size() != 4 * map.texelCount() ||
-      field.residentRows() != field.height) {
-    throw std::invalid_argument(
-        "shadeRelief: the DEM (at least 2 x 2, whole) and its aperture "
-        "map must have the same size");
-  }
+namespace {
+
+template <class Texels>
+ReliefImage shadeWith(const Heightfield& field, const Texels& texels, const ReliefSettings& s,
+                      const std::function<void(double)>& progress) {
   if (!(s.skyWeight >= 0 && s.skyWeight <= 1) ||
       (s.mode != ShadingMode::Approx && s.mode != ShadingMode::Exact)) {
     throw std::invalid_argument("shadeRelief: sky weight in [0, 1], mode approx or exact");
@@ -240,7 +258,7 @@ ReliefImage shadeRelief(const Heightfield& field, const ApertureMap& map, const 
     ShadingInputs in = base;
     const bool water = anyWater && isWater(tc, tr, height);
     in.normal = water ? glm::vec3(0, 0, 1) : surfaceNormal(field, col, row);
-    sampleAperture(map, col, row, in.bentNormal, in.apertureRad);
+    sampleAperture(texels, field.width, field.height, col, row, in.bentNormal, in.apertureRad);
     in.transfer = glm::vec3(obscure ? transfer[i] : 1.0f);
     if (suns.empty()) {
       in.sunDirection = -in.bentNormal;
@@ -296,6 +314,56 @@ ReliefImage shadeRelief(const Heightfield& field, const ApertureMap& map, const 
     }
   });
   return image;
+}
+
+}  // namespace
+
+ReliefImage shadeRelief(const Heightfield& field, const ApertureMap& map, const ReliefSettings& s,
+                        const std::function<void(double)>& progress) {
+  if (field.width < 2 || field.height < 2 || map.width != field.width ||
+      map.height != field.height || map.texels.size() != 4 * map.texelCount() ||
+      field.residentRows() != field.height) {
+    throw std::invalid_argument(
+        "shadeRelief: the DEM (at least 2 x 2, whole) and its aperture "
+        "map must have the same size");
+  }
+  return shadeWith(field, FloatTexels{map}, s, progress);
+}
+
+ReliefImage shadeRelief(const Heightfield& field, const HalfApertureMap& map,
+                        const ReliefSettings& s, const std::function<void(double)>& progress) {
+  if (field.width < 2 || field.height < 2 || map.width != field.width ||
+      map.height != field.height ||
+      map.texels.size() != 4 * static_cast<size_t>(map.width) * map.height ||
+      field.residentRows() != field.height) {
+    throw std::invalid_argument(
+        "shadeRelief: the DEM (at least 2 x 2, whole) and its aperture "
+        "map must have the same size");
+  }
+  return shadeWith(field, HalfTexels{map}, s, progress);
+}
+
+HalfApertureMap readHalfApertureMap(ApertureMapReader& reader) {
+  HalfApertureMap map;
+  map.width = reader.header().width;
+  map.height = reader.header().height;
+  map.texels.resize(4 * static_cast<size_t>(map.width) * map.height);
+  const int band = std::max(1, (1 << 22) / std::max(map.width, 1));
+  for (int row = 0; row < map.height; row += band) {
+    const int end = std::min(map.height, row + band);
+    reader.readHalfRows(row, end, &map.texels[4 * static_cast<size_t>(row) * map.width]);
+    throwIfInterrupted();
+  }
+  return map;
+}
+
+HalfApertureMap toHalfApertureMap(const ApertureMap& map) {
+  HalfApertureMap out;
+  out.width = map.width;
+  out.height = map.height;
+  out.texels.resize(map.texels.size());
+  for (size_t i = 0; i < map.texels.size(); ++i) out.texels[i] = Imath::half(map.texels[i]).bits();
+  return out;
 }
 
 }  // namespace aal

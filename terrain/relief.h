@@ -76,12 +76,26 @@ struct ReliefImage {
 std::array<double, 4> multidirectionalWeights(double aspectDeg);
 inline constexpr std::array<double, 4> kMultidirectionalAzimuthsDeg = {225, 270, 315, 360};
 
+// An aperture map as RGBA 16-bit halves per texel, as the renderer uploads
+// it (ApertureMapReader::readHalfRows): half the memory of ApertureMap.
+struct HalfApertureMap {
+  int width = 0, height = 0;
+  std::vector<uint16_t> texels;  // 4 halves per texel: bent normal x, y, z; arc length
+};
+// Reads the whole map (a file or a tiled bake's folder) in bands of rows;
+// errors as ApertureMapReader.
+HalfApertureMap readHalfApertureMap(ApertureMapReader& reader);
+HalfApertureMap toHalfApertureMap(const ApertureMap& map);
+
 // The shaded relief of `field` with its aperture map (same size; checked by
 // the caller with checkApertureMatchesDem). `progress` (may be empty) is
 // called from the calling thread with the fraction done. Throws
 // std::invalid_argument for a bad size or settings; honours interrupts
 // (interrupt.h).
 ReliefImage shadeRelief(const Heightfield& field, const ApertureMap& map,
+                        const ReliefSettings& settings,
+                        const std::function<void(double)>& progress = {});
+ReliefImage shadeRelief(const Heightfield& field, const HalfApertureMap& map,
                         const ReliefSettings& settings,
                         const std::function<void(double)>& progress = {});
 

@@ -223,14 +223,21 @@ int run(const Options& o) {
   s.waterLevelM = o.waterLevel;
   if (!o.waterMask.empty()) s.waterMask = readWaterMask(o.waterMask, field);
 
-  aal::ApertureMap map;
+  // The map as halves (8 bytes a texel), as the renderer holds it.
+  aal::HalfApertureMap map;
   if (!o.aperture.empty()) {
-    map = aal::readApertureMap(o.aperture);
-    aal::checkApertureMatchesDem(map, o.aperture, field, o.dem);
+    aal::ApertureMapReader reader(o.aperture);
+    aal::checkApertureMatchesDem(reader.header(), o.aperture, field, o.dem);
+    map = aal::readHalfApertureMap(reader);
   } else {
     aal::CachedAperture cached =
         aal::cachedOrBakedAperture(field, o.dem, aal::BakeOptions{}, o.quiet);
-    map = cached.path.empty() ? std::move(cached.map) : aal::readApertureMap(cached.path.string());
+    if (cached.path.empty()) {
+      map = aal::toHalfApertureMap(cached.map);
+    } else {
+      aal::ApertureMapReader reader(cached.path.string());
+      map = aal::readHalfApertureMap(reader);
+    }
   }
 
   const auto start = std::chrono::steady_clock::now();

@@ -263,6 +263,34 @@ TEST(Relief, CoarserPixelsAverageTheirTexels) {
   EXPECT_GT(differs, 0.05);  // the texels differ: a sample would not be the mean
 }
 
+// The tool holds the map as halves: the same relief as the floats when the
+// values are halves already, and within their precision otherwise.
+TEST(Relief, HalfMapsShadeAsTheirFloats) {
+  Heightfield f = plane(12, 10, 0, 0);
+  for (int r = 0; r < 12; ++r) {
+    for (int c = 0; c < 12; ++c) f.z[f.index(c, r)] = 15.0f * float((c * 5 + r * 3) % 4);
+  }
+  ApertureMap m = openAperture(f, {0, 0, 1});
+  for (size_t i = 0; i < f.texelCount(); ++i) {
+    m.texels[4 * i + 0] = 0.25f * float(i % 3) - 0.25f;  // exact in halves
+    m.texels[4 * i + 3] = 0.5f + 0.125f * float(i % 7);
+  }
+  const ReliefSettings s = sunAt(250, 30, 0.3f);
+  const ReliefImage floats = shadeRelief(f, m, s);
+  const HalfApertureMap halves = toHalfApertureMap(m);
+  ASSERT_EQ(halves.texels.size(), m.texels.size());
+  EXPECT_EQ(shadeRelief(f, halves, s).value, floats.value);
+  for (size_t i = 0; i < f.texelCount(); ++i) m.texels[4 * i + 3] += 1e-3f * float(i % 5);
+  const ReliefImage rounded = shadeRelief(f, toHalfApertureMap(m), s);
+  const ReliefImage exact = shadeRelief(f, m, s);
+  for (size_t i = 0; i < exact.value.size(); ++i) {
+    ASSERT_NEAR(rounded.value[i], exact.value[i], 2e-3) << i;
+  }
+  HalfApertureMap small = halves;
+  small.height = 11;
+  EXPECT_THROW(shadeRelief(f, small, s), std::invalid_argument);
+}
+
 TEST(Relief, RefusesAMismatchedMap) {
   const Heightfield f = plane(8, 10, 0, 0);
   ApertureMap m = openAperture(f, {0, 0, 1});
