@@ -184,7 +184,9 @@ ReliefImage shadeWith(const Heightfield& field, const Texels& texels, const Reli
     base.skyRadiance = glm::vec3(static_cast<float>(1.0 / kPi));
   }
 
-  const bool obscure = s.obscurance.enabled && s.skyWeight > 0;
+  // W multiplies the sky term only: nothing to do without one.
+  const bool obscure =
+      s.obscurance.enabled && (s.lighting == ReliefLighting::SkyOnly || s.skyWeight > 0);
   std::vector<float> transfer;
   ObscuranceField obscuranceField;
   if (obscure) {
@@ -205,7 +207,8 @@ ReliefImage shadeWith(const Heightfield& field, const Texels& texels, const Reli
            s.waterMask[static_cast<size_t>(tr) * field.width + static_cast<size_t>(tc)] != 0;
   };
 
-  // Pass 1: W (it is filtered across pixels before the shading uses it).
+  // Rows in parallel, a band at a time so that progress and interrupts are
+  // heard; W first, as it is filtered across pixels before the shading.
   const int bandRows = std::max(1, (1 << 20) / image.width);
   const int passes = obscure ? 2 : 1;
   auto forRows = [&](int pass, const std::function<void(int)>& row) {

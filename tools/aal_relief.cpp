@@ -39,7 +39,7 @@ struct Options {
   std::string time;
   std::optional<double> lat, lon;
   double sunRadiusDeg = aal::kSunAngularRadiusDeg;
-  double skyWeight = 0.2;
+  std::optional<double> skyWeight;  // default kDefaultSkyWeight
   bool skyOnly = false, multidirectional = false;
   std::string mode = "approx";
   bool noObscurance = false;
@@ -54,6 +54,10 @@ struct Options {
   std::optional<double> cellSize, zScale;
   bool quiet = false;
 };
+
+// The sky's share of the light by default: enough fill that slopes facing
+// away from the sun keep their form, the sun still dominant.
+constexpr double kDefaultSkyWeight = 0.2;
 
 // Water in colour maps: a muted blue (sRGB 0..255), shaded like the land.
 constexpr float kWaterRgb[3] = {90, 140, 190};
@@ -122,10 +126,10 @@ void checkOptions(const Options& o) {
   }
   aal::requireWritableOutput(o.output);
   const bool sunGiven = o.sunAzimuth || o.sunElevation || !o.time.empty();
-  if (o.skyOnly && (sunGiven || o.multidirectional)) {
+  if (o.skyOnly && (sunGiven || o.multidirectional || o.skyWeight)) {
     throw aal::InputError(
-        "--sky-only has no sun: leave out --sun-azimuth, --sun-elevation, "
-        "--time and --multidirectional");
+        "--sky-only has no sun: leave out --sun-azimuth, --sun-elevation, --time, "
+        "--multidirectional and --sky");
   }
   if (!o.time.empty() && (o.sunAzimuth || o.sunElevation)) {
     throw aal::InputError("give --time or --sun-azimuth/--sun-elevation, not both");
@@ -189,7 +193,7 @@ int run(const Options& o) {
   s.outHeight = outHeight;
   s.mode = o.mode == "exact" ? aal::ShadingMode::Exact : aal::ShadingMode::Approx;
   s.sunRadiusDeg = o.sunRadiusDeg;
-  s.skyWeight = static_cast<float>(o.skyWeight);
+  s.skyWeight = static_cast<float>(o.skyWeight.value_or(kDefaultSkyWeight));
   s.lighting = o.skyOnly            ? aal::ReliefLighting::SkyOnly
                : o.multidirectional ? aal::ReliefLighting::Multidirectional
                                     : aal::ReliefLighting::Sun;
@@ -316,10 +320,10 @@ int run(const Options& o) {
       std::snprintf(light, sizeof light, "sky only");
     } else if (o.multidirectional) {
       std::snprintf(light, sizeof light, "multidirectional, elevation %.1f deg, sky %.2f",
-                    s.sunElevationDeg, o.skyWeight);
+                    s.sunElevationDeg, double(s.skyWeight));
     } else {
       std::snprintf(light, sizeof light, "sun azimuth %.1f deg, elevation %.1f deg, sky %.2f",
-                    s.sunAzimuthDeg, s.sunElevationDeg, o.skyWeight);
+                    s.sunAzimuthDeg, s.sunElevationDeg, double(s.skyWeight));
     }
     std::fprintf(stderr, "aal-relief: %dx%d pixels (%s) in %.2f s, wrote %s\n", outWidth, outHeight,
                  light, seconds, o.output.c_str());
@@ -364,9 +368,9 @@ int main(int argc, char** argv) {
       ->check(CLI::Range(0.01, 20.0))
       ->capture_default_str();
   app.add_option("--sky", o.skyWeight,
-                 "sky weight k: the sky's share of the light (0: sun alone, like gdaldem)")
-      ->check(CLI::Range(0.0, 1.0))
-      ->capture_default_str();
+                 "sky weight k: the sky's share of the light (default 0.2; 0: the sun alone, "
+                 "like gdaldem)")
+      ->check(CLI::Range(0.0, 1.0));
   app.add_flag("--sky-only", o.skyOnly,
                "diffuse sky-view relief: the sky term alone (1 on open flat ground, darker in "
                "valleys and on steep slopes)");

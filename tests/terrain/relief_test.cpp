@@ -112,6 +112,27 @@ TEST(Relief, SkyOnlyIsOneOnOpenFlatGroundAndFollowsTheAperture) {
   }
 }
 
+// Sky-only relief ignores the sky weight, obscurances included (W darkens
+// the creases of a bumpy DEM whatever k says).
+TEST(Relief, SkyOnlyIgnoresTheSkyWeight) {
+  Heightfield f = plane(24, 10, 0, 0);
+  for (int r = 0; r < 24; ++r) {
+    for (int c = 0; c < 24; ++c) f.z[f.index(c, r)] = 30.0f * float(std::abs(c - 12));  // a V
+  }
+  const ApertureMap m = openAperture(f, {0, 0, 1});
+  ReliefSettings s;
+  s.lighting = ReliefLighting::SkyOnly;
+  s.obscurance.radiusM = 40;
+  s.skyWeight = 0.2f;
+  const ReliefImage a = shadeRelief(f, m, s);
+  s.skyWeight = 0.0f;
+  const ReliefImage b = shadeRelief(f, m, s);
+  EXPECT_EQ(a.value, b.value);
+  s.obscurance.enabled = false;
+  const ReliefImage open = shadeRelief(f, m, s);
+  EXPECT_LT(a.value[f.index(12, 12)], open.value[f.index(12, 12)] - 0.01);  // the crease
+}
+
 TEST(Relief, SunOutsideTheApertureCastsShadow) {
   const Heightfield f = plane(12, 10, 0, 0);
   ApertureMap m = openAperture(f, {0, 0, 1});

@@ -361,6 +361,7 @@ TEST(AalRelief, BadInputIsRefusedWithExitTwo) {
       {quoted(dem) + " -o " + quoted(dem), "is the input DEM"},
       {quoted(dem) + " -o " + quoted(out) + " --color-relief " + quoted(ramp), "ramp.txt:2:"},
       {quoted(dem) + " -o " + quoted(out) + " --sky-only --sun-azimuth 200", "--sky-only"},
+      {quoted(dem) + " -o " + quoted(out) + " --sky-only --sky 0.5", "--sky-only"},
       {quoted(dem) + " -o " + quoted(out) + " --multidirectional --sun-azimuth 200",
        "--multidirectional"},
       {quoted(dem) + " -o " + quoted(out) + " --resolution fine", "--resolution"},
