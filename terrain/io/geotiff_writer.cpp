@@ -51,18 +51,24 @@ void place(GDALDataset& dataset, const GeoReference& geo) {
 
 }  // namespace
 
-void writeFloatGeoTiff(const std::string& path, int width, int height, const float* data,
-                       const GeoReference& geo, const RasterWriteOptions& options) {
-  if (width < 1 || height < 1 || width > kMaxDemSide || height > kMaxDemSide || !data) {
-    throw std::invalid_argument("writeFloatGeoTiff: size must be in [1, " +
-                                std::to_string(kMaxDemSide) + "] and data non-null");
+void writeGeoTiff(const std::string& path, const RasterImage& image, const GeoReference& geo,
+                  const RasterWriteOptions& options) {
+  const int width = image.width, height = image.height;
+  if (width < 1 || height < 1 || width > kMaxDemSide || height > kMaxDemSide || !image.data ||
+      image.bands < 1 || image.bands > 4) {
+    throw std::invalid_argument("writeGeoTiff: size must be in [1, " + std::to_string(kMaxDemSide) +
+                                "], 1 to 4 bands and data non-null");
   }
   if (geo.crs != CrsKind::None &&
       !(geo.stepX > 0.0 && geo.stepY > 0.0 && std::isfinite(geo.stepX) &&
         std::isfinite(geo.stepY) && std::isfinite(geo.originX) && std::isfinite(geo.originY) &&
         geo.linearUnitM > 0.0)) {
-    throw std::invalid_argument("writeFloatGeoTiff: georeference needs finite positive steps");
+    throw std::invalid_argument("writeGeoTiff: georeference needs finite positive steps");
   }
+  const bool bytes = image.type == RasterSampleType::Byte;
+  const GDALDataType type = bytes ? GDT_Byte : GDT_Float32;
+  const size_t sampleBytes = bytes ? 1 : 4;
+  const size_t pixelBytes = sampleBytes * static_cast<size_t>(image.bands);
   ensureGdal();
   AtomicOutput output(path);
   const std::string temporary = output.temporaryPath().string();
@@ -77,25 +83,40 @@ void writeFloatGeoTiff(const std::string& path, int width, int height, const flo
     if (driver == nullptr)
       fail(options.cog ? "GDAL has no MEM driver" : "GDAL has no GTiff driver");
     if (!options.cog) {
-      creation.SetNameValue("PREDICTOR", "3");
+      creation.SetNameValue("PREDICTOR", bytes ? "2" : "3");
       creation.SetNameValue("TILED", "YES");
+      if (image.bands >= 3) {
+        creation.SetNameValue("PHOTOMETRIC", "RGB");
+        if (image.bands == 4) creation.SetNameValue("ALPHA", "UNASSOCIATED");
+      }
     }
     GDALDatasetUniquePtr dataset(driver->Create(options.cog ? "" : temporary.c_str(), width, height,
-                                                1, GDT_Float32,
+                                                image.bands, type,
                                                 options.cog ? nullptr : creation.List()));
     if (!dataset) fail("cannot create it");
     place(*dataset, geo);
-    GDALRasterBand& band = *dataset->GetRasterBand(1);
-    if (options.nodata && band.SetNoDataValue(*options.nodata) != CE_None) {
-      fail("cannot set its nodata value");
+    for (int b = 1; b <= image.bands; ++b) {
+      GDALRasterBand& band = *dataset->GetRasterBand(b);
+      if (options.nodata && band.SetNoDataValue(*options.nodata) != CE_None) {
+        fail("cannot set its nodata value");
+      }
+      if (image.bands >= 3) {
+        static constexpr GDALColorInterp kInterp[] = {GCI_RedBand, GCI_GreenBand, GCI_BlueBand,
+                                                      GCI_AlphaBand};
+        band.SetColorInterpretation(kInterp[b - 1]);
+      }
     }
     // Bands of rows, so that an interrupt is heard within one band.
-    const int bandRows = std::max(1, static_cast<int>((size_t{16} << 20) / (4 * size_t(width))));
+    const int bandRows =
+        std::max(1, static_cast<int>((size_t{16} << 20) / (pixelBytes * size_t(width))));
+    auto* bytesIn = static_cast<GByte*>(const_cast<void*>(image.data));
     for (int row = 0; row < height; row += bandRows) {
       const int rows = std::min(bandRows, height - row);
-      if (band.RasterIO(GF_Write, 0, row, width, rows,
-                        const_cast<float*>(data) + static_cast<size_t>(row) * width, width, rows,
-                        GDT_Float32, 0, 0, nullptr) != CE_None) {
+      if (dataset->RasterIO(GF_Write, 0, row, width, rows,
+                            bytesIn + static_cast<size_t>(row) * width * pixelBytes, width, rows,
+                            type, image.bands, nullptr, static_cast<GSpacing>(pixelBytes),
+                            static_cast<GSpacing>(pixelBytes * width),
+                            static_cast<GSpacing>(sampleBytes), nullptr) != CE_None) {
         fail("cannot write its samples");
       }
       throwIfInterrupted();
@@ -118,6 +139,15 @@ void writeFloatGeoTiff(const std::string& path, int width, int height, const flo
     throw output.failure(e.what());
   }
   output.commit();
+}
+
+void writeFloatGeoTiff(const std::string& path, int width, int height, const float* data,
+                       const GeoReference& geo, const RasterWriteOptions& options) {
+  if (width < 1 || height < 1 || width > kMaxDemSide || height > kMaxDemSide || !data) {
+    throw std::invalid_argument("writeFloatGeoTiff: size must be in [1, " +
+                                std::to_string(kMaxDemSide) + "] and data non-null");
+  }
+  writeGeoTiff(path, RasterImage{width, height, 1, RasterSampleType::Float32, data}, geo, options);
 }
 
 }  // namespace aal

@@ -1,5 +1,6 @@
-// Float32 GeoTIFF output, through GDAL, for per-texel results (sky-view
-// factor, visible sky) that GIS tools open next to the DEM they came from.
+// GeoTIFF output, through GDAL, for per-texel results (sky-view factor,
+// visible sky, shaded relief) that GIS tools open next to the DEM they came
+// from: float32 or 8-bit, one band (grey) or several (RGB, RGBA).
 #pragma once
 
 #include <optional>
@@ -16,6 +17,23 @@ struct RasterWriteOptions {
   // The band's nodata value: texels holding it are voids for GIS tools.
   std::optional<double> nodata;
 };
+
+enum class RasterSampleType { Float32, Byte };
+
+// Samples to write: row-major from the northern row, bands interleaved per
+// pixel (R, G, B, A, R, ...). 3 bands are tagged RGB, 4 RGB + alpha, so GIS
+// tools show them in colour and treat alpha 0 as transparent.
+struct RasterImage {
+  int width = 0, height = 0, bands = 1;
+  RasterSampleType type = RasterSampleType::Float32;
+  const void* data = nullptr;
+};
+
+// As writeFloatGeoTiff, for any RasterImage (1 to 4 bands; byte samples use
+// the horizontal-differencing predictor). options.nodata applies to every
+// band.
+void writeGeoTiff(const std::string& path, const RasterImage& image, const GeoReference& geo,
+                  const RasterWriteOptions& options = {});
 
 // Writes width x height floats (row 0 = north, row-major) as a single-band
 // float32 GeoTIFF (DEFLATE with the floating-point predictor, 256-texel

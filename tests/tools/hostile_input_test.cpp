@@ -59,6 +59,7 @@ TEST(HostileInput, NumbersThatAreNotFiniteExitWithTwoInEveryTool) {
       {"aal-caps", "--table " + out + ".csv --max-radius X"},
       {"aal-info", dem + " --cell-size X"},
       {"aal-synth", "-o " + out + ".tif --amplitude X"},
+      {"aal-relief", dem + " -o " + out + ".tif --sun-elevation X"},
   };
   for (const ToolCase& c : cases) {
     for (const std::string value : {"nan", "inf", "-inf", "1e999", "-NaN"}) {
@@ -103,6 +104,7 @@ TEST(HostileInput, OutputsThatAliasInputsOrEachOtherExitWithTwoInEveryTool) {
       {"aal-view",
        quoted(kDem) + " --aperture " + quoted(map) + " --frames 1 --screenshot " + quoted(map)},
       {"aal-caps", "--table " + quoted(table) + " --plot " + quoted(table)},
+      {"aal-relief", quoted(kDem) + " --aperture " + quoted(map) + " -o " + quoted(map)},
   };
   for (const ToolCase& c : cases) {
     const auto r = runTool(c.tool, c.arguments);
@@ -122,6 +124,7 @@ TEST(HostileInput, ATinyFileClaimingAHugeDemIsRefusedAtOnceByEveryTool) {
       {"aal-info", quoted(claims)},
       {"aal-bake", quoted(claims) + " -o " + out + ".exr"},
       {"aal-render", quoted(claims) + " --mode reference --size 32x18 -o " + out + ".png"},
+      {"aal-relief", quoted(claims) + " -o " + out + ".tif"},
   };
   for (const ToolCase& c : cases) {
     // Refused at open, before the 1 GB of heights is allocated.

@@ -117,6 +117,51 @@ TEST_F(GeoTiffWriter, CarriesTheDemsCrsNodataAndWritesCogs) {
   EXPECT_EQ(back.at(10, 10), dem.at(10, 10));
 }
 
+// Shaded-relief maps (aal-relief): 8-bit RGB + alpha, tagged so that GIS
+// tools show colour and treat alpha 0 as transparent, samples per band.
+TEST_F(GeoTiffWriter, WritesByteRgbaWithColourInterpretation) {
+  GeoReference geo;
+  geo.crs = CrsKind::Projected;
+  geo.epsg = 32616;
+  geo.originX = 500015;
+  geo.originY = 4000015;
+  geo.stepX = 30;
+  geo.stepY = 20;
+  const int w = 37, h = 5;
+  std::vector<uint8_t> pixels(static_cast<size_t>(w) * h * 4);
+  for (size_t i = 0; i < pixels.size(); ++i) pixels[i] = static_cast<uint8_t>((i * 7) % 256);
+  for (const bool cog : {false, true}) {
+    RasterWriteOptions options;
+    options.cog = cog;
+    writeGeoTiff(path("rgba.tif"), RasterImage{w, h, 4, RasterSampleType::Byte, pixels.data()}, geo,
+                 options);
+    GDALDatasetUniquePtr in(GDALDataset::Open(path("rgba.tif").c_str(), GDAL_OF_RASTER));
+    ASSERT_TRUE(in);
+    ASSERT_EQ(in->GetRasterCount(), 4);
+    const GDALColorInterp expected[] = {GCI_RedBand, GCI_GreenBand, GCI_BlueBand, GCI_AlphaBand};
+    for (int b = 1; b <= 4; ++b) {
+      GDALRasterBand& band = *in->GetRasterBand(b);
+      EXPECT_EQ(band.GetRasterDataType(), GDT_Byte);
+      EXPECT_EQ(band.GetColorInterpretation(), expected[b - 1]) << b << " cog " << cog;
+      std::vector<uint8_t> back(static_cast<size_t>(w) * h);
+      ASSERT_EQ(band.RasterIO(GF_Read, 0, 0, w, h, back.data(), w, h, GDT_Byte, 0, 0, nullptr),
+                CE_None);
+      for (size_t i = 0; i < back.size(); ++i) {
+        ASSERT_EQ(back[i], pixels[i * 4 + static_cast<size_t>(b - 1)]) << b << " " << i;
+      }
+    }
+    double t[6];
+    ASSERT_EQ(in->GetGeoTransform(t), CE_None);
+    EXPECT_DOUBLE_EQ(t[0], 500000);
+    EXPECT_DOUBLE_EQ(t[1], 30);
+    EXPECT_DOUBLE_EQ(t[3], 4000025);
+    EXPECT_DOUBLE_EQ(t[5], -20);
+  }
+  EXPECT_THROW(
+      writeGeoTiff(path("b.tif"), RasterImage{w, h, 5, RasterSampleType::Byte, pixels.data()}, geo),
+      std::invalid_argument);
+}
+
 TEST_F(GeoTiffWriter, ReplacesAnExistingFileAndLeavesNoTemporaryFile) {
   const std::vector<float> first = pattern(3, 2), second(6, 9.0f);
   writeFloatGeoTiff(path("out.tif"), 3, 2, first.data(), GeoReference{});

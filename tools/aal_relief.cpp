@@ -1,0 +1,422 @@
+// aal-relief: a top-down shaded-relief map of a DEM, lit by ambient aperture
+// lighting, as a GeoTIFF placed exactly like the DEM (docs/relief.md).
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdint>
+#include <cstdio>
+#include <limits>
+#include <optional>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include <CLI/CLI.hpp>
+
+#include "aperture_cache.h"
+#include "aperture_map.h"
+#include "atmosphere.h"
+#include "camera.h"
+#include "color_ramp.h"
+#include "dem_loader.h"
+#include "dem_options.h"
+#include "geotiff_writer.h"
+#include "interrupt.h"
+#include "lighting_defaults.h"
+#include "progress.h"
+#include "relief.h"
+#include "solar_position.h"
+#include "tool_main.h"
+#include "tool_options.h"
+#include "tool_paths.h"
+
+namespace {
+
+struct Options {
+  std::string dem, output, aperture;
+  std::string resolution;
+  std::optional<double> sunAzimuth, sunElevation;
+  std::string time;
+  std::optional<double> lat, lon;
+  double sunRadiusDeg = aal::kSunAngularRadiusDeg;
+  std::optional<double> skyWeight;  // default kDefaultSkyWeight
+  bool skyOnly = false, multidirectional = false;
+  std::string mode = "approx";
+  bool noObscurance = false;
+  std::optional<double> obscuranceRadiusM;
+  int obscuranceSamples = 16, obscuranceSteps = 1;
+  std::string colorRelief, palette;
+  std::string format = "byte";
+  std::string stretch;
+  std::optional<double> waterLevel;
+  std::string waterMask;
+  bool cog = false;
+  std::optional<double> cellSize, zScale;
+  bool quiet = false;
+};
+
+// The sky's share of the light by default: enough fill that slopes facing
+// away from the sun keep their form, the sun still dominant.
+constexpr double kDefaultSkyWeight = 0.2;
+
+// Water in colour maps: a muted blue (sRGB 0..255), shaded like the land.
+constexpr float kWaterRgb[3] = {90, 140, 190};
+
+bool endsWith(const std::string& s, const std::string& suffix) {
+  if (s.size() < suffix.size()) return false;
+  return std::equal(suffix.rbegin(), suffix.rend(), s.rbegin(),
+                    [](char a, char b) { return std::tolower(a) == std::tolower(b); });
+}
+
+// --resolution: "Nm" (or a plain number) is the pixel size in metres along
+// the DEM's rows' spacing (north-south; x keeps the DEM's aspect), "Nx" a
+// scale factor on the pixels per side (2x: twice as many, 0.5x: half).
+// Returns the output size; the DEM's extent is kept.
+std::pair<int, int> outputSize(const std::string& text, const aal::Heightfield& field) {
+  if (text.empty()) return {field.width, field.height};
+  std::string number = text;
+  bool factor = false;
+  if (endsWith(number, "x")) {
+    factor = true;
+    number.pop_back();
+  } else if (endsWith(number, "m")) {
+    number.pop_back();
+  }
+  const char* begin = number.c_str();
+  char* end = nullptr;
+  const double v = std::strtod(begin, &end);
+  if (end == begin || *end != '\0' || !std::isfinite(v) || v <= 0) {
+    throw aal::InputError(
+        "--resolution must be a pixel size in metres (30 or 30m) or a scale "
+        "factor (2x, 0.5x), positive, got '" +
+        text + "'");
+  }
+  const double scale = factor ? v : field.cellSizeYM / v;
+  const double w = std::round(field.width * scale), h = std::round(field.height * scale);
+  if (w < 1 || h < 1 || w > aal::kMaxDemSide || h > aal::kMaxDemSide) {
+    throw aal::InputError("--resolution " + text + " gives " + std::to_string(int64_t(w)) + " x " +
+                          std::to_string(int64_t(h)) + " pixels; the output must be 1 to " +
+                          std::to_string(aal::kMaxDemSide) + " pixels per side");
+  }
+  return {static_cast<int>(w), static_cast<int>(h)};
+}
+
+// --stretch LOW,HIGH: the relief values mapped to the full 8-bit range.
+std::pair<double, double> parseStretch(const std::string& text) {
+  if (text.empty()) return {0.0, 1.0};
+  std::istringstream in(text);
+  double low = 0, high = 0;
+  char comma = 0;
+  if (!(in >> low >> comma >> high) || comma != ',' || !in.eof() || !(low >= 0) || !(high <= 1) ||
+      !(low < high)) {
+    throw aal::InputError("--stretch must be LOW,HIGH with 0 <= LOW < HIGH <= 1, got '" + text +
+                          "'");
+  }
+  return {low, high};
+}
+
+void checkOptions(const Options& o) {
+  aal::checkDistinctFiles({{"DEM", o.dem},
+                           {"--aperture", o.aperture},
+                           {"--color-relief", o.colorRelief},
+                           {"--water-mask", o.waterMask}},
+                          {{"-o", o.output}});
+  if (!endsWith(o.output, ".tif") && !endsWith(o.output, ".tiff")) {
+    throw aal::InputError("output " + o.output + " must end in .tif or .tiff (a GeoTIFF)");
+  }
+  aal::requireWritableOutput(o.output);
+  const bool sunGiven = o.sunAzimuth || o.sunElevation || !o.time.empty();
+  if (o.skyOnly && (sunGiven || o.multidirectional || o.skyWeight)) {
+    throw aal::InputError(
+        "--sky-only has no sun: leave out --sun-azimuth, --sun-elevation, --time, "
+        "--multidirectional and --sky");
+  }
+  if (!o.time.empty() && (o.sunAzimuth || o.sunElevation)) {
+    throw aal::InputError("give --time or --sun-azimuth/--sun-elevation, not both");
+  }
+  if (o.time.empty() && (o.lat || o.lon)) {
+    throw aal::InputError("--lat and --lon place the sun for --time; give --time too");
+  }
+  if (o.multidirectional && (o.sunAzimuth || !o.time.empty())) {
+    throw aal::InputError(
+        "--multidirectional lights from 225, 270, 315 and 360 degrees: leave "
+        "out --sun-azimuth and --time (--sun-elevation sets their elevation)");
+  }
+  if (!o.colorRelief.empty() && !o.palette.empty()) {
+    throw aal::InputError("give --color-relief or --palette, not both");
+  }
+  const bool colour = !o.colorRelief.empty() || !o.palette.empty();
+  if (colour && o.format == "float") {
+    throw aal::InputError("colour relief is 8-bit RGB: leave out --format float");
+  }
+  if (!o.stretch.empty() && o.format == "float") {
+    throw aal::InputError("--stretch is for 8-bit output: --format float keeps the values");
+  }
+  parseStretch(o.stretch);
+  if (o.waterLevel && !o.waterMask.empty()) {
+    throw aal::InputError("give --water-level or --water-mask, not both");
+  }
+}
+
+// Non-zero, non-void texels of a raster the DEM's size are water.
+std::vector<uint8_t> readWaterMask(const std::string& path, const aal::Heightfield& field) {
+  const aal::Heightfield mask = aal::loadDem(path);
+  if (mask.width != field.width || mask.height != field.height) {
+    throw aal::InputError("--water-mask " + path + " is " + std::to_string(mask.width) + " x " +
+                          std::to_string(mask.height) + " texels; it must have the DEM's size (" +
+                          std::to_string(field.width) + " x " + std::to_string(field.height) + ")");
+  }
+  std::vector<uint8_t> water(mask.texelCount());
+  for (int y = 0; y < mask.height; ++y) {
+    for (int x = 0; x < mask.width; ++x) {
+      water[mask.index(x, y)] = !mask.isVoid(x, y) && mask.at(x, y) != 0.0f ? 1 : 0;
+    }
+  }
+  return water;
+}
+
+int run(const Options& o) {
+  checkOptions(o);
+  std::optional<aal::ColorRamp> ramp;
+  if (!o.colorRelief.empty()) ramp = aal::readColorRamp(o.colorRelief);
+  if (!o.palette.empty()) ramp = aal::builtinPalette(o.palette);
+
+  aal::DemLoadOptions load;
+  load.cellSizeM = o.cellSize;
+  load.zScale = o.zScale;
+  const aal::Heightfield field = aal::loadDem(o.dem, load);
+  aal::requireRenderableDem(field);
+  const auto [outWidth, outHeight] = outputSize(o.resolution, field);
+
+  aal::ReliefSettings s;
+  s.outWidth = outWidth;
+  s.outHeight = outHeight;
+  s.mode = o.mode == "exact" ? aal::ShadingMode::Exact : aal::ShadingMode::Approx;
+  s.sunRadiusDeg = o.sunRadiusDeg;
+  s.skyWeight = static_cast<float>(o.skyWeight.value_or(kDefaultSkyWeight));
+  s.lighting = o.skyOnly            ? aal::ReliefLighting::SkyOnly
+               : o.multidirectional ? aal::ReliefLighting::Multidirectional
+                                    : aal::ReliefLighting::Sun;
+  s.sunAzimuthDeg = o.sunAzimuth.value_or(315.0);
+  s.sunElevationDeg = o.sunElevation.value_or(45.0);
+  if (!o.time.empty()) {
+    const std::optional<aal::UtcTime> time = aal::parseIso8601Utc(o.time);
+    if (!time) {
+      throw aal::InputError("--time must be ISO 8601, e.g. 2024-06-21T12:00:00Z, got '" + o.time +
+                            "'");
+    }
+    const aal::GeoPlace place = aal::defaultSunPlace(field);
+    const aal::SolarPosition sun = aal::solarPosition(*time, o.lat.value_or(place.latitudeDeg),
+                                                      o.lon.value_or(place.longitudeDeg));
+    s.sunAzimuthDeg = sun.azimuthDeg;
+    s.sunElevationDeg = sun.elevationDeg;
+    if (sun.elevationDeg < -o.sunRadiusDeg && !o.quiet) {
+      std::fprintf(stderr, "note: the sun is %.1f deg below the horizon then: sky light only\n",
+                   -sun.elevationDeg);
+    }
+  }
+  s.obscurance.enabled = !o.noObscurance;
+  s.obscurance.samples = o.obscuranceSamples;
+  s.obscurance.steps = o.obscuranceSteps;
+  const glm::dvec2 extent = aal::demExtentM(field);
+  s.obscurance.radiusM = o.obscuranceRadiusM ? static_cast<float>(*o.obscuranceRadiusM)
+                                             : aal::defaultObscuranceRadiusM(
+                                                   {field.cellSizeXM, field.cellSizeYM}, extent);
+  aal::checkObscuranceSettings(s.obscurance, extent);
+  s.keepHeights = ramp.has_value();
+  s.waterLevelM = o.waterLevel;
+  if (!o.waterMask.empty()) s.waterMask = readWaterMask(o.waterMask, field);
+
+  // The map as halves (8 bytes a texel), as the renderer holds it.
+  aal::HalfApertureMap map;
+  if (!o.aperture.empty()) {
+    aal::ApertureMapReader reader(o.aperture);
+    aal::checkApertureMatchesDem(reader.header(), o.aperture, field, o.dem);
+    map = aal::readHalfApertureMap(reader);
+  } else {
+    aal::CachedAperture cached =
+        aal::cachedOrBakedAperture(field, o.dem, aal::BakeOptions{}, o.quiet);
+    if (cached.path.empty()) {
+      map = aal::toHalfApertureMap(cached.map);
+    } else {
+      aal::ApertureMapReader reader(cached.path.string());
+      map = aal::readHalfApertureMap(reader);
+    }
+  }
+
+  const auto start = std::chrono::steady_clock::now();
+  aal::ProgressBar bar("shading", !o.quiet);
+  const aal::ReliefImage relief = aal::shadeRelief(field, map, s, [&](double f) { bar.update(f); });
+  bar.finish();
+  map = {};
+
+  const aal::GeoReference geo =
+      aal::resampledGeoReference(field.geo, field.width, field.height, outWidth, outHeight);
+  aal::RasterWriteOptions write;
+  write.cog = o.cog;
+  const bool voids = field.voidCount > 0;
+  const size_t pixels = relief.value.size();
+  const auto [low, high] = parseStretch(o.stretch);
+  auto stretched = [low, high](float v) {
+    return static_cast<float>(std::clamp((v - low) / (high - low), 0.0, 1.0));
+  };
+  if (ramp) {
+    // Colour from the ramp at the pixel's height, times the shading; voids
+    // take the ramp's nv colour, else transparent black (an alpha band).
+    double zMin = std::numeric_limits<double>::infinity(), zMax = -zMin;
+    for (int y = 0; y < field.height; ++y) {
+      for (int x = 0; x < field.width; ++x) {
+        if (field.isVoid(x, y)) continue;
+        zMin = std::min(zMin, double(field.at(x, y)));
+        zMax = std::max(zMax, double(field.at(x, y)));
+      }
+    }
+    const aal::ResolvedColorRamp resolved = aal::resolveColorRamp(*ramp, zMin, zMax);
+    bool alpha = voids;
+    for (const glm::vec4& c : resolved.rgba) alpha = alpha || c.a < 255;
+    const int bands = alpha ? 4 : 3;
+    std::vector<uint8_t> rgb(pixels * bands);
+    const glm::vec4 nodataColour = resolved.nodata.value_or(glm::vec4(0));
+    for (size_t i = 0; i < pixels; ++i) {
+      glm::vec4 c;
+      if (relief.isVoid(i)) {
+        c = nodataColour;
+      } else {
+        c = !relief.water.empty() && relief.water[i]
+                ? glm::vec4(kWaterRgb[0], kWaterRgb[1], kWaterRgb[2], 255)
+                : aal::rampColor(resolved, relief.heightM[i]);
+        c = glm::vec4(glm::vec3(c) * stretched(relief.value[i]), c.a);
+      }
+      for (int b = 0; b < bands; ++b) {
+        rgb[i * bands + b] = static_cast<uint8_t>(std::clamp(std::lround(c[b]), 0L, 255L));
+      }
+    }
+    aal::writeGeoTiff(
+        o.output,
+        aal::RasterImage{outWidth, outHeight, bands, aal::RasterSampleType::Byte, rgb.data()}, geo,
+        write);
+  } else if (o.format == "float") {
+    if (voids || field.nodata) write.nodata = std::numeric_limits<double>::quiet_NaN();
+    aal::writeFloatGeoTiff(o.output, outWidth, outHeight, relief.value.data(), geo, write);
+  } else {
+    // gdaldem's scale: 1 + 254 v, 0 reserved for nodata.
+    std::vector<uint8_t> grey(pixels);
+    for (size_t i = 0; i < pixels; ++i) {
+      grey[i] = relief.isVoid(i)
+                    ? 0
+                    : static_cast<uint8_t>(1 + std::lround(254.0 * stretched(relief.value[i])));
+    }
+    if (voids || field.nodata) write.nodata = 0;
+    aal::writeGeoTiff(
+        o.output,
+        aal::RasterImage{outWidth, outHeight, 1, aal::RasterSampleType::Byte, grey.data()}, geo,
+        write);
+  }
+  if (!o.quiet) {
+    const double seconds =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    char light[96];
+    if (o.skyOnly) {
+      std::snprintf(light, sizeof light, "sky only");
+    } else if (o.multidirectional) {
+      std::snprintf(light, sizeof light, "multidirectional, elevation %.1f deg, sky %.2f",
+                    s.sunElevationDeg, double(s.skyWeight));
+    } else {
+      std::snprintf(light, sizeof light, "sun azimuth %.1f deg, elevation %.1f deg, sky %.2f",
+                    s.sunAzimuthDeg, s.sunElevationDeg, double(s.skyWeight));
+    }
+    std::fprintf(stderr, "aal-relief: %dx%d pixels (%s) in %.2f s, wrote %s\n", outWidth, outHeight,
+                 light, seconds, o.output.c_str());
+  }
+  return aal::kExitOk;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  CLI::App app(
+      "Writes a top-down shaded relief of a DEM as a GeoTIFF placed exactly like the DEM (one "
+      "pixel per DEM texel by default): the sun through the aperture map's visible sky (soft "
+      "cast shadows), sky fill and near-field obscurances (docs/relief.md).\n"
+      "The value is (1-k) f cos + k sky, in [0, 1]: 8-bit 1 + 254 v like gdaldem hillshade "
+      "(0 = nodata), or float32. Without --aperture the aperture map is baked once and cached "
+      "(see aal-bake).",
+      "aal-relief");
+  Options o;
+  app.add_option("dem", o.dem, "input DEM (any raster GDAL reads)")->required();
+  app.add_option("-o,--output", o.output, "output GeoTIFF (.tif)")->required();
+  app.add_option("--aperture", o.aperture, "aperture map baked from this DEM by aal-bake");
+  app.add_option("--resolution", o.resolution,
+                 "output pixel size: metres (30 or 30m, along the DEM's north-south spacing) or "
+                 "a scale factor on the pixels per side (2x, 0.5x); the DEM's extent is kept "
+                 "(default: one pixel per DEM texel)");
+  app.add_option("--sun-azimuth", o.sunAzimuth,
+                 "sun azimuth, degrees clockwise from north (default 315, as gdaldem)")
+      ->check(CLI::Range(-360.0, 720.0));
+  app.add_option("--sun-elevation", o.sunElevation,
+                 "sun elevation above the horizon, degrees (default 45, as gdaldem)")
+      ->check(CLI::Range(-90.0, 90.0));
+  app.add_option("--time", o.time,
+                 "UTC date and time (ISO 8601) for the sun position at the DEM's centre");
+  app.add_option("--lat", o.lat, "latitude for --time (default: the DEM's centre, else 45)")
+      ->check(CLI::Range(-90.0, 90.0));
+  app.add_option("--lon", o.lon,
+                 "longitude for --time, east positive (default: the DEM's centre, else 0)")
+      ->check(CLI::Range(-180.0, 180.0));
+  app.add_option("--sun-radius", o.sunRadiusDeg,
+                 "sun angular radius in degrees (larger: softer shadow edges)")
+      ->check(CLI::Range(0.01, 20.0))
+      ->capture_default_str();
+  app.add_option("--sky", o.skyWeight,
+                 "sky weight k: the sky's share of the light (default 0.2; 0: the sun alone, "
+                 "like gdaldem)")
+      ->check(CLI::Range(0.0, 1.0));
+  app.add_flag("--sky-only", o.skyOnly,
+               "diffuse sky-view relief: the sky term alone (1 on open flat ground, darker in "
+               "valleys and on steep slopes)");
+  app.add_flag("--multidirectional", o.multidirectional,
+               "suns at 225, 270, 315 and 360 deg weighted by the slope's aspect "
+               "(gdaldem -multidirectional's weights, Mark 1992)");
+  app.add_option("--mode", o.mode, "sun-aperture cap intersection: approx (Oat's) or exact")
+      ->check(CLI::IsMember({"approx", "exact"}))
+      ->capture_default_str();
+  app.add_flag("--no-obscurance", o.noObscurance, "no near-field obscurances on the sky term");
+  app.add_option("--obscurance-radius", o.obscuranceRadiusM,
+                 "near-field radius of the obscurances in metres (default: 10 DEM cells)");
+  app.add_option("--obscurance-samples", o.obscuranceSamples,
+                 "obscurance sample count: 8, 16 or 32")
+      ->capture_default_str();
+  app.add_option("--obscurance-steps", o.obscuranceSteps, "obscurance test points per ray: 1 or 2")
+      ->capture_default_str();
+  app.add_option("--color-relief", o.colorRelief,
+                 "colour ramp file in gdaldem color-relief's format (elevation R G B [A]; "
+                 "percentages like 50%; nv for nodata): RGB output, ramp colour times shading");
+  std::string palettes;
+  for (const std::string& n : aal::builtinPaletteNames())
+    palettes += (palettes.empty() ? "" : ", ") + n;
+  app.add_option("--palette", o.palette,
+                 "built-in colour ramp over the DEM's height range: " + palettes);
+  app.add_option(
+         "--format", o.format,
+         "grey output: byte (1 + 254 v: 1..255, 0 = nodata) or float (v in 0..1, NaN = nodata)")
+      ->check(CLI::IsMember({"byte", "float"}))
+      ->capture_default_str();
+  app.add_option("--stretch", o.stretch,
+                 "LOW,HIGH: relief values from LOW to HIGH fill the 8-bit range (default 0,1); "
+                 "e.g. 0.65,1 for --sky-only, whose values on gentle terrain stay near 1");
+  app.add_option("--water-level", o.waterLevel,
+                 "heights at or below this many metres are water: lit flat (blue in colour "
+                 "maps); no water by default");
+  app.add_option("--water-mask", o.waterMask,
+                 "raster of the DEM's size, non-zero where there is water (instead of "
+                 "--water-level)");
+  app.add_flag("--cog", o.cog, "write a cloud-optimized GeoTIFF (tiled, with overviews)");
+  app.add_option("--cell-size", o.cellSize, "cell size in metres for a DEM without georeferencing")
+      ->check(aal::kPositive);
+  app.add_option("--z-scale", o.zScale, "multiply the heights by this factor")
+      ->check(aal::kPositive);
+  app.add_flag("-q,--quiet", o.quiet, "no progress and no summary");
+
+  aal::installInterruptHandler();
+  return aal::runTool(app, argc, argv, [&] { return run(o); });
+}
