@@ -1,10 +1,10 @@
 #!/usr/bin/env bash
 # The main job, from a fresh Debian 12 machine: installs what is missing,
 # builds, bakes the shipped DEM (heightmaps/jacksboro_fault_dem.tif) and
-# renders it lit by the sun and the sky through a summer day, plus an
-# approximate-vs-exact pair, every mode against the ray-traced reference and
-# the cap error table. Results go to out/ (or
-# the folder given as $1).
+# renders it lit by the sun and the sky through a summer day, plus a
+# shaded-relief GeoTIFF, an approximate-vs-exact pair, every mode against the
+# ray-traced reference and the cap error table. Results go to out/ (or the
+# folder given as $1).
 set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
 out=${1:-$root/out}
@@ -12,7 +12,7 @@ dem=${DEM:-$root/heightmaps/jacksboro_fault_dem.tif}
 size=${SIZE:-1280x720}
 mkdir -p "$out"
 
-"$root/scripts/build.sh" --target aal-bake aal-render aal-caps aal-info
+"$root/scripts/build.sh" --target aal-bake aal-render aal-caps aal-info aal-relief
 bin=${AAL_BUILD_DIR:-$root/build}/bin
 
 echo "== DEM"
@@ -21,6 +21,13 @@ echo "== DEM"
 echo
 echo "== Baking the aperture map"
 "$bin/aal-bake" "$dem" -o "$out/aperture.exr" --svf "$out/sky-view-factor.tif"
+
+echo
+echo "== Shaded-relief map (a GeoTIFF placed like the DEM, and a PNG preview)"
+"$bin/aal-relief" "$dem" --aperture "$out/aperture.exr" --palette hypsometric \
+  -o "$out/relief.tif"
+gdal_translate -q -of PNG "$out/relief.tif" "$out/relief.png"
+echo "  $out/relief.tif, $out/relief.png"
 
 echo
 echo "== Rendering a summer day (UTC times; the DEM is at 84 W, local noon ~17:40 UTC)"
