@@ -389,7 +389,8 @@ bool TerrainRenderer::writeUniforms(const TerrainScene& scene, const FrameSettin
   u.sunIrradiance = glm::vec4(s.sunIrradiance, 0.0f);
   u.skyRadiance = glm::vec4(s.skyRadiance, s.hazeDensityPerM);
   u.dem = scene.demInfo();
-  u.heights = {scene.minHeight(), scene.maxHeight(), 0.0f, s.waterAtSeaLevel ? 1.0f : 0.0f};
+  u.heights = {scene.minHeight(), scene.maxHeight(), s.waterLevelM.value_or(0.0f),
+               s.waterLevelM ? 1.0f : 0.0f};
   u.grid = {kLodPatchQuads, scene.lod().levels(), static_cast<int>(s.mode),
             albedoSourceOf(scene, s)};
   u.display = {s.exposure, isDebug(s.mode) ? 1.0f : 0.0f, 0.0f, 0.0f};

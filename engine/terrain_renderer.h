@@ -39,7 +39,9 @@ struct FrameSettings {
   PreethamSky sky;                // background sky model
   float hazeDensityPerM = 0.0f;   // aerial perspective extinction
   float exposure = 1.0f;          // see terrain/tone_map.h
-  bool waterAtSeaLevel = false;   // paint heights <= 0 as water (DEMs with a vertical datum)
+  // Paint heights at or below this level (m) as water; none unless the user
+  // asks (--water-level): a plain at 0 m is not a lake.
+  std::optional<float> waterLevelM;
   // Containment-test obscurances and W (DESIGN §6, terrain/obscurance.h): W
   // multiplies the sky fill of the approx/exact modes; the debug-obscurance
   // and debug-transfer modes show O and W. The renderer takes the settings as

@@ -50,6 +50,7 @@ struct Options {
   double turbidity = aal::kDefaultTurbidity;
   std::optional<double> ev100;
   std::optional<double> visibilityKm;
+  std::optional<double> waterLevelM;
   std::string mode = "approx";
   std::optional<double> cellSize, zScale;
   int device = -1;
@@ -248,7 +249,7 @@ int run(const Options& o) {
   const double visibilityM =
       o.visibilityKm ? *o.visibilityKm * 1000 : aal::defaultVisibilityM(field);
   settings.hazeDensityPerM = static_cast<float>(aal::hazeDensityForVisibility(visibilityM));
-  settings.waterAtSeaLevel = field.geo.crs != aal::CrsKind::None;
+  if (o.waterLevelM) settings.waterLevelM = static_cast<float>(*o.waterLevelM);
   if (o.ev100) {
     settings.exposure = aal::exposureFromEv100(static_cast<float>(*o.ev100));
   } else {
@@ -393,6 +394,8 @@ int main(int argc, char** argv) {
   app.add_option("--visibility", o.visibilityKm,
                  "distance haze: visibility in km (default: 20 DEM diagonals, at least 200)")
       ->check(CLI::Range(0.1, 1e6));
+  app.add_option("--water-level", o.waterLevelM,
+                 "paint terrain at or below this height (m) as water (default: no water)");
   app.add_option("--mode", o.mode,
                  "shading: " + modes + ", or " + kReferenceMode +
                      " (CPU ray tracer: sun-disk shadow rays, sky rays with one bounce; constant "

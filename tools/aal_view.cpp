@@ -32,7 +32,7 @@ struct Options {
   std::string dem, aperture, cameraPath, screenshot, drop, size = "1280x720";
   std::optional<std::string> resizeAfter, minimiseAfter, toggleVsyncAfter;  // test hooks
   std::string mode = "approx", time;
-  std::optional<double> lat, lon, sunAzimuth, sunElevation;
+  std::optional<double> lat, lon, sunAzimuth, sunElevation, waterLevelM;
   std::optional<int> frames;
   double timeoutS = 0;
   bool noVsync = false, stats = false, noObscurance = false;
@@ -121,6 +121,7 @@ aal::ViewLighting initialLighting(const Options& o, const aal::Heightfield& fiel
     l.sunAzimuthDeg = *o.sunAzimuth;
     l.sunElevationDeg = *o.sunElevation;
   }
+  l.waterLevelM = o.waterLevelM;
   return l;
 }
 
@@ -190,6 +191,8 @@ int main(int argc, char** argv) {
       ->check(CLI::Range(-360.0, 720.0));
   app.add_option("--sun-elevation", o.sunElevation, "direct sun elevation, degrees")
       ->check(CLI::Range(-90.0, 90.0));
+  app.add_option("--water-level", o.waterLevelM,
+                 "paint terrain at or below this height (m) as water (default: no water)");
   app.add_option("--frames", o.frames,
                  "scripted run: render N frames (after the aperture map is ready), then exit");
   app.add_option("--camera-path", o.cameraPath,

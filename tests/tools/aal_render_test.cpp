@@ -296,6 +296,33 @@ TEST(AalRender, RefusesAnApertureMapBakedForAnotherCellSize) {
   EXPECT_EQ(cached, 2u);
 }
 
+// Issue 19, item 4: water only where the user asks; a georeferenced DEM
+// no longer paints every height <= 0 m as a lake.
+TEST(AalRender, WaterOnlyAtTheLevelAsked) {
+  TempDir dir;
+  const auto shot = [&](const std::string& name, const std::string& extra) {
+    const fs::path out = dir.path() / name;
+    const auto r = render(dir, "-o " + quoted(out) + " --size 64x36 " + extra);
+    EXPECT_EQ(r.exitCode, 0) << r.out;
+    return pixelsOf(out);
+  };
+  const std::vector<uint8_t> dry = shot("dry.png", ""), low = shot("low.png", "--water-level 100"),
+                             high = shot("high.png", "--water-level 5000");
+  ASSERT_FALSE(dry.empty());
+  EXPECT_EQ(low, dry);  // below the lowest height (~250 m): nothing changes
+  // Every terrain pixel is water now (the terrain fills ~14 % of this
+  // frame; the sky keeps its colour).
+  size_t darker = 0, pixels = dry.size() / 4;
+  for (size_t p = 0; p < pixels; ++p) {
+    const int before = dry[4 * p] + dry[4 * p + 1] + dry[4 * p + 2];
+    const int after = high[4 * p] + high[4 * p + 1] + high[4 * p + 2];
+    darker += after + 24 < before;
+  }
+  EXPECT_GT(darker, pixels / 10);
+  const auto r = render(dir, "-o " + quoted(dir.path() / "x.png") + " --water-level nan");
+  EXPECT_EQ(r.exitCode, 2) << r.out;
+}
+
 TEST(AalRender, NoVulkanDriverSaysHowToGetOne) {
   TempDir dir;
   const auto r =

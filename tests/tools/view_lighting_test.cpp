@@ -56,7 +56,10 @@ TEST(ViewLighting, IntensitiesAndExposureScale) {
   EXPECT_NEAR(scaled.skyRadiance.y, 0.5 * base.skyRadiance.y, 1e-4 * base.skyRadiance.y);
   EXPECT_NEAR(scaled.exposure, 2 * base.exposure, 1e-6 * base.exposure);
   EXPECT_GT(base.hazeDensityPerM, 0);
-  EXPECT_TRUE(base.waterAtSeaLevel);  // georeferenced: heights have a datum
+  EXPECT_FALSE(base.waterLevelM);  // no water unless asked for (issue 19, item 4)
+  l.waterLevelM = 350;
+  applyViewLighting(l, f, scaled);
+  EXPECT_EQ(scaled.waterLevelM, 350.0f);
 }
 
 TEST(ViewLighting, PlayingWrapsTheTimeOfDay) {

@@ -67,7 +67,7 @@ void applyViewLighting(const ViewLighting& l, const Heightfield& field, FrameSet
   applySkyLighting(light, s);
   s.sunRadiusRad = static_cast<float>(l.sunRadiusDeg * M_PI / 180.0);
   s.hazeDensityPerM = static_cast<float>(hazeDensityForVisibility(defaultVisibilityM(field)));
-  s.waterAtSeaLevel = field.geo.crs != CrsKind::None;
+  if (l.waterLevelM) s.waterLevelM = static_cast<float>(*l.waterLevelM);
   s.exposure = clearDayExposure(l.turbidity) * std::exp2(l.exposureStops);
 }
 

@@ -4,6 +4,8 @@
 // exposure. Pure data and math, so the panel only edits it.
 #pragma once
 
+#include <optional>
+
 #include "heightfield.h"
 #include "sky_lighting.h"
 #include "solar_position.h"
@@ -24,6 +26,7 @@ struct ViewLighting {
   float exposureStops = 0;                   // relative to the clear-day exposure
   bool playing = false;                      // time of day runs
   double hoursPerSecond = 1;                 // animation speed
+  std::optional<double> waterLevelM;         // water at or below (m): --water-level
 };
 
 // Defaults for a DEM: its own place (lighting_defaults.h), midsummer 2024,

@@ -147,7 +147,7 @@ bool sameView(const FrameSettings& a, const FrameSettings& b) {
          a.sunRadiusRad == b.sunRadiusRad && a.sunIrradiance == b.sunIrradiance &&
          a.skyRadiance == b.skyRadiance && std::memcmp(&a.sky, &b.sky, sizeof a.sky) == 0 &&
          a.hazeDensityPerM == b.hazeDensityPerM && a.exposure == b.exposure &&
-         a.waterAtSeaLevel == b.waterAtSeaLevel && sameObscurance(a.obscurance, b.obscurance) &&
+         a.waterLevelM == b.waterLevelM && sameObscurance(a.obscurance, b.obscurance) &&
          a.albedoValue == b.albedoValue && a.lod.maxErrorPixels == b.lod.maxErrorPixels &&
          a.lod.morph == b.lod.morph;
 }
