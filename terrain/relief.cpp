@@ -88,7 +88,8 @@ float aspectDeg(const glm::vec3& normal) {
   return static_cast<float>(a < 0 ? a + 360 : a);
 }
 
-// 4x4 box filter of W over the interleaving pattern (seed 000 §4.2), voids
+// 4x4 box filter of W over the interleaving pattern (Keller & Heidrich,
+// "Interleaved Sampling", 2001; docs/obscurance.md), voids
 // left out.
 void boxFilter4(std::vector<float>& w, const std::vector<uint8_t>& voids, int width, int height) {
   std::vector<float> out(w.size());
