@@ -19,8 +19,8 @@ struct DemSummary {
 };
 
 // Reads every row of `source` (geometry = demGeometry of it) in bands of at
-// most `bandBytes` of samples and half the memory available. Throws InputError as loadDem does: corrupt
-// data, heights beyond kMaxHeightM, a DEM that is all void.
+// most `bandBytes` of samples and half the memory available. Throws InputError as loadDem does:
+// corrupt data, heights beyond kMaxHeightM, a DEM that is all void.
 DemSummary summarizeDem(const DemSource& source, const Heightfield& geometry,
                         size_t bandBytes = size_t{64} << 20);
 

@@ -148,7 +148,8 @@ ShadingInputs inputsFor(const TiltedAperture& a, const glm::dvec3& sun) {
 
 TEST(Shading, SkyTermIsTheIrradianceOfAUniformCapAboutTheBentNormal) {
   // E_sky = L_sky times the cosine-weighted solid angle of the aperture
-  // (DESIGN §5; Lambertian surface, uniform sky). Where the cap lies above
+  // (Oat, "Ambient Aperture Lighting", 2006; Lambertian surface, uniform
+  // sky). Where the cap lies above
   // N's horizon (tilt + r <= pi/2) that is the irradiance itself, the
   // integral of max(0, N.w). Where it dips below, the model takes the cap's
   // vector irradiance pi sin^2(r) B projected on N: the integral of N.w,
