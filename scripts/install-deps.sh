@@ -20,6 +20,8 @@ packages=(
   libgdal-dev gdal-bin
   # aperture maps (EXR) without OpenImageIO
   libopenexr-dev libimath-dev
+  # the aperture maps' pixel checksum (XXH64)
+  libxxhash-dev
   # parallelism, command line, tests, benchmarks
   libtbb-dev libcli11-dev libgtest-dev libgmock-dev libbenchmark-dev
   # fuzzing the DEM parsers (scripts/fuzz.sh): clang with libFuzzer

@@ -13,7 +13,7 @@
 
 namespace aal {
 
-// XXH64 (xxhash.com's 64-bit hash) of `bytes` bytes.
+// XXH64 (xxhash.com's 64-bit hash, Debian's libxxhash) of `bytes` bytes.
 uint64_t xxh64(const void* data, size_t bytes, uint64_t seed);
 
 class PixelChecksum {

@@ -200,14 +200,7 @@ int run(const Options& o) {
   s.sunAzimuthDeg = o.sunAzimuth.value_or(315.0);
   s.sunElevationDeg = o.sunElevation.value_or(45.0);
   if (!o.time.empty()) {
-    const std::optional<aal::UtcTime> time = aal::parseIso8601Utc(o.time);
-    if (!time) {
-      throw aal::InputError("--time must be ISO 8601, e.g. 2024-06-21T12:00:00Z, got '" + o.time +
-                            "'");
-    }
-    const aal::GeoPlace place = aal::defaultSunPlace(field);
-    const aal::SolarPosition sun = aal::solarPosition(*time, o.lat.value_or(place.latitudeDeg),
-                                                      o.lon.value_or(place.longitudeDeg));
+    const aal::SolarPosition sun = aal::sunAtTime(o.time, o.lat, o.lon, field);
     s.sunAzimuthDeg = sun.azimuthDeg;
     s.sunElevationDeg = sun.elevationDeg;
     if (sun.elevationDeg < -o.sunRadiusDeg && !o.quiet) {
@@ -215,14 +208,8 @@ int run(const Options& o) {
                    -sun.elevationDeg);
     }
   }
-  s.obscurance.enabled = !o.noObscurance;
-  s.obscurance.samples = o.obscuranceSamples;
-  s.obscurance.steps = o.obscuranceSteps;
-  const glm::dvec2 extent = aal::demExtentM(field);
-  s.obscurance.radiusM = o.obscuranceRadiusM ? static_cast<float>(*o.obscuranceRadiusM)
-                                             : aal::defaultObscuranceRadiusM(
-                                                   {field.cellSizeXM, field.cellSizeYM}, extent);
-  aal::checkObscuranceSettings(s.obscurance, extent);
+  s.obscurance = aal::obscuranceFromOptions(!o.noObscurance, o.obscuranceSamples, o.obscuranceSteps,
+                                            o.obscuranceRadiusM, field);
   s.keepHeights = ramp.has_value();
   s.waterLevelM = o.waterLevel;
   if (!o.waterMask.empty()) s.waterMask = readWaterMask(o.waterMask, field);

@@ -89,30 +89,9 @@ glm::vec3 parseAlbedoValue(const std::string& text) {
   return glm::vec3(v);
 }
 
-// Obscurance settings from the options, checked against the DEM.
-aal::ObscuranceSettings obscuranceFor(const Options& o, const aal::Heightfield& field) {
-  aal::ObscuranceSettings s;
-  s.enabled = !o.noObscurance;
-  s.samples = o.obscuranceSamples;
-  s.steps = o.obscuranceSteps;
-  const glm::dvec2 extent = aal::demExtentM(field);
-  s.radiusM = o.obscuranceRadiusM
-                  ? static_cast<float>(*o.obscuranceRadiusM)
-                  : aal::defaultObscuranceRadiusM({field.cellSizeXM, field.cellSizeYM}, extent);
-  aal::checkObscuranceSettings(s, extent);
-  return s;
-}
-
 aal::SkyLighting lightingFor(const Options& o, const aal::Heightfield& field) {
   if (!o.time.empty()) {
-    const std::optional<aal::UtcTime> time = aal::parseIso8601Utc(o.time);
-    if (!time)
-      throw aal::InputError("--time must be ISO 8601, e.g. 2024-06-21T12:00:00Z, got '" + o.time +
-                            "'");
-    const aal::GeoPlace place = aal::defaultSunPlace(field);
-    const double lat = o.lat.value_or(place.latitudeDeg);
-    const double lon = o.lon.value_or(place.longitudeDeg);
-    const aal::SolarPosition sun = aal::solarPosition(*time, lat, lon);
+    const aal::SolarPosition sun = aal::sunAtTime(o.time, o.lat, o.lon, field);
     return aal::makeSkyLighting(sun.azimuthDeg, sun.elevationDeg, o.turbidity, sun.sunDistanceAu);
   }
   return aal::makeSkyLighting(o.sunAzimuth.value_or(315.0), o.sunElevation.value_or(45.0),
@@ -209,7 +188,8 @@ int run(const Options& o) {
   load.zScale = o.zScale;
   const aal::Heightfield field = aal::loadDem(o.dem, load);
   aal::requireRenderableDem(field);
-  const aal::ObscuranceSettings obscurance = obscuranceFor(o, field);
+  const aal::ObscuranceSettings obscurance = aal::obscuranceFromOptions(
+      !o.noObscurance, o.obscuranceSamples, o.obscuranceSteps, o.obscuranceRadiusM, field);
   // The aperture map is streamed from its file into the GPU when the scene
   // is built, so it never sits in host memory as floats.
   std::string aperturePath = o.aperture;

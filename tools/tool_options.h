@@ -4,6 +4,7 @@
 
 #include <cmath>
 #include <cstdint>
+#include <optional>
 #include <sstream>
 #include <string>
 #include <utility>
@@ -12,8 +13,12 @@
 #include <glm/vec3.hpp>
 
 #include "atomic_file.h"
+#include "camera.h"
 #include "errors.h"
 #include "heightfield.h"
+#include "lighting_defaults.h"
+#include "obscurance.h"
+#include "solar_position.h"
 
 namespace aal {
 
@@ -51,6 +56,34 @@ inline std::pair<uint32_t, uint32_t> parseSize(const std::string& text,
     throw InputError(name + " must be WIDTHxHEIGHT with positive sides, got '" + text + "'");
   }
   return {static_cast<uint32_t>(w), static_cast<uint32_t>(h)};
+}
+
+// The sun at `time` (ISO 8601, UTC) seen from `lat`, `lon`, each defaulting
+// to the DEM's place (lighting_defaults.h): --time, --lat, --lon.
+inline SolarPosition sunAtTime(const std::string& time, std::optional<double> lat,
+                               std::optional<double> lon, const Heightfield& field) {
+  const std::optional<UtcTime> utc = parseIso8601Utc(time);
+  if (!utc) {
+    throw InputError("--time must be ISO 8601, e.g. 2024-06-21T12:00:00Z, got '" + time + "'");
+  }
+  const GeoPlace place = defaultSunPlace(field);
+  return solarPosition(*utc, lat.value_or(place.latitudeDeg), lon.value_or(place.longitudeDeg));
+}
+
+// Obscurance settings from --no-obscurance, --obscurance-samples, -steps
+// and -radius (default: obscurance.h's for the DEM), checked against it.
+inline ObscuranceSettings obscuranceFromOptions(bool enabled, int samples, int steps,
+                                                std::optional<double> radiusM,
+                                                const Heightfield& field) {
+  ObscuranceSettings s;
+  s.enabled = enabled;
+  s.samples = samples;
+  s.steps = steps;
+  const glm::dvec2 extent = demExtentM(field);
+  s.radiusM = radiusM ? static_cast<float>(*radiusM)
+                      : defaultObscuranceRadiusM({field.cellSizeXM, field.cellSizeYM}, extent);
+  checkObscuranceSettings(s, extent);
+  return s;
 }
 
 // Throws InputError unless `field` has a surface to light: the renderers

@@ -367,40 +367,6 @@ TEST(TiledBake, RejectsWhatItCannotBake) {
                std::invalid_argument);  // outside the field
 }
 
-// Every file in `folder` with its bytes.
-using FolderContents = std::map<std::string, std::string>;
-FolderContents folderContents(const fs::path& folder) {
-  FolderContents files;
-  for (const fs::directory_entry& entry : fs::directory_iterator(folder)) {
-    std::ifstream in(entry.path(), std::ios::binary);
-    files[entry.path().filename().string()] =
-        std::string(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
-  }
-  return files;
-}
-
-// The names of the files added, removed or changed from `before` to `after`.
-std::vector<std::string> changedFiles(const FolderContents& before, const FolderContents& after) {
-  std::vector<std::string> changed;
-  for (const auto& [name, bytes] : before) {
-    const auto now = after.find(name);
-    if (now == after.end() || now->second != bytes) changed.push_back(name);
-  }
-  for (const auto& [name, bytes] : after) {
-    if (!before.count(name)) changed.push_back(name);
-  }
-  return changed;
-}
-
-// The PID of a process that has exited and been reaped.
-pid_t deadPid() {
-  const pid_t child = ::fork();
-  if (child == 0) ::_exit(0);
-  int status = 0;
-  ::waitpid(child, &status, 0);
-  return child;
-}
-
 // A folder as a bake of `field` interrupted past half way leaves it: tiles
 // of 32 (4 x 3), the manifest, no index, and a temporary of a killed run
 // that a bake's sweep would remove.
@@ -418,7 +384,8 @@ void interruptedBake(const Heightfield& field, const std::string& folder) {
   ASSERT_TRUE(fs::exists(fs::path(folder) / apertureTileName(0, 0)));
   ASSERT_TRUE(fs::exists(fs::path(folder) / kTiledBakeManifestName));
   ASSERT_FALSE(fs::exists(fs::path(folder) / "index.txt"));
-  std::ofstream(fs::path(folder) / (".tile_0002_0000.tmp-" + std::to_string(deadPid()) + "-0.exr"))
+  std::ofstream(fs::path(folder) /
+                (".tile_0002_0000.tmp-" + std::to_string(test::deadPid()) + "-0.exr"))
       << "killed";
 }
 
@@ -430,7 +397,7 @@ TEST(TiledBake, ASecondBakeIntoALockedFolderIsRefusedTouchingNothing) {
   const Heightfield field = fbmField(100, 70);
   const std::string folder = (dir.path() / "tiles").string();
   interruptedBake(field, folder);
-  const auto before = folderContents(folder);
+  const auto before = test::folderContents(folder);
   {
     // As a running bake holds it: the same file, another open of it.
     const TiledBakeLock running(folder);
@@ -444,7 +411,7 @@ TEST(TiledBake, ASecondBakeIntoALockedFolderIsRefusedTouchingNothing) {
       EXPECT_NE(std::string(e.what()).find(folder), std::string::npos) << e.what();
       EXPECT_NE(std::string(e.what()).find("another aal-bake"), std::string::npos) << e.what();
     }
-    EXPECT_EQ(changedFiles(before, folderContents(folder)), std::vector<std::string>{});
+    EXPECT_EQ(test::changedFiles(before, test::folderContents(folder)), std::vector<std::string>{});
     EXPECT_THROW(TiledBakeLock{folder}, TiledBakeBusy);
   }
   {
@@ -458,7 +425,7 @@ TEST(TiledBake, ASecondBakeIntoALockedFolderIsRefusedTouchingNothing) {
     EXPECT_THROW(bakeTiled(field, distanceLimited(100), t, folder), TiledBakeBusy);
     ::close(fd);
   }
-  EXPECT_EQ(changedFiles(before, folderContents(folder)), std::vector<std::string>{});
+  EXPECT_EQ(test::changedFiles(before, test::folderContents(folder)), std::vector<std::string>{});
   // Released, the same bake resumes (and sweeps the killed run's temporary).
   TiledBakeOptions t;
   t.tileSize = 32;
@@ -466,7 +433,7 @@ TEST(TiledBake, ASecondBakeIntoALockedFolderIsRefusedTouchingNothing) {
   const TiledBakeSummary summary = bakeTiled(field, distanceLimited(100), t, folder);
   EXPECT_GT(summary.resumed, 0);
   EXPECT_EQ(summary.resumed + summary.baked, 12);
-  for (const auto& [name, bytes] : folderContents(folder)) {
+  for (const auto& [name, bytes] : test::folderContents(folder)) {
     EXPECT_EQ(name.find(".tmp-"), std::string::npos) << name;
   }
 }
@@ -485,7 +452,7 @@ TEST(TiledBake, ABakeOfAnotherDemIntoTheFolderIsRefusedTouchingNothing) {
   t.sourceName = "second.tif";
   auto expectRefused = [&](const Heightfield& field, const BakeOptions& o,
                            const TiledBakeOptions& tiling, const std::string& says) {
-    const auto before = folderContents(folder);
+    const auto before = test::folderContents(folder);
     try {
       bakeTiled(field, o, tiling, folder);
       ADD_FAILURE() << "baked into another bake's folder";
@@ -494,7 +461,7 @@ TEST(TiledBake, ABakeOfAnotherDemIntoTheFolderIsRefusedTouchingNothing) {
       EXPECT_NE(std::string(e.what()).find("first.tif"), std::string::npos) << e.what();
       EXPECT_NE(std::string(e.what()).find("another folder"), std::string::npos) << e.what();
     }
-    EXPECT_EQ(changedFiles(before, folderContents(folder)), std::vector<std::string>{});
+    EXPECT_EQ(test::changedFiles(before, test::folderContents(folder)), std::vector<std::string>{});
   };
   expectRefused(second, distanceLimited(100), t, "another DEM");
   expectRefused(fbmField(90, 70), distanceLimited(100), t, "another DEM");

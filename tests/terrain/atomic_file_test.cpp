@@ -18,23 +18,13 @@ namespace {
 
 namespace fs = std::filesystem;
 
-// The PID of a process that has exited (and been reaped): no process has
-// it now, unless the kernel reuses it at once.
-pid_t deadPid() {
-  const pid_t child = ::fork();
-  if (child == 0) ::_exit(0);
-  int status = 0;
-  ::waitpid(child, &status, 0);
-  return child;
-}
-
 void touch(const fs::path& path) {
   std::ofstream(path) << "x";
 }
 
 TEST(AtomicOutput, RemovesTheTemporariesOfDeadProcessesOnly) {
   test::TempDir dir;
-  const std::string dead = std::to_string(deadPid()), alive = std::to_string(::getpid());
+  const std::string dead = std::to_string(test::deadPid()), alive = std::to_string(::getpid());
   const fs::path killed = dir.path() / (".k.tmp-" + dead + "-0.exr");
   const fs::path killedNoExtension = dir.path() / (".index.tmp-" + dead + "-12");
   const fs::path live = dir.path() / (".k.tmp-" + alive + "-3.exr");

@@ -258,31 +258,6 @@ TEST(AalBakeTiled, ViewerReadsTheTileFolder) {
   EXPECT_EQ(a, b);
 }
 
-// Every file in `folder` with its bytes.
-using FolderContents = std::map<std::string, std::string>;
-FolderContents folderContents(const fs::path& folder) {
-  FolderContents files;
-  for (const fs::directory_entry& entry : fs::directory_iterator(folder)) {
-    std::ifstream in(entry.path(), std::ios::binary);
-    files[entry.path().filename().string()] =
-        std::string(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
-  }
-  return files;
-}
-
-// The names of the files added, removed or changed from `before` to `after`.
-std::vector<std::string> changedFiles(const FolderContents& before, const FolderContents& after) {
-  std::vector<std::string> changed;
-  for (const auto& [name, bytes] : before) {
-    const auto now = after.find(name);
-    if (now == after.end() || now->second != bytes) changed.push_back(name);
-  }
-  for (const auto& [name, bytes] : after) {
-    if (!before.count(name)) changed.push_back(name);
-  }
-  return changed;
-}
-
 // Issue 17, item 10: a second aal-bake into a folder that a running one
 // holds exits with 1 (the folder is busy: run it again later), before it
 // reads the DEM, touching nothing; in memory and in bands alike.
@@ -295,7 +270,7 @@ TEST(AalBakeTiled, ABusyFolderExitsWithOneTouchingNothing) {
   // As a running bake leaves it: some tiles, no index yet.
   fs::remove(folder / "index.txt");
   fs::remove(folder / apertureTileName(2, 2));
-  const auto before = folderContents(folder);
+  const auto before = test::folderContents(folder);
   const int lock = ::open((folder / ".aal-bake.lock").c_str(), O_RDWR | O_CREAT, 0644);
   ASSERT_GE(lock, 0);
   ASSERT_EQ(::flock(lock, LOCK_EX | LOCK_NB), 0);
@@ -304,7 +279,8 @@ TEST(AalBakeTiled, ABusyFolderExitsWithOneTouchingNothing) {
     EXPECT_EQ(r.exitCode, 1) << how << "\n" << r.out;
     EXPECT_NE(r.out.find("another aal-bake"), std::string::npos) << r.out;
     EXPECT_NE(r.out.find(folder.string()), std::string::npos) << r.out;
-    EXPECT_EQ(changedFiles(before, folderContents(folder)), std::vector<std::string>{}) << how;
+    EXPECT_EQ(test::changedFiles(before, test::folderContents(folder)), std::vector<std::string>{})
+        << how;
   }
   ::close(lock);
   const auto r = runTool("aal-bake", command);
@@ -331,7 +307,7 @@ TEST(AalBakeTiled, AFolderOfAnotherDemExitsWithTwoTouchingNothing) {
       fs::remove(folder / "manifest.txt");
       fs::resize_file(folder / apertureTileName(0, 0), 100);
     }
-    const auto before = folderContents(folder);
+    const auto before = test::folderContents(folder);
     for (const char* how : {"", " --low-memory"}) {
       const auto r = runTool("aal-bake", quoted(second) + " -o " + quoted(folder) +
                                              " --tile-size 32" + kOptions + how);
@@ -343,7 +319,9 @@ TEST(AalBakeTiled, AFolderOfAnotherDemExitsWithTwoTouchingNothing) {
         EXPECT_NE(r.out.find("tile_0000_0001.exr"), std::string::npos) << r.out;
       }
       EXPECT_NE(r.out.find("another folder"), std::string::npos) << r.out;
-      EXPECT_EQ(changedFiles(before, folderContents(folder)), std::vector<std::string>{}) << how;
+      EXPECT_EQ(test::changedFiles(before, test::folderContents(folder)),
+                std::vector<std::string>{})
+          << how;
     }
   }
 }

@@ -9,8 +9,12 @@
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
+#include <fstream>
+#include <iterator>
+#include <map>
 #include <stdexcept>
 #include <string>
+#include <vector>
 
 namespace aal::test {
 
@@ -90,5 +94,42 @@ class TempDir {
  private:
   std::filesystem::path path_;
 };
+
+// Every file in `folder` with its bytes: what a refused run must leave as it was.
+using FolderContents = std::map<std::string, std::string>;
+inline FolderContents folderContents(const std::filesystem::path& folder) {
+  FolderContents files;
+  for (const std::filesystem::directory_entry& entry :
+       std::filesystem::directory_iterator(folder)) {
+    std::ifstream in(entry.path(), std::ios::binary);
+    files[entry.path().filename().string()] =
+        std::string(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+  }
+  return files;
+}
+
+// The names of the files added, removed or changed from `before` to `after`.
+inline std::vector<std::string> changedFiles(const FolderContents& before,
+                                             const FolderContents& after) {
+  std::vector<std::string> changed;
+  for (const auto& [name, bytes] : before) {
+    const auto now = after.find(name);
+    if (now == after.end() || now->second != bytes) changed.push_back(name);
+  }
+  for (const auto& [name, bytes] : after) {
+    if (!before.count(name)) changed.push_back(name);
+  }
+  return changed;
+}
+
+// The PID of a process that has exited (and been reaped): no process has
+// it now, unless the kernel reuses it at once.
+inline pid_t deadPid() {
+  const pid_t child = ::fork();
+  if (child == 0) ::_exit(0);
+  int status = 0;
+  ::waitpid(child, &status, 0);
+  return child;
+}
 
 }  // namespace aal::test
