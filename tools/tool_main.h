@@ -20,33 +20,19 @@ constexpr int kExitOk = 0;
 constexpr int kExitFailure = 1;
 constexpr int kExitBadInput = 2;
 
-// Throws InputError when an option's value, or one of its comma-separated
-// parts, is a number that is not finite ("nan", "inf", "1e999"): CLI11's
-// range checks let NaN through, since every comparison with it is false.
-// One check for every option of every tool.
-inline void checkFiniteNumbers(const CLI::App& app) {
-  for (const CLI::Option* option : app.get_options()) {
-    if (!option->nonpositional() || option->count() == 0) continue;
-    for (const std::string& value : option->results()) {
-      std::stringstream parts(value);
-      std::string part;
-      while (std::getline(parts, part, ',')) {
-        const char* begin = part.c_str();
-        char* end = nullptr;
-        const double number = std::strtod(begin, &end);
-        if (end != begin && *end == '\0' && !std::isfinite(number)) {
-          throw InputError(option->get_name() + " " + value +
-                           ": every number must be finite (not NaN, infinite or beyond "
-                           "1.8e308)");
-        }
-      }
-    }
-  }
+// Whether `text` is a number that is not finite ("nan", "inf", "1e999").
+inline bool isNonFiniteNumber(const std::string& text) {
+  const char* begin = text.c_str();
+  char* end = nullptr;
+  const double number = std::strtod(begin, &end);
+  return end != begin && *end == '\0' && !std::isfinite(number);
 }
 
-// The value of an option that takes one, before CLI11 sees it: its range
-// checks would otherwise answer "inf" with "not in range 0 to" DBL_MAX in
-// full, 309 digits.
+// Throws InputError when the value of an option that takes one, or one of
+// its comma-separated parts, is a number that is not finite. Before CLI11
+// parses: its range checks let NaN through (every comparison with it is
+// false) and answer "inf" with DBL_MAX printed in full, 309 digits. One
+// check for every option of every tool.
 inline void checkFiniteArguments(const CLI::App& app, int argc, char** argv) {
   for (int i = 1; i < argc; ++i) {
     std::string name = argv[i], value;
@@ -58,34 +44,35 @@ inline void checkFiniteArguments(const CLI::App& app, int argc, char** argv) {
       value = argv[i + 1];
     }
     const CLI::Option* option = app.get_option_no_throw(name);
-    if (option == nullptr || option->get_type_size() == 0 || value.empty()) continue;
-    const char* begin = value.c_str();
-    char* end = nullptr;
-    const double number = std::strtod(begin, &end);
-    if (end != begin && *end == '\0' && !std::isfinite(number)) {
-      throw InputError(name + " " + value +
-                       ": every number must be finite (not NaN, infinite or beyond 1.8e308)");
+    if (option == nullptr || option->get_type_size() == 0) continue;
+    std::stringstream parts(value);
+    std::string part;
+    while (std::getline(parts, part, ',')) {
+      if (isNonFiniteNumber(part)) {
+        throw InputError(name + " " + value +
+                         ": every number must be finite (not NaN, infinite or beyond 1.8e308)");
+      }
     }
   }
 }
 
-// Range checks that name the bound the user missed, without printing the
-// type's limit ("0.000000 to 1.797...e308" in full is CLI11's way).
-inline CLI::Validator numberAbove(double bound, bool inclusive, const char* name) {
+// Range checks against 0 that name the bound the user missed, without
+// printing the type's limit ("0.000000 to 1.797...e308" in full is CLI11's).
+inline CLI::Validator aboveZero(bool inclusive, const char* name) {
   return CLI::Validator(
-      [bound, inclusive](std::string& text) -> std::string {
+      [inclusive](std::string& text) -> std::string {
         const char* begin = text.c_str();
         char* end = nullptr;
         const double number = std::strtod(begin, &end);
         if (end == begin || *end != '\0') return "'" + text + "' is not a number";
-        if (inclusive ? number >= bound : number > bound) return {};
-        return "must be " + std::string(inclusive ? "at least " : "greater than ") +
-               (bound == 0 ? "0" : std::to_string(bound)) + ", got " + text;
+        if (inclusive ? number >= 0 : number > 0) return {};
+        return std::string(inclusive ? "must be at least 0" : "must be greater than 0") + ", got " +
+               text;
       },
       name);
 }
-inline const CLI::Validator kPositive = numberAbove(0.0, false, "POSITIVE");
-inline const CLI::Validator kNonNegative = numberAbove(0.0, true, "NONNEGATIVE");
+inline const CLI::Validator kPositive = aboveZero(false, "POSITIVE");
+inline const CLI::Validator kNonNegative = aboveZero(true, "NONNEGATIVE");
 
 // Parses the command line with `app` and runs `body`; returns the exit code.
 inline int runTool(CLI::App& app, int argc, char** argv, const std::function<int()>& body) {
@@ -102,7 +89,6 @@ inline int runTool(CLI::App& app, int argc, char** argv, const std::function<int
     return code == 0 ? kExitOk : kExitBadInput;
   }
   try {
-    checkFiniteNumbers(app);
     return body();
   } catch (const InputError& e) {
     std::cerr << app.get_name() << ": " << e.what() << "\n";
