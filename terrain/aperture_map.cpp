@@ -37,6 +37,7 @@
 
 #include "atomic_file.h"
 #include "errors.h"
+#include "half_floats.h"
 #include "heightfield_checksum.h"
 #include "interrupt.h"
 #include "pixel_checksum.h"
@@ -108,13 +109,13 @@ uint64_t storedPixelChecksum(const ApertureMap& map, bool halfFloat) {
   const size_t rowFloats = static_cast<size_t>(map.width) * 4;
   std::vector<uint64_t> hashes(static_cast<size_t>(map.height));
   tbb::parallel_for(tbb::blocked_range<int>(0, map.height), [&](const tbb::blocked_range<int>& r) {
-    std::vector<Imath::half> halves(halfFloat ? rowFloats : 0);
+    std::vector<uint16_t> halves(halfFloat ? rowFloats : 0);
     for (int y = r.begin(); y < r.end(); ++y) {
       const float* row = map.texels.data() + static_cast<size_t>(y) * rowFloats;
       if (halfFloat) {
-        std::copy(row, row + rowFloats, halves.begin());  // as the writer converts
+        floatsToHalves(row, halves.data(), rowFloats);  // as the writer converts
         hashes[static_cast<size_t>(y)] =
-            PixelChecksum::rowHash(y, halves.data(), rowFloats * sizeof(Imath::half));
+            PixelChecksum::rowHash(y, halves.data(), rowFloats * sizeof(uint16_t));
       } else {
         hashes[static_cast<size_t>(y)] = PixelChecksum::rowHash(y, row, rowFloats * sizeof(float));
       }
@@ -171,15 +172,19 @@ void writeApertureMap(const std::string& path, const ApertureMap& map, bool half
     // OpenEXR writes only the channels' own pixel type: halves are converted
     // here, a block of rows at a time.
     const Imf::PixelType type = halfFloat ? Imf::HALF : Imf::FLOAT;
-    const size_t texelBytes = halfFloat ? 4 * sizeof(Imath::half) : 4 * sizeof(float);
+    const size_t texelBytes = halfFloat ? 4 * sizeof(uint16_t) : 4 * sizeof(float);
     const size_t rowFloats = static_cast<size_t>(map.width) * 4;
-    std::vector<Imath::half> halves(halfFloat ? rowFloats * kBlockRows : 0);
+    std::vector<uint16_t> halves(halfFloat ? rowFloats * kBlockRows : 0);
     for (int y = 0; y < map.height; y += kBlockRows) {
       const int end = std::min(map.height, y + kBlockRows);
       const float* rows = map.texels.data() + static_cast<size_t>(y) * rowFloats;
       const void* block = rows;
       if (halfFloat) {
-        std::copy(rows, rows + static_cast<size_t>(end - y) * rowFloats, halves.begin());
+        tbb::parallel_for(tbb::blocked_range<int>(y, end), [&](const tbb::blocked_range<int>& r) {
+          const size_t first = static_cast<size_t>(r.begin() - y) * rowFloats;
+          floatsToHalves(rows + first, halves.data() + first,
+                         static_cast<size_t>(r.size()) * rowFloats);
+        });
         block = halves.data();
       }
       file.setFrameBuffer(rowsFrameBuffer(header.dataWindow(), y, end, type, block, texelBytes,
