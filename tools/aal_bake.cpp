@@ -55,10 +55,10 @@ void writeGisRaster(const std::string& path, std::vector<float> values,
 // Whether the in-memory load (heights, void mask, the fill's distances:
 // ~9 bytes per texel) fits in 80 % of the memory available now
 // (terrain/io/memory_budget.h; assumed to fit when unknown).
-bool fitsInMemory(const aal::Heightfield& geometry) {
+bool fitsInMemory(const aal::DemSource& dem) {
   const std::optional<uint64_t> available = aal::availableMemoryBytes();
-  return !available ||
-         9.0 * static_cast<double>(geometry.texelCount()) <= 0.8 * static_cast<double>(*available);
+  const double texels = static_cast<double>(dem.width()) * dem.height();
+  return !available || 9.0 * texels <= 0.8 * static_cast<double>(*available);
 }
 
 struct Options {
@@ -127,16 +127,17 @@ void checkOutputs(const Options& o, bool tiled) {
 
 // Tiled when asked, or when the DEM is above the in-memory limit; then the
 // options must suit a tiled bake.
-bool checkTiling(const Options& o, const aal::Heightfield& field) {
-  if (o.lowMemory && o.tileSize == 0 && field.texelCount() <= aal::kInMemoryBakeTexelLimit) {
+bool checkTiling(const Options& o, const aal::DemSource& dem) {
+  const size_t texels = static_cast<size_t>(dem.width()) * static_cast<size_t>(dem.height());
+  if (o.lowMemory && o.tileSize == 0 && texels <= aal::kInMemoryBakeTexelLimit) {
     throw aal::InputError("--low-memory reads the DEM in bands for a tiled bake: give --tile-size");
   }
-  const bool tooLarge = field.texelCount() > aal::kInMemoryBakeTexelLimit;
+  const bool tooLarge = texels > aal::kInMemoryBakeTexelLimit;
   if (o.tileSize == 0 && !tooLarge) return false;
   const std::string why =
       o.tileSize > 0
           ? std::string("a tiled bake (--tile-size)")
-          : "the DEM is " + std::to_string(field.width) + "x" + std::to_string(field.height) +
+          : "the DEM is " + std::to_string(dem.width()) + "x" + std::to_string(dem.height()) +
                 ": above 16384x16384 texels only a tiled bake fits in memory, which";
   if (!(o.maxDistance > 0)) {
     throw aal::InputError(why + " needs --max-distance (each tile sees the terrain within it)");
@@ -170,16 +171,19 @@ int run(const Options& o) {
   load.zScale = o.zScale;
   const auto readStart = std::chrono::steady_clock::now();
   const aal::DemSource dem(o.dem, load);
-  const aal::Heightfield geometry = aal::demGeometry(dem, load);
-  const bool tiled = checkTiling(o, geometry);
+  const bool tiled = checkTiling(o, dem);
   if (tiled != askedTiled) checkOutputs(o, tiled);
   // A tiled bake of a DEM that does not fit in memory reads it in bands.
-  const bool inBands = tiled && (o.lowMemory || !fitsInMemory(geometry));
+  const bool inBands = tiled && (o.lowMemory || !fitsInMemory(dem));
+  // The samples first: DemSource finds the CRS while they decode.
+  std::optional<aal::RawDem> samples;
+  if (!inBands) samples = dem.readAll();
+  const aal::Heightfield geometry = aal::demGeometry(dem, load);
   aal::Heightfield field;
-  if (!inBands) {
+  if (samples) {
     aal::DemLoadOptions quiet = load;
     quiet.warn = nullptr;  // demGeometry has said it
-    field = aal::heightfieldFromRaw(dem.readAll(), o.dem, quiet);
+    field = aal::heightfieldFromRaw(std::move(*samples), o.dem, quiet);
   }
   const double readSeconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - readStart).count();

@@ -45,7 +45,8 @@ void applySpacing(const RawDem& raw, const std::string& path, const DemLoadOptio
   if (raw.geo.crs != CrsKind::None) {
     // Validates the georeferencing even when --cell-size overrides it, and
     // gives the geographic centre.
-    MetricSpacing spacing = metricSpacing(path, raw.geo, raw.width, raw.height);
+    MetricSpacing spacing =
+        raw.spacing ? *raw.spacing : metricSpacing(path, raw.geo, raw.width, raw.height);
     if (!spacing.scaleNote.empty() && !options.cellSizeM && options.warn) {
       options.warn(path + ": " + spacing.scaleNote);
     }

@@ -6,9 +6,13 @@
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
+#include <exception>
 #include <filesystem>
 #include <fstream>
+#include <functional>
+#include <future>
 #include <limits>
+#include <mutex>
 #include <stdexcept>
 #include <vector>
 
@@ -20,6 +24,7 @@
 
 #include "errors.h"
 #include "gdal_session.h"
+#include "georeference.h"
 #include "memory_budget.h"
 
 namespace aal {
@@ -216,10 +221,12 @@ std::string subdatasetList(GDALDataset& dataset) {
 
 GDALDatasetUniquePtr openDataset(const std::string& path) {
   namespace fs = std::filesystem;
-  ensureGdal();
   std::error_code error;
   const bool gdalPath = path.rfind("/vsi", 0) == 0 || path.find(':') != std::string::npos;
   if (!gdalPath && !fs::exists(path, error)) refuse(path, "no such file");
+  CPLErrorReset();
+  if (GDALDatasetUniquePtr geoTiff = openGeoTiff(path)) return geoTiff;
+  ensureGdal();
   CPLErrorReset();
   GDALDatasetUniquePtr dataset(GDALDataset::Open(path.c_str(), GDAL_OF_RASTER | GDAL_OF_READONLY));
   if (dataset) return dataset;
@@ -242,21 +249,6 @@ std::string demFormatsHelp() {
          "alpha bands are voids; scale, offset and vertical units (feet) are applied; any CRS.\n"
          "Palette, RGB and complex images are refused: take one band with gdal_translate -b N.";
 }
-
-struct DemSource::Impl {
-  GDALDatasetUniquePtr dataset;
-  GDALRasterBand* band = nullptr;
-  GDALDataType type = GDT_Unknown;
-  bool signedBytes = false;  // GDAL 3.6 reads int8 TIFFs as bytes marked SIGNEDBYTE
-  bool southUp = false;      // rows run south to north in the file
-  bool readMask = false;     // a mask band says which samples are void
-  // An alpha band (0 = void) of any sample type: GDAL takes only 8- and
-  // 16-bit alpha bands as masks, but gdalwarp -dstalpha gives a float32 DEM
-  // a float32 alpha band.
-  int alphaBand = 0;
-  double scale = 1.0, offset = 0.0;
-  size_t maxTexels = kMaxDemTexels;
-};
 
 namespace {
 
@@ -313,18 +305,17 @@ void describeCrs(const std::string& path, const OGRSpatialReference& srs,
   }
 }
 
-void describePlacement(const std::string& path, GDALDataset& dataset, const DemLoadOptions& options,
-                       RawDem& dem, bool& southUp) {
+// The grid's placement in its CRS's coordinates; false when it has none.
+bool describeTransform(const std::string& path, GDALDataset& dataset, RawDem& dem, bool& southUp) {
   double gt[6];
-  const bool hasTransform = dataset.GetGeoTransform(gt) == CE_None;
-  if (!hasTransform) {
+  if (dataset.GetGeoTransform(gt) != CE_None) {
     if (dataset.GetGCPCount() > 0) {
       refuse(path,
              "is placed by ground control points only; warp it onto a grid first: "
              "`gdalwarp " +
                  path + " dem.tif`");
     }
-    return;
+    return false;
   }
   if (gt[2] != 0.0 || gt[4] != 0.0) {
     refuse(path,
@@ -336,6 +327,13 @@ void describePlacement(const std::string& path, GDALDataset& dataset, const DemL
   geo.stepY = std::abs(gt[5]);
   geo.originX = gt[0] + 0.5 * gt[1];
   geo.originY = southUp ? gt[3] + (dem.height - 0.5) * gt[5] : gt[3] + 0.5 * gt[5];
+  return true;
+}
+
+// The CRS of a placed grid into dem.geo (and a vertical CRS's unit into
+// dem.zUnit*).
+void describeCrsOf(const std::string& path, GDALDataset& dataset, const DemLoadOptions& options,
+                   RawDem& dem) {
   const OGRSpatialReference* srs = dataset.GetSpatialRef();
   if (srs != nullptr && !srs->IsEmpty()) {
     describeCrs(path, *srs, options, dem);
@@ -343,6 +341,7 @@ void describePlacement(const std::string& path, GDALDataset& dataset, const DemL
   }
   // A grid with coordinates but no CRS (an ASCII grid without .prj): its
   // coordinates are taken as metres, as every GIS would measure them.
+  GeoReference& geo = dem.geo;
   geo.crs = CrsKind::Projected;
   if (options.warn) {
     std::string text =
@@ -355,17 +354,50 @@ void describePlacement(const std::string& path, GDALDataset& dataset, const DemL
   }
 }
 
-void describeHeights(const std::string& path, GDALRasterBand& band, const DemLoadOptions& options,
-                     RawDem& dem) {
+// The CRS and the metric spacing, found on a thread of their own: PROJ takes
+// 15-30 ms to build a CRS from a GeoTIFF's keys and as much to map its centre,
+// time in which the caller decodes the samples (docs/performance.md).
+struct CrsPart {
+  RawDem placed;                         // the description's geo with the CRS filled in, and zUnit*
+  std::optional<MetricSpacing> spacing;  // of the whole raster; none when it threw
+  std::vector<std::string> warnings;
+  bool found = false;  // false: the file could not be opened twice
+};
+
+CrsPart findCrs(const std::string& path, const std::string& driver, RawDem placed) {
+  CrsPart part;
+  DemLoadOptions collect;
+  collect.warn = [&part](const std::string& message) { part.warnings.push_back(message); };
+  // GDAL datasets are not shared between threads: this one is its own.
+  const char* const drivers[] = {driver.c_str(), nullptr};
+  GDALDatasetUniquePtr own(
+      GDALDataset::FromHandle(GDALOpenEx(path.c_str(), GDAL_OF_RASTER | GDAL_OF_READONLY,
+                                         driver.empty() ? nullptr : drivers, nullptr, nullptr)));
+  if (!own) {  // a stream (/vsistdin/): the caller's thread reads the CRS
+    part.placed = std::move(placed);
+    return part;
+  }
+  part.found = true;
+  describeCrsOf(path, *own, collect, placed);
+  try {
+    part.spacing = metricSpacing(path, placed.geo, placed.width, placed.height);
+  } catch (const InputError&) {
+    // Raised again, in its place, when the caller asks for the geometry.
+  }
+  part.placed = std::move(placed);
+  return part;
+}
+
+void describeHeights(const std::string& path, const std::string& unitType,
+                     const DemLoadOptions& options, RawDem& dem) {
   if (dem.zUnitFromFile) return;  // a vertical CRS said it
-  const char* unitType = band.GetUnitType();
-  if (unitType == nullptr || *unitType == '\0') return;
+  if (unitType.empty()) return;
   dem.zUnitName = unitType;
   if (const std::optional<double> unit = metresPerUnit(unitType)) {
     dem.zUnitM = *unit;
     dem.zUnitFromFile = true;
   } else if (options.warn) {
-    options.warn(path + " states its heights in \"" + std::string(unitType) +
+    options.warn(path + " states its heights in \"" + unitType +
                  "\", a unit aperture does not know: taking them as metres (give --z-scale)");
   }
 }
@@ -387,6 +419,29 @@ std::optional<double> nodataOf(GDALRasterBand& band, GDALDataType type) {
 }
 
 }  // namespace
+
+struct DemSource::Impl {
+  GDALDatasetUniquePtr dataset;
+  GDALRasterBand* band = nullptr;
+  GDALDataType type = GDT_Unknown;
+  bool signedBytes = false;  // GDAL 3.6 reads int8 TIFFs as bytes marked SIGNEDBYTE
+  bool southUp = false;      // rows run south to north in the file
+  bool readMask = false;     // a mask band says which samples are void
+  // An alpha band (0 = void) of any sample type: GDAL takes only 8- and
+  // 16-bit alpha bands as masks, but gdalwarp -dstalpha gives a float32 DEM
+  // a float32 alpha band.
+  int alphaBand = 0;
+  double scale = 1.0, offset = 0.0;
+  size_t maxTexels = kMaxDemTexels;
+  std::string bandUnit;  // GDAL's unit type of band 1; empty when silent
+  // The CRS, found while the caller reads (findCrs), then merged into the
+  // description once (settle); warnings are given then, on the caller's thread.
+  std::future<CrsPart> crs;
+  std::function<void(const std::string&)> warn;
+  std::mutex settling;
+  bool settled = false;
+  std::exception_ptr failure;
+};
 
 DemSource::DemSource(const std::string& path, const DemLoadOptions& options)
     : path_(path), impl_(std::make_unique<Impl>()) {
@@ -448,11 +503,50 @@ DemSource::DemSource(const std::string& path, const DemLoadOptions& options)
   const int maskFlags = band.GetMaskFlags();
   impl_->readMask =
       impl_->alphaBand == 0 && (maskFlags & GMF_ALL_VALID) == 0 && maskFlags != GMF_NODATA;
-  describePlacement(path, dataset, options, d, impl_->southUp);
-  describeHeights(path, band, options, d);
+  const char* unitType = band.GetUnitType();
+  impl_->bandUnit = unitType != nullptr ? unitType : "";
+  impl_->warn = options.warn;
+  if (describeTransform(path, dataset, d, impl_->southUp)) {
+    impl_->crs = std::async(std::launch::async, findCrs, path, d.driver, d);
+  }
 }
 
 DemSource::~DemSource() = default;
+
+void DemSource::settle() const {
+  const std::lock_guard<std::mutex> lock(impl_->settling);
+  if (impl_->settled) {
+    if (impl_->failure) std::rethrow_exception(impl_->failure);
+    return;
+  }
+  impl_->settled = true;
+  try {
+    RawDem& d = description_;
+    DemLoadOptions options;
+    options.warn = impl_->warn;
+    if (impl_->crs.valid()) {
+      CrsPart part = impl_->crs.get();
+      if (!part.found) describeCrsOf(path_, *impl_->dataset, options, part.placed);
+      if (options.warn) {
+        for (const std::string& message : part.warnings) options.warn(message);
+      }
+      d.geo = part.placed.geo;
+      d.zUnitM = part.placed.zUnitM;
+      d.zUnitFromFile = part.placed.zUnitFromFile;
+      d.zUnitName = part.placed.zUnitName;
+      d.spacing = std::move(part.spacing);
+    }
+    describeHeights(path_, impl_->bandUnit, options, d);
+  } catch (...) {
+    impl_->failure = std::current_exception();
+    throw;
+  }
+}
+
+const RawDem& DemSource::description() const {
+  settle();
+  return description_;
+}
 
 RawDem DemSource::read(int column, int row, int w, int h) const {
   const RawDem& whole = description_;
@@ -467,11 +561,7 @@ RawDem DemSource::read(int column, int row, int w, int h) const {
                     std::to_string(h) + " heights and void mask",
                 "aal-bake bakes it a band at a time (--low-memory); for the other tools cut it "
                 "(`gdal_translate -srcwin`) or coarsen it (`gdal_translate -outsize 50% 50%`)");
-  RawDem dem = whole;  // the description: everything but the samples
-  if (dem.geo.crs != CrsKind::None) {
-    dem.geo.originX += column * dem.geo.stepX;
-    dem.geo.originY -= row * dem.geo.stepY;
-  }
+  RawDem dem;  // the samples; the description joins them at the end
   dem.allocate(w, h);
 
   GDALRasterBand& band = *impl_->band;
@@ -548,7 +638,19 @@ RawDem DemSource::read(int column, int row, int w, int h) const {
                        dem.voidMask.begin() + static_cast<ptrdiff_t>(h - 1 - r) * w);
     }
   }
-  return dem;
+  // The CRS was found meanwhile (findCrs); the window is placed in it.
+  settle();
+  RawDem placed = description_;
+  placed.width = w;
+  placed.height = h;
+  placed.z = std::move(dem.z);
+  placed.voidMask = std::move(dem.voidMask);
+  if (!wholeRaster) placed.spacing.reset();
+  if (placed.geo.crs != CrsKind::None) {
+    placed.geo.originX += column * placed.geo.stepX;
+    placed.geo.originY -= row * placed.geo.stepY;
+  }
+  return placed;
 }
 
 }  // namespace aal

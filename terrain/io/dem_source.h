@@ -21,8 +21,8 @@ class DemSource {
   // numbers (extra bands are ignored with a warning, an alpha band becomes
   // voids), not a palette, RGB or complex image. Throws InputError("PATH:
   // ...") for missing, unreadable or unrecognised files, what is not a DEM
-  // (saying how to get one band), sizes beyond options.maxTexels, rotated
-  // grids and CRSs aperture cannot place (geocentric).
+  // (saying how to get one band), sizes beyond options.maxTexels and rotated
+  // grids.
   DemSource(const std::string& path, const DemLoadOptions& options);
   ~DemSource();
   DemSource(const DemSource&) = delete;
@@ -33,7 +33,10 @@ class DemSource {
   int height() const { return description_.height; }
   // Everything but the samples: width, height, geo (of the whole raster),
   // zUnitM, format, driver, sampleType, nodata, zUnitName.
-  const RawDem& description() const { return description_; }
+  // The CRS is found on a thread of its own while the caller reads: the
+  // first call of description() or read() waits for it, gives its warnings
+  // and throws InputError for a CRS aperture cannot place (geocentric).
+  const RawDem& description() const;
 
   // Samples of columns [column, column + width) and rows [row, row + height)
   // (row 0 = north), scale and offset applied, voids (nodata, mask or alpha
@@ -46,8 +49,10 @@ class DemSource {
 
  private:
   struct Impl;
+  void settle() const;  // merges the CRS into description_, once
+
   std::string path_;
-  RawDem description_;
+  mutable RawDem description_;
   std::unique_ptr<Impl> impl_;
 };
 

@@ -5,14 +5,16 @@
 #include <cpl_conv.h>
 #include <cpl_error.h>
 #include <gdal.h>
+#include <gdal_frmts.h>
 #include <ogr_spatialref.h>
 
 namespace aal {
 
-void ensureGdal() {
+namespace {
+
+void configureGdal() {
   static std::once_flag once;
   std::call_once(once, [] {
-    GDALAllRegister();
     CPLSetErrorHandler(CPLQuietErrorHandler);
     if (CPLGetConfigOption("GDAL_NUM_THREADS", nullptr) == nullptr) {
       CPLSetConfigOption("GDAL_NUM_THREADS", "ALL_CPUS");
@@ -20,8 +22,28 @@ void ensureGdal() {
   });
 }
 
+}  // namespace
+
+void ensureGdal() {
+  configureGdal();
+  static std::once_flag once;
+  std::call_once(once, [] { GDALAllRegister(); });
+}
+
+GDALDatasetUniquePtr openGeoTiff(const std::string& path) {
+  configureGdal();
+  static std::once_flag once;
+  std::call_once(once, [] { GDALRegister_GTiff(); });
+  const char* const geoTiff[] = {"GTiff", nullptr};
+  if (GDALIdentifyDriverEx(path.c_str(), GDAL_OF_RASTER, geoTiff, nullptr) == nullptr) {
+    return nullptr;
+  }
+  return GDALDatasetUniquePtr(GDALDataset::FromHandle(
+      GDALOpenEx(path.c_str(), GDAL_OF_RASTER | GDAL_OF_READONLY, geoTiff, nullptr, nullptr)));
+}
+
 std::unique_ptr<OGRSpatialReference> spatialReferenceOf(const GeoReference& geo) {
-  ensureGdal();
+  configureGdal();  // OGR needs no drivers
   auto srs = std::make_unique<OGRSpatialReference>();
   const OGRErr error = !geo.wkt.empty() ? srs->importFromWkt(geo.wkt.c_str())
                        : geo.epsg > 0   ? srs->importFromEPSG(geo.epsg)

@@ -6,6 +6,8 @@
 #include <memory>
 #include <string>
 
+#include <gdal_priv.h>
+
 #include "heightfield.h"
 
 class OGRSpatialReference;
@@ -17,6 +19,13 @@ namespace aal {
 // ALL_CPUS unless the user set it, so that compressed GeoTIFFs decode and
 // encode on every core.
 void ensureGdal();
+
+// `path` opened read-only as a raster by GDAL's GeoTIFF driver alone, or
+// null when that driver does not take it (then open it after ensureGdal()).
+// Registering all ~200 drivers costs 8 ms at every start, and most DEMs are
+// GeoTIFFs (docs/performance.md). Sets up GDAL as ensureGdal() does, but for
+// the drivers.
+GDALDatasetUniquePtr openGeoTiff(const std::string& path);
 
 // The CRS `geo` names: its WKT, else its EPSG code; null when it names none
 // or OGR cannot read it. Axes in the traditional GIS order (x east, y north).

@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "dem_options.h"
+#include "georeference.h"
 #include "heightfield.h"
 
 namespace aal {
@@ -29,6 +30,8 @@ struct RawDem {
   std::string sampleType;         // as stored: "int16", "float32", ...
   std::optional<double> nodata;   // the file's nodata value, as stored
   std::string zUnitName;          // the file's vertical unit as it says it; empty when silent
+  // metricSpacing(geo, width, height), when the reader found it already.
+  std::optional<MetricSpacing> spacing;
 
   size_t texelCount() const { return static_cast<size_t>(width) * static_cast<size_t>(height); }
   // Allocates z and voidMask for width x height (call checkDemSize first).

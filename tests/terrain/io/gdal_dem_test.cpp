@@ -10,6 +10,7 @@
 #include <fstream>
 #include <functional>
 #include <limits>
+#include <thread>
 #include <utility>
 
 #include "dem_loader.h"
@@ -329,6 +330,64 @@ TEST_F(GdalDem, AsciiGridWithoutPrjIsMetres) {
   EXPECT_DOUBLE_EQ(f.cellSizeXM, 5.0);
   EXPECT_FALSE(f.geo.hasCenter);
   EXPECT_TRUE(warnings_.any("no coordinate reference system"));
+}
+
+// DemSource finds the CRS on a thread of its own while the samples decode
+// (docs/performance.md): what it gives must not depend on the order of the
+// caller's requests, and its warnings come once, on the caller's thread.
+TEST_F(GdalDem, CrsFoundWhileReadingEqualsTheCrsFoundFirst) {
+  const std::string p = write("utm.tif", utm(64, 48));
+  const DemSource readFirst(p, warnings_.options());
+  const RawDem samples = readFirst.readAll();
+  const DemSource describedFirst(p, warnings_.options());
+  const RawDem& description = describedFirst.description();
+  EXPECT_EQ(samples.geo.epsg, 32616);
+  EXPECT_EQ(samples.geo.wkt, description.geo.wkt);
+  EXPECT_EQ(samples.geo.crsName, description.geo.crsName);
+  EXPECT_DOUBLE_EQ(samples.geo.originX, description.geo.originX);
+  EXPECT_DOUBLE_EQ(samples.geo.linearUnitM, description.geo.linearUnitM);
+  // The spacing found beside the CRS is metricSpacing's, computed here.
+  const MetricSpacing direct = metricSpacing(p, samples.geo, 64, 48);
+  ASSERT_TRUE(samples.spacing.has_value());
+  EXPECT_DOUBLE_EQ(samples.spacing->cellSizeXM, direct.cellSizeXM);
+  EXPECT_DOUBLE_EQ(samples.spacing->cellSizeYM, direct.cellSizeYM);
+  EXPECT_DOUBLE_EQ(samples.spacing->centerLatDeg, direct.centerLatDeg);
+  EXPECT_TRUE(direct.hasCenter);
+  // A window has its own centre: no whole-raster spacing rides along.
+  EXPECT_FALSE(readFirst.read(8, 8, 16, 16).spacing.has_value());
+}
+
+TEST_F(GdalDem, CrsWarningsComeOnceOnTheCallersThread) {
+  const std::string p = path("local.asc");
+  test::writeBytes(p, "ncols 2\nnrows 2\nxllcorner 0\nyllcorner 0\ncellsize 5\n1 2\n3 4\n");
+  std::vector<std::thread::id> threads;
+  DemLoadOptions options;
+  options.warn = [&](const std::string& m) {
+    if (m.find("no coordinate reference system") != std::string::npos) {
+      threads.push_back(std::this_thread::get_id());
+    }
+  };
+  const DemSource source(p, options);
+  source.readAll();
+  source.description();
+  source.readAll();
+  ASSERT_EQ(threads.size(), 1u);
+  EXPECT_EQ(threads[0], std::this_thread::get_id());
+}
+
+TEST_F(GdalDem, GeocentricCrsIsRefusedWhenAsked) {
+  test::GdalRaster r;
+  r.hasTransform = true;
+  const double t[6] = {4000000, 30, 0, 500000, 0, -30};
+  std::copy(t, t + 6, r.transform);
+  r.crs = "EPSG:4978";  // WGS 84 geocentric
+  const std::string p = write("geocentric.tif", r);
+  const std::string message = test::inputErrorOf([&] { loadDem(p, warnings_.options()); });
+  EXPECT_NE(message.find("geocentric"), std::string::npos) << message;
+  // Asked again, the same answer (the CRS is looked at once).
+  const DemSource source(p, warnings_.options());
+  EXPECT_THROW(source.description(), InputError);
+  EXPECT_THROW(source.readAll(), InputError);
 }
 
 TEST_F(GdalDem, EsriWebMercatorGetsItsGroundSpacing) {
