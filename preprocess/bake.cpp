@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <numbers>
 #include <string>
 
 #include <tbb/parallel_for.h>
@@ -19,7 +20,7 @@ namespace aal {
 
 namespace {
 
-constexpr double kTwoPi = 6.28318530717958647692;
+constexpr double kTwoPi = 2.0 * std::numbers::pi;
 
 void checkOptions(const Heightfield& field, const BakeOptions& o) {
   // The whole field, or a band of its rows (Heightfield::firstRow).

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <numbers>
 #include <stdexcept>
 
 #include <tbb/parallel_for.h>
@@ -11,7 +12,7 @@ namespace aal {
 
 namespace {
 
-constexpr double kTwoPi = 6.28318530717958647692;
+constexpr double kTwoPi = 2.0 * std::numbers::pi;
 
 uint64_t hashTexel(uint64_t i) {
   i += 0x9E3779B97F4A7C15ull;

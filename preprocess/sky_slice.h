@@ -12,6 +12,7 @@
 #include <cmath>
 #include <cstddef>
 #include <iterator>
+#include <numbers>
 
 #if defined(__x86_64__) && defined(__GNUC__)
 #include <immintrin.h>
@@ -30,8 +31,8 @@ namespace aal {
 inline constexpr double kAtanUnitCoefficients[] = {
     0.006811793290873252, -0.033604220565024996, 0.07962367236561659, -0.1323334209557463,
     0.19807815564989179,  -0.3331736805474933,   0.9999961115495709};
-inline constexpr double kSliceHalfPi = 1.57079632679489661923;
-inline constexpr double kSliceQuarterPi = 0.78539816339744830962;
+inline constexpr double kSliceHalfPi = std::numbers::pi / 2.0;
+inline constexpr double kSliceQuarterPi = std::numbers::pi / 4.0;
 
 template <class Real>
 inline Real atanUnit(Real y) {

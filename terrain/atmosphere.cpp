@@ -2,12 +2,13 @@
 
 #include <algorithm>
 #include <cmath>
+#include <numbers>
 
 namespace aal {
 
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
+constexpr double kPi = std::numbers::pi;
 constexpr double kDegToRad = kPi / 180.0;
 
 // Ozone absorption coefficients k_o = sigma N_L at 680, 550, 440 nm, cm^-1

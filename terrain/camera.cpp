@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <numbers>
 #include <stdexcept>
 
 #include <glm/ext/matrix_clip_space.hpp>
@@ -11,7 +12,7 @@
 namespace aal {
 
 namespace {
-constexpr double kDegToRad = 3.14159265358979323846 / 180.0;
+constexpr double kDegToRad = std::numbers::pi / 180.0;
 
 std::pair<float, float> heightRange(const Heightfield& field) {
   const auto [lo, hi] = std::minmax_element(field.z.begin(), field.z.end());

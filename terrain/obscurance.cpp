@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <numbers>
 #include <string>
 
 #include <glm/geometric.hpp>
@@ -12,7 +13,7 @@
 namespace aal {
 
 namespace {
-constexpr float kTwoPi = 6.28318530717958647692f;
+constexpr float kTwoPi = 2.0f * std::numbers::pi_v<float>;
 }
 
 float defaultObscuranceRadiusM(glm::dvec2 cellSizeM, glm::dvec2 demExtentM) {

@@ -6,6 +6,7 @@
 #include <limits>
 #include <map>
 #include <mutex>
+#include <numbers>
 #include <random>
 #include <stdexcept>
 #include <string>
@@ -16,7 +17,7 @@ namespace aal {
 
 namespace {
 
-constexpr double kTwoPi = 6.28318530717958647692;
+constexpr double kTwoPi = 2.0 * std::numbers::pi;
 // Lloyd relaxation: Voronoi cells estimated from this many candidate points
 // per site, and this many iterations (the site moves stop changing the
 // minimum distance after ~30).

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <numbers>
 #include <stdexcept>
 
 #include <tbb/parallel_for.h>
@@ -16,7 +17,7 @@ namespace aal {
 
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
+constexpr double kPi = std::numbers::pi;
 // A finite stand-in for an unbounded range: single precision holds it and
 // its doublings up to level 31 (the shader computes in floats).
 constexpr double kUnboundedRangeM = 1e12;

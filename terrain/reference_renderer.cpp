@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <atomic>
 #include <cmath>
+#include <numbers>
 #include <random>
 #include <stdexcept>
 
@@ -15,7 +16,7 @@ namespace aal {
 
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
+constexpr double kPi = std::numbers::pi;
 
 // The bilinear terrain in world metres, as the GPU sees it: uniform cells
 // (the centre row's for geographic grids), heights clamped at the edges.

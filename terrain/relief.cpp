@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <numbers>
 #include <stdexcept>
 
 #include <tbb/blocked_range.h>
@@ -20,7 +21,7 @@ namespace aal {
 
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
+constexpr double kPi = std::numbers::pi;
 constexpr double kDeg = kPi / 180.0;
 
 // Normal from height differences over one texel either side, one-sided at

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <numbers>
 
 #include <glm/geometric.hpp>
 
@@ -26,7 +27,7 @@ const std::map<std::string, ShadingMode>& shadingModeNames() {
 }
 
 namespace {
-constexpr float kPi = 3.14159265358979323846f;
+constexpr float kPi = std::numbers::pi_v<float>;
 }
 
 ShadingTerms shadingTerms(const ShadingInputs& in, ShadingMode mode) {

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <numbers>
 
 #include <glm/common.hpp>
 #include <glm/exponential.hpp>
@@ -11,7 +12,7 @@ namespace aal {
 
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
+constexpr double kPi = std::numbers::pi;
 
 struct Perez {
   double a, b, c, d, e;

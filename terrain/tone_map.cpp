@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <numbers>
 
 #include "atmosphere.h"
 #include "config.h"
@@ -13,7 +14,7 @@ namespace {
 constexpr float kA = float(AAL_FILMIC_A), kB = float(AAL_FILMIC_B), kC = float(AAL_FILMIC_C),
                 kD = float(AAL_FILMIC_D), kE = float(AAL_FILMIC_E), kF = float(AAL_FILMIC_F),
                 kW = float(AAL_FILMIC_W);
-constexpr double kPi = 3.14159265358979323846;
+constexpr double kPi = std::numbers::pi;
 
 // Hable's curve before normalisation, (x (A x + C B) + D E) / (x (A x + B) + D F) - E / F,
 // over one denominator: the D E F terms cancel, so h(0) = 0 exactly and no

@@ -4,6 +4,7 @@
 #include <cstdio>
 #include <map>
 #include <memory>
+#include <numbers>
 #include <optional>
 #include <sstream>
 #include <string>
@@ -225,7 +226,7 @@ int run(const Options& o) {
   settings.camera.verticalFovDeg = o.fovDeg;
   settings.lod.maxErrorPixels = o.lodErrorPixels;
   applySkyLighting(light, settings);
-  settings.sunRadiusRad = static_cast<float>(o.sunRadiusDeg * M_PI / 180.0);
+  settings.sunRadiusRad = static_cast<float>(o.sunRadiusDeg * std::numbers::pi / 180.0);
   const double visibilityM =
       o.visibilityKm ? *o.visibilityKm * 1000 : aal::defaultVisibilityM(field);
   settings.hazeDensityPerM = static_cast<float>(aal::hazeDensityForVisibility(visibilityM));

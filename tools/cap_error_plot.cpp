@@ -5,6 +5,7 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <numbers>
 #include <stdexcept>
 #include <vector>
 
@@ -16,7 +17,7 @@ namespace aal {
 
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
+constexpr double kPi = std::numbers::pi;
 constexpr double kDeg = 180.0 / kPi;
 constexpr int kMarginLeft = 70, kMarginTop = 40, kMarginBottom = 60, kGap = 40;
 constexpr int kLegendWidth = 24, kLegendMargin = 110;

@@ -2,6 +2,7 @@
 // (d, r1), one panel per r0, with axes and a colour legend.
 #pragma once
 
+#include <numbers>
 #include <string>
 #include <vector>
 
@@ -9,7 +10,7 @@ namespace aal {
 
 struct CapErrorPlotOptions {
   std::vector<double> r0ValuesRad;  // one panel each
-  double maxRadiusRad = 3.14159265358979323846;
+  double maxRadiusRad = std::numbers::pi;
   int panelPixels = 240;     // side of each panel's data area
   double colourRange = 0.2;  // legend spans [-range, +range] of the smaller cap's area
 };

@@ -13,6 +13,7 @@
 #include <future>
 #include <limits>
 #include <mutex>
+#include <numbers>
 #include <stdexcept>
 #include <vector>
 
@@ -31,7 +32,7 @@ namespace aal {
 
 namespace {
 
-constexpr double kRadToDeg = 180.0 / 3.14159265358979323846;
+constexpr double kRadToDeg = 180.0 / std::numbers::pi;
 
 [[noreturn]] void refuse(const std::string& path, const std::string& why) {
   throw InputError(path + ": " + why);

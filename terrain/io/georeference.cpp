@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <numbers>
 
 #include <memory>
 #include <utility>
@@ -20,7 +21,7 @@ namespace aal {
 
 namespace {
 
-constexpr double kDegToRad = 3.14159265358979323846 / 180.0;
+constexpr double kDegToRad = std::numbers::pi / 180.0;
 // Latitudes may pass the pole by rounding noise only.
 constexpr double kLatitudeSlackDeg = 1e-9;
 // 25 times the Earth's circumference.

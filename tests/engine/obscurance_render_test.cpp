@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <numbers>
 #include <random>
 
 #include <glm/geometric.hpp>
@@ -64,7 +65,8 @@ FrameSettings topView(ShadingMode mode) {
   s.mode = mode;
   s.camera.position = {0, 0, 50000};
   s.camera.lookAt = {0, 0, 0};
-  s.camera.verticalFovDeg = 2 * std::atan(0.5 * (kSize - 1) * kCellM / 50000) * 180 / M_PI;
+  s.camera.verticalFovDeg =
+      2 * std::atan(0.5 * (kSize - 1) * kCellM / 50000) * 180 / std::numbers::pi;
   const SkyLighting light = makeSkyLighting(200, 35, 2.5);
   applySkyLighting(light, s);
   s.exposure = 0.07f;

@@ -9,6 +9,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
+#include <numbers>
 #include <string>
 #include <tuple>
 #include <vector>
@@ -55,7 +56,8 @@ FrameSettings topView(const Heightfield& f, ShadingMode mode, double sunAzimuthD
   s.mode = mode;
   s.camera.position = {0, 0, 8000};
   s.camera.lookAt = {0, 0, 0};
-  s.camera.verticalFovDeg = 2 * std::atan(0.55 * (f.width - 1) * f.cellSizeXM / 8000) * 180 / M_PI;
+  s.camera.verticalFovDeg =
+      2 * std::atan(0.55 * (f.width - 1) * f.cellSizeXM / 8000) * 180 / std::numbers::pi;
   const SkyLighting light = makeSkyLighting(sunAzimuthDeg, sunElevationDeg, 2.5);
   applySkyLighting(light, s);
   s.sunRadiusRad = sunRadiusRad;

@@ -13,6 +13,7 @@
 #include <cmath>
 #include <cstdio>
 #include <cstring>
+#include <numbers>
 #include <string>
 
 #include <Imath/half.h>
@@ -75,7 +76,7 @@ FrameSettings topView(ShadingMode mode) {
   FrameSettings s = lighting(mode);
   s.camera.position = {0, 0, 60000};
   s.camera.lookAt = {0, 0, 0};
-  s.camera.verticalFovDeg = 2 * std::atan(0.5 * kHeight * kCellM / 60000) * 180 / M_PI;
+  s.camera.verticalFovDeg = 2 * std::atan(0.5 * kHeight * kCellM / 60000) * 180 / std::numbers::pi;
   return s;
 }
 
@@ -422,7 +423,7 @@ TEST_F(TileRender, AperturesInSeveralPagesWithHeightsInOne) {
     FrameSettings s = lighting(mode);
     s.camera.position = {0, 0, 60000};
     s.camera.lookAt = {0, 0, 0};
-    s.camera.verticalFovDeg = 2 * std::atan(0.5 * 64 * kCellM / 60000) * 180 / M_PI;
+    s.camera.verticalFovDeg = 2 * std::atan(0.5 * 64 * kCellM / 60000) * 180 / std::numbers::pi;
     const Difference d =
         compare(renderer.render(tiled, s, false), renderer.render(single, s, false), false);
     EXPECT_LE(d.pixelsOff, size_t(192 * 64 / 1000)) << int(mode);

@@ -5,6 +5,7 @@
 
 #include <cmath>
 #include <cstdio>
+#include <numbers>
 
 #include "bake_test_util.h"
 #include "ray_bake.h"
@@ -13,7 +14,7 @@
 namespace aal {
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
+constexpr double kPi = std::numbers::pi;
 using test::makeField;
 
 const float* texel(const BakeResult& r, int col, int row) {

@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 #include <functional>
+#include <numbers>
 
 #include "heightfield.h"
 
@@ -37,7 +38,7 @@ inline double angleBetweenDeg(const float* a, const float* b) {
   const double cy = double(a[2]) * b[0] - double(a[0]) * b[2];
   const double cz = double(a[0]) * b[1] - double(a[1]) * b[0];
   const double dot = double(a[0]) * b[0] + double(a[1]) * b[1] + double(a[2]) * b[2];
-  return std::atan2(std::sqrt(cx * cx + cy * cy + cz * cz), dot) * 180.0 / 3.14159265358979323846;
+  return std::atan2(std::sqrt(cx * cx + cy * cy + cz * cz), dot) * 180.0 / std::numbers::pi;
 }
 
 // Tangent of the horizon seen from the centre of a square DEM of `size`

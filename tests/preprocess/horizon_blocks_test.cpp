@@ -9,6 +9,7 @@
 #include <cmath>
 #include <cstring>
 #include <limits>
+#include <numbers>
 #include <tuple>
 #include <utility>
 #include <vector>
@@ -21,7 +22,7 @@
 namespace aal {
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
+constexpr double kPi = std::numbers::pi;
 
 Heightfield roughTerrain(int width, int height, bool geographic) {
   SyntheticTerrainOptions s;

@@ -5,6 +5,7 @@
 
 #include <limits>
 #include <map>
+#include <numbers>
 #include <random>
 
 #include "bake_terrain.h"
@@ -14,7 +15,7 @@
 namespace aal {
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
+constexpr double kPi = std::numbers::pi;
 
 struct Case {
   double phi;

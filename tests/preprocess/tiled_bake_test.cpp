@@ -16,6 +16,7 @@
 #include <fstream>
 #include <iterator>
 #include <map>
+#include <numbers>
 #include <string>
 #include <vector>
 
@@ -50,7 +51,8 @@ Heightfield geographicField() {
   field.rowCellSizeXM.resize(static_cast<size_t>(field.height));
   for (int row = 0; row < field.height; ++row) {
     const double latDeg = 62.0 - row * 0.03;
-    field.rowCellSizeXM[static_cast<size_t>(row)] = 60.0 * std::cos(latDeg * M_PI / 180.0);
+    field.rowCellSizeXM[static_cast<size_t>(row)] =
+        60.0 * std::cos(latDeg * std::numbers::pi / 180.0);
   }
   field.cellSizeXM = field.rowCellSizeXM[static_cast<size_t>(field.height / 2)];
   return field;
@@ -140,7 +142,7 @@ TEST(TiledBake, WindowSweepEqualsTheWholeSweep) {
     o.maxDistanceM = maxDistanceM;
     o.clampEdge = true;
     for (int a = 0; a < 24; ++a) {
-      const double phi = a * 2 * M_PI / 24;
+      const double phi = a * 2 * std::numbers::pi / 24;
       std::vector<double> all(field.texelCount(), NAN), some(window.texelCount(), NAN);
       sweepHorizons(whole, phi, o, [&](size_t i, double t) { all[i] = t; });
       sweepHorizons(part, phi, o, [&](size_t i, double t) { some[i] = t; });

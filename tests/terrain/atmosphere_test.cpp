@@ -4,6 +4,7 @@
 
 #include <cmath>
 #include <cstdio>
+#include <numbers>
 
 #include "atmosphere.h"
 
@@ -18,8 +19,8 @@ TEST(AirMass, KastenYoungMatchesItsTable) {
   EXPECT_NEAR(relativeAirMass(0.0), 37.92, 0.05);
   // Close to the secant while the sun is high.
   for (double e = 20; e <= 90; e += 5) {
-    EXPECT_NEAR(relativeAirMass(e), 1.0 / std::sin(e * M_PI / 180),
-                0.01 / std::sin(e * M_PI / 180));
+    EXPECT_NEAR(relativeAirMass(e), 1.0 / std::sin(e * std::numbers::pi / 180),
+                0.01 / std::sin(e * std::numbers::pi / 180));
   }
 }
 

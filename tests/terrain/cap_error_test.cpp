@@ -3,13 +3,14 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <numbers>
 
 #include "caps.h"
 
 namespace aal {
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
+constexpr double kPi = std::numbers::pi;
 
 TEST(CapError, RelativeErrorIsAFractionOfTheSmallerCap) {
   EXPECT_NEAR(capRelativeError(1.0, 1.1, kPi / 2, kPi), 0.1 / (2 * kPi), 1e-12);

@@ -8,6 +8,7 @@
 #include <cmath>
 #include <cstdio>
 #include <limits>
+#include <numbers>
 #include <random>
 
 #include <glm/geometric.hpp>
@@ -18,7 +19,7 @@
 namespace aal {
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
+constexpr double kPi = std::numbers::pi;
 
 // A square DEM of `size` texels, 10 m cells, heights from f(x, y) in metres
 // (world frame: x east, y north, origin at the centre).

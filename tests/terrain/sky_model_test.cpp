@@ -5,6 +5,7 @@
 
 #include <cmath>
 #include <cstdio>
+#include <numbers>
 
 #include <glm/geometric.hpp>
 
@@ -179,9 +180,10 @@ TEST(SunAndSky, ClearNoonRatiosArePlausible) {
   const double elevation = 60.0;
   const PreethamSky sky = skyAt(elevation);
   const float sun = luminance(sunIrradiance(elevation, 2.5));
-  const float directHorizontal = sun * float(std::sin(elevation * M_PI / 180));
-  const float diffuseHorizontal = float(M_PI) * luminance(cosineWeightedSkyRadiance(sky));
-  const float fill = float(M_PI) * luminance(averageSkyRadiance(sky));
+  const float directHorizontal = sun * float(std::sin(elevation * std::numbers::pi / 180));
+  const float diffuseHorizontal =
+      float(std::numbers::pi) * luminance(cosineWeightedSkyRadiance(sky));
+  const float fill = float(std::numbers::pi) * luminance(averageSkyRadiance(sky));
   EXPECT_GT(sun, 85.0f);
   EXPECT_LT(sun, 110.0f);
   EXPECT_GT(diffuseHorizontal, 10.0f);
@@ -197,8 +199,9 @@ TEST(SunAndSky, ClearNoonRatiosArePlausible) {
 }
 
 TEST(SunAndSky, SkyDominatesAtSunsetAndEverythingIsDarkAtNight) {
-  const float sun2 = luminance(sunIrradiance(2.0, 2.5)) * float(std::sin(2.0 * M_PI / 180));
-  const float sky2 = float(M_PI) * luminance(cosineWeightedSkyRadiance(skyAt(2.0)));
+  const float sun2 =
+      luminance(sunIrradiance(2.0, 2.5)) * float(std::sin(2.0 * std::numbers::pi / 180));
+  const float sky2 = float(std::numbers::pi) * luminance(cosineWeightedSkyRadiance(skyAt(2.0)));
   EXPECT_GT(sky2, sun2);
   EXPECT_EQ(luminance(sunIrradiance(-8.0, 2.5)), 0.0f);
   EXPECT_EQ(luminance(averageSkyRadiance(skyAt(-8.0))), 0.0f);

@@ -3,6 +3,7 @@
 
 #include <cmath>
 #include <cstdio>
+#include <numbers>
 
 #include "atmosphere.h"
 #include "config.h"
@@ -96,7 +97,8 @@ TEST(AutoExposure, NoonTerrainIsMiddleGreyAndDuskIsDarker) {
   const float terrain = flatTerrainLuminance(sun, noonElevation, sky);
   // 0.2 / pi * (E_sun sin 60° + pi L_sky) by hand from the two luminances.
   const double expected =
-      0.2 / M_PI * (luminance(sun) * std::sin(M_PI / 3) + M_PI * luminance(sky));
+      0.2 / std::numbers::pi *
+      (luminance(sun) * std::sin(std::numbers::pi / 3) + std::numbers::pi * luminance(sky));
   EXPECT_NEAR(terrain, expected, 1e-4 * expected);
   const float grey = toneMap(glm::vec3(terrain), exposure).g;
   EXPECT_NEAR(grey, linearToSrgb(kMiddleGrey), 1e-4f);

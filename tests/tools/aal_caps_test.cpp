@@ -5,6 +5,7 @@
 
 #include <cmath>
 #include <fstream>
+#include <numbers>
 #include <regex>
 
 #include "caps.h"
@@ -36,7 +37,7 @@ TEST(AalCaps, JsonGivesExactAndApproximateAreas) {
 TEST(AalCaps, DegreesAreConverted) {
   const auto r = runTool("aal-caps", "90 90 90 --degrees --json");
   ASSERT_EQ(r.exitCode, 0) << r.out;
-  EXPECT_NEAR(jsonNumber(r.out, "exact"), M_PI, 1e-7);  // a lune of 90 degrees
+  EXPECT_NEAR(jsonNumber(r.out, "exact"), std::numbers::pi, 1e-7);  // a lune of 90 degrees
 }
 
 TEST(AalCaps, BadArgumentsExitWithTwo) {

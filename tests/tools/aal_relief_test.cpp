@@ -8,6 +8,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <numbers>
 #include <vector>
 
 #include <gdal_priv.h>
@@ -26,7 +27,7 @@ using test::quoted;
 using test::runTool;
 using test::TempDir;
 
-constexpr double kPi = 3.14159265358979323846;
+constexpr double kPi = std::numbers::pi;
 constexpr double kDeg = kPi / 180.0;
 constexpr double kCell = 10;
 constexpr float kNodata = -9999;

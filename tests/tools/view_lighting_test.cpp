@@ -2,6 +2,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <numbers>
 
 #include "terrain_renderer.h"
 #include "view_lighting.h"
@@ -39,7 +40,7 @@ TEST(ViewLighting, DirectAzimuthAndElevationOverrideTheClock) {
   l.sunAzimuthDeg = 90;
   l.sunElevationDeg = 30;
   const SkyLighting sky = viewSkyLighting(l);
-  EXPECT_NEAR(sky.sunDirection.x, std::cos(30 * M_PI / 180), 1e-5);  // east
+  EXPECT_NEAR(sky.sunDirection.x, std::cos(30 * std::numbers::pi / 180), 1e-5);  // east
   EXPECT_NEAR(sky.sunDirection.z, 0.5, 1e-5);
 }
 

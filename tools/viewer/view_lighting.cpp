@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <numbers>
 
 #include "lighting_defaults.h"
 #include "terrain_renderer.h"
@@ -65,7 +66,7 @@ void advanceViewTime(ViewLighting& l, double dtSeconds) {
 void applyViewLighting(const ViewLighting& l, const Heightfield& field, FrameSettings& s) {
   const SkyLighting light = viewSkyLighting(l);
   applySkyLighting(light, s);
-  s.sunRadiusRad = static_cast<float>(l.sunRadiusDeg * M_PI / 180.0);
+  s.sunRadiusRad = static_cast<float>(l.sunRadiusDeg * std::numbers::pi / 180.0);
   s.hazeDensityPerM = static_cast<float>(hazeDensityForVisibility(defaultVisibilityM(field)));
   if (l.waterLevelM) s.waterLevelM = static_cast<float>(*l.waterLevelM);
   s.exposure = clearDayExposure(l.turbidity) * std::exp2(l.exposureStops);

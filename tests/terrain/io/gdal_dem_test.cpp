@@ -10,6 +10,7 @@
 #include <fstream>
 #include <functional>
 #include <limits>
+#include <numbers>
 #include <thread>
 #include <utility>
 
@@ -396,8 +397,9 @@ TEST_F(GdalDem, EsriWebMercatorGetsItsGroundSpacing) {
   r.width = r.height = 21;
   r.hasTransform = true;
   // Around 60 N, 10 E: y = R ln tan(pi/4 + phi/2).
-  const double R = 6378137.0, phi = 60.0 * M_PI / 180.0;
-  const double x = R * 10.0 * M_PI / 180.0, y = R * std::log(std::tan(M_PI / 4 + phi / 2));
+  const double R = 6378137.0, phi = 60.0 * std::numbers::pi / 180.0;
+  const double x = R * 10.0 * std::numbers::pi / 180.0,
+               y = R * std::log(std::tan(std::numbers::pi / 4 + phi / 2));
   const double t[6] = {x - 10.5 * 100, 100, 0, y + 10.5 * 100, 0, -100};
   std::copy(t, t + 6, r.transform);
   r.crs =

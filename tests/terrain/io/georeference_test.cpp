@@ -6,6 +6,7 @@
 #include <GeographicLib/UTMUPS.hpp>
 
 #include <cmath>
+#include <numbers>
 
 #include "dem_test_util.h"
 #include "georeference.h"
@@ -34,9 +35,9 @@ TEST(Georeference, ThreeArcSecondsOfLongitudeAt36Point6North) {
   const double m = parallelArcM(36.6, 3 * kArcSec);
   // Closed form: N(phi) cos(phi) dLambda, N = a / sqrt(1 - e^2 sin^2 phi).
   const double a = 6378137.0, f = 1 / 298.257223563, e2 = f * (2 - f);
-  const double phi = 36.6 * M_PI / 180.0;
+  const double phi = 36.6 * std::numbers::pi / 180.0;
   const double expected = a / std::sqrt(1 - e2 * std::sin(phi) * std::sin(phi)) * std::cos(phi) *
-                          3 * kArcSec * M_PI / 180;
+                          3 * kArcSec * std::numbers::pi / 180;
   EXPECT_NEAR(m, expected, 1e-9);
   // The geodesic chord between the two points is shorter by far less than a millimetre.
   EXPECT_NEAR(m, geodesicM(36.6, -84.0, 36.6, -84.0 + 3 * kArcSec), 1e-6);
