@@ -1,7 +1,7 @@
-// Every shading mode against the CPU reference (DESIGN §9): the same camera,
-// sun and sky rendered by the GPU in each mode and by the reference ray
-// tracer, with the relative RMSE of linear radiance over the terrain and
-// error maps as images.
+// Every shading mode against the CPU reference (docs/comparison.md): the same
+// camera, sun and sky rendered by the GPU in each mode and by the reference ray
+// tracer, with the relative RMSE of linear radiance over the terrain and error
+// maps as images.
 #pragma once
 
 #include <functional>

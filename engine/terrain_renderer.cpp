@@ -39,16 +39,17 @@ bool isDebug(ShadingMode mode) {
          mode == ShadingMode::DebugObscurance || mode == ShadingMode::DebugTransfer;
 }
 
-// The modes whose picture W changes: the AAL sky fill (DESIGN §5) and the O/W
-// views. The baselines keep their own ambient term.
+// The modes whose picture W changes: the AAL sky fill (docs/design.md §5) and
+// the O/W views. The baselines keep their own ambient term.
 bool usesTransfer(ShadingMode mode) {
   return mode == ShadingMode::Approx || mode == ShadingMode::Exact ||
          mode == ShadingMode::DebugObscurance || mode == ShadingMode::DebugTransfer;
 }
 
-// The unit-radius sample offsets of seed 000 eq. 8 as std140 vec4s, one set
-// per interleave cell (set k's sample i at k * AAL_OBSCURANCE_MAX_SAMPLES + i;
-// 8 KiB, within lavapipe's 64 KiB uniform buffers).
+// The unit-radius sample offsets of eq. 8 of Umenhoffer et al., "Efficient
+// Methods for Ambient Lighting", 2009, as std140 vec4s, one set per interleave
+// cell (set k's sample i at k * AAL_OBSCURANCE_MAX_SAMPLES + i; 8 KiB, within
+// lavapipe's 64 KiB uniform buffers).
 static_assert(kObscuranceSampleSets == AAL_OBSCURANCE_SAMPLE_SETS);
 struct ObscuranceSampleBlock {
   glm::vec4 offsets[AAL_OBSCURANCE_SAMPLE_SETS * AAL_OBSCURANCE_MAX_SAMPLES];

@@ -42,11 +42,12 @@ struct FrameSettings {
   // Paint heights at or below this level (m) as water; none unless the user
   // asks (--water-level): a plain at 0 m is not a lake.
   std::optional<float> waterLevelM;
-  // Containment-test obscurances and W (DESIGN §6, terrain/obscurance.h): W
-  // multiplies the sky fill of the approx/exact modes; the debug-obscurance
-  // and debug-transfer modes show O and W. The renderer takes the settings as
-  // given (tools validate them with checkObscuranceSettings); radiusM 0 means
-  // defaultObscuranceRadiusM of the DEM.
+  // Containment-test obscurances and W (docs/design.md §6,
+  // terrain/obscurance.h): W multiplies the sky fill of the approx/exact modes;
+  // the debug-obscurance and debug-transfer modes show O and W. The renderer
+  // takes the settings as given (tools validate them with
+  // checkObscuranceSettings); radiusM 0 means defaultObscuranceRadiusM of the
+  // DEM.
   ObscuranceSettings obscurance;
   // A constant albedo for every texel, instead of the scene's image or palette.
   std::optional<glm::vec3> albedoValue;
@@ -131,7 +132,7 @@ class TerrainRenderer {
   // Draws the selected patches: whole nodes, then each quadrant's.
   void drawPatches(VkCommandBuffer cmd) const;
   // Obscurance/W, the 4x4 filter, then upsampling and composite onto hdr_
-  // (DESIGN §6, §8).
+  // (docs/design.md §6, §8).
   void recordObscurance(VkCommandBuffer cmd, const TerrainScene& scene, const FrameSettings& frame,
                         bool linear, const VkRenderingAttachmentInfo& display);
   // Makes the obscurance history's images on first use and readies the one

@@ -1,5 +1,5 @@
 // Baking: the visible sky of every texel of a heightfield as an aperture
-// (bent normal + cap arc length), plus the GIS sky-view factor. DESIGN §3.
+// (bent normal + cap arc length), plus the GIS sky-view factor. docs/design.md §3.
 #pragma once
 
 #include <atomic>

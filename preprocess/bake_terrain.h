@@ -1,6 +1,6 @@
 // What the bakers need of a heightfield: metric texel positions in the world
 // frame, precomputed once per row, and the surface slope (for the
-// tangent-plane clamp of DESIGN §3), computed where it is needed.
+// tangent-plane clamp of docs/design.md §3), computed where it is needed.
 #pragma once
 
 #include <vector>

@@ -1,5 +1,5 @@
 // Horizons of every texel for one azimuth in O(texels): a line sweep with a
-// convex-hull stack (Stewart 1998; Timonen 2013). DESIGN §3 step 1.
+// convex-hull stack (Stewart 1998; Timonen 2013). docs/design.md §3 step 1.
 //
 // The grid is cut by straight lines parallel to the azimuth, one texel apart
 // along the minor axis. Along the major axis a line advances one texel per

@@ -1,4 +1,4 @@
-// Closed forms for the visible sky in one azimuth slice. DESIGN §3 step 2.
+// Closed forms for the visible sky in one azimuth slice. docs/design.md §3 step 2.
 //
 // In the slice of azimuth phi and width dPhi, the sky is visible above the
 // elevation theta0 = max(horizon, tangent plane). With solid angle

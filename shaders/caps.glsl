@@ -11,7 +11,7 @@ float capArea(float radiusRad) {
   return 2.0 * float(AAL_TWO_PI) * h * h;
 }
 
-// Exact intersection area, DESIGN §2.
+// Exact intersection area, docs/design.md §2.
 float capIntersectionExact(float r0Rad, float r1Rad, float dRad) {
   const float pi = float(AAL_PI);
   float r0 = clamp(r0Rad, 0.0, pi);
@@ -34,7 +34,8 @@ float capIntersectionExact(float r0Rad, float r1Rad, float dRad) {
   return clamp(area, 0.0, capArea(min(r0, r1)));
 }
 
-// Oat's SphericalCapIntersectionAreaFast (seed 002), same branch order.
+// SphericalCapIntersectionAreaFast of Oat, "Ambient Aperture Lighting", 2006,
+// same branch order.
 float capIntersectionApprox(float r0Rad, float r1Rad, float dRad) {
   const float twoPi = 6.283185308;
   float smaller = min(r0Rad, r1Rad);

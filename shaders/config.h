@@ -38,7 +38,8 @@
 // (kObscuranceSampleSets, terrain/obscurance_samples.h).
 #define AAL_OBSCURANCE_SAMPLE_SETS 16
 // The 4x4 filter skips neighbours whose view distance differs from the
-// centre's by more than this fraction of it (seed 000 §4.2).
+// centre's by more than this fraction of it (Umenhoffer et al., "Efficient
+// Methods for Ambient Lighting", 2009, §4.2).
 #define AAL_OBSCURANCE_DEPTH_TOLERANCE 0.05
 // Temporal reuse of obscurance samples (the viewer while the view moves,
 // shaders/obscurance_pass.glsl): each frame evaluates one of this many parts

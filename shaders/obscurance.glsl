@@ -1,6 +1,7 @@
 // Containment-test obscurances O and ambient transfer W of one heightfield
 // point: twin of terrain/obscurance.h (see there for the contract and units).
-// DESIGN §6, seed 000 eq. 9.
+// docs/design.md §6; Umenhoffer et al., "Efficient Methods for Ambient
+// Lighting", 2009, eq. 9.
 //
 // The including shader defines where the data come from:
 //   float obscuranceHeight(vec2 texel);     heights (m), clamped to the edge

@@ -29,7 +29,8 @@
 // After the terrain textures (AAL_TERRAIN_TEXTURE_BINDING...).
 #define AAL_OBSCURANCE_BINDING AAL_TERRAIN_TEXTURES_END
 layout(set = 0, binding = AAL_OBSCURANCE_BINDING, std140) uniform ObscuranceSamples {
-  // xyz: unit-radius (X, Y, Z) of seed 000 eq. 8; set k's sample i at
+  // xyz: unit-radius (X, Y, Z) of eq. 8 of Umenhoffer et al., "Efficient
+  // Methods for Ambient Lighting", 2009; set k's sample i at
   // k * AAL_OBSCURANCE_MAX_SAMPLES + i.
   vec4 offsets[AAL_OBSCURANCE_SAMPLE_SETS * AAL_OBSCURANCE_MAX_SAMPLES];
 }

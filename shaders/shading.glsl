@@ -1,5 +1,5 @@
 // Ambient aperture lighting of one surface point: twin of terrain/shading.h
-// (see there for the contract and units). DESIGN §5.
+// (see there for the contract and units). docs/design.md §5.
 #ifndef AAL_SHADING_GLSL
 #define AAL_SHADING_GLSL
 

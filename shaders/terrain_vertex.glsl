@@ -18,7 +18,7 @@ layout(set = 0, binding = AAL_TERRAIN_TEXTURES_END,
 layout(location = 0) out vec3 worldPosition;
 layout(location = 1) out vec2 texelPosition;  // continuous (column, row)
 
-// DESIGN §1: x east from the DEM centre, y north (row 0 is the northern edge).
+// docs/design.md §1: x east from the DEM centre, y north (row 0 is the northern edge).
 // Heights at level of detail `lod` (terrain_textures.glsl).
 vec3 worldAt(vec2 texel, float lod) {
   float z = terrainHeightLod(texel, lod);

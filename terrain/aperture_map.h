@@ -1,6 +1,6 @@
 // Aperture map: per texel the visible sky as a spherical cap — the unit bent
 // normal (mean unoccluded direction, world frame x east, y north, z up) and
-// the cap's arc length r = acos(1 - visible solid angle / 2 pi). DESIGN §3-4.
+// the cap's arc length r = acos(1 - visible solid angle / 2 pi). docs/design.md §3-4.
 //
 // On disk: OpenEXR, same size as the DEM, channels R, G, B = bent normal,
 // A = arc length in radians, with `aal:` header attributes that tie the map

@@ -38,7 +38,7 @@ namespace aal {
 // illuminance calculations", Solar Energy 79).
 constexpr double kSolarIlluminanceKlx = 133.334;
 
-// Angular radius of the sun's disk at 1 AU, degrees (DESIGN §11).
+// Angular radius of the sun's disk at 1 AU, degrees (docs/design.md §7).
 constexpr double kSunAngularRadiusDeg = 0.26656;
 
 // Default atmospheric turbidity (Preetham's T: 2 very clear, 3 clear, 6 hazy).

@@ -1,5 +1,5 @@
 // A pinhole camera in the DEM's world frame (x east, y north, z up, metres,
-// origin at the DEM centre; DESIGN §1) and its Vulkan matrices.
+// origin at the DEM centre; docs/design.md §1) and its Vulkan matrices.
 #pragma once
 
 #include <glm/mat4x4.hpp>

@@ -1,7 +1,7 @@
-// The viewer's camera as pure math (no window): fly mode like a game
-// engine's editor camera or Blender's fly mode, and orbit mode around a
-// point. Speeds scale with the height above the ground, the camera never goes
-// below the terrain, and frame() shows the whole DEM. World frame of DESIGN §1
+// The viewer's camera as pure math (no window): fly mode like a game engine's
+// editor camera or Blender's fly mode, and orbit mode around a point. Speeds
+// scale with the height above the ground, the camera never goes below the
+// terrain, and frame() shows the whole DEM. World frame of docs/design.md §1
 // (x east, y north, z up, metres, origin at the DEM centre).
 #pragma once
 

@@ -3,11 +3,12 @@
 //
 // File format: one keyframe per line,
 //   TIME_S  X Y Z  LOOK_X LOOK_Y LOOK_Z  [FOV_DEG]
-// with the time in seconds (strictly increasing from line to line), the
-// camera position and the point it looks at in metres in the DEM frame of
-// DESIGN §1 (as aal-render --camera/--look-at), and an optional vertical field
-// of view in degrees (default 40). Fields are separated by spaces or tabs;
-// '#' starts a comment; blank lines are ignored. At least one keyframe.
+// with the time in seconds (strictly increasing from line to line), the camera
+// position and the point it looks at in metres in the DEM frame of
+// docs/design.md §1 (as aal-render --camera/--look-at), and an optional
+// vertical field of view in degrees (default 40). Fields are separated by
+// spaces or tabs; '#' starts a comment; blank lines are ignored. At least one
+// keyframe.
 #pragma once
 
 #include <string>

@@ -42,9 +42,10 @@ double capIntersectionExact(double r0Rad, double r1Rad, double dRad) {
   // r0, r1, d. The lens is the two cap sectors at C0 and C1 (half-angles a0,
   // a1) minus the triangle and its mirror image (spherical excess E):
   //   area = 2 (1 - cos r0) a0 + 2 (1 - cos r1) a1 - 2 E.
-  // By Girard's theorem this equals the Tovchigrechko & Vakser form of DESIGN
-  // §2, but half-angle and L'Huilier formulas keep it accurate for tiny caps
-  // (the sun) and near every branch boundary, where acos loses half the digits.
+  // By Girard's theorem this equals the Tovchigrechko & Vakser form of
+  // docs/design.md §2, but half-angle and L'Huilier formulas keep it accurate
+  // for tiny caps (the sun) and near every branch boundary, where acos loses
+  // half the digits.
   const double s = 0.5 * (r0 + r1 + d);
   const double sinS = std::sin(s), sinS0 = std::sin(s - r0), sinS1 = std::sin(s - r1),
                sinSd = std::sin(s - d);

@@ -13,18 +13,19 @@
 
 namespace aal {
 
-// Solid angle of a cap of arc radius r: 2 pi (1 - cos r). DESIGN §2.
+// Solid angle of a cap of arc radius r: 2 pi (1 - cos r). docs/design.md §2.
 double capArea(double radiusRad);
 
 // Exact intersection area of two caps for all r0, r1, d in [0, pi], including
 // caps larger than a hemisphere, coincident and antipodal centres and caps that
 // together cover the sphere. Equal to the Tovchigrechko & Vakser (2001) form
-// of DESIGN §2, evaluated as sectors minus triangles so that it stays
+// of docs/design.md §2, evaluated as sectors minus triangles so that it stays
 // accurate for tiny caps (see caps.cpp). Inputs outside [0, pi] are clamped.
 double capIntersectionExact(double r0Rad, double r1Rad, double dRad);
 
 // Oat's smoothstep approximation, exactly as SphericalCapIntersectionAreaFast
-// in seed 002 (single precision, same branch order).
+// in Oat, "Ambient Aperture Lighting", 2006 (single precision, same branch
+// order).
 float capIntersectionApprox(float r0Rad, float r1Rad, float dRad);
 
 // Direction to the centroid of the part of the light's cap (centre
@@ -37,11 +38,11 @@ float capIntersectionApprox(float r0Rad, float r1Rad, float dRad);
 // reaching the light's edge as the visible sliver vanishes (for a half-cut
 // disk the true offset is 4r/3pi = 0.42 r, this gives 0.5 r).
 //
-// Seed 002 approximates the centroid by normalize(B + L), which suits lights
-// as large as the aperture but not the sun: for a sun wholly inside the
-// aperture it evaluates the Lambert term halfway to B (45 degrees off for an
-// open sky and the sun at 45 degrees) where the true term is N.L; against the
-// CPU reference that bias was a 17 % error on jacksboro (docs/comparison.md).
+// Oat 2006 approximates the centroid by normalize(B + L), which suits lights as
+// large as the aperture but not the sun: for a sun wholly inside the aperture
+// it evaluates the Lambert term halfway to B (45 degrees off for an open sky
+// and the sun at 45 degrees) where the true term is N.L; against the CPU
+// reference that bias was a 17 % error on jacksboro (docs/comparison.md).
 glm::vec3 visibleLightCentroid(const glm::vec3& bentNormal, const glm::vec3& lightDir, float dRad,
                                float lightRadiusRad, float visibleFraction);
 

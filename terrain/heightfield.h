@@ -1,5 +1,5 @@
 // A DEM in memory: heights on a regular grid with metric spacing, a void mask
-// and optional georeferencing. DESIGN §1.
+// and optional georeferencing. docs/design.md §1.
 //
 // Conventions: row 0 is the northern edge, column 0 the western edge, texel
 // centres sit on the grid points. Heights are metres (z scale applied) above

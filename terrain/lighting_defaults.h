@@ -11,7 +11,7 @@ struct GeoPlace {
   double latitudeDeg = 45, longitudeDeg = 0;
 };
 
-// The DEM's own centre when it is georeferenced, else 45°N 0°E (DESIGN §7).
+// The DEM's own centre when it is georeferenced, else 45°N 0°E (docs/design.md §7).
 GeoPlace defaultSunPlace(const Heightfield& field);
 
 // Default haze: a clear day scaled with the DEM so that any size reads with

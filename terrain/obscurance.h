@@ -1,7 +1,10 @@
 // Containment-test obscurances O and the ambient transfer function W of one
-// surface point of a heightfield (DESIGN §6; seed 000 eq. 6-9, seed 001 §4,
-// seed 004 §3). The GLSL twin is shaders/obscurance.glsl (checked for parity
-// on the device by tests/engine/obscurance_parity_test.cpp).
+// surface point of a heightfield (docs/design.md §6; Umenhoffer et al.,
+// "Efficient Methods for Ambient Lighting", 2009, eq. 6-9, and its short
+// version by Tóth et al., 2009, §4; Méndez-Feliu et al., "Real-time
+// Obscurances with Color Bleeding", 2006, §3). The GLSL twin is
+// shaders/obscurance.glsl (checked for parity on the device by
+// tests/engine/obscurance_parity_test.cpp).
 //
 // Units: positions on the heightfield in continuous texel coordinates
 // (column, row; texel centres on integers, row 0 north), heights and the
@@ -28,7 +31,8 @@ struct ObscuranceSettings {
   int samples = 16;
   int steps = 1;  // m: test points per ray, 1 or 2
   // 16 rotations of the set on a 4x4 pixel pattern and a 4x4 box filter
-  // (seed 000 §4.2); false: one set everywhere, unfiltered (for comparisons).
+  // (Umenhoffer et al. 2009, §4.2); false: one set everywhere, unfiltered (for
+  // comparisons).
   bool interleaved = true;
   // O/W at half the image resolution (one point per 2x2 pixels), filtered and
   // upsampled with the depth test; false: at every pixel.
@@ -73,10 +77,10 @@ glm::vec3 obscuranceNormal(const ObscuranceField& field, glm::vec2 texel);
 void obscuranceTangentFrame(glm::vec3 normal, float rotationRad, glm::vec3& tangent,
                             glm::vec3& bitangent);
 
-// Interleaved sampling (seed 000 §4.2, Keller & Heidrich 2001): pixel (x, y)
-// uses sample set index bayer4x4(x mod 4, y mod 4) in 0..15
-// (obscuranceCellSampleOffsets), so every 4x4 block holds all 16 sets. Set k
-// is the base set rotated by interleaveRotationRad(k) = 2π·k/16 about N and
+// Interleaved sampling (Umenhoffer et al. 2009, §4.2; Keller & Heidrich 2001):
+// pixel (x, y) uses sample set index bayer4x4(x mod 4, y mod 4) in 0..15
+// (obscuranceCellSampleOffsets), so every 4x4 block holds all 16 sets. Set k is
+// the base set rotated by interleaveRotationRad(k) = 2π·k/16 about N and
 // shifted in elevation and distance (obscurance_samples.h).
 int interleavePatternIndex(int x, int y);
 float interleaveRotationRad(int index);
@@ -86,13 +90,14 @@ struct ObscuranceEstimate {
   glm::vec3 transfer{1.0f};  // W = Σ S_i / (n - Σ (1 - S_i) a(p_i)), RGB
 };
 
-// Seed 000 eq. 9 at the surface point above `texel`: test points
-// p_ij = x + (j/m) R (X_i T + Y_i B + Z_i N), j = 1..m, with (X_i, Y_i, Z_i)
-// the unit-radius `offsets` (obscuranceSampleOffsets, or an interleave cell's
-// obscuranceCellSampleOffsets); S_i = 1 when every p_ij is outer
-// (p.z >= h(p.xy), exact for a heightfield), and the albedo a of an occluded
-// ray is taken at the projection of its first inner point (seed 000 §4). W is 0 when every ray is
-// occluded (0/0 in the snow limit).
+// Umenhoffer et al. 2009, eq. 9, at the surface point above `texel`: test
+// points p_ij = x + (j/m) R (X_i T + Y_i B + Z_i N), j = 1..m, with
+// (X_i, Y_i, Z_i) the unit-radius `offsets` (obscuranceSampleOffsets, or an
+// interleave cell's obscuranceCellSampleOffsets); S_i = 1 when every p_ij is
+// outer (p.z >= h(p.xy), exact for a heightfield), and the albedo a of an
+// occluded ray is taken at the projection of its first inner point
+// (Umenhoffer et al. 2009, §4). W is 0 when every ray is occluded (0/0 in the
+// snow limit).
 ObscuranceEstimate estimateObscurance(const ObscuranceField& field,
                                       const std::vector<glm::vec3>& offsets, glm::vec2 texel,
                                       float radiusM, int steps, float rotationRad);

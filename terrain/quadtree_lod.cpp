@@ -286,7 +286,7 @@ LodBox LodQuadtree::nodeBox(int level, int i, int j) const {
   const int size = nodeTexels(level);
   const int c0 = i * size, c1 = std::min(c0 + size, width_ - 1);
   const int r0 = j * size, r1 = std::min(r0 + size, height_ - 1);
-  // DESIGN §1: x east from the DEM centre, y north (row 0 is the north edge).
+  // docs/design.md §1: x east from the DEM centre, y north (row 0 is the north edge).
   const double halfW = 0.5 * (width_ - 1), halfH = 0.5 * (height_ - 1);
   const glm::vec2 h = nodeHeights(level, i, j);
   return {{(c0 - halfW) * cellXM_, (halfH - r1) * cellYM_, h.x},

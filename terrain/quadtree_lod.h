@@ -58,7 +58,7 @@ struct LodSettings {
   bool morph = true;
 };
 
-// World-space axis-aligned box of a node (metres, DESIGN §1 frame).
+// World-space axis-aligned box of a node (metres, the frame of docs/design.md §1).
 struct LodBox {
   glm::dvec3 min{0.0}, max{0.0};
 };

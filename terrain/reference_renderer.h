@@ -1,5 +1,6 @@
-// CPU ray tracer over the heightfield: the ground truth the GPU's shading
-// modes are measured against (DESIGN §9). Slow and simple on purpose.
+// CPU ray tracer over the heightfield: the ground truth the GPU's shading modes
+// are measured against (docs/design.md §9, docs/comparison.md). Slow and simple
+// on purpose.
 //
 // Same scene as the GPU renderer: the camera of camera.h, the terrain as the
 // bilinear surface through the texel centres with the centre row's cell size

@@ -1,5 +1,5 @@
-// Ambient aperture lighting of one surface point: DESIGN §5. The GLSL twin is
-// shaders/shading.glsl (checked for parity on the device by the tests).
+// Ambient aperture lighting of one surface point: docs/design.md §5. The GLSL
+// twin is shaders/shading.glsl (checked for parity on the device by the tests).
 //
 // Radiometry: albedo a in [0, 1]; irradiances E (sun at normal incidence)
 // and radiances L (sky) in one linear RGB unit (terrain/atmosphere.h); the
@@ -24,8 +24,8 @@ enum class ShadingMode : int {
   DebugBentNormal = AAL_MODE_DEBUG_BENT_NORMAL,    // B * 0.5 + 0.5
   DebugSunFraction = AAL_MODE_DEBUG_SUN_FRACTION,  // visible fraction f of the sun disk
   DebugSkyFill = AAL_MODE_DEBUG_SKY_FILL,          // E_sky / (pi L_sky) as grey
-  // The obscurance pass's O as grey and W as RGB (DESIGN §6): shade() returns
-  // the transfer input, which the renderer sets to O or W.
+  // The obscurance pass's O as grey and W as RGB (docs/design.md §6): shade()
+  // returns the transfer input, which the renderer sets to O or W.
   DebugObscurance = AAL_MODE_DEBUG_OBSCURANCE,
   DebugTransfer = AAL_MODE_DEBUG_TRANSFER,
 };
@@ -42,7 +42,7 @@ struct ShadingInputs {
   float sunRadiusRad = 0.004653f;   // r_s
   glm::vec3 sunIrradiance{0.0f};    // E_sun at normal incidence
   glm::vec3 skyRadiance{0.0f};      // average sky radiance L_sky
-  glm::vec3 transfer{1.0f};         // ambient transfer W (DESIGN §6), 1 when nothing is near
+  glm::vec3 transfer{1.0f};         // ambient transfer W (docs/design.md §6), 1 if nothing is near
 };
 
 struct ShadingTerms {
@@ -52,7 +52,7 @@ struct ShadingTerms {
   glm::vec3 skyIrradiance{0.0f};  // E_sky
 };
 
-// The terms of DESIGN §5 for the AAL modes (approx/exact) and the baselines.
+// The terms of docs/design.md §5 for the AAL modes (approx/exact) and the baselines.
 ShadingTerms shadingTerms(const ShadingInputs& in, ShadingMode mode);
 
 // Final linear value: direct + ambient, or the debug quantity of the mode.

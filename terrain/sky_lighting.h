@@ -1,6 +1,6 @@
 // Everything the renderer needs of the sun and the sky for one moment:
 // direction, the sun's irradiance through the atmosphere, the clear-sky
-// model and its average radiance (DESIGN §5, §7).
+// model and its average radiance (docs/design.md §5, §7).
 #pragma once
 
 #include <glm/vec3.hpp>

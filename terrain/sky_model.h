@@ -100,10 +100,10 @@ PreethamSky makePreethamSky(const glm::vec3& sunDir, double turbidity);
 glm::vec3 skyRadiance(const PreethamSky& sky, const glm::vec3& viewDir);
 
 // Sky radiance averaged over the upper hemisphere with uniform solid-angle
-// weight, (1 / 2 pi) * integral of L over the hemisphere: L_sky of DESIGN §5.
-// Midpoint rule on azimuthSteps x zenithSteps cells of equal solid angle
-// (uniform in azimuth and in cos theta); the default 64 x 32 is within 0.5% of
-// a 512 x 256 reference for sun elevations 0-90° (tested).
+// weight, (1 / 2 pi) * integral of L over the hemisphere: L_sky of
+// docs/design.md §5. Midpoint rule on azimuthSteps x zenithSteps cells of equal
+// solid angle (uniform in azimuth and in cos theta); the default 64 x 32 is
+// within 0.5% of a 512 x 256 reference for sun elevations 0-90° (tested).
 glm::vec3 averageSkyRadiance(const PreethamSky& sky, int azimuthSteps = 64, int zenithSteps = 32);
 
 // Cosine-weighted average (1 / pi) * integral of L cos theta over the upper

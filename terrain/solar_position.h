@@ -11,8 +11,8 @@
 // in tests/terrain/solar_position_test.cpp against Meeus example 25.a and the
 // NREL SPA reference case of Reda & Andreas 2004).
 //
-// Conventions, as DESIGN §1 and gdaldem: azimuth in degrees clockwise from
-// north in [0, 360); elevation (altitude) in degrees above the horizon in
+// Conventions, as docs/design.md §1 and gdaldem: azimuth in degrees clockwise
+// from north in [0, 360); elevation (altitude) in degrees above the horizon in
 // [-90, 90]; latitude in degrees north positive, longitude in degrees east
 // positive. Time is UTC; TT - UT (ΔT, about a minute) is ignored as NOAA does,
 // which moves the sun by less than 0.001°.
@@ -76,7 +76,7 @@ SolarPosition solarPosition(const UtcTime& time, double latitudeDeg, double long
 UtcTime solarNoonUtc(const UtcTime& day, double longitudeDeg);
 
 // Unit vector towards a sun at azimuthDeg (clockwise from north) and
-// elevationDeg (above the horizon) in the world frame of DESIGN §1:
+// elevationDeg (above the horizon) in the world frame of docs/design.md §1:
 // x = east, y = north, z = up.
 glm::vec3 sunDirection(double azimuthDeg, double elevationDeg);
 

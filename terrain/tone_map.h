@@ -57,8 +57,8 @@ float exposureFromEv100(float ev100);
 float exposureForMiddleGrey(float sceneLuminance);
 
 // Luminance (kcd/m²) of flat, open, horizontal Lambertian terrain of the given
-// albedo under the sun and sky, as the renderer shades it (DESIGN §5 with
-// N = B = up, full aperture, f = 1, W = 1):
+// albedo under the sun and sky, as the renderer shades it (docs/design.md §5
+// with N = B = up, full aperture, f = 1, W = 1):
 //   albedo / pi * (Y(E_sun) max(0, sin elevation) + pi Y(L_sky)).
 // sunIrradiance in klx (atmosphere.h sunIrradiance), skyRadiance = L_sky in
 // kcd/m² (sky_model.h averageSkyRadiance).

@@ -1,5 +1,5 @@
-// Metric spacing and geographic centre of a georeferenced grid (DESIGN §1,
-// §3 "Geographic DEMs"; docs/dem-input.md). Geographic grids are measured on
+// Metric spacing and geographic centre of a georeferenced grid (docs/design.md
+// §1, §3; docs/dem-input.md). Geographic grids are measured on
 // the WGS84 ellipsoid with GeographicLib; projected grids use their pixel
 // scale times the CRS's linear unit, checked against the geodesic distance
 // at the centre; the centre of any CRS comes from PROJ (through GDAL's OGR).

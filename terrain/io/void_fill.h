@@ -1,5 +1,5 @@
 // Filling void (nodata) texels for geometry: each void texel takes the height
-// of its nearest valid texel (DESIGN §3 "Nodata texels").
+// of its nearest valid texel (docs/design.md §3).
 #pragma once
 
 #include <cstdint>

@@ -1,5 +1,5 @@
-// The obscurance/W passes of the renderer (DESIGN §6) under validation: O and
-// W on simple terrains, the albedo limits, the composite, and the noise
+// The obscurance/W passes of the renderer (docs/design.md §6) under validation:
+// O and W on simple terrains, the albedo limits, the composite, and the noise
 // reduction of interleaved sampling against a high-sample CPU estimate.
 #include <gtest/gtest.h>
 

@@ -243,8 +243,8 @@ TEST_F(Render, GoldenFbmDebugViews) {
       "fbm-bent-normal");
 }
 
-// O and W (DESIGN §6) of the same terrain, with an orange albedo so that the
-// colour bleeding shows in W.
+// O and W (docs/design.md §6) of the same terrain, with an orange albedo so
+// that the colour bleeding shows in W.
 TEST_F(Render, GoldenFbmObscuranceAndTransfer) {
   SyntheticTerrainOptions o;
   o.width = o.height = 64;

@@ -27,8 +27,9 @@ TEST(CapError, SweepCoversTheGridInOrder) {
 }
 
 TEST(CapError, ApproximationErrorStatisticsMatchTheDesignClaims) {
-  // DESIGN §2: a few percent of the smaller cap on average and up to ~16% for
-  // radii <= pi/2, and much worse once caps exceed a hemisphere.
+  // docs/caps.md, docs/design.md §2: a few percent of the smaller cap on
+  // average and up to ~16% for radii <= pi/2, and much worse once caps exceed a
+  // hemisphere.
   const auto samples = sweepCapError(64, 128, kPi);
   const CapErrorSummary half = summarizeCapError(samples, kPi / 2);
   const CapErrorSummary all = summarizeCapError(samples, kPi);

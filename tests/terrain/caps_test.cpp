@@ -40,8 +40,8 @@ std::pair<double, double> monteCarloIntersection(const CapConfig& c, int samples
   return {4 * kPi * p, 4 * kPi * std::sqrt(std::max(p * (1 - p), 1.0 / samples) / samples)};
 }
 
-// DESIGN §2's Tovchigrechko & Vakser form, written out plainly: the reference
-// the production formula (sectors minus triangles) must equal.
+// The Tovchigrechko & Vakser form of docs/design.md §2, written out plainly:
+// the reference the production formula (sectors minus triangles) must equal.
 double tovchigrechkoVakser(double r0, double r1, double d) {
   if (d >= r0 + r1) return 0.0;
   if (d <= std::abs(r0 - r1)) return capArea(std::min(r0, r1));
@@ -194,7 +194,8 @@ TEST(CapIntersection, NeverExceedsTheSmallerCap) {
   }
 }
 
-// Oat's listing (seed 002) transcribed literally, HLSL intrinsics included.
+// The listing of Oat, "Ambient Aperture Lighting", 2006, transcribed
+// literally, HLSL intrinsics included.
 float hlslSaturate(float x) {
   return std::min(std::max(x, 0.0f), 1.0f);
 }

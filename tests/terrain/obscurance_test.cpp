@@ -221,8 +221,9 @@ TEST(ObscuranceSamples, OnlyForSupportedCounts) {
 }
 
 TEST(ObscuranceSamples, OffsetsAreCosineDirectionsAtDistancesOfDensityMuPrime) {
-  // Seed 000 eq. 8 with p(ω, r) = μ'(r) cos θ / π: E[cos θ] = 2/3 and
-  // P(r/R < s) = μ(s) = sqrt(s), so E[r/R] = 1/3 and the median is 1/4.
+  // Umenhoffer et al. 2009, eq. 8, with p(ω, r) = μ'(r) cos θ / π:
+  // E[cos θ] = 2/3 and P(r/R < s) = μ(s) = sqrt(s), so E[r/R] = 1/3 and the
+  // median is 1/4.
   const std::vector<glm::vec3> offsets = offsetsOf(randomPoints(11, 200000));
   double cosTheta = 0, distance = 0;
   int belowQuarter = 0;
@@ -280,13 +281,13 @@ TEST(Obscurance, TransferLiesBetweenObscuranceAndOneAndFollowsTheAlbedo) {
       return estimateObscurance(fieldOf(h, glm::vec3(a)), offsets, texel, 120, 2, rotation);
     };
     const ObscuranceEstimate black = at(0.0f), grey = at(0.5f), snow = at(1.0f);
-    // a = 0: W = O (seed 000 eq. 6 without inter-reflection).
+    // a = 0: W = O (Umenhoffer et al. 2009, eq. 6, without inter-reflection).
     EXPECT_FLOAT_EQ(black.transfer.r, black.obscurance);
     // O <= W <= 1, growing with the albedo.
     EXPECT_GE(grey.transfer.g, grey.obscurance);
     EXPECT_LE(grey.transfer.g, 1.0f);
     EXPECT_GE(grey.transfer.g, black.transfer.g);
-    // a -> 1: W -> 1, the "snow" of seed 000 §3 (where any ray is open).
+    // a -> 1: W -> 1, the "snow" of Umenhoffer et al. 2009, §3 (where any ray is open).
     if (snow.obscurance > 0) {
       EXPECT_FLOAT_EQ(snow.transfer.b, 1.0f);
       EXPECT_GE(at(0.99f).transfer.b, 0.9f);
@@ -295,7 +296,8 @@ TEST(Obscurance, TransferLiesBetweenObscuranceAndOneAndFollowsTheAlbedo) {
 }
 
 TEST(Obscurance, ColourBleedsFromTheOccluder) {
-  // A red pit: the light bounced inside it is red (seed 004 §3).
+  // A red pit: the light bounced inside it is red (Méndez-Feliu et al.,
+  // "Real-time Obscurances with Color Bleeding", 2006, §3).
   const Heightfield h = pit();
   ObscuranceField field = fieldOf(h, glm::vec3(0.8f, 0.1f, 0.1f));
   const ObscuranceEstimate e =
@@ -305,7 +307,8 @@ TEST(Obscurance, ColourBleedsFromTheOccluder) {
   EXPECT_FLOAT_EQ(e.transfer.g, e.transfer.b);
 }
 
-// Slow reference: the obscurance integral of seed 000 eq. 5,
+// Slow reference: the obscurance integral of Umenhoffer et al., "Efficient
+// Methods for Ambient Lighting", 2009, eq. 5,
 // O = 1/π ∫ μ(d(ω)) cos θ dω with μ(d) = sqrt(d/R) (1 beyond R), by marching
 // many cosine-distributed rays in small steps to their first hit d(ω).
 double marchedObscurance(const ObscuranceField& field, glm::vec2 texel, float radiusM) {
@@ -339,7 +342,7 @@ double marchedObscurance(const ObscuranceField& field, glm::vec2 texel, float ra
 
 TEST(Obscurance, ManySamplesConvergeToTheMarchedIntegral) {
   // With many rays and m = 2 the containment estimator approaches eq. 5 where
-  // a ray crosses the surface at most once within R (seed 000 §4).
+  // a ray crosses the surface at most once within R (Umenhoffer et al. 2009, §4).
   const Heightfield h = pit();
   const ObscuranceField field = fieldOf(h, glm::vec3(0.0f));
   const std::vector<glm::vec3> offsets = offsetsOf(randomPoints(21, 20000));

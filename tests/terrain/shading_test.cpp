@@ -31,7 +31,7 @@ TEST(Shading, OpenFlatGroundIsLambertPlusTheWholeSky) {
   const ShadingTerms t = shadingTerms(in, ShadingMode::Exact);
   EXPECT_FLOAT_EQ(t.sunFraction, 1.0f);
   // The whole sun is visible: the Lambert term is N.L itself (not the
-  // normalize(B + L) of seed 002, which would give cos 22.5 here).
+  // normalize(B + L) of Oat 2006, which would give cos 22.5 here).
   EXPECT_NEAR(t.direct.r, 0.3f / kPi * 100.0f * std::cos(kPi / 4), 1e-4f);
   EXPECT_NEAR(t.direct.r, shadingTerms(in, ShadingMode::BaselineLambert).direct.r, 1e-5f);
   // The open hemisphere: pi sin^2(pi/2) L_sky, minus the sun's tiny share.

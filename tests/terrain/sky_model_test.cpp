@@ -171,10 +171,10 @@ TEST(AverageSky, IsBlueByDayAndWarmAtSunset) {
 
 // --- Photometric scale: sun against sky ---------------------------------------
 
-// Clear-day noon (sun 60° up, T = 2.5): direct normal ~100 klx. Measured
-// clear skies give 10-25 klx of diffuse horizontal illuminance; Preetham's
-// sky runs bright (docs/sun-and-sky.md) and gives 27 klx here (24 at T = 2),
-// so the bound is 30. pi * L_sky (uniform average, DESIGN §5's fill for an
+// Clear-day noon (sun 60° up, T = 2.5): direct normal ~100 klx. Measured clear
+// skies give 10-25 klx of diffuse horizontal illuminance; Preetham's sky runs
+// bright (docs/sun-and-sky.md) and gives 27 klx here (24 at T = 2), so the
+// bound is 30. pi * L_sky (uniform average, docs/design.md §5's fill for an
 // open flat texel) is about the same.
 TEST(SunAndSky, ClearNoonRatiosArePlausible) {
   const double elevation = 60.0;
