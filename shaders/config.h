@@ -28,6 +28,14 @@
 #define AAL_SPEC_ALBEDO_SOURCE 1
 #define AAL_SPEC_DISPLAY_OUTPUT 2
 
+// The exact cap intersection against the sun as a table (terrain/cap_table.h,
+// shaders/cap_table.glsl, docs/caps.md): texels across the transition band
+// (t = 0: nested .. 1: disjoint) and rows of aperture arc length (graded
+// towards the aperture as large as the sun; (rows - 1) even puts that
+// aperture on a row). Made when the sun's radius changes.
+#define AAL_CAP_TABLE_WIDTH 256
+#define AAL_CAP_TABLE_HEIGHT 65
+
 // Workgroup size of the shading parity compute shader.
 #define AAL_SHADING_PARITY_GROUP_SIZE 64
 

@@ -3,8 +3,16 @@
 #ifndef AAL_SHADING_GLSL
 #define AAL_SHADING_GLSL
 
+#include "cap_table.glsl"
 #include "caps.glsl"
 #include "config.h"
+
+// The exact mode's cap intersection comes from a table made for the frame's
+// sun radius (cap_table.glsl); the includer says where it is bound.
+#ifndef AAL_CAP_TABLE_BINDING
+#error "define AAL_CAP_TABLE_BINDING before including shading.glsl"
+#endif
+layout(set = 0, binding = AAL_CAP_TABLE_BINDING) uniform sampler2D capTable;
 
 struct ShadingInputs {
   vec3 albedo;
@@ -42,8 +50,9 @@ ShadingTerms shadingTerms(ShadingInputs s, int mode) {
   // sun's scale (lavapipe's was off by ~1e-3 rad here).
   float d = atan(length(cross(s.bentNormal, s.sunDirection)), dot(s.bentNormal, s.sunDirection));
   float sunArea = capArea(s.sunRadiusRad);
-  float isect = mode == AAL_MODE_EXACT ? capIntersectionExact(s.apertureRad, s.sunRadiusRad, d)
-                                       : capIntersectionApprox(s.apertureRad, s.sunRadiusRad, d);
+  float isect = mode == AAL_MODE_EXACT
+                    ? capIntersectionTable(capTable, s.apertureRad, s.sunRadiusRad, d)
+                    : capIntersectionApprox(s.apertureRad, s.sunRadiusRad, d);
   t.sunFraction = sunArea > 0.0 ? clamp(isect / sunArea, 0.0, 1.0) : 0.0;
   vec3 toCentroid =
       visibleLightCentroid(s.bentNormal, s.sunDirection, d, s.sunRadiusRad, t.sunFraction);

@@ -3,6 +3,7 @@
 // compare it with terrain/shading.h (tests/engine/shading_parity_test.cpp).
 #extension GL_GOOGLE_include_directive : require
 
+#define AAL_CAP_TABLE_BINDING 2  // the exact mode's table, for the queries' sun radius
 #include "shading.glsl"
 
 layout(local_size_x = AAL_SHADING_PARITY_GROUP_SIZE) in;

@@ -7,6 +7,9 @@
 #ifndef AAL_TERRAIN_SHADING_GLSL
 #define AAL_TERRAIN_SHADING_GLSL
 
+#include "config.h"
+// After the terrain textures and the LOD patches (terrain_vertex.glsl).
+#define AAL_CAP_TABLE_BINDING (AAL_TERRAIN_TEXTURES_END + 1)
 #include "frame.glsl"
 #include "palette.glsl"
 #include "shading.glsl"

@@ -5,6 +5,7 @@
 
 #include <glm/geometric.hpp>
 
+#include "cap_table.h"
 #include "caps.h"
 
 namespace aal {
@@ -29,7 +30,8 @@ namespace {
 constexpr float kPi = 3.14159265358979323846f;
 }
 
-ShadingTerms shadingTerms(const ShadingInputs& in, ShadingMode mode) {
+ShadingTerms shadingTerms(const ShadingInputs& in, ShadingMode mode,
+                          const CapIntersectionTable* exactTable) {
   ShadingTerms t;
   const glm::vec3 diffuse = in.albedo / kPi;
   const float nDotL = std::max(0.0f, glm::dot(in.normal, in.sunDirection));
@@ -49,10 +51,14 @@ ShadingTerms shadingTerms(const ShadingInputs& in, ShadingMode mode) {
   const float d = std::atan2(glm::length(glm::cross(in.bentNormal, in.sunDirection)),
                              glm::dot(in.bentNormal, in.sunDirection));
   const float sunArea = static_cast<float>(capArea(in.sunRadiusRad));
-  const float isect =
-      mode == ShadingMode::Exact
-          ? static_cast<float>(capIntersectionExact(in.apertureRad, in.sunRadiusRad, d))
-          : capIntersectionApprox(in.apertureRad, in.sunRadiusRad, d);
+  float isect;
+  if (mode != ShadingMode::Exact) {
+    isect = capIntersectionApprox(in.apertureRad, in.sunRadiusRad, d);
+  } else if (exactTable) {
+    isect = capIntersectionFromTable(*exactTable, in.apertureRad, d);
+  } else {
+    isect = static_cast<float>(capIntersectionExact(in.apertureRad, in.sunRadiusRad, d));
+  }
   t.sunFraction = sunArea > 0 ? std::clamp(isect / sunArea, 0.0f, 1.0f) : 0.0f;
   const glm::vec3 centroid =
       visibleLightCentroid(in.bentNormal, in.sunDirection, d, in.sunRadiusRad, t.sunFraction);
@@ -69,7 +75,7 @@ ShadingTerms shadingTerms(const ShadingInputs& in, ShadingMode mode) {
   return t;
 }
 
-glm::vec3 shade(const ShadingInputs& in, ShadingMode mode) {
+glm::vec3 shade(const ShadingInputs& in, ShadingMode mode, const CapIntersectionTable* exactTable) {
   switch (mode) {
     case ShadingMode::DebugVisible: return glm::vec3(1.0f - std::cos(in.apertureRad));
     case ShadingMode::DebugBentNormal: return in.bentNormal * 0.5f + 0.5f;
@@ -83,7 +89,7 @@ glm::vec3 shade(const ShadingInputs& in, ShadingMode mode) {
     case ShadingMode::DebugObscurance:
     case ShadingMode::DebugTransfer: return in.transfer;
     default: {
-      const ShadingTerms t = shadingTerms(in, mode);
+      const ShadingTerms t = shadingTerms(in, mode, exactTable);
       return t.direct + t.ambient;
     }
   }

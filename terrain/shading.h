@@ -52,10 +52,17 @@ struct ShadingTerms {
   glm::vec3 skyIrradiance{0.0f};  // E_sky
 };
 
+struct CapIntersectionTable;
+
 // The terms of DESIGN §5 for the AAL modes (approx/exact) and the baselines.
-ShadingTerms shadingTerms(const ShadingInputs& in, ShadingMode mode);
+// Exact mode evaluates the closed form (capIntersectionExact, terrain/caps.h)
+// or, given `exactTable` (made for in.sunRadiusRad), reads it from the table
+// as the renderer's shaders do (terrain/cap_table.h).
+ShadingTerms shadingTerms(const ShadingInputs& in, ShadingMode mode,
+                          const CapIntersectionTable* exactTable = nullptr);
 
 // Final linear value: direct + ambient, or the debug quantity of the mode.
-glm::vec3 shade(const ShadingInputs& in, ShadingMode mode);
+glm::vec3 shade(const ShadingInputs& in, ShadingMode mode,
+                const CapIntersectionTable* exactTable = nullptr);
 
 }  // namespace aal

@@ -10,10 +10,14 @@
 #include <glm/vec4.hpp>
 
 #include "buffer.h"
+#include "cap_table.h"
 #include "commands.h"
 #include "compute.h"
 #include "config.h"
+#include "descriptors.h"
+#include "image.h"
 #include "shading.h"
+#include "upload.h"
 #include "vulkan_test.h"
 
 namespace aal {
@@ -32,7 +36,53 @@ glm::vec3 randomUnitAbove(std::mt19937& rng, float minZ) {
   }
 }
 
-class ShadingParity : public VulkanTest {};
+class ShadingParity : public VulkanTest {
+ protected:
+  // shade() of the GLSL for every query, with the exact mode's cap table made
+  // for `table`'s sun radius bound (shaders/cap_table.glsl).
+  std::vector<glm::vec4> shadeOnDevice(const std::vector<Query>& queries,
+                                       const CapIntersectionTable& table) {
+    const uint32_t count = static_cast<uint32_t>(queries.size());
+    Buffer input(device(), count * sizeof(Query), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
+                 MemoryIntent::Upload);
+    Buffer output(device(), count * sizeof(glm::vec4), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
+                  MemoryIntent::Readback);
+    input.write(queries.data(), count * sizeof(Query));
+    const Image image(device(), {AAL_CAP_TABLE_WIDTH, AAL_CAP_TABLE_HEIGHT, VK_FORMAT_R32_SFLOAT,
+                                 VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT});
+    UploadBatch upload(device());
+    upload.addImage(image, sizeof(float), table.values.data());
+    upload.submit();
+    const Sampler sampler(device(), VK_FILTER_LINEAR);
+    {
+      const ComputePipeline pipeline(
+          device(), "shading_parity.comp",
+          {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER,
+           VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER},
+          sizeof(uint32_t));
+      submitAndWait(device(), [&](VkCommandBuffer cmd) {
+        pipeline.record(
+            cmd,
+            DescriptorWrites().storageBuffer(0, input).storageBuffer(1, output).sampledImage(
+                2, image.view(), sampler.handle()),
+            &count, (count + AAL_SHADING_PARITY_GROUP_SIZE - 1) / AAL_SHADING_PARITY_GROUP_SIZE);
+      });
+    }
+    std::vector<glm::vec4> answers(count);
+    output.read(answers.data(), count * sizeof(glm::vec4));
+    return answers;
+  }
+};
+
+Query queryOf(const ShadingInputs& in, int mode) {
+  return {glm::vec4(in.albedo, float(mode)),
+          glm::vec4(in.normal, 0),
+          glm::vec4(in.bentNormal, in.apertureRad),
+          glm::vec4(in.sunDirection, in.sunRadiusRad),
+          glm::vec4(in.sunIrradiance, 0),
+          glm::vec4(in.skyRadiance, 0),
+          glm::vec4(in.transfer, 0)};
+}
 
 TEST_F(ShadingParity, GlslShadeMatchesCppForEveryMode) {
   std::mt19937 rng(17);
@@ -40,13 +90,15 @@ TEST_F(ShadingParity, GlslShadeMatchesCppForEveryMode) {
   std::vector<Query> queries;
   std::vector<ShadingInputs> inputs;
   std::vector<ShadingMode> modes;
-  const auto add = [&](const ShadingInputs& in, int mode) {
+  // The exact mode reads the cap table made for the frame's sun: the default
+  // one here (the radius of the closed-form cases; random suns in the other
+  // modes), other radii in the test below.
+  const CapIntersectionTable table = makeCapIntersectionTable(ShadingInputs{}.sunRadiusRad);
+  const auto add = [&](ShadingInputs in, int mode) {
+    if (mode == AAL_MODE_EXACT) in.sunRadiusRad = table.lightRadiusRad;
     inputs.push_back(in);
     modes.push_back(static_cast<ShadingMode>(mode));
-    queries.push_back({glm::vec4(in.albedo, float(mode)), glm::vec4(in.normal, 0),
-                       glm::vec4(in.bentNormal, in.apertureRad),
-                       glm::vec4(in.sunDirection, in.sunRadiusRad), glm::vec4(in.sunIrradiance, 0),
-                       glm::vec4(in.skyRadiance, 0), glm::vec4(in.transfer, 0)});
+    queries.push_back(queryOf(in, mode));
   };
   // The cases of the CPU copy's closed-form tests (tests/terrain/shading_test.cpp):
   // apertures below pi/2 and bent normals 20 and 50 degrees from N, the sun
@@ -90,23 +142,10 @@ TEST_F(ShadingParity, GlslShadeMatchesCppForEveryMode) {
     }
   }
   const uint32_t count = static_cast<uint32_t>(queries.size());
-  Buffer input(device(), count * sizeof(Query), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
-               MemoryIntent::Upload);
-  Buffer output(device(), count * sizeof(glm::vec4), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
-                MemoryIntent::Readback);
-  input.write(queries.data(), count * sizeof(Query));
-  {
-    const ComputePipeline pipeline(device(), "shading_parity.comp", 2, sizeof(uint32_t));
-    submitAndWait(device(), [&](VkCommandBuffer cmd) {
-      pipeline.record(cmd, {&input, &output}, &count,
-                      (count + AAL_SHADING_PARITY_GROUP_SIZE - 1) / AAL_SHADING_PARITY_GROUP_SIZE);
-    });
-  }
-  std::vector<glm::vec4> answers(count);
-  output.read(answers.data(), count * sizeof(glm::vec4));
+  const std::vector<glm::vec4> answers = shadeOnDevice(queries, table);
   double worst = 0;
   for (uint32_t i = 0; i < count; ++i) {
-    const glm::vec3 expected = shade(inputs[i], modes[i]);
+    const glm::vec3 expected = shade(inputs[i], modes[i], &table);
     const float scale = std::max(1.0f, std::max({expected.r, expected.g, expected.b}));
     for (int c = 0; c < 3; ++c) {
       // Single precision on both sides; near the aperture rim the exact cap
@@ -117,6 +156,47 @@ TEST_F(ShadingParity, GlslShadeMatchesCppForEveryMode) {
     }
   }
   std::printf("shading parity over %u inputs: worst relative difference %.3g\n", count, worst);
+}
+
+// The exact mode with larger suns, each with its own table, suns near the
+// aperture's rim: the GLSL reads the table bound for the frame (a table of
+// another radius, or the closed form in place of the table, would differ).
+TEST_F(ShadingParity, ExactModeReadsTheTableOfTheFramesSun) {
+  std::mt19937 rng(18);
+  std::uniform_real_distribution<float> unit(0.0f, 1.0f);
+  for (const float sun : {0.02f, 0.1f}) {
+    const CapIntersectionTable table = makeCapIntersectionTable(sun);
+    std::vector<Query> queries;
+    std::vector<ShadingInputs> inputs;
+    for (int i = 0; i < 1000; ++i) {
+      ShadingInputs in;
+      in.albedo = glm::vec3(0.3f);
+      in.normal = randomUnitAbove(rng, 0.3f);
+      in.bentNormal = glm::normalize(in.normal + 0.5f * randomUnitAbove(rng, 0.0f));
+      in.apertureRad = 0.01f + 1.6f * unit(rng);
+      const glm::vec3 across =
+          glm::normalize(glm::cross(in.bentNormal, randomUnitAbove(rng, -1.0f)));
+      const float d = in.apertureRad + sun * (3.0f * unit(rng) - 1.5f);
+      in.sunDirection = glm::normalize(std::cos(d) * in.bentNormal + std::sin(d) * across);
+      in.sunRadiusRad = sun;
+      in.sunIrradiance = {100, 90, 80};
+      in.skyRadiance = {5, 6, 9};
+      inputs.push_back(in);
+      queries.push_back(queryOf(in, AAL_MODE_EXACT));
+    }
+    const std::vector<glm::vec4> answers = shadeOnDevice(queries, table);
+    double worst = 0;
+    for (size_t i = 0; i < queries.size(); ++i) {
+      const glm::vec3 expected = shade(inputs[i], ShadingMode::Exact, &table);
+      const float scale = std::max(1.0f, std::max({expected.r, expected.g, expected.b}));
+      for (int c = 0; c < 3; ++c) {
+        EXPECT_NEAR(answers[i][c], expected[c], 2e-3f * scale) << "sun " << sun << " query " << i;
+        worst = std::max(worst, double(std::abs(answers[i][c] - expected[c]) / scale));
+      }
+    }
+    std::printf("exact shading with the %.3f rad sun's table: worst relative difference %.3g\n",
+                sun, worst);
+  }
 }
 
 }  // namespace
