@@ -20,6 +20,9 @@
 #define AAL_MODE_DEBUG_SKY_FILL 7
 #define AAL_MODE_DEBUG_OBSCURANCE 8
 #define AAL_MODE_DEBUG_TRANSFER 9
+// The sun through the directional horizons, the sky through the aperture
+// (terrain/horizon_map.h; issue 18).
+#define AAL_MODE_HORIZON 10
 
 // Specialisation constant IDs of the pipelines that shade (shaders/variant.glsl):
 // lavapipe runs every arm of a branch, so the frame's shading mode, albedo

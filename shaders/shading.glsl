@@ -24,6 +24,7 @@ struct ShadingInputs {
   vec3 sunIrradiance;
   vec3 skyRadiance;
   vec3 transfer;
+  float sunHorizonRad;  // horizon mode: the horizon's elevation in the sun's azimuth
 };
 
 struct ShadingTerms {
@@ -32,6 +33,14 @@ struct ShadingTerms {
   float sunFraction;
   vec3 skyIrradiance;
 };
+
+// Twin of horizonSunFraction (terrain/shading.h): the part of the sun's disk
+// above a straight horizon.
+float horizonSunFraction(float sunElevationRad, float horizonRad, float sunRadiusRad) {
+  if (!(sunRadiusRad > 0.0)) return sunElevationRad > horizonRad ? 1.0 : 0.0;
+  float x = clamp((sunElevationRad - horizonRad) / sunRadiusRad, -1.0, 1.0);
+  return 1.0 - (acos(x) - x * sqrt(1.0 - x * x)) / float(AAL_PI);
+}
 
 ShadingTerms shadingTerms(ShadingInputs s, int mode) {
   const float pi = float(AAL_PI);
@@ -57,6 +66,11 @@ ShadingTerms shadingTerms(ShadingInputs s, int mode) {
   vec3 toCentroid =
       visibleLightCentroid(s.bentNormal, s.sunDirection, d, s.sunRadiusRad, t.sunFraction);
   t.direct = diffuse * s.sunIrradiance * t.sunFraction * max(0.0, dot(s.normal, toCentroid));
+  if (mode == AAL_MODE_HORIZON) {
+    float elevation = atan(s.sunDirection.z, length(s.sunDirection.xy));
+    t.sunFraction = horizonSunFraction(elevation, s.sunHorizonRad, s.sunRadiusRad);
+    t.direct = diffuse * s.sunIrradiance * t.sunFraction * nDotL;
+  }
   float apertureArea = capArea(s.apertureRad);
   float skyShare = apertureArea > 0.0 ? 1.0 - min(1.0, isect / apertureArea) : 0.0;
   float sinR = sin(s.apertureRad);

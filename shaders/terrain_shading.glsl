@@ -66,6 +66,7 @@ void main() {
   s.sunIrradiance = frame.sunIrradiance.rgb;
   s.skyRadiance = frame.skyRadiance.rgb;
   s.transfer = vec3(1.0);
+  s.sunHorizonRad = -0.5 * float(AAL_PI);  // an open horizon (the horizon mode is not drawn here)
   // Aerial perspective: radiance (direct + ambient W) T + L_sky (1 - T).
   float distance = length(worldPosition - frame.cameraPos.xyz);
   float transmittance = exp(-frame.skyRadiance.w * distance);

@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include <glm/geometric.hpp>
+#include <glm/vec2.hpp>
 
 #include "cap_table.h"
 #include "caps.h"
@@ -30,6 +31,12 @@ namespace {
 constexpr float kPi = 3.14159265358979323846f;
 }
 
+float horizonSunFraction(float sunElevationRad, float horizonRad, float sunRadiusRad) {
+  if (!(sunRadiusRad > 0.0f)) return sunElevationRad > horizonRad ? 1.0f : 0.0f;
+  const float x = std::clamp((sunElevationRad - horizonRad) / sunRadiusRad, -1.0f, 1.0f);
+  return 1.0f - (std::acos(x) - x * std::sqrt(1.0f - x * x)) / kPi;
+}
+
 ShadingTerms shadingTerms(const ShadingInputs& in, ShadingMode mode,
                           const CapIntersectionTable* exactTable) {
   ShadingTerms t;
@@ -52,7 +59,7 @@ ShadingTerms shadingTerms(const ShadingInputs& in, ShadingMode mode,
                              glm::dot(in.bentNormal, in.sunDirection));
   const float sunArea = static_cast<float>(capArea(in.sunRadiusRad));
   float isect;
-  if (mode != ShadingMode::Exact) {
+  if (mode != ShadingMode::Exact) {  // Approx, and Horizon's sky fill
     isect = capIntersectionApprox(in.apertureRad, in.sunRadiusRad, d);
   } else if (exactTable) {
     isect = capIntersectionFromTable(*exactTable, in.apertureRad, d);
@@ -64,6 +71,14 @@ ShadingTerms shadingTerms(const ShadingInputs& in, ShadingMode mode,
       visibleLightCentroid(in.bentNormal, in.sunDirection, d, in.sunRadiusRad, t.sunFraction);
   t.direct =
       diffuse * in.sunIrradiance * t.sunFraction * std::max(0.0f, glm::dot(in.normal, centroid));
+  if (mode == ShadingMode::Horizon) {
+    // The sun against the horizon in its azimuth; elevation as atan2 (asin
+    // loses precision near the zenith, GPU versions more so).
+    const float elevation =
+        std::atan2(in.sunDirection.z, glm::length(glm::vec2(in.sunDirection.x, in.sunDirection.y)));
+    t.sunFraction = horizonSunFraction(elevation, in.sunHorizonRad, in.sunRadiusRad);
+    t.direct = diffuse * in.sunIrradiance * t.sunFraction * nDotL;
+  }
   // Sky: a uniform cap of radius r_a centred beta from N gives pi sin^2(r_a)
   // cos(beta); the sun's share of the aperture is left out.
   const float apertureArea = static_cast<float>(capArea(in.apertureRad));

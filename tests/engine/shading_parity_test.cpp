@@ -75,13 +75,10 @@ class ShadingParity : public VulkanTest {
 };
 
 Query queryOf(const ShadingInputs& in, int mode) {
-  return {glm::vec4(in.albedo, float(mode)),
-          glm::vec4(in.normal, 0),
-          glm::vec4(in.bentNormal, in.apertureRad),
-          glm::vec4(in.sunDirection, in.sunRadiusRad),
-          glm::vec4(in.sunIrradiance, 0),
-          glm::vec4(in.skyRadiance, 0),
-          glm::vec4(in.transfer, 0)};
+  return {glm::vec4(in.albedo, float(mode)),        glm::vec4(in.normal, 0),
+          glm::vec4(in.bentNormal, in.apertureRad), glm::vec4(in.sunDirection, in.sunRadiusRad),
+          glm::vec4(in.sunIrradiance, 0),           glm::vec4(in.skyRadiance, 0),
+          glm::vec4(in.transfer, in.sunHorizonRad)};
 }
 
 TEST_F(ShadingParity, GlslShadeMatchesCppForEveryMode) {
@@ -123,7 +120,7 @@ TEST_F(ShadingParity, GlslShadeMatchesCppForEveryMode) {
       }
     }
   }
-  for (int mode = AAL_MODE_APPROX; mode <= AAL_MODE_DEBUG_TRANSFER; ++mode) {
+  for (int mode = AAL_MODE_APPROX; mode <= AAL_MODE_HORIZON; ++mode) {
     for (int i = 0; i < 500; ++i) {
       ShadingInputs in;
       in.albedo = {unit(rng), unit(rng), unit(rng)};
@@ -138,6 +135,10 @@ TEST_F(ShadingParity, GlslShadeMatchesCppForEveryMode) {
       in.sunIrradiance = {100 * unit(rng), 90 * unit(rng), 80 * unit(rng)};
       in.skyRadiance = {5 * unit(rng), 6 * unit(rng), 9 * unit(rng)};
       in.transfer = {unit(rng), unit(rng), unit(rng)};
+      // Horizons within a few sun radii of the sun (partly hidden), or anywhere.
+      const float elevation = std::asin(std::clamp(in.sunDirection.z, -1.0f, 1.0f));
+      in.sunHorizonRad =
+          i % 2 ? elevation + in.sunRadiusRad * (4.0f * unit(rng) - 2.0f) : 1.2f * unit(rng) - 0.1f;
       add(in, mode);
     }
   }
