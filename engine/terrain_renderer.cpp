@@ -47,7 +47,8 @@ bool isDebug(ShadingMode mode) {
 // views. The baselines keep their own ambient term.
 bool usesTransfer(ShadingMode mode) {
   return mode == ShadingMode::Approx || mode == ShadingMode::Exact ||
-         mode == ShadingMode::DebugObscurance || mode == ShadingMode::DebugTransfer;
+         mode == ShadingMode::Horizon || mode == ShadingMode::DebugObscurance ||
+         mode == ShadingMode::DebugTransfer;
 }
 
 // The unit-radius sample offsets of seed 000 eq. 8 as std140 vec4s, one set
@@ -241,6 +242,7 @@ struct TerrainRenderer::Passes {
     if (gbuffer) formats = {kHdrFormat, kAmbientFormat, kSurfaceFormat};
     return cached(key, {terrainVertexShader(paging), terrainFragmentShader(paging, gbuffer),
                         terrainBindings({VK_DESCRIPTOR_TYPE_STORAGE_BUFFER,
+                                         VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER,
                                          VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER}),
                         0, formats, kDepthFormat, true, true, VK_CULL_MODE_NONE, false,
                         variantConstants(mode, albedo, display)});
@@ -343,6 +345,9 @@ TerrainRenderer::TerrainRenderer(const Device& device, uint32_t width, uint32_t 
                          VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT}),
       capTableStaging_(device, size_t{AAL_CAP_TABLE_WIDTH} * AAL_CAP_TABLE_HEIGHT * sizeof(float),
                        VK_BUFFER_USAGE_TRANSFER_SRC_BIT, MemoryIntent::Upload),
+      noHorizons_(device, {1, 1, VK_FORMAT_R8G8B8A8_UNORM,
+                           VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT,
+                           VK_IMAGE_ASPECT_COLOR_BIT, 2, true}),
       uniforms_(device, sizeof(FrameUniforms), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT,
                 MemoryIntent::Upload),
       samples_(device, sizeof(ObscuranceSampleBlock), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT,
@@ -541,8 +546,23 @@ void TerrainRenderer::record(VkCommandBuffer cmd, const TerrainScene& scene, con
   // Without linear output or the obscurance pass the terrain and the sky
   // write display values at once: no HDR target, no tone-map pass.
   const bool direct = !linear && !obscurance;
+  if (s.mode == ShadingMode::Horizon && !scene.horizons()) {
+    throw std::invalid_argument(
+        "the horizon mode needs the DEM's directional horizons (aal-bake --horizons)");
+  }
   timer_.reset(cmd);
   updateCapTable(cmd, s);
+  if (!noHorizonsReady_) {
+    transitionImage(cmd, noHorizons_, VK_IMAGE_LAYOUT_UNDEFINED,
+                    VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL);
+    const VkClearColorValue zero{};
+    const VkImageSubresourceRange all{VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, 2};
+    vkCmdClearColorImage(cmd, noHorizons_.handle(), VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, &zero, 1,
+                         &all);
+    transitionImage(cmd, noHorizons_, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL,
+                    VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL);
+    noHorizonsReady_ = true;
+  }
 
   // The sky table for this frame's sun (sky_lut.glsl).
   transitionImage(cmd, skyTable_, VK_IMAGE_LAYOUT_UNDEFINED,
@@ -597,12 +617,14 @@ void TerrainRenderer::record(VkCommandBuffer cmd, const TerrainScene& scene, con
   beginRendering(cmd, extent_.width, extent_.height, colors, obscurance ? 3 : 1, &depth);
   timer_.begin(cmd, "terrain");
   passes_->terrain(paging, s.mode, albedo, obscurance, direct)
-      .bind(
-          cmd,
-          terrainWrites(uniforms_, scene, passes_->terrainSampler.handle())
-              .storageBuffer(kAfterTerrainTextures, patches_)
-              .sampledImage(kAfterTerrainTextures + 1, capTable_.view(), passes_->linear.handle()),
-          nullptr);
+      .bind(cmd,
+            terrainWrites(uniforms_, scene, passes_->terrainSampler.handle())
+                .storageBuffer(kAfterTerrainTextures, patches_)
+                .sampledImage(kAfterTerrainTextures + 1, capTable_.view(), passes_->linear.handle())
+                .sampledImage(kAfterTerrainTextures + 2,
+                              (scene.horizons() ? *scene.horizons() : noHorizons_).view(),
+                              passes_->linear.handle()),
+            nullptr);
   vkCmdBindIndexBuffer(cmd, scene.indices().handle(), 0, VK_INDEX_TYPE_UINT32);
   drawPatches(cmd);
   timer_.end(cmd);

@@ -157,6 +157,10 @@ class TerrainRenderer {
   Image capTable_;
   Buffer capTableStaging_;
   float capTableRadius_ = 0.0f;
+  // Bound in place of a scene's directional horizons when it has none (one
+  // texel, two layers, cleared on first use).
+  Image noHorizons_;
+  bool noHorizonsReady_ = false;
   // Obscurance reuse (ObscuranceSettings::History): the means and points the
   // previous frame wrote (index historyRead_) and this one writes (the
   // other); made on first use.

@@ -8,14 +8,21 @@
 #define AAL_TERRAIN_SHADING_GLSL
 
 #include "config.h"
-// After the terrain textures and the LOD patches (terrain_vertex.glsl).
+// After the terrain textures and the LOD patches (terrain_vertex.glsl): the
+// exact mode's cap table, the horizon mode's directional horizons.
 #define AAL_CAP_TABLE_BINDING (AAL_TERRAIN_TEXTURES_END + 1)
+#define AAL_HORIZON_BINDING (AAL_TERRAIN_TEXTURES_END + 2)
 #include "frame.glsl"
+#include "horizon.glsl"
 #include "palette.glsl"
 #include "shading.glsl"
 #include "terrain_textures.glsl"
 #include "tone_map.glsl"
 #include "variant.glsl"
+
+// Directions 0-3 in layer 0, 4-7 in layer 1, the DEM's size, one tile
+// (engine/terrain_scene.h setHorizons; a 1-texel stand-in without them).
+layout(set = 0, binding = AAL_HORIZON_BINDING) uniform sampler2DArray terrainHorizons;
 
 layout(location = 0) in vec3 worldPosition;
 layout(location = 1) in vec2 texelPosition;
@@ -66,7 +73,16 @@ void main() {
   s.sunIrradiance = frame.sunIrradiance.rgb;
   s.skyRadiance = frame.skyRadiance.rgb;
   s.transfer = vec3(1.0);
-  s.sunHorizonRad = -0.5 * float(AAL_PI);  // an open horizon (the horizon mode is not drawn here)
+  s.sunHorizonRad = -0.5 * float(AAL_PI);
+  if (kShadingMode == AAL_MODE_HORIZON) {
+    // The horizon in the sun's azimuth, bilinear between texel centres.
+    vec2 uv = (texelPosition + 0.5) / frame.dem.xy;
+    vec4 low = textureLod(terrainHorizons, vec3(uv, 0.0), 0.0);
+    vec4 high = textureLod(terrainHorizons, vec3(uv, 1.0), 0.0);
+    vec3 l = s.sunDirection;
+    float azimuth = abs(l.x) + abs(l.y) > 0.0 ? atan(l.y, l.x) : 0.0;  // any at the zenith
+    s.sunHorizonRad = horizonAtAzimuth(low, high, azimuth);
+  }
   // Aerial perspective: radiance (direct + ambient W) T + L_sky (1 - T).
   float distance = length(worldPosition - frame.cameraPos.xyz);
   float transmittance = exp(-frame.skyRadiance.w * distance);

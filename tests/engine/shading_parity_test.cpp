@@ -1,6 +1,7 @@
 // shade() of shaders/shading.glsl agrees with terrain/shading.h on the device.
 #include <gtest/gtest.h>
 
+#include <array>
 #include <cmath>
 #include <random>
 #include <vector>
@@ -15,6 +16,7 @@
 #include "compute.h"
 #include "config.h"
 #include "descriptors.h"
+#include "horizon_map.h"
 #include "image.h"
 #include "shading.h"
 #include "upload.h"
@@ -198,6 +200,52 @@ TEST_F(ShadingParity, ExactModeReadsTheTableOfTheFramesSun) {
     std::printf("exact shading with the %.3f rad sun's table: worst relative difference %.3g\n",
                 sun, worst);
   }
+}
+
+// horizonAtAzimuth of shaders/horizon.glsl against terrain/horizon_map.h:
+// random codes, azimuths all round (and beyond a turn both ways).
+TEST_F(ShadingParity, HorizonInterpolationMatchesCpp) {
+  struct HorizonQuery {
+    glm::vec4 low, high, azimuth;
+  };
+  std::mt19937 rng(18);
+  std::uniform_int_distribution<int> code(0, 255);
+  std::uniform_real_distribution<float> azimuth(-7.0f, 14.0f);
+  std::vector<HorizonQuery> queries;
+  std::vector<std::array<uint8_t, kHorizonDirections>> codes;
+  for (int i = 0; i < 4000; ++i) {
+    std::array<uint8_t, kHorizonDirections> c;
+    for (uint8_t& v : c) v = uint8_t(code(rng));
+    // Every stored direction exactly, then anywhere.
+    const float a = i < 64 ? float(i) * 0.785398163f : azimuth(rng);
+    codes.push_back(c);
+    queries.push_back({glm::vec4(c[0], c[1], c[2], c[3]) / 255.0f,
+                       glm::vec4(c[4], c[5], c[6], c[7]) / 255.0f, glm::vec4(a, 0, 0, 0)});
+  }
+  const uint32_t count = static_cast<uint32_t>(queries.size());
+  Buffer input(device(), count * sizeof(HorizonQuery), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
+               MemoryIntent::Upload);
+  Buffer output(device(), count * sizeof(float), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
+                MemoryIntent::Readback);
+  input.write(queries.data(), count * sizeof(HorizonQuery));
+  {
+    const ComputePipeline pipeline(device(), "horizon_parity.comp", 2, sizeof(uint32_t));
+    submitAndWait(device(), [&](VkCommandBuffer cmd) {
+      pipeline.record(cmd, {&input, &output}, &count,
+                      (count + AAL_SHADING_PARITY_GROUP_SIZE - 1) / AAL_SHADING_PARITY_GROUP_SIZE);
+    });
+  }
+  std::vector<float> answers(count);
+  output.read(answers.data(), count * sizeof(float));
+  double worst = 0;
+  for (uint32_t i = 0; i < count; ++i) {
+    const float expected = horizonAtAzimuth(codes[i].data(), queries[i].azimuth.x);
+    // Float rounding of the azimuth's position between directions.
+    EXPECT_NEAR(answers[i], expected, 1e-5f)
+        << "query " << i << " azimuth " << queries[i].azimuth.x;
+    worst = std::max(worst, double(std::abs(answers[i] - expected)));
+  }
+  std::printf("horizon interpolation parity over %u inputs: worst %.3g rad\n", count, worst);
 }
 
 }  // namespace
