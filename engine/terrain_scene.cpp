@@ -339,18 +339,20 @@ void TerrainScene::setHorizons(const Device& device, const HorizonMap& map) {
   }
   const glm::vec4 dem = demInfo_;
   if (map.width != int(dem.x) || map.height != int(dem.y) ||
-      map.codes.size() != size_t(map.width) * size_t(map.height) * kHorizonDirections) {
+      !validHorizonDirections(map.directions) ||
+      map.codes.size() != size_t(map.width) * size_t(map.height) * size_t(map.directions)) {
     throw std::invalid_argument("the horizon map is " + std::to_string(map.width) + "x" +
                                 std::to_string(map.height) + ", the DEM " +
                                 std::to_string(int(dem.x)) + "x" + std::to_string(int(dem.y)));
   }
-  static_assert(kHorizonDirections == 8, "two RGBA8 layers");
+  // Four directions per RGBA8 layer.
+  const uint32_t layers = uint32_t(map.directions / 4);
   auto image = std::make_unique<Image>(
       device, ImageDesc{uint32_t(map.width), uint32_t(map.height), VK_FORMAT_R8G8B8A8_UNORM,
                         VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT,
-                        VK_IMAGE_ASPECT_COLOR_BIT, 2, true});
+                        VK_IMAGE_ASPECT_COLOR_BIT, layers, true});
   UploadBatch upload(device);
-  for (uint32_t layer = 0; layer < 2; ++layer) {
+  for (uint32_t layer = 0; layer < layers; ++layer) {
     upload.addImage(
         *image, 4,
         [&map, layer](uint32_t firstRow, uint32_t endRow, void* destination) {

@@ -67,8 +67,8 @@ class TerrainScene {
   uint64_t textureBytes() const { return textureBytes_; }
   bool hasAlbedo() const { return hasAlbedo_; }
   // Directional horizons for the horizon mode (terrain/horizon_map.h): a 2D
-  // array image the DEM's size, RGBA8 codes of directions 0-3 in layer 0 and
-  // 4-7 in layer 1, no mip levels (8 B per texel). Scenes of one tile only
+  // array image the DEM's size, RGBA8 codes of directions 4l..4l+3 in layer
+  // l, no mip levels (1 B per direction and texel). Scenes of one tile only
   // for now; throws std::invalid_argument for a tiled scene or a map of
   // another size.
   void setHorizons(const Device& device, const HorizonMap& map);

@@ -39,9 +39,12 @@ void checkOptions(const Heightfield& field, const BakeOptions& o) {
   if (!(o.refraction >= 0.0 && o.refraction < 1.0)) {
     throw std::invalid_argument("refraction coefficient must be in [0, 1)");
   }
-  if (o.horizons && (o.method != BakeMethod::Sweep || o.azimuths % kHorizonDirections != 0)) {
+  if (o.horizons && !validHorizonDirections(o.horizonDirections)) {
+    throw std::invalid_argument("horizon directions must be 4, 8, 12 or 16");
+  }
+  if (o.horizons && (o.method != BakeMethod::Sweep || o.azimuths % o.horizonDirections != 0)) {
     throw std::invalid_argument("directional horizons need the sweep with a multiple of " +
-                                std::to_string(kHorizonDirections) + " azimuths");
+                                std::to_string(o.horizonDirections) + " azimuths");
   }
 }
 
@@ -114,7 +117,7 @@ __attribute__((target("avx2"))) void addSlicesAvx2(float* sums, const HorizonBlo
 
 // Sums the sky slices of every azimuth into `sums`, and the SVF terms; with
 // `horizonCodes`, stores the horizons of the azimuths k * 2 pi /
-// kHorizonDirections there (kHorizonDirections codes per texel).
+// o.horizonDirections there (that many codes per texel).
 void sweepAllAzimuths(const BakeTerrain& terrain, const BakeOptions& o, float* sums,
                       std::vector<float>& svf, uint8_t* horizonCodes) {
   HorizonSweepOptions sweep;
@@ -126,20 +129,20 @@ void sweepAllAzimuths(const BakeTerrain& terrain, const BakeOptions& o, float* s
 
   const auto sliceOf = [&](int a) {
     const double phi = a * dPhi, cosPhi = std::cos(phi), sinPhi = std::sin(phi);
-    const bool stored = a * kHorizonDirections % o.azimuths == 0;
+    const bool stored = a * o.horizonDirections % o.azimuths == 0;
     return Slice{phi,
                  static_cast<float>(cosPhi),
                  static_cast<float>(sinPhi),
                  static_cast<float>(dPhi),
                  static_cast<float>(cosPhi * dPhi),
                  static_cast<float>(sinPhi * dPhi),
-                 stored ? a * kHorizonDirections / o.azimuths : -1};
+                 stored ? a * o.horizonDirections / o.azimuths : -1};
   };
   // The horizon elevations of slice s at a block's texels, encoded.
   const auto storeHorizons = [&](const HorizonBlock& b, const float* tanHorizon, const Slice& s) {
     for (int j = 0; j < b.count; ++j) {
-      horizonCodes[(b.firstTexel + j * b.stride) * kHorizonDirections + size_t(s.horizonSlot)] =
-          encodeHorizon(std::atan(tanHorizon[j]));
+      horizonCodes[(b.firstTexel + j * b.stride) * size_t(o.horizonDirections) +
+                   size_t(s.horizonSlot)] = encodeHorizon(std::atan(tanHorizon[j]));
     }
   };
   constexpr int kLines = HorizonBlock::kLines;
@@ -290,7 +293,8 @@ BakeResult bakeWindow(const Heightfield& field, const BakeTerrain& terrain, cons
   if (o.horizons) {
     result.horizons.width = map.width;
     result.horizons.height = map.height;
-    result.horizons.codes.assign(map.texelCount() * kHorizonDirections, 0);
+    result.horizons.directions = o.horizonDirections;
+    result.horizons.codes.assign(map.texelCount() * size_t(o.horizonDirections), 0);
   }
 
   if (o.method == BakeMethod::Sweep) {

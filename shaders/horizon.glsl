@@ -14,14 +14,15 @@ float decodeHorizon(float unorm) {
   return kHorizonMinRad + unorm * unorm * (kHorizonMaxRad - kHorizonMinRad);
 }
 
-// Directions 0-3 in `low`, 4-7 in `high` (k * 45 degrees counter-clockwise
-// from east); linear in azimuth between the two beside `azimuthRad`.
-float horizonAtAzimuth(vec4 low, vec4 high, float azimuthRad) {
-  float codes[8] = float[8](low.x, low.y, low.z, low.w, high.x, high.y, high.z, high.w);
-  float x = azimuthRad / float(AAL_TWO_PI) * 8.0;
-  x -= 8.0 * floor(x / 8.0);
-  int k0 = min(int(x), 7);
-  int k1 = (k0 + 1) % 8;
+// The first `directions` (4..16) of `codes` are the horizon's in azimuths
+// k * 2 pi / directions counter-clockwise from east; linear in azimuth
+// between the two beside `azimuthRad`.
+float horizonAtAzimuth(float codes[16], int directions, float azimuthRad) {
+  float n = float(directions);
+  float x = azimuthRad / float(AAL_TWO_PI) * n;
+  x -= n * floor(x / n);
+  int k0 = min(int(x), directions - 1);
+  int k1 = (k0 + 1) % directions;
   float f = x - float(k0);
   return (1.0 - f) * decodeHorizon(codes[k0]) + f * decodeHorizon(codes[k1]);
 }

@@ -8,9 +8,8 @@
 layout(local_size_x = AAL_SHADING_PARITY_GROUP_SIZE) in;
 
 struct Query {
-  vec4 low;   // directions 0-3 (code / 255)
-  vec4 high;  // directions 4-7
-  vec4 azimuth;  // x: azimuth (rad)
+  vec4 codes[4];  // directions 4l..4l+3 in codes[l] (code / 255)
+  vec4 azimuth;   // x: azimuth (rad), y: directions
 };
 
 layout(set = 0, binding = 0, std430) readonly buffer Queries { Query queries[]; };
@@ -20,5 +19,7 @@ layout(push_constant) uniform Push { uint count; };
 void main() {
   uint i = gl_GlobalInvocationID.x;
   if (i >= count) return;
-  answers[i] = horizonAtAzimuth(queries[i].low, queries[i].high, queries[i].azimuth.x);
+  float codes[16];
+  for (int k = 0; k < 16; ++k) codes[k] = queries[i].codes[k / 4][k % 4];
+  answers[i] = horizonAtAzimuth(codes, int(queries[i].azimuth.y), queries[i].azimuth.x);
 }

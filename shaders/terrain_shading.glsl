@@ -20,7 +20,7 @@
 #include "tone_map.glsl"
 #include "variant.glsl"
 
-// Directions 0-3 in layer 0, 4-7 in layer 1, the DEM's size, one tile
+// Directions 4l..4l+3 in layer l, the DEM's size, one tile
 // (engine/terrain_scene.h setHorizons; a 1-texel stand-in without them).
 layout(set = 0, binding = AAL_HORIZON_BINDING) uniform sampler2DArray terrainHorizons;
 
@@ -77,11 +77,15 @@ void main() {
   if (kShadingMode == AAL_MODE_HORIZON) {
     // The horizon in the sun's azimuth, bilinear between texel centres.
     vec2 uv = (texelPosition + 0.5) / frame.dem.xy;
-    vec4 low = textureLod(terrainHorizons, vec3(uv, 0.0), 0.0);
-    vec4 high = textureLod(terrainHorizons, vec3(uv, 1.0), 0.0);
+    int layers = min(textureSize(terrainHorizons, 0).z, 4);
+    float codes[16];
+    for (int layer = 0; layer < 4; ++layer) {
+      vec4 c = layer < layers ? textureLod(terrainHorizons, vec3(uv, float(layer)), 0.0) : vec4(0.0);
+      for (int k = 0; k < 4; ++k) codes[4 * layer + k] = c[k];
+    }
     vec3 l = s.sunDirection;
     float azimuth = abs(l.x) + abs(l.y) > 0.0 ? atan(l.y, l.x) : 0.0;  // any at the zenith
-    s.sunHorizonRad = horizonAtAzimuth(low, high, azimuth);
+    s.sunHorizonRad = horizonAtAzimuth(codes, 4 * layers, azimuth);
   }
   // Aerial perspective: radiance (direct + ambient W) T + L_sky (1 - T).
   float distance = length(worldPosition - frame.cameraPos.xyz);

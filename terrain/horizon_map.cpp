@@ -20,6 +20,10 @@ constexpr int kVersion = 1;
 
 }  // namespace
 
+bool validHorizonDirections(int directions) {
+  return directions >= 4 && directions <= kMaxHorizonDirections && directions % 4 == 0;
+}
+
 uint8_t encodeHorizon(float elevationRad) {
   if (!(elevationRad > kHorizonMinRad)) return 0;  // NaN (no terrain ahead) too
   const float x =
@@ -32,25 +36,26 @@ float decodeHorizon(uint8_t code) {
   return kHorizonMinRad + c * c * (kHorizonMaxRad - kHorizonMinRad);
 }
 
-float horizonAtAzimuth(const uint8_t* codes, float azimuthRad) {
-  float x = azimuthRad / kTwoPi * float(kHorizonDirections);
-  x -= float(kHorizonDirections) * std::floor(x / float(kHorizonDirections));  // [0, 8)
-  const int k0 = std::min(int(x), kHorizonDirections - 1);
-  const int k1 = (k0 + 1) % kHorizonDirections;
+float horizonAtAzimuth(const uint8_t* codes, int directions, float azimuthRad) {
+  const float n = float(directions);
+  float x = azimuthRad / kTwoPi * n;
+  x -= n * std::floor(x / n);  // [0, n)
+  const int k0 = std::min(int(x), directions - 1);
+  const int k1 = (k0 + 1) % directions;
   const float f = x - float(k0);
   return (1.0f - f) * decodeHorizon(codes[k0]) + f * decodeHorizon(codes[k1]);
 }
 
 void writeHorizonMap(const std::filesystem::path& path, const HorizonMap& map) {
-  if (map.width < 1 || map.height < 1 ||
-      map.codes.size() != size_t(map.width) * size_t(map.height) * kHorizonDirections) {
+  if (map.width < 1 || map.height < 1 || !validHorizonDirections(map.directions) ||
+      map.codes.size() != size_t(map.width) * size_t(map.height) * size_t(map.directions)) {
     throw std::invalid_argument("writeHorizonMap: inconsistent map");
   }
   AtomicOutput output(path);
   {
     std::ofstream out(output.temporaryPath(), std::ios::binary);
     out << kMagic << ' ' << kVersion << ' ' << map.width << ' ' << map.height << ' '
-        << kHorizonDirections << '\n';
+        << map.directions << '\n';
     out.write(reinterpret_cast<const char*>(map.codes.data()),
               static_cast<std::streamsize>(map.codes.size()));
     out.flush();
@@ -66,16 +71,16 @@ HorizonMap readHorizonMap(const std::filesystem::path& path) {
   std::getline(in, header);
   std::istringstream fields(header);
   std::string magic;
-  int version = 0, directions = 0;
+  int version = 0;
   HorizonMap map;
-  fields >> magic >> version >> map.width >> map.height >> directions;
-  if (!fields || magic != kMagic || version != kVersion || directions != kHorizonDirections ||
-      map.width < 1 || map.height < 1 || map.width > (1 << 20) || map.height > (1 << 20)) {
+  fields >> magic >> version >> map.width >> map.height >> map.directions;
+  if (!fields || magic != kMagic || version != kVersion ||
+      !validHorizonDirections(map.directions) || map.width < 1 || map.height < 1 ||
+      map.width > (1 << 20) || map.height > (1 << 20)) {
     throw std::runtime_error(path.string() + " is not a horizon map (\"" + kMagic + " " +
-                             std::to_string(kVersion) + "\" with " +
-                             std::to_string(kHorizonDirections) + " directions)");
+                             std::to_string(kVersion) + "\" with 4, 8, 12 or 16 directions)");
   }
-  map.codes.resize(size_t(map.width) * size_t(map.height) * kHorizonDirections);
+  map.codes.resize(size_t(map.width) * size_t(map.height) * size_t(map.directions));
   in.read(reinterpret_cast<char*>(map.codes.data()),
           static_cast<std::streamsize>(map.codes.size()));
   if (in.gcount() != static_cast<std::streamsize>(map.codes.size())) {

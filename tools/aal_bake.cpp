@@ -75,6 +75,7 @@ struct Options {
   double maxDistance = 0;
   std::string svfPath;
   std::string horizonsPath;  // directional horizons (docs/baking.md)
+  int horizonDirections = aal::kHorizonDirections;
   std::string visiblePath;
   int threads = 0;
   bool quiet = false;
@@ -203,10 +204,11 @@ int run(const Options& o) {
   if (bake.horizons && bake.method == aal::BakeMethod::Rays) {
     throw aal::InputError("--horizons needs --method sweep (the ray reference has no horizons)");
   }
-  if (bake.horizons && o.azimuths % aal::kHorizonDirections != 0) {
-    throw aal::InputError("--horizons needs --azimuths a multiple of " +
-                          std::to_string(aal::kHorizonDirections) +
-                          " (the horizons are the sweep's own, every 45 degrees)");
+  bake.horizonDirections = o.horizonDirections;
+  if (bake.horizons && o.azimuths % o.horizonDirections != 0) {
+    throw aal::InputError("--horizons needs --azimuths a multiple of --horizon-directions " +
+                          std::to_string(o.horizonDirections) +
+                          " (the horizons are the sweep's own)");
   }
   aal::ProgressBar progress("aal-bake", !o.quiet);
   bake.progress = [&](double fraction) { progress.update(fraction); };
@@ -355,9 +357,14 @@ int main(int argc, char** argv) {
   app.add_option("--svf", o.svfPath,
                  "also write the sky-view factor (Zaksek) as a float32 GeoTIFF placed like the DEM "
                  "(its voids nodata)");
-  app.add_option("--horizons", o.horizonsPath,
-                 "also write the directional horizons (8 azimuths, 8 bits each) for "
-                 "aal-render --mode horizon (docs/baking.md)");
+  app.add_option(
+      "--horizons", o.horizonsPath,
+      "also write the directional horizons (--horizon-directions azimuths, 8 bits each) for "
+      "aal-render --mode horizon (docs/baking.md)");
+  app.add_option("--horizon-directions", o.horizonDirections,
+                 "azimuths of --horizons: 4, 8, 12 or 16 (1 byte each per texel)")
+      ->check(CLI::IsMember({4, 8, 12, 16}))
+      ->capture_default_str();
   app.add_option(
       "--visible", o.visiblePath,
       "also write the visible fraction Omega/2pi as a float32 GeoTIFF placed like the DEM");

@@ -127,7 +127,7 @@ TEST_F(Render, HorizonModeShadowsThePlainBehindTheRidge) {
   // A horizon map of another size is refused.
   HorizonMap small = baked.horizons;
   small.width -= 1;
-  small.codes.resize(size_t(small.width) * small.height * kHorizonDirections);
+  small.codes.resize(size_t(small.width) * small.height * size_t(small.directions));
   EXPECT_THROW(scene.setHorizons(device(), small), std::invalid_argument);
 }
 

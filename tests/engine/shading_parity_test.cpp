@@ -206,21 +206,28 @@ TEST_F(ShadingParity, ExactModeReadsTheTableOfTheFramesSun) {
 // random codes, azimuths all round (and beyond a turn both ways).
 TEST_F(ShadingParity, HorizonInterpolationMatchesCpp) {
   struct HorizonQuery {
-    glm::vec4 low, high, azimuth;
+    glm::vec4 codes[4], azimuth;
   };
   std::mt19937 rng(18);
   std::uniform_int_distribution<int> code(0, 255);
   std::uniform_real_distribution<float> azimuth(-7.0f, 14.0f);
   std::vector<HorizonQuery> queries;
-  std::vector<std::array<uint8_t, kHorizonDirections>> codes;
+  std::vector<std::array<uint8_t, kMaxHorizonDirections>> codes;
+  std::vector<int> directions;
   for (int i = 0; i < 4000; ++i) {
-    std::array<uint8_t, kHorizonDirections> c;
+    std::array<uint8_t, kMaxHorizonDirections> c;
     for (uint8_t& v : c) v = uint8_t(code(rng));
+    const int n = 4 * (1 + i % 4);  // 4, 8, 12, 16
     // Every stored direction exactly, then anywhere.
-    const float a = i < 64 ? float(i) * 0.785398163f : azimuth(rng);
+    const float a = i < 256 ? float(i / 4) * float(2 * 3.14159265358979 / n) : azimuth(rng);
     codes.push_back(c);
-    queries.push_back({glm::vec4(c[0], c[1], c[2], c[3]) / 255.0f,
-                       glm::vec4(c[4], c[5], c[6], c[7]) / 255.0f, glm::vec4(a, 0, 0, 0)});
+    directions.push_back(n);
+    HorizonQuery q;
+    for (int l = 0; l < 4; ++l) {
+      q.codes[l] = glm::vec4(c[4 * l], c[4 * l + 1], c[4 * l + 2], c[4 * l + 3]) / 255.0f;
+    }
+    q.azimuth = glm::vec4(a, float(n), 0, 0);
+    queries.push_back(q);
   }
   const uint32_t count = static_cast<uint32_t>(queries.size());
   Buffer input(device(), count * sizeof(HorizonQuery), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
@@ -239,7 +246,7 @@ TEST_F(ShadingParity, HorizonInterpolationMatchesCpp) {
   output.read(answers.data(), count * sizeof(float));
   double worst = 0;
   for (uint32_t i = 0; i < count; ++i) {
-    const float expected = horizonAtAzimuth(codes[i].data(), queries[i].azimuth.x);
+    const float expected = horizonAtAzimuth(codes[i].data(), directions[i], queries[i].azimuth.x);
     // Float rounding of the azimuth's position between directions.
     EXPECT_NEAR(answers[i], expected, 1e-5f)
         << "query " << i << " azimuth " << queries[i].azimuth.x;

@@ -126,6 +126,38 @@ TEST(HorizonBake, StoredHorizonsFollowARayMarchInEveryDirection) {
   EXPECT_GT(shadowing, int(map.codes.size() / 4));
 }
 
+// Sixteen directions hold the eight's in their even slots: the same sweeps.
+TEST(HorizonBake, SixteenDirectionsHoldTheEight) {
+  SyntheticTerrainOptions s;
+  s.width = 40;
+  s.height = 33;
+  s.amplitudeM = 800;
+  s.featureSizeTexels = 16;
+  const Heightfield field = makeSyntheticTerrain(s);
+  BakeOptions o;
+  o.azimuths = 32;
+  o.horizons = true;
+  const HorizonMap eight = bakeApertures(field, o).horizons;
+  o.horizonDirections = 16;
+  const HorizonMap sixteen = bakeApertures(field, o).horizons;
+  ASSERT_EQ(sixteen.directions, 16);
+  ASSERT_EQ(sixteen.codes.size(), 2 * eight.codes.size());
+  int differentOdd = 0;
+  for (int row = 0; row < field.height; ++row) {
+    for (int col = 0; col < field.width; ++col) {
+      for (int k = 0; k < 8; ++k) {
+        ASSERT_EQ(sixteen.texel(col, row)[2 * k], eight.texel(col, row)[k]) << col << "," << row;
+        // The odd directions are new: not simply the neighbours' mean.
+        const int mean = (eight.texel(col, row)[k] + eight.texel(col, row)[(k + 1) % 8] + 1) / 2;
+        if (std::abs(int(sixteen.texel(col, row)[2 * k + 1]) - mean) > 2) ++differentOdd;
+      }
+    }
+  }
+  EXPECT_GT(differentOdd, int(field.texelCount()));
+  o.horizonDirections = 6;
+  EXPECT_THROW(bakeApertures(field, o), std::invalid_argument);
+}
+
 TEST(HorizonBake, OptionsTheHorizonsCannotComeFromAreRefused) {
   SyntheticTerrainOptions s;
   s.width = s.height = 16;

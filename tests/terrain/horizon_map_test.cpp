@@ -49,15 +49,22 @@ TEST(HorizonMap, AzimuthsBetweenStoredDirectionsInterpolateLinearly) {
   for (int k = 0; k < kHorizonDirections; ++k) codes[k] = uint8_t(20 * k + 10);
   const float step = float(2 * kPi / kHorizonDirections);
   for (int k = 0; k < kHorizonDirections; ++k) {
-    EXPECT_NEAR(horizonAtAzimuth(codes, k * step), decodeHorizon(codes[k]), 1e-6f);
+    EXPECT_NEAR(horizonAtAzimuth(codes, kHorizonDirections, k * step), decodeHorizon(codes[k]),
+                1e-6f);
     const int next = (k + 1) % kHorizonDirections;
-    EXPECT_NEAR(horizonAtAzimuth(codes, (k + 0.25f) * step),
+    EXPECT_NEAR(horizonAtAzimuth(codes, kHorizonDirections, (k + 0.25f) * step),
                 0.75f * decodeHorizon(codes[k]) + 0.25f * decodeHorizon(codes[next]), 1e-6f);
   }
   // Wraps around: -10 degrees is 350 degrees, between the last and the first.
-  EXPECT_NEAR(horizonAtAzimuth(codes, float(-10 * kPi / 180)),
-              horizonAtAzimuth(codes, float(350 * kPi / 180)), 1e-6f);
-  EXPECT_NEAR(horizonAtAzimuth(codes, float(2 * kPi)), decodeHorizon(codes[0]), 1e-6f);
+  EXPECT_NEAR(horizonAtAzimuth(codes, kHorizonDirections, float(-10 * kPi / 180)),
+              horizonAtAzimuth(codes, kHorizonDirections, float(350 * kPi / 180)), 1e-6f);
+  EXPECT_NEAR(horizonAtAzimuth(codes, kHorizonDirections, float(2 * kPi)), decodeHorizon(codes[0]),
+              1e-6f);
+  // Sixteen directions: 22.5 degrees apart.
+  uint8_t sixteen[16];
+  for (int k = 0; k < 16; ++k) sixteen[k] = uint8_t(9 * k);
+  EXPECT_NEAR(horizonAtAzimuth(sixteen, 16, float(3.5 * kPi / 8)),
+              0.5f * (decodeHorizon(27) + decodeHorizon(36)), 1e-6f);
 }
 
 TEST(HorizonMap, FilesRoundTripAndForeignOrTruncatedFilesAreRefused) {
@@ -80,7 +87,7 @@ TEST(HorizonMap, FilesRoundTripAndForeignOrTruncatedFilesAreRefused) {
 
   std::filesystem::resize_file(dir / "h.bin", std::filesystem::file_size(dir / "h.bin") - 1);
   EXPECT_THROW(readHorizonMap(dir / "h.bin"), std::runtime_error);
-  std::ofstream(dir / "other.bin") << "aperture-horizons 1 5 3 16\n";
+  std::ofstream(dir / "other.bin") << "aperture-horizons 1 5 3 6\n";
   EXPECT_THROW(readHorizonMap(dir / "other.bin"), std::runtime_error);
   std::ofstream(dir / "text.bin") << "hello\n";
   EXPECT_THROW(readHorizonMap(dir / "text.bin"), std::runtime_error);

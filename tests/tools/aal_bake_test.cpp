@@ -12,6 +12,7 @@
 #include <thread>
 
 #include "aperture_map.h"
+#include "bake.h"
 #include "dem_loader.h"
 #include "geotiff_writer.h"
 #include "horizon_map.h"
@@ -102,7 +103,8 @@ TEST(AalBake, WritesTheDirectionalHorizons) {
   // Horizons the bake cannot give, or that would overwrite another output.
   for (const std::string& args :
        {" --azimuths 12 --horizons " + quoted(dir.path() / "h1"),
-        " --method rays --horizons " + quoted(dir.path() / "h2"), " --horizons " + quoted(out),
+        " --method rays --horizons " + quoted(dir.path() / "h2"),
+        " --horizons " + quoted(dir.path() / "b.exr"),  // the -o of the same run
         " --tile-size 16 --max-distance 100 --horizons " + quoted(dir.path() / "h3")}) {
     const auto bad = runTool(
         "aal-bake",
