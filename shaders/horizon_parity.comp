@@ -19,7 +19,6 @@ layout(push_constant) uniform Push { uint count; };
 void main() {
   uint i = gl_GlobalInvocationID.x;
   if (i >= count) return;
-  float codes[16];
-  for (int k = 0; k < 16; ++k) codes[k] = queries[i].codes[k / 4][k % 4];
+  vec4 codes[4] = queries[i].codes;
   answers[i] = horizonAtAzimuth(codes, int(queries[i].azimuth.y), queries[i].azimuth.x);
 }

@@ -77,15 +77,15 @@ void main() {
   if (kShadingMode == AAL_MODE_HORIZON) {
     // The horizon in the sun's azimuth, bilinear between texel centres.
     vec2 uv = (texelPosition + 0.5) / frame.dem.xy;
-    int layers = min(textureSize(terrainHorizons, 0).z, 4);
-    float codes[16];
-    for (int layer = 0; layer < 4; ++layer) {
-      vec4 c = layer < layers ? textureLod(terrainHorizons, vec3(uv, float(layer)), 0.0) : vec4(0.0);
-      for (int k = 0; k < 4; ++k) codes[4 * layer + k] = c[k];
-    }
+    // Only the layers of the two directions beside the sun: two fetches.
     vec3 l = s.sunDirection;
     float azimuth = abs(l.x) + abs(l.y) > 0.0 ? atan(l.y, l.x) : 0.0;  // any at the zenith
-    s.sunHorizonRad = horizonAtAzimuth(codes, 4 * layers, azimuth);
+    int k0, k1;
+    float f;
+    horizonNeighbours(4 * textureSize(terrainHorizons, 0).z, azimuth, k0, k1, f);
+    vec4 layer0 = textureLod(terrainHorizons, vec3(uv, float(k0 / 4)), 0.0);
+    vec4 layer1 = textureLod(terrainHorizons, vec3(uv, float(k1 / 4)), 0.0);
+    s.sunHorizonRad = horizonBetween(horizonCode(layer0, k0), horizonCode(layer1, k1), f);
   }
   // Aerial perspective: radiance (direct + ambient W) T + L_sky (1 - T).
   float distance = length(worldPosition - frame.cameraPos.xyz);
