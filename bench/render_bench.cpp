@@ -14,6 +14,7 @@
 #include "albedo_image.h"
 #include "bake.h"
 #include "camera.h"
+#include "config.h"
 #include "dem_loader.h"
 #include "device.h"
 #include "instance.h"
@@ -39,13 +40,17 @@ struct Fixture {
   Fixture() {
     const char* dem = std::getenv("AAL_BENCH_DEM");
     field = aal::loadDem(dem ? dem : AAL_SOURCE_DIR "/heightmaps/jacksboro_fault_dem.tif");
-    const aal::ApertureMap aperture = aal::bakeApertures(field, {}).aperture;
+    aal::BakeOptions bake;
+    bake.horizons = true;  // for the horizon mode (BM_RenderFrame/10)
+    const aal::BakeResult baked = aal::bakeApertures(field, bake);
+    const aal::ApertureMap& aperture = baked.aperture;
     // AAL_BENCH_ALBEDO: an albedo image (resampled to the DEM); default: the palette.
     const char* albedoPath = std::getenv("AAL_BENCH_ALBEDO");
     std::optional<aal::AlbedoImage> albedo;
     if (albedoPath) albedo = aal::loadAlbedoImage(albedoPath, field.width, field.height, nullptr);
     scene = std::make_unique<aal::TerrainScene>(device, field, aperture,
                                                 albedo ? &*albedo : nullptr, 2'000'000);
+    scene->setHorizons(device, baked.horizons);
     renderer = std::make_unique<aal::TerrainRenderer>(device, 1280, 720);
     const aal::SkyLighting light = aal::makeSkyLighting(250, 25, 2.5);
     settings.camera = aal::defaultCamera(field, 1280.0 / 720.0);
@@ -72,9 +77,14 @@ void BM_RenderFrame(benchmark::State& state) {
   state.SetLabel(state.range(0) == 0   ? "approx"
                  : state.range(0) == 1 ? "exact"
                  : state.range(0) == 2 ? "baseline-lambert"
-                                       : "baseline-ao");
+                 : state.range(0) == 3 ? "baseline-ao"
+                                       : "horizon");
 }
-BENCHMARK(BM_RenderFrame)->DenseRange(0, 3)->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK(BM_RenderFrame)
+    ->DenseRange(0, 3)
+    ->Arg(AAL_MODE_HORIZON)
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime();
 
 // Issue 15: the frame over jacksboro from three views (0: the framed start
 // view, 1: a flight 1.2 km above the ground looking ahead, 2: a lower one

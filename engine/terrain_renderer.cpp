@@ -10,6 +10,7 @@
 
 #include <glm/matrix.hpp>
 
+#include "cap_table.h"
 #include "commands.h"
 #include "descriptors.h"
 #include "device.h"
@@ -25,6 +26,9 @@ namespace {
 constexpr VkFormat kHdrFormat = VK_FORMAT_R16G16B16A16_SFLOAT;
 constexpr VkFormat kDepthFormat = VK_FORMAT_D32_SFLOAT;
 constexpr VkFormat kSkyTableFormat = VK_FORMAT_R16G16B16A16_SFLOAT;
+// The exact mode's cap table: values g in [0, 1] to 1e-3 (docs/caps.md);
+// halves would spend half of that on rounding.
+constexpr VkFormat kCapTableFormat = VK_FORMAT_R32_SFLOAT;
 constexpr VkFormat kAmbientFormat = VK_FORMAT_R16G16B16A16_SFLOAT;
 constexpr VkFormat kSurfaceFormat = VK_FORMAT_R32G32B32A32_SFLOAT;
 constexpr VkFormat kTransferFormat = VK_FORMAT_R16G16B16A16_SFLOAT;
@@ -43,7 +47,8 @@ bool isDebug(ShadingMode mode) {
 // the O/W views. The baselines keep their own ambient term.
 bool usesTransfer(ShadingMode mode) {
   return mode == ShadingMode::Approx || mode == ShadingMode::Exact ||
-         mode == ShadingMode::DebugObscurance || mode == ShadingMode::DebugTransfer;
+         mode == ShadingMode::Horizon || mode == ShadingMode::DebugObscurance ||
+         mode == ShadingMode::DebugTransfer;
 }
 
 // The unit-radius sample offsets of eq. 8 of Umenhoffer et al., "Efficient
@@ -236,10 +241,12 @@ struct TerrainRenderer::Passes {
     // With the obscurance pass the terrain also writes the ambient term and
     // the surface point; without it the frame pays nothing for them.
     if (gbuffer) formats = {kHdrFormat, kAmbientFormat, kSurfaceFormat};
-    return cached(
-        key, {terrainVertexShader(paging), terrainFragmentShader(paging, gbuffer),
-              terrainBindings({VK_DESCRIPTOR_TYPE_STORAGE_BUFFER}), 0, formats, kDepthFormat, true,
-              true, VK_CULL_MODE_NONE, false, variantConstants(mode, albedo, display)});
+    return cached(key, {terrainVertexShader(paging), terrainFragmentShader(paging, gbuffer),
+                        terrainBindings({VK_DESCRIPTOR_TYPE_STORAGE_BUFFER,
+                                         VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER,
+                                         VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER}),
+                        0, formats, kDepthFormat, true, true, VK_CULL_MODE_NONE, false,
+                        variantConstants(mode, albedo, display)});
   }
 
   // The sky, after the terrain at the far plane with the depth test on, so
@@ -335,6 +342,13 @@ TerrainRenderer::TerrainRenderer(const Device& device, uint32_t width, uint32_t 
                          VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_SAMPLED_BIT}),
       skyTable_(device, {AAL_SKY_LUT_WIDTH, AAL_SKY_LUT_HEIGHT, kSkyTableFormat,
                          VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_SAMPLED_BIT}),
+      capTable_(device, {AAL_CAP_TABLE_WIDTH, AAL_CAP_TABLE_HEIGHT, kCapTableFormat,
+                         VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT}),
+      capTableStaging_(device, size_t{AAL_CAP_TABLE_WIDTH} * AAL_CAP_TABLE_HEIGHT * sizeof(float),
+                       VK_BUFFER_USAGE_TRANSFER_SRC_BIT, MemoryIntent::Upload),
+      noHorizons_(device, {1, 1, VK_FORMAT_R8G8B8A8_UNORM,
+                           VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT,
+                           VK_IMAGE_ASPECT_COLOR_BIT, 2, true}),
       uniforms_(device, sizeof(FrameUniforms), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT,
                 MemoryIntent::Upload),
       samples_(device, sizeof(ObscuranceSampleBlock), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT,
@@ -366,6 +380,28 @@ void TerrainRenderer::prepareHistory(VkCommandBuffer cmd) {
                   VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL);
   transitionImage(cmd, *historyPoints_[write], VK_IMAGE_LAYOUT_UNDEFINED,
                   VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL);
+}
+
+void TerrainRenderer::updateCapTable(VkCommandBuffer cmd, const FrameSettings& s) {
+  // Other modes only need a valid image behind the binding: the first frame
+  // makes one, and the exact mode remakes it for its sun.
+  // The tools allow suns of 0.01 to 20 degrees; the table wants (0, pi/2).
+  const float radius = std::clamp(s.sunRadiusRad, 1e-6f, 1.5f);
+  const bool wanted = s.mode == ShadingMode::Exact || capTableRadius_ == 0.0f;
+  if (!wanted || radius == capTableRadius_) return;
+  const CapIntersectionTable table = makeCapIntersectionTable(radius);
+  // The previous frame's submission has finished (see record()): the staging
+  // buffer and the image are free.
+  capTableStaging_.write(table.values.data(), table.values.size() * sizeof(float));
+  transitionImage(cmd, capTable_, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL);
+  VkBufferImageCopy region{};
+  region.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
+  region.imageExtent = {AAL_CAP_TABLE_WIDTH, AAL_CAP_TABLE_HEIGHT, 1};
+  vkCmdCopyBufferToImage(cmd, capTableStaging_.handle(), capTable_.handle(),
+                         VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 1, &region);
+  transitionImage(cmd, capTable_, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL,
+                  VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL);
+  capTableRadius_ = radius;
 }
 
 int TerrainRenderer::albedoSourceOf(const TerrainScene& scene, const FrameSettings& s) {
@@ -511,7 +547,23 @@ void TerrainRenderer::record(VkCommandBuffer cmd, const TerrainScene& scene, con
   // Without linear output or the obscurance pass the terrain and the sky
   // write display values at once: no HDR target, no tone-map pass.
   const bool direct = !linear && !obscurance;
+  if (s.mode == ShadingMode::Horizon && !scene.horizons()) {
+    throw std::invalid_argument(
+        "the horizon mode needs the DEM's directional horizons (aal-bake --horizons)");
+  }
   timer_.reset(cmd);
+  updateCapTable(cmd, s);
+  if (!noHorizonsReady_) {
+    transitionImage(cmd, noHorizons_, VK_IMAGE_LAYOUT_UNDEFINED,
+                    VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL);
+    const VkClearColorValue zero{};
+    const VkImageSubresourceRange all{VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, 2};
+    vkCmdClearColorImage(cmd, noHorizons_.handle(), VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, &zero, 1,
+                         &all);
+    transitionImage(cmd, noHorizons_, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL,
+                    VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL);
+    noHorizonsReady_ = true;
+  }
 
   // The sky table for this frame's sun (sky_lut.glsl).
   transitionImage(cmd, skyTable_, VK_IMAGE_LAYOUT_UNDEFINED,
@@ -568,7 +620,11 @@ void TerrainRenderer::record(VkCommandBuffer cmd, const TerrainScene& scene, con
   passes_->terrain(paging, s.mode, albedo, obscurance, direct)
       .bind(cmd,
             terrainWrites(uniforms_, scene, passes_->terrainSampler.handle())
-                .storageBuffer(kAfterTerrainTextures, patches_),
+                .storageBuffer(kAfterTerrainTextures, patches_)
+                .sampledImage(kAfterTerrainTextures + 1, capTable_.view(), passes_->linear.handle())
+                .sampledImage(kAfterTerrainTextures + 2,
+                              (scene.horizons() ? *scene.horizons() : noHorizons_).view(),
+                              passes_->linear.handle()),
             nullptr);
   vkCmdBindIndexBuffer(cmd, scene.indices().handle(), 0, VK_INDEX_TYPE_UINT32);
   drawPatches(cmd);

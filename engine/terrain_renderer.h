@@ -138,6 +138,9 @@ class TerrainRenderer {
   // Makes the obscurance history's images on first use and readies the one
   // this frame writes.
   void prepareHistory(VkCommandBuffer cmd);
+  // Makes the exact mode's cap table for the frame's sun radius when it
+  // changed (on the host, terrain/cap_table.h) and records its upload.
+  void updateCapTable(VkCommandBuffer cmd, const FrameSettings& settings);
   // AAL_ALBEDO_* of the frame.
   static int albedoSourceOf(const TerrainScene& scene, const FrameSettings& s);
 
@@ -150,6 +153,15 @@ class TerrainRenderer {
   // shaders/terrain.frag), and the per-pixel O/W.
   Image ambient_, surface_, transfer_, filtered_;
   Image skyTable_;  // the sky's radiance per view direction (shaders/sky_lut.glsl)
+  // The exact cap intersection against the sun (shaders/cap_table.glsl), for
+  // the sun radius capTableRadius_ (0: not made yet), and its staging copy.
+  Image capTable_;
+  Buffer capTableStaging_;
+  float capTableRadius_ = 0.0f;
+  // Bound in place of a scene's directional horizons when it has none (one
+  // texel, two layers, cleared on first use).
+  Image noHorizons_;
+  bool noHorizonsReady_ = false;
   // Obscurance reuse (ObscuranceSettings::History): the means and points the
   // previous frame wrote (index historyRead_) and this one writes (the
   // other); made on first use.

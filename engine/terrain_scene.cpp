@@ -333,4 +333,43 @@ void TerrainScene::build(const Device& device, const Heightfield& field,
   maxHeight_ = *hi;
 }
 
+void TerrainScene::setHorizons(const Device& device, const HorizonMap& map) {
+  if (tiles_.tilesX * tiles_.tilesY != 1) {
+    throw std::invalid_argument("directional horizons are drawn for DEMs of one tile only");
+  }
+  const glm::vec4 dem = demInfo_;
+  if (map.width != int(dem.x) || map.height != int(dem.y) ||
+      !validHorizonDirections(map.directions) ||
+      map.codes.size() != size_t(map.width) * size_t(map.height) * size_t(map.directions)) {
+    throw std::invalid_argument("the horizon map is " + std::to_string(map.width) + "x" +
+                                std::to_string(map.height) + ", the DEM " +
+                                std::to_string(int(dem.x)) + "x" + std::to_string(int(dem.y)));
+  }
+  // Four directions per RGBA8 layer.
+  const uint32_t layers = uint32_t(map.directions / 4);
+  auto image = std::make_unique<Image>(
+      device, ImageDesc{uint32_t(map.width), uint32_t(map.height), VK_FORMAT_R8G8B8A8_UNORM,
+                        VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT,
+                        VK_IMAGE_ASPECT_COLOR_BIT, layers, true});
+  UploadBatch upload(device);
+  for (uint32_t layer = 0; layer < layers; ++layer) {
+    upload.addImage(
+        *image, 4,
+        [&map, layer](uint32_t firstRow, uint32_t endRow, void* destination) {
+          auto* out = static_cast<uint8_t*>(destination);
+          for (uint32_t row = firstRow; row < endRow; ++row) {
+            for (int col = 0; col < map.width; ++col) {
+              const uint8_t* codes = map.texel(col, int(row)) + 4 * layer;
+              std::copy(codes, codes + 4, out);
+              out += 4;
+            }
+          }
+        },
+        layer);
+  }
+  upload.submit();
+  textureBytes_ += uint64_t(map.codes.size());
+  horizons_ = std::move(image);
+}
+
 }  // namespace aal

@@ -16,6 +16,7 @@
 #include "aperture_map.h"
 #include "buffer.h"
 #include "heightfield.h"
+#include "horizon_map.h"
 #include "image.h"
 #include "quadtree_lod.h"
 #include "terrain_tiles.h"
@@ -65,6 +66,13 @@ class TerrainScene {
   // Device memory of the textures (bytes).
   uint64_t textureBytes() const { return textureBytes_; }
   bool hasAlbedo() const { return hasAlbedo_; }
+  // Directional horizons for the horizon mode (terrain/horizon_map.h): a 2D
+  // array image the DEM's size, RGBA8 codes of directions 4l..4l+3 in layer
+  // l, no mip levels (1 B per direction and texel). Scenes of one tile only
+  // for now; throws std::invalid_argument for a tiled scene or a map of
+  // another size.
+  void setHorizons(const Device& device, const HorizonMap& map);
+  const Image* horizons() const { return horizons_.get(); }  // null: none
   // The LOD patch's index buffer (makeLodPatchIndices).
   const Buffer& indices() const { return indices_; }
   const LodQuadtree& lod() const { return *lod_; }
@@ -90,6 +98,7 @@ class TerrainScene {
 
   TerrainTileLayout tiles_;
   std::vector<Image> heights_, aperture_, albedo_, slopes_;
+  std::unique_ptr<Image> horizons_;
   uint64_t textureBytes_ = 0;
   Buffer indices_;
   bool hasAlbedo_ = false;

@@ -40,6 +40,13 @@ void checkOptions(const Heightfield& field, const BakeOptions& o) {
   if (!(o.refraction >= 0.0 && o.refraction < 1.0)) {
     throw std::invalid_argument("refraction coefficient must be in [0, 1)");
   }
+  if (o.horizons && !validHorizonDirections(o.horizonDirections)) {
+    throw std::invalid_argument("horizon directions must be 4, 8, 12 or 16");
+  }
+  if (o.horizons && (o.method != BakeMethod::Sweep || o.azimuths % o.horizonDirections != 0)) {
+    throw std::invalid_argument("directional horizons need the sweep with a multiple of " +
+                                std::to_string(o.horizonDirections) + " azimuths");
+  }
 }
 
 void checkCancel(const BakeOptions& o) {
@@ -51,6 +58,7 @@ void checkCancel(const BakeOptions& o) {
 struct Slice {
   double phi;
   float cosPhi, sinPhi, dPhi, cosPhiDPhi, sinPhiDPhi;
+  int horizonSlot = -1;  // direction of the horizon map this azimuth fills, or -1
 };
 
 #if AAL_HORIZON_AVX2
@@ -108,9 +116,11 @@ __attribute__((target("avx2"))) void addSlicesAvx2(float* sums, const HorizonBlo
 }
 #endif
 
-// Sums the sky slices of every azimuth into `sums`, and the SVF terms.
+// Sums the sky slices of every azimuth into `sums`, and the SVF terms; with
+// `horizonCodes`, stores the horizons of the azimuths k * 2 pi /
+// o.horizonDirections there (that many codes per texel).
 void sweepAllAzimuths(const BakeTerrain& terrain, const BakeOptions& o, float* sums,
-                      std::vector<float>& svf) {
+                      std::vector<float>& svf, uint8_t* horizonCodes) {
   HorizonSweepOptions sweep;
   sweep.clampEdge = o.clampEdge;
   sweep.curvature = o.curvature ? (1.0 - o.refraction) / (2.0 * kEarthRadiusM) : 0.0;
@@ -120,12 +130,21 @@ void sweepAllAzimuths(const BakeTerrain& terrain, const BakeOptions& o, float* s
 
   const auto sliceOf = [&](int a) {
     const double phi = a * dPhi, cosPhi = std::cos(phi), sinPhi = std::sin(phi);
+    const bool stored = a * o.horizonDirections % o.azimuths == 0;
     return Slice{phi,
                  static_cast<float>(cosPhi),
                  static_cast<float>(sinPhi),
                  static_cast<float>(dPhi),
                  static_cast<float>(cosPhi * dPhi),
-                 static_cast<float>(sinPhi * dPhi)};
+                 static_cast<float>(sinPhi * dPhi),
+                 stored ? a * o.horizonDirections / o.azimuths : -1};
+  };
+  // The horizon elevations of slice s at a block's texels, encoded.
+  const auto storeHorizons = [&](const HorizonBlock& b, const float* tanHorizon, const Slice& s) {
+    for (int j = 0; j < b.count; ++j) {
+      horizonCodes[(b.firstTexel + j * b.stride) * size_t(o.horizonDirections) +
+                   size_t(s.horizonSlot)] = encodeHorizon(std::atan(tanHorizon[j]));
+    }
   };
   constexpr int kLines = HorizonBlock::kLines;
   const bool avx2 = detail::horizonAvx2();
@@ -153,6 +172,10 @@ void sweepAllAzimuths(const BakeTerrain& terrain, const BakeOptions& o, float* s
     // Here as well as between azimuths: one azimuth of a 32768^2 DEM takes
     // a minute. TBB carries the exception out of the sweep's parallel_for.
     checkCancel(o);
+    if (horizonCodes) {
+      if (s.horizonSlot >= 0) storeHorizons(b, b.tanHorizon, s);
+      if (opposite && opposite->horizonSlot >= 0) storeHorizons(b, b.tanOpposite, *opposite);
+    }
     // The texels a few steps on: their sums are a column apart or in
     // another row, where the hardware prefetcher does not look. Along a row,
     // one prefetch per cache line (4 texels' sums) and the last texel: 3 %
@@ -268,9 +291,16 @@ BakeResult bakeWindow(const Heightfield& field, const BakeTerrain& terrain, cons
   map.height = terrain.window.height;
   assignOnHugePages(map.texels, map.texelCount() * 4, 0.0f);
   if (o.skyViewFactor) result.skyViewFactor.assign(map.texelCount(), 0.0f);
+  if (o.horizons) {
+    result.horizons.width = map.width;
+    result.horizons.height = map.height;
+    result.horizons.directions = o.horizonDirections;
+    result.horizons.codes.assign(map.texelCount() * size_t(o.horizonDirections), 0);
+  }
 
   if (o.method == BakeMethod::Sweep) {
-    sweepAllAzimuths(terrain, o, map.texels.data(), result.skyViewFactor);
+    sweepAllAzimuths(terrain, o, map.texels.data(), result.skyViewFactor,
+                     o.horizons ? result.horizons.codes.data() : nullptr);
   } else {
     bakeRays(terrain, o, map.texels.data(), result.skyViewFactor);
   }

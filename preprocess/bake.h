@@ -11,6 +11,7 @@
 #include "aperture_map.h"
 #include "bake_terrain.h"
 #include "heightfield.h"
+#include "horizon_map.h"
 
 namespace aal {
 
@@ -28,6 +29,11 @@ struct BakeOptions {
   double refraction = 0.13;    // refraction coefficient k: drop = (1 - k) t^2 / 2R
   double maxDistanceM = 0;     // 0 = the whole DEM counts
   bool skyViewFactor = false;  // also compute SVF = 1 - mean sin(max(h, 0))
+  // Also keep the horizon of horizonDirections azimuths (terrain/horizon_map.h):
+  // the sweep's own horizons at k * 360 / horizonDirections degrees, so
+  // `azimuths` must be a multiple of horizonDirections.
+  bool horizons = false;
+  int horizonDirections = kHorizonDirections;
   // Called with the fraction done in [0, 1], from the calling thread.
   std::function<void(double)> progress;
   // When set and true, the bake stops and throws BakeCancelled.
@@ -42,6 +48,7 @@ class BakeCancelled : public std::runtime_error {
 struct BakeResult {
   ApertureMap aperture;              // info filled except `source`
   std::vector<float> skyViewFactor;  // per texel in [0, 1] when requested, else empty
+  HorizonMap horizons;               // when requested, else empty
 };
 
 constexpr double kEarthRadiusM = 6371000.0;

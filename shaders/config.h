@@ -20,6 +20,9 @@
 #define AAL_MODE_DEBUG_SKY_FILL 7
 #define AAL_MODE_DEBUG_OBSCURANCE 8
 #define AAL_MODE_DEBUG_TRANSFER 9
+// The sun through the directional horizons, the sky through the aperture
+// (terrain/horizon_map.h; issue 18).
+#define AAL_MODE_HORIZON 10
 
 // Specialisation constant IDs of the pipelines that shade (shaders/variant.glsl):
 // lavapipe runs every arm of a branch, so the frame's shading mode, albedo
@@ -27,6 +30,14 @@
 #define AAL_SPEC_SHADING_MODE 0
 #define AAL_SPEC_ALBEDO_SOURCE 1
 #define AAL_SPEC_DISPLAY_OUTPUT 2
+
+// The exact cap intersection against the sun as a table (terrain/cap_table.h,
+// shaders/cap_table.glsl, docs/caps.md): texels across the transition band
+// (t = 0: nested .. 1: disjoint) and rows of aperture arc length (graded
+// towards the aperture as large as the sun; (rows - 1) even puts that
+// aperture on a row). Made when the sun's radius changes.
+#define AAL_CAP_TABLE_WIDTH 256
+#define AAL_CAP_TABLE_HEIGHT 65
 
 // Workgroup size of the shading parity compute shader.
 #define AAL_SHADING_PARITY_GROUP_SIZE 64

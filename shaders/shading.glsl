@@ -3,8 +3,16 @@
 #ifndef AAL_SHADING_GLSL
 #define AAL_SHADING_GLSL
 
+#include "cap_table.glsl"
 #include "caps.glsl"
 #include "config.h"
+
+// The exact mode's cap intersection comes from a table made for the frame's
+// sun radius (cap_table.glsl); the includer says where it is bound.
+#ifndef AAL_CAP_TABLE_BINDING
+#error "define AAL_CAP_TABLE_BINDING before including shading.glsl"
+#endif
+layout(set = 0, binding = AAL_CAP_TABLE_BINDING) uniform sampler2D capTable;
 
 struct ShadingInputs {
   vec3 albedo;
@@ -16,6 +24,7 @@ struct ShadingInputs {
   vec3 sunIrradiance;
   vec3 skyRadiance;
   vec3 transfer;
+  float sunHorizonRad;  // horizon mode: the horizon's elevation in the sun's azimuth
 };
 
 struct ShadingTerms {
@@ -24,6 +33,14 @@ struct ShadingTerms {
   float sunFraction;
   vec3 skyIrradiance;
 };
+
+// Twin of horizonSunFraction (terrain/shading.h): the part of the sun's disk
+// above a straight horizon.
+float horizonSunFraction(float sunElevationRad, float horizonRad, float sunRadiusRad) {
+  if (!(sunRadiusRad > 0.0)) return sunElevationRad > horizonRad ? 1.0 : 0.0;
+  float x = clamp((sunElevationRad - horizonRad) / sunRadiusRad, -1.0, 1.0);
+  return 1.0 - (acos(x) - x * sqrt(1.0 - x * x)) / float(AAL_PI);
+}
 
 ShadingTerms shadingTerms(ShadingInputs s, int mode) {
   const float pi = float(AAL_PI);
@@ -42,12 +59,18 @@ ShadingTerms shadingTerms(ShadingInputs s, int mode) {
   // sun's scale (lavapipe's was off by ~1e-3 rad here).
   float d = atan(length(cross(s.bentNormal, s.sunDirection)), dot(s.bentNormal, s.sunDirection));
   float sunArea = capArea(s.sunRadiusRad);
-  float isect = mode == AAL_MODE_EXACT ? capIntersectionExact(s.apertureRad, s.sunRadiusRad, d)
-                                       : capIntersectionApprox(s.apertureRad, s.sunRadiusRad, d);
+  float isect = mode == AAL_MODE_EXACT
+                    ? capIntersectionTable(capTable, s.apertureRad, s.sunRadiusRad, d)
+                    : capIntersectionApprox(s.apertureRad, s.sunRadiusRad, d);
   t.sunFraction = sunArea > 0.0 ? clamp(isect / sunArea, 0.0, 1.0) : 0.0;
   vec3 toCentroid =
       visibleLightCentroid(s.bentNormal, s.sunDirection, d, s.sunRadiusRad, t.sunFraction);
   t.direct = diffuse * s.sunIrradiance * t.sunFraction * max(0.0, dot(s.normal, toCentroid));
+  if (mode == AAL_MODE_HORIZON) {
+    float elevation = atan(s.sunDirection.z, length(s.sunDirection.xy));
+    t.sunFraction = horizonSunFraction(elevation, s.sunHorizonRad, s.sunRadiusRad);
+    t.direct = diffuse * s.sunIrradiance * t.sunFraction * nDotL;
+  }
   float apertureArea = capArea(s.apertureRad);
   float skyShare = apertureArea > 0.0 ? 1.0 - min(1.0, isect / apertureArea) : 0.0;
   float sinR = sin(s.apertureRad);

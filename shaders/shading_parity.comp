@@ -3,6 +3,7 @@
 // compare it with terrain/shading.h (tests/engine/shading_parity_test.cpp).
 #extension GL_GOOGLE_include_directive : require
 
+#define AAL_CAP_TABLE_BINDING 2  // the exact mode's table, for the queries' sun radius
 #include "shading.glsl"
 
 layout(local_size_x = AAL_SHADING_PARITY_GROUP_SIZE) in;
@@ -14,7 +15,7 @@ struct Query {
   vec4 sunRadius;         // xyz sun direction, w: sun radius
   vec4 sunIrradiance;     // rgb
   vec4 skyRadiance;       // rgb
-  vec4 transfer;          // rgb
+  vec4 transfer;          // rgb, w: horizon elevation in the sun's azimuth (horizon mode)
 };
 
 layout(set = 0, binding = 0, std430) readonly buffer Queries { Query queries[]; };
@@ -35,5 +36,6 @@ void main() {
   s.sunIrradiance = q.sunIrradiance.rgb;
   s.skyRadiance = q.skyRadiance.rgb;
   s.transfer = q.transfer.rgb;
+  s.sunHorizonRad = q.transfer.w;
   answers[i] = vec4(shade(s, int(q.albedoMode.w)), 0.0);
 }

@@ -7,12 +7,22 @@
 #ifndef AAL_TERRAIN_SHADING_GLSL
 #define AAL_TERRAIN_SHADING_GLSL
 
+#include "config.h"
+// After the terrain textures and the LOD patches (terrain_vertex.glsl): the
+// exact mode's cap table, the horizon mode's directional horizons.
+#define AAL_CAP_TABLE_BINDING (AAL_TERRAIN_TEXTURES_END + 1)
+#define AAL_HORIZON_BINDING (AAL_TERRAIN_TEXTURES_END + 2)
 #include "frame.glsl"
+#include "horizon.glsl"
 #include "palette.glsl"
 #include "shading.glsl"
 #include "terrain_textures.glsl"
 #include "tone_map.glsl"
 #include "variant.glsl"
+
+// Directions 4l..4l+3 in layer l, the DEM's size, one tile
+// (engine/terrain_scene.h setHorizons; a 1-texel stand-in without them).
+layout(set = 0, binding = AAL_HORIZON_BINDING) uniform sampler2DArray terrainHorizons;
 
 layout(location = 0) in vec3 worldPosition;
 layout(location = 1) in vec2 texelPosition;
@@ -63,6 +73,20 @@ void main() {
   s.sunIrradiance = frame.sunIrradiance.rgb;
   s.skyRadiance = frame.skyRadiance.rgb;
   s.transfer = vec3(1.0);
+  s.sunHorizonRad = -0.5 * float(AAL_PI);
+  if (kShadingMode == AAL_MODE_HORIZON) {
+    // The horizon in the sun's azimuth, bilinear between texel centres.
+    vec2 uv = (texelPosition + 0.5) / frame.dem.xy;
+    // Only the layers of the two directions beside the sun: two fetches.
+    vec3 l = s.sunDirection;
+    float azimuth = abs(l.x) + abs(l.y) > 0.0 ? atan(l.y, l.x) : 0.0;  // any at the zenith
+    int k0, k1;
+    float f;
+    horizonNeighbours(4 * textureSize(terrainHorizons, 0).z, azimuth, k0, k1, f);
+    vec4 layer0 = textureLod(terrainHorizons, vec3(uv, float(k0 / 4)), 0.0);
+    vec4 layer1 = textureLod(terrainHorizons, vec3(uv, float(k1 / 4)), 0.0);
+    s.sunHorizonRad = horizonBetween(horizonCode(layer0, k0), horizonCode(layer1, k1), f);
+  }
   // Aerial perspective: radiance (direct + ambient W) T + L_sky (1 - T).
   float distance = length(worldPosition - frame.cameraPos.xyz);
   float transmittance = exp(-frame.skyRadiance.w * distance);

@@ -17,6 +17,7 @@ layout(constant_id = AAL_SPEC_ALBEDO_SOURCE) const int kAlbedoSource = AAL_ALBED
 layout(constant_id = AAL_SPEC_DISPLAY_OUTPUT) const bool kDisplayOutput = false;
 
 // Debug modes show raw values: no aerial perspective, no tone map.
-const bool kRawOutput = kShadingMode >= AAL_MODE_DEBUG_VISIBLE;
+const bool kRawOutput =
+    kShadingMode >= AAL_MODE_DEBUG_VISIBLE && kShadingMode <= AAL_MODE_DEBUG_TRANSFER;
 
 #endif

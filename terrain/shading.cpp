@@ -5,7 +5,9 @@
 #include <numbers>
 
 #include <glm/geometric.hpp>
+#include <glm/vec2.hpp>
 
+#include "cap_table.h"
 #include "caps.h"
 
 namespace aal {
@@ -30,7 +32,14 @@ namespace {
 constexpr float kPi = std::numbers::pi_v<float>;
 }
 
-ShadingTerms shadingTerms(const ShadingInputs& in, ShadingMode mode) {
+float horizonSunFraction(float sunElevationRad, float horizonRad, float sunRadiusRad) {
+  if (!(sunRadiusRad > 0.0f)) return sunElevationRad > horizonRad ? 1.0f : 0.0f;
+  const float x = std::clamp((sunElevationRad - horizonRad) / sunRadiusRad, -1.0f, 1.0f);
+  return 1.0f - (std::acos(x) - x * std::sqrt(1.0f - x * x)) / kPi;
+}
+
+ShadingTerms shadingTerms(const ShadingInputs& in, ShadingMode mode,
+                          const CapIntersectionTable* exactTable) {
   ShadingTerms t;
   const glm::vec3 diffuse = in.albedo / kPi;
   const float nDotL = std::max(0.0f, glm::dot(in.normal, in.sunDirection));
@@ -50,15 +59,27 @@ ShadingTerms shadingTerms(const ShadingInputs& in, ShadingMode mode) {
   const float d = std::atan2(glm::length(glm::cross(in.bentNormal, in.sunDirection)),
                              glm::dot(in.bentNormal, in.sunDirection));
   const float sunArea = static_cast<float>(capArea(in.sunRadiusRad));
-  const float isect =
-      mode == ShadingMode::Exact
-          ? static_cast<float>(capIntersectionExact(in.apertureRad, in.sunRadiusRad, d))
-          : capIntersectionApprox(in.apertureRad, in.sunRadiusRad, d);
+  float isect;
+  if (mode != ShadingMode::Exact) {  // Approx, and Horizon's sky fill
+    isect = capIntersectionApprox(in.apertureRad, in.sunRadiusRad, d);
+  } else if (exactTable) {
+    isect = capIntersectionFromTable(*exactTable, in.apertureRad, d);
+  } else {
+    isect = static_cast<float>(capIntersectionExact(in.apertureRad, in.sunRadiusRad, d));
+  }
   t.sunFraction = sunArea > 0 ? std::clamp(isect / sunArea, 0.0f, 1.0f) : 0.0f;
   const glm::vec3 centroid =
       visibleLightCentroid(in.bentNormal, in.sunDirection, d, in.sunRadiusRad, t.sunFraction);
   t.direct =
       diffuse * in.sunIrradiance * t.sunFraction * std::max(0.0f, glm::dot(in.normal, centroid));
+  if (mode == ShadingMode::Horizon) {
+    // The sun against the horizon in its azimuth; elevation as atan2 (asin
+    // loses precision near the zenith, GPU versions more so).
+    const float elevation =
+        std::atan2(in.sunDirection.z, glm::length(glm::vec2(in.sunDirection.x, in.sunDirection.y)));
+    t.sunFraction = horizonSunFraction(elevation, in.sunHorizonRad, in.sunRadiusRad);
+    t.direct = diffuse * in.sunIrradiance * t.sunFraction * nDotL;
+  }
   // Sky: a uniform cap of radius r_a centred beta from N gives pi sin^2(r_a)
   // cos(beta); the sun's share of the aperture is left out.
   const float apertureArea = static_cast<float>(capArea(in.apertureRad));
@@ -70,7 +91,7 @@ ShadingTerms shadingTerms(const ShadingInputs& in, ShadingMode mode) {
   return t;
 }
 
-glm::vec3 shade(const ShadingInputs& in, ShadingMode mode) {
+glm::vec3 shade(const ShadingInputs& in, ShadingMode mode, const CapIntersectionTable* exactTable) {
   switch (mode) {
     case ShadingMode::DebugVisible: return glm::vec3(1.0f - std::cos(in.apertureRad));
     case ShadingMode::DebugBentNormal: return in.bentNormal * 0.5f + 0.5f;
@@ -84,7 +105,7 @@ glm::vec3 shade(const ShadingInputs& in, ShadingMode mode) {
     case ShadingMode::DebugObscurance:
     case ShadingMode::DebugTransfer: return in.transfer;
     default: {
-      const ShadingTerms t = shadingTerms(in, mode);
+      const ShadingTerms t = shadingTerms(in, mode, exactTable);
       return t.direct + t.ambient;
     }
   }

@@ -28,6 +28,10 @@ enum class ShadingMode : int {
   // returns the transfer input, which the renderer sets to O or W.
   DebugObscurance = AAL_MODE_DEBUG_OBSCURANCE,
   DebugTransfer = AAL_MODE_DEBUG_TRANSFER,
+  // The sun's visible fraction from the directional horizon at its azimuth
+  // (ShadingInputs::sunHorizonRad, terrain/horizon_map.h), the sky fill from
+  // the aperture as in Approx.
+  Horizon = AAL_MODE_HORIZON,
 };
 
 // Command-line / UI names of the modes (aal-render --mode, the viewer's panel).
@@ -43,6 +47,8 @@ struct ShadingInputs {
   glm::vec3 sunIrradiance{0.0f};    // E_sun at normal incidence
   glm::vec3 skyRadiance{0.0f};      // average sky radiance L_sky
   glm::vec3 transfer{1.0f};         // ambient transfer W (docs/design.md §6), 1 if nothing is near
+  // Horizon mode: the horizon's elevation in the sun's azimuth (rad).
+  float sunHorizonRad = -1.5707963f;
 };
 
 struct ShadingTerms {
@@ -52,10 +58,23 @@ struct ShadingTerms {
   glm::vec3 skyIrradiance{0.0f};  // E_sky
 };
 
+struct CapIntersectionTable;
+
+// The part of the sun's disk (angular radius sunRadiusRad, centre at
+// elevation sunElevationRad) above a horizon at elevation horizonRad: the
+// disk cut by a straight line (the horizon is straight at the sun's scale),
+// 1 - (acos x - x sqrt(1 - x^2)) / pi with x = (e - h) / r_s in [-1, 1].
+float horizonSunFraction(float sunElevationRad, float horizonRad, float sunRadiusRad);
+
 // The terms of docs/design.md §5 for the AAL modes (approx/exact) and the baselines.
-ShadingTerms shadingTerms(const ShadingInputs& in, ShadingMode mode);
+// Exact mode evaluates the closed form (capIntersectionExact, terrain/caps.h)
+// or, given `exactTable` (made for in.sunRadiusRad), reads it from the table
+// as the renderer's shaders do (terrain/cap_table.h).
+ShadingTerms shadingTerms(const ShadingInputs& in, ShadingMode mode,
+                          const CapIntersectionTable* exactTable = nullptr);
 
 // Final linear value: direct + ambient, or the debug quantity of the mode.
-glm::vec3 shade(const ShadingInputs& in, ShadingMode mode);
+glm::vec3 shade(const ShadingInputs& in, ShadingMode mode,
+                const CapIntersectionTable* exactTable = nullptr);
 
 }  // namespace aal

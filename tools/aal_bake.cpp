@@ -74,6 +74,8 @@ struct Options {
   double refraction = 0.13;
   double maxDistance = 0;
   std::string svfPath;
+  std::string horizonsPath;  // directional horizons (docs/baking.md)
+  int horizonDirections = aal::kHorizonDirections;
   std::string visiblePath;
   int threads = 0;
   bool quiet = false;
@@ -119,7 +121,7 @@ void checkOutputs(const Options& o, bool tiled) {
     }
     aal::requireWritableOutput(o.output);
   }
-  for (const std::string& path : {o.svfPath, o.visiblePath}) {
+  for (const std::string& path : {o.svfPath, o.visiblePath, o.horizonsPath}) {
     if (path.empty()) continue;
     aal::requireWritableOutput(path);
   }
@@ -143,8 +145,8 @@ bool checkTiling(const Options& o, const aal::DemSource& dem) {
     throw aal::InputError(why + " needs --max-distance (each tile sees the terrain within it)");
   }
   if (o.method != "sweep") throw aal::InputError(why + " needs --method sweep");
-  if (!o.svfPath.empty() || !o.visiblePath.empty()) {
-    throw aal::InputError(why + " writes no --svf or --visible");
+  if (!o.svfPath.empty() || !o.visiblePath.empty() || !o.horizonsPath.empty()) {
+    throw aal::InputError(why + " writes no --svf, --visible or --horizons");
   }
   return true;
 }
@@ -159,8 +161,10 @@ int run(const Options& o) {
   // Outputs are checked before minutes of work, not after (again once the
   // DEM's size has decided the tiling).
   const bool askedTiled = o.tileSize > 0 || std::filesystem::is_directory(o.output);
-  aal::checkDistinctFiles({{"DEM", o.dem}},
-                          {{"-o", o.output}, {"--svf", o.svfPath}, {"--visible", o.visiblePath}});
+  aal::checkDistinctFiles({{"DEM", o.dem}}, {{"-o", o.output},
+                                             {"--svf", o.svfPath},
+                                             {"--visible", o.visiblePath},
+                                             {"--horizons", o.horizonsPath}});
   checkOutputs(o, askedTiled);
   // A folder another bake is writing is refused before the DEM is read
   // (exit 1, TiledBakeBusy); the lock is held to the end of the bake.
@@ -199,6 +203,16 @@ int run(const Options& o) {
   bake.skyViewFactor = !o.svfPath.empty();
   if (bake.skyViewFactor && bake.method == aal::BakeMethod::Rays) {
     throw aal::InputError("--svf needs --method sweep (the ray reference has no horizons)");
+  }
+  bake.horizons = !o.horizonsPath.empty();
+  if (bake.horizons && bake.method == aal::BakeMethod::Rays) {
+    throw aal::InputError("--horizons needs --method sweep (the ray reference has no horizons)");
+  }
+  bake.horizonDirections = o.horizonDirections;
+  if (bake.horizons && o.azimuths % o.horizonDirections != 0) {
+    throw aal::InputError("--horizons needs --azimuths a multiple of --horizon-directions " +
+                          std::to_string(o.horizonDirections) +
+                          " (the horizons are the sweep's own)");
   }
   aal::ProgressBar progress("aal-bake", !o.quiet);
   bake.progress = [&](double fraction) { progress.update(fraction); };
@@ -256,6 +270,7 @@ int run(const Options& o) {
     if (!o.visiblePath.empty()) {
       writeGisRaster(o.visiblePath, visibleFractions(result.aperture), field, o.cog);
     }
+    if (!o.horizonsPath.empty()) aal::writeHorizonMap(o.horizonsPath, result.horizons);
   } catch (const aal::Interrupted&) {
     std::fprintf(stderr,
                  "aal-bake: interrupted while writing; the outputs written before are kept, the "
@@ -346,6 +361,14 @@ int main(int argc, char** argv) {
   app.add_option("--svf", o.svfPath,
                  "also write the sky-view factor (Zaksek) as a float32 GeoTIFF placed like the DEM "
                  "(its voids nodata)");
+  app.add_option(
+      "--horizons", o.horizonsPath,
+      "also write the directional horizons (--horizon-directions azimuths, 8 bits each) for "
+      "aal-render --mode horizon (docs/baking.md)");
+  app.add_option("--horizon-directions", o.horizonDirections,
+                 "azimuths of --horizons: 4, 8, 12 or 16 (1 byte each per texel)")
+      ->check(CLI::IsMember({4, 8, 12, 16}))
+      ->capture_default_str();
   app.add_option(
       "--visible", o.visiblePath,
       "also write the visible fraction Omega/2pi as a float32 GeoTIFF placed like the DEM");

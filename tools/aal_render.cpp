@@ -37,10 +37,17 @@
 
 namespace {
 
-const std::map<std::string, aal::ShadingMode>& kModes = aal::shadingModeNames();
+// The shading modes of every tool, and the horizon mode, which needs the
+// DEM's directional horizons (--horizons; docs/baking.md).
+const std::map<std::string, aal::ShadingMode> kModes = [] {
+  std::map<std::string, aal::ShadingMode> modes = aal::shadingModeNames();
+  modes.emplace("horizon", aal::ShadingMode::Horizon);
+  return modes;
+}();
 
 struct Options {
   std::string dem, aperture, output, albedo;
+  std::string horizons;  // directional horizons (aal-bake --horizons)
   std::string size = "1280x720";
   std::string camera, lookAt;
   double fovDeg = 40;
@@ -135,9 +142,13 @@ int runComparison(const Options& o, const aal::Heightfield& field, const aal::Te
                   aal::TerrainRenderer& renderer, const aal::FrameSettings& settings,
                   const std::optional<glm::vec3>& albedoValue) {
   aal::ProgressBar bar("ray tracing the reference", !o.quiet);
+  std::vector<aal::ComparedMode> modes = aal::defaultComparedModes(settings);
+  if (scene.horizons()) {
+    modes.push_back({"horizon", aal::ShadingMode::Horizon, settings.obscurance.enabled});
+  }
   const aal::Comparison c =
-      aal::compareModes(renderer, scene, field, settings, aal::defaultComparedModes(settings),
-                        comparisonOptions(o, albedoValue), [&](double f) { bar.update(f); });
+      aal::compareModes(renderer, scene, field, settings, modes, comparisonOptions(o, albedoValue),
+                        [&](double f) { bar.update(f); });
   bar.finish();
   aal::writeComparison(o.compare, c, settings.exposure);
   std::printf("%-20s %14s %22s\n", "mode", "relative RMSE", "mean relative error");
@@ -166,8 +177,14 @@ int run(const Options& o) {
   if (reference && !o.compare.empty()) {
     throw aal::InputError("--compare renders the reference itself: leave out --mode reference");
   }
-  aal::checkDistinctFiles({{"DEM", o.dem}, {"--aperture", o.aperture}, {"--albedo", o.albedo}},
+  aal::checkDistinctFiles({{"DEM", o.dem},
+                           {"--aperture", o.aperture},
+                           {"--albedo", o.albedo},
+                           {"--horizons", o.horizons}},
                           {{"-o", o.output}});
+  if (mode == aal::ShadingMode::Horizon && o.horizons.empty()) {
+    throw aal::InputError("--mode horizon needs --horizons FILE (aal-bake --horizons)");
+  }
   if (!o.output.empty()) {
     if (!aal::isSupportedImageOutput(o.output)) {
       throw aal::InputError("output " + o.output + " must end in .png or .exr");
@@ -269,6 +286,24 @@ int run(const Options& o) {
   }
   inMemory = {};
   albedo.reset();
+  if (!o.horizons.empty()) {
+    aal::HorizonMap horizons;
+    try {
+      horizons = aal::readHorizonMap(o.horizons);
+    } catch (const std::runtime_error& e) {
+      throw aal::InputError(std::string("--horizons: ") + e.what());
+    }
+    if (horizons.width != field.width || horizons.height != field.height) {
+      throw aal::InputError("--horizons " + o.horizons + " is " + std::to_string(horizons.width) +
+                            "x" + std::to_string(horizons.height) + ", the DEM " +
+                            std::to_string(field.width) + "x" + std::to_string(field.height));
+    }
+    try {
+      scene->setHorizons(device, horizons);
+    } catch (const std::invalid_argument& e) {
+      throw aal::InputError(std::string("--horizons: ") + e.what());
+    }
+  }
   aal::TerrainRenderer renderer(device, width, height);
   if (!o.compare.empty()) return runComparison(o, field, *scene, renderer, settings, albedoValue);
   const aal::FrameResult frame =
@@ -312,6 +347,9 @@ int main(int argc, char** argv) {
   for (const auto& [name, mode] : kModes) modes += (modes.empty() ? "" : ", ") + name;
   app.add_option("dem", o.dem, "input DEM")->required();
   app.add_option("--aperture", o.aperture, "aperture map baked from this DEM by aal-bake");
+  app.add_option("--horizons", o.horizons,
+                 "directional horizons baked from this DEM by aal-bake --horizons: for --mode "
+                 "horizon, and --compare adds that mode");
   app.add_option("-o,--output", o.output, "output image: .png (display) or .exr (linear HDR)");
   app.add_option("--compare", o.compare,
                  "instead of -o: render every shading mode and the CPU reference into this "

@@ -96,6 +96,43 @@ TEST_F(Render, LowWesternSunShadowsTheEastSlope) {
   EXPECT_LT(westSky, 0.0f) << "the aperture takes sky away, never sun";
 }
 
+// The horizon mode (issue 18): the plain 600 m east of the ridge sees its top
+// 33.7 degrees up in the west. A sun in the west at 28 degrees is behind the
+// ridge there; one cap per texel (approx) lets it through, the directional
+// horizons do not. At 40 degrees both light it alike.
+TEST_F(Render, HorizonModeShadowsThePlainBehindTheRidge) {
+  const Heightfield f = ridge();
+  BakeOptions o;
+  o.azimuths = 64;
+  o.horizons = true;
+  const BakeResult baked = bakeApertures(f, o);
+  TerrainScene scene(device(), f, baked.aperture, nullptr, 100000);
+  TerrainRenderer renderer(device(), 128, 128);
+  EXPECT_THROW(renderer.render(scene, topView(f, ShadingMode::Horizon, 270, 28), true),
+               std::invalid_argument);
+  scene.setHorizons(device(), baked.horizons);
+  // Pixel 99 of 128 across 2200 m: 600 m east of the crest (29: 600 m west).
+  const auto at = [&](ShadingMode mode, double elevation, int x) {
+    FrameSettings s = topView(f, mode, 270, elevation);
+    s.obscurance.enabled = false;
+    return red(renderer.render(scene, s, true), x, 64);
+  };
+  const float approxLow = at(ShadingMode::Approx, 28, 99),
+              horizonLow = at(ShadingMode::Horizon, 28, 99);
+  EXPECT_LT(horizonLow, 0.5f * approxLow) << "behind the ridge: sky light only";
+  EXPECT_NEAR(at(ShadingMode::Horizon, 28, 29), at(ShadingMode::Approx, 28, 29),
+              0.02f * at(ShadingMode::Approx, 28, 29))
+      << "the open plain west of the ridge sees the sun in both";
+  EXPECT_NEAR(at(ShadingMode::Horizon, 40, 99), at(ShadingMode::Approx, 40, 99),
+              0.02f * at(ShadingMode::Approx, 40, 99))
+      << "above the ridge the sun is seen in both";
+  // A horizon map of another size is refused.
+  HorizonMap small = baked.horizons;
+  small.width -= 1;
+  small.codes.resize(size_t(small.width) * small.height * size_t(small.directions));
+  EXPECT_THROW(scene.setHorizons(device(), small), std::invalid_argument);
+}
+
 TEST_F(Render, ShadowsSoftenAsTheSunGrows) {
   const Heightfield f = ridge();
   const ApertureMap aperture = bake(f);

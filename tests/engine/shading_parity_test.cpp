@@ -1,6 +1,7 @@
 // shade() of shaders/shading.glsl agrees with terrain/shading.h on the device.
 #include <gtest/gtest.h>
 
+#include <array>
 #include <cmath>
 #include <random>
 #include <vector>
@@ -10,10 +11,15 @@
 #include <glm/vec4.hpp>
 
 #include "buffer.h"
+#include "cap_table.h"
 #include "commands.h"
 #include "compute.h"
 #include "config.h"
+#include "descriptors.h"
+#include "horizon_map.h"
+#include "image.h"
 #include "shading.h"
+#include "upload.h"
 #include "vulkan_test.h"
 
 namespace aal {
@@ -32,7 +38,50 @@ glm::vec3 randomUnitAbove(std::mt19937& rng, float minZ) {
   }
 }
 
-class ShadingParity : public VulkanTest {};
+class ShadingParity : public VulkanTest {
+ protected:
+  // shade() of the GLSL for every query, with the exact mode's cap table made
+  // for `table`'s sun radius bound (shaders/cap_table.glsl).
+  std::vector<glm::vec4> shadeOnDevice(const std::vector<Query>& queries,
+                                       const CapIntersectionTable& table) {
+    const uint32_t count = static_cast<uint32_t>(queries.size());
+    Buffer input(device(), count * sizeof(Query), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
+                 MemoryIntent::Upload);
+    Buffer output(device(), count * sizeof(glm::vec4), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
+                  MemoryIntent::Readback);
+    input.write(queries.data(), count * sizeof(Query));
+    const Image image(device(), {AAL_CAP_TABLE_WIDTH, AAL_CAP_TABLE_HEIGHT, VK_FORMAT_R32_SFLOAT,
+                                 VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT});
+    UploadBatch upload(device());
+    upload.addImage(image, sizeof(float), table.values.data());
+    upload.submit();
+    const Sampler sampler(device(), VK_FILTER_LINEAR);
+    {
+      const ComputePipeline pipeline(
+          device(), "shading_parity.comp",
+          {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER,
+           VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER},
+          sizeof(uint32_t));
+      submitAndWait(device(), [&](VkCommandBuffer cmd) {
+        pipeline.record(
+            cmd,
+            DescriptorWrites().storageBuffer(0, input).storageBuffer(1, output).sampledImage(
+                2, image.view(), sampler.handle()),
+            &count, (count + AAL_SHADING_PARITY_GROUP_SIZE - 1) / AAL_SHADING_PARITY_GROUP_SIZE);
+      });
+    }
+    std::vector<glm::vec4> answers(count);
+    output.read(answers.data(), count * sizeof(glm::vec4));
+    return answers;
+  }
+};
+
+Query queryOf(const ShadingInputs& in, int mode) {
+  return {glm::vec4(in.albedo, float(mode)),        glm::vec4(in.normal, 0),
+          glm::vec4(in.bentNormal, in.apertureRad), glm::vec4(in.sunDirection, in.sunRadiusRad),
+          glm::vec4(in.sunIrradiance, 0),           glm::vec4(in.skyRadiance, 0),
+          glm::vec4(in.transfer, in.sunHorizonRad)};
+}
 
 TEST_F(ShadingParity, GlslShadeMatchesCppForEveryMode) {
   std::mt19937 rng(17);
@@ -40,13 +89,15 @@ TEST_F(ShadingParity, GlslShadeMatchesCppForEveryMode) {
   std::vector<Query> queries;
   std::vector<ShadingInputs> inputs;
   std::vector<ShadingMode> modes;
-  const auto add = [&](const ShadingInputs& in, int mode) {
+  // The exact mode reads the cap table made for the frame's sun: the default
+  // one here (the radius of the closed-form cases; random suns in the other
+  // modes), other radii in the test below.
+  const CapIntersectionTable table = makeCapIntersectionTable(ShadingInputs{}.sunRadiusRad);
+  const auto add = [&](ShadingInputs in, int mode) {
+    if (mode == AAL_MODE_EXACT) in.sunRadiusRad = table.lightRadiusRad;
     inputs.push_back(in);
     modes.push_back(static_cast<ShadingMode>(mode));
-    queries.push_back({glm::vec4(in.albedo, float(mode)), glm::vec4(in.normal, 0),
-                       glm::vec4(in.bentNormal, in.apertureRad),
-                       glm::vec4(in.sunDirection, in.sunRadiusRad), glm::vec4(in.sunIrradiance, 0),
-                       glm::vec4(in.skyRadiance, 0), glm::vec4(in.transfer, 0)});
+    queries.push_back(queryOf(in, mode));
   };
   // The cases of the CPU copy's closed-form tests (tests/terrain/shading_test.cpp):
   // apertures below pi/2 and bent normals 20 and 50 degrees from N, the sun
@@ -71,7 +122,7 @@ TEST_F(ShadingParity, GlslShadeMatchesCppForEveryMode) {
       }
     }
   }
-  for (int mode = AAL_MODE_APPROX; mode <= AAL_MODE_DEBUG_TRANSFER; ++mode) {
+  for (int mode = AAL_MODE_APPROX; mode <= AAL_MODE_HORIZON; ++mode) {
     for (int i = 0; i < 500; ++i) {
       ShadingInputs in;
       in.albedo = {unit(rng), unit(rng), unit(rng)};
@@ -86,27 +137,18 @@ TEST_F(ShadingParity, GlslShadeMatchesCppForEveryMode) {
       in.sunIrradiance = {100 * unit(rng), 90 * unit(rng), 80 * unit(rng)};
       in.skyRadiance = {5 * unit(rng), 6 * unit(rng), 9 * unit(rng)};
       in.transfer = {unit(rng), unit(rng), unit(rng)};
+      // Horizons within a few sun radii of the sun (partly hidden), or anywhere.
+      const float elevation = std::asin(std::clamp(in.sunDirection.z, -1.0f, 1.0f));
+      in.sunHorizonRad =
+          i % 2 ? elevation + in.sunRadiusRad * (4.0f * unit(rng) - 2.0f) : 1.2f * unit(rng) - 0.1f;
       add(in, mode);
     }
   }
   const uint32_t count = static_cast<uint32_t>(queries.size());
-  Buffer input(device(), count * sizeof(Query), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
-               MemoryIntent::Upload);
-  Buffer output(device(), count * sizeof(glm::vec4), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
-                MemoryIntent::Readback);
-  input.write(queries.data(), count * sizeof(Query));
-  {
-    const ComputePipeline pipeline(device(), "shading_parity.comp", 2, sizeof(uint32_t));
-    submitAndWait(device(), [&](VkCommandBuffer cmd) {
-      pipeline.record(cmd, {&input, &output}, &count,
-                      (count + AAL_SHADING_PARITY_GROUP_SIZE - 1) / AAL_SHADING_PARITY_GROUP_SIZE);
-    });
-  }
-  std::vector<glm::vec4> answers(count);
-  output.read(answers.data(), count * sizeof(glm::vec4));
+  const std::vector<glm::vec4> answers = shadeOnDevice(queries, table);
   double worst = 0;
   for (uint32_t i = 0; i < count; ++i) {
-    const glm::vec3 expected = shade(inputs[i], modes[i]);
+    const glm::vec3 expected = shade(inputs[i], modes[i], &table);
     const float scale = std::max(1.0f, std::max({expected.r, expected.g, expected.b}));
     for (int c = 0; c < 3; ++c) {
       // Single precision on both sides; near the aperture rim the exact cap
@@ -117,6 +159,100 @@ TEST_F(ShadingParity, GlslShadeMatchesCppForEveryMode) {
     }
   }
   std::printf("shading parity over %u inputs: worst relative difference %.3g\n", count, worst);
+}
+
+// The exact mode with larger suns, each with its own table, suns near the
+// aperture's rim: the GLSL reads the table bound for the frame (a table of
+// another radius, or the closed form in place of the table, would differ).
+TEST_F(ShadingParity, ExactModeReadsTheTableOfTheFramesSun) {
+  std::mt19937 rng(18);
+  std::uniform_real_distribution<float> unit(0.0f, 1.0f);
+  for (const float sun : {0.02f, 0.1f}) {
+    const CapIntersectionTable table = makeCapIntersectionTable(sun);
+    std::vector<Query> queries;
+    std::vector<ShadingInputs> inputs;
+    for (int i = 0; i < 1000; ++i) {
+      ShadingInputs in;
+      in.albedo = glm::vec3(0.3f);
+      in.normal = randomUnitAbove(rng, 0.3f);
+      in.bentNormal = glm::normalize(in.normal + 0.5f * randomUnitAbove(rng, 0.0f));
+      in.apertureRad = 0.01f + 1.6f * unit(rng);
+      const glm::vec3 across =
+          glm::normalize(glm::cross(in.bentNormal, randomUnitAbove(rng, -1.0f)));
+      const float d = in.apertureRad + sun * (3.0f * unit(rng) - 1.5f);
+      in.sunDirection = glm::normalize(std::cos(d) * in.bentNormal + std::sin(d) * across);
+      in.sunRadiusRad = sun;
+      in.sunIrradiance = {100, 90, 80};
+      in.skyRadiance = {5, 6, 9};
+      inputs.push_back(in);
+      queries.push_back(queryOf(in, AAL_MODE_EXACT));
+    }
+    const std::vector<glm::vec4> answers = shadeOnDevice(queries, table);
+    double worst = 0;
+    for (size_t i = 0; i < queries.size(); ++i) {
+      const glm::vec3 expected = shade(inputs[i], ShadingMode::Exact, &table);
+      const float scale = std::max(1.0f, std::max({expected.r, expected.g, expected.b}));
+      for (int c = 0; c < 3; ++c) {
+        EXPECT_NEAR(answers[i][c], expected[c], 2e-3f * scale) << "sun " << sun << " query " << i;
+        worst = std::max(worst, double(std::abs(answers[i][c] - expected[c]) / scale));
+      }
+    }
+    std::printf("exact shading with the %.3f rad sun's table: worst relative difference %.3g\n",
+                sun, worst);
+  }
+}
+
+// horizonAtAzimuth of shaders/horizon.glsl against terrain/horizon_map.h:
+// random codes, azimuths all round (and beyond a turn both ways).
+TEST_F(ShadingParity, HorizonInterpolationMatchesCpp) {
+  struct HorizonQuery {
+    glm::vec4 codes[4], azimuth;
+  };
+  std::mt19937 rng(18);
+  std::uniform_int_distribution<int> code(0, 255);
+  std::uniform_real_distribution<float> azimuth(-7.0f, 14.0f);
+  std::vector<HorizonQuery> queries;
+  std::vector<std::array<uint8_t, kMaxHorizonDirections>> codes;
+  std::vector<int> directions;
+  for (int i = 0; i < 4000; ++i) {
+    std::array<uint8_t, kMaxHorizonDirections> c;
+    for (uint8_t& v : c) v = uint8_t(code(rng));
+    const int n = 4 * (1 + i % 4);  // 4, 8, 12, 16
+    // Every stored direction exactly, then anywhere.
+    const float a = i < 256 ? float(i / 4) * float(2 * 3.14159265358979 / n) : azimuth(rng);
+    codes.push_back(c);
+    directions.push_back(n);
+    HorizonQuery q;
+    for (int l = 0; l < 4; ++l) {
+      q.codes[l] = glm::vec4(c[4 * l], c[4 * l + 1], c[4 * l + 2], c[4 * l + 3]) / 255.0f;
+    }
+    q.azimuth = glm::vec4(a, float(n), 0, 0);
+    queries.push_back(q);
+  }
+  const uint32_t count = static_cast<uint32_t>(queries.size());
+  Buffer input(device(), count * sizeof(HorizonQuery), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
+               MemoryIntent::Upload);
+  Buffer output(device(), count * sizeof(float), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
+                MemoryIntent::Readback);
+  input.write(queries.data(), count * sizeof(HorizonQuery));
+  {
+    const ComputePipeline pipeline(device(), "horizon_parity.comp", 2, sizeof(uint32_t));
+    submitAndWait(device(), [&](VkCommandBuffer cmd) {
+      pipeline.record(cmd, {&input, &output}, &count,
+                      (count + AAL_SHADING_PARITY_GROUP_SIZE - 1) / AAL_SHADING_PARITY_GROUP_SIZE);
+    });
+  }
+  std::vector<float> answers(count);
+  output.read(answers.data(), count * sizeof(float));
+  double worst = 0;
+  for (uint32_t i = 0; i < count; ++i) {
+    const float expected = horizonAtAzimuth(codes[i].data(), directions[i], queries[i].azimuth.x);
+    // Float rounding of the azimuth's position between directions.
+    EXPECT_NEAR(answers[i], expected, 1e-5f)
+        << "query " << i << " azimuth " << queries[i].azimuth.x;
+    worst = std::max(worst, double(std::abs(answers[i] - expected)));
+  }
+  std::printf("horizon interpolation parity over %u inputs: worst %.3g rad\n", count, worst);
 }
 
 }  // namespace

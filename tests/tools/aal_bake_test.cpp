@@ -12,8 +12,10 @@
 #include <thread>
 
 #include "aperture_map.h"
+#include "bake.h"
 #include "dem_loader.h"
 #include "geotiff_writer.h"
+#include "horizon_map.h"
 #include "run_tool.h"
 #include "synthetic.h"
 
@@ -81,6 +83,37 @@ TEST(AalBake, WritesTheApertureMapAndExtras) {
     ASSERT_LE(v, 1.0f);
   }
   EXPECT_EQ(filesIn(dir.path()), 4u);  // dem + three outputs, no temporaries
+}
+
+// --horizons writes the directional horizons of the same bake (docs/baking.md).
+TEST(AalBake, WritesTheDirectionalHorizons) {
+  TempDir dir;
+  const fs::path dem = writeDem(dir, 40);
+  const fs::path out = dir.path() / "a.exr", horizons = dir.path() / "a.horizons";
+  const auto r = runTool("aal-bake", quoted(dem) + " -o " + quoted(out) + " --azimuths 16 " +
+                                         "--horizons " + quoted(horizons) + " -q");
+  ASSERT_EQ(r.exitCode, 0) << r.out;
+  const HorizonMap map = readHorizonMap(horizons);
+  EXPECT_EQ(map.width, 40);
+  EXPECT_EQ(map.height, 40);
+  BakeOptions o;
+  o.azimuths = 16;
+  o.horizons = true;
+  EXPECT_EQ(map.codes, bakeApertures(loadDem(dem.string()), o).horizons.codes);
+  // Horizons the bake cannot give, or that would overwrite another output.
+  for (const std::string& args :
+       {" --azimuths 12 --horizons " + quoted(dir.path() / "h1"),
+        " --method rays --horizons " + quoted(dir.path() / "h2"),
+        " --horizons " + quoted(dir.path() / "b.exr"),  // the -o of the same run
+        " --tile-size 16 --max-distance 100 --horizons " + quoted(dir.path() / "h3")}) {
+    const auto bad = runTool(
+        "aal-bake",
+        quoted(dem) + " -o " +
+            quoted(dir.path() / (args.find("tile") != std::string::npos ? "tiles" : "b.exr")) +
+            args);
+    EXPECT_EQ(bad.exitCode, 2) << args << "\n" << bad.out;
+  }
+  EXPECT_FALSE(fs::exists(dir.path() / "h1"));
 }
 
 TEST(AalBake, QuietPrintsNothing) {

@@ -364,6 +364,46 @@ TEST(AalRender, CompareWritesEveryModeItsErrorMapAndATable) {
   EXPECT_NE(r.out.find("baseline-ao"), std::string::npos) << r.out;
 }
 
+// --horizons (aal-bake --horizons): the horizon mode renders with them,
+// --compare adds it, and without them, or with another DEM's, exit 2.
+TEST(AalRender, HorizonModeTakesTheBakesDirectionalHorizons) {
+  TempDir dir;
+  const fs::path map = dir.path() / "a.exr", horizons = dir.path() / "a.horizons";
+  ASSERT_EQ(runTool("aal-bake",
+                    quoted(kDem) + " -o " + quoted(map) + " --horizons " + quoted(horizons) + " -q")
+                .exitCode,
+            0);
+  const std::string common = "--aperture " + quoted(map) + " --size 64x36 ";
+  const auto r = render(dir, common + "--horizons " + quoted(horizons) + " --mode horizon -o " +
+                                 quoted(dir.path() / "h.png"));
+  ASSERT_EQ(r.exitCode, 0) << r.out;
+  EXPECT_EQ(specOf(dir.path() / "h.png").width, 64);
+  const auto c = render(dir, common + "--horizons " + quoted(horizons) + " --compare " +
+                                 quoted(dir.path() / "cmp") +
+                                 " --reference-sky-rays 16 --reference-sun-rays 4");
+  ASSERT_EQ(c.exitCode, 0) << c.out;
+  EXPECT_TRUE(fs::exists(dir.path() / "cmp" / "horizon-error.png"));
+  EXPECT_NE(c.out.find("horizon"), std::string::npos) << c.out;
+
+  const auto missing = render(dir, common + "--mode horizon -o " + quoted(dir.path() / "m.png"));
+  EXPECT_EQ(missing.exitCode, 2) << missing.out;
+  EXPECT_NE(missing.out.find("--horizons"), std::string::npos) << missing.out;
+  const fs::path other = dir.path() / "other.tif", otherHorizons = dir.path() / "o.horizons";
+  ASSERT_EQ(runTool("aal-synth", "-o " + quoted(other) + " --size 32").exitCode, 0);
+  ASSERT_EQ(runTool("aal-bake", quoted(other) + " -o " + quoted(dir.path() / "o.exr") +
+                                    " --horizons " + quoted(otherHorizons) + " -q")
+                .exitCode,
+            0);
+  const auto foreign = render(dir, common + "--horizons " + quoted(otherHorizons) +
+                                       " --mode horizon -o " + quoted(dir.path() / "f.png"));
+  EXPECT_EQ(foreign.exitCode, 2) << foreign.out;
+  const auto notAMap = render(dir, common + "--horizons " + quoted(other) + " --mode horizon -o " +
+                                       quoted(dir.path() / "n.png"));
+  EXPECT_EQ(notAMap.exitCode, 2) << notAMap.out;
+  EXPECT_FALSE(fs::exists(dir.path() / "m.png") || fs::exists(dir.path() / "f.png") ||
+               fs::exists(dir.path() / "n.png"));
+}
+
 TEST(AalRender, ReferenceAndCompareRefuseWhatTheyCannotDo) {
   TempDir dir;
   const fs::path albedo = dir.path() / "albedo.png";
