@@ -218,7 +218,8 @@ int run(const Options& o) {
   settings.obscurance = obscurance;
   settings.albedoValue = albedoValue;
   const double aspect = double(width) / double(height);
-  settings.camera = aal::defaultCamera(field, aspect);
+  // Framed for the field of view asked for (docs/rendering.md, "Default camera").
+  settings.camera = aal::defaultCamera(field, aspect, o.fovDeg);
   if (!o.camera.empty()) settings.camera.position = aal::parseTriple("--camera", o.camera);
   if (!o.lookAt.empty()) settings.camera.lookAt = aal::parseTriple("--look-at", o.lookAt);
   aal::requireCameraDirection(settings.camera.position, settings.camera.lookAt);
