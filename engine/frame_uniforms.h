@@ -18,7 +18,7 @@ struct FrameUniforms {
   glm::vec4 dem{0.0f};            // width, height, cell x, cell y
   glm::vec4 heights{0.0f};        // min, max, water level, water on
   glm::ivec4 grid{0};             // LOD patch quads, LOD levels, mode, albedo source (AAL_ALBEDO_*)
-  glm::vec4 display{0.0f};        // exposure, raw output
+  glm::vec4 display{0.0f};        // exposure, raw output, background alpha
   glm::vec4 albedoValue{0.0f};    // rgb constant albedo
   glm::vec4 obscurance{0.0f};     // R (m), n, m
   glm::ivec4 obscurancePass{0};   // on, interleaved + filtered, pixel size (1 or 2)

@@ -393,7 +393,8 @@ bool TerrainRenderer::writeUniforms(const TerrainScene& scene, const FrameSettin
                s.waterLevelM ? 1.0f : 0.0f};
   u.grid = {kLodPatchQuads, scene.lod().levels(), static_cast<int>(s.mode),
             albedoSourceOf(scene, s)};
-  u.display = {s.exposure, isDebug(s.mode) ? 1.0f : 0.0f, 0.0f, 0.0f};
+  u.display = {s.exposure, isDebug(s.mode) ? 1.0f : 0.0f, s.transparentBackground ? 0.0f : 1.0f,
+               0.0f};
   u.albedoValue = glm::vec4(s.albedoValue.value_or(glm::vec3(0.0f)), 0.0f);
   const ObscuranceSettings& o = s.obscurance;
   const bool obscurance = o.enabled && usesTransfer(s.mode);

@@ -53,6 +53,10 @@ struct FrameSettings {
   // The terrain's quadtree LOD (terrain/quadtree_lod.h); the triangle budget
   // is the scene's.
   LodSettings lod;
+  // Pixels without terrain (the sky, or the debug views' black) get alpha 0
+  // in the display and linear images instead of 1; their colour is kept
+  // (aal-render --background transparent).
+  bool transparentBackground = false;
 };
 
 // The sun and sky of `light` (direction, irradiance, average sky radiance,

@@ -63,7 +63,8 @@ struct Options {
   std::optional<double> obscuranceRadiusM;
   int obscuranceSamples = aal::ObscuranceSettings{}.samples, obscuranceSteps = 1;
   bool noObscurance = false;
-  std::string compare;  // folder for --compare
+  std::string background = "sky";  // --background sky|transparent
+  std::string compare;             // folder for --compare
   int referenceSunRays = 16, referenceSkyRays = 64;
 };
 
@@ -173,6 +174,10 @@ int run(const Options& o) {
     }
     aal::requireWritableOutput(o.output);
   }
+  if (o.background == "transparent" && (reference || !o.compare.empty())) {
+    throw aal::InputError("--background transparent is for -o images of the GPU renderer, not " +
+                          std::string(reference ? "--mode reference" : "--compare"));
+  }
   if (o.sunAzimuth.has_value() != o.sunElevation.has_value()) {
     throw aal::InputError("give --sun-azimuth and --sun-elevation together");
   }
@@ -225,6 +230,7 @@ int run(const Options& o) {
   aal::requireCameraDirection(settings.camera.position, settings.camera.lookAt);
   settings.camera.verticalFovDeg = o.fovDeg;
   settings.lod.maxErrorPixels = o.lodErrorPixels;
+  settings.transparentBackground = o.background == "transparent";
   applySkyLighting(light, settings);
   settings.sunRadiusRad = static_cast<float>(o.sunRadiusDeg * M_PI / 180.0);
   const double visibilityM =
@@ -375,6 +381,11 @@ int main(int argc, char** argv) {
   app.add_option("--visibility", o.visibilityKm,
                  "distance haze: visibility in km (default: 20 DEM diagonals, at least 200)")
       ->check(CLI::Range(0.1, 1e6));
+  app.add_option("--background", o.background,
+                 "what pixels without terrain show: sky, or transparent (alpha 0 in the PNG or "
+                 "EXR; their colour stays the sky's)")
+      ->check(CLI::IsMember({"sky", "transparent"}))
+      ->capture_default_str();
   app.add_option("--water-level", o.waterLevelM,
                  "paint terrain at or below this height (m) as water (default: no water)");
   app.add_option("--mode", o.mode,

@@ -34,9 +34,12 @@ OIIO::ImageSpec specOf(const fs::path& path) {
   return in->spec();
 }
 
-// The decoded 8-bit pixels of an image, empty when it cannot be read.
+// The decoded 8-bit pixels of an image as stored (colour not multiplied by
+// alpha), empty when it cannot be read.
 std::vector<uint8_t> pixelsOf(const fs::path& path) {
-  auto in = OIIO::ImageInput::open(path.string());
+  OIIO::ImageSpec config;
+  config.attribute("oiio:UnassociatedAlpha", 1);
+  auto in = OIIO::ImageInput::open(path.string(), &config);
   if (!in) return {};
   const OIIO::ImageSpec& spec = in->spec();
   std::vector<uint8_t> pixels(spec.image_pixels() * spec.nchannels);
@@ -310,8 +313,8 @@ TEST(AalRender, WaterOnlyAtTheLevelAsked) {
                              high = shot("high.png", "--water-level 5000");
   ASSERT_FALSE(dry.empty());
   EXPECT_EQ(low, dry);  // below the lowest height (~250 m): nothing changes
-  // Every terrain pixel is water now (the terrain fills ~14 % of this
-  // frame; the sky keeps its colour).
+  // Every terrain pixel is water now (the terrain fills 36 % of this framed
+  // view; the sky keeps its colour).
   size_t darker = 0, pixels = dry.size() / 4;
   for (size_t p = 0; p < pixels; ++p) {
     const int before = dry[4 * p] + dry[4 * p + 1] + dry[4 * p + 2];
@@ -321,6 +324,40 @@ TEST(AalRender, WaterOnlyAtTheLevelAsked) {
   EXPECT_GT(darker, pixels / 10);
   const auto r = render(dir, "-o " + quoted(dir.path() / "x.png") + " --water-level nan");
   EXPECT_EQ(r.exitCode, 2) << r.out;
+}
+
+// Issue 19: --background transparent gives alpha 0 where there is no terrain
+// (the PNG keeps the sky's colour there), alpha 255 on the terrain, the same
+// RGB as the default; the default camera frames the DEM (its diamond covers
+// 36 % of the frame, 14 % with the camera before issue 19). Bad values and the CPU paths are
+// refused with exit 2.
+TEST(AalRender, TransparentBackgroundHasAlphaZeroOffTheTerrain) {
+  TempDir dir;
+  const fs::path sky = dir.path() / "sky.png", clear = dir.path() / "clear.png";
+  ASSERT_EQ(render(dir, "-o " + quoted(sky) + " --size 64x36 -q").exitCode, 0);
+  const auto r = render(dir, "-o " + quoted(clear) + " --size 64x36 -q --background transparent");
+  ASSERT_EQ(r.exitCode, 0) << r.out;
+  ASSERT_EQ(specOf(clear).nchannels, 4);
+  const std::vector<uint8_t> a = pixelsOf(sky), b = pixelsOf(clear);
+  ASSERT_EQ(a.size(), 64u * 36 * 4);
+  ASSERT_EQ(b.size(), a.size());
+  size_t terrain = 0;
+  for (size_t p = 0; p < a.size() / 4; ++p) {
+    for (int c = 0; c < 3; ++c) ASSERT_EQ(a[4 * p + c], b[4 * p + c]) << p;
+    EXPECT_EQ(a[4 * p + 3], 255);
+    ASSERT_TRUE(b[4 * p + 3] == 0 || b[4 * p + 3] == 255) << p;
+    terrain += b[4 * p + 3] == 255;
+  }
+  EXPECT_EQ(b[3], 0);                         // top-left corner: beyond the DEM
+  EXPECT_EQ(b[4 * (18 * 64 + 32) + 3], 255);  // the centre: terrain
+  EXPECT_GT(terrain, a.size() / 4 * 3 / 10);  // framed: 36 %, was 14 % before issue 19
+  EXPECT_LT(terrain, a.size() / 4 * 9 / 10);
+  for (const std::string& bad : {std::string("--background purple"),
+                                 std::string("--background transparent --mode reference")}) {
+    const auto e = render(dir, "-o " + quoted(dir.path() / "x.png") + " --size 32x18 " + bad);
+    EXPECT_EQ(e.exitCode, 2) << bad << "\n" << e.out;
+    EXPECT_NE(e.out.find("--background"), std::string::npos) << e.out;
+  }
 }
 
 TEST(AalRender, NoVulkanDriverSaysHowToGetOne) {
