@@ -53,6 +53,7 @@ struct Options {
   std::optional<double> waterLevelM;
   std::string mode = "approx";
   std::optional<double> cellSize, zScale;
+  double exaggeration = 1.0;
   int device = -1;
   size_t triangleBudget = 2'000'000;
   double lodErrorPixels = aal::LodSettings{}.maxErrorPixels;
@@ -191,6 +192,7 @@ int run(const Options& o) {
   aal::DemLoadOptions load;
   load.cellSizeM = o.cellSize;
   load.zScale = o.zScale;
+  load.exaggeration = o.exaggeration;
   const aal::Heightfield field = aal::loadDem(o.dem, load);
   aal::requireRenderableDem(field);
   const aal::ObscuranceSettings obscurance = aal::obscuranceFromOptions(
@@ -236,7 +238,8 @@ int run(const Options& o) {
   const double visibilityM =
       o.visibilityKm ? *o.visibilityKm * 1000 : aal::defaultVisibilityM(field);
   settings.hazeDensityPerM = static_cast<float>(aal::hazeDensityForVisibility(visibilityM));
-  if (o.waterLevelM) settings.waterLevelM = static_cast<float>(*o.waterLevelM);
+  // The level is in the DEM's metres; the drawn heights are exaggerated.
+  if (o.waterLevelM) settings.waterLevelM = static_cast<float>(*o.waterLevelM * o.exaggeration);
   if (o.ev100) {
     settings.exposure = aal::exposureFromEv100(static_cast<float>(*o.ev100));
   } else {
@@ -402,6 +405,12 @@ int main(int argc, char** argv) {
       ->check(aal::kPositive);
   app.add_option("--z-scale", o.zScale, "metres per height unit (as given to aal-bake)")
       ->check(aal::kPositive);
+  app.add_option("--exaggeration", o.exaggeration,
+                 "vertical exaggeration: heights times X (the aperture map is baked for it: "
+                 "cached per exaggeration; a map given with --aperture must have been baked with "
+                 "the same z scale)")
+      ->check(CLI::Range(0.01, 100.0))
+      ->capture_default_str();
   app.add_option("--device", o.device, "Vulkan device index (default: the best one)")
       ->check(aal::kNonNegative);
   app.add_option("--triangles", o.triangleBudget,

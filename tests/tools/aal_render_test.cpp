@@ -299,6 +299,50 @@ TEST(AalRender, RefusesAnApertureMapBakedForAnotherCellSize) {
   EXPECT_EQ(cached, 2u);
 }
 
+// Issue 19: --exaggeration X multiplies the heights; the aperture map is
+// baked for it (one cache entry per exaggeration, reused), and a map baked
+// for other heights is refused with the z scales and the way out named.
+TEST(AalRender, ExaggerationBakesForItOrRefusesAMapOfAnotherZScale) {
+  TempDir dir;
+  const fs::path dem = dir.path() / "d.tif", map = dir.path() / "d.exr",
+                 map3 = dir.path() / "d3.exr";
+  ASSERT_EQ(runTool("aal-synth", "-o " + quoted(dem) + " --size 48").exitCode, 0);
+  const std::string cache = "AAL_CACHE_DIR=" + quoted(dir.path() / "cache");
+  const auto shot = [&](const std::string& name, const std::string& extra) {
+    const fs::path out = dir.path() / name;
+    const auto r =
+        runTool("aal-render", quoted(dem) + " -o " + quoted(out) + " --size 48x27 " + extra, cache);
+    EXPECT_EQ(r.exitCode, 0) << r.out;
+    EXPECT_EQ(r.out.find("rebaking"), std::string::npos) << r.out;
+    return pixelsOf(out);
+  };
+  const std::vector<uint8_t> flat = shot("1.png", ""), tall = shot("3.png", "--exaggeration 3");
+  ASSERT_FALSE(flat.empty());
+  EXPECT_NE(flat, tall);
+  EXPECT_EQ(shot("3b.png", "--exaggeration 3"), tall);  // from the cache, same picture
+  size_t cached = 0;
+  for ([[maybe_unused]] const auto& e : fs::directory_iterator(dir.path() / "cache")) ++cached;
+  EXPECT_EQ(cached, 2u);
+  // A map baked without the exaggeration: refused, saying why and how.
+  ASSERT_EQ(runTool("aal-bake", quoted(dem) + " -o " + quoted(map) + " -q").exitCode, 0);
+  const std::string png = " -o " + quoted(dir.path() / "x.png") + " --size 48x27";
+  const auto r = runTool("aal-render",
+                         quoted(dem) + " --exaggeration 3 --aperture " + quoted(map) + png, cache);
+  EXPECT_EQ(r.exitCode, 2) << r.out;
+  EXPECT_NE(r.out.find("baked for heights at z scale 1, these are at 3"), std::string::npos)
+      << r.out;
+  EXPECT_NE(r.out.find("aal-bake --z-scale 3"), std::string::npos) << r.out;
+  // The way out works: a map baked at that z scale draws the cached map's picture.
+  ASSERT_EQ(runTool("aal-bake", quoted(dem) + " --z-scale 3 -o " + quoted(map3) + " -q").exitCode,
+            0);
+  EXPECT_EQ(shot("3c.png", "--exaggeration 3 --aperture " + quoted(map3)), tall);
+  for (const char* bad : {"0", "-1", "101", "nan"}) {
+    const auto e = runTool("aal-render", quoted(dem) + png + " --exaggeration " + bad, cache);
+    EXPECT_EQ(e.exitCode, 2) << bad << "\n" << e.out;
+    EXPECT_NE(e.out.find("--exaggeration"), std::string::npos) << e.out;
+  }
+}
+
 // Issue 19, item 4: water only where the user asks; a georeferenced DEM
 // no longer paints every height <= 0 m as a lake.
 TEST(AalRender, WaterOnlyAtTheLevelAsked) {
