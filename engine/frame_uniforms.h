@@ -29,9 +29,10 @@ struct FrameUniforms {
   glm::mat4 previousViewProj{1.0f};  // the previous frame's (obscurance reuse)
   glm::ivec4 history{-1, 0, 0, 0};   // subset (-1: all), history valid, previous extent
   glm::vec4 pixelAngle{0.0f};        // x: 2 tan(fov / 2) / extent height
+  glm::vec4 base{0.0f};              // solid base: rgb albedo, w: bottom height (m)
   PreethamSky sky;
 };
-static_assert(sizeof(FrameUniforms) == 3 * 64 + 17 * 16 + sizeof(PreethamSky),
+static_assert(sizeof(FrameUniforms) == 3 * 64 + 18 * 16 + sizeof(PreethamSky),
               "FrameUniforms must match the std140 Frame block of shaders/frame.glsl");
 
 }  // namespace aal

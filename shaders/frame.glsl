@@ -27,6 +27,7 @@ layout(set = 0, binding = 0, std140) uniform Frame {
   ivec4 history;         // obscurance reuse: subset (-1: every sample), history valid (0/1),
                          // previous extent (pixels)
   vec4 pixelAngle;       // x: 2 tan(fov / 2) / extent height: a pixel's size per metre away
+  vec4 base;             // solid base (base.vert): rgb albedo, w: its bottom height (m)
   PreethamSky sky;
 }
 frame;

@@ -67,9 +67,10 @@ glm::mat4 projectionMatrix(const Camera& camera, double aspect, const DepthRange
   return glm::mat4(p);
 }
 
-Camera defaultCamera(const Heightfield& field, double aspect, double verticalFovDeg) {
+Camera defaultCamera(const Heightfield& field, double aspect, double verticalFovDeg,
+                     double belowM) {
   const auto [zMin, zMax] = heightRange(field);
-  return framingCamera(demExtentM(field), zMin, zMax, aspect, 135.0, 30.0, verticalFovDeg);
+  return framingCamera(demExtentM(field), zMin - belowM, zMax, aspect, 135.0, 30.0, verticalFovDeg);
 }
 
 Camera framingCamera(glm::dvec2 extentM, double zMin, double zMax, double aspect, double azimuthDeg,

@@ -32,7 +32,9 @@ glm::mat4 projectionMatrix(const Camera& camera, double aspect, const DepthRange
 
 // The camera the tools start with: framingCamera of the DEM's bounding box
 // from the south-east, 30 degrees above the horizon, for that field of view.
-Camera defaultCamera(const Heightfield& field, double aspect, double verticalFovDeg = 40.0);
+// `belowM`: a solid base that deep under the lowest point is framed too.
+Camera defaultCamera(const Heightfield& field, double aspect, double verticalFovDeg = 40.0,
+                     double belowM = 0.0);
 
 // The camera looking from (azimuthDeg clockwise from north, elevationDeg
 // above the horizon) that frames the box of a DEM (extent in metres, centred

@@ -65,15 +65,17 @@ struct Options {
   int obscuranceSamples = aal::ObscuranceSettings{}.samples, obscuranceSteps = 1;
   bool noObscurance = false;
   std::string background = "sky";  // --background sky|transparent
-  std::string compare;             // folder for --compare
+  std::optional<double> baseDepthM;
+  std::string baseColor = "0.35,0.3,0.25";
+  std::string compare;  // folder for --compare
   int referenceSunRays = 16, referenceSkyRays = 64;
 };
 
 // The CPU ray tracer's name on --mode (not a GPU shading mode).
 constexpr const char* kReferenceMode = "reference";
 
-// --albedo-value: one grey value or R,G,B, each in [0, 1].
-glm::vec3 parseAlbedoValue(const std::string& text) {
+// --albedo-value, --base-color: one grey value or R,G,B, each in [0, 1].
+glm::vec3 parseAlbedoValue(const std::string& text, const std::string& option = "--albedo-value") {
   std::istringstream in(text);
   glm::dvec3 v;
   char c1 = 0, c2 = 0;
@@ -85,8 +87,7 @@ glm::vec3 parseAlbedoValue(const std::string& text) {
   }
   for (int c = 0; c < 3 && ok; ++c) ok = v[c] >= 0 && v[c] <= 1;
   if (!ok) {
-    throw aal::InputError("--albedo-value must be A or R,G,B with values in [0, 1], got '" + text +
-                          "'");
+    throw aal::InputError(option + " must be A or R,G,B with values in [0, 1], got '" + text + "'");
   }
   return glm::vec3(v);
 }
@@ -175,6 +176,11 @@ int run(const Options& o) {
     }
     aal::requireWritableOutput(o.output);
   }
+  if (o.baseDepthM && (reference || !o.compare.empty())) {
+    throw aal::InputError("--base is drawn by the GPU renderer into -o images, not " +
+                          std::string(reference ? "--mode reference" : "--compare"));
+  }
+  const glm::vec3 baseAlbedo = parseAlbedoValue(o.baseColor, "--base-color");
   if (o.background == "transparent" && (reference || !o.compare.empty())) {
     throw aal::InputError("--background transparent is for -o images of the GPU renderer, not " +
                           std::string(reference ? "--mode reference" : "--compare"));
@@ -226,13 +232,16 @@ int run(const Options& o) {
   settings.albedoValue = albedoValue;
   const double aspect = double(width) / double(height);
   // Framed for the field of view asked for (docs/rendering.md, "Default camera").
-  settings.camera = aal::defaultCamera(field, aspect, o.fovDeg);
+  const double baseDepthM = o.baseDepthM.value_or(0.0) * o.exaggeration;
+  settings.camera = aal::defaultCamera(field, aspect, o.fovDeg, baseDepthM);
   if (!o.camera.empty()) settings.camera.position = aal::parseTriple("--camera", o.camera);
   if (!o.lookAt.empty()) settings.camera.lookAt = aal::parseTriple("--look-at", o.lookAt);
   aal::requireCameraDirection(settings.camera.position, settings.camera.lookAt);
   settings.camera.verticalFovDeg = o.fovDeg;
   settings.lod.maxErrorPixels = o.lodErrorPixels;
   settings.transparentBackground = o.background == "transparent";
+  // The depth is in the DEM's metres, like the heights before --exaggeration.
+  if (o.baseDepthM) settings.base = aal::FrameSettings::Base{float(baseDepthM), baseAlbedo};
   applySkyLighting(light, settings);
   settings.sunRadiusRad = static_cast<float>(o.sunRadiusDeg * M_PI / 180.0);
   const double visibilityM =
@@ -388,6 +397,12 @@ int main(int argc, char** argv) {
                  "what pixels without terrain show: sky, or transparent (alpha 0 in the PNG or "
                  "EXR; their colour stays the sky's)")
       ->check(CLI::IsMember({"sky", "transparent"}))
+      ->capture_default_str();
+  app.add_option("--base", o.baseDepthM,
+                 "draw a solid base under the DEM: side walls from its edge down to DEPTH metres "
+                 "below its lowest point, and a bottom")
+      ->check(CLI::Range(0.001, 1e6));
+  app.add_option("--base-color", o.baseColor, "albedo of the base: A or R,G,B in [0, 1]")
       ->capture_default_str();
   app.add_option("--water-level", o.waterLevelM,
                  "paint terrain at or below this height (m) as water (default: no water)");

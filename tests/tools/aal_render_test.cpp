@@ -343,6 +343,47 @@ TEST(AalRender, ExaggerationBakesForItOrRefusesAMapOfAnotherZScale) {
   }
 }
 
+// Issue 19: --base DEPTH draws walls and a bottom under the DEM: from a
+// fixed camera more opaque pixels than without (transparent background), a
+// deeper base more still; the default camera frames the base too (the last
+// rows, the 5 % margin, stay empty); bad values exit 2.
+TEST(AalRender, BaseAddsWallsUnderTheDem) {
+  TempDir dir;
+  const auto image = [&](const std::string& extra) {
+    const fs::path out = dir.path() / "b.png";
+    const auto r =
+        render(dir, "-o " + quoted(out) + " --size 64x36 -q --background transparent " + extra);
+    EXPECT_EQ(r.exitCode, 0) << r.out;
+    return pixelsOf(out);
+  };
+  const auto opaque = [](const std::vector<uint8_t>& p) {
+    size_t n = 0;
+    for (size_t i = 3; i < p.size(); i += 4) n += p[i] > 0;
+    return n;
+  };
+  const std::string camera = "--camera 30000,-30000,15000 --look-at 0,0,0 ";
+  const size_t none = opaque(image(camera)), shallow = opaque(image(camera + "--base 500")),
+               deep = opaque(image(camera + "--base 3000 --base-color 0.2,0.2,0.25"));
+  EXPECT_GT(shallow, none + 32);
+  EXPECT_GT(deep, shallow + 32);
+  const std::vector<uint8_t> framed = image("--base 3000");
+  ASSERT_EQ(framed.size(), 64u * 36 * 4);
+  size_t lastRow = 0;
+  for (size_t i = 3; i < framed.size(); i += 4) {
+    if (framed[i] > 0) lastRow = (i / 4) / 64;
+  }
+  EXPECT_GE(lastRow, 30u);  // the base reaches the framed picture's lower margin
+  EXPECT_LT(lastRow, 35u);  // and ends inside it
+  for (const std::string& bad :
+       {std::string("--base 0"), std::string("--base -5"), std::string("--base 100 --base-color 2"),
+        std::string("--base 100 --base-color 0.1,0.2"),
+        std::string("--base 100 --mode reference")}) {
+    const auto e = render(dir, "-o " + quoted(dir.path() / "x.png") + " --size 32x18 " + bad);
+    EXPECT_EQ(e.exitCode, 2) << bad << "\n" << e.out;
+    EXPECT_NE(e.out.find("--base"), std::string::npos) << e.out;
+  }
+}
+
 // Issue 19, item 4: water only where the user asks; a georeferenced DEM
 // no longer paints every height <= 0 m as a lake.
 TEST(AalRender, WaterOnlyAtTheLevelAsked) {
