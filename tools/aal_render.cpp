@@ -17,13 +17,16 @@
 #include "atmosphere.h"
 #include "atomic_file.h"
 #include "camera.h"
+#include "camera_path.h"
 #include "dem_loader.h"
 #include "device.h"
 #include "instance.h"
+#include "interrupt.h"
 #include "lighting_defaults.h"
 #include "mode_comparison.h"
 #include "progress.h"
 #include "reference_renderer.h"
+#include "render_sequence.h"
 #include "screenshot.h"
 #include "sky_lighting.h"
 #include "solar_position.h"
@@ -68,6 +71,11 @@ struct Options {
   std::optional<double> baseDepthM;
   std::string baseColor = "0.35,0.3,0.25";
   std::string compare;  // folder for --compare
+  // Image sequences: --camera-path and/or --time-range START END, --frames N.
+  std::string cameraPath;
+  std::vector<std::string> timeRange;
+  std::optional<int> frames;
+  double fps = 30;
   int referenceSunRays = 16, referenceSkyRays = 64;
 };
 
@@ -99,6 +107,59 @@ aal::SkyLighting lightingFor(const Options& o, const aal::Heightfield& field) {
   }
   return aal::makeSkyLighting(o.sunAzimuth.value_or(315.0), o.sunElevation.value_or(45.0),
                               o.turbidity);
+}
+
+// A sequence's checks and its time range, before any work.
+struct Sequence {
+  std::optional<aal::CameraPath> path;
+  std::optional<aal::UtcTime> start, end;
+  int frames = 0;
+};
+std::optional<Sequence> sequenceOf(const Options& o, bool reference) {
+  const bool wanted = !o.cameraPath.empty() || !o.timeRange.empty();
+  if (!wanted) {
+    if (o.frames) throw aal::InputError("--frames needs --camera-path FILE or --time-range");
+    return std::nullopt;
+  }
+  if (!o.frames) {
+    throw aal::InputError("--camera-path and --time-range need --frames N (how many images)");
+  }
+  if (*o.frames < 1 || *o.frames > 1'000'000) {
+    throw aal::InputError("--frames must be in [1, 1000000], got " + std::to_string(*o.frames));
+  }
+  if (reference || !o.compare.empty()) {
+    throw aal::InputError(std::string("an image sequence (--camera-path, --time-range) is for -o "
+                                      "images of the GPU renderer, not ") +
+                          (reference ? "--mode reference" : "--compare"));
+  }
+  Sequence s;
+  s.frames = *o.frames;
+  if (!o.cameraPath.empty()) {
+    if (!o.camera.empty() || !o.lookAt.empty()) {
+      throw aal::InputError("--camera-path sets the camera: leave out --camera and --look-at");
+    }
+    s.path = aal::CameraPath::load(o.cameraPath);
+  }
+  if (!o.timeRange.empty()) {
+    if (!o.time.empty() || o.sunAzimuth) {
+      throw aal::InputError(
+          "--time-range sets the sun: leave out --time, --sun-azimuth and --sun-elevation");
+    }
+    s.start = aal::parseIso8601Utc(o.timeRange[0]);
+    s.end = aal::parseIso8601Utc(o.timeRange[1]);
+    for (int i = 0; i < 2; ++i) {
+      if (!(i == 0 ? s.start : s.end)) {
+        throw aal::InputError(
+            "--time-range takes two ISO 8601 times, e.g. 2024-06-21T10:00Z, got '" +
+            o.timeRange[i] + "'");
+      }
+    }
+    if (!(aal::secondsBetween(*s.start, *s.end) > 0)) {
+      throw aal::InputError("--time-range END (" + o.timeRange[1] + ") must come after START (" +
+                            o.timeRange[0] + ")");
+    }
+  }
+  return s;
 }
 
 aal::ComparisonOptions comparisonOptions(const Options& o,
@@ -154,6 +215,54 @@ int runComparison(const Options& o, const aal::Heightfield& field, const aal::Te
   return aal::kExitOk;
 }
 
+// --camera-path / --time-range: frames OUT-0001.ext ... and, for PNG frames
+// with ffmpeg installed, OUT.mp4 (docs/rendering.md).
+int renderSequence(const Options& o, const Sequence& seq, const aal::Heightfield& field,
+                   const aal::TerrainScene& scene, aal::TerrainRenderer& renderer,
+                   aal::FrameSettings settings) {
+  const aal::GeoPlace place = aal::defaultSunPlace(field);
+  const double lat = o.lat.value_or(place.latitudeDeg), lon = o.lon.value_or(place.longitudeDeg);
+  aal::ProgressBar bar("rendering " + std::to_string(seq.frames) + " frames", !o.quiet);
+  const auto start = std::chrono::steady_clock::now();
+  for (int i = 0; i < seq.frames; ++i) {
+    if (seq.path) settings.camera = seq.path->at(seq.path->frameTime(i, seq.frames));
+    if (seq.start) {
+      const aal::UtcTime t = aal::sequenceTime(*seq.start, *seq.end, i, seq.frames);
+      const aal::SolarPosition sun = aal::solarPosition(t, lat, lon);
+      aal::applySkyLighting(
+          aal::makeSkyLighting(sun.azimuthDeg, sun.elevationDeg, o.turbidity, sun.sunDistanceAu),
+          settings);
+    }
+    aal::throwIfInterrupted();
+    const aal::FrameResult frame =
+        renderer.render(scene, settings, aal::wantsLinearOutput(o.output));
+    aal::writeFrame(aal::sequenceFramePath(o.output, i, seq.frames), frame);
+    bar.update(double(i + 1) / seq.frames);
+  }
+  bar.finish();
+  const double seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  const std::string first = aal::sequenceFramePath(o.output, 0, seq.frames),
+                    last = aal::sequenceFramePath(o.output, seq.frames - 1, seq.frames);
+  if (!o.quiet) {
+    std::fprintf(stderr, "aal-render: %d frames in %.1f s (%.0f ms each): %s .. %s\n", seq.frames,
+                 seconds, 1e3 * seconds / seq.frames, first.c_str(), last.c_str());
+  }
+  if (aal::wantsLinearOutput(o.output)) return aal::kExitOk;  // EXR frames: no movie
+  const std::optional<std::string> ffmpeg = aal::findFfmpeg();
+  const std::string mp4 = (std::filesystem::path(o.output).replace_extension(".mp4")).string();
+  if (!ffmpeg) {
+    if (!o.quiet) {
+      std::fprintf(stderr, "aal-render: ffmpeg not found (Debian: apt-get install ffmpeg): no %s\n",
+                   mp4.c_str());
+    }
+    return aal::kExitOk;
+  }
+  aal::encodeMp4(*ffmpeg, aal::sequencePattern(o.output, seq.frames), o.fps, mp4);
+  if (!o.quiet) std::fprintf(stderr, "aal-render: wrote %s\n", mp4.c_str());
+  return aal::kExitOk;
+}
+
 int run(const Options& o) {
   const bool reference = o.mode == kReferenceMode;
   const aal::ShadingMode mode = reference ? aal::ShadingMode::Approx : kModes.at(o.mode);
@@ -187,6 +296,14 @@ int run(const Options& o) {
   }
   if (o.sunAzimuth.has_value() != o.sunElevation.has_value()) {
     throw aal::InputError("give --sun-azimuth and --sun-elevation together");
+  }
+  const std::optional<Sequence> sequence = sequenceOf(o, reference);
+  if (sequence) {
+    aal::checkDistinctFiles({{"DEM", o.dem},
+                             {"--aperture", o.aperture},
+                             {"--albedo", o.albedo},
+                             {"--camera-path", o.cameraPath}},
+                            {{"-o", o.output}});
   }
 
   if (!o.albedo.empty() && !o.albedoValue.empty()) {
@@ -225,7 +342,8 @@ int run(const Options& o) {
       if (!o.quiet) std::fprintf(stderr, "note: %s\n", m.c_str());
     });
   }
-  const aal::SkyLighting light = lightingFor(o, field);
+  const aal::SkyLighting light =
+      sequence && sequence->start ? aal::SkyLighting{} : lightingFor(o, field);
   aal::FrameSettings settings;
   settings.mode = mode;
   settings.obscurance = obscurance;
@@ -289,6 +407,7 @@ int run(const Options& o) {
   albedo.reset();
   aal::TerrainRenderer renderer(device, width, height);
   if (!o.compare.empty()) return runComparison(o, field, *scene, renderer, settings, albedoValue);
+  if (sequence) return renderSequence(o, *sequence, field, *scene, renderer, settings);
   const aal::FrameResult frame =
       renderer.render(*scene, settings, aal::wantsLinearOutput(o.output));
   aal::writeFrame(o.output, frame);
@@ -443,6 +562,18 @@ int main(int argc, char** argv) {
                  "to a multiple of 32 (tests; by default only DEMs beyond the device's largest "
                  "image are tiled)")
       ->check(CLI::Range(aal::kTerrainMipAlignment, uint32_t(1) << 20));
+  app.add_option("--camera-path", o.cameraPath,
+                 "render an image sequence along this camera path (aal-view's format: lines of "
+                 "TIME_S X Y Z LOOK_X LOOK_Y LOOK_Z [FOV_DEG]), --frames images spread from its "
+                 "first keyframe to its last, into OUT-0001.png ... (and OUT.mp4 with ffmpeg)");
+  app.add_option("--time-range", o.timeRange,
+                 "render an image sequence with the sun from START to END (UTC, ISO 8601), "
+                 "--frames images, both ends included (a time-lapse)")
+      ->expected(2);
+  app.add_option("--frames", o.frames, "images in a --camera-path or --time-range sequence");
+  app.add_option("--fps", o.fps, "frame rate of the sequence's MP4")
+      ->check(CLI::Range(1.0, 240.0))
+      ->capture_default_str();
   app.add_flag("--stats", o.stats, "print per-pass GPU times and the triangle count");
   app.add_flag("-q,--quiet", o.quiet, "no progress messages");
   return aal::runTool(app, argc, argv, [&] { return run(o); });

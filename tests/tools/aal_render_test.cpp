@@ -384,6 +384,113 @@ TEST(AalRender, BaseAddsWallsUnderTheDem) {
   }
 }
 
+// Issue 19, item 3: --time-range START END --frames N writes OUT-0001.png
+// ... OUT-000N.png, the first and last being the renders at START and END,
+// with a progress bar; without ffmpeg (AAL_FFMPEG set empty) no MP4 and a
+// note saying how to get one.
+TEST(AalRender, TimeRangeWritesANumberedSequence) {
+  TempDir dir;
+  const fs::path out = dir.path() / "day.png";
+  const auto r = runTool("aal-render",
+                         quoted(kDem) + " -o " + quoted(out) +
+                             " --size 48x27 --time-range 2024-06-21T12:00Z 2024-06-22T00:00Z "
+                             "--frames 3",
+                         "AAL_FFMPEG= AAL_CACHE_DIR=" + quoted(dir.path() / "cache"));
+  ASSERT_EQ(r.exitCode, 0) << r.out;
+  EXPECT_NE(r.out.find("rendering 3 frames"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("ffmpeg not found"), std::string::npos) << r.out;
+  EXPECT_FALSE(fs::exists(dir.path() / "day.mp4"));
+  EXPECT_FALSE(fs::exists(out));
+  const std::vector<uint8_t> first = pixelsOf(dir.path() / "day-0001.png"),
+                             middle = pixelsOf(dir.path() / "day-0002.png"),
+                             last = pixelsOf(dir.path() / "day-0003.png");
+  ASSERT_EQ(first.size(), 48u * 27 * 4);
+  EXPECT_FALSE(fs::exists(dir.path() / "day-0004.png"));
+  const auto single = [&](const std::string& time) {
+    const fs::path one = dir.path() / "one.png";
+    EXPECT_EQ(render(dir, "-o " + quoted(one) + " --size 48x27 -q --time " + time).exitCode, 0);
+    return pixelsOf(one);
+  };
+  EXPECT_EQ(first, single("2024-06-21T12:00:00Z"));
+  EXPECT_EQ(middle, single("2024-06-21T18:00:00Z"));
+  EXPECT_EQ(last, single("2024-06-22T00:00:00Z"));
+  EXPECT_NE(first, middle);
+}
+
+// A --camera-path sequence (aal-view's format) frames its keyframes: with
+// two keyframes and --frames 2 the images are the renders from each
+// keyframe's --camera, --look-at and --fov.
+TEST(AalRender, CameraPathSequenceFollowsTheKeyframes) {
+  TempDir dir;
+  const fs::path path = dir.path() / "flight.txt", out = dir.path() / "fly.png";
+  std::ofstream(path) << "# t x y z lx ly lz fov\n"
+                         "0 -20000 -20000 6000 0 0 300 40\n"
+                         "10 20000 -15000 4000 0 2000 300 55\n";
+  const auto r = render(dir, "-o " + quoted(out) + " --size 48x27 -q --camera-path " +
+                                 quoted(path) + " --frames 2 --sun-azimuth 200 --sun-elevation 40");
+  ASSERT_EQ(r.exitCode, 0) << r.out;
+  const auto single = [&](const std::string& camera) {
+    const fs::path one = dir.path() / "one.png";
+    EXPECT_EQ(render(dir, "-o " + quoted(one) +
+                              " --size 48x27 -q --sun-azimuth 200 --sun-elevation 40 " + camera)
+                  .exitCode,
+              0);
+    return pixelsOf(one);
+  };
+  const std::vector<uint8_t> a = pixelsOf(dir.path() / "fly-0001.png"),
+                             b = pixelsOf(dir.path() / "fly-0002.png");
+  ASSERT_FALSE(a.empty());
+  EXPECT_EQ(a, single("--camera -20000,-20000,6000 --look-at 0,0,300 --fov 40"));
+  EXPECT_EQ(b, single("--camera 20000,-15000,4000 --look-at 0,2000,300 --fov 55"));
+}
+
+// With ffmpeg installed (optional, Debian's ffmpeg) the PNG frames also
+// become OUT.mp4, H.264 with every frame.
+TEST(AalRender, SequenceBecomesAnMp4WhenFfmpegIsInstalled) {
+  if (std::system("command -v ffmpeg >/dev/null 2>&1 && command -v ffprobe >/dev/null 2>&1") != 0) {
+    GTEST_SKIP() << "ffmpeg/ffprobe not installed";
+  }
+  TempDir dir;
+  const fs::path out = dir.path() / "lapse.png", mp4 = dir.path() / "lapse.mp4";
+  const auto r = render(dir, "-o " + quoted(out) +
+                                 " --size 47x27 --time-range 2024-06-21T12:00Z 2024-06-21T20:00Z "
+                                 "--frames 5 --fps 10");
+  ASSERT_EQ(r.exitCode, 0) << r.out;
+  ASSERT_TRUE(fs::exists(mp4)) << r.out;
+  const auto probe = test::runShell(
+      "ffprobe -v error -count_frames -select_streams v:0 -show_entries "
+      "stream=codec_name,nb_read_frames,width,r_frame_rate -of csv=p=0 " +
+      quoted(mp4));
+  ASSERT_EQ(probe.exitCode, 0) << probe.out;
+  // Odd widths are padded to even ones for H.264's 4:2:0.
+  EXPECT_NE(probe.out.find("h264,48,10/1,5"), std::string::npos) << probe.out;
+}
+
+TEST(AalRender, BadSequenceOptionsExitWithTwoAndSayWhich) {
+  TempDir dir;
+  const fs::path path = dir.path() / "flight.txt";
+  std::ofstream(path) << "0 -20000 -20000 6000 0 0 300\n";
+  const std::string o = "-o " + quoted(dir.path() / "x.png") + " --size 32x18 ";
+  const std::string p = " --camera-path " + quoted(path);
+  for (const auto& [args, says] : std::vector<std::pair<std::string, std::string>>{
+           {"--frames 3", "--frames"},
+           {p, "--frames"},
+           {p + " --frames 0", "--frames"},
+           {"--time-range 2024-06-21T12:00Z 2024-06-21T10:00Z --frames 2", "after START"},
+           {"--time-range 2024-06-21T12:00Z noon --frames 2", "--time-range"},
+           {"--time-range 2024-06-21T12:00Z --frames 2", "--time-range"},
+           {"--time-range 2024-06-21T12:00Z 2024-06-21T14:00Z --frames 2 --time "
+            "2024-06-21T12:00Z",
+            "--time-range"},
+           {p + " --frames 2 --camera 1,2,3", "--camera-path"},
+           {p + " --frames 2 --mode reference", "--mode reference"},
+           {" --camera-path " + quoted(dir.path() / "none.txt") + " --frames 2", "none.txt"}}) {
+    const auto r = render(dir, o + args);
+    EXPECT_EQ(r.exitCode, 2) << args << "\n" << r.out;
+    EXPECT_NE(r.out.find(says), std::string::npos) << args << "\n" << r.out;
+  }
+}
+
 // Issue 19, item 4: water only where the user asks; a georeferenced DEM
 // no longer paints every height <= 0 m as a lake.
 TEST(AalRender, WaterOnlyAtTheLevelAsked) {
