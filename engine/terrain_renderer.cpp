@@ -249,6 +249,25 @@ struct TerrainRenderer::Passes {
                         variantConstants(mode, albedo, display)});
   }
 
+  // The solid base, drawn in the terrain's rendering with the terrain's
+  // bindings (its vertex shader reads the heights at the DEM's edge); with
+  // the G-buffer it writes "no surface" to the other targets itself.
+  const GraphicsPipeline& base(TexturePaging paging, ShadingMode mode, bool gbuffer, bool display) {
+    display = display && !gbuffer;
+    const bool paged = paging == TexturePaging::All;
+    const std::string key = std::string("base/") + (paged ? "p/" : "1/") +
+                            std::to_string(int(mode)) +
+                            (gbuffer   ? "/g"
+                             : display ? "/d"
+                                       : "/h");
+    std::vector<VkFormat> formats{display ? displayFormat : kHdrFormat};
+    if (gbuffer) formats = {kHdrFormat, kAmbientFormat, kSurfaceFormat};
+    return cached(
+        key, {paged ? "base_paged.vert" : "base.vert", gbuffer ? "base_gbuffer.frag" : "base.frag",
+              terrainBindings({VK_DESCRIPTOR_TYPE_STORAGE_BUFFER}), 0, formats, kDepthFormat, true,
+              true, VK_CULL_MODE_BACK_BIT, false, variantConstants(mode, 0, display)});
+  }
+
   // The sky, after the terrain at the far plane with the depth test on, so
   // only the pixels the terrain left empty run its shader; with the
   // G-buffer in the same rendering (one rendering fewer: lavapipe loads and
@@ -311,6 +330,10 @@ struct TerrainRenderer::Passes {
               false, false, VK_CULL_MODE_NONE, false, variantConstants(mode, albedo, false)});
   }
 };
+
+uint32_t baseVertexCount(uint32_t width, uint32_t height) {
+  return 6 * (2 * (width - 1) + 2 * (height - 1) + 1);
+}
 
 void applySkyLighting(const SkyLighting& light, FrameSettings& settings) {
   settings.sunDirection = light.sunDirection;
@@ -414,8 +437,9 @@ bool TerrainRenderer::writeUniforms(const TerrainScene& scene, const FrameSettin
   const double aspect = double(extent_.width) / double(extent_.height);
   // The depth range must hold the whole DEM: approximate it from the box.
   const glm::vec4 dem = scene.demInfo();
+  const double bottom = scene.minHeight() - (s.base ? double(s.base->depthM) : 0.0);
   const DepthRange range = depthRangeFor(s.camera, {(dem.x - 1.0) * dem.z, (dem.y - 1.0) * dem.w},
-                                         scene.minHeight(), scene.maxHeight());
+                                         bottom, scene.maxHeight());
 
   FrameUniforms u;
   u.viewProj = projectionMatrix(s.camera, aspect, range) * viewMatrix(s.camera);
@@ -430,8 +454,10 @@ bool TerrainRenderer::writeUniforms(const TerrainScene& scene, const FrameSettin
                s.waterLevelM ? 1.0f : 0.0f};
   u.grid = {kLodPatchQuads, scene.lod().levels(), static_cast<int>(s.mode),
             albedoSourceOf(scene, s)};
-  u.display = {s.exposure, isDebug(s.mode) ? 1.0f : 0.0f, 0.0f, 0.0f};
+  u.display = {s.exposure, isDebug(s.mode) ? 1.0f : 0.0f, s.transparentBackground ? 0.0f : 1.0f,
+               0.0f};
   u.albedoValue = glm::vec4(s.albedoValue.value_or(glm::vec3(0.0f)), 0.0f);
+  if (s.base) u.base = glm::vec4(s.base->albedo, float(bottom));
   const ObscuranceSettings& o = s.obscurance;
   const bool obscurance = o.enabled && usesTransfer(s.mode);
   if (obscurance) {
@@ -628,6 +654,15 @@ void TerrainRenderer::record(VkCommandBuffer cmd, const TerrainScene& scene, con
             nullptr);
   vkCmdBindIndexBuffer(cmd, scene.indices().handle(), 0, VK_INDEX_TYPE_UINT32);
   drawPatches(cmd);
+  if (s.base) {
+    passes_->base(paging, s.mode, obscurance, direct)
+        .bind(cmd,
+              terrainWrites(uniforms_, scene, passes_->terrainSampler.handle())
+                  .storageBuffer(kAfterTerrainTextures, patches_),
+              nullptr);
+    const glm::vec4 dem = scene.demInfo();
+    vkCmdDraw(cmd, baseVertexCount(uint32_t(dem.x), uint32_t(dem.y)), 1, 0, 0);
+  }
   timer_.end(cmd);
   if (skyApart) {
     vkCmdEndRendering(cmd);

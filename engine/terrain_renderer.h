@@ -54,7 +54,23 @@ struct FrameSettings {
   // The terrain's quadtree LOD (terrain/quadtree_lod.h); the triangle budget
   // is the scene's.
   LodSettings lod;
+  // Pixels without terrain (the sky, or the debug views' black) get alpha 0
+  // in the display and linear images instead of 1; their colour is kept
+  // (aal-render --background transparent).
+  bool transparentBackground = false;
+  // A solid base under the DEM (aal-render --base): side walls from the
+  // DEM's edge down to depthM below its lowest height, and a bottom, of
+  // albedo `albedo` (shaders/base_vertex.glsl, base_shading.glsl).
+  struct Base {
+    float depthM = 0.0f;
+    glm::vec3 albedo{0.3f};
+  };
+  std::optional<Base> base;
 };
+
+// Vertices of the solid base of a width x height DEM: two triangles per DEM
+// cell along each edge and two for the bottom (shaders/base_vertex.glsl).
+uint32_t baseVertexCount(uint32_t width, uint32_t height);
 
 // The sun and sky of `light` (direction, irradiance, average sky radiance,
 // the sky model) into `settings`; the sun's radius, haze and exposure are the

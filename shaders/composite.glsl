@@ -60,8 +60,8 @@ void main() {
   ivec2 pixel = ivec2(gl_FragCoord.xy);
   vec3 ambient = weightedAmbient(pixel);
 #ifdef AAL_COMPOSITE_DISPLAY
-  vec3 radiance = texelFetch(hdrImage, pixel, 0).rgb + ambient;
-  color = vec4(displayValue(radiance, frame.display.x, kRawOutput), 1.0);
+  vec4 hdr = texelFetch(hdrImage, pixel, 0);  // alpha: 1 on terrain, the background's on sky
+  color = vec4(displayValue(hdr.rgb + ambient, frame.display.x, kRawOutput), hdr.a);
 #else
   color = vec4(ambient, 0.0);
 #endif

@@ -102,6 +102,12 @@
 #define AAL_XYZ_TO_LINEAR_SRGB_ROW0 3.2404542, -1.5371385, -0.4985314
 #define AAL_XYZ_TO_LINEAR_SRGB_ROW1 -0.9692660, 1.8760108, 0.0415560
 #define AAL_XYZ_TO_LINEAR_SRGB_ROW2 0.0556434, -0.2040259, 1.0572252
+// CIE daylight locus y_D(x) = A x^2 + B x + C (CIE 15:2004, "Colorimetry",
+// eq. 3.3; Judd, MacAdam & Wyszecki 1964). The sky's chromaticity is kept on
+// or above it (terrain/sky_model.h, docs/sun-and-sky.md).
+#define AAL_DAYLIGHT_LOCUS_A -3.000
+#define AAL_DAYLIGHT_LOCUS_B 2.870
+#define AAL_DAYLIGHT_LOCUS_C -0.275
 // Hable's filmic curve (Uncharted 2, GDC 2010): shoulder strength A, linear
 // strength B, linear angle C, toe strength D, toe numerator E, toe
 // denominator F, linear white point W.

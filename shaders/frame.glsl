@@ -15,7 +15,7 @@ layout(set = 0, binding = 0, std140) uniform Frame {
   vec4 dem;              // width, height (texels), cell size x, y (m)
   vec4 heights;          // min, max (m), water level (m), water on (0/1)
   ivec4 grid;            // LOD patch quads, LOD levels, shading mode, albedo source (AAL_ALBEDO_*)
-  vec4 display;          // exposure, raw output (1: debug values, no tone map), 0, 0
+  vec4 display;          // exposure, raw output (1: debug values, no tone map), background alpha, 0
   vec4 albedoValue;      // rgb constant albedo (source AAL_ALBEDO_CONSTANT)
   vec4 obscurance;       // R (m), samples n, steps m, 0
   ivec4 obscurancePass;  // on (0/1), interleaved + filtered (0/1), pixel size (1 or 2), 0
@@ -27,6 +27,7 @@ layout(set = 0, binding = 0, std140) uniform Frame {
   ivec4 history;         // obscurance reuse: subset (-1: every sample), history valid (0/1),
                          // previous extent (pixels)
   vec4 pixelAngle;       // x: 2 tan(fov / 2) / extent height: a pixel's size per metre away
+  vec4 base;             // solid base (base.vert): rgb albedo, w: its bottom height (m)
   PreethamSky sky;
 }
 frame;

@@ -15,12 +15,13 @@ layout(location = 0) out vec4 color;
 
 void main() {
   if (kRawOutput) {  // debug views: black background
-    color = vec4(0.0, 0.0, 0.0, 1.0);
+    color = vec4(0.0, 0.0, 0.0, frame.display.z);
     return;
   }
   vec4 farPoint = frame.invViewProj * vec4(uv * 2.0 - 1.0, 1.0, 1.0);
   vec3 direction = farPoint.xyz / farPoint.w - frame.cameraPos.xyz;
   // Below the horizon (beyond the DEM) the haze carries on the horizon colour.
   vec3 radiance = textureLod(skyTable, skyLutCoordinate(direction), 0.0).rgb;
-  color = vec4(kDisplayOutput ? toneMap(radiance, frame.display.x) : radiance, 1.0);
+  // Alpha: frame.display.z, 0 for a transparent background.
+  color = vec4(kDisplayOutput ? toneMap(radiance, frame.display.x) : radiance, frame.display.z);
 }

@@ -29,8 +29,17 @@ vec3 xyYToLinearSrgb(float x, float y, float luminanceY) {
   return max(rgb, vec3(0.0));
 }
 
+// The chromaticity y raised to the CIE daylight locus where it lies below it:
+// twin of daylightLocusLift in terrain/sky_model.h (why: docs/sun-and-sky.md).
+float daylightLocusLift(float x, float y) {
+  float locus = (float(AAL_DAYLIGHT_LOCUS_A) * x + float(AAL_DAYLIGHT_LOCUS_B)) * x +
+                float(AAL_DAYLIGHT_LOCUS_C);
+  return max(y, locus);
+}
+
 // Sky radiance (kcd/m², linear sRGB) along viewDir (any non-zero vector, z up):
-// the Perez function of Y, x, y scaled by the zenith values (paper eq. 3).
+// the Perez function of Y, x, y scaled by the zenith values (paper eq. 3), y
+// kept on or above the daylight locus.
 vec3 skyRadiance(PreethamSky sky, vec3 viewDir) {
   vec3 v = normalize(viewDir);
   vec3 s = sky.sunDirection.xyz;
@@ -41,7 +50,7 @@ vec3 skyRadiance(PreethamSky sky, vec3 viewDir) {
            (1.0 + sky.perezC.xyz * exp(sky.perezD.xyz * gamma) +
             sky.perezE.xyz * (cosGamma * cosGamma));
   vec3 yxy = sky.zenith.xyz * f;  // (Y, x, y)
-  return xyYToLinearSrgb(yxy.y, yxy.z, yxy.x);
+  return xyYToLinearSrgb(yxy.y, daylightLocusLift(yxy.y, yxy.z), yxy.x);
 }
 
 #endif

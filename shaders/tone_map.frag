@@ -12,6 +12,6 @@ layout(location = 0) in vec2 uv;
 layout(location = 0) out vec4 color;
 
 void main() {
-  vec3 hdr = texelFetch(hdrImage, ivec2(gl_FragCoord.xy), 0).rgb;
-  color = vec4(displayValue(hdr, frame.display.x, frame.display.y > 0.5), 1.0);
+  vec4 hdr = texelFetch(hdrImage, ivec2(gl_FragCoord.xy), 0);  // alpha kept (background)
+  color = vec4(displayValue(hdr.rgb, frame.display.x, frame.display.y > 0.5), hdr.a);
 }

@@ -15,5 +15,5 @@ layout(location = 0) out vec4 color;
 void main() {
   vec2 extent = vec2(frame.extent.xy);
   vec2 pixel = clamp(uv * extent, vec2(0.5), extent - 0.5);
-  color = vec4(textureLod(drawn, pixel / vec2(textureSize(drawn, 0)), 0.0).rgb, 1.0);
+  color = textureLod(drawn, pixel / vec2(textureSize(drawn, 0)), 0.0);
 }

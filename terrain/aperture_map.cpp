@@ -667,6 +667,20 @@ void checkApertureMatchesDem(const ApertureMapHeader& map, const std::string& ma
                      std::to_string(field.height));
   }
   if (map.info.sourceChecksum != heightfieldChecksum(field)) {
+    // Another z scale (a vertical exaggeration is one) changes every height:
+    // say so, and how to get a matching map.
+    if (map.info.zScale > 0 &&
+        std::abs(map.info.zScale - field.zScale) > 1e-6 * std::max(map.info.zScale, field.zScale)) {
+      char scales[160];
+      std::snprintf(scales, sizeof scales,
+                    "it was baked for heights at z scale %.9g, these are at %.9g", map.info.zScale,
+                    field.zScale);
+      char fix[120];
+      std::snprintf(fix, sizeof fix, "aal-bake --z-scale %.9g", field.zScale);
+      throw InputError(pair + ": " + scales +
+                       " (the file's z scale times --z-scale or --exaggeration); bake it with " +
+                       fix + ", or leave out --aperture to bake one into the cache");
+    }
     throw InputError(pair + ": it was baked from other heights (" + map.info.source +
                      "); bake it again with aal-bake");
   }

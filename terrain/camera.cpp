@@ -1,7 +1,9 @@
 #include "camera.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
+#include <limits>
 #include <numbers>
 #include <stdexcept>
 
@@ -66,44 +68,79 @@ glm::mat4 projectionMatrix(const Camera& camera, double aspect, const DepthRange
   return glm::mat4(p);
 }
 
-Camera defaultCamera(const Heightfield& field, double aspect) {
-  const glm::dvec2 extent = demExtentM(field);
-  // Plain variables, not structured bindings: the lambda below captures them.
-  const std::pair<float, float> heights = heightRange(field);
-  const float zMin = heights.first, zMax = heights.second;
+Camera defaultCamera(const Heightfield& field, double aspect, double verticalFovDeg,
+                     double belowM) {
+  const auto [zMin, zMax] = heightRange(field);
+  return framingCamera(demExtentM(field), zMin - belowM, zMax, aspect, 135.0, 30.0, verticalFovDeg);
+}
+
+Camera framingCamera(glm::dvec2 extentM, double zMin, double zMax, double aspect, double azimuthDeg,
+                     double elevationDeg, double verticalFovDeg, double fill) {
   Camera camera;
-  camera.verticalFovDeg = 40.0;
-  camera.lookAt = {0.0, 0.0, 0.5 * (zMin + zMax)};
-  const double elevation = 30.0 * kDegToRad, azimuth = 135.0 * kDegToRad;  // from the south-east
-  const glm::dvec3 fromTarget(std::cos(elevation) * std::sin(azimuth),
-                              std::cos(elevation) * std::cos(azimuth), std::sin(elevation));
-  // The closest distance at which every corner of the DEM's box stays inside
-  // 90% of the image (bisection on the distance; the sphere bound is far
-  // enough to start from).
-  const double radius = 0.5 * std::sqrt(extent.x * extent.x + extent.y * extent.y +
-                                        double(zMax - zMin) * (zMax - zMin));
-  auto fits = [&](double distance) {
-    Camera c = camera;
-    c.position = camera.lookAt + distance * fromTarget;
-    DepthRange range{distance * 1e-3, distance * 10};
-    const glm::mat4 m = projectionMatrix(c, aspect, range) * viewMatrix(c);
-    for (double sx : {-0.5, 0.5}) {
-      for (double sy : {-0.5, 0.5}) {
-        for (double z : {double(zMin), double(zMax)}) {
-          const glm::vec4 p =
-              m * glm::vec4(float(sx * extent.x), float(sy * extent.y), float(z), 1);
-          if (p.w <= 0 || std::abs(p.x / p.w) > 0.9f || std::abs(p.y / p.w) > 0.9f) return false;
-        }
-      }
-    }
-    return true;
-  };
-  double lo = 0.1 * radius, hi = 10.0 * radius + 1.0;
-  for (int i = 0; i < 60; ++i) {
-    const double mid = 0.5 * (lo + hi);
-    (fits(mid) ? hi : lo) = mid;
+  camera.verticalFovDeg = verticalFovDeg;
+  const double elevation = elevationDeg * kDegToRad, azimuth = azimuthDeg * kDegToRad;
+  // Camera frame: forward f (from the camera towards the DEM), right r, up u.
+  const glm::dvec3 f = -glm::dvec3(std::cos(elevation) * std::sin(azimuth),
+                                   std::cos(elevation) * std::cos(azimuth), std::sin(elevation));
+  const glm::dvec3 r = glm::normalize(glm::cross(f, glm::dvec3(0, 0, 1)));
+  const glm::dvec3 u = glm::cross(r, f);
+  std::array<glm::dvec3, 8> corners;
+  for (int i = 0; i < 8; ++i) {
+    corners[i] = {(i & 1 ? 0.5 : -0.5) * extentM.x, (i & 2 ? 0.5 : -0.5) * extentM.y,
+                  i & 4 ? zMax : zMin};
   }
-  camera.position = camera.lookAt + hi * fromTarget;
+  // A corner q lies within `fill` of the image's half-width and half-height
+  // iff it is behind none of the four planes through the camera p with
+  // normals n = ±r - a f and ±u - b f (a, b: fill times the tangents of the
+  // half fields of view), i.e. q.n <= p.n for every n. With p = X r + Y u +
+  // Z f the right and left planes give X - a Z >= h_R and -X - a Z >= h_L
+  // (h: the largest q.n over the corners), both tight for X = (h_R - h_L) / 2,
+  // Z = -(h_R + h_L) / 2a; likewise Y and Z from the top and bottom. The
+  // pair that needs the camera farther back (smaller Z) touches the box on
+  // both sides; the other pair is then loose, and its coordinate is moved
+  // (it does not change the first pair's planes) until the box's extremes
+  // along it are symmetric in the image.
+  const double b = fill * std::tan(0.5 * verticalFovDeg * kDegToRad);
+  const double a = b * aspect;
+  const auto highest = [&](const glm::dvec3& n) {
+    double h = -std::numeric_limits<double>::infinity();
+    for (const glm::dvec3& q : corners) h = std::max(h, glm::dot(q, n));
+    return h;
+  };
+  const double hR = highest(r - a * f), hL = highest(-r - a * f);
+  const double hT = highest(u - b * f), hB = highest(-u - b * f);
+  const double zH = -(hR + hL) / (2.0 * a), zV = -(hT + hB) / (2.0 * b);
+  const double z = std::min(zH, zV);
+  double x = 0.5 * (hR - hL), y = 0.5 * (hT - hB);
+  // Centre the loose axis (axis = r, tangent a, coordinate x; or u, b, y):
+  // the sum of the largest and smallest image coordinate decreases as the
+  // camera moves along the axis; within the feasible interval [h_+ + t Z,
+  // -h_- - t Z] it changes sign (at each end one extreme is at the edge).
+  const auto centreAxis = [&](const glm::dvec3& axis, double t, double hPlus, double hMinus,
+                              double& coordinate) {
+    double lo = hPlus + t * z, hi = -hMinus - t * z;
+    for (int i = 0; i < 100 && hi - lo > 1e-9 * (std::abs(lo) + std::abs(hi) + 1.0); ++i) {
+      coordinate = 0.5 * (lo + hi);
+      const glm::dvec3 p = x * r + y * u + z * f;
+      double most = -1e300, least = 1e300;
+      for (const glm::dvec3& q : corners) {
+        const double s = glm::dot(q - p, axis) / glm::dot(q - p, f);
+        most = std::max(most, s);
+        least = std::min(least, s);
+      }
+      (most + least > 0.0 ? lo : hi) = coordinate;
+    }
+    coordinate = 0.5 * (lo + hi);
+  };
+  if (zH <= zV) {
+    centreAxis(u, b, hT, hB, y);
+  } else {
+    centreAxis(r, a, hR, hL, x);
+  }
+  camera.position = x * r + y * u + z * f;
+  // Look at the point of the optical axis as deep as the box's centre.
+  const glm::dvec3 centre(0.0, 0.0, 0.5 * (zMin + zMax));
+  camera.lookAt = camera.position + std::max(glm::dot(centre - camera.position, f), 1.0) * f;
   return camera;
 }
 

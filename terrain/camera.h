@@ -30,9 +30,21 @@ DepthRange depthRangeFor(const Camera& camera, glm::dvec2 extentM, double zMin, 
 glm::mat4 viewMatrix(const Camera& camera);
 glm::mat4 projectionMatrix(const Camera& camera, double aspect, const DepthRange& range);
 
-// The camera the tools start with: from the south-east, 30 degrees above the
-// horizon, far enough that the whole DEM fits the vertical field of view.
-Camera defaultCamera(const Heightfield& field, double aspect);
+// The camera the tools start with: framingCamera of the DEM's bounding box
+// from the south-east, 30 degrees above the horizon, for that field of view.
+// `belowM`: a solid base that deep under the lowest point is framed too.
+Camera defaultCamera(const Heightfield& field, double aspect, double verticalFovDeg = 40.0,
+                     double belowM = 0.0);
+
+// The camera looking from (azimuthDeg clockwise from north, elevationDeg
+// above the horizon) that frames the box of a DEM (extent in metres, centred
+// on the origin; heights zMin..zMax) as tightly as the view frustum allows:
+// every corner inside `fill` of the image's half-width and half-height, the
+// tighter of the two touched by a corner on both sides and the other
+// centred (closed form: docs/rendering.md, "Default camera").
+Camera framingCamera(glm::dvec2 extentM, double zMin, double zMax, double aspect,
+                     double azimuthDeg = 135.0, double elevationDeg = 30.0,
+                     double verticalFovDeg = 40.0, double fill = 0.9);
 
 // DEM extent in metres (x: west to east, y: south to north).
 glm::dvec2 demExtentM(const Heightfield& field);

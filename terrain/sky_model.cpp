@@ -74,6 +74,16 @@ glm::vec3 xyYToLinearSrgb(float x, float y, float luminanceY) {
   return glm::max(rgb, glm::vec3(0.0f));
 }
 
+}  // namespace
+
+float daylightLocusLift(float x, float y) {
+  const float locus = (float(AAL_DAYLIGHT_LOCUS_A) * x + float(AAL_DAYLIGHT_LOCUS_B)) * x +
+                      float(AAL_DAYLIGHT_LOCUS_C);
+  return std::max(y, locus);
+}
+
+namespace {
+
 glm::vec4 pack(double y, double x, double yy, double w = 0.0) {
   return glm::vec4(static_cast<float>(y), static_cast<float>(x), static_cast<float>(yy),
                    static_cast<float>(w));
@@ -154,7 +164,7 @@ glm::vec3 skyRadiance(const PreethamSky& sky, const glm::vec3& viewDir) {
   const glm::vec3 f = (1.0f + a * glm::exp(b / cosTheta)) *
                       (1.0f + c * glm::exp(d * gamma) + e * (cosGamma * cosGamma));
   const glm::vec3 yxy = glm::vec3(sky.zenith) * f;  // (Y, x, y)
-  return xyYToLinearSrgb(yxy.y, yxy.z, yxy.x);
+  return xyYToLinearSrgb(yxy.y, daylightLocusLift(yxy.y, yxy.z), yxy.x);
 }
 
 glm::vec3 averageSkyRadiance(const PreethamSky& sky, int azimuthSteps, int zenithSteps) {

@@ -35,6 +35,22 @@
 //   ~3 lx, over 6°) and is exactly black from -6° (end of civil twilight) on.
 //   Chromaticity is kept: the twilight sky keeps the sunset colours.
 //
+// Chromaticity correction (daylight locus lift): near the horizon of a high
+// sun the Perez fit of y dips below the CIE daylight locus (sun 77° up, T =
+// 2.5, 3° above the horizon towards the sun: x = 0.310, y = 0.317 against the
+// locus's 0.326), a green deficit that reads grey-lavender (linear sRGB R >
+// G < B). Measured clear skies do not do that: their chromaticities lie close
+// to the daylight locus along every meridian (Hernández-Andrés, Romero & Lee
+// 2001, "Colorimetric and spectroradiometric characteristics of narrow-field-
+// of-view clear skylight in Granada, Spain", JOSA A 18(2)), which is the curve
+// the CIE fitted to measured daylight (Judd, MacAdam & Wyszecki 1964; CIE
+// 15:2004 eq. 3.3, y_D = -3.000 x² + 2.870 x - 0.275). So y is raised to
+// y_D(x) where it lies below it, x and the luminance Y are kept: the sky's
+// brightness, and so every irradiance derived from it, is unchanged; a
+// pale-blue horizon (B > G > R) results wherever x is bluer than D65's. Skies
+// on or above the locus (the blue sky away from the horizon, sunsets, x >
+// 0.35) are untouched. docs/sun-and-sky.md has the numbers.
+//
 // Known limitation: sunsets and high turbidity are the model's weak points
 // (Hosek & Wilkie 2012; Zotti, Wilkie & Purgathofer 2007, "A Critical Review
 // of the Preetham Skylight Model"): its sky is too bright for a low sun
@@ -93,10 +109,14 @@ double twilightFade(double elevationDeg);
 // be above the horizon) and turbidity T (clamped to [2, 10]).
 PreethamSky makePreethamSky(const glm::vec3& sunDir, double turbidity);
 
+// max(y, y_D(x)): the CIE chromaticity y raised to the daylight locus where
+// it lies below it (file comment). Twin of daylightLocusLift in shaders/sky.glsl.
+float daylightLocusLift(float x, float y);
+
 // Sky radiance (photometric RGB, kcd/m²) seen looking along viewDir (any
-// non-zero vector, world frame). Single precision, the same arithmetic as
-// skyRadiance in shaders/sky.glsl. Angle from the sun
-// gamma = 2 atan(|v - s|, |v + s|), accurate for directions next to the sun.
+// non-zero vector, world frame), its chromaticity lifted to the daylight locus. Single precision,
+// the same arithmetic as skyRadiance in shaders/sky.glsl. Angle from the sun gamma = 2 atan(|v -
+// s|, |v + s|), accurate for directions next to the sun.
 glm::vec3 skyRadiance(const PreethamSky& sky, const glm::vec3& viewDir);
 
 // Sky radiance averaged over the upper hemisphere with uniform solid-angle

@@ -97,7 +97,7 @@ bool validDate(int year, int month, int day) {
 
 // Midnight (00:00 UTC) of the date in `time`, plus `seconds` (may be negative
 // or more than a day), normalised into a calendar date and time of day.
-UtcTime addSeconds(const UtcTime& time, double seconds) {
+UtcTime midnightPlusSeconds(const UtcTime& time, double seconds) {
   using namespace std::chrono;
   const sys_days date = year_month_day{year{time.year}, month{static_cast<unsigned>(time.month)},
                                        day{static_cast<unsigned>(time.day)}};
@@ -144,7 +144,7 @@ std::optional<UtcTime> parseIso8601Utc(const std::string& text) {
   }
   if (offsetMinutes == 0) return t;
   // Local time minus the offset is UTC.
-  return addSeconds(t, 3600.0 * t.hour + 60.0 * (t.minute - offsetMinutes) + t.second);
+  return midnightPlusSeconds(t, 3600.0 * t.hour + 60.0 * (t.minute - offsetMinutes) + t.second);
 }
 
 std::string formatIso8601Utc(const UtcTime& time) {
@@ -158,6 +158,37 @@ std::string formatIso8601Utc(const UtcTime& time) {
                   time.day, time.hour, time.minute, time.second);
   }
   return buffer;
+}
+
+namespace {
+std::chrono::sys_days civilDay(const UtcTime& t) {
+  return std::chrono::sys_days(std::chrono::year(t.year) / std::chrono::month(unsigned(t.month)) /
+                               std::chrono::day(unsigned(t.day)));
+}
+double secondsOfDay(const UtcTime& t) {
+  return t.hour * 3600.0 + t.minute * 60.0 + t.second;
+}
+}  // namespace
+
+double secondsBetween(const UtcTime& from, const UtcTime& to) {
+  const double days = double((civilDay(to) - civilDay(from)).count());
+  return days * 86400.0 + (secondsOfDay(to) - secondsOfDay(from));
+}
+
+UtcTime addSeconds(const UtcTime& time, double seconds) {
+  const double total = secondsOfDay(time) + seconds;
+  const double dayShift = std::floor(total / 86400.0);
+  double rest = total - dayShift * 86400.0;  // [0, 86400)
+  const std::chrono::year_month_day ymd(civilDay(time) + std::chrono::days(int64_t(dayShift)));
+  UtcTime t;
+  t.year = int(ymd.year());
+  t.month = int(unsigned(ymd.month()));
+  t.day = int(unsigned(ymd.day()));
+  t.hour = std::min(23, int(rest / 3600.0));
+  rest -= t.hour * 3600.0;
+  t.minute = std::min(59, int(rest / 60.0));
+  t.second = std::max(0.0, rest - t.minute * 60.0);
+  return t;
 }
 
 // Meeus eq. 7.1 with the Gregorian correction B.
@@ -267,10 +298,10 @@ UtcTime solarNoonUtc(const UtcTime& day, double longitudeDeg) {
   // of time changes by < 30 s a day; two refinements make it exact to < 0.1 s.
   double noonMin = 720.0 - 4.0 * longitudeDeg;
   for (int i = 0; i < 2; ++i) {
-    const SolarPosition p = solarPosition(addSeconds(midnight, 60.0 * noonMin), 0.0, 0.0);
+    const SolarPosition p = solarPosition(midnightPlusSeconds(midnight, 60.0 * noonMin), 0.0, 0.0);
     noonMin = 720.0 - 4.0 * longitudeDeg - p.equationOfTimeMin;
   }
-  return addSeconds(midnight, 60.0 * noonMin);
+  return midnightPlusSeconds(midnight, 60.0 * noonMin);
 }
 
 glm::vec3 sunDirection(double azimuthDeg, double elevationDeg) {

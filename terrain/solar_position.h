@@ -49,6 +49,13 @@ std::optional<UtcTime> parseIso8601Utc(const std::string& text);
 // Formats as "YYYY-MM-DDTHH:MM:SS(.sss)Z".
 std::string formatIso8601Utc(const UtcTime& time);
 
+// Seconds from `from` to `to` (negative when `to` is earlier), and the
+// instant `seconds` after `time` (across day, month and year boundaries;
+// proleptic Gregorian calendar, no leap seconds, like the rest of this file).
+// aal-render --time-range spreads frames between two instants with them.
+double secondsBetween(const UtcTime& from, const UtcTime& to);
+UtcTime addSeconds(const UtcTime& time, double seconds);
+
 // Julian Day (days since -4712-01-01 12:00 UT) of a UTC instant, Meeus eq. 7.1
 // (Gregorian calendar). E.g. 2000-01-01T12:00Z -> 2451545.0.
 double julianDay(const UtcTime& time);

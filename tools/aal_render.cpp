@@ -18,13 +18,16 @@
 #include "atmosphere.h"
 #include "atomic_file.h"
 #include "camera.h"
+#include "camera_path.h"
 #include "dem_loader.h"
 #include "device.h"
 #include "instance.h"
+#include "interrupt.h"
 #include "lighting_defaults.h"
 #include "mode_comparison.h"
 #include "progress.h"
 #include "reference_renderer.h"
+#include "render_sequence.h"
 #include "screenshot.h"
 #include "sky_lighting.h"
 #include "solar_position.h"
@@ -61,6 +64,7 @@ struct Options {
   std::optional<double> waterLevelM;
   std::string mode = "approx";
   std::optional<double> cellSize, zScale;
+  double exaggeration = 1.0;
   int device = -1;
   size_t triangleBudget = 2'000'000;
   double lodErrorPixels = aal::LodSettings{}.maxErrorPixels;
@@ -71,15 +75,23 @@ struct Options {
   std::optional<double> obscuranceRadiusM;
   int obscuranceSamples = aal::ObscuranceSettings{}.samples, obscuranceSteps = 1;
   bool noObscurance = false;
+  std::string background = "sky";  // --background sky|transparent
+  std::optional<double> baseDepthM;
+  std::string baseColor = "0.35,0.3,0.25";
   std::string compare;  // folder for --compare
+  // Image sequences: --camera-path and/or --time-range START END, --frames N.
+  std::string cameraPath;
+  std::vector<std::string> timeRange;
+  std::optional<int> frames;
+  double fps = 30;
   int referenceSunRays = 16, referenceSkyRays = 64;
 };
 
 // The CPU ray tracer's name on --mode (not a GPU shading mode).
 constexpr const char* kReferenceMode = "reference";
 
-// --albedo-value: one grey value or R,G,B, each in [0, 1].
-glm::vec3 parseAlbedoValue(const std::string& text) {
+// --albedo-value, --base-color: one grey value or R,G,B, each in [0, 1].
+glm::vec3 parseAlbedoValue(const std::string& text, const std::string& option = "--albedo-value") {
   std::istringstream in(text);
   glm::dvec3 v;
   char c1 = 0, c2 = 0;
@@ -91,8 +103,7 @@ glm::vec3 parseAlbedoValue(const std::string& text) {
   }
   for (int c = 0; c < 3 && ok; ++c) ok = v[c] >= 0 && v[c] <= 1;
   if (!ok) {
-    throw aal::InputError("--albedo-value must be A or R,G,B with values in [0, 1], got '" + text +
-                          "'");
+    throw aal::InputError(option + " must be A or R,G,B with values in [0, 1], got '" + text + "'");
   }
   return glm::vec3(v);
 }
@@ -104,6 +115,59 @@ aal::SkyLighting lightingFor(const Options& o, const aal::Heightfield& field) {
   }
   return aal::makeSkyLighting(o.sunAzimuth.value_or(315.0), o.sunElevation.value_or(45.0),
                               o.turbidity);
+}
+
+// A sequence's checks and its time range, before any work.
+struct Sequence {
+  std::optional<aal::CameraPath> path;
+  std::optional<aal::UtcTime> start, end;
+  int frames = 0;
+};
+std::optional<Sequence> sequenceOf(const Options& o, bool reference) {
+  const bool wanted = !o.cameraPath.empty() || !o.timeRange.empty();
+  if (!wanted) {
+    if (o.frames) throw aal::InputError("--frames needs --camera-path FILE or --time-range");
+    return std::nullopt;
+  }
+  if (!o.frames) {
+    throw aal::InputError("--camera-path and --time-range need --frames N (how many images)");
+  }
+  if (*o.frames < 1 || *o.frames > 1'000'000) {
+    throw aal::InputError("--frames must be in [1, 1000000], got " + std::to_string(*o.frames));
+  }
+  if (reference || !o.compare.empty()) {
+    throw aal::InputError(std::string("an image sequence (--camera-path, --time-range) is for -o "
+                                      "images of the GPU renderer, not ") +
+                          (reference ? "--mode reference" : "--compare"));
+  }
+  Sequence s;
+  s.frames = *o.frames;
+  if (!o.cameraPath.empty()) {
+    if (!o.camera.empty() || !o.lookAt.empty()) {
+      throw aal::InputError("--camera-path sets the camera: leave out --camera and --look-at");
+    }
+    s.path = aal::CameraPath::load(o.cameraPath);
+  }
+  if (!o.timeRange.empty()) {
+    if (!o.time.empty() || o.sunAzimuth) {
+      throw aal::InputError(
+          "--time-range sets the sun: leave out --time, --sun-azimuth and --sun-elevation");
+    }
+    s.start = aal::parseIso8601Utc(o.timeRange[0]);
+    s.end = aal::parseIso8601Utc(o.timeRange[1]);
+    for (int i = 0; i < 2; ++i) {
+      if (!(i == 0 ? s.start : s.end)) {
+        throw aal::InputError(
+            "--time-range takes two ISO 8601 times, e.g. 2024-06-21T10:00Z, got '" +
+            o.timeRange[i] + "'");
+      }
+    }
+    if (!(aal::secondsBetween(*s.start, *s.end) > 0)) {
+      throw aal::InputError("--time-range END (" + o.timeRange[1] + ") must come after START (" +
+                            o.timeRange[0] + ")");
+    }
+  }
+  return s;
 }
 
 aal::ComparisonOptions comparisonOptions(const Options& o,
@@ -163,6 +227,54 @@ int runComparison(const Options& o, const aal::Heightfield& field, const aal::Te
   return aal::kExitOk;
 }
 
+// --camera-path / --time-range: frames OUT-0001.ext ... and, for PNG frames
+// with ffmpeg installed, OUT.mp4 (docs/rendering.md).
+int renderSequence(const Options& o, const Sequence& seq, const aal::Heightfield& field,
+                   const aal::TerrainScene& scene, aal::TerrainRenderer& renderer,
+                   aal::FrameSettings settings) {
+  const aal::GeoPlace place = aal::defaultSunPlace(field);
+  const double lat = o.lat.value_or(place.latitudeDeg), lon = o.lon.value_or(place.longitudeDeg);
+  aal::ProgressBar bar("rendering " + std::to_string(seq.frames) + " frames", !o.quiet);
+  const auto start = std::chrono::steady_clock::now();
+  for (int i = 0; i < seq.frames; ++i) {
+    if (seq.path) settings.camera = seq.path->at(seq.path->frameTime(i, seq.frames));
+    if (seq.start) {
+      const aal::UtcTime t = aal::sequenceTime(*seq.start, *seq.end, i, seq.frames);
+      const aal::SolarPosition sun = aal::solarPosition(t, lat, lon);
+      aal::applySkyLighting(
+          aal::makeSkyLighting(sun.azimuthDeg, sun.elevationDeg, o.turbidity, sun.sunDistanceAu),
+          settings);
+    }
+    aal::throwIfInterrupted();
+    const aal::FrameResult frame =
+        renderer.render(scene, settings, aal::wantsLinearOutput(o.output));
+    aal::writeFrame(aal::sequenceFramePath(o.output, i, seq.frames), frame);
+    bar.update(double(i + 1) / seq.frames);
+  }
+  bar.finish();
+  const double seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  const std::string first = aal::sequenceFramePath(o.output, 0, seq.frames),
+                    last = aal::sequenceFramePath(o.output, seq.frames - 1, seq.frames);
+  if (!o.quiet) {
+    std::fprintf(stderr, "aal-render: %d frames in %.1f s (%.0f ms each): %s .. %s\n", seq.frames,
+                 seconds, 1e3 * seconds / seq.frames, first.c_str(), last.c_str());
+  }
+  if (aal::wantsLinearOutput(o.output)) return aal::kExitOk;  // EXR frames: no movie
+  const std::optional<std::string> ffmpeg = aal::findFfmpeg();
+  const std::string mp4 = (std::filesystem::path(o.output).replace_extension(".mp4")).string();
+  if (!ffmpeg) {
+    if (!o.quiet) {
+      std::fprintf(stderr, "aal-render: ffmpeg not found (Debian: apt-get install ffmpeg): no %s\n",
+                   mp4.c_str());
+    }
+    return aal::kExitOk;
+  }
+  aal::encodeMp4(*ffmpeg, aal::sequencePattern(o.output, seq.frames), o.fps, mp4);
+  if (!o.quiet) std::fprintf(stderr, "aal-render: wrote %s\n", mp4.c_str());
+  return aal::kExitOk;
+}
+
 int run(const Options& o) {
   const bool reference = o.mode == kReferenceMode;
   const aal::ShadingMode mode = reference ? aal::ShadingMode::Approx : kModes.at(o.mode);
@@ -191,8 +303,25 @@ int run(const Options& o) {
     }
     aal::requireWritableOutput(o.output);
   }
+  if (o.baseDepthM && (reference || !o.compare.empty())) {
+    throw aal::InputError("--base is drawn by the GPU renderer into -o images, not " +
+                          std::string(reference ? "--mode reference" : "--compare"));
+  }
+  const glm::vec3 baseAlbedo = parseAlbedoValue(o.baseColor, "--base-color");
+  if (o.background == "transparent" && (reference || !o.compare.empty())) {
+    throw aal::InputError("--background transparent is for -o images of the GPU renderer, not " +
+                          std::string(reference ? "--mode reference" : "--compare"));
+  }
   if (o.sunAzimuth.has_value() != o.sunElevation.has_value()) {
     throw aal::InputError("give --sun-azimuth and --sun-elevation together");
+  }
+  const std::optional<Sequence> sequence = sequenceOf(o, reference);
+  if (sequence) {
+    aal::checkDistinctFiles({{"DEM", o.dem},
+                             {"--aperture", o.aperture},
+                             {"--albedo", o.albedo},
+                             {"--camera-path", o.cameraPath}},
+                            {{"-o", o.output}});
   }
 
   if (!o.albedo.empty() && !o.albedoValue.empty()) {
@@ -204,6 +333,7 @@ int run(const Options& o) {
   aal::DemLoadOptions load;
   load.cellSizeM = o.cellSize;
   load.zScale = o.zScale;
+  load.exaggeration = o.exaggeration;
   const aal::Heightfield field = aal::loadDem(o.dem, load);
   aal::requireRenderableDem(field);
   const aal::ObscuranceSettings obscurance = aal::obscuranceFromOptions(
@@ -230,24 +360,31 @@ int run(const Options& o) {
       if (!o.quiet) std::fprintf(stderr, "note: %s\n", m.c_str());
     });
   }
-  const aal::SkyLighting light = lightingFor(o, field);
+  const aal::SkyLighting light =
+      sequence && sequence->start ? aal::SkyLighting{} : lightingFor(o, field);
   aal::FrameSettings settings;
   settings.mode = mode;
   settings.obscurance = obscurance;
   settings.albedoValue = albedoValue;
   const double aspect = double(width) / double(height);
-  settings.camera = aal::defaultCamera(field, aspect);
+  // Framed for the field of view asked for (docs/rendering.md, "Default camera").
+  const double baseDepthM = o.baseDepthM.value_or(0.0) * o.exaggeration;
+  settings.camera = aal::defaultCamera(field, aspect, o.fovDeg, baseDepthM);
   if (!o.camera.empty()) settings.camera.position = aal::parseTriple("--camera", o.camera);
   if (!o.lookAt.empty()) settings.camera.lookAt = aal::parseTriple("--look-at", o.lookAt);
   aal::requireCameraDirection(settings.camera.position, settings.camera.lookAt);
   settings.camera.verticalFovDeg = o.fovDeg;
   settings.lod.maxErrorPixels = o.lodErrorPixels;
+  settings.transparentBackground = o.background == "transparent";
+  // The depth is in the DEM's metres, like the heights before --exaggeration.
+  if (o.baseDepthM) settings.base = aal::FrameSettings::Base{float(baseDepthM), baseAlbedo};
   applySkyLighting(light, settings);
   settings.sunRadiusRad = static_cast<float>(o.sunRadiusDeg * std::numbers::pi / 180.0);
   const double visibilityM =
       o.visibilityKm ? *o.visibilityKm * 1000 : aal::defaultVisibilityM(field);
   settings.hazeDensityPerM = static_cast<float>(aal::hazeDensityForVisibility(visibilityM));
-  if (o.waterLevelM) settings.waterLevelM = static_cast<float>(*o.waterLevelM);
+  // The level is in the DEM's metres; the drawn heights are exaggerated.
+  if (o.waterLevelM) settings.waterLevelM = static_cast<float>(*o.waterLevelM * o.exaggeration);
   if (o.ev100) {
     settings.exposure = aal::exposureFromEv100(static_cast<float>(*o.ev100));
   } else {
@@ -306,6 +443,7 @@ int run(const Options& o) {
   }
   aal::TerrainRenderer renderer(device, width, height);
   if (!o.compare.empty()) return runComparison(o, field, *scene, renderer, settings, albedoValue);
+  if (sequence) return renderSequence(o, *sequence, field, *scene, renderer, settings);
   const aal::FrameResult frame =
       renderer.render(*scene, settings, aal::wantsLinearOutput(o.output));
   aal::writeFrame(o.output, frame);
@@ -413,6 +551,17 @@ int main(int argc, char** argv) {
   app.add_option("--visibility", o.visibilityKm,
                  "distance haze: visibility in km (default: 20 DEM diagonals, at least 200)")
       ->check(CLI::Range(0.1, 1e6));
+  app.add_option("--background", o.background,
+                 "what pixels without terrain show: sky, or transparent (alpha 0 in the PNG or "
+                 "EXR; their colour stays the sky's)")
+      ->check(CLI::IsMember({"sky", "transparent"}))
+      ->capture_default_str();
+  app.add_option("--base", o.baseDepthM,
+                 "draw a solid base under the DEM: side walls from its edge down to DEPTH metres "
+                 "below its lowest point, and a bottom")
+      ->check(CLI::Range(0.001, 1e6));
+  app.add_option("--base-color", o.baseColor, "albedo of the base: A or R,G,B in [0, 1]")
+      ->capture_default_str();
   app.add_option("--water-level", o.waterLevelM,
                  "paint terrain at or below this height (m) as water (default: no water)");
   app.add_option("--mode", o.mode,
@@ -429,6 +578,12 @@ int main(int argc, char** argv) {
       ->check(aal::kPositive);
   app.add_option("--z-scale", o.zScale, "metres per height unit (as given to aal-bake)")
       ->check(aal::kPositive);
+  app.add_option("--exaggeration", o.exaggeration,
+                 "vertical exaggeration: heights times X (the aperture map is baked for it: "
+                 "cached per exaggeration; a map given with --aperture must have been baked with "
+                 "the same z scale)")
+      ->check(CLI::Range(0.01, 100.0))
+      ->capture_default_str();
   app.add_option("--device", o.device, "Vulkan device index (default: the best one)")
       ->check(aal::kNonNegative);
   app.add_option("--triangles", o.triangleBudget,
@@ -446,6 +601,18 @@ int main(int argc, char** argv) {
                  "to a multiple of 32 (tests; by default only DEMs beyond the device's largest "
                  "image are tiled)")
       ->check(CLI::Range(aal::kTerrainMipAlignment, uint32_t(1) << 20));
+  app.add_option("--camera-path", o.cameraPath,
+                 "render an image sequence along this camera path (aal-view's format: lines of "
+                 "TIME_S X Y Z LOOK_X LOOK_Y LOOK_Z [FOV_DEG]), --frames images spread from its "
+                 "first keyframe to its last, into OUT-0001.png ... (and OUT.mp4 with ffmpeg)");
+  app.add_option("--time-range", o.timeRange,
+                 "render an image sequence with the sun from START to END (UTC, ISO 8601), "
+                 "--frames images, both ends included (a time-lapse)")
+      ->expected(2);
+  app.add_option("--frames", o.frames, "images in a --camera-path or --time-range sequence");
+  app.add_option("--fps", o.fps, "frame rate of the sequence's MP4")
+      ->check(CLI::Range(1.0, 240.0))
+      ->capture_default_str();
   app.add_flag("--stats", o.stats, "print per-pass GPU times and the triangle count");
   app.add_flag("-q,--quiet", o.quiet, "no progress messages");
   return aal::runTool(app, argc, argv, [&] { return run(o); });

@@ -33,6 +33,7 @@ struct Options {
   std::optional<std::string> resizeAfter, minimiseAfter, toggleVsyncAfter;  // test hooks
   std::string mode = "approx", time;
   std::optional<double> lat, lon, sunAzimuth, sunElevation, waterLevelM;
+  double exaggeration = 1.0;
   std::optional<int> frames;
   double timeoutS = 0;
   bool noVsync = false, stats = false, noObscurance = false;
@@ -121,7 +122,8 @@ aal::ViewLighting initialLighting(const Options& o, const aal::Heightfield& fiel
     l.sunAzimuthDeg = *o.sunAzimuth;
     l.sunElevationDeg = *o.sunElevation;
   }
-  l.waterLevelM = o.waterLevelM;
+  // The level is in the DEM's metres; the drawn heights are exaggerated.
+  if (o.waterLevelM) l.waterLevelM = *o.waterLevelM * o.exaggeration;
   return l;
 }
 
@@ -142,6 +144,7 @@ int run(const Options& o) {
   // Scripted runs measure and take screenshots: full resolution unless asked.
   v.targetFps = o.targetFps.value_or(o.frames ? 0.0 : 30.0);
   v.bakeAzimuths = o.azimuths;
+  v.exaggeration = o.exaggeration;
   v.frames = o.frames.value_or(0);
   if (!o.cameraPath.empty()) v.cameraPath = aal::CameraPath::load(o.cameraPath);
   v.screenshot = o.screenshot;
@@ -150,7 +153,7 @@ int run(const Options& o) {
   v.script = windowScript(o);
   v.stats = o.stats;
   // Bad input fails here, before a window opens.
-  std::shared_ptr<const aal::Heightfield> field = aal::loadViewerDem(o.dem);
+  std::shared_ptr<const aal::Heightfield> field = aal::loadViewerDem(o.dem, o.exaggeration);
   if (!o.aperture.empty()) {
     const aal::ApertureMapReader map(o.aperture);
     aal::checkApertureMatchesDem(map.header(), o.aperture, *field, o.dem);
@@ -191,6 +194,12 @@ int main(int argc, char** argv) {
       ->check(CLI::Range(-360.0, 720.0));
   app.add_option("--sun-elevation", o.sunElevation, "direct sun elevation, degrees")
       ->check(CLI::Range(-90.0, 90.0));
+  app.add_option("--exaggeration", o.exaggeration,
+                 "vertical exaggeration: heights times X (the aperture map is baked for it: "
+                 "cached per exaggeration; a map given with --aperture must have been baked with "
+                 "the same z scale)")
+      ->check(CLI::Range(0.01, 100.0))
+      ->capture_default_str();
   app.add_option("--water-level", o.waterLevelM,
                  "paint terrain at or below this height (m) as water (default: no water)");
   app.add_option("--frames", o.frames,

@@ -23,6 +23,10 @@ void checkOptions(const DemLoadOptions& options) {
   if (options.zScale && !(*options.zScale > 0.0 && std::isfinite(*options.zScale))) {
     throw InputError("--z-scale must be a positive number, got " + std::to_string(*options.zScale));
   }
+  if (!(options.exaggeration > 0.0 && std::isfinite(options.exaggeration))) {
+    throw InputError("--exaggeration must be a positive number, got " +
+                     std::to_string(options.exaggeration));
+  }
 }
 
 [[noreturn]] void refuseHeight(const std::string& path, const RawDem& raw, size_t texel,
@@ -88,7 +92,8 @@ void warnAboutDefaults(const RawDem& raw, const std::string& path, const DemLoad
 }
 
 double zScaleOf(const RawDem& raw, const DemLoadOptions& options) {
-  return options.zScale.value_or(raw.zUnitFromFile ? raw.zUnitM : kDefaultZScale);
+  return options.zScale.value_or(raw.zUnitFromFile ? raw.zUnitM : kDefaultZScale) *
+         options.exaggeration;
 }
 
 Heightfield geometryOf(const RawDem& raw, const std::string& path, const DemLoadOptions& options) {

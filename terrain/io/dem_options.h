@@ -34,6 +34,11 @@ struct DemLoadOptions {
   // Metres per stored height unit (> 0, finite). Overrides the file's
   // vertical units (feet give 0.3048).
   std::optional<double> zScale;
+  // Vertical exaggeration (> 0, finite): multiplies the z scale, so the
+  // heights, the Heightfield's zScale and everything baked from them (the
+  // aperture map records the z scale and the heights' checksum) see it
+  // (aal-render / aal-view --exaggeration; docs/rendering.md).
+  double exaggeration = 1.0;
   // Receives one message per suspicious but usable property of the file
   // (defaults assumed, extra bands ignored, ...). May be empty: no warnings.
   std::function<void(const std::string&)> warn = warnOnStderr;

@@ -101,6 +101,51 @@ TEST_F(FrameOutputTest, DisplayValuesEqualTheToneMappedLinearFrame) {
   }
 }
 
+// aal-render --background transparent (issue 19): pixels without terrain get
+// alpha 0, terrain keeps alpha 1, and no colour changes, in every way a frame
+// is written (display values from the terrain and sky passes, from the
+// composite with obscurances, the tone-map pass after a linear frame, and the
+// linear frame itself; the debug views' black background too).
+TEST_F(FrameOutputTest, TransparentBackgroundClearsAlphaOnlyWhereThereIsNoTerrain) {
+  const Heightfield f = fbm();
+  const ApertureMap aperture = bake(f);
+  const TerrainScene scene(device(), f, aperture, nullptr, 100000);
+  TerrainRenderer renderer(device(), kWidth, kHeight);
+  for (const auto& [mode, obscurance] :
+       {std::pair{ShadingMode::Approx, false}, std::pair{ShadingMode::Approx, true},
+        std::pair{ShadingMode::DebugVisible, false}}) {
+    FrameSettings s = view(mode, obscurance);
+    for (bool linear : {false, true}) {
+      const FrameResult opaque = renderer.render(scene, s, linear);
+      s.transparentBackground = true;
+      const FrameResult clear = renderer.render(scene, s, linear);
+      s.transparentBackground = false;
+      size_t background = 0, terrain = 0;
+      for (size_t i = 0; i < size_t{kWidth} * kHeight; ++i) {
+        for (int c = 0; c < 3; ++c) {
+          ASSERT_EQ(clear.display[4 * i + c], opaque.display[4 * i + c]) << i;
+          if (linear) {
+            ASSERT_EQ(clear.linear[4 * i + c], opaque.linear[4 * i + c]) << i;
+          }
+        }
+        ASSERT_EQ(opaque.display[4 * i + 3], 255) << i;
+        const uint8_t a = clear.display[4 * i + 3];
+        ASSERT_TRUE(a == 0 || a == 255) << i << " " << int(a);
+        (a == 0 ? background : terrain) += 1;
+        if (linear) {
+          ASSERT_EQ(opaque.linear[4 * i + 3], 1.0f) << i;
+          ASSERT_EQ(clear.linear[4 * i + 3], a == 0 ? 0.0f : 1.0f) << i;
+        }
+      }
+      // The view has sky above the DEM (top row) and terrain in the lower middle.
+      EXPECT_EQ(clear.display[3], 0);
+      EXPECT_EQ(clear.display[4 * (size_t{kHeight - 10} * kWidth + kWidth / 2) + 3], 255);
+      EXPECT_GT(background, size_t{kWidth} * kHeight / 10) << int(mode) << obscurance << linear;
+      EXPECT_GT(terrain, size_t{kWidth} * kHeight / 10) << int(mode) << obscurance << linear;
+    }
+  }
+}
+
 TEST_F(FrameOutputTest, SkyFromItsTableMatchesTheSkyModel) {
   const Heightfield f = fbm();
   const TerrainScene scene(device(), f, nullptr, 100000);

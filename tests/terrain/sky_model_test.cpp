@@ -12,6 +12,7 @@
 #include "atmosphere.h"
 #include "sky_model.h"
 #include "solar_position.h"
+#include "tone_map.h"
 
 namespace aal {
 namespace {
@@ -54,6 +55,93 @@ TEST(PreethamSky, DaySkyIsBlueAndBrightestAroundTheSun) {
   // azimuth, the horizon is brighter than 60° up.
   EXPECT_GT(luminance(skyRadiance(sky, viewAt(90.0, 1.0))),
             luminance(skyRadiance(sky, viewAt(90.0, 60.0))));
+}
+
+// CIE 15:2004 eq. 3.3: the daylight locus passes through D65 (x, y) =
+// (0.31271, 0.32902) within 3e-4 and through D50 (0.34567, 0.35850) within
+// 5e-4 (CIE's own D-illuminant tables round x_D to the 7000/T polynomial's).
+TEST(DaylightLocus, PassesThroughD65AndD50AndLiftsOnlyBelowIt) {
+  EXPECT_NEAR(daylightLocusLift(0.31271f, 0.0f), 0.32902f, 3e-4f);
+  EXPECT_NEAR(daylightLocusLift(0.34567f, 0.0f), 0.35850f, 5e-4f);
+  // Below: raised to the locus; on or above: unchanged.
+  EXPECT_NEAR(daylightLocusLift(0.310f, 0.317f), -3.0f * 0.0961f + 2.87f * 0.31f - 0.275f, 1e-6f);
+  EXPECT_EQ(daylightLocusLift(0.2563f, 0.2700f), 0.2700f);
+  EXPECT_EQ(daylightLocusLift(0.45f, 0.47f), 0.47f);
+}
+
+// Display value (tone mapped, sRGB encoded, 0..1) of the sky along a view
+// with the exposure the renderer uses for that day (autoExposure at the sun's
+// elevation, which is its solar noon in these tests).
+glm::vec3 displayedSky(const PreethamSky& sky, const glm::vec3& view, double sunElevationDeg) {
+  const float exposure =
+      autoExposure(sunIrradiance(sunElevationDeg, 2.5), sunElevationDeg, averageSkyRadiance(sky));
+  return toneMap(skyRadiance(sky, view), exposure);
+}
+
+// Issue 19: at 17:40 UTC on 2024-06-21 over jacksboro (sun 77° up) the sky 3°
+// above the horizon towards the sun showed R134 G131 B138, grey-lavender:
+// Preetham's y there is 0.317, below the daylight locus (0.326). A clear
+// midday sky reads blue above the horizon (Hernández-Andrés, Romero & Lee
+// 2001: clear-sky chromaticities lie along the daylight locus, with CCTs
+// above D65's away from the sun). After the tone map, and in 8 bits with at
+// least one step between blue and red: sun 90° and 76.85° (jacksboro's summer
+// noon), views 3°..85° up all around; sun 65°, the same from 6° up, and from
+// 3° up 60° or more in azimuth from the sun: right under a lower sun the
+// Perez x fit keeps a warm-white band within ~5° of the horizon (x = 0.318,
+// CCT ~6200 K at 3° up under a 60° sun; docs/sun-and-sky.md).
+TEST(PreethamSky, MiddaySkyIsBlueAboveTheHorizonAfterTheToneMap) {
+  struct Case {
+    double sunElevation, lowestView3DegFromAzimuth;
+  };
+  for (const Case c : {Case{90.0, 0.0}, Case{76.85, 0.0}, Case{65.0, 60.0}}) {
+    const PreethamSky sky = skyAt(c.sunElevation, 2.5, 181.0);
+    for (double elevation : {3.0, 6.0, 10.0, 20.0, 45.0, 85.0}) {
+      for (double dAz = 0.0; dAz <= 180.0; dAz += 30.0) {
+        if (elevation < 6.0 && dAz < c.lowestView3DegFromAzimuth) continue;
+        const glm::vec3 d = displayedSky(sky, viewAt(181.0 + dAz, elevation), c.sunElevation);
+        EXPECT_GT(d.b, d.g) << c.sunElevation << " " << elevation << " " << dAz;
+        EXPECT_GT(d.g, d.r) << c.sunElevation << " " << elevation << " " << dAz;
+        EXPECT_GE(std::lround(255 * d.b) - std::lround(255 * d.r), 1)
+            << c.sunElevation << " " << elevation << " " << dAz;
+      }
+    }
+  }
+  const glm::vec3 d = displayedSky(skyAt(76.85, 2.5, 181.0), viewAt(181.0, 3.0), 76.85);
+  std::printf("sun 76.85deg, 3deg up towards the sun: display sRGB %.1f %.1f %.1f\n", 255 * d.r,
+              255 * d.g, 255 * d.b);
+}
+
+// The horizon is whiter (less saturated) than the zenith by day and, but for
+// a sun near the zenith, brighter too (Perez A < 0: horizon brightening).
+TEST(PreethamSky, HorizonIsWhiterThanTheZenithByDay) {
+  const auto saturation = [](const glm::vec3& c) {
+    return (std::max({c.r, c.g, c.b}) - std::min({c.r, c.g, c.b})) / std::max({c.r, c.g, c.b});
+  };
+  for (double sunElevation : {76.85, 60.0, 45.0, 30.0}) {
+    const PreethamSky sky = skyAt(sunElevation, 2.5, 180.0);
+    const glm::vec3 zenith = skyRadiance(sky, {0, 0, 1});
+    for (double dAz : {60.0, 90.0, 180.0}) {
+      const glm::vec3 horizon = skyRadiance(sky, viewAt(180.0 + dAz, 3.0));
+      EXPECT_LT(saturation(horizon), 0.5f * saturation(zenith)) << sunElevation << " " << dAz;
+      if (sunElevation <= 60.0) {
+        EXPECT_GT(luminance(horizon), luminance(zenith)) << sunElevation << " " << dAz;
+      }
+    }
+  }
+}
+
+// Sunset (sun 2° up): towards the sun the horizon is red-orange (R > G > B,
+// R at least 3x B), away from it still bluish-white; the lift leaves it alone.
+TEST(PreethamSky, SunsetReddensTheHorizonTowardsTheSun) {
+  const PreethamSky sky = skyAt(2.0, 2.5, 270.0);
+  const glm::vec3 toward = skyRadiance(sky, viewAt(270.0, 3.0));
+  EXPECT_GT(toward.r, toward.g);
+  EXPECT_GT(toward.g, toward.b);
+  EXPECT_GT(toward.r, 3.0f * toward.b);
+  const glm::vec3 noonHorizon = skyRadiance(skyAt(76.85, 2.5, 270.0), viewAt(270.0, 3.0));
+  EXPECT_LT(noonHorizon.r, noonHorizon.b);
+  const glm::vec3 zenith = skyRadiance(sky, {0, 0, 1});
+  EXPECT_GT(zenith.b, zenith.r);
 }
 
 TEST(PreethamSky, IsSymmetricAboutTheSunsVerticalPlane) {

@@ -51,6 +51,23 @@ TEST(JulianDay, MatchesMeeusExamples) {
 
 // --- ISO 8601 -----------------------------------------------------------------
 
+// --time-range arithmetic: across a leap day, a year's end, and back; the
+// Julian Day difference agrees.
+TEST(UtcArithmetic, AddsAndMeasuresSecondsAcrossCalendarBoundaries) {
+  const UtcTime a = *parseIso8601Utc("2024-02-28T23:30:00Z");
+  const UtcTime b = addSeconds(a, 3600.0);
+  EXPECT_EQ(formatIso8601Utc(b), "2024-02-29T00:30:00Z");
+  EXPECT_EQ(formatIso8601Utc(addSeconds(a, 86400.0 + 1800.0)), "2024-03-01T00:00:00Z");
+  const UtcTime newYear = *parseIso8601Utc("2024-12-31T23:59:30Z");
+  EXPECT_EQ(formatIso8601Utc(addSeconds(newYear, 45.5)), "2025-01-01T00:00:15.500Z");
+  EXPECT_EQ(formatIso8601Utc(addSeconds(newYear, -86400.0 * 366)), "2023-12-31T23:59:30Z");
+  EXPECT_DOUBLE_EQ(secondsBetween(a, b), 3600.0);
+  EXPECT_DOUBLE_EQ(secondsBetween(b, a), -3600.0);
+  const UtcTime c = *parseIso8601Utc("2026-07-04T06:07:08Z");
+  EXPECT_NEAR(secondsBetween(a, c), (julianDay(c) - julianDay(a)) * 86400.0, 1e-3);
+  EXPECT_EQ(addSeconds(a, secondsBetween(a, c)), c);
+}
+
 TEST(Iso8601, AcceptsTheDocumentedLayouts) {
   const UtcTime noon = utc(2024, 6, 21, 12, 0, 0);
   for (const char* text :

@@ -34,9 +34,12 @@ OIIO::ImageSpec specOf(const fs::path& path) {
   return in->spec();
 }
 
-// The decoded 8-bit pixels of an image, empty when it cannot be read.
+// The decoded 8-bit pixels of an image as stored (colour not multiplied by
+// alpha), empty when it cannot be read.
 std::vector<uint8_t> pixelsOf(const fs::path& path) {
-  auto in = OIIO::ImageInput::open(path.string());
+  OIIO::ImageSpec config;
+  config.attribute("oiio:UnassociatedAlpha", 1);
+  auto in = OIIO::ImageInput::open(path.string(), &config);
   if (!in) return {};
   const OIIO::ImageSpec& spec = in->spec();
   std::vector<uint8_t> pixels(spec.image_pixels() * spec.nchannels);
@@ -296,6 +299,198 @@ TEST(AalRender, RefusesAnApertureMapBakedForAnotherCellSize) {
   EXPECT_EQ(cached, 2u);
 }
 
+// Issue 19: --exaggeration X multiplies the heights; the aperture map is
+// baked for it (one cache entry per exaggeration, reused), and a map baked
+// for other heights is refused with the z scales and the way out named.
+TEST(AalRender, ExaggerationBakesForItOrRefusesAMapOfAnotherZScale) {
+  TempDir dir;
+  const fs::path dem = dir.path() / "d.tif", map = dir.path() / "d.exr",
+                 map3 = dir.path() / "d3.exr";
+  ASSERT_EQ(runTool("aal-synth", "-o " + quoted(dem) + " --size 48").exitCode, 0);
+  const std::string cache = "AAL_CACHE_DIR=" + quoted(dir.path() / "cache");
+  const auto shot = [&](const std::string& name, const std::string& extra) {
+    const fs::path out = dir.path() / name;
+    const auto r =
+        runTool("aal-render", quoted(dem) + " -o " + quoted(out) + " --size 48x27 " + extra, cache);
+    EXPECT_EQ(r.exitCode, 0) << r.out;
+    EXPECT_EQ(r.out.find("rebaking"), std::string::npos) << r.out;
+    return pixelsOf(out);
+  };
+  const std::vector<uint8_t> flat = shot("1.png", ""), tall = shot("3.png", "--exaggeration 3");
+  ASSERT_FALSE(flat.empty());
+  EXPECT_NE(flat, tall);
+  EXPECT_EQ(shot("3b.png", "--exaggeration 3"), tall);  // from the cache, same picture
+  size_t cached = 0;
+  for ([[maybe_unused]] const auto& e : fs::directory_iterator(dir.path() / "cache")) ++cached;
+  EXPECT_EQ(cached, 2u);
+  // A map baked without the exaggeration: refused, saying why and how.
+  ASSERT_EQ(runTool("aal-bake", quoted(dem) + " -o " + quoted(map) + " -q").exitCode, 0);
+  const std::string png = " -o " + quoted(dir.path() / "x.png") + " --size 48x27";
+  const auto r = runTool("aal-render",
+                         quoted(dem) + " --exaggeration 3 --aperture " + quoted(map) + png, cache);
+  EXPECT_EQ(r.exitCode, 2) << r.out;
+  EXPECT_NE(r.out.find("baked for heights at z scale 1, these are at 3"), std::string::npos)
+      << r.out;
+  EXPECT_NE(r.out.find("aal-bake --z-scale 3"), std::string::npos) << r.out;
+  // The way out works: a map baked at that z scale draws the cached map's picture.
+  ASSERT_EQ(runTool("aal-bake", quoted(dem) + " --z-scale 3 -o " + quoted(map3) + " -q").exitCode,
+            0);
+  EXPECT_EQ(shot("3c.png", "--exaggeration 3 --aperture " + quoted(map3)), tall);
+  for (const char* bad : {"0", "-1", "101", "nan"}) {
+    const auto e = runTool("aal-render", quoted(dem) + png + " --exaggeration " + bad, cache);
+    EXPECT_EQ(e.exitCode, 2) << bad << "\n" << e.out;
+    EXPECT_NE(e.out.find("--exaggeration"), std::string::npos) << e.out;
+  }
+}
+
+// Issue 19: --base DEPTH draws walls and a bottom under the DEM: from a
+// fixed camera more opaque pixels than without (transparent background), a
+// deeper base more still; the default camera frames the base too (the last
+// rows, the 5 % margin, stay empty); bad values exit 2.
+TEST(AalRender, BaseAddsWallsUnderTheDem) {
+  TempDir dir;
+  const auto image = [&](const std::string& extra) {
+    const fs::path out = dir.path() / "b.png";
+    const auto r =
+        render(dir, "-o " + quoted(out) + " --size 64x36 -q --background transparent " + extra);
+    EXPECT_EQ(r.exitCode, 0) << r.out;
+    return pixelsOf(out);
+  };
+  const auto opaque = [](const std::vector<uint8_t>& p) {
+    size_t n = 0;
+    for (size_t i = 3; i < p.size(); i += 4) n += p[i] > 0;
+    return n;
+  };
+  const std::string camera = "--camera 30000,-30000,15000 --look-at 0,0,0 ";
+  const size_t none = opaque(image(camera)), shallow = opaque(image(camera + "--base 500")),
+               deep = opaque(image(camera + "--base 3000 --base-color 0.2,0.2,0.25"));
+  EXPECT_GT(shallow, none + 32);
+  EXPECT_GT(deep, shallow + 32);
+  const std::vector<uint8_t> framed = image("--base 3000");
+  ASSERT_EQ(framed.size(), 64u * 36 * 4);
+  size_t lastRow = 0;
+  for (size_t i = 3; i < framed.size(); i += 4) {
+    if (framed[i] > 0) lastRow = (i / 4) / 64;
+  }
+  EXPECT_GE(lastRow, 30u);  // the base reaches the framed picture's lower margin
+  EXPECT_LT(lastRow, 35u);  // and ends inside it
+  for (const std::string& bad :
+       {std::string("--base 0"), std::string("--base -5"), std::string("--base 100 --base-color 2"),
+        std::string("--base 100 --base-color 0.1,0.2"),
+        std::string("--base 100 --mode reference")}) {
+    const auto e = render(dir, "-o " + quoted(dir.path() / "x.png") + " --size 32x18 " + bad);
+    EXPECT_EQ(e.exitCode, 2) << bad << "\n" << e.out;
+    EXPECT_NE(e.out.find("--base"), std::string::npos) << e.out;
+  }
+}
+
+// Issue 19, item 3: --time-range START END --frames N writes OUT-0001.png
+// ... OUT-000N.png, the first and last being the renders at START and END,
+// with a progress bar; without ffmpeg (AAL_FFMPEG set empty) no MP4 and a
+// note saying how to get one.
+TEST(AalRender, TimeRangeWritesANumberedSequence) {
+  TempDir dir;
+  const fs::path out = dir.path() / "day.png";
+  const auto r = runTool("aal-render",
+                         quoted(kDem) + " -o " + quoted(out) +
+                             " --size 48x27 --time-range 2024-06-21T12:00Z 2024-06-22T00:00Z "
+                             "--frames 3",
+                         "AAL_FFMPEG= AAL_CACHE_DIR=" + quoted(dir.path() / "cache"));
+  ASSERT_EQ(r.exitCode, 0) << r.out;
+  EXPECT_NE(r.out.find("rendering 3 frames"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("ffmpeg not found"), std::string::npos) << r.out;
+  EXPECT_FALSE(fs::exists(dir.path() / "day.mp4"));
+  EXPECT_FALSE(fs::exists(out));
+  const std::vector<uint8_t> first = pixelsOf(dir.path() / "day-0001.png"),
+                             middle = pixelsOf(dir.path() / "day-0002.png"),
+                             last = pixelsOf(dir.path() / "day-0003.png");
+  ASSERT_EQ(first.size(), 48u * 27 * 4);
+  EXPECT_FALSE(fs::exists(dir.path() / "day-0004.png"));
+  const auto single = [&](const std::string& time) {
+    const fs::path one = dir.path() / "one.png";
+    EXPECT_EQ(render(dir, "-o " + quoted(one) + " --size 48x27 -q --time " + time).exitCode, 0);
+    return pixelsOf(one);
+  };
+  EXPECT_EQ(first, single("2024-06-21T12:00:00Z"));
+  EXPECT_EQ(middle, single("2024-06-21T18:00:00Z"));
+  EXPECT_EQ(last, single("2024-06-22T00:00:00Z"));
+  EXPECT_NE(first, middle);
+}
+
+// A --camera-path sequence (aal-view's format) frames its keyframes: with
+// two keyframes and --frames 2 the images are the renders from each
+// keyframe's --camera, --look-at and --fov.
+TEST(AalRender, CameraPathSequenceFollowsTheKeyframes) {
+  TempDir dir;
+  const fs::path path = dir.path() / "flight.txt", out = dir.path() / "fly.png";
+  std::ofstream(path) << "# t x y z lx ly lz fov\n"
+                         "0 -20000 -20000 6000 0 0 300 40\n"
+                         "10 20000 -15000 4000 0 2000 300 55\n";
+  const auto r = render(dir, "-o " + quoted(out) + " --size 48x27 -q --camera-path " +
+                                 quoted(path) + " --frames 2 --sun-azimuth 200 --sun-elevation 40");
+  ASSERT_EQ(r.exitCode, 0) << r.out;
+  const auto single = [&](const std::string& camera) {
+    const fs::path one = dir.path() / "one.png";
+    EXPECT_EQ(render(dir, "-o " + quoted(one) +
+                              " --size 48x27 -q --sun-azimuth 200 --sun-elevation 40 " + camera)
+                  .exitCode,
+              0);
+    return pixelsOf(one);
+  };
+  const std::vector<uint8_t> a = pixelsOf(dir.path() / "fly-0001.png"),
+                             b = pixelsOf(dir.path() / "fly-0002.png");
+  ASSERT_FALSE(a.empty());
+  EXPECT_EQ(a, single("--camera -20000,-20000,6000 --look-at 0,0,300 --fov 40"));
+  EXPECT_EQ(b, single("--camera 20000,-15000,4000 --look-at 0,2000,300 --fov 55"));
+}
+
+// With ffmpeg installed (optional, Debian's ffmpeg) the PNG frames also
+// become OUT.mp4, H.264 with every frame.
+TEST(AalRender, SequenceBecomesAnMp4WhenFfmpegIsInstalled) {
+  if (std::system("command -v ffmpeg >/dev/null 2>&1 && command -v ffprobe >/dev/null 2>&1") != 0) {
+    GTEST_SKIP() << "ffmpeg/ffprobe not installed";
+  }
+  TempDir dir;
+  const fs::path out = dir.path() / "lapse.png", mp4 = dir.path() / "lapse.mp4";
+  const auto r = render(dir, "-o " + quoted(out) +
+                                 " --size 47x27 --time-range 2024-06-21T12:00Z 2024-06-21T20:00Z "
+                                 "--frames 5 --fps 10");
+  ASSERT_EQ(r.exitCode, 0) << r.out;
+  ASSERT_TRUE(fs::exists(mp4)) << r.out;
+  const auto probe = test::runShell(
+      "ffprobe -v error -count_frames -select_streams v:0 -show_entries "
+      "stream=codec_name,nb_read_frames,width,r_frame_rate -of csv=p=0 " +
+      quoted(mp4));
+  ASSERT_EQ(probe.exitCode, 0) << probe.out;
+  // Odd widths are padded to even ones for H.264's 4:2:0.
+  EXPECT_NE(probe.out.find("h264,48,10/1,5"), std::string::npos) << probe.out;
+}
+
+TEST(AalRender, BadSequenceOptionsExitWithTwoAndSayWhich) {
+  TempDir dir;
+  const fs::path path = dir.path() / "flight.txt";
+  std::ofstream(path) << "0 -20000 -20000 6000 0 0 300\n";
+  const std::string o = "-o " + quoted(dir.path() / "x.png") + " --size 32x18 ";
+  const std::string p = " --camera-path " + quoted(path);
+  for (const auto& [args, says] : std::vector<std::pair<std::string, std::string>>{
+           {"--frames 3", "--frames"},
+           {p, "--frames"},
+           {p + " --frames 0", "--frames"},
+           {"--time-range 2024-06-21T12:00Z 2024-06-21T10:00Z --frames 2", "after START"},
+           {"--time-range 2024-06-21T12:00Z noon --frames 2", "--time-range"},
+           {"--time-range 2024-06-21T12:00Z --frames 2", "--time-range"},
+           {"--time-range 2024-06-21T12:00Z 2024-06-21T14:00Z --frames 2 --time "
+            "2024-06-21T12:00Z",
+            "--time-range"},
+           {p + " --frames 2 --camera 1,2,3", "--camera-path"},
+           {p + " --frames 2 --mode reference", "--mode reference"},
+           {" --camera-path " + quoted(dir.path() / "none.txt") + " --frames 2", "none.txt"}}) {
+    const auto r = render(dir, o + args);
+    EXPECT_EQ(r.exitCode, 2) << args << "\n" << r.out;
+    EXPECT_NE(r.out.find(says), std::string::npos) << args << "\n" << r.out;
+  }
+}
+
 // Issue 19, item 4: water only where the user asks; a georeferenced DEM
 // no longer paints every height <= 0 m as a lake.
 TEST(AalRender, WaterOnlyAtTheLevelAsked) {
@@ -310,8 +505,8 @@ TEST(AalRender, WaterOnlyAtTheLevelAsked) {
                              high = shot("high.png", "--water-level 5000");
   ASSERT_FALSE(dry.empty());
   EXPECT_EQ(low, dry);  // below the lowest height (~250 m): nothing changes
-  // Every terrain pixel is water now (the terrain fills ~14 % of this
-  // frame; the sky keeps its colour).
+  // Every terrain pixel is water now (the terrain fills 36 % of this framed
+  // view; the sky keeps its colour).
   size_t darker = 0, pixels = dry.size() / 4;
   for (size_t p = 0; p < pixels; ++p) {
     const int before = dry[4 * p] + dry[4 * p + 1] + dry[4 * p + 2];
@@ -321,6 +516,40 @@ TEST(AalRender, WaterOnlyAtTheLevelAsked) {
   EXPECT_GT(darker, pixels / 10);
   const auto r = render(dir, "-o " + quoted(dir.path() / "x.png") + " --water-level nan");
   EXPECT_EQ(r.exitCode, 2) << r.out;
+}
+
+// Issue 19: --background transparent gives alpha 0 where there is no terrain
+// (the PNG keeps the sky's colour there), alpha 255 on the terrain, the same
+// RGB as the default; the default camera frames the DEM (its diamond covers
+// 36 % of the frame, 14 % with the camera before issue 19). Bad values and the CPU paths are
+// refused with exit 2.
+TEST(AalRender, TransparentBackgroundHasAlphaZeroOffTheTerrain) {
+  TempDir dir;
+  const fs::path sky = dir.path() / "sky.png", clear = dir.path() / "clear.png";
+  ASSERT_EQ(render(dir, "-o " + quoted(sky) + " --size 64x36 -q").exitCode, 0);
+  const auto r = render(dir, "-o " + quoted(clear) + " --size 64x36 -q --background transparent");
+  ASSERT_EQ(r.exitCode, 0) << r.out;
+  ASSERT_EQ(specOf(clear).nchannels, 4);
+  const std::vector<uint8_t> a = pixelsOf(sky), b = pixelsOf(clear);
+  ASSERT_EQ(a.size(), 64u * 36 * 4);
+  ASSERT_EQ(b.size(), a.size());
+  size_t terrain = 0;
+  for (size_t p = 0; p < a.size() / 4; ++p) {
+    for (int c = 0; c < 3; ++c) ASSERT_EQ(a[4 * p + c], b[4 * p + c]) << p;
+    EXPECT_EQ(a[4 * p + 3], 255);
+    ASSERT_TRUE(b[4 * p + 3] == 0 || b[4 * p + 3] == 255) << p;
+    terrain += b[4 * p + 3] == 255;
+  }
+  EXPECT_EQ(b[3], 0);                         // top-left corner: beyond the DEM
+  EXPECT_EQ(b[4 * (18 * 64 + 32) + 3], 255);  // the centre: terrain
+  EXPECT_GT(terrain, a.size() / 4 * 3 / 10);  // framed: 36 %, was 14 % before issue 19
+  EXPECT_LT(terrain, a.size() / 4 * 9 / 10);
+  for (const std::string& bad : {std::string("--background purple"),
+                                 std::string("--background transparent --mode reference")}) {
+    const auto e = render(dir, "-o " + quoted(dir.path() / "x.png") + " --size 32x18 " + bad);
+    EXPECT_EQ(e.exitCode, 2) << bad << "\n" << e.out;
+    EXPECT_NE(e.out.find("--background"), std::string::npos) << e.out;
+  }
 }
 
 TEST(AalRender, NoVulkanDriverSaysHowToGetOne) {

@@ -244,7 +244,8 @@ TEST(AalView, BadCommandLineExitsWithTwoBeforeOpeningAWindow) {
         dem + " --frames 2 --camera-path " + quoted(dir.path() / "none.txt"),
         dem + " --frames 2 --screenshot " + quoted(dir.path() / "x.jpg"),
         dem + " --screenshot " + quoted(dir.path() / "x.png"), dem + " --size 0x10",
-        dem + " --mode magic", dem + " --sun-azimuth 10",
+        dem + " --mode magic", dem + " --sun-azimuth 10", dem + " --exaggeration 0",
+        dem + " --exaggeration -2", dem + " --exaggeration 1000",
         dem + " --aperture " + quoted(dir.path() / "missing.exr")}) {
     // No display: input errors must be found before a window is needed.
     const auto r = runTool("aal-view", args, "-u DISPLAY -u WAYLAND_DISPLAY");

@@ -164,8 +164,10 @@ BakeOptions viewerBakeOptions(int azimuths) {
 
 }  // namespace
 
-std::shared_ptr<const Heightfield> loadViewerDem(const std::string& path) {
-  auto field = std::make_shared<const Heightfield>(loadDem(path));
+std::shared_ptr<const Heightfield> loadViewerDem(const std::string& path, double exaggeration) {
+  DemLoadOptions options;
+  options.exaggeration = exaggeration;
+  auto field = std::make_shared<const Heightfield>(loadDem(path, options));
   requireRenderableDem(*field);
   return field;
 }
@@ -227,7 +229,7 @@ void Viewer::showTerrain(std::shared_ptr<const Heightfield> field, const std::st
 
 void Viewer::openDroppedDem(const std::string& path) {
   try {
-    std::shared_ptr<const Heightfield> field = loadViewerDem(path);
+    std::shared_ptr<const Heightfield> field = loadViewerDem(path, options_.exaggeration);
     const GeoPlace place = defaultSunPlace(*field);
     showTerrain(field, path, "");
     // The same local solar time at the new place.

@@ -51,6 +51,7 @@ struct ViewerOptions {
   // Dynamic resolution while the view changes (DynamicResolution); 0: off.
   double targetFps = 30;
   int bakeAzimuths = 64;
+  double exaggeration = 1.0;  // vertical, of this DEM and those dropped later
   // Scripted runs: render `frames` frames (0: run until the window closes),
   // along `cameraPath` when given, then save `screenshot` when given.
   int frames = 0;
@@ -65,7 +66,8 @@ struct ViewerOptions {
 };
 
 // A DEM read from its file; throws InputError when it cannot be.
-std::shared_ptr<const Heightfield> loadViewerDem(const std::string& path);
+std::shared_ptr<const Heightfield> loadViewerDem(const std::string& path,
+                                                 double exaggeration = 1.0);
 
 class Viewer {
  public:

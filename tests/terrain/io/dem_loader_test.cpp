@@ -86,6 +86,25 @@ TEST_F(DemLoader, InvalidOverridesAreRefused) {
   o.cellSizeM.reset();
   o.zScale = -1.0;
   test::expectMessage(test::inputErrorOf([&] { loadDem(path("g.asc"), o); }), {"--z-scale"});
+  o.zScale.reset();
+  for (double bad : {0.0, -2.0, std::numeric_limits<double>::infinity()}) {
+    o.exaggeration = bad;
+    test::expectMessage(test::inputErrorOf([&] { loadDem(path("g.asc"), o); }), {"--exaggeration"});
+  }
+}
+
+// Issue 19: a vertical exaggeration multiplies the z scale, so the heights
+// and the zScale an aperture map records both carry it.
+TEST_F(DemLoader, ExaggerationMultipliesTheZScale) {
+  test::writeBytes(path("g.asc"), kAsc);
+  DemLoadOptions o = warnings_.options();
+  o.zScale = 3.0;
+  const Heightfield plain = loadDem(path("g.asc"), o);
+  o.exaggeration = 2.5;
+  const Heightfield tall = loadDem(path("g.asc"), o);
+  EXPECT_DOUBLE_EQ(tall.zScale, 7.5);
+  ASSERT_EQ(tall.z.size(), plain.z.size());
+  for (size_t i = 0; i < tall.z.size(); ++i) EXPECT_FLOAT_EQ(tall.z[i], 2.5f * plain.z[i]) << i;
 }
 
 TEST_F(DemLoader, OverridesWinOverTheFile) {
