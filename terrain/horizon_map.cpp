@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstdio>
 #include <fstream>
+#include <numbers>
 #include <sstream>
 #include <stdexcept>
 #include <string>
@@ -14,7 +15,7 @@ namespace aal {
 
 namespace {
 
-constexpr float kTwoPi = 6.28318530717958647692f;
+constexpr float kTwoPi = 2.0f * std::numbers::pi_v<float>;
 constexpr const char* kMagic = "aperture-horizons";
 constexpr int kVersion = 1;
 

@@ -260,8 +260,8 @@ TEST_F(Render, SolidBaseHangsFromTheEdgeAndIsShadedAsAWall) {
       ASSERT_TRUE(px >= 0 && px < int(kW) && py >= 0 && py < int(kH)) << px << " " << py;
       const glm::vec3 irradiance =
           s.sunIrradiance * std::max(0.0f, glm::dot(normal, s.sunDirection)) +
-          float(M_PI) * s.skyRadiance * 0.5f;
-      const glm::vec3 expected = toneMap(albedo / float(M_PI) * irradiance, s.exposure);
+          float(std::numbers::pi) * s.skyRadiance * 0.5f;
+      const glm::vec3 expected = toneMap(albedo / float(std::numbers::pi) * irradiance, s.exposure);
       for (int c = 0; c < 3; ++c) {
         const int got = deep.display[4 * (size_t(py) * kW + px) + c];
         EXPECT_NEAR(got, 255.0f * expected[c], 2.0f)

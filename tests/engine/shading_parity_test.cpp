@@ -3,6 +3,7 @@
 
 #include <array>
 #include <cmath>
+#include <numbers>
 #include <random>
 #include <vector>
 
@@ -219,7 +220,7 @@ TEST_F(ShadingParity, HorizonInterpolationMatchesCpp) {
     for (uint8_t& v : c) v = uint8_t(code(rng));
     const int n = 4 * (1 + i % 4);  // 4, 8, 12, 16
     // Every stored direction exactly, then anywhere.
-    const float a = i < 256 ? float(i / 4) * float(2 * 3.14159265358979 / n) : azimuth(rng);
+    const float a = i < 256 ? float(i / 4) * float(2 * std::numbers::pi / n) : azimuth(rng);
     codes.push_back(c);
     directions.push_back(n);
     HorizonQuery q;

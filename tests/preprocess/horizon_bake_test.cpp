@@ -6,6 +6,7 @@
 #include <cmath>
 #include <cstdio>
 #include <limits>
+#include <numbers>
 #include <stdexcept>
 
 #include "bake.h"
@@ -15,7 +16,7 @@
 namespace aal {
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
+constexpr double kPi = std::numbers::pi;
 
 double bilinear(const Heightfield& f, double x, double y) {
   const int x0 = std::clamp(int(std::floor(x)), 0, f.width - 2);

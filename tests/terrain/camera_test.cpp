@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <numbers>
 
 #include <glm/geometric.hpp>
 
@@ -65,7 +66,7 @@ TEST(FramingCamera, FitsTheBoxToTheFrustumTouchingOneAxisAndCentringTheOther) {
     EXPECT_NEAR(b.xMin + b.xMax, 0.0, 2 * tol);
     EXPECT_NEAR(b.yMin + b.yMax, 0.0, 2 * tol);
     // Looking along the requested direction.
-    const double el = c.elevation * M_PI / 180, az = c.azimuth * M_PI / 180;
+    const double el = c.elevation * std::numbers::pi / 180, az = c.azimuth * std::numbers::pi / 180;
     const glm::dvec3 expected =
         -glm::dvec3(std::cos(el) * std::sin(az), std::cos(el) * std::cos(az), std::sin(el));
     EXPECT_NEAR(glm::dot(glm::normalize(cam.lookAt - cam.position), expected), 1.0, 1e-9);

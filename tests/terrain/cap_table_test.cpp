@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <numbers>
 #include <random>
 #include <stdexcept>
 
@@ -18,7 +19,7 @@
 namespace aal {
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
+constexpr double kPi = std::numbers::pi;
 
 // The thinnest sun the tools allow (0.01 degrees), the real one, and larger
 // ones up to the tools' 20 degrees.

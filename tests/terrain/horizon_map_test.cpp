@@ -5,6 +5,7 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <numbers>
 #include <random>
 #include <string>
 
@@ -18,7 +19,7 @@
 namespace aal {
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
+constexpr double kPi = std::numbers::pi;
 
 TEST(HorizonMap, CodesKeepTheElevationToHalfAStepFinestNearTheHorizontal) {
   for (double e = -0.03; e < 1.57; e += 1e-4) {
