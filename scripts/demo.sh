@@ -2,9 +2,10 @@
 # The main job, from a fresh Debian 12 machine: installs what is missing,
 # builds, bakes the shipped DEM (heightmaps/jacksboro_fault_dem.tif) and
 # renders it lit by the sun and the sky through a summer day, plus a
-# shaded-relief GeoTIFF, an approximate-vs-exact pair, every mode against the
-# ray-traced reference and the cap error table. Results go to out/ (or the
-# folder given as $1).
+# shaded-relief GeoTIFF, a framed block on a solid base, a day's time-lapse
+# and a fly-through (image sequences, MP4s when ffmpeg is installed), an
+# approximate-vs-exact pair, every mode against the ray-traced reference and
+# the cap error table. Results go to out/ (or the folder given as $1).
 set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
 out=${1:-$root/out}
@@ -40,6 +41,23 @@ for time in 10:45 12:00 14:00 17:40 21:30 23:00 01:15; do
     --time "${date}T${time}:00Z" -q
   echo "  $out/$name"
 done
+
+echo
+echo "== A framed block: the DEM on a solid base, transparent around it"
+"$bin/aal-render" "$dem" --aperture "$out/aperture.exr" -o "$out/block.png" --size "$size" \
+  --time "${day}T15:00:00Z" --base 400 --background transparent -q
+echo "  $out/block.png"
+
+echo
+echo "== A day as a time-lapse and a fly-through (image sequences; MP4s when ffmpeg is installed)"
+mkdir -p "$out/timelapse" "$out/flight"
+"$bin/aal-render" "$dem" --aperture "$out/aperture.exr" -o "$out/timelapse/day.png" \
+  --size 640x360 --time-range "${day}T10:30Z" "$(date -u -d "$day + 1 day" +%F)T01:00Z" \
+  --frames 30 -q
+"$bin/aal-render" "$dem" --aperture "$out/aperture.exr" -o "$out/flight/flight.png" \
+  --size 640x360 --time "${day}T15:00:00Z" --camera-path "$root/heightmaps/jacksboro_flight.txt" \
+  --frames 60 -q
+echo "  $out/timelapse/, $out/flight/"
 
 echo
 echo "== Approximate (Oat's smoothstep) vs exact cap intersection, low sun"
