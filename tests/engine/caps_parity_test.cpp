@@ -13,13 +13,13 @@
 
 #include "buffer.h"
 #include "cap_table.h"
+#include "cap_table_image.h"
 #include "caps.h"
 #include "commands.h"
 #include "compute.h"
 #include "config.h"
 #include "descriptors.h"
 #include "image.h"
-#include "upload.h"
 #include "vulkan_test.h"
 
 namespace aal {
@@ -151,11 +151,7 @@ TEST_F(CapsParity, CapTableLookupMatchesCppAndTheClosedForm) {
     Buffer output(device(), count * sizeof(float), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
                   MemoryIntent::Readback);
     input.write(queries.data(), count * sizeof(glm::vec2));
-    const Image image(device(), {AAL_CAP_TABLE_WIDTH, AAL_CAP_TABLE_HEIGHT, VK_FORMAT_R32_SFLOAT,
-                                 VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT});
-    UploadBatch upload(device());
-    upload.addImage(image, sizeof(float), table.values.data());
-    upload.submit();
+    const Image image = test::capTableImage(device(), table);
     const Sampler sampler(device(), VK_FILTER_LINEAR);
     {
       const ComputePipeline pipeline(

@@ -1,0 +1,22 @@
+// The exact-intersection table (terrain/cap_table.h) as the sampled R32F
+// image the parity shaders read, uploaded and ready.
+#pragma once
+
+#include "cap_table.h"
+#include "config.h"
+#include "device.h"
+#include "image.h"
+#include "upload.h"
+
+namespace aal::test {
+
+inline Image capTableImage(const Device& device, const CapIntersectionTable& table) {
+  Image image(device, {AAL_CAP_TABLE_WIDTH, AAL_CAP_TABLE_HEIGHT, VK_FORMAT_R32_SFLOAT,
+                       VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT});
+  UploadBatch upload(device);
+  upload.addImage(image, sizeof(float), table.values.data());
+  upload.submit();
+  return image;
+}
+
+}  // namespace aal::test
