@@ -1,7 +1,7 @@
 #version 460
 // 4x4 filter of the obscurance pass (docs/design.md §6; Umenhoffer et al.,
 // "Efficient Methods for Ambient Lighting", 2009, §4.2): the box averages
-// the 16 rotations of the interleaved pattern, skipping neighbours whose view
+// the 16 toroidal shifts of the interleaved pattern, skipping neighbours whose view
 // distance differs from the centre's by more than
 // AAL_OBSCURANCE_DEPTH_TOLERANCE of it (another surface). Runs at the
 // obscurance pass's resolution.

@@ -30,7 +30,8 @@ struct ObscuranceSettings {
   // the frame without the passes on lavapipe (docs/performance.md).
   int samples = 16;
   int steps = 1;  // m: test points per ray, 1 or 2
-  // 16 rotations of the set on a 4x4 pixel pattern and a 4x4 box filter
+  // 16 toroidal shifts of the set (Cranley-Patterson rotations,
+  // obscurance_samples.h) on a 4x4 pixel pattern and a 4x4 box filter
   // (Umenhoffer et al. 2009, §4.2); false: one set everywhere, unfiltered (for
   // comparisons).
   bool interleaved = true;
