@@ -6,9 +6,9 @@
 #include <numbers>
 #include <stdexcept>
 
+#include <tbb/parallel_for.h>
 #include <glm/common.hpp>
 #include <glm/geometric.hpp>
-#include <tbb/parallel_for.h>
 
 #include "config.h"
 #include "height_mips.h"

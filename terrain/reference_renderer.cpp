@@ -7,10 +7,10 @@
 #include <random>
 #include <stdexcept>
 
+#include <tbb/parallel_for.h>
 #include <glm/geometric.hpp>
 #include <glm/matrix.hpp>
 #include <glm/vec4.hpp>
-#include <tbb/parallel_for.h>
 
 namespace aal {
 

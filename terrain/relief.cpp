@@ -6,10 +6,10 @@
 #include <numbers>
 #include <stdexcept>
 
-#include <glm/geometric.hpp>
-#include <glm/vec4.hpp>
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
+#include <glm/geometric.hpp>
+#include <glm/vec4.hpp>
 
 #include <Imath/half.h>
 

@@ -8,11 +8,11 @@
 #include <memory>
 #include <utility>
 
+#include <ogr_spatialref.h>
 #include <GeographicLib/Constants.hpp>
 #include <GeographicLib/Ellipsoid.hpp>
 #include <GeographicLib/Geodesic.hpp>
 #include <GeographicLib/Math.hpp>
-#include <ogr_spatialref.h>
 
 #include "errors.h"
 #include "gdal_session.h"
