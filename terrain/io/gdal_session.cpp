@@ -34,10 +34,9 @@ GDALDatasetUniquePtr openGeoTiff(const std::string& path) {
   configureGdal();
   static std::once_flag once;
   std::call_once(once, [] { GDALRegister_GTiff(); });
+  // GDALOpenEx identifies the file with the allowed drivers only: no second
+  // look at the header.
   const char* const geoTiff[] = {"GTiff", nullptr};
-  if (GDALIdentifyDriverEx(path.c_str(), GDAL_OF_RASTER, geoTiff, nullptr) == nullptr) {
-    return nullptr;
-  }
   return GDALDatasetUniquePtr(GDALDataset::FromHandle(
       GDALOpenEx(path.c_str(), GDAL_OF_RASTER | GDAL_OF_READONLY, geoTiff, nullptr, nullptr)));
 }
