@@ -28,8 +28,6 @@
 #include <OpenEXR/ImfHeader.h>
 #include <OpenEXR/ImfInputFile.h>
 #include <OpenEXR/ImfIntAttribute.h>
-#include <OpenEXR/ImfOutputFile.h>
-#include <OpenEXR/ImfStandardAttributes.h>
 #include <OpenEXR/ImfStringAttribute.h>
 #include <OpenEXR/ImfThreading.h>
 #include <tbb/blocked_range.h>
@@ -37,6 +35,7 @@
 
 #include "atomic_file.h"
 #include "errors.h"
+#include "exr_scanline_writer.h"
 #include "half_floats.h"
 #include "heightfield_checksum.h"
 #include "interrupt.h"
@@ -130,68 +129,48 @@ uint64_t storedPixelChecksum(const ApertureMap& map, bool halfFloat) {
 
 void writeApertureMap(const std::string& path, const ApertureMap& map, bool halfFloat,
                       MapCompression compression) {
-  useEveryCoreForExr();
   AtomicOutput output(path);
   const std::string temporary = output.temporaryPath().string();
   try {
-    Imf::Header header(map.width, map.height);
-    header.compression() = compression == MapCompression::Zip   ? Imf::ZIP_COMPRESSION
-                           : compression == MapCompression::Rle ? Imf::RLE_COMPRESSION
-                                                                : Imf::NO_COMPRESSION;
-    for (const char* name : kChannels) {
-      header.channels().insert(name, Imf::Channel(halfFloat ? Imf::HALF : Imf::FLOAT));
-    }
-    const ApertureMapInfo& i = map.info;
-    header.insert("aal:version", Imf::IntAttribute(i.version));
-    header.insert("aal:azimuths", Imf::IntAttribute(i.azimuths));
-    header.insert("aal:method", Imf::StringAttribute(i.method));
-    header.insert("aal:cellSizeX", Imf::FloatAttribute(static_cast<float>(i.cellSizeX)));
-    header.insert("aal:cellSizeY", Imf::FloatAttribute(static_cast<float>(i.cellSizeY)));
-    header.insert("aal:zScale", Imf::FloatAttribute(static_cast<float>(i.zScale)));
-    header.insert("aal:source", Imf::StringAttribute(i.source));
-    header.insert("aal:sourceSize", Imf::StringAttribute(std::to_string(i.sourceWidth) + "x" +
-                                                         std::to_string(i.sourceHeight)));
-    header.insert("aal:sourceChecksum", Imf::StringAttribute(i.sourceChecksum));
-    header.insert("aal:edge", Imf::StringAttribute(i.edge));
-    header.insert("aal:curvature", Imf::IntAttribute(i.curvature ? 1 : 0));
-    header.insert("aal:refraction", Imf::FloatAttribute(static_cast<float>(i.refraction)));
-    header.insert("aal:maxDistance", Imf::FloatAttribute(static_cast<float>(i.maxDistanceM)));
-    if (i.originCol != 0 || i.originRow != 0 || map.width != i.sourceWidth ||
-        map.height != i.sourceHeight) {
-      header.insert("aal:tileOrigin", Imf::StringAttribute(std::to_string(i.originCol) + "," +
-                                                           std::to_string(i.originRow)));
-    }
-    Imf::addCapDate(header, captureDate());
     if (map.texels.size() != map.texelCount() * 4) {
       throw std::invalid_argument("the map has " + std::to_string(map.texels.size()) +
                                   " floats, not 4 per texel");
     }
-    header.insert("aal:pixelChecksum",
-                  Imf::StringAttribute(checksumHex(storedPixelChecksum(map, halfFloat))));
-    Imf::OutputFile file(temporary.c_str(), header);
-    // OpenEXR writes only the channels' own pixel type: halves are converted
-    // here, a block of rows at a time.
-    const Imf::PixelType type = halfFloat ? Imf::HALF : Imf::FLOAT;
-    const size_t texelBytes = halfFloat ? 4 * sizeof(uint16_t) : 4 * sizeof(float);
+    const ApertureMapInfo& i = map.info;
+    std::vector<ExrAttribute> attributes = {
+        {"aal:version", i.version},
+        {"aal:azimuths", i.azimuths},
+        {"aal:method", i.method},
+        {"aal:cellSizeX", static_cast<float>(i.cellSizeX)},
+        {"aal:cellSizeY", static_cast<float>(i.cellSizeY)},
+        {"aal:zScale", static_cast<float>(i.zScale)},
+        {"aal:source", i.source},
+        {"aal:sourceSize", std::to_string(i.sourceWidth) + "x" + std::to_string(i.sourceHeight)},
+        {"aal:sourceChecksum", i.sourceChecksum},
+        {"aal:edge", i.edge},
+        {"aal:curvature", i.curvature ? 1 : 0},
+        {"aal:refraction", static_cast<float>(i.refraction)},
+        {"aal:maxDistance", static_cast<float>(i.maxDistanceM)},
+    };
+    if (i.originCol != 0 || i.originRow != 0 || map.width != i.sourceWidth ||
+        map.height != i.sourceHeight) {
+      attributes.push_back(
+          {"aal:tileOrigin", std::to_string(i.originCol) + "," + std::to_string(i.originRow)});
+    }
+    attributes.push_back({"capDate", captureDate()});
+    attributes.push_back({"aal:pixelChecksum", checksumHex(storedPixelChecksum(map, halfFloat))});
+    ExrScanlineWriter file(temporary, map.width, map.height,
+                           {kChannels[0], kChannels[1], kChannels[2], kChannels[3]}, halfFloat,
+                           compression, attributes);
+    // Blocks of rows, so that an interrupt is seen within ~0.1 s even at
+    // 16384 columns; the writer converts to halves as it packs.
     const size_t rowFloats = static_cast<size_t>(map.width) * 4;
-    std::vector<uint16_t> halves(halfFloat ? rowFloats * kBlockRows : 0);
     for (int y = 0; y < map.height; y += kBlockRows) {
       const int end = std::min(map.height, y + kBlockRows);
-      const float* rows = map.texels.data() + static_cast<size_t>(y) * rowFloats;
-      const void* block = rows;
-      if (halfFloat) {
-        tbb::parallel_for(tbb::blocked_range<int>(y, end), [&](const tbb::blocked_range<int>& r) {
-          const size_t first = static_cast<size_t>(r.begin() - y) * rowFloats;
-          floatsToHalves(rows + first, halves.data() + first,
-                         static_cast<size_t>(r.size()) * rowFloats);
-        });
-        block = halves.data();
-      }
-      file.setFrameBuffer(rowsFrameBuffer(header.dataWindow(), y, end, type, block, texelBytes,
-                                          texelBytes * static_cast<size_t>(map.width)));
-      file.writePixels(end - y);
-      throwIfInterrupted();  // a block is ~0.1 s even at 16384 columns
+      file.writeRows(map.texels.data() + static_cast<size_t>(y) * rowFloats, y, end);
+      throwIfInterrupted();
     }
+    file.finish();
   } catch (const Interrupted&) {
     throw;
   } catch (const std::exception& e) {

@@ -20,6 +20,7 @@
 #include <vector>
 
 #include "heightfield.h"
+#include "map_compression.h"
 
 namespace aal {
 
@@ -53,13 +54,6 @@ struct ApertureMap {
 // 64-bit FNV-1a of the DEM's size and heights, as 16 hex digits: identifies
 // the DEM an aperture map was baked from (and keys bake caches).
 std::string heightfieldChecksum(const Heightfield& field);
-
-// How the EXR's chunks are compressed. On this project's maps (halves of
-// noisy normals) zlib gains little and costs much: a 4096^2 half map writes
-// in 3.3 s as ZIP (79 MB), 0.64 s as RLE (108 MB), 0.23 s uncompressed
-// (134 MB) on 2 cores (docs/performance.md). Every EXR reader reads each.
-enum class MapCompression { Rle, Zip, None };
-constexpr MapCompression kDefaultMapCompression = MapCompression::Rle;
 
 // Writes the map as EXR via a temporary file renamed into place. halfFloat
 // stores 16-bit floats (bent normal to ~1e-3, arc length to ~1e-3 rad). The
