@@ -12,9 +12,12 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
+
+class OGRSpatialReference;  // GDAL's CRS
 
 namespace aal {
 
@@ -23,10 +26,12 @@ enum class CrsKind { None, Geographic, Projected };
 struct GeoReference {
   CrsKind crs = CrsKind::None;
   int epsg = 0;  // 0 when the CRS has no EPSG code
-  // The CRS as WKT (OGC WKT2), exactly as the file gave it; empty when the
-  // grid is not georeferenced, or when only `epsg` names the CRS (then the
-  // EPSG definition is used). Outputs carry it (terrain/io/raster_writer.h).
-  std::string wkt;
+  // The CRS exactly as the file gave it, as GDAL's object: writing it out as
+  // WKT took 17-27 ms of every DEM's read (docs/performance.md). Null when
+  // the grid is not georeferenced, or when only `epsg` names the CRS (then
+  // the EPSG definition is used). Never modified: spatialReferenceOf
+  // (terrain/io/gdal_session.h) hands out copies, which outputs carry.
+  std::shared_ptr<const OGRSpatialReference> srs;
   std::string crsName;  // e.g. "WGS 84 / UTM zone 16N"; empty when unknown
   // CRS coordinates of the centre of texel (0, 0) and the spacing between
   // texel centres, in the CRS's own units. x grows east with the column, y

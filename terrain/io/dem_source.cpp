@@ -290,10 +290,8 @@ void describeCrs(const std::string& path, const OGRSpatialReference& srs,
   } else if (std::strcmp(authority, "EPSG") == 0) {
     geo.epsg = std::atoi(code);
   }
-  char* wkt = nullptr;
-  const char* const wktOptions[] = {"FORMAT=WKT2_2019", nullptr};
-  if (srs.exportToWkt(&wkt, wktOptions) == OGRERR_NONE && wkt != nullptr) geo.wkt = wkt;
-  CPLFree(wkt);
+  geo.srs = std::shared_ptr<const OGRSpatialReference>(
+      srs.Clone(), [](OGRSpatialReference* copy) { copy->Release(); });
   if (srs.GetName() != nullptr) geo.crsName = srs.GetName();
   if (srs.IsCompound() || srs.IsVertical()) {
     const char* unitName = nullptr;

@@ -43,11 +43,13 @@ GDALDatasetUniquePtr openGeoTiff(const std::string& path) {
 
 std::unique_ptr<OGRSpatialReference> spatialReferenceOf(const GeoReference& geo) {
   configureGdal();  // OGR needs no drivers
-  auto srs = std::make_unique<OGRSpatialReference>();
-  const OGRErr error = !geo.wkt.empty() ? srs->importFromWkt(geo.wkt.c_str())
-                       : geo.epsg > 0   ? srs->importFromEPSG(geo.epsg)
-                                        : OGRERR_FAILURE;
-  if (error != OGRERR_NONE) return nullptr;
+  std::unique_ptr<OGRSpatialReference> srs;
+  if (geo.srs) {
+    srs.reset(geo.srs->Clone());
+  } else {
+    srs = std::make_unique<OGRSpatialReference>();
+    if (geo.epsg <= 0 || srs->importFromEPSG(geo.epsg) != OGRERR_NONE) return nullptr;
+  }
   srs->SetAxisMappingStrategy(OAMS_TRADITIONAL_GIS_ORDER);
   return srs;
 }

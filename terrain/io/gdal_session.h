@@ -27,7 +27,7 @@ void ensureGdal();
 // the drivers.
 GDALDatasetUniquePtr openGeoTiff(const std::string& path);
 
-// The CRS `geo` names: its WKT, else its EPSG code; null when it names none
+// The CRS `geo` names: a copy of its CRS, else its EPSG code; null when it names none
 // or OGR cannot read it. Axes in the traditional GIS order (x east, y north).
 std::unique_ptr<OGRSpatialReference> spatialReferenceOf(const GeoReference& geo);
 
