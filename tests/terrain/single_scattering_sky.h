@@ -14,11 +14,14 @@
 //   3/(16 pi) (1 + mu²);
 // - aerosol: tau_A = beta lambda^-1.3 with Preetham's beta(T) = 0.04608 T -
 //   0.04586 (as terrain/atmosphere.h), scale height 1.2 km, single-scattering
-//   albedo 0.9, the Cornette & Shanks 1992 phase function with g = 0.76;
+//   albedo 0.9, the phase function of Cornette & Shanks 1992, "Physically
+//   reasonable analytic expression for the single-scattering phase
+//   function" (Applied Optics 31(16)), with g = 0.76;
 // - Earth radius 6371 km, atmosphere 100 km deep, eye 1 m above the ground,
 //   no ozone, no multiple scattering, no ground reflection;
 // - sun: a 5772 K black body (IAU 2015 nominal solar effective temperature),
-//   the result white-balanced to it: a Bradford transform (Lam 1985) maps
+//   the result white-balanced to it: a Bradford transform (Lam 1985,
+//   "Metamerism and colour constancy", thesis, University of Bradford) maps
 //   the sun's white to D65, as the renderer takes the extraterrestrial sun
 //   for white (docs/sun-and-sky.md, "Units");
 // - colour matching: the CIE 1931 2° observer as the multi-lobe Gaussian fit
