@@ -68,10 +68,6 @@ struct FrameSettings {
   std::optional<Base> base;
 };
 
-// Vertices of the solid base of a width x height DEM: two triangles per DEM
-// cell along each edge and two for the bottom (shaders/base_vertex.glsl).
-uint32_t baseVertexCount(uint32_t width, uint32_t height);
-
 // The sun and sky of `light` (direction, irradiance, average sky radiance,
 // the sky model) into `settings`; the sun's radius, haze and exposure are the
 // caller's.

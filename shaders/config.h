@@ -67,6 +67,9 @@
 // quads across one patch (even, so that its quadrants and the morph's odd and
 // even grid points line up with the next coarser level).
 #define AAL_LOD_PATCH_QUADS 32
+// Vertices of one patch grid line of the solid base's walls: two triangles
+// per quad along it (shaders/base_vertex.glsl).
+#define AAL_BASE_LINE_VERTICES (6 * AAL_LOD_PATCH_QUADS)
 // Workgroup size of the LOD morph parity compute shader.
 #define AAL_LOD_PARITY_GROUP_SIZE 64
 

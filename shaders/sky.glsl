@@ -10,8 +10,8 @@
 // Channels .x = Y (luminance), .y = x, .z = y (CIE chromaticity).
 struct PreethamSky {
   vec4 perezA;        // Perez A; w: turbidity
-  vec4 perezB;        // Perez B
-  vec4 perezC;        // Perez C
+  vec4 perezB;        // Perez B; w: x of the midday CCT floor
+  vec4 perezC;        // Perez C; w: strength of that floor
   vec4 perezD;        // Perez D (per radian)
   vec4 perezE;        // Perez E
   // (Y_z fade / F_Y(0, theta_s) [kcd/m²], x_z / F_x(0, theta_s), y_z / F_y(0, theta_s), fade)
@@ -37,9 +37,20 @@ float daylightLocusLift(float x, float y) {
   return max(y, locus);
 }
 
+// The midday colour-temperature floor, then the lift: twin of
+// daylightChromaticity in terrain/sky_model.h (why: docs/sun-and-sky.md).
+vec2 daylightChromaticity(float x, float y, float maxX, float strength) {
+  float floored = x - strength * max(x - maxX, 0.0);
+  float locusShift = ((float(AAL_DAYLIGHT_LOCUS_A) * floored + float(AAL_DAYLIGHT_LOCUS_B)) * floored +
+                      float(AAL_DAYLIGHT_LOCUS_C)) -
+                     ((float(AAL_DAYLIGHT_LOCUS_A) * x + float(AAL_DAYLIGHT_LOCUS_B)) * x +
+                      float(AAL_DAYLIGHT_LOCUS_C));
+  return vec2(floored, daylightLocusLift(floored, y + locusShift));
+}
+
 // Sky radiance (kcd/m², linear sRGB) along viewDir (any non-zero vector, z up):
-// the Perez function of Y, x, y scaled by the zenith values (paper eq. 3), y
-// kept on or above the daylight locus.
+// the Perez function of Y, x, y scaled by the zenith values (paper eq. 3), the
+// chromaticity no warmer than the midday floor and on or above the daylight locus.
 vec3 skyRadiance(PreethamSky sky, vec3 viewDir) {
   vec3 v = normalize(viewDir);
   vec3 s = sky.sunDirection.xyz;
@@ -50,7 +61,8 @@ vec3 skyRadiance(PreethamSky sky, vec3 viewDir) {
            (1.0 + sky.perezC.xyz * exp(sky.perezD.xyz * gamma) +
             sky.perezE.xyz * (cosGamma * cosGamma));
   vec3 yxy = sky.zenith.xyz * f;  // (Y, x, y)
-  return xyYToLinearSrgb(yxy.y, daylightLocusLift(yxy.y, yxy.z), yxy.x);
+  vec2 xy = daylightChromaticity(yxy.y, yxy.z, sky.perezB.w, sky.perezC.w);
+  return xyYToLinearSrgb(xy.x, xy.y, yxy.x);
 }
 
 #endif

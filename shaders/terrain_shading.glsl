@@ -8,7 +8,7 @@
 #define AAL_TERRAIN_SHADING_GLSL
 
 #include "config.h"
-// After the terrain textures and the LOD patches (terrain_vertex.glsl): the
+// After the terrain textures and the LOD patches (patch_vertex.glsl): the
 // exact mode's cap table, the horizon mode's directional horizons.
 #define AAL_CAP_TABLE_BINDING (AAL_TERRAIN_TEXTURES_END + 1)
 #define AAL_HORIZON_BINDING (AAL_TERRAIN_TEXTURES_END + 2)

@@ -82,6 +82,29 @@ float daylightLocusLift(float x, float y) {
   return std::max(y, locus);
 }
 
+double daylightLocusX(double cctK) {
+  const double t = std::clamp(cctK, 4000.0, 25000.0);
+  const double u = 1e3 / t;  // 1000 / T: the coefficients below are per power of it
+  return t <= 7000.0 ? ((-4.6070 * u + 2.9678) * u + 0.09911) * u + 0.244063
+                     : ((-2.0064 * u + 1.9018) * u + 0.24748) * u + 0.237040;
+}
+
+double middayCctFloorStrength(double elevationDeg) {
+  const double s = std::clamp(
+      (elevationDeg - kMiddayFloorStartDeg) / (kMiddayFloorFullDeg - kMiddayFloorStartDeg), 0.0,
+      1.0);
+  return s * s * (3.0 - 2.0 * s);
+}
+
+glm::vec2 daylightChromaticity(float x, float y, float maxX, float strength) {
+  const auto locus = [](float u) {
+    return (float(AAL_DAYLIGHT_LOCUS_A) * u + float(AAL_DAYLIGHT_LOCUS_B)) * u +
+           float(AAL_DAYLIGHT_LOCUS_C);
+  };
+  const float floored = x - strength * std::max(x - maxX, 0.0f);
+  return {floored, daylightLocusLift(floored, y + (locus(floored) - locus(x)))};
+}
+
 namespace {
 
 glm::vec4 pack(double y, double x, double yy, double w = 0.0) {
@@ -144,8 +167,8 @@ PreethamSky makePreethamSky(const glm::vec3& sunDir, double turbidity) {
 
   PreethamSky sky;
   sky.perezA = pack(pY.a, px.a, py.a, t);
-  sky.perezB = pack(pY.b, px.b, py.b);
-  sky.perezC = pack(pY.c, px.c, py.c);
+  sky.perezB = pack(pY.b, px.b, py.b, daylightLocusX(kMiddaySkyMinCctK));
+  sky.perezC = pack(pY.c, px.c, py.c, middayCctFloorStrength(elevationRad * 180.0 / kPi));
   sky.perezD = pack(pY.d, px.d, py.d);
   sky.perezE = pack(pY.e, px.e, py.e);
   sky.zenith = pack(yz * fade / perezAtZenith(pY, thetaSun), xz / perezAtZenith(px, thetaSun),
@@ -164,7 +187,8 @@ glm::vec3 skyRadiance(const PreethamSky& sky, const glm::vec3& viewDir) {
   const glm::vec3 f = (1.0f + a * glm::exp(b / cosTheta)) *
                       (1.0f + c * glm::exp(d * gamma) + e * (cosGamma * cosGamma));
   const glm::vec3 yxy = glm::vec3(sky.zenith) * f;  // (Y, x, y)
-  return xyYToLinearSrgb(yxy.y, daylightLocusLift(yxy.y, yxy.z), yxy.x);
+  const glm::vec2 xy = daylightChromaticity(yxy.y, yxy.z, sky.perezB.w, sky.perezC.w);
+  return xyYToLinearSrgb(xy.x, xy.y, yxy.x);
 }
 
 glm::vec3 averageSkyRadiance(const PreethamSky& sky, int azimuthSteps, int zenithSteps) {

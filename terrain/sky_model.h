@@ -51,6 +51,20 @@
 // on or above the locus (the blue sky away from the horizon, sunsets, x >
 // 0.35) are untouched. docs/sun-and-sky.md has the numbers.
 //
+// Midday colour-temperature floor: under a sun 45° or more up the Perez x fit
+// still warms the last few degrees above the horizon towards the sun (sun 60°
+// up, 3° above the horizon: x = 0.318, CCT ~6200 K, R > G > B). A spectral
+// single-scattering reference (tests/terrain/single_scattering_sky.h, after
+// Nishita et al. 1993) puts that band between ~5800 K (Preetham's aerosol at
+// T = 2.5) and ~8300 K (no aerosol): near white either way, its sign of
+// B - R set by the haze. The renderer takes the clear end: by day the sky's
+// chromaticity is slid along the daylight locus to no warmer than 6800 K
+// (x <= x_D(6800 K), the offset from the locus kept), which the reference
+// gives for a very clear atmosphere, and which reads B > G > R after the
+// tone map. The floor fades in with the sun from 30° to 45° up (smoothstep),
+// so the morning, evening and winter-noon horizons keep their warmth and
+// sunsets are untouched. Luminance is kept.
+//
 // Known limitation: sunsets and high turbidity are the model's weak points
 // (Hosek & Wilkie 2012; Zotti, Wilkie & Purgathofer 2007, "A Critical Review
 // of the Preetham Skylight Model"): its sky is too bright for a low sun
@@ -64,6 +78,7 @@
 
 #include <cstddef>
 
+#include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
 #include <glm/vec4.hpp>
 
@@ -77,8 +92,8 @@ namespace aal {
 // Channels: .x = Y (luminance), .y = x, .z = y (CIE 1931 chromaticity).
 struct PreethamSky {
   glm::vec4 perezA{0.0f};  // Perez A for (Y, x, y); w: turbidity actually used
-  glm::vec4 perezB{0.0f};  // Perez B; w: 0
-  glm::vec4 perezC{0.0f};  // Perez C; w: 0
+  glm::vec4 perezB{0.0f};  // Perez B; w: x of the midday CCT floor (middayCctFloor)
+  glm::vec4 perezC{0.0f};  // Perez C; w: strength of that floor in [0, 1]
   glm::vec4 perezD{0.0f};  // Perez D (per radian); w: 0
   glm::vec4 perezE{0.0f};  // Perez E; w: 0
   // (Y_z fade / F_Y(0, theta_s) [kcd/m²], x_z / F_x(0, theta_s), y_z / F_y(0, theta_s),
@@ -99,6 +114,11 @@ constexpr double kMinSkyTurbidity = 2.0;
 constexpr double kMaxSkyTurbidity = 10.0;
 // End of civil twilight: the sky is black when the sun is this far below the horizon.
 constexpr double kCivilTwilightDeg = -6.0;
+// Midday colour-temperature floor of the sky (file comment): the warmest CCT
+// the sky shows by day, and the sun elevations over which it fades in.
+constexpr double kMiddaySkyMinCctK = 6800.0;
+constexpr double kMiddayFloorStartDeg = 30.0;
+constexpr double kMiddayFloorFullDeg = 45.0;
 
 // Sky luminance scale for the sun at elevationDeg (degrees, may be negative):
 // the twilight rule of the file comment. 1 for elevation >= 0, 0 for <= -6°,
@@ -113,10 +133,25 @@ PreethamSky makePreethamSky(const glm::vec3& sunDir, double turbidity);
 // it lies below it (file comment). Twin of daylightLocusLift in shaders/sky.glsl.
 float daylightLocusLift(float x, float y);
 
+// x_D of the CIE daylight locus at correlated colour temperature cctK (CIE
+// 15:2004 eq. 3.2, 4000-25000 K; clamped to that range).
+double daylightLocusX(double cctK);
+
+// Strength in [0, 1] of the midday CCT floor for the sun at elevationDeg:
+// smoothstep from kMiddayFloorStartDeg (0) to kMiddayFloorFullDeg (1).
+double middayCctFloorStrength(double elevationDeg);
+
+// The sky chromaticity (x, y) with the midday floor of the file comment:
+// where x > maxX, x moves towards maxX by `strength` and y by the change of
+// the daylight locus between the two x (its offset from the locus kept);
+// then y is lifted to the locus (daylightLocusLift). Unchanged where x <=
+// maxX, apart from the lift. Twin of daylightChromaticity in shaders/sky.glsl.
+glm::vec2 daylightChromaticity(float x, float y, float maxX, float strength);
+
 // Sky radiance (photometric RGB, kcd/m²) seen looking along viewDir (any
-// non-zero vector, world frame), its chromaticity lifted to the daylight locus. Single precision,
-// the same arithmetic as skyRadiance in shaders/sky.glsl. Angle from the sun gamma = 2 atan(|v -
-// s|, |v + s|), accurate for directions next to the sun.
+// non-zero vector, world frame), its chromaticity floored and lifted (daylightChromaticity). Single
+// precision, the same arithmetic as skyRadiance in shaders/sky.glsl. Angle from the sun gamma = 2
+// atan(|v - s|, |v + s|), accurate for directions next to the sun.
 glm::vec3 skyRadiance(const PreethamSky& sky, const glm::vec3& viewDir);
 
 // Sky radiance averaged over the upper hemisphere with uniform solid-angle

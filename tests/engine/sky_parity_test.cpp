@@ -60,8 +60,10 @@ TEST_F(SkyParity, GlslSkyRadianceMatchesCpp) {
   // Skies from noon to night, clear to hazy, at assorted azimuths.
   std::vector<PreethamSky> skies;
   // (76.85°: jacksboro's summer noon, whose horizon band the daylight locus
-  // lift of sky.glsl changes.)
-  for (double elevation : {90.0, 76.85, 60.0, 30.0, 10.0, 2.0, 0.0, -2.0, -5.0, -10.0}) {
+  // lift of sky.glsl changes; 45° and 37.5°: the midday CCT floor at full and
+  // half strength; 60° and above: at full.)
+  for (double elevation :
+       {90.0, 76.85, 60.0, 45.0, 37.5, 30.0, 10.0, 2.0, 0.0, -2.0, -5.0, -10.0}) {
     for (double turbidity : {2.0, 2.5, 4.0, 9.0}) {
       const double azimuth = 37.0 * double(skies.size());
       skies.push_back(makePreethamSky(sunDirection(azimuth, elevation), turbidity));
@@ -93,8 +95,9 @@ TEST_F(SkyParity, GlslSkyRadianceMatchesCpp) {
     queries.push_back({glm::vec4(0, 0, 1, index)});
     queries.push_back({glm::vec4(0, 0, -1, index)});
     // The band 1-10° above the horizon all around, where a high sun's
-    // chromaticity y falls below the daylight locus and is lifted
-    // (daylightLocusLift in sky.glsl and terrain/sky_model.h).
+    // chromaticity y falls below the daylight locus and is lifted, and where
+    // the midday floor moves x (daylightChromaticity in sky.glsl and
+    // terrain/sky_model.h).
     for (double e : {1.0, 3.0, 6.0, 10.0}) {
       for (double az = 0.0; az < 360.0; az += 30.0) {
         queries.push_back({glm::vec4(sunDirection(az, e), index)});

@@ -3,6 +3,7 @@
 // the photometric scale against the sun.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <numbers>
@@ -10,6 +11,7 @@
 #include <glm/geometric.hpp>
 
 #include "atmosphere.h"
+#include "single_scattering_sky.h"
 #include "sky_model.h"
 #include "solar_position.h"
 #include "tone_map.h"
@@ -80,35 +82,130 @@ glm::vec3 displayedSky(const PreethamSky& sky, const glm::vec3& view, double sun
 
 // Issue 19: at 17:40 UTC on 2024-06-21 over jacksboro (sun 77° up) the sky 3°
 // above the horizon towards the sun showed R134 G131 B138, grey-lavender:
-// Preetham's y there is 0.317, below the daylight locus (0.326). A clear
-// midday sky reads blue above the horizon (Hernández-Andrés, Romero & Lee
-// 2001: clear-sky chromaticities lie along the daylight locus, with CCTs
-// above D65's away from the sun). After the tone map, and in 8 bits with at
-// least one step between blue and red: sun 90° and 76.85° (jacksboro's summer
-// noon), views 3°..85° up all around; sun 65°, the same from 6° up, and from
-// 3° up 60° or more in azimuth from the sun: right under a lower sun the
-// Perez x fit keeps a warm-white band within ~5° of the horizon (x = 0.318,
-// CCT ~6200 K at 3° up under a 60° sun; docs/sun-and-sky.md).
+// Preetham's y there is 0.317, below the daylight locus (0.326); and under a
+// 60-65° sun the Perez x fit made the same band warm white (x = 0.318, CCT
+// ~6200 K). With the daylight locus lift and the midday CCT floor (6800 K,
+// full from 45° up; terrain/sky_model.h) a midday sky reads blue above the
+// horizon: after the tone map, in 8 bits, B > G > R with at least one step
+// between blue and red, for the sun 45° to 90° up (jacksboro's summer noon is
+// 76.85°), views 3°..85° up all around.
 TEST(PreethamSky, MiddaySkyIsBlueAboveTheHorizonAfterTheToneMap) {
-  struct Case {
-    double sunElevation, lowestView3DegFromAzimuth;
-  };
-  for (const Case c : {Case{90.0, 0.0}, Case{76.85, 0.0}, Case{65.0, 60.0}}) {
-    const PreethamSky sky = skyAt(c.sunElevation, 2.5, 181.0);
-    for (double elevation : {3.0, 6.0, 10.0, 20.0, 45.0, 85.0}) {
-      for (double dAz = 0.0; dAz <= 180.0; dAz += 30.0) {
-        if (elevation < 6.0 && dAz < c.lowestView3DegFromAzimuth) continue;
-        const glm::vec3 d = displayedSky(sky, viewAt(181.0 + dAz, elevation), c.sunElevation);
-        EXPECT_GT(d.b, d.g) << c.sunElevation << " " << elevation << " " << dAz;
-        EXPECT_GT(d.g, d.r) << c.sunElevation << " " << elevation << " " << dAz;
-        EXPECT_GE(std::lround(255 * d.b) - std::lround(255 * d.r), 1)
-            << c.sunElevation << " " << elevation << " " << dAz;
+  int fewestSteps = 255;
+  for (double sunElevation : {45.0, 50.0, 60.0, 65.0, 76.85, 90.0}) {
+    const PreethamSky sky = skyAt(sunElevation, 2.5, 181.0);
+    for (double elevation : {3.0, 4.0, 5.0, 6.0, 10.0, 20.0, 45.0, 85.0}) {
+      for (double dAz = 0.0; dAz <= 180.0; dAz += 15.0) {
+        const glm::vec3 d = displayedSky(sky, viewAt(181.0 + dAz, elevation), sunElevation);
+        const int steps = int(std::lround(255 * d.b) - std::lround(255 * d.r));
+        EXPECT_GT(d.b, d.g) << sunElevation << " " << elevation << " " << dAz;
+        EXPECT_GT(d.g, d.r) << sunElevation << " " << elevation << " " << dAz;
+        EXPECT_GE(steps, 1) << sunElevation << " " << elevation << " " << dAz;
+        fewestSteps = std::min(fewestSteps, steps);
       }
     }
   }
-  const glm::vec3 d = displayedSky(skyAt(76.85, 2.5, 181.0), viewAt(181.0, 3.0), 76.85);
-  std::printf("sun 76.85deg, 3deg up towards the sun: display sRGB %.1f %.1f %.1f\n", 255 * d.r,
-              255 * d.g, 255 * d.b);
+  std::printf("midday sky, sun 45-90deg, views 3-85deg up: fewest 8-bit steps of B over R %d\n",
+              fewestSteps);
+  for (double sunElevation : {76.85, 60.0}) {
+    const glm::vec3 d =
+        displayedSky(skyAt(sunElevation, 2.5, 181.0), viewAt(181.0, 3.0), sunElevation);
+    std::printf("sun %.2fdeg, 3deg up towards the sun: display sRGB %.1f %.1f %.1f\n", sunElevation,
+                255 * d.r, 255 * d.g, 255 * d.b);
+  }
+}
+
+// CIE chromaticity of linear sRGB (inverse of the sRGB matrix, D65).
+glm::dvec2 chromaticityOf(const glm::vec3& c) {
+  return test::chromaticity(glm::dvec3(0.4124564 * c.r + 0.3575761 * c.g + 0.1804375 * c.b,
+                                       0.2126729 * c.r + 0.7151522 * c.g + 0.0721750 * c.b,
+                                       0.0193339 * c.r + 0.1191920 * c.g + 0.9503041 * c.b));
+}
+
+// The colour near the horizon under a high sun, against the spectral
+// single-scattering reference (tests/terrain/single_scattering_sky.h): the
+// reference puts it between Preetham's aerosol load (T = 2.5; warm white,
+// ~5850 K 3° up towards a 60° sun) and air alone (~8270 K); the model, with
+// its midday floor, lies in that range (measured: 6800 K there).
+TEST(PreethamSky, MiddayHorizonColourLiesBetweenHazyAndPureAirReferences) {
+  test::ClearAtmosphere hazy, air;
+  air.aerosol = false;
+  for (double sunElevation : {45.0, 60.0, 65.0, 76.85, 90.0}) {
+    const PreethamSky sky = skyAt(sunElevation, 2.5, 180.0);
+    const glm::dvec3 sun(sunDirection(180.0, sunElevation));
+    for (double elevation : {3.0, 6.0}) {
+      for (double dAz : {0.0, 60.0, 180.0}) {
+        const glm::vec3 view = viewAt(180.0 + dAz, elevation);
+        const glm::dvec2 model = chromaticityOf(skyRadiance(sky, view));
+        const glm::dvec2 warm = test::chromaticity(test::singleScatteringSkyXyz(sun, view, hazy));
+        const glm::dvec2 cool = test::chromaticity(test::singleScatteringSkyXyz(sun, view, air));
+        // Bluer is smaller x along the daylight locus.
+        EXPECT_LT(model.x, warm.x) << sunElevation << " " << elevation << " " << dAz;
+        EXPECT_GT(model.x, cool.x) << sunElevation << " " << elevation << " " << dAz;
+        if (dAz == 0.0 && elevation == 3.0) {
+          std::printf(
+              "sun %.2fdeg, 3deg up towards it: reference T=2.5 %.0f K, air %.0f K, "
+              "model %.0f K\n",
+              sunElevation, test::correlatedColourTemperature(warm),
+              test::correlatedColourTemperature(cool), test::correlatedColourTemperature(model));
+        }
+      }
+    }
+  }
+}
+
+// --- The single-scattering reference itself -------------------------------------
+
+// Wyman, Sloan & Shirley's fit of the CIE 1931 observer: a 2856 K black body
+// lands on Illuminant A (0.44757, 0.40745) and a 6504 K one on the Planckian
+// locus (0.3135, 0.3236) within the fit's error; equal energy on (1/3, 1/3).
+TEST(SingleScatteringSky, ColourMatchingFitGivesKnownChromaticities) {
+  const auto chromaticityOfSpectrum = [](auto spectrum) {
+    glm::dvec3 sum(0.0);
+    for (double nm = 360.0; nm <= 830.0; nm += 1.0) sum += test::colourMatching(nm) * spectrum(nm);
+    return test::chromaticity(sum);
+  };
+  const glm::dvec2 a = chromaticityOfSpectrum([](double nm) { return test::blackBody(nm, 2856); });
+  EXPECT_NEAR(a.x, 0.44757, 2e-3);
+  EXPECT_NEAR(a.y, 0.40745, 2e-3);
+  const glm::dvec2 d = chromaticityOfSpectrum([](double nm) { return test::blackBody(nm, 6504); });
+  EXPECT_NEAR(d.x, 0.3135, 5e-4);
+  EXPECT_NEAR(d.y, 0.3236, 5e-4);
+  const glm::dvec2 e = chromaticityOfSpectrum([](double) { return 1.0; });
+  EXPECT_NEAR(e.x, 1.0 / 3.0, 2e-3);
+  EXPECT_NEAR(e.y, 1.0 / 3.0, 2e-3);
+  // McCamy's CCT: D65 (0.31271, 0.32902) is 6504 K, Illuminant A 2856 K.
+  EXPECT_NEAR(test::correlatedColourTemperature({0.31271, 0.32902}), 6504.0, 10.0);
+  EXPECT_NEAR(test::correlatedColourTemperature({0.44757, 0.40745}), 2856.0, 5.0);
+}
+
+// The integration has converged (4x the steps moves xy by < 1e-4); a sky of
+// air alone is deep blue overhead and whitens towards the horizon; aerosol
+// whitens it everywhere; towards a low sun the horizon is red.
+TEST(SingleScatteringSky, ConvergesAndGivesAClearSkysColours) {
+  test::ClearAtmosphere coarse, fine, air;
+  fine.viewSteps = 4 * coarse.viewSteps;
+  fine.sunSteps = 4 * coarse.sunSteps;
+  air.aerosol = false;
+  const glm::dvec3 sun(sunDirection(180.0, 60.0));
+  for (double elevation : {3.0, 10.0, 60.0}) {
+    const glm::dvec3 view(sunDirection(200.0, elevation));
+    EXPECT_LT(glm::length(test::chromaticity(test::singleScatteringSkyXyz(sun, view, coarse)) -
+                          test::chromaticity(test::singleScatteringSkyXyz(sun, view, fine))),
+              1e-4)
+        << elevation;
+  }
+  const glm::dvec2 zenith = test::chromaticity(test::singleScatteringSkyXyz(sun, {0, 0, 1}, air));
+  const glm::dvec2 horizon = test::chromaticity(
+      test::singleScatteringSkyXyz(sun, glm::dvec3(sunDirection(0.0, 3.0)), air));
+  const glm::dvec2 hazyZenith =
+      test::chromaticity(test::singleScatteringSkyXyz(sun, {0, 0, 1}, coarse));
+  EXPECT_LT(zenith.x, 0.26);  // beyond 20 000 K
+  EXPECT_GT(horizon.x, zenith.x + 0.03);
+  EXPECT_GT(hazyZenith.x, zenith.x + 0.02);
+  const glm::dvec3 lowSun(sunDirection(270.0, 2.0));
+  const glm::dvec2 sunset = test::chromaticity(
+      test::singleScatteringSkyXyz(lowSun, glm::dvec3(sunDirection(270.0, 3.0)), coarse));
+  EXPECT_LT(test::correlatedColourTemperature(sunset), 2500.0);
 }
 
 // The horizon is whiter (less saturated) than the zenith by day and, but for
@@ -127,6 +224,44 @@ TEST(PreethamSky, HorizonIsWhiterThanTheZenithByDay) {
         EXPECT_GT(luminance(horizon), luminance(zenith)) << sunElevation << " " << dAz;
       }
     }
+  }
+}
+
+// The midday floor: x_D of CIE 15:2004 eq. 3.2 gives D65 at 6504 K and D50
+// at 5003 K; the floor fades in from a 30° to a 45° sun; it moves only
+// chromaticities warmer than its x, along the locus, and keeps the luminance.
+TEST(DaylightLocus, MiddayFloorSlidesWarmSkiesAlongTheLocusAndFadesWithTheSun) {
+  EXPECT_NEAR(daylightLocusX(6504.0), 0.31271, 3e-4);
+  EXPECT_NEAR(daylightLocusX(5003.0), 0.34567, 3e-4);
+  EXPECT_EQ(middayCctFloorStrength(30.0), 0.0);
+  EXPECT_EQ(middayCctFloorStrength(2.0), 0.0);
+  EXPECT_DOUBLE_EQ(middayCctFloorStrength(37.5), 0.5);
+  EXPECT_EQ(middayCctFloorStrength(45.0), 1.0);
+  EXPECT_EQ(middayCctFloorStrength(90.0), 1.0);
+  const float maxX = float(daylightLocusX(kMiddaySkyMinCctK));
+  // Bluer than the floor: only the lift acts, exactly.
+  for (const glm::vec2 xy : {glm::vec2(0.26f, 0.27f), glm::vec2(0.30f, 0.30f)}) {
+    EXPECT_EQ(daylightChromaticity(xy.x, xy.y, maxX, 1.0f),
+              glm::vec2(xy.x, daylightLocusLift(xy.x, xy.y)));
+  }
+  // Warmer: x to the floor, y by the locus's change (0.01 above it stays 0.01 above).
+  const auto locus = [](float x) { return -3.0f * x * x + 2.87f * x - 0.275f; };
+  const glm::vec2 moved = daylightChromaticity(0.318f, locus(0.318f) + 0.01f, maxX, 1.0f);
+  EXPECT_EQ(moved.x, maxX);
+  EXPECT_NEAR(moved.y, locus(maxX) + 0.01f, 1e-6f);
+  const glm::vec2 half = daylightChromaticity(0.318f, locus(0.318f), maxX, 0.5f);
+  EXPECT_NEAR(half.x, 0.5f * (0.318f + maxX), 1e-6f);
+  EXPECT_NEAR(half.y, locus(half.x), 1e-6f);
+  // Luminance kept: the 60° sky with and without the floor.
+  PreethamSky sky = skyAt(60.0, 2.5, 180.0);
+  EXPECT_EQ(sky.perezC.w, 1.0f);
+  PreethamSky noFloor = sky;
+  noFloor.perezC.w = 0.0f;
+  for (double dAz : {0.0, 30.0, 60.0}) {
+    const glm::vec3 with = skyRadiance(sky, viewAt(180.0 + dAz, 3.0));
+    const glm::vec3 without = skyRadiance(noFloor, viewAt(180.0 + dAz, 3.0));
+    EXPECT_NEAR(luminance(with), luminance(without), 1e-5f * luminance(without)) << dAz;
+    EXPECT_GT(with.b / with.r, without.b / without.r) << dAz;
   }
 }
 
