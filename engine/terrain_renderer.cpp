@@ -335,13 +335,6 @@ uint32_t baseVertexCount(uint32_t width, uint32_t height) {
   return 6 * (2 * (width - 1) + 2 * (height - 1) + 1);
 }
 
-void applySkyLighting(const SkyLighting& light, FrameSettings& settings) {
-  settings.sunDirection = light.sunDirection;
-  settings.sunIrradiance = light.sunIrradiance;
-  settings.skyRadiance = light.skyRadiance;
-  settings.sky = light.sky;
-}
-
 TerrainRenderer::TerrainRenderer(const Device& device, uint32_t width, uint32_t height,
                                  VkFormat displayFormat)
     : device_(device),
@@ -409,7 +402,7 @@ void TerrainRenderer::updateCapTable(VkCommandBuffer cmd, const FrameSettings& s
   // Other modes only need a valid image behind the binding: the first frame
   // makes one, and the exact mode remakes it for its sun.
   // The tools allow suns of 0.01 to 20 degrees; the table wants (0, pi/2).
-  const float radius = std::clamp(s.sunRadiusRad, 1e-6f, 1.5f);
+  const float radius = std::clamp(s.lighting.sunRadiusRad, 1e-6f, 1.5f);
   const bool wanted = s.mode == ShadingMode::Exact || capTableRadius_ == 0.0f;
   if (!wanted || radius == capTableRadius_) return;
   const CapIntersectionTable table = makeCapIntersectionTable(radius);
@@ -436,7 +429,7 @@ int TerrainRenderer::albedoSourceOf(const TerrainScene& scene, const FrameSettin
 bool TerrainRenderer::writeUniforms(const TerrainScene& scene, const FrameSettings& s) {
   const double aspect = double(extent_.width) / double(extent_.height);
   // The depth range must hold the whole DEM: approximate it from the box.
-  const glm::vec4 dem = scene.demInfo();
+  const glm::vec4 dem = scene.demInfo();  // width, height (texels), cell size x, y (m)
   const double bottom = scene.minHeight() - (s.base ? double(s.base->depthM) : 0.0);
   const DepthRange range = depthRangeFor(s.camera, {(dem.x - 1.0) * dem.z, (dem.y - 1.0) * dem.w},
                                          bottom, scene.maxHeight());
@@ -445,28 +438,47 @@ bool TerrainRenderer::writeUniforms(const TerrainScene& scene, const FrameSettin
   u.viewProj = projectionMatrix(s.camera, aspect, range) * viewMatrix(s.camera);
   viewProj_ = u.viewProj;
   u.invViewProj = glm::inverse(u.viewProj);
-  u.cameraPos = glm::vec4(glm::vec3(s.camera.position), 1.0f);
-  u.sunDirection = glm::vec4(s.sunDirection, s.sunRadiusRad);
-  u.sunIrradiance = glm::vec4(s.sunIrradiance, 0.0f);
-  u.skyRadiance = glm::vec4(s.skyRadiance, s.hazeDensityPerM);
-  u.dem = scene.demInfo();
-  u.heights = {scene.minHeight(), scene.maxHeight(), s.waterLevelM.value_or(0.0f),
-               s.waterLevelM ? 1.0f : 0.0f};
-  u.grid = {kLodPatchQuads, scene.lod().levels(), static_cast<int>(s.mode),
-            albedoSourceOf(scene, s)};
-  u.display = {s.exposure, isDebug(s.mode) ? 1.0f : 0.0f, s.transparentBackground ? 0.0f : 1.0f,
-               0.0f};
-  u.albedoValue = glm::vec4(s.albedoValue.value_or(glm::vec3(0.0f)), 0.0f);
-  if (s.base) u.base = glm::vec4(s.base->albedo, float(bottom));
+  u.previousViewProj = previousViewProj_;
+  u.cameraPos = glm::vec3(s.camera.position);
+  u.pixelAngle =
+      float(2.0 * std::tan(0.5 * s.camera.verticalFovDeg * AAL_PI / 180.0) / extent_.height);
+
+  const Lighting& light = s.lighting;
+  u.sunDirection = light.sunDirection;
+  u.sunRadiusRad = light.sunRadiusRad;
+  u.sunIrradiance = light.sunIrradiance;
+  u.hazeDensityPerM = light.hazeDensityPerM;
+  u.skyRadiance = light.skyRadiance;
+  u.exposure = light.exposure;
+  u.sky = light.sky;
+
+  u.demSize = {dem.x, dem.y};
+  u.cellSizeM = {dem.z, dem.w};
+  u.minHeightM = scene.minHeight();
+  u.maxHeightM = scene.maxHeight();
+  u.waterLevelM = s.waterLevelM.value_or(0.0f);
+  u.hasWater = s.waterLevelM ? 1 : 0;
+  u.albedoValue = s.albedoValue.value_or(glm::vec3(0.0f));
+  u.backgroundAlpha = s.transparentBackground ? 0.0f : 1.0f;
+  if (s.base) {
+    u.baseAlbedo = s.base->albedo;
+    u.baseBottomM = float(bottom);
+  }
+
+  u.extent = glm::ivec2(glm::uvec2(extent_.width, extent_.height));
+  u.previousExtent = glm::ivec2(glm::uvec2(previousExtent_.width, previousExtent_.height));
+  u.rawOutput = isDebug(s.mode) ? 1 : 0;
   const ObscuranceSettings& o = s.obscurance;
   const bool obscurance = o.enabled && usesTransfer(s.mode);
   if (obscurance) {
-    const float radiusM =
+    u.obscuranceRadiusM =
         o.radiusM > 0
             ? o.radiusM
             : defaultObscuranceRadiusM({dem.z, dem.w}, {(dem.x - 1) * dem.z, (dem.y - 1) * dem.w});
-    u.obscurance = {radiusM, float(o.samples), float(o.steps), 0.0f};
-    u.obscurancePass = {1, o.interleaved ? 1 : 0, o.halfResolution ? 2 : 1, 0};
+    u.obscuranceSamples = o.samples;
+    u.obscuranceSteps = o.steps;
+    u.obscuranceInterleaved = o.interleaved ? 1 : 0;
+    u.obscurancePixelSize = o.halfResolution ? 2 : 1;
     ObscuranceSampleBlock block{};
     for (int k = 0; k < kObscuranceSampleSets; ++k) {
       const std::vector<glm::vec3>& offsets = obscuranceCellSampleOffsets(o.samples, k);
@@ -477,23 +489,11 @@ bool TerrainRenderer::writeUniforms(const TerrainScene& scene, const FrameSettin
     }
     samples_.write(&block, sizeof block);
   }
-  const TerrainTileLayout& tiles = scene.tiles();
-  u.tileGrid =
-      glm::ivec4(glm::uvec4(tiles.coreWidth, tiles.coreHeight, tiles.tilesX, tiles.tilesY));
-  u.tileImage = glm::ivec4(glm::uvec4(tiles.border, 0, tiles.imageWidth(), tiles.imageHeight()));
-  u.tileLayers = glm::ivec4(
-      glm::uvec4(tiles.layersPerPage[0], tiles.layersPerPage[1], tiles.layersPerPage[2], 0));
-  u.extent = glm::ivec4(glm::uvec4(extent_.width, extent_.height, 0, 0));
-  u.pixelAngle = glm::vec4(
-      float(2.0 * std::tan(0.5 * s.camera.verticalFovDeg * AAL_PI / 180.0) / extent_.height), 0, 0,
-      0);
-  u.previousViewProj = previousViewProj_;
-  u.history = {-1, 0, int(previousExtent_.width), int(previousExtent_.height)};
   if (obscurance && o.history != ObscuranceSettings::History::None) {
     // The samples kept from the previous frame belong to the same terrain,
     // settings and occluders' albedo, or to nothing.
     const HistoryKey key{scene.id(),
-                         u.obscurance.x,
+                         u.obscuranceRadiusM,
                          o.samples,
                          o.steps,
                          o.interleaved,
@@ -502,14 +502,22 @@ bool TerrainRenderer::writeUniforms(const TerrainScene& scene, const FrameSettin
                          s.albedoValue.value_or(glm::vec3(-1.0f))};
     historyValid_ = historyValid_ && key == historyKey_;
     historyKey_ = key;
-    u.history.y = historyValid_ ? 1 : 0;
+    u.historyValid = historyValid_ ? 1 : 0;
     if (historyValid_ && o.history == ObscuranceSettings::History::Reuse) {
-      u.history.x = int(historySubset_++ % AAL_OBSCURANCE_SUBSETS);
+      u.historySubset = int(historySubset_++ % AAL_OBSCURANCE_SUBSETS);
     }
   } else {
     historyValid_ = false;
   }
-  u.sky = s.sky;
+
+  const TerrainTileLayout& tiles = scene.tiles();
+  u.tileCoreSize = glm::ivec2(glm::uvec2(tiles.coreWidth, tiles.coreHeight));
+  u.tileCount = glm::ivec2(glm::uvec2(tiles.tilesX, tiles.tilesY));
+  u.tileImageSize = glm::ivec2(glm::uvec2(tiles.imageWidth(), tiles.imageHeight()));
+  u.tileBorder = int32_t(tiles.border);
+  u.heightLayersPerPage = int32_t(tiles.layersPerPage[0]);
+  u.apertureLayersPerPage = int32_t(tiles.layersPerPage[1]);
+  u.albedoLayersPerPage = int32_t(tiles.layersPerPage[2]);
   uniforms_.write(&u, sizeof u);
   return obscurance;
 }

@@ -18,11 +18,10 @@
 #include "gpu_timer.h"
 #include "graphics_pipeline.h"
 #include "image.h"
+#include "lighting.h"
 #include "obscurance.h"
 #include "quadtree_lod.h"
 #include "shading.h"
-#include "sky_lighting.h"
-#include "sky_model.h"
 
 namespace aal {
 
@@ -32,13 +31,8 @@ class TerrainScene;
 struct FrameSettings {
   Camera camera;
   ShadingMode mode = ShadingMode::Approx;
-  glm::vec3 sunDirection{0, 0, 1};  // unit, world frame
-  float sunRadiusRad = 0.004653f;
-  glm::vec3 sunIrradiance{0.0f};  // E_sun (terrain/atmosphere.h units)
-  glm::vec3 skyRadiance{0.0f};    // average L_sky
-  PreethamSky sky;                // background sky model
-  float hazeDensityPerM = 0.0f;   // aerial perspective extinction
-  float exposure = 1.0f;          // see terrain/tone_map.h
+  // Sun, sky, haze and exposure (terrain/lighting.h).
+  Lighting lighting;
   // Paint heights at or below this level (m) as water; none unless the user
   // asks (--water-level): a plain at 0 m is not a lake.
   std::optional<float> waterLevelM;
@@ -71,11 +65,6 @@ struct FrameSettings {
 // Vertices of the solid base of a width x height DEM: two triangles per DEM
 // cell along each edge and two for the bottom (shaders/base_vertex.glsl).
 uint32_t baseVertexCount(uint32_t width, uint32_t height);
-
-// The sun and sky of `light` (direction, irradiance, average sky radiance,
-// the sky model) into `settings`; the sun's radius, haze and exposure are the
-// caller's.
-void applySkyLighting(const SkyLighting& light, FrameSettings& settings);
 
 struct FrameResult {
   uint32_t width = 0, height = 0;

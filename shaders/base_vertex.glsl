@@ -2,7 +2,7 @@
 // "Solid base"): four side walls from the DEM's edge down to a flat bottom,
 // and the bottom, generated from gl_VertexIndex (no vertex buffer). Each
 // wall has one quad per DEM cell along its edge, its top at the edge texels'
-// heights (level 0 of the height texture), its bottom at frame.base.w. The
+// heights (level 0 of the height texture), its bottom at frame.baseBottomM. The
 // body of base.vert and base_paged.vert (the texture variants: see
 // terrain_textures.glsl). Draw baseVertexCount(W, H) vertices
 // (engine/terrain_renderer.cpp): 6 per quad.
@@ -18,12 +18,12 @@ layout(location = 1) flat out vec3 baseNormal;
 // x east from the DEM centre, y north (row 0 is the northern edge), as the
 // terrain's worldAt in terrain_vertex.glsl.
 vec3 baseWorldAt(vec2 texel, float z) {
-  vec2 half_ = 0.5 * (frame.dem.xy - 1.0);
-  return vec3((texel.x - half_.x) * frame.dem.z, (half_.y - texel.y) * frame.dem.w, z);
+  vec2 half_ = 0.5 * (frame.demSize - 1.0);
+  return vec3((texel.x - half_.x) * frame.cellSizeM.x, (half_.y - texel.y) * frame.cellSizeM.y, z);
 }
 
 void main() {
-  int w = int(frame.dem.x), h = int(frame.dem.y);
+  int w = int(frame.demSize.x), h = int(frame.demSize.y);
   int quad = gl_VertexIndex / 6, corner = gl_VertexIndex % 6;
   // Two triangles of the quad's corners (bit 0 along the edge, bit 1 down:
   // top 0, bottom 1), wound counter-clockwise seen from outside the block so
@@ -43,7 +43,7 @@ void main() {
   vec2 texel;
   if (quad >= walls) {  // the bottom: the DEM's rectangle at the base's height
     texel = vec2(along * float(w - 1), down * float(h - 1));
-    worldPosition = baseWorldAt(texel, frame.base.w);
+    worldPosition = baseWorldAt(texel, frame.baseBottomM);
     baseNormal = vec3(0.0, 0.0, -1.0);
   } else {
     if (quad < w - 1) {  // north edge (row 0), west to east
@@ -60,7 +60,7 @@ void main() {
       baseNormal = vec3(1.0, 0.0, 0.0);
     }
     float top = terrainHeightLod(texel, 0.0);
-    worldPosition = baseWorldAt(texel, mix(top, frame.base.w, down));
+    worldPosition = baseWorldAt(texel, mix(top, frame.baseBottomM, down));
   }
   gl_Position = frame.viewProj * vec4(worldPosition, 1.0);
 }
