@@ -61,12 +61,11 @@ struct ObscuranceSampleBlock {
 };
 
 VkRenderingAttachmentInfo colorAttachment(const Image& image, bool clear) {
-  VkRenderingAttachmentInfo a{VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO};
-  a.imageView = image.view();
-  a.imageLayout = VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL;
-  a.loadOp = clear ? VK_ATTACHMENT_LOAD_OP_CLEAR : VK_ATTACHMENT_LOAD_OP_DONT_CARE;
-  a.storeOp = VK_ATTACHMENT_STORE_OP_STORE;
-  return a;
+  return {.sType = VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO,
+          .imageView = image.view(),
+          .imageLayout = VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL,
+          .loadOp = clear ? VK_ATTACHMENT_LOAD_OP_CLEAR : VK_ATTACHMENT_LOAD_OP_DONT_CARE,
+          .storeOp = VK_ATTACHMENT_STORE_OP_STORE};
 }
 
 // Begins dynamic rendering into `colorCount` colour (and an optional depth)
@@ -75,15 +74,17 @@ VkRenderingAttachmentInfo colorAttachment(const Image& image, bool clear) {
 void beginRendering(VkCommandBuffer cmd, uint32_t width, uint32_t height,
                     const VkRenderingAttachmentInfo* colors, uint32_t colorCount,
                     const VkRenderingAttachmentInfo* depth) {
-  VkRenderingInfo info{VK_STRUCTURE_TYPE_RENDERING_INFO};
-  info.renderArea = {{0, 0}, {width, height}};
-  info.layerCount = 1;
-  info.colorAttachmentCount = colorCount;
-  info.pColorAttachments = colors;
-  info.pDepthAttachment = depth;
+  const VkRect2D area{.offset = {0, 0}, .extent = {width, height}};
+  const VkRenderingInfo info{.sType = VK_STRUCTURE_TYPE_RENDERING_INFO,
+                             .renderArea = area,
+                             .layerCount = 1,
+                             .colorAttachmentCount = colorCount,
+                             .pColorAttachments = colors,
+                             .pDepthAttachment = depth};
   vkCmdBeginRendering(cmd, &info);
-  const VkViewport viewport{0, 0, float(width), float(height), 0, 1};
-  const VkRect2D scissor{{0, 0}, {width, height}};
+  const VkViewport viewport{
+      .x = 0, .y = 0, .width = float(width), .height = float(height), .minDepth = 0, .maxDepth = 1};
+  const VkRect2D& scissor = area;
   vkCmdSetViewport(cmd, 0, 1, &viewport);
   vkCmdSetScissor(cmd, 0, 1, &scissor);
 }
@@ -181,41 +182,32 @@ struct TerrainRenderer::Passes {
   Passes(const Device& d, VkFormat display)
       : device(d),
         displayFormat(display),
-        skyTable(d, {"fullscreen.vert",
-                     "sky_lut.frag",
-                     {VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER},
-                     0,
-                     {kSkyTableFormat},
-                     VK_FORMAT_UNDEFINED}),
-        filter(d, {"fullscreen.vert",
-                   "obscurance_filter.frag",
-                   {VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER},
-                   0,
-                   {kTransferFormat},
-                   VK_FORMAT_UNDEFINED}),
-        composite(d, {"fullscreen.vert",
-                      "composite.frag",
-                      {VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER,
-                       VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER},
-                      0,
-                      {kHdrFormat},
-                      VK_FORMAT_UNDEFINED,
-                      false,
-                      false,
-                      VK_CULL_MODE_NONE,
-                      true}),
-        toneMap(d, {"fullscreen.vert",
-                    "tone_map.frag",
-                    {VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER},
-                    0,
-                    {display},
-                    VK_FORMAT_UNDEFINED}),
-        upscale(d, {"fullscreen.vert",
-                    "upscale.frag",
-                    {VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER},
-                    0,
-                    {display},
-                    VK_FORMAT_UNDEFINED}),
+        skyTable(d, {.vertexShader = "fullscreen.vert",
+                     .fragmentShader = "sky_lut.frag",
+                     .bindings = {VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER},
+                     .colorFormats = {kSkyTableFormat}}),
+        filter(d, {.vertexShader = "fullscreen.vert",
+                   .fragmentShader = "obscurance_filter.frag",
+                   .bindings = {VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER,
+                                VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER},
+                   .colorFormats = {kTransferFormat}}),
+        composite(d, {.vertexShader = "fullscreen.vert",
+                      .fragmentShader = "composite.frag",
+                      .bindings = {VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER,
+                                   VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER,
+                                   VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER},
+                      .colorFormats = {kHdrFormat},
+                      .additiveBlend = true}),
+        toneMap(d, {.vertexShader = "fullscreen.vert",
+                    .fragmentShader = "tone_map.frag",
+                    .bindings = {VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER,
+                                 VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER},
+                    .colorFormats = {display}}),
+        upscale(d, {.vertexShader = "fullscreen.vert",
+                    .fragmentShader = "upscale.frag",
+                    .bindings = {VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER,
+                                 VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER},
+                    .colorFormats = {display}}),
         terrainSampler(d, VK_FILTER_LINEAR, true),
         nearest(d, VK_FILTER_NEAREST),
         skySampler(d, VK_FILTER_LINEAR, false, true),
@@ -241,12 +233,16 @@ struct TerrainRenderer::Passes {
     // With the obscurance pass the terrain also writes the ambient term and
     // the surface point; without it the frame pays nothing for them.
     if (gbuffer) formats = {kHdrFormat, kAmbientFormat, kSurfaceFormat};
-    return cached(key, {terrainVertexShader(paging), terrainFragmentShader(paging, gbuffer),
-                        terrainBindings({VK_DESCRIPTOR_TYPE_STORAGE_BUFFER,
-                                         VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER,
-                                         VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER}),
-                        0, formats, kDepthFormat, true, true, VK_CULL_MODE_NONE, false,
-                        variantConstants(mode, albedo, display)});
+    return cached(key, {.vertexShader = terrainVertexShader(paging),
+                        .fragmentShader = terrainFragmentShader(paging, gbuffer),
+                        .bindings = terrainBindings({VK_DESCRIPTOR_TYPE_STORAGE_BUFFER,
+                                                     VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER,
+                                                     VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER}),
+                        .colorFormats = formats,
+                        .depthFormat = kDepthFormat,
+                        .depthTest = true,
+                        .depthWrite = true,
+                        .specialization = variantConstants(mode, albedo, display)});
   }
 
   // The solid base, drawn in the terrain's rendering with the terrain's
@@ -262,10 +258,15 @@ struct TerrainRenderer::Passes {
                                        : "/h");
     std::vector<VkFormat> formats{display ? displayFormat : kHdrFormat};
     if (gbuffer) formats = {kHdrFormat, kAmbientFormat, kSurfaceFormat};
-    return cached(
-        key, {paged ? "base_paged.vert" : "base.vert", gbuffer ? "base_gbuffer.frag" : "base.frag",
-              terrainBindings({VK_DESCRIPTOR_TYPE_STORAGE_BUFFER}), 0, formats, kDepthFormat, true,
-              true, VK_CULL_MODE_BACK_BIT, false, variantConstants(mode, 0, display)});
+    return cached(key, {.vertexShader = paged ? "base_paged.vert" : "base.vert",
+                        .fragmentShader = gbuffer ? "base_gbuffer.frag" : "base.frag",
+                        .bindings = terrainBindings({VK_DESCRIPTOR_TYPE_STORAGE_BUFFER}),
+                        .colorFormats = formats,
+                        .depthFormat = kDepthFormat,
+                        .depthTest = true,
+                        .depthWrite = true,
+                        .cullMode = VK_CULL_MODE_BACK_BIT,
+                        .specialization = variantConstants(mode, 0, display)});
   }
 
   // The sky, after the terrain at the far plane with the depth test on, so
@@ -277,37 +278,28 @@ struct TerrainRenderer::Passes {
         "sky/" + std::to_string(int(mode)) + (display ? "/d" : "/h") + (gbuffer ? "/g" : "");
     std::vector<VkFormat> formats{display ? displayFormat : kHdrFormat};
     if (gbuffer) formats = {kHdrFormat, kAmbientFormat, kSurfaceFormat};
-    return cached(key,
-                  {"fullscreen.vert",
-                   "sky.frag",
-                   {VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER},
-                   0,
-                   formats,
-                   kDepthFormat,
-                   true,
-                   false,
-                   VK_CULL_MODE_NONE,
-                   false,
-                   variantConstants(mode, 0, display),
-                   1u});
+    return cached(key, {.vertexShader = "fullscreen.vert",
+                        .fragmentShader = "sky.frag",
+                        .bindings = {VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER,
+                                     VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER},
+                        .colorFormats = formats,
+                        .depthFormat = kDepthFormat,
+                        .depthTest = true,
+                        .specialization = variantConstants(mode, 0, display),
+                        .writtenColors = 1u});
   }
 
   // The composite writing display values (the mode decides raw or tone-mapped).
   const GraphicsPipeline& compositeDisplay(ShadingMode mode) {
     return cached(
         "composite/" + std::to_string(int(mode)),
-        {"fullscreen.vert",
-         "composite_display.frag",
-         {VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER,
-          VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER},
-         0,
-         {displayFormat},
-         VK_FORMAT_UNDEFINED,
-         false,
-         false,
-         VK_CULL_MODE_NONE,
-         false,
-         variantConstants(mode, 0, true)});
+        {.vertexShader = "fullscreen.vert",
+         .fragmentShader = "composite_display.frag",
+         .bindings = {VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER,
+                      VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER,
+                      VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER},
+         .colorFormats = {displayFormat},
+         .specialization = variantConstants(mode, 0, true)});
   }
 
   // The obscurance pass reads heights and albedo, never apertures.
@@ -325,9 +317,11 @@ struct TerrainRenderer::Passes {
     const char* shader =
         temporal ? (paged ? "obscurance_temporal_paged.frag" : "obscurance_temporal.frag")
                  : (paged ? "obscurance_paged.frag" : "obscurance.frag");
-    return cached(
-        key, {"fullscreen.vert", shader, terrainBindings(rest), 0, formats, VK_FORMAT_UNDEFINED,
-              false, false, VK_CULL_MODE_NONE, false, variantConstants(mode, albedo, false)});
+    return cached(key, {.vertexShader = "fullscreen.vert",
+                        .fragmentShader = shader,
+                        .bindings = terrainBindings(rest),
+                        .colorFormats = formats,
+                        .specialization = variantConstants(mode, albedo, false)});
   }
 };
 
@@ -410,9 +404,12 @@ void TerrainRenderer::updateCapTable(VkCommandBuffer cmd, const FrameSettings& s
   // buffer and the image are free.
   capTableStaging_.write(table.values.data(), table.values.size() * sizeof(float));
   transitionImage(cmd, capTable_, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL);
-  VkBufferImageCopy region{};
-  region.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
-  region.imageExtent = {AAL_CAP_TABLE_WIDTH, AAL_CAP_TABLE_HEIGHT, 1};
+  const VkBufferImageCopy region{
+      .imageSubresource = {.aspectMask = VK_IMAGE_ASPECT_COLOR_BIT,
+                           .mipLevel = 0,
+                           .baseArrayLayer = 0,
+                           .layerCount = 1},
+      .imageExtent = {.width = AAL_CAP_TABLE_WIDTH, .height = AAL_CAP_TABLE_HEIGHT, .depth = 1}};
   vkCmdCopyBufferToImage(cmd, capTableStaging_.handle(), capTable_.handle(),
                          VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 1, &region);
   transitionImage(cmd, capTable_, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL,
@@ -591,7 +588,11 @@ void TerrainRenderer::record(VkCommandBuffer cmd, const TerrainScene& scene, con
     transitionImage(cmd, noHorizons_, VK_IMAGE_LAYOUT_UNDEFINED,
                     VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL);
     const VkClearColorValue zero{};
-    const VkImageSubresourceRange all{VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, 2};
+    const VkImageSubresourceRange all{.aspectMask = VK_IMAGE_ASPECT_COLOR_BIT,
+                                      .baseMipLevel = 0,
+                                      .levelCount = 1,
+                                      .baseArrayLayer = 0,
+                                      .layerCount = 2};
     vkCmdClearColorImage(cmd, noHorizons_.handle(), VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, &zero, 1,
                          &all);
     transitionImage(cmd, noHorizons_, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL,
@@ -643,12 +644,13 @@ void TerrainRenderer::record(VkCommandBuffer cmd, const TerrainScene& scene, con
                                          colorAttachment(surface_, true)};
   colors[0].loadOp = VK_ATTACHMENT_LOAD_OP_CLEAR;
   colors[2].clearValue.color = {{-1.0f, -1.0f, 0.0f, 0.0f}};
-  VkRenderingAttachmentInfo depth{VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO};
-  depth.imageView = depth_.view();
-  depth.imageLayout = VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL;
-  depth.loadOp = VK_ATTACHMENT_LOAD_OP_CLEAR;
-  depth.storeOp = skyApart ? VK_ATTACHMENT_STORE_OP_STORE : VK_ATTACHMENT_STORE_OP_DONT_CARE;
-  depth.clearValue.depthStencil = {1.0f, 0};
+  VkRenderingAttachmentInfo depth{
+      .sType = VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO,
+      .imageView = depth_.view(),
+      .imageLayout = VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL,
+      .loadOp = VK_ATTACHMENT_LOAD_OP_CLEAR,
+      .storeOp = skyApart ? VK_ATTACHMENT_STORE_OP_STORE : VK_ATTACHMENT_STORE_OP_DONT_CARE,
+      .clearValue = {.depthStencil = {.depth = 1.0f, .stencil = 0}}};
   beginRendering(cmd, extent_.width, extent_.height, colors, obscurance ? 3 : 1, &depth);
   timer_.begin(cmd, "terrain");
   passes_->terrain(paging, s.mode, albedo, obscurance, direct)
