@@ -155,7 +155,7 @@ class TerrainRenderer {
   VkExtent2D extent_{0, 0};  // drawn this frame: width_ x height_, or less (FrameOutput)
   Image hdr_, depth_, display_;
   // Terrain pass outputs for the obscurance pass and the composite (see
-  // shaders/terrain.frag), and the per-pixel O/W.
+  // shaders/terrain_shading.glsl), and the per-pixel O/W.
   Image ambient_, surface_, transfer_, filtered_;
   Image skyTable_;  // the sky's radiance per view direction (shaders/sky_lut.glsl)
   // The exact cap intersection against the sun (shaders/cap_table.glsl), for

@@ -5,7 +5,9 @@
 // one page of one layer whose image is the DEM: the same fetches as one
 // plain texture. Array images instead of arrays of textures: lavapipe has no
 // descriptor indexing (not even dynamically uniform), and layers are chosen
-// per fetch.
+// per fetch. The shaders that include it are built as variants, one per
+// paging (AAL_TERRAIN_PAGED, AAL_TERRAIN_APERTURE_PAGES): see
+// aal_shader_variant in shaders/CMakeLists.txt.
 #ifndef AAL_TERRAIN_TEXTURES_GLSL
 #define AAL_TERRAIN_TEXTURES_GLSL
 

@@ -41,7 +41,7 @@ class TerrainSurface {
   double col(double x) const { return x / cellX_ + halfX_; }
   double row(double y) const { return halfY_ - y / cellY_; }
 
-  // Central differences one texel apart (shaders/terrain.frag surfaceNormal).
+  // Central differences one texel apart (shaders/terrain_shading.glsl surfaceNormal).
   glm::dvec3 normalAt(double x, double y) const {
     const double c = col(x), r = row(y);
     const double dx = heightAtTexel(c + 1, r) - heightAtTexel(c - 1, r);

@@ -5,7 +5,7 @@
 // Same scene as the GPU renderer: the camera of camera.h, the terrain as the
 // bilinear surface through the texel centres with the centre row's cell size
 // (as engine/terrain_scene uploads it), the shading normal from central
-// differences one texel apart (as shaders/terrain.frag), the sun, the average
+// differences one texel apart (as shaders/terrain_shading.glsl), the sun, the average
 // sky radiance and the aerial perspective of the same Lighting.
 // What differs is the light transport, computed without approximation:
 // - sun: `sunRays` stratified points of the sun's disk, each tested with a
