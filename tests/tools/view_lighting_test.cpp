@@ -4,6 +4,7 @@
 #include <cmath>
 #include <numbers>
 
+#include "lighting_defaults.h"
 #include "terrain_renderer.h"
 #include "view_lighting.h"
 
@@ -42,6 +43,21 @@ TEST(ViewLighting, DirectAzimuthAndElevationOverrideTheClock) {
   const Lighting light = viewLighting(l, georeferencedAt(45, 0));
   EXPECT_NEAR(light.sunDirection.x, std::cos(30 * std::numbers::pi / 180), 1e-5);  // east
   EXPECT_NEAR(light.sunDirection.z, 0.5, 1e-5);
+}
+
+TEST(ViewLighting, NeutralControlsLightTheDemLikeAalRender) {
+  // aal-render lights a DEM with defaultLighting and the --sun-radius it is
+  // given; the viewer's controls at their defaults must give the same.
+  ViewLighting l;
+  l.fromTime = false;
+  l.sunAzimuthDeg = 200;
+  l.sunElevationDeg = 30;
+  const Heightfield f = georeferencedAt(45, 0);
+  Lighting expected = defaultLighting(f, 200, 30, l.turbidity);
+  expected.sunRadiusRad = static_cast<float>(l.sunRadiusDeg * std::numbers::pi / 180.0);
+  EXPECT_TRUE(viewLighting(l, f) == expected);
+  l.exposureStops = 1;
+  EXPECT_FALSE(viewLighting(l, f) == expected);
 }
 
 TEST(ViewLighting, IntensitiesAndExposureScale) {
