@@ -52,10 +52,9 @@ struct Fixture {
                                                 albedo ? &*albedo : nullptr, 2'000'000);
     scene->setHorizons(device, baked.horizons);
     renderer = std::make_unique<aal::TerrainRenderer>(device, 1280, 720);
-    const aal::SkyLighting light = aal::makeSkyLighting(250, 25, 2.5);
     settings.camera = aal::defaultCamera(field, 1280.0 / 720.0);
-    applySkyLighting(light, settings);
-    settings.exposure = 0.07f;
+    aal::setSunAndSky(settings.lighting, 250, 25, 2.5);
+    settings.lighting.exposure = 0.07f;
   }
 };
 

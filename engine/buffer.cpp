@@ -24,10 +24,10 @@ uint32_t findMemoryType(const VkPhysicalDeviceMemoryProperties& memory, uint32_t
 Buffer::Buffer(const Device& device, VkDeviceSize size, VkBufferUsageFlags usage,
                MemoryIntent intent)
     : device_(device.handle()), size_(size) {
-  VkBufferCreateInfo info{VK_STRUCTURE_TYPE_BUFFER_CREATE_INFO};
-  info.size = size;
-  info.usage = usage;
-  info.sharingMode = VK_SHARING_MODE_EXCLUSIVE;
+  const VkBufferCreateInfo info{.sType = VK_STRUCTURE_TYPE_BUFFER_CREATE_INFO,
+                                .size = size,
+                                .usage = usage,
+                                .sharingMode = VK_SHARING_MODE_EXCLUSIVE};
   AAL_VK_CHECK(vkCreateBuffer(device_, &info, nullptr, &buffer_));
 
   VkMemoryRequirements requirements;
@@ -50,9 +50,9 @@ Buffer::Buffer(const Device& device, VkDeviceSize size, VkBufferUsageFlags usage
   coherent_ = device.memoryProperties().memoryTypes[type].propertyFlags &
               VK_MEMORY_PROPERTY_HOST_COHERENT_BIT;
 
-  VkMemoryAllocateInfo alloc{VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO};
-  alloc.allocationSize = requirements.size;
-  alloc.memoryTypeIndex = type;
+  const VkMemoryAllocateInfo alloc{.sType = VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO,
+                                   .allocationSize = requirements.size,
+                                   .memoryTypeIndex = type};
   AAL_VK_CHECK(vkAllocateMemory(device_, &alloc, nullptr, &memory_));
   AAL_VK_CHECK(vkBindBufferMemory(device_, buffer_, memory_, 0));
   if (intent != MemoryIntent::DeviceLocal) {
@@ -98,18 +98,16 @@ void Buffer::write(const void* data, size_t bytes, size_t offset) {
 
 void Buffer::flush() {
   if (!mapped_ || coherent_) return;
-  VkMappedMemoryRange range{VK_STRUCTURE_TYPE_MAPPED_MEMORY_RANGE};
-  range.memory = memory_;
-  range.size = VK_WHOLE_SIZE;
+  const VkMappedMemoryRange range{
+      .sType = VK_STRUCTURE_TYPE_MAPPED_MEMORY_RANGE, .memory = memory_, .size = VK_WHOLE_SIZE};
   AAL_VK_CHECK(vkFlushMappedMemoryRanges(device_, 1, &range));
 }
 
 void Buffer::read(void* data, size_t bytes, size_t offset) const {
   if (!mapped_ || offset + bytes > size_) throw std::logic_error("Buffer::read out of range");
   if (!coherent_) {
-    VkMappedMemoryRange range{VK_STRUCTURE_TYPE_MAPPED_MEMORY_RANGE};
-    range.memory = memory_;
-    range.size = VK_WHOLE_SIZE;
+    const VkMappedMemoryRange range{
+        .sType = VK_STRUCTURE_TYPE_MAPPED_MEMORY_RANGE, .memory = memory_, .size = VK_WHOLE_SIZE};
     AAL_VK_CHECK(vkInvalidateMappedMemoryRanges(device_, 1, &range));
   }
   std::memcpy(data, static_cast<const char*>(mapped_) + offset, bytes);

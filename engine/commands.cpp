@@ -8,9 +8,9 @@ namespace aal {
 void submitAndWait(const Device& device, const std::function<void(VkCommandBuffer)>& record) {
   VkDevice vk = device.handle();
 
-  VkCommandPoolCreateInfo poolInfo{VK_STRUCTURE_TYPE_COMMAND_POOL_CREATE_INFO};
-  poolInfo.flags = VK_COMMAND_POOL_CREATE_TRANSIENT_BIT;
-  poolInfo.queueFamilyIndex = device.queueFamily();
+  const VkCommandPoolCreateInfo poolInfo{.sType = VK_STRUCTURE_TYPE_COMMAND_POOL_CREATE_INFO,
+                                         .flags = VK_COMMAND_POOL_CREATE_TRANSIENT_BIT,
+                                         .queueFamilyIndex = device.queueFamily()};
   VkCommandPool pool = VK_NULL_HANDLE;
   AAL_VK_CHECK(vkCreateCommandPool(vk, &poolInfo, nullptr, &pool));
   VkFence fence = VK_NULL_HANDLE;
@@ -26,24 +26,24 @@ void submitAndWait(const Device& device, const std::function<void(VkCommandBuffe
     }
   } cleanup{vk, pool, fence};
 
-  VkCommandBufferAllocateInfo allocInfo{VK_STRUCTURE_TYPE_COMMAND_BUFFER_ALLOCATE_INFO};
-  allocInfo.commandPool = pool;
-  allocInfo.level = VK_COMMAND_BUFFER_LEVEL_PRIMARY;
-  allocInfo.commandBufferCount = 1;
+  const VkCommandBufferAllocateInfo allocInfo{
+      .sType = VK_STRUCTURE_TYPE_COMMAND_BUFFER_ALLOCATE_INFO,
+      .commandPool = pool,
+      .level = VK_COMMAND_BUFFER_LEVEL_PRIMARY,
+      .commandBufferCount = 1};
   VkCommandBuffer cmd = VK_NULL_HANDLE;
   AAL_VK_CHECK(vkAllocateCommandBuffers(vk, &allocInfo, &cmd));
 
-  VkCommandBufferBeginInfo begin{VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO};
-  begin.flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT;
+  const VkCommandBufferBeginInfo begin{.sType = VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO,
+                                       .flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT};
   AAL_VK_CHECK(vkBeginCommandBuffer(cmd, &begin));
   record(cmd);
   AAL_VK_CHECK(vkEndCommandBuffer(cmd));
 
-  VkFenceCreateInfo fenceInfo{VK_STRUCTURE_TYPE_FENCE_CREATE_INFO};
+  const VkFenceCreateInfo fenceInfo{.sType = VK_STRUCTURE_TYPE_FENCE_CREATE_INFO};
   AAL_VK_CHECK(vkCreateFence(vk, &fenceInfo, nullptr, &fence));
-  VkSubmitInfo submit{VK_STRUCTURE_TYPE_SUBMIT_INFO};
-  submit.commandBufferCount = 1;
-  submit.pCommandBuffers = &cmd;
+  const VkSubmitInfo submit{
+      .sType = VK_STRUCTURE_TYPE_SUBMIT_INFO, .commandBufferCount = 1, .pCommandBuffers = &cmd};
   AAL_VK_CHECK(vkQueueSubmit(device.queue(), 1, &submit, fence));
   AAL_VK_CHECK(vkWaitForFences(vk, 1, &fence, VK_TRUE, UINT64_MAX));
 }

@@ -22,12 +22,13 @@ ComputePipeline::ComputePipeline(const Device& device, const std::string& shader
     : device_(device.handle()),
       layout_(device, bindings, VK_SHADER_STAGE_COMPUTE_BIT, pushConstantBytes) {
   const ShaderModule module(device, shaderName);
-  VkComputePipelineCreateInfo info{VK_STRUCTURE_TYPE_COMPUTE_PIPELINE_CREATE_INFO};
-  info.stage = {VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO};
-  info.stage.stage = VK_SHADER_STAGE_COMPUTE_BIT;
-  info.stage.module = module.handle();
-  info.stage.pName = "main";
-  info.layout = layout_.handle();
+  const VkComputePipelineCreateInfo info{
+      .sType = VK_STRUCTURE_TYPE_COMPUTE_PIPELINE_CREATE_INFO,
+      .stage = {.sType = VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO,
+                .stage = VK_SHADER_STAGE_COMPUTE_BIT,
+                .module = module.handle(),
+                .pName = "main"},
+      .layout = layout_.handle()};
   AAL_VK_CHECK(vkCreateComputePipelines(device_, VK_NULL_HANDLE, 1, &info, nullptr, &pipeline_));
 }
 

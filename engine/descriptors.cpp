@@ -21,19 +21,23 @@ PipelineLayout::PipelineLayout(const Device& device, const std::vector<VkDescrip
       vkGetDeviceProcAddr(device_, "vkCmdPushDescriptorSetKHR"));
   if (!pushDescriptorSet_) throw VulkanError("vkCmdPushDescriptorSetKHR unavailable");
   std::vector<VkDescriptorSetLayoutBinding> list(bindings.size());
-  for (uint32_t i = 0; i < bindings.size(); ++i) list[i] = {i, bindings[i], 1, stages, nullptr};
-  VkDescriptorSetLayoutCreateInfo setInfo{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO};
-  setInfo.flags = VK_DESCRIPTOR_SET_LAYOUT_CREATE_PUSH_DESCRIPTOR_BIT_KHR;
-  setInfo.bindingCount = static_cast<uint32_t>(list.size());
-  setInfo.pBindings = list.data();
+  for (uint32_t i = 0; i < bindings.size(); ++i) {
+    list[i] = {
+        .binding = i, .descriptorType = bindings[i], .descriptorCount = 1, .stageFlags = stages};
+  }
+  const VkDescriptorSetLayoutCreateInfo setInfo{
+      .sType = VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO,
+      .flags = VK_DESCRIPTOR_SET_LAYOUT_CREATE_PUSH_DESCRIPTOR_BIT_KHR,
+      .bindingCount = static_cast<uint32_t>(list.size()),
+      .pBindings = list.data()};
   AAL_VK_CHECK(vkCreateDescriptorSetLayout(device_, &setInfo, nullptr, &setLayout_));
 
-  VkPushConstantRange range{stages, 0, pushConstantBytes};
-  VkPipelineLayoutCreateInfo info{VK_STRUCTURE_TYPE_PIPELINE_LAYOUT_CREATE_INFO};
-  info.setLayoutCount = 1;
-  info.pSetLayouts = &setLayout_;
-  info.pushConstantRangeCount = pushConstantBytes > 0 ? 1 : 0;
-  info.pPushConstantRanges = &range;
+  const VkPushConstantRange range{.stageFlags = stages, .offset = 0, .size = pushConstantBytes};
+  const VkPipelineLayoutCreateInfo info{.sType = VK_STRUCTURE_TYPE_PIPELINE_LAYOUT_CREATE_INFO,
+                                        .setLayoutCount = 1,
+                                        .pSetLayouts = &setLayout_,
+                                        .pushConstantRangeCount = pushConstantBytes > 0 ? 1u : 0u,
+                                        .pPushConstantRanges = &range};
   AAL_VK_CHECK(vkCreatePipelineLayout(device_, &info, nullptr, &layout_));
 }
 
@@ -43,31 +47,35 @@ PipelineLayout::~PipelineLayout() {
 }
 
 DescriptorWrites& DescriptorWrites::uniformBuffer(uint32_t binding, const Buffer& buffer) {
-  entries_.push_back(
-      {binding, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, {buffer.handle(), 0, VK_WHOLE_SIZE}, {}});
+  entries_.push_back({.binding = binding,
+                      .type = VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER,
+                      .buffer = {.buffer = buffer.handle(), .offset = 0, .range = VK_WHOLE_SIZE}});
   return *this;
 }
 
 DescriptorWrites& DescriptorWrites::storageBuffer(uint32_t binding, const Buffer& buffer) {
-  entries_.push_back(
-      {binding, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, {buffer.handle(), 0, VK_WHOLE_SIZE}, {}});
+  entries_.push_back({.binding = binding,
+                      .type = VK_DESCRIPTOR_TYPE_STORAGE_BUFFER,
+                      .buffer = {.buffer = buffer.handle(), .offset = 0, .range = VK_WHOLE_SIZE}});
   return *this;
 }
 
 DescriptorWrites& DescriptorWrites::sampledImage(uint32_t binding, VkImageView view,
                                                  VkSampler sampler) {
-  entries_.push_back({binding,
-                      VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER,
-                      {},
-                      {sampler, view, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL}});
+  entries_.push_back({.binding = binding,
+                      .type = VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER,
+                      .image = {.sampler = sampler,
+                                .imageView = view,
+                                .imageLayout = VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL}});
   return *this;
 }
 
 DescriptorWrites& DescriptorWrites::storageImage(uint32_t binding, VkImageView view) {
-  entries_.push_back({binding,
-                      VK_DESCRIPTOR_TYPE_STORAGE_IMAGE,
-                      {},
-                      {VK_NULL_HANDLE, view, VK_IMAGE_LAYOUT_GENERAL}});
+  entries_.push_back(
+      {.binding = binding,
+       .type = VK_DESCRIPTOR_TYPE_STORAGE_IMAGE,
+       .image = {
+           .sampler = VK_NULL_HANDLE, .imageView = view, .imageLayout = VK_IMAGE_LAYOUT_GENERAL}});
   return *this;
 }
 
@@ -76,16 +84,14 @@ void DescriptorWrites::push(VkCommandBuffer cmd, VkPipelineBindPoint bindPoint,
   std::vector<VkWriteDescriptorSet> writes(entries_.size());
   for (size_t i = 0; i < entries_.size(); ++i) {
     const Entry& e = entries_[i];
-    writes[i] = {VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};
-    writes[i].dstBinding = e.binding;
-    writes[i].descriptorCount = 1;
-    writes[i].descriptorType = e.type;
-    if (e.type == VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER ||
-        e.type == VK_DESCRIPTOR_TYPE_STORAGE_IMAGE) {
-      writes[i].pImageInfo = &e.image;
-    } else {
-      writes[i].pBufferInfo = &e.buffer;
-    }
+    const bool image = e.type == VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER ||
+                       e.type == VK_DESCRIPTOR_TYPE_STORAGE_IMAGE;
+    writes[i] = {.sType = VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET,
+                 .dstBinding = e.binding,
+                 .descriptorCount = 1,
+                 .descriptorType = e.type,
+                 .pImageInfo = image ? &e.image : nullptr,
+                 .pBufferInfo = image ? nullptr : &e.buffer};
   }
   layout.pushDescriptorSet()(cmd, bindPoint, layout.handle(), 0,
                              static_cast<uint32_t>(writes.size()), writes.data());
@@ -93,13 +99,16 @@ void DescriptorWrites::push(VkCommandBuffer cmd, VkPipelineBindPoint bindPoint,
 
 Sampler::Sampler(const Device& device, VkFilter filter, bool mipmapped, bool repeatU)
     : device_(device.handle()) {
-  VkSamplerCreateInfo info{VK_STRUCTURE_TYPE_SAMPLER_CREATE_INFO};
-  info.magFilter = filter;
-  info.minFilter = filter;
-  info.mipmapMode = mipmapped ? VK_SAMPLER_MIPMAP_MODE_LINEAR : VK_SAMPLER_MIPMAP_MODE_NEAREST;
-  info.addressModeU = info.addressModeV = info.addressModeW = VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE;
-  if (repeatU) info.addressModeU = VK_SAMPLER_ADDRESS_MODE_REPEAT;
-  info.maxLod = mipmapped ? VK_LOD_CLAMP_NONE : 0.0f;
+  const VkSamplerCreateInfo info{
+      .sType = VK_STRUCTURE_TYPE_SAMPLER_CREATE_INFO,
+      .magFilter = filter,
+      .minFilter = filter,
+      .mipmapMode = mipmapped ? VK_SAMPLER_MIPMAP_MODE_LINEAR : VK_SAMPLER_MIPMAP_MODE_NEAREST,
+      .addressModeU =
+          repeatU ? VK_SAMPLER_ADDRESS_MODE_REPEAT : VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE,
+      .addressModeV = VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE,
+      .addressModeW = VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE,
+      .maxLod = mipmapped ? VK_LOD_CLAMP_NONE : 0.0f};
   AAL_VK_CHECK(vkCreateSampler(device_, &info, nullptr, &sampler_));
 }
 

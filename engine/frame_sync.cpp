@@ -7,7 +7,7 @@ namespace aal {
 
 namespace {
 VkSemaphore makeSemaphore(VkDevice device) {
-  VkSemaphoreCreateInfo info{VK_STRUCTURE_TYPE_SEMAPHORE_CREATE_INFO};
+  const VkSemaphoreCreateInfo info{.sType = VK_STRUCTURE_TYPE_SEMAPHORE_CREATE_INFO};
   VkSemaphore semaphore = VK_NULL_HANDLE;
   AAL_VK_CHECK(vkCreateSemaphore(device, &info, nullptr, &semaphore));
   return semaphore;
@@ -16,17 +16,19 @@ VkSemaphore makeSemaphore(VkDevice device) {
 
 FrameSync::FrameSync(const Device& device, uint32_t imageCount) : device_(device) {
   const VkDevice vk = device.handle();
-  VkCommandPoolCreateInfo poolInfo{VK_STRUCTURE_TYPE_COMMAND_POOL_CREATE_INFO};
-  poolInfo.flags = VK_COMMAND_POOL_CREATE_TRANSIENT_BIT;
-  poolInfo.queueFamilyIndex = device.queueFamily();
+  const VkCommandPoolCreateInfo poolInfo{.sType = VK_STRUCTURE_TYPE_COMMAND_POOL_CREATE_INFO,
+                                         .flags = VK_COMMAND_POOL_CREATE_TRANSIENT_BIT,
+                                         .queueFamilyIndex = device.queueFamily()};
   AAL_VK_CHECK(vkCreateCommandPool(vk, &poolInfo, nullptr, &pool_));
-  VkCommandBufferAllocateInfo allocInfo{VK_STRUCTURE_TYPE_COMMAND_BUFFER_ALLOCATE_INFO};
-  allocInfo.commandPool = pool_;
-  allocInfo.level = VK_COMMAND_BUFFER_LEVEL_PRIMARY;
-  allocInfo.commandBufferCount = 1;
+  const VkCommandBufferAllocateInfo allocInfo{
+      .sType = VK_STRUCTURE_TYPE_COMMAND_BUFFER_ALLOCATE_INFO,
+      .commandPool = pool_,
+      .level = VK_COMMAND_BUFFER_LEVEL_PRIMARY,
+      .commandBufferCount = 1};
   AAL_VK_CHECK(vkAllocateCommandBuffers(vk, &allocInfo, &commands_));
-  VkFenceCreateInfo fenceInfo{VK_STRUCTURE_TYPE_FENCE_CREATE_INFO};
-  fenceInfo.flags = VK_FENCE_CREATE_SIGNALED_BIT;  // no previous frame to wait for
+  // Signalled: no previous frame to wait for.
+  const VkFenceCreateInfo fenceInfo{.sType = VK_STRUCTURE_TYPE_FENCE_CREATE_INFO,
+                                    .flags = VK_FENCE_CREATE_SIGNALED_BIT};
   AAL_VK_CHECK(vkCreateFence(vk, &fenceInfo, nullptr, &done_));
   acquired_ = makeSemaphore(vk);
   resize(imageCount);
@@ -53,8 +55,8 @@ void FrameSync::waitForPreviousFrame() {
 
 VkCommandBuffer FrameSync::beginCommands() {
   AAL_VK_CHECK(vkResetCommandPool(device_.handle(), pool_, 0));
-  VkCommandBufferBeginInfo begin{VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO};
-  begin.flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT;
+  const VkCommandBufferBeginInfo begin{.sType = VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO,
+                                       .flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT};
   AAL_VK_CHECK(vkBeginCommandBuffer(commands_, &begin));
   return commands_;
 }
@@ -68,14 +70,14 @@ void FrameSync::submit(uint32_t imageIndex) {
   // colour attachment) or, at a reduced resolution, by the upscaling blit.
   const VkPipelineStageFlags waitStage =
       VK_PIPELINE_STAGE_COLOR_ATTACHMENT_OUTPUT_BIT | VK_PIPELINE_STAGE_TRANSFER_BIT;
-  VkSubmitInfo submit{VK_STRUCTURE_TYPE_SUBMIT_INFO};
-  submit.waitSemaphoreCount = 1;
-  submit.pWaitSemaphores = &acquired_;
-  submit.pWaitDstStageMask = &waitStage;
-  submit.commandBufferCount = 1;
-  submit.pCommandBuffers = &commands_;
-  submit.signalSemaphoreCount = 1;
-  submit.pSignalSemaphores = &rendered_[imageIndex];
+  const VkSubmitInfo submit{.sType = VK_STRUCTURE_TYPE_SUBMIT_INFO,
+                            .waitSemaphoreCount = 1,
+                            .pWaitSemaphores = &acquired_,
+                            .pWaitDstStageMask = &waitStage,
+                            .commandBufferCount = 1,
+                            .pCommandBuffers = &commands_,
+                            .signalSemaphoreCount = 1,
+                            .pSignalSemaphores = &rendered_[imageIndex]};
   AAL_VK_CHECK(vkQueueSubmit(device_.queue(), 1, &submit, done_));
 }
 

@@ -1,38 +1,103 @@
-// C++ twin of the Frame uniform block of shaders/frame.glsl (std140).
+// C++ twin of the Frame uniform block of shaders/frame.glsl (std140): the
+// same members in the same order. glm's vectors are unaligned, so every
+// member sits where std140 puts it only because the block is ordered that
+// way (each vec3 followed by a 4-byte scalar, explicit padding before the
+// sky); the static_asserts below check each offset, and
+// tests/engine/frame_layout_test.cpp checks what the shaders read.
 #pragma once
 
+#include <cstddef>
+#include <cstdint>
+
 #include <glm/mat4x4.hpp>
-#include <glm/vec4.hpp>
+#include <glm/vec2.hpp>
+#include <glm/vec3.hpp>
 
 #include "sky_model.h"
 
 namespace aal {
 
 struct FrameUniforms {
+  // The camera.
   glm::mat4 viewProj{1.0f};
   glm::mat4 invViewProj{1.0f};
-  glm::vec4 cameraPos{0.0f};
-  glm::vec4 sunDirection{0.0f};   // xyz, w: sun angular radius (rad)
-  glm::vec4 sunIrradiance{0.0f};  // rgb
-  glm::vec4 skyRadiance{0.0f};    // rgb, w: haze density (1/m)
-  glm::vec4 dem{0.0f};            // width, height, cell x, cell y
-  glm::vec4 heights{0.0f};        // min, max, water level, water on
-  glm::ivec4 grid{0};             // LOD patch quads, LOD levels, mode, albedo source (AAL_ALBEDO_*)
-  glm::vec4 display{0.0f};        // exposure, raw output, background alpha
-  glm::vec4 albedoValue{0.0f};    // rgb constant albedo
-  glm::vec4 obscurance{0.0f};     // R (m), n, m
-  glm::ivec4 obscurancePass{0};   // on, interleaved + filtered, pixel size (1 or 2)
-  glm::ivec4 tileGrid{0};         // tile core width, height, tiles across, down
-  glm::ivec4 tileImage{0};        // tile border, 0, tile image width, height
-  glm::ivec4 tileLayers{0};       // layers per page: heights, apertures, albedo, 0
-  glm::ivec4 extent{0};           // pixels drawn this frame: width, height, 0, 0
-  glm::mat4 previousViewProj{1.0f};  // the previous frame's (obscurance reuse)
-  glm::ivec4 history{-1, 0, 0, 0};   // subset (-1: all), history valid, previous extent
-  glm::vec4 pixelAngle{0.0f};        // x: 2 tan(fov / 2) / extent height
-  glm::vec4 base{0.0f};              // solid base: rgb albedo, w: bottom height (m)
+  glm::mat4 previousViewProj{1.0f};
+  glm::vec3 cameraPos{0.0f};
+  float pixelAngle = 0;
+
+  // The lighting (terrain/lighting.h).
+  glm::vec3 sunDirection{0.0f};
+  float sunRadiusRad = 0;
+  glm::vec3 sunIrradiance{0.0f};
+  float hazeDensityPerM = 0;
+  glm::vec3 skyRadiance{0.0f};
+  float exposure = 0;
+
+  // The DEM and its surface.
+  glm::vec2 demSize{0.0f};
+  glm::vec2 cellSizeM{0.0f};
+  float minHeightM = 0;
+  float maxHeightM = 0;
+  float waterLevelM = 0;
+  int32_t hasWater = 0;
+  glm::vec3 albedoValue{0.0f};
+  float backgroundAlpha = 0;
+  glm::vec3 baseAlbedo{0.0f};
+  float baseBottomM = 0;
+
+  // Pixels and passes.
+  glm::ivec2 extent{0};
+  glm::ivec2 previousExtent{0};
+  int32_t rawOutput = 0;
+  int32_t historySubset = -1;
+  int32_t historyValid = 0;
+  float obscuranceRadiusM = 0;
+  int32_t obscuranceSamples = 0;
+  int32_t obscuranceSteps = 0;
+  int32_t obscuranceInterleaved = 0;
+  int32_t obscurancePixelSize = 0;
+
+  // Tiled terrain textures.
+  glm::ivec2 tileCoreSize{0};
+  glm::ivec2 tileCount{0};
+  glm::ivec2 tileImageSize{0};
+  int32_t tileBorder = 0;
+  int32_t heightLayersPerPage = 0;
+  int32_t apertureLayersPerPage = 0;
+  int32_t albedoLayersPerPage = 0;
+  int32_t unused[2] = {0, 0};
+
   PreethamSky sky;
 };
-static_assert(sizeof(FrameUniforms) == 3 * 64 + 18 * 16 + sizeof(PreethamSky),
-              "FrameUniforms must match the std140 Frame block of shaders/frame.glsl");
+
+// The std140 offsets of shaders/frame.glsl.
+static_assert(offsetof(FrameUniforms, previousViewProj) == 128);
+static_assert(offsetof(FrameUniforms, cameraPos) == 192 &&
+              offsetof(FrameUniforms, pixelAngle) == 204);
+static_assert(offsetof(FrameUniforms, sunDirection) == 208 &&
+              offsetof(FrameUniforms, sunRadiusRad) == 220);
+static_assert(offsetof(FrameUniforms, sunIrradiance) == 224 &&
+              offsetof(FrameUniforms, hazeDensityPerM) == 236);
+static_assert(offsetof(FrameUniforms, skyRadiance) == 240 &&
+              offsetof(FrameUniforms, exposure) == 252);
+static_assert(offsetof(FrameUniforms, demSize) == 256 && offsetof(FrameUniforms, cellSizeM) == 264);
+static_assert(offsetof(FrameUniforms, minHeightM) == 272 &&
+              offsetof(FrameUniforms, hasWater) == 284);
+static_assert(offsetof(FrameUniforms, albedoValue) == 288 &&
+              offsetof(FrameUniforms, backgroundAlpha) == 300);
+static_assert(offsetof(FrameUniforms, baseAlbedo) == 304 &&
+              offsetof(FrameUniforms, baseBottomM) == 316);
+static_assert(offsetof(FrameUniforms, extent) == 320 &&
+              offsetof(FrameUniforms, previousExtent) == 328);
+static_assert(offsetof(FrameUniforms, rawOutput) == 336 &&
+              offsetof(FrameUniforms, obscuranceRadiusM) == 348);
+static_assert(offsetof(FrameUniforms, obscuranceSamples) == 352 &&
+              offsetof(FrameUniforms, obscurancePixelSize) == 364);
+static_assert(offsetof(FrameUniforms, tileCoreSize) == 368 &&
+              offsetof(FrameUniforms, tileImageSize) == 384);
+static_assert(offsetof(FrameUniforms, tileBorder) == 392 &&
+              offsetof(FrameUniforms, albedoLayersPerPage) == 404);
+static_assert(offsetof(FrameUniforms, sky) == 416, "std140 aligns the sky to 16 bytes");
+static_assert(sizeof(FrameUniforms) == 416 + sizeof(PreethamSky));
 
 }  // namespace aal

@@ -14,9 +14,9 @@ GpuTimer::GpuTimer(const Device& device, uint32_t maxPasses)
   supported_ = families[device.queueFamily()].timestampValidBits > 0 &&
                device.properties().limits.timestampPeriod > 0;
   nanosecondsPerTick_ = device.properties().limits.timestampPeriod;
-  VkQueryPoolCreateInfo info{VK_STRUCTURE_TYPE_QUERY_POOL_CREATE_INFO};
-  info.queryType = VK_QUERY_TYPE_TIMESTAMP;
-  info.queryCount = capacity_;
+  const VkQueryPoolCreateInfo info{.sType = VK_STRUCTURE_TYPE_QUERY_POOL_CREATE_INFO,
+                                   .queryType = VK_QUERY_TYPE_TIMESTAMP,
+                                   .queryCount = capacity_};
   AAL_VK_CHECK(vkCreateQueryPool(device_, &info, nullptr, &pool_));
 }
 

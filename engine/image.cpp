@@ -16,32 +16,38 @@ Image::Image(const Device& device, const ImageDesc& desc) : device_(device.handl
                       " is outside the device's limits (1.." + std::to_string(limit) +
                       " per side)");
   }
-  VkImageCreateInfo info{VK_STRUCTURE_TYPE_IMAGE_CREATE_INFO};
-  info.imageType = VK_IMAGE_TYPE_2D;
-  info.format = desc.format;
-  info.extent = {desc.width, desc.height, 1};
-  info.mipLevels = desc.mipLevels;
-  info.arrayLayers = desc.layers;
-  info.samples = VK_SAMPLE_COUNT_1_BIT;
-  info.tiling = VK_IMAGE_TILING_OPTIMAL;
-  info.usage = desc.usage;
-  info.initialLayout = VK_IMAGE_LAYOUT_UNDEFINED;
+  const VkImageCreateInfo info{.sType = VK_STRUCTURE_TYPE_IMAGE_CREATE_INFO,
+                               .imageType = VK_IMAGE_TYPE_2D,
+                               .format = desc.format,
+                               .extent = {.width = desc.width, .height = desc.height, .depth = 1},
+                               .mipLevels = desc.mipLevels,
+                               .arrayLayers = desc.layers,
+                               .samples = VK_SAMPLE_COUNT_1_BIT,
+                               .tiling = VK_IMAGE_TILING_OPTIMAL,
+                               .usage = desc.usage,
+                               .initialLayout = VK_IMAGE_LAYOUT_UNDEFINED};
   AAL_VK_CHECK(vkCreateImage(device_, &info, nullptr, &image_));
 
   VkMemoryRequirements requirements;
   vkGetImageMemoryRequirements(device_, image_, &requirements);
-  VkMemoryAllocateInfo alloc{VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO};
-  alloc.allocationSize = requirements.size;
-  alloc.memoryTypeIndex = findMemoryType(device.memoryProperties(), requirements.memoryTypeBits,
-                                         VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT);
+  const VkMemoryAllocateInfo alloc{
+      .sType = VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO,
+      .allocationSize = requirements.size,
+      .memoryTypeIndex = findMemoryType(device.memoryProperties(), requirements.memoryTypeBits,
+                                        VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT)};
   AAL_VK_CHECK(vkAllocateMemory(device_, &alloc, nullptr, &memory_));
   AAL_VK_CHECK(vkBindImageMemory(device_, image_, memory_, 0));
 
-  VkImageViewCreateInfo viewInfo{VK_STRUCTURE_TYPE_IMAGE_VIEW_CREATE_INFO};
-  viewInfo.image = image_;
-  viewInfo.viewType = desc.arrayView ? VK_IMAGE_VIEW_TYPE_2D_ARRAY : VK_IMAGE_VIEW_TYPE_2D;
-  viewInfo.format = desc.format;
-  viewInfo.subresourceRange = {desc.aspect, 0, desc.mipLevels, 0, desc.layers};
+  const VkImageViewCreateInfo viewInfo{
+      .sType = VK_STRUCTURE_TYPE_IMAGE_VIEW_CREATE_INFO,
+      .image = image_,
+      .viewType = desc.arrayView ? VK_IMAGE_VIEW_TYPE_2D_ARRAY : VK_IMAGE_VIEW_TYPE_2D,
+      .format = desc.format,
+      .subresourceRange = {.aspectMask = desc.aspect,
+                           .baseMipLevel = 0,
+                           .levelCount = desc.mipLevels,
+                           .baseArrayLayer = 0,
+                           .layerCount = desc.layers}};
   AAL_VK_CHECK(vkCreateImageView(device_, &viewInfo, nullptr, &view_));
 }
 
@@ -120,20 +126,20 @@ void transitionRange(VkCommandBuffer cmd, VkImage image, const VkImageSubresourc
   // next must be done (last frame's use of the image) and, for a swapchain
   // image, the acquire semaphore waited for at that stage chains to it.
   if (from == VK_IMAGE_LAYOUT_UNDEFINED) src.stage = dst.stage;
-  VkImageMemoryBarrier2 barrier{VK_STRUCTURE_TYPE_IMAGE_MEMORY_BARRIER_2};
-  barrier.srcStageMask = src.stage;
-  barrier.srcAccessMask = src.access;
-  barrier.dstStageMask = dst.stage;
-  barrier.dstAccessMask = dst.access;
-  barrier.oldLayout = from;
-  barrier.newLayout = to;
-  barrier.srcQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
-  barrier.dstQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
-  barrier.image = image;
-  barrier.subresourceRange = range;
-  VkDependencyInfo dependency{VK_STRUCTURE_TYPE_DEPENDENCY_INFO};
-  dependency.imageMemoryBarrierCount = 1;
-  dependency.pImageMemoryBarriers = &barrier;
+  const VkImageMemoryBarrier2 barrier{.sType = VK_STRUCTURE_TYPE_IMAGE_MEMORY_BARRIER_2,
+                                      .srcStageMask = src.stage,
+                                      .srcAccessMask = src.access,
+                                      .dstStageMask = dst.stage,
+                                      .dstAccessMask = dst.access,
+                                      .oldLayout = from,
+                                      .newLayout = to,
+                                      .srcQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED,
+                                      .dstQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED,
+                                      .image = image,
+                                      .subresourceRange = range};
+  const VkDependencyInfo dependency{.sType = VK_STRUCTURE_TYPE_DEPENDENCY_INFO,
+                                    .imageMemoryBarrierCount = 1,
+                                    .pImageMemoryBarriers = &barrier};
   vkCmdPipelineBarrier2(cmd, &dependency);
 }
 
@@ -142,18 +148,31 @@ void transitionRange(VkCommandBuffer cmd, VkImage image, const VkImageSubresourc
 void transitionImage(VkCommandBuffer cmd, const Image& image, VkImageLayout from,
                      VkImageLayout to) {
   transitionRange(cmd, image.handle(),
-                  {image.desc().aspect, 0, image.desc().mipLevels, 0, image.desc().layers}, from,
-                  to);
+                  {.aspectMask = image.desc().aspect,
+                   .baseMipLevel = 0,
+                   .levelCount = image.desc().mipLevels,
+                   .baseArrayLayer = 0,
+                   .layerCount = image.desc().layers},
+                  from, to);
 }
 
 void transitionImage(VkCommandBuffer cmd, VkImage image, VkImageLayout from, VkImageLayout to) {
-  transitionRange(cmd, image, {VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, 1}, from, to);
+  transitionRange(cmd, image,
+                  {.aspectMask = VK_IMAGE_ASPECT_COLOR_BIT,
+                   .baseMipLevel = 0,
+                   .levelCount = 1,
+                   .baseArrayLayer = 0,
+                   .layerCount = 1},
+                  from, to);
 }
 
 void copyImageToBuffer(VkCommandBuffer cmd, const Image& image, const Buffer& buffer) {
-  VkBufferImageCopy region{};
-  region.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
-  region.imageExtent = {image.desc().width, image.desc().height, 1};
+  const VkBufferImageCopy region{
+      .imageSubresource = {.aspectMask = VK_IMAGE_ASPECT_COLOR_BIT,
+                           .mipLevel = 0,
+                           .baseArrayLayer = 0,
+                           .layerCount = 1},
+      .imageExtent = {.width = image.desc().width, .height = image.desc().height, .depth = 1}};
   vkCmdCopyImageToBuffer(cmd, image.handle(), VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, buffer.handle(),
                          1, &region);
 }

@@ -53,16 +53,12 @@ ReferenceSettings referenceSettingsFor(const FrameSettings& settings, uint32_t w
   r.camera = settings.camera;
   r.width = width;
   r.height = height;
-  r.sunDirection = settings.sunDirection;
-  r.sunRadiusRad = settings.sunRadiusRad;
-  r.sunIrradiance = settings.sunIrradiance;
-  r.skyRadiance = settings.skyRadiance;
-  r.hazeDensityPerM = settings.hazeDensityPerM;
+  r.lighting = settings.lighting;
   r.albedo = options.albedo;
   r.sunRays = options.sunRays;
   r.skyRays = options.skyRays;
   r.interreflection = options.interreflection;
-  r.background = settings.sky;
+  r.skyBackground = true;
   return r;
 }
 

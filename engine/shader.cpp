@@ -53,9 +53,9 @@ std::vector<uint32_t> loadSpirv(const std::string& name) {
 ShaderModule::ShaderModule(const Device& device, const std::string& name)
     : device_(device.handle()) {
   const std::vector<uint32_t> code = loadSpirv(name);
-  VkShaderModuleCreateInfo info{VK_STRUCTURE_TYPE_SHADER_MODULE_CREATE_INFO};
-  info.codeSize = code.size() * sizeof(uint32_t);
-  info.pCode = code.data();
+  const VkShaderModuleCreateInfo info{.sType = VK_STRUCTURE_TYPE_SHADER_MODULE_CREATE_INFO,
+                                      .codeSize = code.size() * sizeof(uint32_t),
+                                      .pCode = code.data()};
   AAL_VK_CHECK(vkCreateShaderModule(device_, &info, nullptr, &module_));
 }
 

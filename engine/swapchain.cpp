@@ -105,25 +105,27 @@ void Swapchain::create(VkExtent2D framebuffer, bool vsync) {
   minImageCount_ = std::max(2u, caps.minImageCount + 1);
   if (caps.maxImageCount != 0) minImageCount_ = std::min(minImageCount_, caps.maxImageCount);
 
-  VkSwapchainCreateInfoKHR info{VK_STRUCTURE_TYPE_SWAPCHAIN_CREATE_INFO_KHR};
-  info.surface = surface_;
-  info.minImageCount = minImageCount_;
-  info.imageFormat = format_;
-  info.imageColorSpace = colorSpace_;
-  info.imageExtent = extent_;
-  info.imageArrayLayers = 1;
-  info.imageUsage = VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT;
   // Screenshots read back what is presented, where the surface allows it.
   readable_ = (caps.supportedUsageFlags & VK_IMAGE_USAGE_TRANSFER_SRC_BIT) != 0;
-  if (readable_) info.imageUsage |= VK_IMAGE_USAGE_TRANSFER_SRC_BIT;
-  info.imageSharingMode = VK_SHARING_MODE_EXCLUSIVE;
-  info.preTransform = caps.currentTransform;
-  info.compositeAlpha = (caps.supportedCompositeAlpha & VK_COMPOSITE_ALPHA_OPAQUE_BIT_KHR)
+  VkImageUsageFlags usage = VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT;
+  if (readable_) usage |= VK_IMAGE_USAGE_TRANSFER_SRC_BIT;
+  const VkSwapchainCreateInfoKHR info{
+      .sType = VK_STRUCTURE_TYPE_SWAPCHAIN_CREATE_INFO_KHR,
+      .surface = surface_,
+      .minImageCount = minImageCount_,
+      .imageFormat = format_,
+      .imageColorSpace = colorSpace_,
+      .imageExtent = extent_,
+      .imageArrayLayers = 1,
+      .imageUsage = usage,
+      .imageSharingMode = VK_SHARING_MODE_EXCLUSIVE,
+      .preTransform = caps.currentTransform,
+      .compositeAlpha = (caps.supportedCompositeAlpha & VK_COMPOSITE_ALPHA_OPAQUE_BIT_KHR)
                             ? VK_COMPOSITE_ALPHA_OPAQUE_BIT_KHR
-                            : VK_COMPOSITE_ALPHA_INHERIT_BIT_KHR;
-  info.presentMode = presentMode_;
-  info.clipped = VK_TRUE;
-  info.oldSwapchain = swapchain_;
+                            : VK_COMPOSITE_ALPHA_INHERIT_BIT_KHR,
+      .presentMode = presentMode_,
+      .clipped = VK_TRUE,
+      .oldSwapchain = swapchain_};
   VkSwapchainKHR created = VK_NULL_HANDLE;
   AAL_VK_CHECK(vkCreateSwapchainKHR(device_.handle(), &info, nullptr, &created));
   if (swapchain_ != VK_NULL_HANDLE) vkDestroySwapchainKHR(device_.handle(), swapchain_, nullptr);
@@ -134,11 +136,16 @@ void Swapchain::create(VkExtent2D framebuffer, bool vsync) {
   images_.resize(count);
   AAL_VK_CHECK(vkGetSwapchainImagesKHR(device_.handle(), swapchain_, &count, images_.data()));
   for (VkImage image : images_) {
-    VkImageViewCreateInfo viewInfo{VK_STRUCTURE_TYPE_IMAGE_VIEW_CREATE_INFO};
-    viewInfo.image = image;
-    viewInfo.viewType = VK_IMAGE_VIEW_TYPE_2D;
-    viewInfo.format = format_;
-    viewInfo.subresourceRange = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, 1};
+    const VkImageViewCreateInfo viewInfo{
+        .sType = VK_STRUCTURE_TYPE_IMAGE_VIEW_CREATE_INFO,
+        .image = image,
+        .viewType = VK_IMAGE_VIEW_TYPE_2D,
+        .format = format_,
+        .subresourceRange = {.aspectMask = VK_IMAGE_ASPECT_COLOR_BIT,
+                             .baseMipLevel = 0,
+                             .levelCount = 1,
+                             .baseArrayLayer = 0,
+                             .layerCount = 1}};
     VkImageView view = VK_NULL_HANDLE;
     AAL_VK_CHECK(vkCreateImageView(device_.handle(), &viewInfo, nullptr, &view));
     views_.push_back(view);
@@ -155,12 +162,12 @@ SwapchainStatus Swapchain::acquire(VkSemaphore acquired, uint32_t* imageIndex) {
 }
 
 SwapchainStatus Swapchain::present(uint32_t imageIndex, VkSemaphore rendered) {
-  VkPresentInfoKHR info{VK_STRUCTURE_TYPE_PRESENT_INFO_KHR};
-  info.waitSemaphoreCount = 1;
-  info.pWaitSemaphores = &rendered;
-  info.swapchainCount = 1;
-  info.pSwapchains = &swapchain_;
-  info.pImageIndices = &imageIndex;
+  const VkPresentInfoKHR info{.sType = VK_STRUCTURE_TYPE_PRESENT_INFO_KHR,
+                              .waitSemaphoreCount = 1,
+                              .pWaitSemaphores = &rendered,
+                              .swapchainCount = 1,
+                              .pSwapchains = &swapchain_,
+                              .pImageIndices = &imageIndex};
   const VkResult result = vkQueuePresentKHR(device_.queue(), &info);
   if (result == VK_ERROR_OUT_OF_DATE_KHR || result == VK_SUBOPTIMAL_KHR) {
     return SwapchainStatus::OutOfDate;

@@ -61,12 +61,11 @@ struct ObscuranceSampleBlock {
 };
 
 VkRenderingAttachmentInfo colorAttachment(const Image& image, bool clear) {
-  VkRenderingAttachmentInfo a{VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO};
-  a.imageView = image.view();
-  a.imageLayout = VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL;
-  a.loadOp = clear ? VK_ATTACHMENT_LOAD_OP_CLEAR : VK_ATTACHMENT_LOAD_OP_DONT_CARE;
-  a.storeOp = VK_ATTACHMENT_STORE_OP_STORE;
-  return a;
+  return {.sType = VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO,
+          .imageView = image.view(),
+          .imageLayout = VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL,
+          .loadOp = clear ? VK_ATTACHMENT_LOAD_OP_CLEAR : VK_ATTACHMENT_LOAD_OP_DONT_CARE,
+          .storeOp = VK_ATTACHMENT_STORE_OP_STORE};
 }
 
 // Begins dynamic rendering into `colorCount` colour (and an optional depth)
@@ -75,15 +74,17 @@ VkRenderingAttachmentInfo colorAttachment(const Image& image, bool clear) {
 void beginRendering(VkCommandBuffer cmd, uint32_t width, uint32_t height,
                     const VkRenderingAttachmentInfo* colors, uint32_t colorCount,
                     const VkRenderingAttachmentInfo* depth) {
-  VkRenderingInfo info{VK_STRUCTURE_TYPE_RENDERING_INFO};
-  info.renderArea = {{0, 0}, {width, height}};
-  info.layerCount = 1;
-  info.colorAttachmentCount = colorCount;
-  info.pColorAttachments = colors;
-  info.pDepthAttachment = depth;
+  const VkRect2D area{.offset = {0, 0}, .extent = {width, height}};
+  const VkRenderingInfo info{.sType = VK_STRUCTURE_TYPE_RENDERING_INFO,
+                             .renderArea = area,
+                             .layerCount = 1,
+                             .colorAttachmentCount = colorCount,
+                             .pColorAttachments = colors,
+                             .pDepthAttachment = depth};
   vkCmdBeginRendering(cmd, &info);
-  const VkViewport viewport{0, 0, float(width), float(height), 0, 1};
-  const VkRect2D scissor{{0, 0}, {width, height}};
+  const VkViewport viewport{
+      .x = 0, .y = 0, .width = float(width), .height = float(height), .minDepth = 0, .maxDepth = 1};
+  const VkRect2D& scissor = area;
   vkCmdSetViewport(cmd, 0, 1, &viewport);
   vkCmdSetScissor(cmd, 0, 1, &scissor);
 }
@@ -181,41 +182,32 @@ struct TerrainRenderer::Passes {
   Passes(const Device& d, VkFormat display)
       : device(d),
         displayFormat(display),
-        skyTable(d, {"fullscreen.vert",
-                     "sky_lut.frag",
-                     {VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER},
-                     0,
-                     {kSkyTableFormat},
-                     VK_FORMAT_UNDEFINED}),
-        filter(d, {"fullscreen.vert",
-                   "obscurance_filter.frag",
-                   {VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER},
-                   0,
-                   {kTransferFormat},
-                   VK_FORMAT_UNDEFINED}),
-        composite(d, {"fullscreen.vert",
-                      "composite.frag",
-                      {VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER,
-                       VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER},
-                      0,
-                      {kHdrFormat},
-                      VK_FORMAT_UNDEFINED,
-                      false,
-                      false,
-                      VK_CULL_MODE_NONE,
-                      true}),
-        toneMap(d, {"fullscreen.vert",
-                    "tone_map.frag",
-                    {VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER},
-                    0,
-                    {display},
-                    VK_FORMAT_UNDEFINED}),
-        upscale(d, {"fullscreen.vert",
-                    "upscale.frag",
-                    {VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER},
-                    0,
-                    {display},
-                    VK_FORMAT_UNDEFINED}),
+        skyTable(d, {.vertexShader = "fullscreen.vert",
+                     .fragmentShader = "sky_lut.frag",
+                     .bindings = {VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER},
+                     .colorFormats = {kSkyTableFormat}}),
+        filter(d, {.vertexShader = "fullscreen.vert",
+                   .fragmentShader = "obscurance_filter.frag",
+                   .bindings = {VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER,
+                                VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER},
+                   .colorFormats = {kTransferFormat}}),
+        composite(d, {.vertexShader = "fullscreen.vert",
+                      .fragmentShader = "composite.frag",
+                      .bindings = {VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER,
+                                   VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER,
+                                   VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER},
+                      .colorFormats = {kHdrFormat},
+                      .additiveBlend = true}),
+        toneMap(d, {.vertexShader = "fullscreen.vert",
+                    .fragmentShader = "tone_map.frag",
+                    .bindings = {VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER,
+                                 VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER},
+                    .colorFormats = {display}}),
+        upscale(d, {.vertexShader = "fullscreen.vert",
+                    .fragmentShader = "upscale.frag",
+                    .bindings = {VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER,
+                                 VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER},
+                    .colorFormats = {display}}),
         terrainSampler(d, VK_FILTER_LINEAR, true),
         nearest(d, VK_FILTER_NEAREST),
         skySampler(d, VK_FILTER_LINEAR, false, true),
@@ -241,12 +233,16 @@ struct TerrainRenderer::Passes {
     // With the obscurance pass the terrain also writes the ambient term and
     // the surface point; without it the frame pays nothing for them.
     if (gbuffer) formats = {kHdrFormat, kAmbientFormat, kSurfaceFormat};
-    return cached(key, {terrainVertexShader(paging), terrainFragmentShader(paging, gbuffer),
-                        terrainBindings({VK_DESCRIPTOR_TYPE_STORAGE_BUFFER,
-                                         VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER,
-                                         VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER}),
-                        0, formats, kDepthFormat, true, true, VK_CULL_MODE_NONE, false,
-                        variantConstants(mode, albedo, display)});
+    return cached(key, {.vertexShader = terrainVertexShader(paging),
+                        .fragmentShader = terrainFragmentShader(paging, gbuffer),
+                        .bindings = terrainBindings({VK_DESCRIPTOR_TYPE_STORAGE_BUFFER,
+                                                     VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER,
+                                                     VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER}),
+                        .colorFormats = formats,
+                        .depthFormat = kDepthFormat,
+                        .depthTest = true,
+                        .depthWrite = true,
+                        .specialization = variantConstants(mode, albedo, display)});
   }
 
   // The solid base, drawn in the terrain's rendering with the terrain's
@@ -262,10 +258,15 @@ struct TerrainRenderer::Passes {
                                        : "/h");
     std::vector<VkFormat> formats{display ? displayFormat : kHdrFormat};
     if (gbuffer) formats = {kHdrFormat, kAmbientFormat, kSurfaceFormat};
-    return cached(
-        key, {paged ? "base_paged.vert" : "base.vert", gbuffer ? "base_gbuffer.frag" : "base.frag",
-              terrainBindings({VK_DESCRIPTOR_TYPE_STORAGE_BUFFER}), 0, formats, kDepthFormat, true,
-              true, VK_CULL_MODE_BACK_BIT, false, variantConstants(mode, 0, display)});
+    return cached(key, {.vertexShader = paged ? "base_paged.vert" : "base.vert",
+                        .fragmentShader = gbuffer ? "base_gbuffer.frag" : "base.frag",
+                        .bindings = terrainBindings({VK_DESCRIPTOR_TYPE_STORAGE_BUFFER}),
+                        .colorFormats = formats,
+                        .depthFormat = kDepthFormat,
+                        .depthTest = true,
+                        .depthWrite = true,
+                        .cullMode = VK_CULL_MODE_BACK_BIT,
+                        .specialization = variantConstants(mode, 0, display)});
   }
 
   // The sky, after the terrain at the far plane with the depth test on, so
@@ -277,37 +278,28 @@ struct TerrainRenderer::Passes {
         "sky/" + std::to_string(int(mode)) + (display ? "/d" : "/h") + (gbuffer ? "/g" : "");
     std::vector<VkFormat> formats{display ? displayFormat : kHdrFormat};
     if (gbuffer) formats = {kHdrFormat, kAmbientFormat, kSurfaceFormat};
-    return cached(key,
-                  {"fullscreen.vert",
-                   "sky.frag",
-                   {VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER},
-                   0,
-                   formats,
-                   kDepthFormat,
-                   true,
-                   false,
-                   VK_CULL_MODE_NONE,
-                   false,
-                   variantConstants(mode, 0, display),
-                   1u});
+    return cached(key, {.vertexShader = "fullscreen.vert",
+                        .fragmentShader = "sky.frag",
+                        .bindings = {VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER,
+                                     VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER},
+                        .colorFormats = formats,
+                        .depthFormat = kDepthFormat,
+                        .depthTest = true,
+                        .specialization = variantConstants(mode, 0, display),
+                        .writtenColors = 1u});
   }
 
   // The composite writing display values (the mode decides raw or tone-mapped).
   const GraphicsPipeline& compositeDisplay(ShadingMode mode) {
     return cached(
         "composite/" + std::to_string(int(mode)),
-        {"fullscreen.vert",
-         "composite_display.frag",
-         {VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER,
-          VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER},
-         0,
-         {displayFormat},
-         VK_FORMAT_UNDEFINED,
-         false,
-         false,
-         VK_CULL_MODE_NONE,
-         false,
-         variantConstants(mode, 0, true)});
+        {.vertexShader = "fullscreen.vert",
+         .fragmentShader = "composite_display.frag",
+         .bindings = {VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER,
+                      VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER,
+                      VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER},
+         .colorFormats = {displayFormat},
+         .specialization = variantConstants(mode, 0, true)});
   }
 
   // The obscurance pass reads heights and albedo, never apertures.
@@ -325,9 +317,11 @@ struct TerrainRenderer::Passes {
     const char* shader =
         temporal ? (paged ? "obscurance_temporal_paged.frag" : "obscurance_temporal.frag")
                  : (paged ? "obscurance_paged.frag" : "obscurance.frag");
-    return cached(
-        key, {"fullscreen.vert", shader, terrainBindings(rest), 0, formats, VK_FORMAT_UNDEFINED,
-              false, false, VK_CULL_MODE_NONE, false, variantConstants(mode, albedo, false)});
+    return cached(key, {.vertexShader = "fullscreen.vert",
+                        .fragmentShader = shader,
+                        .bindings = terrainBindings(rest),
+                        .colorFormats = formats,
+                        .specialization = variantConstants(mode, albedo, false)});
   }
 };
 
@@ -369,13 +363,6 @@ void drawBase(VkCommandBuffer cmd, const LodSelection& selection, glm::vec2 demS
 }
 
 }  // namespace
-
-void applySkyLighting(const SkyLighting& light, FrameSettings& settings) {
-  settings.sunDirection = light.sunDirection;
-  settings.sunIrradiance = light.sunIrradiance;
-  settings.skyRadiance = light.skyRadiance;
-  settings.sky = light.sky;
-}
 
 TerrainRenderer::TerrainRenderer(const Device& device, uint32_t width, uint32_t height,
                                  VkFormat displayFormat)
@@ -444,7 +431,7 @@ void TerrainRenderer::updateCapTable(VkCommandBuffer cmd, const FrameSettings& s
   // Other modes only need a valid image behind the binding: the first frame
   // makes one, and the exact mode remakes it for its sun.
   // The tools allow suns of 0.01 to 20 degrees; the table wants (0, pi/2).
-  const float radius = std::clamp(s.sunRadiusRad, 1e-6f, 1.5f);
+  const float radius = std::clamp(s.lighting.sunRadiusRad, 1e-6f, 1.5f);
   const bool wanted = s.mode == ShadingMode::Exact || capTableRadius_ == 0.0f;
   if (!wanted || radius == capTableRadius_) return;
   const CapIntersectionTable table = makeCapIntersectionTable(radius);
@@ -452,9 +439,12 @@ void TerrainRenderer::updateCapTable(VkCommandBuffer cmd, const FrameSettings& s
   // buffer and the image are free.
   capTableStaging_.write(table.values.data(), table.values.size() * sizeof(float));
   transitionImage(cmd, capTable_, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL);
-  VkBufferImageCopy region{};
-  region.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
-  region.imageExtent = {AAL_CAP_TABLE_WIDTH, AAL_CAP_TABLE_HEIGHT, 1};
+  const VkBufferImageCopy region{
+      .imageSubresource = {.aspectMask = VK_IMAGE_ASPECT_COLOR_BIT,
+                           .mipLevel = 0,
+                           .baseArrayLayer = 0,
+                           .layerCount = 1},
+      .imageExtent = {.width = AAL_CAP_TABLE_WIDTH, .height = AAL_CAP_TABLE_HEIGHT, .depth = 1}};
   vkCmdCopyBufferToImage(cmd, capTableStaging_.handle(), capTable_.handle(),
                          VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 1, &region);
   transitionImage(cmd, capTable_, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL,
@@ -471,7 +461,7 @@ int TerrainRenderer::albedoSourceOf(const TerrainScene& scene, const FrameSettin
 bool TerrainRenderer::writeUniforms(const TerrainScene& scene, const FrameSettings& s) {
   const double aspect = double(extent_.width) / double(extent_.height);
   // The depth range must hold the whole DEM: approximate it from the box.
-  const glm::vec4 dem = scene.demInfo();
+  const glm::vec4 dem = scene.demInfo();  // width, height (texels), cell size x, y (m)
   const double bottom = scene.minHeight() - (s.base ? double(s.base->depthM) : 0.0);
   const DepthRange range = depthRangeFor(s.camera, {(dem.x - 1.0) * dem.z, (dem.y - 1.0) * dem.w},
                                          bottom, scene.maxHeight());
@@ -480,28 +470,47 @@ bool TerrainRenderer::writeUniforms(const TerrainScene& scene, const FrameSettin
   u.viewProj = projectionMatrix(s.camera, aspect, range) * viewMatrix(s.camera);
   viewProj_ = u.viewProj;
   u.invViewProj = glm::inverse(u.viewProj);
-  u.cameraPos = glm::vec4(glm::vec3(s.camera.position), 1.0f);
-  u.sunDirection = glm::vec4(s.sunDirection, s.sunRadiusRad);
-  u.sunIrradiance = glm::vec4(s.sunIrradiance, 0.0f);
-  u.skyRadiance = glm::vec4(s.skyRadiance, s.hazeDensityPerM);
-  u.dem = scene.demInfo();
-  u.heights = {scene.minHeight(), scene.maxHeight(), s.waterLevelM.value_or(0.0f),
-               s.waterLevelM ? 1.0f : 0.0f};
-  u.grid = {kLodPatchQuads, scene.lod().levels(), static_cast<int>(s.mode),
-            albedoSourceOf(scene, s)};
-  u.display = {s.exposure, isDebug(s.mode) ? 1.0f : 0.0f, s.transparentBackground ? 0.0f : 1.0f,
-               0.0f};
-  u.albedoValue = glm::vec4(s.albedoValue.value_or(glm::vec3(0.0f)), 0.0f);
-  if (s.base) u.base = glm::vec4(s.base->albedo, float(bottom));
+  u.previousViewProj = previousViewProj_;
+  u.cameraPos = glm::vec3(s.camera.position);
+  u.pixelAngle =
+      float(2.0 * std::tan(0.5 * s.camera.verticalFovDeg * AAL_PI / 180.0) / extent_.height);
+
+  const Lighting& light = s.lighting;
+  u.sunDirection = light.sunDirection;
+  u.sunRadiusRad = light.sunRadiusRad;
+  u.sunIrradiance = light.sunIrradiance;
+  u.hazeDensityPerM = light.hazeDensityPerM;
+  u.skyRadiance = light.skyRadiance;
+  u.exposure = light.exposure;
+  u.sky = light.sky;
+
+  u.demSize = {dem.x, dem.y};
+  u.cellSizeM = {dem.z, dem.w};
+  u.minHeightM = scene.minHeight();
+  u.maxHeightM = scene.maxHeight();
+  u.waterLevelM = s.waterLevelM.value_or(0.0f);
+  u.hasWater = s.waterLevelM ? 1 : 0;
+  u.albedoValue = s.albedoValue.value_or(glm::vec3(0.0f));
+  u.backgroundAlpha = s.transparentBackground ? 0.0f : 1.0f;
+  if (s.base) {
+    u.baseAlbedo = s.base->albedo;
+    u.baseBottomM = float(bottom);
+  }
+
+  u.extent = glm::ivec2(glm::uvec2(extent_.width, extent_.height));
+  u.previousExtent = glm::ivec2(glm::uvec2(previousExtent_.width, previousExtent_.height));
+  u.rawOutput = isDebug(s.mode) ? 1 : 0;
   const ObscuranceSettings& o = s.obscurance;
   const bool obscurance = o.enabled && usesTransfer(s.mode);
   if (obscurance) {
-    const float radiusM =
+    u.obscuranceRadiusM =
         o.radiusM > 0
             ? o.radiusM
             : defaultObscuranceRadiusM({dem.z, dem.w}, {(dem.x - 1) * dem.z, (dem.y - 1) * dem.w});
-    u.obscurance = {radiusM, float(o.samples), float(o.steps), 0.0f};
-    u.obscurancePass = {1, o.interleaved ? 1 : 0, o.halfResolution ? 2 : 1, 0};
+    u.obscuranceSamples = o.samples;
+    u.obscuranceSteps = o.steps;
+    u.obscuranceInterleaved = o.interleaved ? 1 : 0;
+    u.obscurancePixelSize = o.halfResolution ? 2 : 1;
     ObscuranceSampleBlock block{};
     for (int k = 0; k < kObscuranceSampleSets; ++k) {
       const std::vector<glm::vec3>& offsets = obscuranceCellSampleOffsets(o.samples, k);
@@ -512,23 +521,11 @@ bool TerrainRenderer::writeUniforms(const TerrainScene& scene, const FrameSettin
     }
     samples_.write(&block, sizeof block);
   }
-  const TerrainTileLayout& tiles = scene.tiles();
-  u.tileGrid =
-      glm::ivec4(glm::uvec4(tiles.coreWidth, tiles.coreHeight, tiles.tilesX, tiles.tilesY));
-  u.tileImage = glm::ivec4(glm::uvec4(tiles.border, 0, tiles.imageWidth(), tiles.imageHeight()));
-  u.tileLayers = glm::ivec4(
-      glm::uvec4(tiles.layersPerPage[0], tiles.layersPerPage[1], tiles.layersPerPage[2], 0));
-  u.extent = glm::ivec4(glm::uvec4(extent_.width, extent_.height, 0, 0));
-  u.pixelAngle = glm::vec4(
-      float(2.0 * std::tan(0.5 * s.camera.verticalFovDeg * AAL_PI / 180.0) / extent_.height), 0, 0,
-      0);
-  u.previousViewProj = previousViewProj_;
-  u.history = {-1, 0, int(previousExtent_.width), int(previousExtent_.height)};
   if (obscurance && o.history != ObscuranceSettings::History::None) {
     // The samples kept from the previous frame belong to the same terrain,
     // settings and occluders' albedo, or to nothing.
     const HistoryKey key{scene.id(),
-                         u.obscurance.x,
+                         u.obscuranceRadiusM,
                          o.samples,
                          o.steps,
                          o.interleaved,
@@ -537,14 +534,22 @@ bool TerrainRenderer::writeUniforms(const TerrainScene& scene, const FrameSettin
                          s.albedoValue.value_or(glm::vec3(-1.0f))};
     historyValid_ = historyValid_ && key == historyKey_;
     historyKey_ = key;
-    u.history.y = historyValid_ ? 1 : 0;
+    u.historyValid = historyValid_ ? 1 : 0;
     if (historyValid_ && o.history == ObscuranceSettings::History::Reuse) {
-      u.history.x = int(historySubset_++ % AAL_OBSCURANCE_SUBSETS);
+      u.historySubset = int(historySubset_++ % AAL_OBSCURANCE_SUBSETS);
     }
   } else {
     historyValid_ = false;
   }
-  u.sky = s.sky;
+
+  const TerrainTileLayout& tiles = scene.tiles();
+  u.tileCoreSize = glm::ivec2(glm::uvec2(tiles.coreWidth, tiles.coreHeight));
+  u.tileCount = glm::ivec2(glm::uvec2(tiles.tilesX, tiles.tilesY));
+  u.tileImageSize = glm::ivec2(glm::uvec2(tiles.imageWidth(), tiles.imageHeight()));
+  u.tileBorder = int32_t(tiles.border);
+  u.heightLayersPerPage = int32_t(tiles.layersPerPage[0]);
+  u.apertureLayersPerPage = int32_t(tiles.layersPerPage[1]);
+  u.albedoLayersPerPage = int32_t(tiles.layersPerPage[2]);
   uniforms_.write(&u, sizeof u);
   return obscurance;
 }
@@ -618,7 +623,11 @@ void TerrainRenderer::record(VkCommandBuffer cmd, const TerrainScene& scene, con
     transitionImage(cmd, noHorizons_, VK_IMAGE_LAYOUT_UNDEFINED,
                     VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL);
     const VkClearColorValue zero{};
-    const VkImageSubresourceRange all{VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, 2};
+    const VkImageSubresourceRange all{.aspectMask = VK_IMAGE_ASPECT_COLOR_BIT,
+                                      .baseMipLevel = 0,
+                                      .levelCount = 1,
+                                      .baseArrayLayer = 0,
+                                      .layerCount = 2};
     vkCmdClearColorImage(cmd, noHorizons_.handle(), VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, &zero, 1,
                          &all);
     transitionImage(cmd, noHorizons_, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL,
@@ -670,12 +679,13 @@ void TerrainRenderer::record(VkCommandBuffer cmd, const TerrainScene& scene, con
                                          colorAttachment(surface_, true)};
   colors[0].loadOp = VK_ATTACHMENT_LOAD_OP_CLEAR;
   colors[2].clearValue.color = {{-1.0f, -1.0f, 0.0f, 0.0f}};
-  VkRenderingAttachmentInfo depth{VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO};
-  depth.imageView = depth_.view();
-  depth.imageLayout = VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL;
-  depth.loadOp = VK_ATTACHMENT_LOAD_OP_CLEAR;
-  depth.storeOp = skyApart ? VK_ATTACHMENT_STORE_OP_STORE : VK_ATTACHMENT_STORE_OP_DONT_CARE;
-  depth.clearValue.depthStencil = {1.0f, 0};
+  VkRenderingAttachmentInfo depth{
+      .sType = VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO,
+      .imageView = depth_.view(),
+      .imageLayout = VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL,
+      .loadOp = VK_ATTACHMENT_LOAD_OP_CLEAR,
+      .storeOp = skyApart ? VK_ATTACHMENT_STORE_OP_STORE : VK_ATTACHMENT_STORE_OP_DONT_CARE,
+      .clearValue = {.depthStencil = {.depth = 1.0f, .stencil = 0}}};
   beginRendering(cmd, extent_.width, extent_.height, colors, obscurance ? 3 : 1, &depth);
   timer_.begin(cmd, "terrain");
   passes_->terrain(paging, s.mode, albedo, obscurance, direct)

@@ -18,11 +18,10 @@
 #include "gpu_timer.h"
 #include "graphics_pipeline.h"
 #include "image.h"
+#include "lighting.h"
 #include "obscurance.h"
 #include "quadtree_lod.h"
 #include "shading.h"
-#include "sky_lighting.h"
-#include "sky_model.h"
 
 namespace aal {
 
@@ -32,13 +31,8 @@ class TerrainScene;
 struct FrameSettings {
   Camera camera;
   ShadingMode mode = ShadingMode::Approx;
-  glm::vec3 sunDirection{0, 0, 1};  // unit, world frame
-  float sunRadiusRad = 0.004653f;
-  glm::vec3 sunIrradiance{0.0f};  // E_sun (terrain/atmosphere.h units)
-  glm::vec3 skyRadiance{0.0f};    // average L_sky
-  PreethamSky sky;                // background sky model
-  float hazeDensityPerM = 0.0f;   // aerial perspective extinction
-  float exposure = 1.0f;          // see terrain/tone_map.h
+  // Sun, sky, haze and exposure (terrain/lighting.h).
+  Lighting lighting;
   // Paint heights at or below this level (m) as water; none unless the user
   // asks (--water-level): a plain at 0 m is not a lake.
   std::optional<float> waterLevelM;
@@ -68,10 +62,6 @@ struct FrameSettings {
   std::optional<Base> base;
 };
 
-// The sun and sky of `light` (direction, irradiance, average sky radiance,
-// the sky model) into `settings`; the sun's radius, haze and exposure are the
-// caller's.
-void applySkyLighting(const SkyLighting& light, FrameSettings& settings);
 
 struct FrameResult {
   uint32_t width = 0, height = 0;
@@ -162,7 +152,7 @@ class TerrainRenderer {
   VkExtent2D extent_{0, 0};  // drawn this frame: width_ x height_, or less (FrameOutput)
   Image hdr_, depth_, display_;
   // Terrain pass outputs for the obscurance pass and the composite (see
-  // shaders/terrain.frag), and the per-pixel O/W.
+  // shaders/terrain_shading.glsl), and the per-pixel O/W.
   Image ambient_, surface_, transfer_, filtered_;
   Image skyTable_;  // the sky's radiance per view direction (shaders/sky_lut.glsl)
   // The exact cap intersection against the sun (shaders/cap_table.glsl), for

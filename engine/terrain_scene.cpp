@@ -116,11 +116,15 @@ namespace {
 class LevelView {
  public:
   LevelView(const Device& device, const Image& image, uint32_t level) : device_(device.handle()) {
-    VkImageViewCreateInfo info{VK_STRUCTURE_TYPE_IMAGE_VIEW_CREATE_INFO};
-    info.image = image.handle();
-    info.viewType = VK_IMAGE_VIEW_TYPE_2D_ARRAY;
-    info.format = image.desc().format;
-    info.subresourceRange = {VK_IMAGE_ASPECT_COLOR_BIT, level, 1, 0, image.desc().layers};
+    const VkImageViewCreateInfo info{.sType = VK_STRUCTURE_TYPE_IMAGE_VIEW_CREATE_INFO,
+                                     .image = image.handle(),
+                                     .viewType = VK_IMAGE_VIEW_TYPE_2D_ARRAY,
+                                     .format = image.desc().format,
+                                     .subresourceRange = {.aspectMask = VK_IMAGE_ASPECT_COLOR_BIT,
+                                                          .baseMipLevel = level,
+                                                          .levelCount = 1,
+                                                          .baseArrayLayer = 0,
+                                                          .layerCount = image.desc().layers}};
     AAL_VK_CHECK(vkCreateImageView(device_, &info, nullptr, &view_));
   }
   ~LevelView() { vkDestroyImageView(device_, view_, nullptr); }

@@ -20,37 +20,36 @@ void checkImGuiVkResult(VkResult result) {
 }
 
 VkRenderPass makeRenderPass(VkDevice device, VkFormat format) {
-  VkAttachmentDescription color{};
-  color.format = format;
-  color.samples = VK_SAMPLE_COUNT_1_BIT;
-  color.loadOp = VK_ATTACHMENT_LOAD_OP_LOAD;  // the terrain frame blitted before
-  color.storeOp = VK_ATTACHMENT_STORE_OP_STORE;
-  color.stencilLoadOp = VK_ATTACHMENT_LOAD_OP_DONT_CARE;
-  color.stencilStoreOp = VK_ATTACHMENT_STORE_OP_DONT_CARE;
-  color.initialLayout = VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL;
-  color.finalLayout = VK_IMAGE_LAYOUT_PRESENT_SRC_KHR;
-  VkAttachmentReference ref{0, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL};
-  VkSubpassDescription subpass{};
-  subpass.pipelineBindPoint = VK_PIPELINE_BIND_POINT_GRAPHICS;
-  subpass.colorAttachmentCount = 1;
-  subpass.pColorAttachments = &ref;
+  const VkAttachmentDescription color{
+      .format = format,
+      .samples = VK_SAMPLE_COUNT_1_BIT,
+      .loadOp = VK_ATTACHMENT_LOAD_OP_LOAD,  // the terrain frame drawn before
+      .storeOp = VK_ATTACHMENT_STORE_OP_STORE,
+      .stencilLoadOp = VK_ATTACHMENT_LOAD_OP_DONT_CARE,
+      .stencilStoreOp = VK_ATTACHMENT_STORE_OP_DONT_CARE,
+      .initialLayout = VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL,
+      .finalLayout = VK_IMAGE_LAYOUT_PRESENT_SRC_KHR};
+  const VkAttachmentReference ref{.attachment = 0,
+                                  .layout = VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL};
+  const VkSubpassDescription subpass{.pipelineBindPoint = VK_PIPELINE_BIND_POINT_GRAPHICS,
+                                     .colorAttachmentCount = 1,
+                                     .pColorAttachments = &ref};
   // The caller's barrier made the image a colour attachment; order the
   // load after it.
-  VkSubpassDependency dependency{};
-  dependency.srcSubpass = VK_SUBPASS_EXTERNAL;
-  dependency.dstSubpass = 0;
-  dependency.srcStageMask = VK_PIPELINE_STAGE_COLOR_ATTACHMENT_OUTPUT_BIT;
-  dependency.dstStageMask = VK_PIPELINE_STAGE_COLOR_ATTACHMENT_OUTPUT_BIT;
-  dependency.srcAccessMask = VK_ACCESS_COLOR_ATTACHMENT_WRITE_BIT;
-  dependency.dstAccessMask =
-      VK_ACCESS_COLOR_ATTACHMENT_READ_BIT | VK_ACCESS_COLOR_ATTACHMENT_WRITE_BIT;
-  VkRenderPassCreateInfo info{VK_STRUCTURE_TYPE_RENDER_PASS_CREATE_INFO};
-  info.attachmentCount = 1;
-  info.pAttachments = &color;
-  info.subpassCount = 1;
-  info.pSubpasses = &subpass;
-  info.dependencyCount = 1;
-  info.pDependencies = &dependency;
+  const VkSubpassDependency dependency{
+      .srcSubpass = VK_SUBPASS_EXTERNAL,
+      .dstSubpass = 0,
+      .srcStageMask = VK_PIPELINE_STAGE_COLOR_ATTACHMENT_OUTPUT_BIT,
+      .dstStageMask = VK_PIPELINE_STAGE_COLOR_ATTACHMENT_OUTPUT_BIT,
+      .srcAccessMask = VK_ACCESS_COLOR_ATTACHMENT_WRITE_BIT,
+      .dstAccessMask = VK_ACCESS_COLOR_ATTACHMENT_READ_BIT | VK_ACCESS_COLOR_ATTACHMENT_WRITE_BIT};
+  const VkRenderPassCreateInfo info{.sType = VK_STRUCTURE_TYPE_RENDER_PASS_CREATE_INFO,
+                                    .attachmentCount = 1,
+                                    .pAttachments = &color,
+                                    .subpassCount = 1,
+                                    .pSubpasses = &subpass,
+                                    .dependencyCount = 1,
+                                    .pDependencies = &dependency};
   VkRenderPass pass = VK_NULL_HANDLE;
   AAL_VK_CHECK(vkCreateRenderPass(device, &info, nullptr, &pass));
   return pass;
@@ -58,12 +57,13 @@ VkRenderPass makeRenderPass(VkDevice device, VkFormat format) {
 
 VkDescriptorPool makeDescriptorPool(VkDevice device) {
   // The backend needs one combined image sampler (the font).
-  const VkDescriptorPoolSize size{VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 4};
-  VkDescriptorPoolCreateInfo info{VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO};
-  info.flags = VK_DESCRIPTOR_POOL_CREATE_FREE_DESCRIPTOR_SET_BIT;
-  info.maxSets = 4;
-  info.poolSizeCount = 1;
-  info.pPoolSizes = &size;
+  const VkDescriptorPoolSize size{.type = VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER,
+                                  .descriptorCount = 4};
+  const VkDescriptorPoolCreateInfo info{.sType = VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO,
+                                        .flags = VK_DESCRIPTOR_POOL_CREATE_FREE_DESCRIPTOR_SET_BIT,
+                                        .maxSets = 4,
+                                        .poolSizeCount = 1,
+                                        .pPoolSizes = &size};
   VkDescriptorPool pool = VK_NULL_HANDLE;
   AAL_VK_CHECK(vkCreateDescriptorPool(device, &info, nullptr, &pool));
   return pool;
@@ -122,13 +122,13 @@ void UiOverlay::createFramebuffers(const Swapchain& swapchain) {
   extent_ = swapchain.extent();
   for (uint32_t i = 0; i < swapchain.imageCount(); ++i) {
     const VkImageView view = swapchain.view(i);
-    VkFramebufferCreateInfo info{VK_STRUCTURE_TYPE_FRAMEBUFFER_CREATE_INFO};
-    info.renderPass = renderPass_;
-    info.attachmentCount = 1;
-    info.pAttachments = &view;
-    info.width = extent_.width;
-    info.height = extent_.height;
-    info.layers = 1;
+    const VkFramebufferCreateInfo info{.sType = VK_STRUCTURE_TYPE_FRAMEBUFFER_CREATE_INFO,
+                                       .renderPass = renderPass_,
+                                       .attachmentCount = 1,
+                                       .pAttachments = &view,
+                                       .width = extent_.width,
+                                       .height = extent_.height,
+                                       .layers = 1};
     VkFramebuffer framebuffer = VK_NULL_HANDLE;
     AAL_VK_CHECK(vkCreateFramebuffer(device_.handle(), &info, nullptr, &framebuffer));
     framebuffers_.push_back(framebuffer);
@@ -157,10 +157,10 @@ void UiOverlay::beginFrame() {
 void UiOverlay::record(VkCommandBuffer cmd, uint32_t imageIndex) {
   ImGui::Render();
   frameStarted_ = false;
-  VkRenderPassBeginInfo begin{VK_STRUCTURE_TYPE_RENDER_PASS_BEGIN_INFO};
-  begin.renderPass = renderPass_;
-  begin.framebuffer = framebuffers_[imageIndex];
-  begin.renderArea = {{0, 0}, extent_};
+  const VkRenderPassBeginInfo begin{.sType = VK_STRUCTURE_TYPE_RENDER_PASS_BEGIN_INFO,
+                                    .renderPass = renderPass_,
+                                    .framebuffer = framebuffers_[imageIndex],
+                                    .renderArea = {.offset = {0, 0}, .extent = extent_}};
   vkCmdBeginRenderPass(cmd, &begin, VK_SUBPASS_CONTENTS_INLINE);
   ImGui_ImplVulkan_RenderDrawData(ImGui::GetDrawData(), cmd);
   vkCmdEndRenderPass(cmd);

@@ -18,12 +18,12 @@ size_t alignUp(size_t value, size_t alignment) {
 }
 
 struct Copy {
-  const Image* image;
-  const Buffer* buffer;
-  size_t stagingOffset, bytes;
-  uint32_t firstRow, rows, layer, level;
-  size_t bufferOffset;
-  bool first, last;
+  const Image* image = nullptr;
+  const Buffer* buffer = nullptr;
+  size_t stagingOffset = 0, bytes = 0;
+  uint32_t firstRow = 0, rows = 0, layer = 0, level = 0;
+  size_t bufferOffset = 0;
+  bool first = false, last = false;  // the image's first and last band: its transitions
 };
 
 // Rows of level 0 that make whole rows of every level of `image`.
@@ -127,10 +127,16 @@ void UploadBatch::submit() {
           // The image's layout changes with its first layer's first band and
           // after its last layer's last band (the transitions cover every
           // layer and level).
-          copies.push_back(
-              {p.image, nullptr, used, levelRows * rowBytes, first >> level, levelRows, p.layer,
-               level, 0, first == 0 && p.layer == 0 && level == 0,
-               first + rows == d.height && p.layer + 1 == d.layers && level + 1 == d.mipLevels});
+          copies.push_back({.image = p.image,
+                            .stagingOffset = used,
+                            .bytes = levelRows * rowBytes,
+                            .firstRow = first >> level,
+                            .rows = levelRows,
+                            .layer = p.layer,
+                            .level = level,
+                            .first = first == 0 && p.layer == 0 && level == 0,
+                            .last = first + rows == d.height && p.layer + 1 == d.layers &&
+                                    level + 1 == d.mipLevels});
           used = alignUp(used + levelRows * rowBytes, 16);
         }
         p.done += rows;
@@ -139,7 +145,8 @@ void UploadBatch::submit() {
         const size_t chunk = std::min(capacity - used, p.bytes - p.done);
         if (chunk == 0) break;
         std::memcpy(mapped + used, p.data + p.done, chunk);
-        copies.push_back({nullptr, p.buffer, used, chunk, 0, 0, 0, 0, p.done, false, false});
+        copies.push_back(
+            {.buffer = p.buffer, .stagingOffset = used, .bytes = chunk, .bufferOffset = p.done});
         used = alignUp(used + chunk, 16);
         p.done += chunk;
         if (p.done < p.bytes) break;
@@ -151,7 +158,8 @@ void UploadBatch::submit() {
     submitAndWait(device_, [&](VkCommandBuffer cmd) {
       for (const Copy& c : copies) {
         if (c.buffer) {
-          const VkBufferCopy region{c.stagingOffset, c.bufferOffset, c.bytes};
+          const VkBufferCopy region{
+              .srcOffset = c.stagingOffset, .dstOffset = c.bufferOffset, .size = c.bytes};
           vkCmdCopyBuffer(cmd, staging.handle(), c.buffer->handle(), 1, &region);
           continue;
         }
@@ -160,11 +168,15 @@ void UploadBatch::submit() {
           transitionImage(cmd, *c.image, VK_IMAGE_LAYOUT_UNDEFINED,
                           VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL);
         }
-        VkBufferImageCopy region{};
-        region.bufferOffset = c.stagingOffset;
-        region.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, c.level, c.layer, 1};
-        region.imageOffset = {0, static_cast<int32_t>(c.firstRow), 0};
-        region.imageExtent = {c.image->desc().width >> c.level, c.rows, 1};
+        const VkBufferImageCopy region{
+            .bufferOffset = c.stagingOffset,
+            .imageSubresource = {.aspectMask = VK_IMAGE_ASPECT_COLOR_BIT,
+                                 .mipLevel = c.level,
+                                 .baseArrayLayer = c.layer,
+                                 .layerCount = 1},
+            .imageOffset = {.x = 0, .y = static_cast<int32_t>(c.firstRow), .z = 0},
+            .imageExtent = {
+                .width = c.image->desc().width >> c.level, .height = c.rows, .depth = 1}};
         vkCmdCopyBufferToImage(cmd, staging.handle(), c.image->handle(),
                                VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 1, &region);
         if (c.last) {
@@ -173,14 +185,14 @@ void UploadBatch::submit() {
         }
       }
       // Buffer copies must be visible to vertex input and shaders.
-      VkMemoryBarrier2 barrier{VK_STRUCTURE_TYPE_MEMORY_BARRIER_2};
-      barrier.srcStageMask = VK_PIPELINE_STAGE_2_TRANSFER_BIT;
-      barrier.srcAccessMask = VK_ACCESS_2_TRANSFER_WRITE_BIT;
-      barrier.dstStageMask = VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT;
-      barrier.dstAccessMask = VK_ACCESS_2_MEMORY_READ_BIT;
-      VkDependencyInfo dependency{VK_STRUCTURE_TYPE_DEPENDENCY_INFO};
-      dependency.memoryBarrierCount = 1;
-      dependency.pMemoryBarriers = &barrier;
+      const VkMemoryBarrier2 barrier{.sType = VK_STRUCTURE_TYPE_MEMORY_BARRIER_2,
+                                     .srcStageMask = VK_PIPELINE_STAGE_2_TRANSFER_BIT,
+                                     .srcAccessMask = VK_ACCESS_2_TRANSFER_WRITE_BIT,
+                                     .dstStageMask = VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT,
+                                     .dstAccessMask = VK_ACCESS_2_MEMORY_READ_BIT};
+      const VkDependencyInfo dependency{.sType = VK_STRUCTURE_TYPE_DEPENDENCY_INFO,
+                                        .memoryBarrierCount = 1,
+                                        .pMemoryBarriers = &barrier};
       vkCmdPipelineBarrier2(cmd, &dependency);
     });
   }

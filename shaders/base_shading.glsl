@@ -1,5 +1,5 @@
 // Shading of the solid base (docs/rendering.md, "Solid base"): a Lambertian
-// surface of albedo frame.base.rgb lit by the sun (no shadows: the walls are
+// surface of albedo frame.baseAlbedo lit by the sun (no shadows: the walls are
 // not in the aperture map) and by the sky it faces — half of it for a
 // vertical wall (pi L_sky / 2 of irradiance from a uniform sky), none for the
 // bottom — with the terrain's aerial perspective. The body of base.frag and
@@ -23,21 +23,21 @@ layout(location = 2) out vec4 surfaceOut;
 #endif
 
 void main() {
-  vec3 albedo = frame.base.rgb;
+  vec3 albedo = frame.baseAlbedo;
   float skySeen = 0.5 * (1.0 + baseNormal.z);  // 1/2 for a wall, 0 for the bottom
-  vec3 irradiance = frame.sunIrradiance.rgb * max(dot(baseNormal, frame.sunDirection.xyz), 0.0) +
-                    float(AAL_PI) * frame.skyRadiance.rgb * skySeen;
+  vec3 irradiance = frame.sunIrradiance * max(dot(baseNormal, frame.sunDirection), 0.0) +
+                    float(AAL_PI) * frame.skyRadiance * skySeen;
   vec3 radiance = albedo / float(AAL_PI) * irradiance;
-  float distance = length(worldPosition - frame.cameraPos.xyz);
-  float transmittance = exp(-frame.skyRadiance.w * distance);
-  radiance = radiance * transmittance + frame.skyRadiance.rgb * (1.0 - transmittance);
+  float distance = length(worldPosition - frame.cameraPos);
+  float transmittance = exp(-frame.hazeDensityPerM * distance);
+  radiance = radiance * transmittance + frame.skyRadiance * (1.0 - transmittance);
   if (kRawOutput) radiance = vec3(0.0);  // debug views show terrain quantities only
 #ifdef AAL_BASE_GBUFFER
   ambientOut = vec4(0.0);                 // distance 0: nothing to add (composite.glsl)
   surfaceOut = vec4(-1.0, -1.0, 0.0, 0.0);  // no surface (the targets' clear value)
   color = vec4(radiance, 1.0);
 #else
-  if (kDisplayOutput) radiance = displayValue(radiance, frame.display.x, kRawOutput);
+  if (kDisplayOutput) radiance = displayValue(radiance, frame.exposure, kRawOutput);
   color = vec4(radiance, 1.0);
 #endif
 }

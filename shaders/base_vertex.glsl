@@ -6,7 +6,7 @@
 // the terrain's vertex there computed by the same code (patchVertex in
 // patch_vertex.glsl: same grid point, morph and level of detail), so the
 // terrain and the wall share their edge exactly and rasterization leaves no
-// pixel between them; its bottom at frame.base.w. The body of base.vert and
+// pixel between them; its bottom at frame.baseBottomM. The body of base.vert and
 // base_paged.vert (the texture variants: see terrain_textures.glsl).
 //
 // Draws (engine/terrain_renderer.cpp, drawBase): instance = the patch
@@ -26,8 +26,8 @@ layout(location = 1) flat out vec3 baseNormal;
 // x east from the DEM centre, y north (row 0 is the northern edge), as the
 // terrain's worldAt in patch_vertex.glsl.
 vec3 baseWorldAt(vec2 texel, float z) {
-  vec2 half_ = 0.5 * (frame.dem.xy - 1.0);
-  return vec3((texel.x - half_.x) * frame.dem.z, (half_.y - texel.y) * frame.dem.w, z);
+  vec2 half_ = 0.5 * (frame.demSize - 1.0);
+  return vec3((texel.x - half_.x) * frame.cellSizeM.x, (half_.y - texel.y) * frame.cellSizeM.y, z);
 }
 
 void main() {
@@ -45,8 +45,8 @@ void main() {
   const int kReversed[6] = int[6](0, 1, 2, 1, 3, 2);
   if (line >= 6) {  // the bottom: the DEM's rectangle at the base's height
     int c = kReversed[corner];
-    vec2 texel = vec2(float(c & 1) * (frame.dem.x - 1.0), float(c >> 1) * (frame.dem.y - 1.0));
-    worldPosition = baseWorldAt(texel, frame.base.w);
+    vec2 texel = vec2(float(c & 1) * (frame.demSize.x - 1.0), float(c >> 1) * (frame.demSize.y - 1.0));
+    worldPosition = baseWorldAt(texel, frame.baseBottomM);
     baseNormal = vec3(0.0, 0.0, -1.0);
   } else {
     LodPatch node = patches[gl_InstanceIndex];
@@ -61,7 +61,7 @@ void main() {
     float along = float(quad + (c & 1)), down = float(c >> 1);
     vec2 texel;
     vec3 top = patchVertex(node, row ? vec2(along, gridLine) : vec2(gridLine, along), texel);
-    worldPosition = down == 0.0 ? top : baseWorldAt(texel, frame.base.w);
+    worldPosition = down == 0.0 ? top : baseWorldAt(texel, frame.baseBottomM);
     baseNormal = row ? vec3(0.0, first ? 1.0 : -1.0, 0.0) : vec3(first ? -1.0 : 1.0, 0.0, 0.0);
   }
   gl_Position = frame.viewProj * vec4(worldPosition, 1.0);

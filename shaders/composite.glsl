@@ -29,8 +29,8 @@ layout(location = 0) out vec4 color;
 vec3 weightedAmbient(ivec2 pixel) {
   vec4 ambient = texelFetch(ambientImage, pixel, 0);
   if (ambient.a <= 0.0) return vec3(0.0);  // sky
-  int scale = frame.obscurancePass.z;
-  ivec2 size = (frame.extent.xy + scale - 1) / scale;
+  int scale = frame.obscurancePixelSize;
+  ivec2 size = (frame.extent + scale - 1) / scale;
   ivec2 first = pixel / scale;
   // Odd pixels at half resolution lie between two pass pixels.
   ivec2 last = min(first + (pixel - first * scale), size - 1);
@@ -61,7 +61,7 @@ void main() {
   vec3 ambient = weightedAmbient(pixel);
 #ifdef AAL_COMPOSITE_DISPLAY
   vec4 hdr = texelFetch(hdrImage, pixel, 0);  // alpha: 1 on terrain, the background's on sky
-  color = vec4(displayValue(hdr.rgb + ambient, frame.display.x, kRawOutput), hdr.a);
+  color = vec4(displayValue(hdr.rgb + ambient, frame.exposure, kRawOutput), hdr.a);
 #else
   color = vec4(ambient, 0.0);
 #endif

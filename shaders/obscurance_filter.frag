@@ -21,8 +21,8 @@ void main() {
     filtered = centre;
     return;
   }
-  int scale = frame.obscurancePass.z;
-  ivec2 size = (frame.extent.xy + scale - 1) / scale;
+  int scale = frame.obscurancePixelSize;
+  ivec2 size = (frame.extent + scale - 1) / scale;
   float tolerance = float(AAL_OBSCURANCE_DEPTH_TOLERANCE) * centre.a;
   vec3 sum = vec3(0.0);
   float count = 0.0;

@@ -8,7 +8,7 @@
 //
 // Temporal reuse (the viewer, docs/obscurance.md): the pass also writes the
 // means per sample it found and the surface point they belong to. While the
-// view moves (frame.history.x = subset s >= 0) it evaluates only samples
+// view moves (frame.historySubset = subset s >= 0) it evaluates only samples
 // [s n / K, (s + 1) n / K) of each pixel's set and averages them with what
 // the previous frame found for the same surface point (reprojected with the
 // previous frame's matrix, accepted when its texel lies within about a pass
@@ -58,7 +58,7 @@ vec3 obscuranceAlbedo(vec2 texel, float heightM, vec3 normal) {
   if (kAlbedoSource == AAL_ALBEDO_IMAGE) {
     return terrainAlbedo(texel);
   }
-  if (kAlbedoSource == AAL_ALBEDO_CONSTANT) return frame.albedoValue.rgb;
+  if (kAlbedoSource == AAL_ALBEDO_CONSTANT) return frame.albedoValue;
   return paletteAlbedo(heightM, normal);
 }
 
@@ -82,8 +82,8 @@ layout(location = 2) out vec4 pointsOut;
 // World position (docs/rendering.md frame) of the drawn point above `texel`
 // at height `z` (the mesh's: reprojected, a still camera finds its own pixel).
 vec3 obscuranceWorld(vec2 texel, float z) {
-  vec2 half_ = 0.5 * (frame.dem.xy - 1.0);
-  return vec3((texel.x - half_.x) * frame.dem.z, (half_.y - texel.y) * frame.dem.w, z);
+  vec2 half_ = 0.5 * (frame.demSize - 1.0);
+  return vec3((texel.x - half_.x) * frame.cellSizeM.x, (half_.y - texel.y) * frame.cellSizeM.y, z);
 }
 
 // The previous frame's means and sample count for the surface point above
@@ -93,10 +93,10 @@ vec4 historyAt(vec2 texel, float z, float distanceM, int scale, out float sample
                out bool still) {
   samples = 0.0;
   still = false;
-  if (frame.history.y == 0) return vec4(0.0);
+  if (frame.historyValid == 0) return vec4(0.0);
   vec4 clip = frame.previousViewProj * vec4(obscuranceWorld(texel, z), 1.0);
   if (clip.w <= 0.0) return vec4(0.0);
-  ivec2 previousExtent = frame.history.zw;
+  ivec2 previousExtent = frame.previousExtent;
   vec2 previousPixel = (clip.xy / clip.w * 0.5 + 0.5) * vec2(previousExtent) / float(scale);
   ivec2 p = ivec2(floor(previousPixel));
   if (any(lessThan(p, ivec2(0))) || any(greaterThanEqual(p, (previousExtent + scale - 1) / scale))) {
@@ -104,7 +104,7 @@ vec4 historyAt(vec2 texel, float z, float distanceM, int scale, out float sample
   }
   vec4 point = texelFetch(historyPoints, p, 0);
   // A pass pixel covers about this many texels at that distance.
-  float footprint = distanceM * frame.pixelAngle.x * float(scale) / min(frame.dem.z, frame.dem.w);
+  float footprint = distanceM * frame.pixelAngle * float(scale) / min(frame.cellSizeM.x, frame.cellSizeM.y);
   float apart = distance(point.xy, texel);
   if (point.z <= 0.0 || apart > max(0.75, 1.5 * footprint)) return vec4(0.0);
   samples = point.z;
@@ -117,8 +117,8 @@ void main() {
   // At half resolution each pass pixel takes the surface point of the first
   // image pixel of its 2x2 block.
   ivec2 pixel = ivec2(gl_FragCoord.xy);
-  int scale = frame.obscurancePass.z;
-  ivec2 source = min(pixel * scale, frame.extent.xy - 1);
+  int scale = frame.obscurancePixelSize;
+  ivec2 source = min(pixel * scale, frame.extent - 1);
   vec3 surface = texelFetch(surfaceImage, source, 0).xyz;
   vec2 texel = surface.xy;
   float distanceKm = texelFetch(ambientImage, source, 0).a;
@@ -131,29 +131,29 @@ void main() {
     return;
   }
   // One set everywhere: set 0, the unshifted base set.
-  int set = frame.obscurancePass.y != 0 ? interleavePatternIndex(pixel) : 0;
-  int n = int(frame.obscurance.y);
+  int set = frame.obscuranceInterleaved != 0 ? interleavePatternIndex(pixel) : 0;
+  int n = frame.obscuranceSamples;
 #ifdef AAL_OBSCURANCE_TEMPORAL
   int first = 0, count = n;
   float samples = 0.0;
   bool still = false;
   vec4 history = vec4(0.0);
-  if (frame.history.x >= 0) {
+  if (frame.historySubset >= 0) {
     history = historyAt(texel, surface.z, distanceKm * 1e3, scale, samples, still);
     count = n / AAL_OBSCURANCE_SUBSETS;
-    first = frame.history.x * count;
+    first = frame.historySubset * count;
     if (still && samples >= float(n)) count = 0;  // complete: kept as it is
   }
-  vec4 sums = obscuranceSums(texel, frame.dem.zw, set, first, count, frame.obscurance.x,
-                             int(frame.obscurance.z), 0.0);
+  vec4 sums = obscuranceSums(texel, frame.cellSizeM, set, first, count, frame.obscuranceRadiusM,
+                             frame.obscuranceSteps, 0.0);
   float total = samples + float(count);
   vec4 means = (history * samples + sums) / total;
   meansOut = means;
   pointsOut = vec4(texel, min(total, float(n)), 0.0);
   vec4 e = obscuranceFromMeans(means);
 #else
-  vec4 e = estimateObscurance(texel, frame.dem.zw, set, n, frame.obscurance.x,
-                              int(frame.obscurance.z), 0.0);
+  vec4 e = estimateObscurance(texel, frame.cellSizeM, set, n, frame.obscuranceRadiusM,
+                              frame.obscuranceSteps, 0.0);
 #endif
   transfer = vec4(kShadingMode == AAL_MODE_DEBUG_OBSCURANCE ? vec3(e.a) : e.rgb, distanceKm);
 }

@@ -11,12 +11,12 @@ vec3 paletteAlbedo(float z, vec3 normal) {
   vec3 forest = vec3(0.06, 0.10, 0.05);
   vec3 rock = vec3(0.22, 0.20, 0.18);
   vec3 snow = vec3(0.80, 0.82, 0.85);
-  float range = max(frame.heights.y - frame.heights.x, 1.0);
-  float h = (z - frame.heights.x) / range;
+  float range = max(frame.maxHeightM - frame.minHeightM, 1.0);
+  float h = (z - frame.minHeightM) / range;
   vec3 a = mix(grass, forest, smoothstep(0.2, 0.6, h));
   a = mix(a, rock, smoothstep(0.5, 1.0, slope));
   a = mix(a, snow, smoothstep(2800.0, 3200.0, z) * (1.0 - smoothstep(0.5, 0.9, slope)));
-  if (frame.heights.w > 0.5 && z <= frame.heights.z) a = vec3(0.02, 0.04, 0.06);
+  if (frame.hasWater != 0 && z <= frame.waterLevelM) a = vec3(0.02, 0.04, 0.06);
   return a;
 }
 

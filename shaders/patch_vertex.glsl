@@ -19,8 +19,8 @@ layout(set = 0, binding = AAL_TERRAIN_TEXTURES_END,
 // Heights at level of detail `lod` (terrain_textures.glsl).
 vec3 worldAt(vec2 texel, float lod) {
   float z = terrainHeightLod(texel, lod);
-  vec2 half_ = 0.5 * (frame.dem.xy - 1.0);
-  return vec3((texel.x - half_.x) * frame.dem.z, (half_.y - texel.y) * frame.dem.w, z);
+  vec2 half_ = 0.5 * (frame.demSize - 1.0);
+  return vec3((texel.x - half_.x) * frame.cellSizeM.x, (half_.y - texel.y) * frame.cellSizeM.y, z);
 }
 
 // World position of grid point `gridPoint` of patch `node`; `texel` is its
@@ -31,9 +31,9 @@ vec3 patchVertex(LodPatch node, vec2 gridPoint, out vec2 texel) {
   // true height, which lies in its node's box, as the crack-free ranges
   // assume (terrain/quadtree_lod.h).
   float distanceM =
-      length(worldAt(lodPatchTexel(node, gridPoint, frame.dem.xy), 0.0) - frame.cameraPos.xyz);
+      length(worldAt(lodPatchTexel(node, gridPoint, frame.demSize), 0.0) - frame.cameraPos);
   float k = lodMorphFactor(distanceM, node.morph.xy);
-  texel = lodPatchTexel(node, lodMorphGridPoint(gridPoint, k), frame.dem.xy);
+  texel = lodPatchTexel(node, lodMorphGridPoint(gridPoint, k), frame.demSize);
   // Heights prefiltered to the patch's quads (2^level texels), blending into
   // the next level's as the vertex morphs onto its grid: where two levels
   // meet, the finer one is fully morphed and the coarser not yet, so both

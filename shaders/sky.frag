@@ -15,13 +15,13 @@ layout(location = 0) out vec4 color;
 
 void main() {
   if (kRawOutput) {  // debug views: black background
-    color = vec4(0.0, 0.0, 0.0, frame.display.z);
+    color = vec4(0.0, 0.0, 0.0, frame.backgroundAlpha);
     return;
   }
   vec4 farPoint = frame.invViewProj * vec4(uv * 2.0 - 1.0, 1.0, 1.0);
-  vec3 direction = farPoint.xyz / farPoint.w - frame.cameraPos.xyz;
+  vec3 direction = farPoint.xyz / farPoint.w - frame.cameraPos;
   // Below the horizon (beyond the DEM) the haze carries on the horizon colour.
   vec3 radiance = textureLod(skyTable, skyLutCoordinate(direction), 0.0).rgb;
-  // Alpha: frame.display.z, 0 for a transparent background.
-  color = vec4(kDisplayOutput ? toneMap(radiance, frame.display.x) : radiance, frame.display.z);
+  // Alpha: frame.backgroundAlpha, 0 for a transparent background.
+  color = vec4(kDisplayOutput ? toneMap(radiance, frame.exposure) : radiance, frame.backgroundAlpha);
 }

@@ -54,7 +54,7 @@ vec3 surfaceNormal(vec2 texel, float lod) {
 
 vec3 albedoAt(vec2 texel, float lod, float z, vec3 normal) {
   if (kAlbedoSource == AAL_ALBEDO_IMAGE) return terrainAlbedoLod(texel, lod);
-  if (kAlbedoSource == AAL_ALBEDO_CONSTANT) return frame.albedoValue.rgb;
+  if (kAlbedoSource == AAL_ALBEDO_CONSTANT) return frame.albedoValue;
   return paletteAlbedo(z, normal);
 }
 
@@ -68,15 +68,15 @@ void main() {
   s.bentNormal = normalize(aperture.xyz);
   s.apertureRad = aperture.w;
   s.albedo = albedoAt(texelPosition, lod, worldPosition.z, s.normal);
-  s.sunDirection = frame.sunDirection.xyz;
-  s.sunRadiusRad = frame.sunDirection.w;
-  s.sunIrradiance = frame.sunIrradiance.rgb;
-  s.skyRadiance = frame.skyRadiance.rgb;
+  s.sunDirection = frame.sunDirection;
+  s.sunRadiusRad = frame.sunRadiusRad;
+  s.sunIrradiance = frame.sunIrradiance;
+  s.skyRadiance = frame.skyRadiance;
   s.transfer = vec3(1.0);
   s.sunHorizonRad = -0.5 * float(AAL_PI);
   if (kShadingMode == AAL_MODE_HORIZON) {
     // The horizon in the sun's azimuth, bilinear between texel centres.
-    vec2 uv = (texelPosition + 0.5) / frame.dem.xy;
+    vec2 uv = (texelPosition + 0.5) / frame.demSize;
     // Only the layers of the two directions beside the sun: two fetches.
     vec3 l = s.sunDirection;
     float azimuth = abs(l.x) + abs(l.y) > 0.0 ? atan(l.y, l.x) : 0.0;  // any at the zenith
@@ -88,9 +88,9 @@ void main() {
     s.sunHorizonRad = horizonBetween(horizonCode(layer0, k0), horizonCode(layer1, k1), f);
   }
   // Aerial perspective: radiance (direct + ambient W) T + L_sky (1 - T).
-  float distance = length(worldPosition - frame.cameraPos.xyz);
-  float transmittance = exp(-frame.skyRadiance.w * distance);
-  vec3 inScattered = frame.skyRadiance.rgb * (1.0 - transmittance);
+  float distance = length(worldPosition - frame.cameraPos);
+  float transmittance = exp(-frame.hazeDensityPerM * distance);
+  vec3 inScattered = frame.skyRadiance * (1.0 - transmittance);
   const int mode = kShadingMode;
 #ifdef AAL_TERRAIN_GBUFFER
   surfaceOut = vec4(texelPosition, worldPosition.z, 0.0);
@@ -106,7 +106,7 @@ void main() {
 #else
   vec3 radiance = shade(s, mode);
   if (!kRawOutput) radiance = radiance * transmittance + inScattered;
-  if (kDisplayOutput) radiance = displayValue(radiance, frame.display.x, kRawOutput);
+  if (kDisplayOutput) radiance = displayValue(radiance, frame.exposure, kRawOutput);
   color = vec4(radiance, 1.0);
 #endif
 }

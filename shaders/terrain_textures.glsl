@@ -5,7 +5,9 @@
 // one page of one layer whose image is the DEM: the same fetches as one
 // plain texture. Array images instead of arrays of textures: lavapipe has no
 // descriptor indexing (not even dynamically uniform), and layers are chosen
-// per fetch.
+// per fetch. The shaders that include it are built as variants, one per
+// paging (AAL_TERRAIN_PAGED, AAL_TERRAIN_APERTURE_PAGES): see
+// aal_shader_variant in shaders/CMakeLists.txt.
 #ifndef AAL_TERRAIN_TEXTURES_GLSL
 #define AAL_TERRAIN_TEXTURES_GLSL
 
@@ -70,10 +72,11 @@ AAL_TERRAIN_PAGES(terrainSlope, AAL_TERRAIN_TEXTURE_BINDING + 3 * AAL_TERRAIN_TI
 #endif
 
 // The tile of a DEM texel position, in the pages of a kind with
-// `layersPerPage` tiles per page (frame.tileLayers).
+// `layersPerPage` tiles per page (frame.heightLayersPerPage and its kin).
 TerrainTileTexel terrainTexel(vec2 texel, int layersPerPage) {
   TerrainTiles tiles = TerrainTiles(
-      frame.tileGrid, ivec4(frame.tileImage.x, layersPerPage, frame.tileImage.zw));
+      ivec4(frame.tileCoreSize, frame.tileCount),
+      ivec4(frame.tileBorder, layersPerPage, frame.tileImageSize));
   return terrainTileTexel(tiles, texel);
 }
 
@@ -83,7 +86,7 @@ TerrainTileTexel terrainTexel(vec2 texel, int layersPerPage) {
 
 // Height (m) at a DEM texel position, bilinear, clamped to the DEM's edge.
 float terrainHeightLod(vec2 texel, float lod) {
-  TerrainTileTexel t = terrainTexel(texel, frame.tileLayers.x);
+  TerrainTileTexel t = terrainTexel(texel, frame.heightLayersPerPage);
   return AAL_TERRAIN_FETCH_HEIGHT(terrainHeight, t, lod).r;
 }
 float terrainHeight(vec2 texel) {
@@ -92,13 +95,13 @@ float terrainHeight(vec2 texel) {
 
 // rgb bent normal (not unit length above level 0: an average), a arc length (rad).
 vec4 terrainApertureLod(vec2 texel, float lod) {
-  TerrainTileTexel t = terrainTexel(texel, frame.tileLayers.y);
+  TerrainTileTexel t = terrainTexel(texel, frame.apertureLayersPerPage);
   return AAL_TERRAIN_FETCH_APERTURE(terrainAperture, t, lod);
 }
 
 // Albedo image (linear RGB as stored).
 vec3 terrainAlbedoLod(vec2 texel, float lod) {
-  TerrainTileTexel t = terrainTexel(texel, frame.tileLayers.z);
+  TerrainTileTexel t = terrainTexel(texel, frame.albedoLayersPerPage);
   return AAL_TERRAIN_FETCH_ALBEDO(terrainAlbedo, t, lod).rgb;
 }
 vec3 terrainAlbedo(vec2 texel) {
@@ -109,7 +112,7 @@ vec3 terrainAlbedo(vec2 texel) {
 // `lod`: the central differences of each level's heights one level texel
 // apart (slopes.comp), laid out in tiles and pages as the heights.
 vec2 terrainSlopeLod(vec2 texel, float lod) {
-  TerrainTileTexel t = terrainTexel(texel, frame.tileLayers.x);
+  TerrainTileTexel t = terrainTexel(texel, frame.heightLayersPerPage);
   return AAL_TERRAIN_FETCH_HEIGHT(terrainSlope, t, lod).rg;
 }
 

@@ -13,5 +13,5 @@ layout(location = 0) out vec4 color;
 
 void main() {
   vec4 hdr = texelFetch(hdrImage, ivec2(gl_FragCoord.xy), 0);  // alpha kept (background)
-  color = vec4(displayValue(hdr.rgb, frame.display.x, frame.display.y > 0.5), hdr.a);
+  color = vec4(displayValue(hdr.rgb, frame.exposure, frame.rawOutput != 0), hdr.a);
 }

@@ -13,7 +13,7 @@ layout(location = 0) in vec2 uv;  // over the output
 layout(location = 0) out vec4 color;
 
 void main() {
-  vec2 extent = vec2(frame.extent.xy);
+  vec2 extent = vec2(frame.extent);
   vec2 pixel = clamp(uv * extent, vec2(0.5), extent - 0.5);
   color = textureLod(drawn, pixel / vec2(textureSize(drawn, 0)), 0.0);
 }

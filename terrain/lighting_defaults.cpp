@@ -20,8 +20,18 @@ double defaultVisibilityM(const Heightfield& field) {
 }
 
 float clearDayExposure(double turbidity) {
-  const SkyLighting reference = makeSkyLighting(180.0, 60.0, turbidity);
+  Lighting reference;
+  setSunAndSky(reference, 180.0, 60.0, turbidity);
   return autoExposure(reference.sunIrradiance, 60.0, reference.skyRadiance);
+}
+
+Lighting defaultLighting(const Heightfield& field, double sunAzimuthDeg, double sunElevationDeg,
+                         double turbidity, double sunDistanceAu) {
+  Lighting l;
+  setSunAndSky(l, sunAzimuthDeg, sunElevationDeg, turbidity, sunDistanceAu);
+  l.hazeDensityPerM = static_cast<float>(hazeDensityForVisibility(defaultVisibilityM(field)));
+  l.exposure = clearDayExposure(turbidity);
+  return l;
 }
 
 }  // namespace aal

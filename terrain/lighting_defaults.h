@@ -4,6 +4,7 @@
 #pragma once
 
 #include "heightfield.h"
+#include "lighting.h"
 
 namespace aal {
 
@@ -22,5 +23,11 @@ double defaultVisibilityM(const Heightfield& field);
 // autoExposure), so that dusk and night come out darker than noon instead of
 // all grey.
 float clearDayExposure(double turbidity);
+
+// The lighting of `field` for a sun at (azimuth, elevation) when nothing else
+// is asked for: that sun and its sky (sky_lighting.h), the sun's radius at
+// 1 AU, the haze of defaultVisibilityM and clearDayExposure.
+Lighting defaultLighting(const Heightfield& field, double sunAzimuthDeg, double sunElevationDeg,
+                         double turbidity, double sunDistanceAu = 1.0);
 
 }  // namespace aal

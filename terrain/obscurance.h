@@ -70,7 +70,7 @@ struct ObscuranceField {
 float bilinearHeight(const Heightfield& field, glm::vec2 texel);
 
 // Surface normal from central differences one texel apart (the renderer's
-// shading normal, shaders/terrain.frag).
+// shading normal, shaders/terrain_shading.glsl).
 glm::vec3 obscuranceNormal(const ObscuranceField& field, glm::vec2 texel);
 
 // Tangent frame (T, B) around the unit normal N, rotated by rotationRad about

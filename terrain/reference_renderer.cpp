@@ -41,7 +41,7 @@ class TerrainSurface {
   double col(double x) const { return x / cellX_ + halfX_; }
   double row(double y) const { return halfY_ - y / cellY_; }
 
-  // Central differences one texel apart (shaders/terrain.frag surfaceNormal).
+  // Central differences one texel apart (shaders/terrain_shading.glsl surfaceNormal).
   glm::dvec3 normalAt(double x, double y) const {
     const double c = col(x), r = row(y);
     const double dx = heightAtTexel(c + 1, r) - heightAtTexel(c - 1, r);
@@ -141,8 +141,8 @@ class PixelShader {
   PixelShader(const TerrainSurface& surface, const ReferenceSettings& s)
       : surface_(surface),
         s_(s),
-        sun_(glm::normalize(glm::dvec3(s.sunDirection))),
-        cosSunRadius_(std::cos(double(s.sunRadiusRad))) {
+        sun_(glm::normalize(glm::dvec3(s.lighting.sunDirection))),
+        cosSunRadius_(std::cos(double(s.lighting.sunRadiusRad))) {
     frameAround(sun_, sunT_, sunB_);
   }
 
@@ -166,7 +166,8 @@ class PixelShader {
       double sHit;
       if (nDotL > 0 && !surface_.intersect(origin, l, start, far, sHit)) sunSum += nDotL;
     }
-    const glm::dvec3 direct = albedo / kPi * glm::dvec3(s_.sunIrradiance) * (sunSum / s_.sunRays);
+    const glm::dvec3 direct =
+        albedo / kPi * glm::dvec3(s_.lighting.sunIrradiance) * (sunSum / s_.sunRays);
 
     // Sky: cosine-weighted directions around N.
     glm::dvec3 t, b;
@@ -178,7 +179,7 @@ class PixelShader {
       const glm::dvec3 d = r * std::cos(phi) * t + r * std::sin(phi) * b + std::sqrt(1 - u.x) * n;
       double sHit;
       if (!surface_.intersect(origin, d, start, far, sHit)) {
-        incoming += glm::dvec3(s_.skyRadiance);
+        incoming += glm::dvec3(s_.lighting.skyRadiance);
         continue;
       }
       if (s_.interreflection) incoming += bounce(origin + sHit * d);
@@ -198,8 +199,8 @@ class PixelShader {
     const double sun =
         nDotL > 0 && !surface_.intersect(origin, sun_, 1e-3 * surface_.cell(), 1e12, sHit) ? nDotL
                                                                                            : 0.0;
-    const glm::dvec3 irradiance =
-        glm::dvec3(s_.sunIrradiance) * sun + kPi * glm::dvec3(s_.skyRadiance) * (1 + n.z) / 2.0;
+    const glm::dvec3 irradiance = glm::dvec3(s_.lighting.sunIrradiance) * sun +
+                                  kPi * glm::dvec3(s_.lighting.skyRadiance) * (1 + n.z) / 2.0;
     return glm::dvec3(s_.albedo) / kPi * irradiance;
   }
 
@@ -241,16 +242,17 @@ ReferenceImage renderReference(const Heightfield& field, const ReferenceSettings
       const size_t pixel = size_t(y) * s.width + x;
       if (!surface.clipToBox(eye, dir, sIn, sOut) ||
           !surface.intersect(eye, dir, sIn, sOut, sHit)) {
-        if (s.background) {
+        if (s.skyBackground) {
           const glm::vec3 up(dir.x, dir.y, std::max(dir.z, 1e-3));
-          image.radiance[pixel] = skyRadiance(*s.background, glm::normalize(up));
+          image.radiance[pixel] = skyRadiance(s.lighting.sky, glm::normalize(up));
         }
         continue;
       }
       std::mt19937 rng(s.seed * 2654435761u + static_cast<uint32_t>(pixel));
       glm::dvec3 radiance = shader.shade(eye + sHit * dir, rng);
-      const double transmittance = std::exp(-double(s.hazeDensityPerM) * sHit);
-      radiance = radiance * transmittance + glm::dvec3(s.skyRadiance) * (1 - transmittance);
+      const double transmittance = std::exp(-double(s.lighting.hazeDensityPerM) * sHit);
+      radiance =
+          radiance * transmittance + glm::dvec3(s.lighting.skyRadiance) * (1 - transmittance);
       image.radiance[pixel] = glm::vec3(radiance);
       image.terrain[pixel] = 1;
     }

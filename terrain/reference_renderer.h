@@ -5,8 +5,8 @@
 // Same scene as the GPU renderer: the camera of camera.h, the terrain as the
 // bilinear surface through the texel centres with the centre row's cell size
 // (as engine/terrain_scene uploads it), the shading normal from central
-// differences one texel apart (as shaders/terrain.frag), the sun and the
-// average sky radiance of FrameSettings, the same aerial perspective.
+// differences one texel apart (as shaders/terrain_shading.glsl), the sun, the average
+// sky radiance and the aerial perspective of the same Lighting.
 // What differs is the light transport, computed without approximation:
 // - sun: `sunRays` stratified points of the sun's disk, each tested with a
 //   shadow ray; direct = a/pi E_sun mean(visible_i max(0, N.L_i));
@@ -23,30 +23,24 @@
 
 #include <glm/vec3.hpp>
 
-#include <optional>
-
 #include "camera.h"
 #include "heightfield.h"
-#include "sky_model.h"
+#include "lighting.h"
 
 namespace aal {
 
 struct ReferenceSettings {
   Camera camera;
   uint32_t width = 0, height = 0;
-  glm::vec3 sunDirection{0, 0, 1};  // unit, world frame
-  float sunRadiusRad = 0.004653f;
-  glm::vec3 sunIrradiance{0.0f};  // E_sun (atmosphere.h units)
-  glm::vec3 skyRadiance{0.0f};    // average L_sky
-  float hazeDensityPerM = 0.0f;
+  Lighting lighting;            // its exposure is the caller's, for display
   glm::vec3 albedo{0.2f};       // constant ground albedo
   int sunRays = 16;             // shadow rays per pixel towards the sun's disk
   int skyRays = 64;             // hemisphere rays per pixel
   bool interreflection = true;  // false: rays that hit the terrain bring no light
   uint32_t seed = 1;
-  // Sky model for the pixels that miss the terrain (as shaders/sky.frag:
-  // below the horizon the horizon's colour); none: they stay black.
-  std::optional<PreethamSky> background;
+  // Pixels that miss the terrain get lighting.sky (as shaders/sky.frag: below
+  // the horizon the horizon's colour); false: they stay black.
+  bool skyBackground = false;
 };
 
 struct ReferenceImage {

@@ -22,6 +22,7 @@
 #include <vector>
 
 #include "aperture_map.h"
+#include "atmosphere.h"
 #include "heightfield.h"
 #include "obscurance.h"
 #include "shading.h"
@@ -44,12 +45,12 @@ struct ReliefSettings {
   int outWidth = 0, outHeight = 0;
   ReliefLighting lighting = ReliefLighting::Sun;
   double sunAzimuthDeg = 315, sunElevationDeg = 45;  // clockwise from north; above horizon
-  double sunRadiusDeg = 0.26656;                     // atmosphere.h kSunAngularRadiusDeg
-  float skyWeight = 0.2f;                            // k in [0, 1]
-  ShadingMode mode = ShadingMode::Approx;            // Approx or Exact
-  ObscuranceSettings obscurance;  // enabled, radiusM (> 0), samples, steps are used
-  float obscuranceAlbedo = 0.2f;  // the surroundings' albedo in W
-  bool keepHeights = false;       // fill ReliefImage::heightM (colour relief)
+  double sunRadiusDeg = kSunAngularRadiusDeg;
+  float skyWeight = 0.2f;                  // k in [0, 1]
+  ShadingMode mode = ShadingMode::Approx;  // Approx or Exact
+  ObscuranceSettings obscurance;           // enabled, radiusM (> 0), samples, steps are used
+  float obscuranceAlbedo = 0.2f;           // the surroundings' albedo in W
+  bool keepHeights = false;                // fill ReliefImage::heightM (colour relief)
   // Water (issue 19 item 4): none unless asked. Texels at or below
   // waterLevelM, or flagged in waterMask (DEM-sized, non-zero = water), are
   // lit as a horizontal surface and flagged in ReliefImage::water.

@@ -12,6 +12,7 @@
 #include <glm/vec3.hpp>
 
 #include "config.h"
+#include "lighting.h"
 
 namespace aal {
 
@@ -39,14 +40,14 @@ const std::map<std::string, ShadingMode>& shadingModeNames();
 
 struct ShadingInputs {
   glm::vec3 albedo{0.2f};
-  glm::vec3 normal{0, 0, 1};        // unit shading normal N
-  glm::vec3 bentNormal{0, 0, 1};    // unit bent normal B (aperture centre)
-  float apertureRad = 1.5707963f;   // aperture cap arc length r_a
-  glm::vec3 sunDirection{0, 0, 1};  // unit L
-  float sunRadiusRad = 0.004653f;   // r_s
-  glm::vec3 sunIrradiance{0.0f};    // E_sun at normal incidence
-  glm::vec3 skyRadiance{0.0f};      // average sky radiance L_sky
-  glm::vec3 transfer{1.0f};         // ambient transfer W (docs/design.md §6), 1 if nothing is near
+  glm::vec3 normal{0, 0, 1};           // unit shading normal N
+  glm::vec3 bentNormal{0, 0, 1};       // unit bent normal B (aperture centre)
+  float apertureRad = 1.5707963f;      // aperture cap arc length r_a
+  glm::vec3 sunDirection{0, 0, 1};     // unit L
+  float sunRadiusRad = kSunRadiusRad;  // r_s
+  glm::vec3 sunIrradiance{0.0f};       // E_sun at normal incidence
+  glm::vec3 skyRadiance{0.0f};         // average sky radiance L_sky
+  glm::vec3 transfer{1.0f};  // ambient transfer W (docs/design.md §6), 1 if nothing is near
   // Horizon mode: the horizon's elevation in the sun's azimuth (rad).
   float sunHorizonRad = -1.5707963f;
 };

@@ -7,17 +7,12 @@
 
 namespace aal {
 
-SkyLighting makeSkyLighting(double sunAzimuthDeg, double sunElevationDeg, double turbidity,
-                            double sunDistanceAu) {
-  SkyLighting l;
-  l.sunAzimuthDeg = sunAzimuthDeg;
-  l.sunElevationDeg = sunElevationDeg;
-  l.turbidity = turbidity;
+void setSunAndSky(Lighting& l, double sunAzimuthDeg, double sunElevationDeg, double turbidity,
+                  double sunDistanceAu) {
   l.sunDirection = sunDirection(sunAzimuthDeg, sunElevationDeg);
   l.sunIrradiance = sunIrradiance(sunElevationDeg, turbidity, sunDistanceAu);
   l.sky = makePreethamSky(l.sunDirection, turbidity);
   l.skyRadiance = averageSkyRadiance(l.sky);
-  return l;
 }
 
 double hazeDensityForVisibility(double visibilityM) {

@@ -108,13 +108,13 @@ glm::vec3 parseAlbedoValue(const std::string& text, const std::string& option = 
   return glm::vec3(v);
 }
 
-aal::SkyLighting lightingFor(const Options& o, const aal::Heightfield& field) {
-  if (!o.time.empty()) {
-    const aal::SolarPosition sun = aal::sunAtTime(o.time, o.lat, o.lon, field);
-    return aal::makeSkyLighting(sun.azimuthDeg, sun.elevationDeg, o.turbidity, sun.sunDistanceAu);
-  }
-  return aal::makeSkyLighting(o.sunAzimuth.value_or(315.0), o.sunElevation.value_or(45.0),
-                              o.turbidity);
+// The sun of --time (NOAA position) or of --sun-azimuth/--sun-elevation.
+aal::SolarPosition sunFor(const Options& o, const aal::Heightfield& field) {
+  if (!o.time.empty()) return aal::sunAtTime(o.time, o.lat, o.lon, field);
+  aal::SolarPosition sun;
+  sun.azimuthDeg = o.sunAzimuth.value_or(315.0);
+  sun.elevationDeg = o.sunElevation.value_or(45.0);
+  return sun;
 }
 
 // A sequence's checks and its time range, before any work.
@@ -190,7 +190,7 @@ int renderReferenceImage(const Options& o, const aal::Heightfield& field,
   const aal::ReferenceImage image =
       aal::renderReference(field, r, [&](double f) { bar.update(f); });
   bar.finish();
-  aal::writeFrame(o.output, aal::referenceFrame(image, settings.exposure));
+  aal::writeFrame(o.output, aal::referenceFrame(image, settings.lighting.exposure));
   if (!o.quiet) {
     const double seconds =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
@@ -214,7 +214,7 @@ int runComparison(const Options& o, const aal::Heightfield& field, const aal::Te
       aal::compareModes(renderer, scene, field, settings, modes, comparisonOptions(o, albedoValue),
                         [&](double f) { bar.update(f); });
   bar.finish();
-  aal::writeComparison(o.compare, c, settings.exposure);
+  aal::writeComparison(o.compare, c, settings.lighting.exposure);
   std::printf("%-20s %14s %22s\n", "mode", "relative RMSE", "mean relative error");
   for (const aal::ModeError& e : c.modes) {
     std::printf("%-20s %13.2f%% %21.2f%%\n", e.mode.c_str(), 100 * e.relativeRmse,
@@ -241,9 +241,8 @@ int renderSequence(const Options& o, const Sequence& seq, const aal::Heightfield
     if (seq.start) {
       const aal::UtcTime t = aal::sequenceTime(*seq.start, *seq.end, i, seq.frames);
       const aal::SolarPosition sun = aal::solarPosition(t, lat, lon);
-      aal::applySkyLighting(
-          aal::makeSkyLighting(sun.azimuthDeg, sun.elevationDeg, o.turbidity, sun.sunDistanceAu),
-          settings);
+      aal::setSunAndSky(settings.lighting, sun.azimuthDeg, sun.elevationDeg, o.turbidity,
+                        sun.sunDistanceAu);
     }
     aal::throwIfInterrupted();
     const aal::FrameResult frame =
@@ -360,8 +359,9 @@ int run(const Options& o) {
       if (!o.quiet) std::fprintf(stderr, "note: %s\n", m.c_str());
     });
   }
-  const aal::SkyLighting light =
-      sequence && sequence->start ? aal::SkyLighting{} : lightingFor(o, field);
+  // A --time-range sets the sun of every frame itself.
+  const aal::SolarPosition sun =
+      sequence && sequence->start ? aal::SolarPosition{} : sunFor(o, field);
   aal::FrameSettings settings;
   settings.mode = mode;
   settings.obscurance = obscurance;
@@ -378,18 +378,17 @@ int run(const Options& o) {
   settings.transparentBackground = o.background == "transparent";
   // The depth is in the DEM's metres, like the heights before --exaggeration.
   if (o.baseDepthM) settings.base = aal::FrameSettings::Base{float(baseDepthM), baseAlbedo};
-  applySkyLighting(light, settings);
-  settings.sunRadiusRad = static_cast<float>(o.sunRadiusDeg * std::numbers::pi / 180.0);
-  const double visibilityM =
-      o.visibilityKm ? *o.visibilityKm * 1000 : aal::defaultVisibilityM(field);
-  settings.hazeDensityPerM = static_cast<float>(aal::hazeDensityForVisibility(visibilityM));
+  aal::Lighting& light = settings.lighting;
+  light =
+      aal::defaultLighting(field, sun.azimuthDeg, sun.elevationDeg, o.turbidity, sun.sunDistanceAu);
+  light.sunRadiusRad = static_cast<float>(o.sunRadiusDeg * std::numbers::pi / 180.0);
+  if (o.visibilityKm) {
+    light.hazeDensityPerM =
+        static_cast<float>(aal::hazeDensityForVisibility(*o.visibilityKm * 1000));
+  }
+  if (o.ev100) light.exposure = aal::exposureFromEv100(static_cast<float>(*o.ev100));
   // The level is in the DEM's metres; the drawn heights are exaggerated.
   if (o.waterLevelM) settings.waterLevelM = static_cast<float>(*o.waterLevelM * o.exaggeration);
-  if (o.ev100) {
-    settings.exposure = aal::exposureFromEv100(static_cast<float>(*o.ev100));
-  } else {
-    settings.exposure = aal::clearDayExposure(o.turbidity);
-  }
 
   if (reference) return renderReferenceImage(o, field, settings, width, height, albedoValue);
 
@@ -454,8 +453,8 @@ int run(const Options& o) {
     std::printf("triangles  %zu\n", frame.triangles);
     std::printf("textures   %s, %.1f MiB\n", aal::describeTerrainTiles(scene->tiles()).c_str(),
                 double(scene->textureBytes()) / (1 << 20));
-    std::printf("sun        azimuth %.2f deg, elevation %.2f deg\n", light.sunAzimuthDeg,
-                light.sunElevationDeg);
+    std::printf("sun        azimuth %.2f deg, elevation %.2f deg\n", sun.azimuthDeg,
+                sun.elevationDeg);
     if (obscurance.enabled) {
       std::printf("obscurance R %.1f m, n %d, m %d\n", obscurance.radiusM, obscurance.samples,
                   obscurance.steps);

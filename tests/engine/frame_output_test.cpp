@@ -52,10 +52,9 @@ FrameSettings view(ShadingMode mode, bool obscurance) {
   s.camera.position = {-1800, -1800, 900};
   s.camera.lookAt = {0, 0, 500};
   s.camera.verticalFovDeg = 50;
-  const SkyLighting light = makeSkyLighting(45, 12, 2.5);
-  applySkyLighting(light, s);
-  s.exposure = 0.07f;
-  s.hazeDensityPerM = 1e-4f;
+  setSunAndSky(s.lighting, 45, 12, 2.5);
+  s.lighting.exposure = 0.07f;
+  s.lighting.hazeDensityPerM = 1e-4f;
   s.obscurance.enabled = obscurance;
   return s;
 }
@@ -167,8 +166,8 @@ TEST_F(FrameOutputTest, SkyFromItsTableMatchesTheSkyModel) {
       const glm::vec4 far = inverse * glm::vec4(ndc, 1.0f, 1.0f);
       glm::vec3 direction = glm::vec3(far) / far.w - glm::vec3(s.camera.position);
       direction = glm::normalize(direction);
-      const glm::vec3 expected =
-          skyRadiance(s.sky, glm::vec3(direction.x, direction.y, std::max(direction.z, 1e-3f)));
+      const glm::vec3 expected = skyRadiance(
+          s.lighting.sky, glm::vec3(direction.x, direction.y, std::max(direction.z, 1e-3f)));
       for (int c = 0; c < 3; ++c) {
         const double got = frame.linear[4 * (size_t{y} * kWidth + x) + c];
         const double error = std::abs(got - expected[c]) / std::max(1e-3f, expected[c]);

@@ -40,7 +40,6 @@ TEST_F(LodQuality, DefaultErrorKeepsThePictureWithinOnePercentOfTheFinestMesh) {
   const ApertureMap aperture = bakeApertures(field, {}).aperture;
   const TerrainScene scene(device(), field, aperture, nullptr, 2'000'000);
   TerrainRenderer renderer(device(), kWidth, kHeight);
-  const SkyLighting light = makeSkyLighting(250, 25, 2.5);
   struct View {
     const char* name;
     glm::dvec3 position, lookAt;
@@ -54,8 +53,8 @@ TEST_F(LodQuality, DefaultErrorKeepsThePictureWithinOnePercentOfTheFinestMesh) {
     s.camera.position = v.position;
     s.camera.lookAt = v.lookAt;
     s.camera.verticalFovDeg = 40;
-    applySkyLighting(light, s);
-    s.exposure = 0.07f;
+    setSunAndSky(s.lighting, 250, 25, 2.5);
+    s.lighting.exposure = 0.07f;
     s.obscurance.enabled = false;
     const FrameResult coarse = renderer.render(scene, s, false);  // the default error
     s.lod.maxErrorPixels = 1e-3;                                  // level 0 wherever it shows

@@ -42,9 +42,8 @@ FrameSettings obliqueView(const Heightfield& f, double sunAzimuthDeg, double sun
   s.camera.position = {1.2 * half, -1.6 * half, 2.2 * half};
   s.camera.lookAt = {0, 0, 200};
   s.camera.verticalFovDeg = 45;
-  const SkyLighting light = makeSkyLighting(sunAzimuthDeg, sunElevationDeg, 2.5);
-  applySkyLighting(light, s);
-  s.exposure = 0.07f;
+  setSunAndSky(s.lighting, sunAzimuthDeg, sunElevationDeg, 2.5);
+  s.lighting.exposure = 0.07f;
   s.obscurance.enabled = false;  // the reference has no near-field term to match W against
   return s;
 }
@@ -79,7 +78,7 @@ TEST_F(ModeComparison, OpenFlatGroundAgreesInEveryMode) {
   // reference must find the same (camera, radiometry and haze included).
   const Heightfield f = flatGround();
   FrameSettings s = obliqueView(f, 135, 35);
-  s.hazeDensityPerM = 2e-5f;
+  s.lighting.hazeDensityPerM = 2e-5f;
   for (const auto& [mode, error] : errors(device(), f, s)) EXPECT_LT(error, 0.01) << mode;
 }
 

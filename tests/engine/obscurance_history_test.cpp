@@ -44,8 +44,7 @@ FrameSettings view(glm::dvec3 position, glm::dvec3 lookAt, ObscuranceSettings::H
   s.camera.position = position;
   s.camera.lookAt = lookAt;
   s.camera.verticalFovDeg = 40;
-  const SkyLighting light = makeSkyLighting(200, 35, 2.5);
-  applySkyLighting(light, s);
+  setSunAndSky(s.lighting, 200, 35, 2.5);
   s.obscurance.radiusM = 60;
   s.obscurance.history = history;
   return s;

@@ -67,9 +67,8 @@ FrameSettings topView(ShadingMode mode) {
   s.camera.lookAt = {0, 0, 0};
   s.camera.verticalFovDeg =
       2 * std::atan(0.5 * (kSize - 1) * kCellM / 50000) * 180 / std::numbers::pi;
-  const SkyLighting light = makeSkyLighting(200, 35, 2.5);
-  applySkyLighting(light, s);
-  s.exposure = 0.07f;
+  setSunAndSky(s.lighting, 200, 35, 2.5);
+  s.lighting.exposure = 0.07f;
   s.obscurance.radiusM = kRadiusM;
   return s;
 }
@@ -196,7 +195,7 @@ TEST_F(ObscuranceRender, WMultipliesOnlyTheSkyFill) {
                 1e-3f * channel(withoutW, 5, mid, c));
   }
   // No sky light: nothing for W to multiply, the same picture.
-  s.skyRadiance = off.skyRadiance = glm::vec3(0.0f);
+  s.lighting.skyRadiance = off.lighting.skyRadiance = glm::vec3(0.0f);
   const FrameResult dark = renderer.render(*scene.gpu, s, true);
   const FrameResult darkOff = renderer.render(*scene.gpu, off, true);
   EXPECT_EQ(dark.linear, darkOff.linear);

@@ -53,17 +53,16 @@ ApertureMap bake(const Heightfield& f) {
 
 // Looking straight down from above: image x is east, image y is south.
 FrameSettings topView(const Heightfield& f, ShadingMode mode, double sunAzimuthDeg,
-                      double sunElevationDeg, float sunRadiusRad = 0.004653f) {
+                      double sunElevationDeg, float sunRadiusRad = kSunRadiusRad) {
   FrameSettings s;
   s.mode = mode;
   s.camera.position = {0, 0, 8000};
   s.camera.lookAt = {0, 0, 0};
   s.camera.verticalFovDeg =
       2 * std::atan(0.55 * (f.width - 1) * f.cellSizeXM / 8000) * 180 / std::numbers::pi;
-  const SkyLighting light = makeSkyLighting(sunAzimuthDeg, sunElevationDeg, 2.5);
-  applySkyLighting(light, s);
-  s.sunRadiusRad = sunRadiusRad;
-  s.exposure = 0.07f;
+  setSunAndSky(s.lighting, sunAzimuthDeg, sunElevationDeg, 2.5);
+  s.lighting.sunRadiusRad = sunRadiusRad;
+  s.lighting.exposure = 0.07f;
   return s;
 }
 
@@ -271,9 +270,10 @@ TEST_F(Render, SolidBaseHangsFromTheEdgeAndIsShadedAsAWall) {
       const int py = int((clip.y / clip.w * 0.5f + 0.5f) * kH);
       ASSERT_TRUE(px >= 0 && px < int(kW) && py >= 0 && py < int(kH)) << px << " " << py;
       const glm::vec3 irradiance =
-          s.sunIrradiance * std::max(0.0f, glm::dot(normal, s.sunDirection)) +
-          float(std::numbers::pi) * s.skyRadiance * 0.5f;
-      const glm::vec3 expected = toneMap(albedo / float(std::numbers::pi) * irradiance, s.exposure);
+          s.lighting.sunIrradiance * std::max(0.0f, glm::dot(normal, s.lighting.sunDirection)) +
+          float(std::numbers::pi) * s.lighting.skyRadiance * 0.5f;
+      const glm::vec3 expected =
+          toneMap(albedo / float(std::numbers::pi) * irradiance, s.lighting.exposure);
       for (int c = 0; c < 3; ++c) {
         const int got = deep.display[4 * (size_t(py) * kW + px) + c];
         EXPECT_NEAR(got, 255.0f * expected[c], 2.0f)

@@ -64,9 +64,8 @@ AlbedoImage albedo() {
 FrameSettings lighting(ShadingMode mode) {
   FrameSettings s;
   s.mode = mode;
-  const SkyLighting light = makeSkyLighting(230, 25, 2.5);
-  applySkyLighting(light, s);
-  s.exposure = 0.07f;
+  setSunAndSky(s.lighting, 230, 25, 2.5);
+  s.lighting.exposure = 0.07f;
   s.obscurance.radiusM = 400;  // about 13 texels: samples cross the seams
   return s;
 }

@@ -34,9 +34,9 @@ glm::vec3 sunAt(double elevationDeg, double azimuthDeg = 30) {
 
 ReferenceSettings lighting(double sunElevationDeg) {
   ReferenceSettings s;
-  s.sunDirection = sunAt(sunElevationDeg);
-  s.sunIrradiance = glm::vec3(100.0f, 90.0f, 80.0f);
-  s.skyRadiance = glm::vec3(2.0f, 3.0f, 5.0f);
+  s.lighting.sunDirection = sunAt(sunElevationDeg);
+  s.lighting.sunIrradiance = glm::vec3(100.0f, 90.0f, 80.0f);
+  s.lighting.skyRadiance = glm::vec3(2.0f, 3.0f, 5.0f);
   s.albedo = glm::vec3(0.3f);
   s.sunRays = 16;
   s.skyRays = 1024;
@@ -51,9 +51,9 @@ TEST(ReferenceRenderer, OpenFlatGroundIsTheClosedForm) {
   const Heightfield f = field(33, 10, flat);
   const ReferenceSettings s = lighting(40);
   const glm::vec3 got = referenceRadianceAt(f, s, {12, -7, 100}, 1);
-  const glm::vec3 expected =
-      0.3f / float(kPi) *
-      (s.sunIrradiance * std::sin(float(40 * kPi / 180)) + float(kPi) * s.skyRadiance);
+  const glm::vec3 expected = 0.3f / float(kPi) *
+                             (s.lighting.sunIrradiance * std::sin(float(40 * kPi / 180)) +
+                              float(kPi) * s.lighting.skyRadiance);
   for (int c = 0; c < 3; ++c) EXPECT_NEAR(got[c], expected[c], 1e-4 * expected[c]) << c;
 }
 
@@ -88,12 +88,12 @@ TEST(ReferenceRenderer, TrenchBottomSeesTheSkyAboveItsWallsAndTheirBounce) {
   // whose normals lean by 30 degrees: each brings a/pi * pi L_sky (1 + cos 30)/2.
   const Heightfield f = trenchField();
   ReferenceSettings s = lighting(20);
-  s.sunIrradiance = glm::vec3(0.0f);
+  s.lighting.sunIrradiance = glm::vec3(0.0f);
   const double a = 0.3, skyShare = std::cos(kTrenchHorizon);
   const double wallSky = a * (1 + std::cos(30 * kPi / 180)) / 2;  // bounce per unit L_sky
   const glm::vec3 got = referenceRadianceAt(f, s, {0, 0, 0}, 7);
   for (int c = 0; c < 3; ++c) {
-    const double expected = a * s.skyRadiance[c] * (skyShare + (1 - skyShare) * wallSky);
+    const double expected = a * s.lighting.skyRadiance[c] * (skyShare + (1 - skyShare) * wallSky);
     EXPECT_NEAR(got[c], expected, 0.01 * expected) << c;
   }
 }
@@ -102,16 +102,16 @@ TEST(ReferenceRenderer, TrenchBottomIsInShadowBelowTheWallTopAndLitAboveIt) {
   const Heightfield f = trenchField();
   const double horizonDeg = kTrenchHorizon * 180 / kPi;  // 21.6 degrees
   ReferenceSettings s = lighting(horizonDeg - 2);
-  s.sunDirection = sunAt(horizonDeg - 2, 0);  // from the east, across the trench
-  s.skyRadiance = glm::vec3(0.0f);
+  s.lighting.sunDirection = sunAt(horizonDeg - 2, 0);  // from the east, across the trench
+  s.lighting.skyRadiance = glm::vec3(0.0f);
   s.interreflection = false;  // no sunlight from the walls: direct light only
   EXPECT_EQ(referenceRadianceAt(f, s, {0, 0, 0}, 3), glm::vec3(0.0f));
-  s.sunDirection = sunAt(horizonDeg + 2, 0);
+  s.lighting.sunDirection = sunAt(horizonDeg + 2, 0);
   const glm::vec3 lit = referenceRadianceAt(f, s, {0, 0, 0}, 3);
   const float expected = 0.3f / float(kPi) * 100.0f * std::sin(float((horizonDeg + 2) * kPi / 180));
   EXPECT_NEAR(lit.r, expected, 1e-3 * expected);
   // With inter-reflection the sunlit east wall lights the shadowed bottom.
-  s.sunDirection = sunAt(horizonDeg - 2, 0);
+  s.lighting.sunDirection = sunAt(horizonDeg - 2, 0);
   s.interreflection = true;
   EXPECT_GT(referenceRadianceAt(f, s, {0, 0, 0}, 3).r, 0.01f * expected);
 }
@@ -126,9 +126,9 @@ TEST(ReferenceRenderer, ImageOfFlatGroundIsUniformWithoutHaze) {
   s.camera.lookAt = {0, 0, 100};
   s.camera.verticalFovDeg = 40;
   const ReferenceImage image = renderReference(f, s);
-  const glm::vec3 expected =
-      0.3f / float(kPi) *
-      (s.sunIrradiance * std::sin(float(50 * kPi / 180)) + float(kPi) * s.skyRadiance);
+  const glm::vec3 expected = 0.3f / float(kPi) *
+                             (s.lighting.sunIrradiance * std::sin(float(50 * kPi / 180)) +
+                              float(kPi) * s.lighting.skyRadiance);
   int terrain = 0;
   for (size_t i = 0; i < image.radiance.size(); ++i) {
     if (!image.terrain[i]) continue;

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <numbers>
 
+#include "lighting_defaults.h"
 #include "terrain_renderer.h"
 #include "view_lighting.h"
 
@@ -28,10 +29,10 @@ TEST(ViewLighting, DefaultsToMidAfternoonAtTheDemsPlace) {
   EXPECT_DOUBLE_EQ(l.longitudeDeg, -84.2);
   // 15:00 local solar time is 15 + 84.2/15 = 20.61 h UTC.
   EXPECT_NEAR(l.hourUtc, 20.613, 1e-3);
-  const SkyLighting sky = viewSkyLighting(l);
-  EXPECT_GT(sky.sunAzimuthDeg, 230);  // west of south in the afternoon
-  EXPECT_LT(sky.sunAzimuthDeg, 290);
-  EXPECT_GT(sky.sunElevationDeg, 30);
+  const SolarPosition sun = viewSun(l);
+  EXPECT_GT(sun.azimuthDeg, 230);  // west of south in the afternoon
+  EXPECT_LT(sun.azimuthDeg, 290);
+  EXPECT_GT(sun.elevationDeg, 30);
 }
 
 TEST(ViewLighting, DirectAzimuthAndElevationOverrideTheClock) {
@@ -39,9 +40,24 @@ TEST(ViewLighting, DirectAzimuthAndElevationOverrideTheClock) {
   l.fromTime = false;
   l.sunAzimuthDeg = 90;
   l.sunElevationDeg = 30;
-  const SkyLighting sky = viewSkyLighting(l);
-  EXPECT_NEAR(sky.sunDirection.x, std::cos(30 * std::numbers::pi / 180), 1e-5);  // east
-  EXPECT_NEAR(sky.sunDirection.z, 0.5, 1e-5);
+  const Lighting light = viewLighting(l, georeferencedAt(45, 0));
+  EXPECT_NEAR(light.sunDirection.x, std::cos(30 * std::numbers::pi / 180), 1e-5);  // east
+  EXPECT_NEAR(light.sunDirection.z, 0.5, 1e-5);
+}
+
+TEST(ViewLighting, NeutralControlsLightTheDemLikeAalRender) {
+  // aal-render lights a DEM with defaultLighting and the --sun-radius it is
+  // given; the viewer's controls at their defaults must give the same.
+  ViewLighting l;
+  l.fromTime = false;
+  l.sunAzimuthDeg = 200;
+  l.sunElevationDeg = 30;
+  const Heightfield f = georeferencedAt(45, 0);
+  Lighting expected = defaultLighting(f, 200, 30, l.turbidity);
+  expected.sunRadiusRad = static_cast<float>(l.sunRadiusDeg * std::numbers::pi / 180.0);
+  EXPECT_TRUE(viewLighting(l, f) == expected);
+  l.exposureStops = 1;
+  EXPECT_FALSE(viewLighting(l, f) == expected);
 }
 
 TEST(ViewLighting, IntensitiesAndExposureScale) {
@@ -53,10 +69,11 @@ TEST(ViewLighting, IntensitiesAndExposureScale) {
   l.skyIntensity = 0.5f;
   l.exposureStops = 1;
   applyViewLighting(l, f, scaled);
-  EXPECT_NEAR(scaled.sunIrradiance.y, 2 * base.sunIrradiance.y, 1e-4 * base.sunIrradiance.y);
-  EXPECT_NEAR(scaled.skyRadiance.y, 0.5 * base.skyRadiance.y, 1e-4 * base.skyRadiance.y);
-  EXPECT_NEAR(scaled.exposure, 2 * base.exposure, 1e-6 * base.exposure);
-  EXPECT_GT(base.hazeDensityPerM, 0);
+  const Lighting &a = base.lighting, &b = scaled.lighting;
+  EXPECT_NEAR(b.sunIrradiance.y, 2 * a.sunIrradiance.y, 1e-4 * a.sunIrradiance.y);
+  EXPECT_NEAR(b.skyRadiance.y, 0.5 * a.skyRadiance.y, 1e-4 * a.skyRadiance.y);
+  EXPECT_NEAR(b.exposure, 2 * a.exposure, 1e-6 * a.exposure);
+  EXPECT_GT(a.hazeDensityPerM, 0);
   EXPECT_FALSE(base.waterLevelM);  // no water unless asked for (issue 19, item 4)
   l.waterLevelM = 350;
   applyViewLighting(l, f, scaled);

@@ -6,7 +6,6 @@
 
 #include "lighting_defaults.h"
 #include "terrain_renderer.h"
-#include "tone_map.h"
 
 namespace aal {
 
@@ -43,18 +42,24 @@ UtcTime viewTime(const ViewLighting& l) {
   return t;
 }
 
-SkyLighting viewSkyLighting(const ViewLighting& l) {
-  SkyLighting sky;
-  if (l.fromTime) {
-    const SolarPosition sun = solarPosition(viewTime(l), l.latitudeDeg, l.longitudeDeg);
-    sky = makeSkyLighting(sun.azimuthDeg, sun.elevationDeg, l.turbidity, sun.sunDistanceAu);
-  } else {
-    sky = makeSkyLighting(l.sunAzimuthDeg, l.sunElevationDeg, l.turbidity);
-  }
-  sky.sunIrradiance *= l.sunIntensity;
-  sky.skyRadiance *= l.skyIntensity;
-  sky.sky.zenith.x *= l.skyIntensity;  // the background sky too
-  return sky;
+SolarPosition viewSun(const ViewLighting& l) {
+  if (l.fromTime) return solarPosition(viewTime(l), l.latitudeDeg, l.longitudeDeg);
+  SolarPosition sun;
+  sun.azimuthDeg = l.sunAzimuthDeg;
+  sun.elevationDeg = l.sunElevationDeg;
+  return sun;
+}
+
+Lighting viewLighting(const ViewLighting& l, const Heightfield& field) {
+  const SolarPosition sun = viewSun(l);
+  Lighting light =
+      defaultLighting(field, sun.azimuthDeg, sun.elevationDeg, l.turbidity, sun.sunDistanceAu);
+  light.sunIrradiance *= l.sunIntensity;
+  light.skyRadiance *= l.skyIntensity;
+  light.sky.zenith.x *= l.skyIntensity;  // the background sky too
+  light.sunRadiusRad = static_cast<float>(l.sunRadiusDeg * std::numbers::pi / 180.0);
+  light.exposure *= std::exp2(l.exposureStops);
+  return light;
 }
 
 void advanceViewTime(ViewLighting& l, double dtSeconds) {
@@ -64,12 +69,8 @@ void advanceViewTime(ViewLighting& l, double dtSeconds) {
 }
 
 void applyViewLighting(const ViewLighting& l, const Heightfield& field, FrameSettings& s) {
-  const SkyLighting light = viewSkyLighting(l);
-  applySkyLighting(light, s);
-  s.sunRadiusRad = static_cast<float>(l.sunRadiusDeg * std::numbers::pi / 180.0);
-  s.hazeDensityPerM = static_cast<float>(hazeDensityForVisibility(defaultVisibilityM(field)));
+  s.lighting = viewLighting(l, field);
   if (l.waterLevelM) s.waterLevelM = static_cast<float>(*l.waterLevelM);
-  s.exposure = clearDayExposure(l.turbidity) * std::exp2(l.exposureStops);
 }
 
 }  // namespace aal

@@ -6,8 +6,9 @@
 
 #include <optional>
 
+#include "atmosphere.h"
 #include "heightfield.h"
-#include "sky_lighting.h"
+#include "lighting.h"
 #include "solar_position.h"
 
 namespace aal {
@@ -20,7 +21,7 @@ struct ViewLighting {
   double hourUtc = 15;  // time of day, hours UTC in [0, 24)
   double latitudeDeg = 45, longitudeDeg = 0;
   double sunAzimuthDeg = 315, sunElevationDeg = 45;  // gdaldem convention
-  double sunRadiusDeg = 0.26656;
+  double sunRadiusDeg = kSunAngularRadiusDeg;
   double turbidity = 2.5;
   float sunIntensity = 1, skyIntensity = 1;  // multipliers of E_sun and L_sky
   float exposureStops = 0;                   // relative to the clear-day exposure
@@ -36,14 +37,20 @@ ViewLighting defaultViewLighting(const Heightfield& field);
 // The UTC instant of the date and hour (the day is clamped to the month).
 UtcTime viewTime(const ViewLighting& lighting);
 
-// Sun and sky for the controls (intensity multipliers applied).
-SkyLighting viewSkyLighting(const ViewLighting& lighting);
+// Where the controls put the sun: the NOAA position of the date, time and
+// place, or the direct azimuth and elevation.
+SolarPosition viewSun(const ViewLighting& lighting);
+
+// The lighting of the controls for `field` (lighting_defaults.h
+// defaultLighting with the controls' sun radius, the intensity multipliers
+// and the exposure stops applied).
+Lighting viewLighting(const ViewLighting& lighting, const Heightfield& field);
 
 // Advances the time of day by dtSeconds of animation, wrapping within the
 // day, when playing.
 void advanceViewTime(ViewLighting& lighting, double dtSeconds);
 
-// Writes the sun, sky, haze and exposure of the controls into `settings`.
+// Writes the lighting and the water level of the controls into `settings`.
 void applyViewLighting(const ViewLighting& lighting, const Heightfield& field,
                        FrameSettings& settings);
 

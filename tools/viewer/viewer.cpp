@@ -4,7 +4,6 @@
 
 #include <cmath>
 #include <cstdio>
-#include <cstring>
 #include <ctime>
 #include <filesystem>
 #include <map>
@@ -143,10 +142,7 @@ bool sameView(const FrameSettings& a, const FrameSettings& b) {
            x.steps == y.steps && x.interleaved == y.interleaved &&
            x.halfResolution == y.halfResolution;
   };
-  return sameCamera(a.camera, b.camera) && a.mode == b.mode && a.sunDirection == b.sunDirection &&
-         a.sunRadiusRad == b.sunRadiusRad && a.sunIrradiance == b.sunIrradiance &&
-         a.skyRadiance == b.skyRadiance && std::memcmp(&a.sky, &b.sky, sizeof a.sky) == 0 &&
-         a.hazeDensityPerM == b.hazeDensityPerM && a.exposure == b.exposure &&
+  return sameCamera(a.camera, b.camera) && a.mode == b.mode && a.lighting == b.lighting &&
          a.waterLevelM == b.waterLevelM && sameObscurance(a.obscurance, b.obscurance) &&
          a.albedoValue == b.albedoValue && a.lod.maxErrorPixels == b.lod.maxErrorPixels &&
          a.lod.morph == b.lod.morph;

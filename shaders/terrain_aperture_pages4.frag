@@ -1,7 +1,0 @@
-#version 460
-// terrain.frag for scenes whose apertures alone take up to four texture pages
-// (terrain_textures.glsl).
-#extension GL_GOOGLE_include_directive : require
-
-#define AAL_TERRAIN_APERTURE_PAGES 4
-#include "terrain_shading.glsl"
