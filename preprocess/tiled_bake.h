@@ -9,6 +9,7 @@
 #include <string>
 
 #include "bake.h"
+#include "far_horizon.h"
 
 namespace aal {
 
@@ -51,11 +52,17 @@ constexpr size_t kInMemoryBakeTexelLimit = size_t(16384) * 16384;
 constexpr int kDefaultTileSize = 4096;
 constexpr int kMinTileSize = 16, kMaxTileSize = 16384;
 
+// The near sweep's reach of a far-field tiled bake by default, in cells.
+constexpr int kFarFieldReachCells = 128;
+
 struct TiledBakeOptions {
   int tileSize = kDefaultTileSize;
   bool halfFloat = true;  // as writeApertureMap
   MapCompression compression = kDefaultMapCompression;
   std::string sourceName;  // aal:source (the DEM's file name)
+  // Without a max distance: the far field (far_horizon.h). nearReachM 0:
+  // kFarFieldReachCells of the field's smallest cell.
+  FarFieldOptions farField;
   // The folder's lock when the caller took it already (aal-bake does, before
   // loading the DEM); else the bake takes it.
   const TiledBakeLock* lock = nullptr;
@@ -68,8 +75,9 @@ struct TiledBakeSummary {
 };
 
 // Throws std::invalid_argument for options a tiled bake cannot take: a tile
-// size outside [kMinTileSize, kMaxTileSize], no max distance, the ray
-// method, the sky-view factor (bakeApertures' range checks apply too).
+// size outside [kMinTileSize, kMaxTileSize], the ray method, the sky-view
+// factor, far-field options out of range (bakeApertures' range checks apply
+// too).
 void checkTiledBakeOptions(const BakeOptions& bake, const TiledBakeOptions& tiled);
 
 // Bakes `field` into `folder` (created if missing; its parent must exist):
@@ -102,7 +110,13 @@ TiledBakeSummary bakeTiledInBands(const DemSource& source, const Heightfield& ge
                                   const std::string& folder);
 
 // Rows above and below a tile row that its tiles' sweeps read: the tile
-// size plus the max distance's steps (+ 3).
-int bandHaloRows(const Heightfield& geometry, const BakeOptions& bake, int tileSize);
+// size plus the steps of the max distance or, without one, of the far
+// field's near reach (+ 3).
+int bandHaloRows(const Heightfield& geometry, const BakeOptions& bake,
+                 const TiledBakeOptions& tiled);
+
+// The far field a tiled bake of `geometry` without a max distance uses:
+// tiled.farField with nearReachM resolved.
+FarFieldOptions resolvedFarField(const Heightfield& geometry, const TiledBakeOptions& tiled);
 
 }  // namespace aal
