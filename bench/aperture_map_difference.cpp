@@ -1,7 +1,8 @@
 // Compares two aperture maps of the same DEM (files or tile folders): the
 // visible fraction's absolute difference (mean, 99th percentile, max) and
-// the angle between the bent normals (mean, 99th percentile, max), the
-// figures docs/baking.md gives for the far field of tiled bakes.
+// the angle between the bent normals (mean, 99th percentile, max), and the
+// share of texels where OTHER sees more sky (a lower horizon) by more than
+// 0.001: the figures docs/baking.md gives for the far field of tiled bakes.
 //   bench_aperture_map_difference REFERENCE OTHER
 #include <algorithm>
 #include <cmath>
@@ -37,8 +38,11 @@ int main(int argc, char** argv) {
     const size_t n = a.texelCount();
     std::vector<double> visible(n), angle(n);
     double visibleSum = 0.0, angleSum = 0.0;
+    size_t moreSky = 0;  // OTHER's visible fraction above REFERENCE's by more than 0.001
     for (size_t i = 0; i < n; ++i) {
-      visible[i] = std::abs(double(a.visibleFraction(i)) - b.visibleFraction(i));
+      const double difference = double(b.visibleFraction(i)) - a.visibleFraction(i);
+      visible[i] = std::abs(difference);
+      if (difference > 1e-3) ++moreSky;
       const float* p = &a.texels[4 * i];
       const float* q = &b.texels[4 * i];
       const double dot = double(p[0]) * q[0] + double(p[1]) * q[1] + double(p[2]) * q[2];
@@ -53,9 +57,10 @@ int main(int argc, char** argv) {
     const double angleMax = *std::max_element(angle.begin(), angle.end());
     std::printf(
         "texels %zu\nvisible fraction |difference|: mean %.6f, p99 %.6f, max %.6f\n"
-        "bent-normal angle (degrees): mean %.4f, p99 %.4f, max %.3f\n",
+        "bent-normal angle (degrees): mean %.4f, p99 %.4f, max %.3f\n"
+        "texels where OTHER sees more sky by > 0.001: %.4f %%\n",
         n, visibleSum / n, percentile(visible, 0.99), visibleMax, angleSum / n,
-        percentile(angle, 0.99), angleMax);
+        percentile(angle, 0.99), angleMax, 100.0 * moreSky / n);
     return 0;
   } catch (const std::exception& e) {
     std::fprintf(stderr, "error: %s\n", e.what());

@@ -221,6 +221,24 @@ void sweepAllAzimuths(const BakeTerrain& terrain, const BakeOptions& o, float* s
       // Near horizons from the window's lines, far ones from the pyramid.
       const FarHorizons far(*o.farField, terrain, s.phi, sweep.curvature, sweep.clampEdge);
       const TexelWindow& w = terrain.window;
+      if (!sweep.clampEdge) {
+        sweepWindowHorizonBlocks(terrain, s.phi, sweep, [&](const HorizonBlock& b) {
+          alignas(32) float merged[HorizonBlock::kPaddedTexels];
+          for (int j = 0; j < b.count; ++j) {
+            const size_t texel = b.firstTexel + j * b.stride;
+            const int col = w.col + static_cast<int>(texel % w.width);
+            const int row = w.row + static_cast<int>(texel / w.width);
+            const double tanFar = far.tangentAt(col, row, terrain.field->at(col, row));
+            merged[j] = std::max(b.tanHorizon[j],
+                                 static_cast<float>(std::max(tanFar, double(kNoHorizonTangent))));
+          }
+          HorizonBlock block = b;
+          block.tanHorizon = merged;
+          addSlices(block, s, nullptr);
+        });
+        return;
+      }
+      // Clamped edges: the general sweep knows where a line's walk began.
       sweepHorizons(terrain, s.phi, sweep, [&](size_t texel, double tanHorizon) {
         const int col = w.col + static_cast<int>(texel % w.width);
         const int row = w.row + static_cast<int>(texel / w.width);

@@ -2,7 +2,9 @@
 // baked tile by tile into a folder (aperture_map.h's tiled map), resumable.
 // Each tile is baked with the whole DEM's geometry and only the terrain
 // within --max-distance of it (bakeApertureWindow), so the tiles equal the
-// in-memory bake bit for bit. docs/baking.md.
+// in-memory bake bit for bit; without a max distance, with the terrain
+// within a near reach of it plus far-field horizons from a pyramid of the
+// whole DEM (far_horizon.h), close to the in-memory bake. docs/baking.md.
 #pragma once
 
 #include <stdexcept>
@@ -91,7 +93,8 @@ void checkTiledBakeOptions(const BakeOptions& bake, const TiledBakeOptions& tile
 // matches its checksum), else baked again. bake.progress sees the fraction
 // over all tiles; bake.cancel stops between azimuths (BakeCancelled),
 // keeping the finished tiles.
-// Memory: the DEM (held by the caller) plus ~16 bytes per texel of one tile.
+// Memory: the DEM (held by the caller) plus ~16 bytes per texel of one tile
+// (and, without a max distance, the pyramid: ~0.67 bytes per DEM texel).
 TiledBakeSummary bakeTiled(const Heightfield& field, const BakeOptions& bake,
                            const TiledBakeOptions& tiled, const std::string& folder);
 
@@ -101,7 +104,8 @@ class DemSource;
 // rows at a time: a tile row plus the rows its sweeps read above and below
 // it (bandHaloRows), every column. Memory: one band (4 bytes per texel of
 // about three tile rows) plus one tile, whatever the DEM's height; the DEM
-// is read once more for its checksum. `geometry` is demGeometry of the
+// is read once more for its checksum (and, without a max distance, its
+// pyramid). `geometry` is demGeometry of the
 // source. The DEM must have no voids (filling them needs all of it):
 // InputError naming gdal_fillnodata.py otherwise, before any tile. An
 // existing folder is locked before the checksum pass.

@@ -18,6 +18,7 @@
 #include "errors.h"
 #include "far_horizon.h"
 #include "height_pyramid.h"
+#include "horizon_blocks.h"
 #include "horizon_sweep.h"
 #include "synthetic.h"
 #include "tiled_bake.h"
@@ -129,6 +130,49 @@ TEST(FarField, WindowReachCoversTheReachAndNoMore) {
     // The walk reaches past the limit for texels deep in the window.
     EXPECT_GT(aboveLimited, 0u);
   }
+}
+
+// The block sweep of a window (sweepWindowHorizonBlocks, what the bake
+// runs) visits every texel of the window once, with the tangents of the
+// general sweep with the same reach (to single precision), on the AVX2 and
+// the scalar path, with and without curvature.
+TEST(FarField, WindowBlocksEqualTheWindowSweep) {
+  const Heightfield field = fbm(130, 95, 900);
+  const TexelWindow window{47, 31, 41, 29};
+  const BakeTerrain part = prepareBakeTerrain(field, window);
+  for (const bool avx2 : {true, false}) {
+    setHorizonAvx2Allowed(avx2);
+    for (const double curvature : {0.0, 1e-6}) {
+      HorizonSweepOptions o;
+      o.windowReachM = 17 * 30.0;
+      o.curvature = curvature;
+      for (int a = 0; a < 24; ++a) {
+        const double phi = a * 2 * std::numbers::pi / 24;
+        std::vector<double> general(window.texelCount());
+        std::vector<float> blocks(window.texelCount(), NAN);
+        std::vector<int> visits(window.texelCount(), 0);
+        sweepHorizons(part, phi, o, [&](size_t i, double t) { general[i] = t; });
+        sweepWindowHorizonBlocks(part, phi, o, [&](const HorizonBlock& b) {
+          for (int j = 0; j < b.count; ++j) {
+            const size_t i = b.firstTexel + j * b.stride;
+            ASSERT_LT(i, blocks.size());
+            blocks[i] = b.tanHorizon[j];
+            ++visits[i];
+          }
+        });
+        for (size_t i = 0; i < general.size(); ++i) {
+          ASSERT_EQ(visits[i], 1) << "texel " << i << " azimuth " << a;
+          if (general[i] <= kNoHorizonTangent) {
+            EXPECT_LE(blocks[i], kNoHorizonTangent) << "texel " << i << " azimuth " << a;
+          } else {
+            EXPECT_NEAR(blocks[i], general[i], 1e-4 * (1 + std::abs(general[i])))
+                << "texel " << i << " azimuth " << a << (avx2 ? " avx2" : " scalar");
+          }
+        }
+      }
+    }
+  }
+  setHorizonAvx2Allowed(true);
 }
 
 // Mean and 99th percentile of |visible fraction difference| and mean
