@@ -228,9 +228,9 @@ void sweepAllAzimuths(const BakeTerrain& terrain, const BakeOptions& o, float* s
             const size_t texel = b.firstTexel + j * b.stride;
             const int col = w.col + static_cast<int>(texel % w.width);
             const int row = w.row + static_cast<int>(texel / w.width);
-            const double tanFar = far.tangentAt(col, row, terrain.field->at(col, row));
-            merged[j] = std::max(b.tanHorizon[j],
-                                 static_cast<float>(std::max(tanFar, double(kNoHorizonTangent))));
+            const double tangent =
+                far.mergedTangent(col, row, terrain.field->at(col, row), b.tanHorizon[j]);
+            merged[j] = static_cast<float>(std::max(tangent, double(kNoHorizonTangent)));
           }
           HorizonBlock block = b;
           block.tanHorizon = merged;

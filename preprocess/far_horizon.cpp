@@ -59,6 +59,47 @@ FarHorizons::FarHorizons(const FarField& far, const BakeTerrain& terrain, double
           march(terrain, originCol_ + i * g, originRow_ + j * g);
     }
   });
+  // A texel of a cell is at most spacing * sqrt 2 cells from each of its
+  // points along u: its distance to their samples is within that of theirs.
+  double largest = terrain.cellY;
+  for (double cellX : terrain.rowCellX) largest = std::max(largest, cellX);
+  const double slack = g * std::numbers::sqrt2 * largest;
+  bounds_.resize(static_cast<size_t>(columns_ - 1) * (rows_ - 1));
+  for (int j = 0; j + 1 < rows_; ++j) {
+    for (int i = 0; i + 1 < columns_; ++i) {
+      const Point* p = &points_[static_cast<size_t>(j) * columns_ + i];
+      double z = detail::kNoHorizon, nearest = std::numeric_limits<double>::infinity(),
+             farthest = 0.0;
+      for (const Point* q : {p, p + 1, p + columns_, p + columns_ + 1}) {
+        if (!(q->t > 0.0)) continue;
+        z = std::max(z, q->z);
+        nearest = std::min(nearest, q->t);
+        farthest = std::max(farthest, q->t);
+      }
+      CellBound& b = bounds_[static_cast<size_t>(j) * (columns_ - 1) + i];
+      b.z = z;
+      b.invNear = 1.0 / std::max(nearest - slack, 0.5 * smallestCell_);
+      b.invFar = 1.0 / (farthest + slack);
+    }
+  }
+}
+
+double FarHorizons::cellBound(const CellBound& c, double z) const {
+  if (c.z <= detail::kNoHorizon) return detail::kNoHorizon;
+  // (Z - z) / t - k t over the cell's texels and samples, without the drop.
+  const double rise = c.z - z;
+  return rise * (rise >= 0.0 ? c.invNear : c.invFar);
+}
+
+double FarHorizons::mergedTangent(int col, int row, double z, double nearTangent) const {
+  if (!clampEdge_) {
+    const int g = far_.options.spacing;
+    const int i = (col - originCol_) / g, j = (row - originRow_) / g;
+    if (cellBound(bounds_[static_cast<size_t>(j) * (columns_ - 1) + i], z) <= nearTangent) {
+      return nearTangent;
+    }
+  }
+  return std::max(nearTangent, tangentAt(col, row, z));
 }
 
 FarHorizons::Point FarHorizons::march(const BakeTerrain& terrain, int col, int row) const {

@@ -57,6 +57,9 @@ class FarHorizons {
   // Tangent of the far horizon seen from field texel (col, row) of the
   // window at height z; kNoHorizon (horizon_sweep.h) when none.
   double tangentAt(int col, int row, double z) const;
+  // max(nearTangent, tangentAt(col, row, z)), skipping the far field where
+  // a bound of it over the texel's lattice cell is no higher.
+  double mergedTangent(int col, int row, double z, double nearTangent) const;
 
  private:
   // The highest sample seen from a lattice point: its height z (before the
@@ -72,6 +75,14 @@ class FarHorizons {
   double pointTangent(const Point& p, double x, double y, double z) const;
   Point march(const BakeTerrain& terrain, int col, int row) const;
 
+  // Per lattice cell (the four points around it): the highest sample's
+  // height and the nearest and farthest samples' distances from any of its
+  // texels, for a bound of their far tangents; kNoHorizon height: none.
+  struct CellBound {
+    double z = 0.0, invNear = 0.0, invFar = 0.0;
+  };
+  double cellBound(const CellBound& c, double z) const;
+
   const FarField& far_;
   const BakeTerrain& terrain_;
   double smallestCell_;
@@ -79,6 +90,7 @@ class FarHorizons {
   bool clampEdge_;
   int originCol_, originRow_, columns_, rows_;
   std::vector<Point> points_;
+  std::vector<CellBound> bounds_;  // (columns_ - 1) x (rows_ - 1)
 };
 
 }  // namespace aal

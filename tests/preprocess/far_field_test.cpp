@@ -11,6 +11,7 @@
 #include <limits>
 #include <numbers>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "../tools/run_tool.h"
@@ -251,10 +252,16 @@ BakeOptions unlimited(bool curvature = false) {
 TEST(FarField, TiledBakeSeesADistantRidgeBeyondTheHalo) {
   test::TempDir dir;
   const Heightfield field = ridgeField();
-  for (const bool curvature : {false, true}) {
-    const BakeOptions o = unlimited(curvature);
+  // Open edges flat and curved (the block sweep), clamped edges curved
+  // (the general sweep and the far field's plateau beyond the edge).
+  for (const auto& [curvature, clampEdge] :
+       {std::pair{false, false}, std::pair{true, false}, std::pair{true, true}}) {
+    BakeOptions o = unlimited(curvature);
+    o.clampEdge = clampEdge;
     const ApertureMap reference = bakeApertures(field, o).aperture;
-    const std::string folder = (dir.path() / (curvature ? "curved" : "flat")).string();
+    const std::string folder =
+        (dir.path() / ((curvature ? "curved" : "flat") + std::string(clampEdge ? "-clamp" : "")))
+            .string();
     const TiledBakeSummary summary = bakeTiled(field, o, farTiles(), folder);
     EXPECT_EQ(summary.baked, 8 * 2);
     const ApertureMap tiled = readApertureMap(folder);
