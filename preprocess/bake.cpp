@@ -10,6 +10,7 @@
 #include <tbb/task_group.h>
 
 #include "bake_terrain.h"
+#include "far_horizon.h"
 #include "horizon_blocks.h"
 #include "horizon_sweep.h"
 #include "huge_pages.h"
@@ -125,6 +126,7 @@ void sweepAllAzimuths(const BakeTerrain& terrain, const BakeOptions& o, float* s
   sweep.clampEdge = o.clampEdge;
   sweep.curvature = o.curvature ? (1.0 - o.refraction) / (2.0 * kEarthRadiusM) : 0.0;
   sweep.maxDistanceM = o.maxDistanceM;
+  if (o.farField && o.maxDistanceM <= 0.0) sweep.windowReachM = o.farField->options.nearReachM;
   const double dPhi = kTwoPi / o.azimuths;
   const bool wantSvf = !svf.empty();
 
@@ -215,7 +217,40 @@ void sweepAllAzimuths(const BakeTerrain& terrain, const BakeOptions& o, float* s
     }
   };
   const auto sweepOne = [&](const Slice& s) {
-    if (sweep.maxDistanceM > 0.0) {
+    if (sweep.windowReachM > 0.0) {
+      // Near horizons from the window's lines, far ones from the pyramid.
+      const FarHorizons far(*o.farField, terrain, s.phi, sweep.curvature, sweep.clampEdge);
+      const TexelWindow& w = terrain.window;
+      if (!sweep.clampEdge) {
+        sweepWindowHorizonBlocks(terrain, s.phi, sweep, [&](const HorizonBlock& b) {
+          alignas(32) float merged[HorizonBlock::kPaddedTexels];
+          for (int j = 0; j < b.count; ++j) {
+            const size_t texel = b.firstTexel + j * b.stride;
+            const int col = w.col + static_cast<int>(texel % w.width);
+            const int row = w.row + static_cast<int>(texel / w.width);
+            const double tangent =
+                far.mergedTangent(col, row, terrain.field->at(col, row), b.tanHorizon[j]);
+            merged[j] = static_cast<float>(std::max(tangent, double(kNoHorizonTangent)));
+          }
+          HorizonBlock block = b;
+          block.tanHorizon = merged;
+          addSlices(block, s, nullptr);
+        });
+        return;
+      }
+      // Clamped edges: the general sweep knows where a line's walk began.
+      sweepHorizons(terrain, s.phi, sweep, [&](size_t texel, double tanHorizon) {
+        const int col = w.col + static_cast<int>(texel % w.width);
+        const int row = w.row + static_cast<int>(texel / w.width);
+        tanHorizon = std::max(tanHorizon, far.tangentAt(col, row, terrain.field->at(col, row)));
+        const float tanH = std::max(static_cast<float>(tanHorizon), kNoHorizonTangent);
+        const float east = terrain.slopeEast(texel), north = terrain.slopeNorth(texel);
+        HorizonBlock b{texel, 1, 1, &tanH};
+        b.slopeEast = &east;
+        b.slopeNorth = &north;
+        addSlices(b, s, nullptr);
+      });
+    } else if (sweep.maxDistanceM > 0.0) {
       // The distance-limited sweep visits texel by texel: blocks of one.
       sweepHorizons(terrain, s.phi, sweep, [&](size_t texel, double tanHorizon) {
         const float tanH = std::max(static_cast<float>(tanHorizon), kNoHorizonTangent);
@@ -233,7 +268,8 @@ void sweepAllAzimuths(const BakeTerrain& terrain, const BakeOptions& o, float* s
 
   // Without a distance limit azimuths a and a + n/2 are swept together
   // (sweepOpposedHorizonBlocks): one pass over the sums for both.
-  const bool opposed = sweep.maxDistanceM <= 0.0 && o.azimuths % 2 == 0;
+  const bool opposed =
+      sweep.maxDistanceM <= 0.0 && sweep.windowReachM <= 0.0 && o.azimuths % 2 == 0;
   const int passes = opposed ? o.azimuths / 2 : o.azimuths;
   for (int pass = 0; pass < passes; ++pass) {
     checkCancel(o);
@@ -315,6 +351,7 @@ ApertureMapInfo bakeInfo(const Heightfield& field, const BakeOptions& o) {
   ApertureMapInfo info;
   info.azimuths = o.method == BakeMethod::Sweep ? o.azimuths : 0;
   info.method = o.method == BakeMethod::Sweep ? "sweep" : "rays";
+  if (o.farField && o.maxDistanceM <= 0.0) info.method = farFieldMethod(o.farField->options);
   info.cellSizeX = field.cellSizeXM;
   info.cellSizeY = field.cellSizeYM;
   info.zScale = field.zScale;
@@ -352,8 +389,9 @@ BakeResult bakeApertures(const Heightfield& field, const BakeOptions& o) {
 BakeResult bakeApertureWindow(const Heightfield& field, const TexelWindow& window,
                               const BakeOptions& o) {
   checkOptions(field, o);
-  if (!window.covers(field) && (o.method != BakeMethod::Sweep || !(o.maxDistanceM > 0.0))) {
-    throw std::invalid_argument("a bake window needs the sweep with a max distance");
+  if (!window.covers(field) &&
+      (o.method != BakeMethod::Sweep || !(o.maxDistanceM > 0.0 || o.farField))) {
+    throw std::invalid_argument("a bake window needs the sweep with a max distance or a far field");
   }
   return bakeWindow(field, prepareBakeTerrain(field, window), o);
 }

@@ -15,6 +15,8 @@
 
 namespace aal {
 
+struct FarField;  // far_horizon.h
+
 enum class BakeMethod {
   Sweep,  // exact horizons per azimuth by line sweep, O(texels) per azimuth
   Rays,   // brute-force reference: rays over the hemisphere, marched texel by texel
@@ -34,6 +36,10 @@ struct BakeOptions {
   // `azimuths` must be a multiple of horizonDirections.
   bool horizons = false;
   int horizonDirections = kHorizonDirections;
+  // A window's horizons beyond its halo, for a tiled bake without a max
+  // distance (far_horizon.h): the near sweep walks the window's lines from
+  // farField->options.nearReachM before it, the far field adds the rest.
+  const FarField* farField = nullptr;
   // Called with the fraction done in [0, 1], from the calling thread.
   std::function<void(double)> progress;
   // When set and true, the bake stops and throws BakeCancelled.
@@ -64,7 +70,9 @@ ApertureMapInfo bakeInfo(const Heightfield& field, const BakeOptions& options);
 // Bakes only the texels of `window` (a tile of the field), with the whole
 // field's geometry and horizons: equal bit for bit to the same texels of
 // bakeApertures. A partial window needs the sweep with a max distance (then
-// only terrain near the tile is walked). The map has the window's size; its
+// only terrain near the tile is walked), or a far field (then the horizons
+// beyond the near reach come from the far field's pyramid: close to, not
+// equal to, the whole field's). The map has the window's size; its
 // info describes the whole source, except that sourceChecksum is left empty
 // (a tiled bake hashes the field once, not per tile).
 BakeResult bakeApertureWindow(const Heightfield& field, const TexelWindow& window,

@@ -867,6 +867,52 @@ inline int oppositeLines(const SweepLayout& layout, const SweepLayout& opposite)
   return HorizonBlock::kLines + 1 + (hi - lo);
 }
 
+// sweepBlocks for a partial window without a distance limit (the near
+// sweep of a far-field bake, far_horizon.h): the window's lines walked from
+// layout.firstStep (options.windowReachM before the window), blocks only of
+// the window's texels, indexed as BakeTerrain::windowIndex. Open edges
+// only: the walker takes a line's first point for the field's edge.
+template <bool kMajorIsColumn, class VisitBlock>
+void sweepWindowBlocks(const BakeTerrain& terrain, const SweepLayout& layout, double ux, double uy,
+                       const HorizonSweepOptions& options, VisitBlock& visit) {
+  constexpr int kLines = HorizonBlock::kLines;
+  using Walker = BlockLineWalker<kMajorIsColumn>;
+  tbb::enumerable_thread_specific<BlockScratch> scratch;
+  const TexelWindow& window = terrain.window;
+  const int firstLine = layout.firstLine + 1;
+  const int groups = (layout.lastLine - firstLine + kLines) / kLines;
+  tbb::parallel_for(0, groups, [&](int group) {
+    BlockScratch& s = scratch.local();
+    s.hulls.resize(static_cast<size_t>(Walker::kMaxLines) * layout.majorLength);
+    const int first = firstLine + group * kLines;
+    const GroupTexels<kMajorIsColumn> texels{layout, terrain.field->width, first,
+                                             std::min(kLines, layout.lastLine + 1 - first)};
+    Walker walker(terrain, layout, ux, uy, options, s.hulls.data());
+    walker.begin(first - 1, texels.count + 1);
+    float tanHorizon[kLines];
+    BlockSlopes slopes;
+    for (int step = layout.firstStep; step < layout.endStep; ++step) {
+      if (!walker.anyLineOnGrid(step)) continue;
+      auto [lo, hi] = texels.at(step);
+      if (step < layout.visitStep) hi = lo - 1;  // only fills the hulls
+      lo = std::max(lo, layout.minorBegin);
+      hi = std::min(hi, layout.minorEnd - 1);
+      walker.step(step, lo, hi, tanHorizon, slopes.east, slopes.north);
+      if (lo > hi) continue;
+      const int major = layout.start + step * layout.step;
+      HorizonBlock b;
+      b.firstTexel =
+          kMajorIsColumn ? terrain.windowIndex(major, lo) : terrain.windowIndex(lo, major);
+      b.stride = kMajorIsColumn ? window.width : 1;
+      b.count = hi - lo + 1;
+      b.tanHorizon = tanHorizon;
+      b.slopeEast = slopes.east;
+      b.slopeNorth = slopes.north;
+      visit(b);
+    }
+  });
+}
+
 }  // namespace detail
 
 // Lets sweeps and bakes started from now on use AVX2 where the CPU has it
@@ -888,6 +934,24 @@ void sweepHorizonBlocks(const BakeTerrain& terrain, double phi, const HorizonSwe
     detail::sweepBlocks<true>(terrain, layout, ux, uy, options, visit);
   } else {
     detail::sweepBlocks<false>(terrain, layout, ux, uy, options, visit);
+  }
+}
+
+// The texels of a partial window (terrain.window) for azimuth phi, its
+// lines walked with the unlimited hull from options.windowReachM before it:
+// sweepHorizons() with windowReachM, in blocks whose texels are window
+// indices (BakeTerrain::windowIndex). Open edges only (options.clampEdge
+// must be false): the walk of a line that begins inside the field would
+// take its first point for the edge.
+template <class VisitBlock>
+void sweepWindowHorizonBlocks(const BakeTerrain& terrain, double phi,
+                              const HorizonSweepOptions& options, VisitBlock&& visit) {
+  const double ux = std::cos(phi), uy = std::sin(phi);
+  const detail::SweepLayout layout = detail::makeSweepLayout(terrain, ux, uy, options.windowReachM);
+  if (layout.majorIsColumn) {
+    detail::sweepWindowBlocks<true>(terrain, layout, ux, uy, options, visit);
+  } else {
+    detail::sweepWindowBlocks<false>(terrain, layout, ux, uy, options, visit);
   }
 }
 

@@ -50,6 +50,11 @@ struct HorizonSweepOptions {
   // Only terrain within this horizontal distance counts; 0 = no limit. With
   // a limit each texel scans its line up to that distance (O(distance)).
   double maxDistanceM = 0.0;
+  // Without a distance limit: a partial window's lines start this far
+  // before it (0: at the field's edge), so each texel's horizon covers at
+  // least this distance of its line (the far field, far_horizon.h, adds
+  // what lies beyond).
+  double windowReachM = 0.0;
 };
 
 namespace detail {
@@ -159,6 +164,7 @@ class LineWalker {
     size_t size = 0;                 // farthest point first
     bool started = false;
     double edgeT = 0, edgeZ = 0;  // the line's first point: the DEM edge ahead
+    bool edgeIsField = true;      // false: the walk began inside the field (windowReachM)
   };
 
   LineWalker(const BakeTerrain& terrain, const SweepLayout& layout, double ux, double uy,
@@ -204,6 +210,8 @@ class LineWalker {
       state.started = true;
       state.edgeT = t;
       state.edgeZ = z;
+      const double before = line + (step - 1) * layout_.minorPerStep;
+      state.edgeIsField = step == 0 || before < 0.0 || before > minorMax_;
     }
     ProfilePoint* hull = state.hull.data();
     size_t n = state.size;
@@ -273,7 +281,8 @@ class LineWalker {
       best = (hull[n - 2].z - q.z) / (hull[n - 2].t - q.t);
     }
     if (best != kNoHorizon) best += 2.0 * curvature_ * q.t;
-    if (clampEdge_ && (maxDistance_ <= 0.0 || state.edgeT - q.t <= maxDistance_)) {
+    if (clampEdge_ &&
+        (maxDistance_ <= 0.0 ? state.edgeIsField : state.edgeT - q.t <= maxDistance_)) {
       const double edge = clampedEdgeSlope(state.edgeZ - z, state.edgeT - q.t, curvature_);
       if (edge > best) best = edge;
     }
@@ -358,7 +367,8 @@ template <class Visit>
 void sweepHorizons(const BakeTerrain& terrain, double phi, const HorizonSweepOptions& options,
                    Visit&& visit) {
   const double ux = std::cos(phi), uy = std::sin(phi);
-  const detail::SweepLayout layout = detail::makeSweepLayout(terrain, ux, uy, options.maxDistanceM);
+  const detail::SweepLayout layout = detail::makeSweepLayout(
+      terrain, ux, uy, options.maxDistanceM > 0.0 ? options.maxDistanceM : options.windowReachM);
   if (layout.majorIsColumn) {
     detail::sweepLines<true>(terrain, layout, ux, uy, options, visit);
   } else {

@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <cerrno>
+#include <cmath>
 #include <cstdio>
 #include <cstring>
 #include <filesystem>
@@ -22,6 +23,7 @@
 #include "dem_loader.h"
 #include "dem_source.h"
 #include "errors.h"
+#include "height_pyramid.h"
 #include "heightfield_checksum.h"
 #include "horizon_sweep.h"
 
@@ -63,10 +65,11 @@ void checkTiledBakeOptions(const BakeOptions& bake, const TiledBakeOptions& tile
   if (bake.method != BakeMethod::Sweep) {
     throw std::invalid_argument("a tiled bake needs the sweep method");
   }
-  if (!(bake.maxDistanceM > 0.0)) {
+  const FarFieldOptions& far = tiled.farField;
+  if (far.spacing < 1 || far.spacing > 256 || far.resolution < 1 || far.resolution > 1024 ||
+      !(far.nearReachM >= 0.0) || !std::isfinite(far.nearReachM)) {
     throw std::invalid_argument(
-        "a tiled bake needs a max distance (each tile sees the terrain "
-        "within it)");
+        "far field: lattice spacing, resolution or near reach out of range");
   }
   if (bake.skyViewFactor) {
     throw std::invalid_argument("a tiled bake writes no sky-view factor");
@@ -207,10 +210,15 @@ namespace {
 // rows that holds the tile row and the terrain within the max distance.
 using TileRowTerrain = std::function<const Heightfield&(int firstRow, int rows)>;
 
+// `pyramid`: the whole DEM's, for a bake without a max distance.
 TiledBakeSummary bakeTiles(const Heightfield& geometry, const std::string& checksum,
-                           const TileRowTerrain& terrainFor, const BakeOptions& bake,
-                           const TiledBakeOptions& tiled, const std::string& folder) {
+                           const TileRowTerrain& terrainFor, const HeightPyramid* pyramid,
+                           const BakeOptions& bake, const TiledBakeOptions& tiled,
+                           const std::string& folder) {
   checkTiledBakeOptions(bake, tiled);
+  BakeOptions tile = bake;
+  FarField far{pyramid, resolvedFarField(geometry, tiled)};
+  if (!(bake.maxDistanceM > 0.0)) tile.farField = &far;
   createFolder(folder);
   // Held to the end: a second bake into this folder stops here, before it
   // could sweep this one's temporaries or write a tile (issue 17).
@@ -220,7 +228,7 @@ TiledBakeSummary bakeTiles(const Heightfield& geometry, const std::string& check
   ApertureTileIndex index;
   index.map.width = geometry.width;
   index.map.height = geometry.height;
-  index.map.info = bakeInfo(geometry, bake);
+  index.map.info = bakeInfo(geometry, tile);
   index.map.info.source = tiled.sourceName;
   index.map.info.sourceChecksum = checksum;
   index.tileSize = tiled.tileSize;
@@ -236,7 +244,6 @@ TiledBakeSummary bakeTiles(const Heightfield& geometry, const std::string& check
   summary.tiles = index.rows() * index.columns();
   const double total = static_cast<double>(geometry.texelCount());
   double done = 0;  // texels of finished tiles
-  BakeOptions tile = bake;
   for (int row = 0; row < index.rows(); ++row) {
     const Heightfield* field = nullptr;  // read when a tile of this row needs baking
     for (int column = 0; column < index.columns(); ++column) {
@@ -270,21 +277,52 @@ TiledBakeSummary bakeTiles(const Heightfield& geometry, const std::string& check
 
 }  // namespace
 
+namespace {
+
+// The smallest and largest cell of the field, in metres.
+std::pair<double, double> cellRange(const Heightfield& field) {
+  double smallest = field.cellSizeYM, largest = field.cellSizeYM;
+  for (int row = 0; row < field.height; ++row) {
+    smallest = std::min(smallest, field.cellSizeXAtRow(row));
+    largest = std::max(largest, field.cellSizeXAtRow(row));
+  }
+  return {smallest, largest};
+}
+
+int pyramidShiftFor(const Heightfield& geometry, const TiledBakeOptions& tiled) {
+  const auto [smallest, largest] = cellRange(geometry);
+  return farFieldBaseShift(resolvedFarField(geometry, tiled), smallest, largest);
+}
+
+}  // namespace
+
+FarFieldOptions resolvedFarField(const Heightfield& geometry, const TiledBakeOptions& tiled) {
+  FarFieldOptions far = tiled.farField;
+  if (!(far.nearReachM > 0.0)) far.nearReachM = kFarFieldReachCells * cellRange(geometry).first;
+  return far;
+}
+
 TiledBakeSummary bakeTiled(const Heightfield& field, const BakeOptions& bake,
                            const TiledBakeOptions& tiled, const std::string& folder) {
   checkTiledBakeOptions(bake, tiled);
+  std::optional<HeightPyramid> pyramid;
+  if (!(bake.maxDistanceM > 0.0))
+    pyramid.emplace(buildHeightPyramid(field, pyramidShiftFor(field, tiled)));
   return bakeTiles(
       field, heightfieldChecksum(field), [&](int, int) -> const Heightfield& { return field; },
-      bake, tiled, folder);
+      pyramid ? &*pyramid : nullptr, bake, tiled, folder);
 }
 
-int bandHaloRows(const Heightfield& geometry, const BakeOptions& bake, int tileSize) {
+int bandHaloRows(const Heightfield& geometry, const BakeOptions& bake,
+                 const TiledBakeOptions& tiled) {
   // Every line that reaches the tile is walked from stepsCovering(max
   // distance) steps before the tile to its far side, moving by up to one row
   // a step: lines advancing by columns drift up to the tile's width plus
   // those steps in rows (the points beyond the max distance are read, then
   // ignored). The slopes reach one row further, the interpolation one more.
-  return detail::stepsCovering(prepareBakeTerrain(geometry), bake.maxDistanceM) + tileSize + 3;
+  const double reach =
+      bake.maxDistanceM > 0.0 ? bake.maxDistanceM : resolvedFarField(geometry, tiled).nearReachM;
+  return detail::stepsCovering(prepareBakeTerrain(geometry), reach) + tiled.tileSize + 3;
 }
 
 TiledBakeSummary bakeTiledInBands(const DemSource& source, const Heightfield& geometry,
@@ -296,18 +334,24 @@ TiledBakeSummary bakeTiledInBands(const DemSource& source, const Heightfield& ge
   std::optional<TiledBakeLock> ownLock;
   TiledBakeOptions locked = tiled;
   if (!locked.lock && fs::is_directory(folder)) locked.lock = &ownLock.emplace(folder);
-  // One pass for the DEM's checksum (and its voids, refused before any tile).
+  // One pass for the DEM's checksum (and its voids, refused before any
+  // tile) and, without a max distance, its pyramid.
   HeightfieldHasher hasher(geometry.width, geometry.height);
+  std::optional<HeightPyramid> pyramid;
+  if (!(bake.maxDistanceM > 0.0)) {
+    pyramid.emplace(geometry.width, geometry.height, pyramidShiftFor(geometry, tiled));
+  }
   const int chunk =
       std::max(1, static_cast<int>((size_t{64} << 20) / (sizeof(float) * geometry.width)));
   for (int row = 0; row < geometry.height; row += chunk) {
     const Heightfield rows =
         readDemRows(source, geometry, row, std::min(chunk, geometry.height - row));
     hasher.add(rows.z.data(), rows.z.size());
+    if (pyramid) pyramid->addRows(rows.z.data(), rows.residentRows());
     if (bake.progress) bake.progress(0.0);
     if (bake.cancel && bake.cancel->load(std::memory_order_relaxed)) throw BakeCancelled();
   }
-  const int halo = bandHaloRows(geometry, bake, tiled.tileSize);
+  const int halo = bandHaloRows(geometry, bake, tiled);
   Heightfield band;
   return bakeTiles(
       geometry, hasher.hex(),
@@ -318,7 +362,7 @@ TiledBakeSummary bakeTiledInBands(const DemSource& source, const Heightfield& ge
         band = readDemRows(source, geometry, top, bottom - top);
         return band;
       },
-      bake, locked, folder);
+      pyramid ? &*pyramid : nullptr, bake, locked, folder);
 }
 
 }  // namespace aal

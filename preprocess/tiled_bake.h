@@ -2,13 +2,16 @@
 // baked tile by tile into a folder (aperture_map.h's tiled map), resumable.
 // Each tile is baked with the whole DEM's geometry and only the terrain
 // within --max-distance of it (bakeApertureWindow), so the tiles equal the
-// in-memory bake bit for bit. docs/baking.md.
+// in-memory bake bit for bit; without a max distance, with the terrain
+// within a near reach of it plus far-field horizons from a pyramid of the
+// whole DEM (far_horizon.h), close to the in-memory bake. docs/baking.md.
 #pragma once
 
 #include <stdexcept>
 #include <string>
 
 #include "bake.h"
+#include "far_horizon.h"
 
 namespace aal {
 
@@ -51,11 +54,17 @@ constexpr size_t kInMemoryBakeTexelLimit = size_t(16384) * 16384;
 constexpr int kDefaultTileSize = 4096;
 constexpr int kMinTileSize = 16, kMaxTileSize = 16384;
 
+// The near sweep's reach of a far-field tiled bake by default, in cells.
+constexpr int kFarFieldReachCells = 128;
+
 struct TiledBakeOptions {
   int tileSize = kDefaultTileSize;
   bool halfFloat = true;  // as writeApertureMap
   MapCompression compression = kDefaultMapCompression;
   std::string sourceName;  // aal:source (the DEM's file name)
+  // Without a max distance: the far field (far_horizon.h). nearReachM 0:
+  // kFarFieldReachCells of the field's smallest cell.
+  FarFieldOptions farField;
   // The folder's lock when the caller took it already (aal-bake does, before
   // loading the DEM); else the bake takes it.
   const TiledBakeLock* lock = nullptr;
@@ -68,8 +77,9 @@ struct TiledBakeSummary {
 };
 
 // Throws std::invalid_argument for options a tiled bake cannot take: a tile
-// size outside [kMinTileSize, kMaxTileSize], no max distance, the ray
-// method, the sky-view factor (bakeApertures' range checks apply too).
+// size outside [kMinTileSize, kMaxTileSize], the ray method, the sky-view
+// factor, far-field options out of range (bakeApertures' range checks apply
+// too).
 void checkTiledBakeOptions(const BakeOptions& bake, const TiledBakeOptions& tiled);
 
 // Bakes `field` into `folder` (created if missing; its parent must exist):
@@ -83,7 +93,8 @@ void checkTiledBakeOptions(const BakeOptions& bake, const TiledBakeOptions& tile
 // matches its checksum), else baked again. bake.progress sees the fraction
 // over all tiles; bake.cancel stops between azimuths (BakeCancelled),
 // keeping the finished tiles.
-// Memory: the DEM (held by the caller) plus ~16 bytes per texel of one tile.
+// Memory: the DEM (held by the caller) plus ~16 bytes per texel of one tile
+// (and, without a max distance, the pyramid: ~0.67 bytes per DEM texel).
 TiledBakeSummary bakeTiled(const Heightfield& field, const BakeOptions& bake,
                            const TiledBakeOptions& tiled, const std::string& folder);
 
@@ -93,7 +104,8 @@ class DemSource;
 // rows at a time: a tile row plus the rows its sweeps read above and below
 // it (bandHaloRows), every column. Memory: one band (4 bytes per texel of
 // about three tile rows) plus one tile, whatever the DEM's height; the DEM
-// is read once more for its checksum. `geometry` is demGeometry of the
+// is read once more for its checksum (and, without a max distance, its
+// pyramid). `geometry` is demGeometry of the
 // source. The DEM must have no voids (filling them needs all of it):
 // InputError naming gdal_fillnodata.py otherwise, before any tile. An
 // existing folder is locked before the checksum pass.
@@ -102,7 +114,13 @@ TiledBakeSummary bakeTiledInBands(const DemSource& source, const Heightfield& ge
                                   const std::string& folder);
 
 // Rows above and below a tile row that its tiles' sweeps read: the tile
-// size plus the max distance's steps (+ 3).
-int bandHaloRows(const Heightfield& geometry, const BakeOptions& bake, int tileSize);
+// size plus the steps of the max distance or, without one, of the far
+// field's near reach (+ 3).
+int bandHaloRows(const Heightfield& geometry, const BakeOptions& bake,
+                 const TiledBakeOptions& tiled);
+
+// The far field a tiled bake of `geometry` without a max distance uses:
+// tiled.farField with nearReachM resolved.
+FarFieldOptions resolvedFarField(const Heightfield& geometry, const TiledBakeOptions& tiled);
 
 }  // namespace aal

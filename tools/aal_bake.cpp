@@ -141,9 +141,6 @@ bool checkTiling(const Options& o, const aal::DemSource& dem) {
           ? std::string("a tiled bake (--tile-size)")
           : "the DEM is " + std::to_string(dem.width()) + "x" + std::to_string(dem.height()) +
                 ": above 16384x16384 texels only a tiled bake fits in memory, which";
-  if (!(o.maxDistance > 0)) {
-    throw aal::InputError(why + " needs --max-distance (each tile sees the terrain within it)");
-  }
   if (o.method != "sweep") throw aal::InputError(why + " needs --method sweep");
   if (!o.svfPath.empty() || !o.visiblePath.empty() || !o.horizonsPath.empty()) {
     throw aal::InputError(why + " writes no --svf, --visible or --horizons");
@@ -319,8 +316,10 @@ int main(int argc, char** argv) {
       "written as\nEXR (RGB = bent normal, A = r). Horizons come from the whole DEM (no "
       "distance limit\nunless --max-distance).\n\nAbove 16384x16384 texels (the in-memory bake's "
       "~20 bytes per texel, ~22 GB at the\nnext size up, would not fit 24 GiB) the DEM is baked in "
-      "tiles into the folder -o, and\n--max-distance is required: each tile is baked from "
-      "itself plus the terrain within\nthat distance, equal to the in-memory bake. An "
+      "tiles into the folder -o. Each tile\nis baked from itself plus a halo: with "
+      "--max-distance the terrain within that distance,\nequal to the in-memory bake; without, "
+      "128 cells, and the horizons beyond from a pyramid\nof the whole DEM's block maxima (a far "
+      "field, close to the in-memory bake). An "
       "interrupted tiled bake resumes from its\nfinished tiles when run again. aal-render and "
       "aal-view read the folder as the map. A folder\nholds one bake: while another aal-bake "
       "runs in it a bake is refused (exit 1), and so is\na bake of another DEM or with other "
@@ -375,12 +374,13 @@ int main(int argc, char** argv) {
   app.add_option("--threads", o.threads, "worker threads (default: all cores)")
       ->check(CLI::Range(1, 1024));
   app.add_option("--tile-size", o.tileSize,
-                 "bake in tiles of N x N texels into the folder -o, resumable (needs "
-                 "--max-distance); DEMs above 16384x16384 texels are always baked tiled, in "
+                 "bake in tiles of N x N texels into the folder -o, resumable (without "
+                 "--max-distance the far horizons come from a pyramid); DEMs above 16384x16384 "
+                 "texels are always baked tiled, in "
                  "tiles of 4096")
       ->check(CLI::Range(aal::kMinTileSize, aal::kMaxTileSize));
   app.add_flag("--low-memory", o.lowMemory,
-               "read the DEM one band of rows at a time (a tile row plus --max-distance): a "
+               "read the DEM one band of rows at a time (a tile row plus its halo): a "
                "tiled bake then needs memory for one band, not the DEM; automatic when the DEM "
                "does not fit in memory; the DEM must have no voids (gdal_fillnodata.py fills "
                "them)");

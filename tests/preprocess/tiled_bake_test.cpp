@@ -354,9 +354,13 @@ TEST(TiledBake, RejectsWhatItCannotBake) {
   EXPECT_THROW(checkTiledBakeOptions(o, t), std::invalid_argument);
   t.tileSize = 16;
   EXPECT_NO_THROW(checkTiledBakeOptions(o, t));
-  o.maxDistanceM = 0;
+  o.maxDistanceM = 0;  // the far field completes the horizons
+  EXPECT_NO_THROW(checkTiledBakeOptions(o, t));
+  t.farField.spacing = 0;
   EXPECT_THROW(checkTiledBakeOptions(o, t), std::invalid_argument);
-  // A partial window without a distance limit would need the whole DEM.
+  t.farField = {};
+  // A partial window without a distance limit or a far field would need
+  // the whole DEM.
   EXPECT_THROW(bakeApertureWindow(field, TexelWindow{0, 0, 16, 16}, o), std::invalid_argument);
   EXPECT_NO_THROW(bakeApertureWindow(field, TexelWindow{0, 0, 40, 30}, o));
   o = distanceLimited(100);

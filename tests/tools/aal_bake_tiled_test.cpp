@@ -8,6 +8,7 @@
 #include <sys/file.h>
 #include <unistd.h>
 
+#include <cmath>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -182,7 +183,6 @@ TEST(AalBakeTiled, BadTiledBakesExitWithTwoBeforeWork) {
   for (const Case& c : {
            Case{out + " --tile-size 8 --max-distance 100", "--tile-size"},
            Case{out + " --tile-size 20000 --max-distance 100", "--tile-size"},
-           Case{out + " --tile-size 16", "--max-distance"},
            Case{out + " --tile-size 16 --max-distance 100 --method rays", "sweep"},
            Case{out + " --tile-size 16 --max-distance 100 --svf " + quoted(dir.path() / "s.tif"),
                 "--svf"},
@@ -205,7 +205,44 @@ TEST(AalBakeTiled, HelpStatesTheLimit) {
   ASSERT_EQ(r.exitCode, 0);
   EXPECT_NE(r.out.find("16384x16384"), std::string::npos) << r.out;
   EXPECT_NE(r.out.find("--tile-size"), std::string::npos) << r.out;
-  EXPECT_NE(r.out.find("--max-distance is required"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("far field"), std::string::npos) << r.out;
+}
+
+// Without --max-distance a tiled bake takes its far horizons from the
+// pyramid: in memory and in bands of rows (--low-memory, where the pyramid
+// is built in the checksum pass) the same folder bit for bit, close to the
+// single-file bake with unlimited distance, and resumable.
+TEST(AalBakeTiled, WithoutMaxDistanceTheFarFieldCompletesTheHorizons) {
+  TempDir dir;
+  const fs::path dem = writeDem(dir, 150, 120);
+  const std::string options = " --azimuths 16 -q";
+  const fs::path single = dir.path() / "a.exr", memory = dir.path() / "memory",
+                 bands = dir.path() / "bands";
+  ASSERT_EQ(runTool("aal-bake", quoted(dem) + " -o " + quoted(single) + options).exitCode, 0);
+  const auto r =
+      runTool("aal-bake", quoted(dem) + " -o " + quoted(memory) + " --tile-size 16" + options);
+  ASSERT_EQ(r.exitCode, 0) << r.out;
+  const auto b = runTool("aal-bake", quoted(dem) + " -o " + quoted(bands) +
+                                         " --tile-size 16 --low-memory --azimuths 16");
+  ASSERT_EQ(b.exitCode, 0) << b.out;
+  EXPECT_NE(b.out.find("16-texel tiles read in bands (80 baked"), std::string::npos) << b.out;
+  const ApertureMap a = readApertureMap(single.string());
+  const ApertureMap m = readApertureMap(memory.string()), n = readApertureMap(bands.string());
+  EXPECT_EQ(m.texels, n.texels);
+  EXPECT_NE(m.info.method.find("far-field"), std::string::npos) << m.info.method;
+  double visible = 0.0;
+  for (size_t i = 0; i < a.texelCount(); ++i) {
+    visible += std::abs(a.visibleFraction(i) - m.visibleFraction(i));
+  }
+  EXPECT_LE(visible / a.texelCount(), 0.002);
+  // Resumed: a tile removed is baked again, to the same pixels.
+  fs::remove(memory / "index.txt");
+  fs::remove(memory / apertureTileName(3, 4));
+  const auto again =
+      runTool("aal-bake", quoted(dem) + " -o " + quoted(memory) + " --tile-size 16 --azimuths 16");
+  ASSERT_EQ(again.exitCode, 0) << again.out;
+  EXPECT_NE(again.out.find("(1 baked, 79 resumed)"), std::string::npos) << again.out;
+  EXPECT_EQ(readApertureMap(memory.string()).texels, m.texels);
 }
 
 std::vector<float> pixels(const fs::path& path) {

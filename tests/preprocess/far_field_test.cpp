@@ -1,0 +1,359 @@
+// The far field of tiled bakes without a max distance (docs/baking.md, "Far
+// field"): the height pyramid against brute force, the near sweep of a
+// window, and tiled bakes against the whole-DEM bake with unlimited
+// distance, where a high ridge beyond the halo shadows the far tiles.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <atomic>
+#include <cmath>
+#include <filesystem>
+#include <limits>
+#include <numbers>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "../tools/run_tool.h"
+#include "aperture_map.h"
+#include "errors.h"
+#include "far_horizon.h"
+#include "height_pyramid.h"
+#include "horizon_blocks.h"
+#include "horizon_sweep.h"
+#include "synthetic.h"
+#include "tiled_bake.h"
+
+namespace aal {
+namespace {
+
+namespace fs = std::filesystem;
+
+Heightfield fbm(int width, int height, double amplitudeM, uint64_t seed = 5) {
+  SyntheticTerrainOptions s;
+  s.width = width;
+  s.height = height;
+  s.cellSizeM = 30;
+  s.seed = seed;
+  s.amplitudeM = amplitudeM;
+  s.featureSizeTexels = 48;
+  s.octaves = 6;
+  return makeSyntheticTerrain(s);
+}
+
+// Every level's maximum is the largest texel of its block (so never below
+// any texel it covers) and its mean their mean: brute force over the
+// blocks, on a size that leaves partial blocks at both edges.
+TEST(HeightPyramid, MaximaAndMeansOfEveryBlock) {
+  const Heightfield field = fbm(75, 46, 800);
+  for (const int baseShift : {0, 2}) {
+    const HeightPyramid pyramid = buildHeightPyramid(field, baseShift);
+    EXPECT_EQ(pyramid.baseShift(), baseShift);
+    const HeightPyramid::Level& top = pyramid.level(pyramid.coarsestShift());
+    EXPECT_EQ(top.width, 1);
+    EXPECT_EQ(top.height, 1);
+    for (int shift = pyramid.baseShift(); shift <= pyramid.coarsestShift(); ++shift) {
+      const HeightPyramid::Level& level = pyramid.level(shift);
+      const int size = 1 << shift;
+      ASSERT_EQ(level.width, (field.width + size - 1) / size);
+      ASSERT_EQ(level.height, (field.height + size - 1) / size);
+      for (int by = 0; by < level.height; ++by) {
+        for (int bx = 0; bx < level.width; ++bx) {
+          float max = -std::numeric_limits<float>::infinity();
+          double sum = 0.0;
+          int texels = 0;
+          for (int row = by * size; row < std::min(field.height, (by + 1) * size); ++row) {
+            for (int col = bx * size; col < std::min(field.width, (bx + 1) * size); ++col) {
+              max = std::max(max, field.at(col, row));
+              sum += field.at(col, row);
+              ++texels;
+            }
+          }
+          ASSERT_EQ(level.maxAt(bx, by), max) << "shift " << shift << " block " << bx << "," << by;
+          ASSERT_NEAR(level.meanAt(bx, by), sum / texels, 1e-3)
+              << "shift " << shift << " block " << bx << "," << by;
+        }
+      }
+    }
+  }
+}
+
+// Rows handed over in bands of any size build the same pyramid.
+TEST(HeightPyramid, BandsOfRowsBuildTheSamePyramid) {
+  const Heightfield field = fbm(75, 46, 800);
+  const HeightPyramid whole = buildHeightPyramid(field, 1);
+  HeightPyramid bands(field.width, field.height, 1);
+  for (int row = 0; row < field.height;) {
+    const int rows = std::min(field.height - row, 1 + row % 7);
+    EXPECT_FALSE(bands.complete());
+    bands.addRows(field.z.data() + static_cast<size_t>(row) * field.width, rows);
+    row += rows;
+  }
+  ASSERT_TRUE(bands.complete());
+  for (int shift = whole.baseShift(); shift <= whole.coarsestShift(); ++shift) {
+    EXPECT_EQ(bands.level(shift).max, whole.level(shift).max);
+    EXPECT_EQ(bands.level(shift).mean, whole.level(shift).mean);
+  }
+  EXPECT_THROW(bands.addRows(field.z.data(), 1), std::invalid_argument);
+}
+
+// A window's lines walked from windowReachM before it: each texel's horizon
+// covers at least that distance (no lower than the horizon within it) and
+// at most its whole line (no higher than the unlimited one).
+TEST(FarField, WindowReachCoversTheReachAndNoMore) {
+  const Heightfield field = fbm(120, 90, 900);
+  const TexelWindow window{50, 30, 30, 25};
+  const BakeTerrain whole = prepareBakeTerrain(field);
+  const BakeTerrain part = prepareBakeTerrain(field, window);
+  const double reach = 20 * 30.0;
+  for (const bool clampEdge : {false, true}) {
+    HorizonSweepOptions limited, reaching, unlimited;
+    limited.maxDistanceM = reach;
+    reaching.windowReachM = reach;
+    for (HorizonSweepOptions* o : {&limited, &reaching, &unlimited}) o->clampEdge = clampEdge;
+    size_t aboveLimited = 0;
+    for (int a = 0; a < 24; ++a) {
+      const double phi = a * 2 * std::numbers::pi / 24;
+      std::vector<double> near(window.texelCount()), within(window.texelCount()),
+          all(field.texelCount());
+      sweepHorizons(part, phi, reaching, [&](size_t i, double t) { near[i] = t; });
+      sweepHorizons(part, phi, limited, [&](size_t i, double t) { within[i] = t; });
+      sweepHorizons(whole, phi, unlimited, [&](size_t i, double t) { all[i] = t; });
+      for (int row = window.row; row < window.row + window.height; ++row) {
+        for (int col = window.col; col < window.col + window.width; ++col) {
+          const size_t i = part.windowIndex(col, row);
+          ASSERT_GE(near[i], within[i] - 1e-9) << col << "," << row << " azimuth " << a;
+          ASSERT_LE(near[i], all[field.index(col, row)] + 1e-9) << col << "," << row;
+          if (near[i] > within[i] + 1e-6) ++aboveLimited;
+        }
+      }
+    }
+    // The walk reaches past the limit for texels deep in the window.
+    EXPECT_GT(aboveLimited, 0u);
+  }
+}
+
+// The block sweep of a window (sweepWindowHorizonBlocks, what the bake
+// runs) visits every texel of the window once, with the tangents of the
+// general sweep with the same reach (to single precision), on the AVX2 and
+// the scalar path, with and without curvature.
+TEST(FarField, WindowBlocksEqualTheWindowSweep) {
+  const Heightfield field = fbm(130, 95, 900);
+  const TexelWindow window{47, 31, 41, 29};
+  const BakeTerrain part = prepareBakeTerrain(field, window);
+  for (const bool avx2 : {true, false}) {
+    setHorizonAvx2Allowed(avx2);
+    for (const double curvature : {0.0, 1e-6}) {
+      HorizonSweepOptions o;
+      o.windowReachM = 17 * 30.0;
+      o.curvature = curvature;
+      for (int a = 0; a < 24; ++a) {
+        const double phi = a * 2 * std::numbers::pi / 24;
+        std::vector<double> general(window.texelCount());
+        std::vector<float> blocks(window.texelCount(), NAN);
+        std::vector<int> visits(window.texelCount(), 0);
+        sweepHorizons(part, phi, o, [&](size_t i, double t) { general[i] = t; });
+        sweepWindowHorizonBlocks(part, phi, o, [&](const HorizonBlock& b) {
+          for (int j = 0; j < b.count; ++j) {
+            const size_t i = b.firstTexel + j * b.stride;
+            ASSERT_LT(i, blocks.size());
+            blocks[i] = b.tanHorizon[j];
+            ++visits[i];
+          }
+        });
+        for (size_t i = 0; i < general.size(); ++i) {
+          ASSERT_EQ(visits[i], 1) << "texel " << i << " azimuth " << a;
+          if (general[i] <= kNoHorizonTangent) {
+            EXPECT_LE(blocks[i], kNoHorizonTangent) << "texel " << i << " azimuth " << a;
+          } else {
+            EXPECT_NEAR(blocks[i], general[i], 1e-4 * (1 + std::abs(general[i])))
+                << "texel " << i << " azimuth " << a << (avx2 ? " avx2" : " scalar");
+          }
+        }
+      }
+    }
+  }
+  setHorizonAvx2Allowed(true);
+}
+
+// Mean and 99th percentile of |visible fraction difference| and mean
+// bent-normal angle (degrees) of `map` against `reference`, over `window`
+// of the reference (the whole map when empty).
+struct Differences {
+  double visibleMean = 0, visibleP99 = 0, angleMean = 0;
+};
+
+Differences differences(const ApertureMap& reference, const ApertureMap& map,
+                        TexelWindow window = {}) {
+  if (window.width == 0) window = TexelWindow{0, 0, reference.width, reference.height};
+  std::vector<double> visible;
+  double angles = 0.0;
+  for (int row = window.row; row < window.row + window.height; ++row) {
+    for (int col = window.col; col < window.col + window.width; ++col) {
+      const size_t i = static_cast<size_t>(row) * reference.width + col;
+      visible.push_back(std::abs(reference.visibleFraction(i) - map.visibleFraction(i)));
+      const float* a = &reference.texels[4 * i];
+      const float* b = &map.texels[4 * i];
+      const double dot = double(a[0]) * b[0] + double(a[1]) * b[1] + double(a[2]) * b[2];
+      const double lengths =
+          std::sqrt((double(a[0]) * a[0] + double(a[1]) * a[1] + double(a[2]) * a[2]) *
+                    (double(b[0]) * b[0] + double(b[1]) * b[1] + double(b[2]) * b[2]));
+      angles += std::acos(std::clamp(dot / lengths, -1.0, 1.0)) * 180.0 / std::numbers::pi;
+    }
+  }
+  Differences d;
+  for (double v : visible) d.visibleMean += v;
+  d.visibleMean /= visible.size();
+  std::sort(visible.begin(), visible.end());
+  d.visibleP99 = visible[static_cast<size_t>(0.99 * (visible.size() - 1))];
+  d.angleMean = angles / visible.size();
+  return d;
+}
+
+// Low hills at 30 m cells, and a ridge 600 m high (a Gaussian across, 20
+// cells wide, slopes up to ~0.6) along the whole north-south extent 175
+// cells and more east of the western tiles: those lie far beyond the near
+// reach (64 cells), so only the far field sees it.
+Heightfield ridgeField() {
+  Heightfield field = fbm(512, 128, 60);
+  for (int row = 0; row < field.height; ++row) {
+    for (int col = 0; col < field.width; ++col) {
+      const double across = (col - 430.5) / 20.0;
+      field.z[field.index(col, row)] +=
+          static_cast<float>(600.0 * std::exp(-0.5 * across * across));
+    }
+  }
+  return field;
+}
+
+// The default far field's proportions (near reach 8 lattice spacings,
+// blocks 1/16 of their distance) at a smaller scale, on tiles of 64.
+TiledBakeOptions farTiles() {
+  TiledBakeOptions t;
+  t.tileSize = 64;
+  t.halfFloat = false;  // compared with the in-memory bake's floats
+  t.farField.nearReachM = 64 * 30.0;
+  t.farField.spacing = 8;
+  return t;
+}
+
+BakeOptions unlimited(bool curvature = false) {
+  BakeOptions o;
+  o.azimuths = 32;
+  o.curvature = curvature;
+  return o;
+}
+
+// The tiled bake without a max distance against the in-memory bake with
+// unlimited distance: within the issue's targets everywhere and on the
+// western tiles, which the ridge shadows from beyond their halo. Without
+// the far field (the near sweep alone, as a max distance of the reach)
+// those tiles miss the ridge by far more than the targets.
+TEST(FarField, TiledBakeSeesADistantRidgeBeyondTheHalo) {
+  test::TempDir dir;
+  const Heightfield field = ridgeField();
+  // Open edges flat and curved (the block sweep), clamped edges curved
+  // (the general sweep and the far field's plateau beyond the edge).
+  for (const auto& [curvature, clampEdge] :
+       {std::pair{false, false}, std::pair{true, false}, std::pair{true, true}}) {
+    BakeOptions o = unlimited(curvature);
+    o.clampEdge = clampEdge;
+    const ApertureMap reference = bakeApertures(field, o).aperture;
+    const std::string folder =
+        (dir.path() / ((curvature ? "curved" : "flat") + std::string(clampEdge ? "-clamp" : "")))
+            .string();
+    const TiledBakeSummary summary = bakeTiled(field, o, farTiles(), folder);
+    EXPECT_EQ(summary.baked, 8 * 2);
+    const ApertureMap tiled = readApertureMap(folder);
+    const TexelWindow west{0, 0, 256, field.height};
+    for (const TexelWindow& window : {TexelWindow{}, west}) {
+      const Differences d = differences(reference, tiled, window);
+      SCOPED_TRACE(::testing::Message()
+                   << "curvature " << curvature << ", window width " << window.width << ": mean "
+                   << d.visibleMean << ", p99 " << d.visibleP99 << ", angle " << d.angleMean);
+      EXPECT_LE(d.visibleMean, 0.002);
+      EXPECT_LE(d.visibleP99, 0.01);
+      EXPECT_LE(d.angleMean, 0.2);
+    }
+    // The near sweep alone misses the ridge in the west by more than twice
+    // the targets.
+    BakeOptions nearOnly = o;
+    nearOnly.maxDistanceM = farTiles().farField.nearReachM;
+    const ApertureMap near = bakeApertures(field, nearOnly).aperture;
+    const Differences missed = differences(reference, near, west);
+    EXPECT_GT(missed.visibleMean, 2 * 0.002);
+    EXPECT_GT(missed.angleMean, 2 * 0.2);
+  }
+}
+
+// Block maxima never put the far horizon below the terrain's: with the
+// lattice's largest-of-corners blend the far-field bake sees no more sky
+// than the in-memory one anywhere but within float noise.
+TEST(FarField, MaximaNeverSeeMoreSkyThanTheTerrainAllows) {
+  test::TempDir dir;
+  const Heightfield field = ridgeField();
+  const BakeOptions o = unlimited();
+  const ApertureMap reference = bakeApertures(field, o).aperture;
+  TiledBakeOptions t = farTiles();
+  t.farField.maxOfCorners = true;
+  bakeTiled(field, o, t, (dir.path() / "tiles").string());
+  const ApertureMap tiled = readApertureMap((dir.path() / "tiles").string());
+  size_t moreSky = 0;
+  for (size_t i = 0; i < reference.texelCount(); ++i) {
+    if (tiled.visibleFraction(i) > reference.visibleFraction(i) + 2e-4) ++moreSky;
+  }
+  EXPECT_EQ(moreSky, 0u);
+}
+
+// The far-field bake records its method; a folder of a bake with a max
+// distance (every tiled bake before the far field) is another bake's.
+TEST(FarField, FoldersRecordTheFarFieldAndRefuseOtherBakes) {
+  test::TempDir dir;
+  const Heightfield field = fbm(64, 48, 300);
+  TiledBakeOptions t = farTiles();
+  const std::string folder = (dir.path() / "tiles").string();
+  bakeTiled(field, unlimited(), t, folder);
+  const ApertureTileIndex index = readApertureTileIndex(folder);
+  EXPECT_EQ(index.map.info.method, farFieldMethod(t.farField));
+  EXPECT_EQ(index.map.info.maxDistanceM, 0.0);
+  EXPECT_NE(index.map.info.method.find("far-field(max, reach 1920 m, lattice 8, blocks 1/16)"),
+            std::string::npos)
+      << index.map.info.method;
+  // Other far-field options or a max distance: another bake.
+  t.farField.spacing = 4;
+  EXPECT_THROW(bakeTiled(field, unlimited(), t, folder), InputError);
+  BakeOptions limited = unlimited();
+  limited.maxDistanceM = 300;
+  EXPECT_THROW(bakeTiled(field, limited, farTiles(), folder), InputError);
+  const std::string old = (dir.path() / "old").string();
+  bakeTiled(field, limited, farTiles(), old);
+  EXPECT_THROW(bakeTiled(field, unlimited(), farTiles(), old), InputError);
+}
+
+// Interrupted past half way and run again, a far-field bake keeps its
+// finished tiles and ends equal, bit for bit, to one uninterrupted bake.
+TEST(FarField, InterruptedBakeResumes) {
+  test::TempDir dir;
+  const Heightfield field = ridgeField();
+  BakeOptions o = unlimited();
+  const std::string reference = (dir.path() / "reference").string();
+  bakeTiled(field, o, farTiles(), reference);
+  const std::string folder = (dir.path() / "tiles").string();
+  std::atomic<bool> cancel{false};
+  o.cancel = &cancel;
+  o.progress = [&](double fraction) {
+    if (fraction > 0.5) cancel = true;
+  };
+  EXPECT_THROW(bakeTiled(field, o, farTiles(), folder), BakeCancelled);
+  EXPECT_FALSE(fs::exists(fs::path(folder) / "index.txt"));
+  cancel = false;
+  o.progress = nullptr;
+  const TiledBakeSummary summary = bakeTiled(field, o, farTiles(), folder);
+  EXPECT_EQ(summary.tiles, 16);
+  EXPECT_GE(summary.resumed, 8);
+  EXPECT_EQ(summary.baked + summary.resumed, 16);
+  EXPECT_EQ(readApertureMap(folder).texels, readApertureMap(reference).texels);
+}
+
+}  // namespace
+}  // namespace aal
