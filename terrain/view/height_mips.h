@@ -3,7 +3,7 @@
 // texels, each the mean of its block, with the DEM's edge texels repeated
 // beyond the edge (what a tile's clamped border holds); a fetch is bilinear
 // between the level's texel centres, as the GPU's linear sampler reads it.
-// The quadtree LOD (terrain/quadtree_lod.h) measures the geometric error of
+// The quadtree LOD (terrain/view/quadtree_lod.h) measures the geometric error of
 // its levels with these heights, so the error is the one of the surface the
 // vertex shader draws.
 #pragma once

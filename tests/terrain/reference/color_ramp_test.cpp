@@ -1,4 +1,4 @@
-// gdaldem color-relief ramp files and the built-in palettes (terrain/color_ramp.h).
+// gdaldem color-relief ramp files and the built-in palettes (terrain/reference/color_ramp.h).
 #include <gtest/gtest.h>
 
 #include <sstream>

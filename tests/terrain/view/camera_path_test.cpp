@@ -1,4 +1,4 @@
-// Camera path files for scripted viewer runs (terrain/camera_path.h).
+// Camera path files for scripted viewer runs (terrain/view/camera_path.h).
 #include <gtest/gtest.h>
 
 #include "camera_path.h"

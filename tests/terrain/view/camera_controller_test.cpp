@@ -1,4 +1,4 @@
-// The viewer's camera as pure math (terrain/camera_controller.h): ground
+// The viewer's camera as pure math (terrain/view/camera_controller.h): ground
 // collision, speed scaling, framing, orbit mode. No window.
 #include <gtest/gtest.h>
 

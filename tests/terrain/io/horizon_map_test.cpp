@@ -1,5 +1,5 @@
-// Directional horizons (terrain/horizon_map.h) and the horizon shading mode's
-// sun term (terrain/shading.h).
+// Directional horizons (terrain/io/horizon_map.h) and the horizon shading mode's
+// sun term (terrain/light/shading.h).
 #include <gtest/gtest.h>
 
 #include <cmath>

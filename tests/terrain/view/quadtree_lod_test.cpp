@@ -1,4 +1,4 @@
-// The quadtree LOD on the CPU (terrain/quadtree_lod.h, terrain/lod_patch.h):
+// The quadtree LOD on the CPU (terrain/view/quadtree_lod.h, terrain/view/lod_patch.h):
 // the patch mesh, the morph, the selection's coverage, budget and culling,
 // and that the morphed patches meet without cracks and move without popping
 // (the vertex shader's computation emulated with the C++ twins).

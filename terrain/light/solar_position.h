@@ -8,7 +8,7 @@
 // equation of time of ch. 28 (Smart's formula, eq. 28.3) and the refraction
 // correction of the NOAA spreadsheet (Saemundsson-like fit above 5°, polynomial
 // near the horizon). Stated accuracy about 0.02° for years 1800-2100 (measured
-// in tests/terrain/solar_position_test.cpp against Meeus example 25.a and the
+// in tests/terrain/light/solar_position_test.cpp against Meeus example 25.a and the
 // NREL SPA reference case of Reda & Andreas 2004).
 //
 // Conventions, as docs/design.md §1 and gdaldem: azimuth in degrees clockwise

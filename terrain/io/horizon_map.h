@@ -2,7 +2,7 @@
 // (or 4, 12, 16) azimuths, 8 bits each, beside the aperture map. The sun
 // is tiny, so whether a texel sees it depends on the horizon in the sun's
 // azimuth, which one aperture cap summarises poorly at a low sun
-// (docs/comparison.md); the `horizon` shading mode (terrain/shading.h) takes
+// (docs/comparison.md); the `horizon` shading mode (terrain/light/shading.h) takes
 // the sun's visible fraction from these horizons and the sky fill from the
 // aperture. Format and encoding: docs/baking.md, "Directional horizons".
 #pragma once

@@ -1,4 +1,4 @@
-// The aperture map's pixel checksum (terrain/pixel_checksum.h): XXH64 as
+// The aperture map's pixel checksum (terrain/io/pixel_checksum.h): XXH64 as
 // published, summed over rows in any order.
 #include "pixel_checksum.h"
 

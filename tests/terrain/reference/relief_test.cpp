@@ -1,4 +1,4 @@
-// The shaded relief (terrain/relief.h) against closed forms on planes.
+// The shaded relief (terrain/reference/relief.h) against closed forms on planes.
 #include <gtest/gtest.h>
 
 #include <cmath>

@@ -2,7 +2,7 @@
 // scattering of sunlight by air (Rayleigh) and aerosol (Mie) along view rays
 // in a spherical atmosphere of exponential density, after Nishita, Sirai,
 // Tadamura & Nakamae 1993, "Display of the Earth Taking into Account
-// Atmospheric Scattering" (SIGGRAPH 93). Used by tests/terrain/sky_model_test.cpp
+// Atmospheric Scattering" (SIGGRAPH 93). Used by tests/terrain/light/sky_model_test.cpp
 // to see what colour the sky near the horizon has under a midday sun
 // (docs/sun-and-sky.md, "Sky colour near the horizon").
 //
@@ -10,10 +10,10 @@
 //   L(v) = integral over the view ray of
 //          E_sun T(p -> sun) [b_R(h) P_R(mu) + w b_A(h) P_A(mu)] T(eye -> p) ds
 // - air: vertical optical depth tau_R = 0.008735 lambda^-4.08 (lambda in um;
-//   Leckner 1978, as terrain/atmosphere.h), scale height 8 km, phase
+//   Leckner 1978, as terrain/light/atmosphere.h), scale height 8 km, phase
 //   3/(16 pi) (1 + mu²);
 // - aerosol: tau_A = beta lambda^-1.3 with Preetham's beta(T) = 0.04608 T -
-//   0.04586 (as terrain/atmosphere.h), scale height 1.2 km, single-scattering
+//   0.04586 (as terrain/light/atmosphere.h), scale height 1.2 km, single-scattering
 //   albedo 0.9, the phase function of Cornette & Shanks 1992, "Physically
 //   reasonable analytic expression for the single-scattering phase
 //   function" (Applied Optics 31(16)), with g = 0.76;

@@ -1,5 +1,5 @@
-// The exact cap intersection read from a table (terrain/cap_table.h) follows
-// the closed form (terrain/caps.h) to 1e-3 of the smaller cap's area.
+// The exact cap intersection read from a table (terrain/light/cap_table.h) follows
+// the closed form (terrain/light/caps.h) to 1e-3 of the smaller cap's area.
 #include <gtest/gtest.h>
 
 #include <algorithm>

@@ -1,4 +1,4 @@
-// Outputs through a temporary file renamed into place (terrain/atomic_file.h),
+// Outputs through a temporary file renamed into place (terrain/io/atomic_file.h),
 // and the sweep of temporaries that killed runs left behind (issue 17, item
 // 9: a killed render's 11.8 MB cache temporary stayed forever).
 #include <gtest/gtest.h>

@@ -1,5 +1,5 @@
-// The geometric error of the quadtree LOD (terrain/quadtree_lod.h) and the
-// prefiltered heights it is measured on (terrain/height_mips.h), against
+// The geometric error of the quadtree LOD (terrain/view/quadtree_lod.h) and the
+// prefiltered heights it is measured on (terrain/view/height_mips.h), against
 // brute force: block means of the DEM, and every DEM texel held against the
 // triangles a node's patch draws.
 #include <gtest/gtest.h>

@@ -1,4 +1,4 @@
-// Exposure, Hable's filmic curve and sRGB encoding (terrain/tone_map.h).
+// Exposure, Hable's filmic curve and sRGB encoding (terrain/light/tone_map.h).
 #include <gtest/gtest.h>
 
 #include <cmath>

@@ -1,5 +1,5 @@
-// Containment-test obscurances and W on the CPU (terrain/obscurance.h) and
-// their sample set (terrain/obscurance_samples.h), against brute force.
+// Containment-test obscurances and W on the CPU (terrain/light/obscurance.h) and
+// their sample set (terrain/light/obscurance_samples.h), against brute force.
 #include "obscurance.h"
 
 #include <gtest/gtest.h>

@@ -1,4 +1,4 @@
-// Albedo images (terrain/albedo_image): decoding, channels, resampling, errors.
+// Albedo images (terrain/io/albedo_image): decoding, channels, resampling, errors.
 #include "albedo_image.h"
 
 #include <gtest/gtest.h>
@@ -10,7 +10,7 @@
 #include <string>
 #include <vector>
 
-#include "../tools/run_tool.h"
+#include "../../tools/run_tool.h"
 #include "errors.h"
 
 namespace aal {

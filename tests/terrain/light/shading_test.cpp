@@ -90,7 +90,7 @@ TEST(Shading, BaselinesIgnoreTheAperture) {
 
 // Closed forms of the sky and sun terms (issue 17), by quadrature over the
 // sphere here rather than by the shading code's helpers: the same error in
-// terrain/shading.cpp and shaders/shading.glsl passes their parity test, and
+// terrain/light/shading.cpp and shaders/shading.glsl passes their parity test, and
 // at r = pi/2 with N = B the sky term cannot tell sin^2 r from sin r.
 
 // A unit vector at polar angle theta and azimuth phi about `axis`.

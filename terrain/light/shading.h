@@ -2,7 +2,7 @@
 // twin is shaders/shading.glsl (checked for parity on the device by the tests).
 //
 // Radiometry: albedo a in [0, 1]; irradiances E (sun at normal incidence)
-// and radiances L (sky) in one linear RGB unit (terrain/atmosphere.h); the
+// and radiances L (sky) in one linear RGB unit (terrain/light/atmosphere.h); the
 // result is outgoing radiance a/pi * E in that unit.
 #pragma once
 
@@ -30,7 +30,7 @@ enum class ShadingMode : int {
   DebugObscurance = AAL_MODE_DEBUG_OBSCURANCE,
   DebugTransfer = AAL_MODE_DEBUG_TRANSFER,
   // The sun's visible fraction from the directional horizon at its azimuth
-  // (ShadingInputs::sunHorizonRad, terrain/horizon_map.h), the sky fill from
+  // (ShadingInputs::sunHorizonRad, terrain/io/horizon_map.h), the sky fill from
   // the aperture as in Approx.
   Horizon = AAL_MODE_HORIZON,
 };
@@ -68,9 +68,9 @@ struct CapIntersectionTable;
 float horizonSunFraction(float sunElevationRad, float horizonRad, float sunRadiusRad);
 
 // The terms of docs/design.md §5 for the AAL modes (approx/exact) and the baselines.
-// Exact mode evaluates the closed form (capIntersectionExact, terrain/caps.h)
+// Exact mode evaluates the closed form (capIntersectionExact, terrain/light/caps.h)
 // or, given `exactTable` (made for in.sunRadiusRad), reads it from the table
-// as the renderer's shaders do (terrain/cap_table.h).
+// as the renderer's shaders do (terrain/light/cap_table.h).
 ShadingTerms shadingTerms(const ShadingInputs& in, ShadingMode mode,
                           const CapIntersectionTable* exactTable = nullptr);
 

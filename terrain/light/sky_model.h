@@ -54,7 +54,7 @@
 // Midday colour-temperature floor: under a sun 45° or more up the Perez x fit
 // still warms the last few degrees above the horizon towards the sun (sun 60°
 // up, 3° above the horizon: x = 0.318, CCT ~6200 K, R > G > B). A spectral
-// single-scattering reference (tests/terrain/single_scattering_sky.h, after
+// single-scattering reference (tests/terrain/light/single_scattering_sky.h, after
 // Nishita et al. 1993) puts that band between ~5800 K (Preetham's aerosol at
 // T = 2.5) and ~8300 K (no aerosol): near white either way, its sign of
 // B - R set by the haze. The renderer takes the clear end: by day the sky's

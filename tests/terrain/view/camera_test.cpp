@@ -1,4 +1,4 @@
-// The default camera (terrain/camera.h, framingCamera): the DEM's bounding
+// The default camera (terrain/view/camera.h, framingCamera): the DEM's bounding
 // box fitted to the view frustum from the default viewing direction.
 #include <gtest/gtest.h>
 

@@ -1,4 +1,4 @@
-// Sunlight through the atmosphere (terrain/atmosphere.h): air mass, optical
+// Sunlight through the atmosphere (terrain/light/atmosphere.h): air mass, optical
 // depths, the colour and strength of the direct beam, and its fade at sunset.
 #include <gtest/gtest.h>
 

@@ -1,4 +1,4 @@
-// The image plugin (terrain/image_files.h, oiio_image_plugin.cpp) does what
+// The image plugin (terrain/io/image_files.h, oiio_image_plugin.cpp) does what
 // the code that called OpenImageIO directly did, to the bit; it is found
 // next to the executable or where AAL_IMAGE_PLUGIN says, and a plugin that
 // does not load is an error naming it.
@@ -18,7 +18,7 @@
 #include <string>
 #include <vector>
 
-#include "../tools/run_tool.h"
+#include "../../tools/run_tool.h"
 #include "image_plugin.h"
 
 namespace aal {

@@ -1,4 +1,4 @@
-// NOAA solar position (terrain/solar_position.h) against published values:
+// NOAA solar position (terrain/light/solar_position.h) against published values:
 // Meeus's worked examples, the NREL SPA reference case, almanac sunrise times
 // and the equation of time, plus conventions and ISO 8601 parsing.
 #include <gtest/gtest.h>

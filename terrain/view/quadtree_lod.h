@@ -2,7 +2,7 @@
 // "Continuous Distance-Dependent Level of Detail for Rendering Heightmaps",
 // JGT 14(4); docs/rendering.md). The DEM is covered by a quadtree whose leaves
 // (level 0) span kLodPatchQuads DEM cells; a node of level l spans
-// kLodPatchQuads * 2^l cells and is drawn as one patch (terrain/lod_patch.h)
+// kLodPatchQuads * 2^l cells and is drawn as one patch (terrain/view/lod_patch.h)
 // with quads 2^l cells wide. Every frame the CPU selects nodes by their
 // distance to the camera — level l within range_l of it — and culls the ones
 // outside the view frustum; the vertex shader morphs each patch onto the
@@ -71,7 +71,7 @@ class LodQuadtree {
  public:
   // Throws std::invalid_argument for DEMs under 2 x 2 texels. The errors are
   // those of the surface the vertex shader draws from the prefiltered heights
-  // (terrain/height_mips.h): a bound on the height difference between a
+  // (terrain/view/height_mips.h): a bound on the height difference between a
   // node's unmorphed patch and the DEM's triangulated surface.
   explicit LodQuadtree(const Heightfield& field);
   // The same for a DEM known only by its size, cell size and the height

@@ -2,7 +2,7 @@
 // the sun's radius is fixed within a frame, so the area is a function of two
 // variables, the aperture's arc length r_a and the angle d between the bent
 // normal and the sun. `exact` shading fetches it (shaders/cap_table.glsl, one
-// bilinear fetch) instead of evaluating capIntersectionExact (terrain/caps.h,
+// bilinear fetch) instead of evaluating capIntersectionExact (terrain/light/caps.h,
 // which stays the reference). Layout and accuracy: docs/caps.md.
 //
 // Parametrisation (r_s the sun's radius, m = min(r_a, r_s)):

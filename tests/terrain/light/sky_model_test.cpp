@@ -1,4 +1,4 @@
-// Preetham clear sky (terrain/sky_model.h): the paper's zenith values, the
+// Preetham clear sky (terrain/light/sky_model.h): the paper's zenith values, the
 // shape of the distribution, the twilight rule, the hemisphere averages and
 // the photometric scale against the sun.
 #include <gtest/gtest.h>
@@ -85,7 +85,7 @@ glm::vec3 displayedSky(const PreethamSky& sky, const glm::vec3& view, double sun
 // Preetham's y there is 0.317, below the daylight locus (0.326); and under a
 // 60-65° sun the Perez x fit made the same band warm white (x = 0.318, CCT
 // ~6200 K). With the daylight locus lift and the midday CCT floor (6800 K,
-// full from 45° up; terrain/sky_model.h) a midday sky reads blue above the
+// full from 45° up; terrain/light/sky_model.h) a midday sky reads blue above the
 // horizon: after the tone map, in 8 bits, B > G > R with at least one step
 // between blue and red, for the sun 45° to 90° up (jacksboro's summer noon is
 // 76.85°), views 3°..85° up all around.
@@ -122,7 +122,7 @@ glm::dvec2 chromaticityOf(const glm::vec3& c) {
 }
 
 // The colour near the horizon under a high sun, against the spectral
-// single-scattering reference (tests/terrain/single_scattering_sky.h): the
+// single-scattering reference (tests/terrain/light/single_scattering_sky.h): the
 // reference puts it between Preetham's aerosol load (T = 2.5; warm white,
 // ~5850 K 3° up towards a 60° sun) and air alone (~8270 K); the model, with
 // its midday floor, lies in that range (measured: 6800 K there).

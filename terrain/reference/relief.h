@@ -1,8 +1,8 @@
 // Top-down shaded relief of a DEM (aal-relief, docs/relief.md): one value
 // per output pixel in [0, 1], lit by the same terms as the renderer
-// (terrain/shading.h, docs/rendering.md): the sun through the aperture's cap
+// (terrain/light/shading.h, docs/rendering.md): the sun through the aperture's cap
 // intersection and the sky fill, with the ambient transfer W of the
-// containment-test obscurances (terrain/obscurance.h). CPU only; rows in
+// containment-test obscurances (terrain/light/obscurance.h). CPU only; rows in
 // parallel (oneTBB).
 //
 // Units: with irradiances normalised so that a surface facing an unoccluded
