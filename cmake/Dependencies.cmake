@@ -58,7 +58,7 @@ pkg_check_modules(IMGUI QUIET IMPORTED_TARGET imgui)
 if(NOT IMGUI_FOUND)
   aal_missing("Dear ImGui (pkg-config imgui)" "libimgui-dev libstb-dev")
 endif()
-# XXH64 for the aperture maps' pixel checksum (terrain/pixel_checksum.h).
+# XXH64 for the aperture maps' pixel checksum (terrain/io/pixel_checksum.h).
 pkg_check_modules(XXHASH QUIET IMPORTED_TARGET libxxhash)
 if(NOT XXHASH_FOUND)
   aal_missing("xxHash (pkg-config libxxhash)" libxxhash-dev)

@@ -25,7 +25,7 @@ struct FrameUniforms {
   glm::vec3 cameraPos{0.0f};
   float pixelAngle = 0;
 
-  // The lighting (terrain/lighting.h).
+  // The lighting (terrain/light/lighting.h).
   glm::vec3 sunDirection{0.0f};
   float sunRadiusRad = 0;
   glm::vec3 sunIrradiance{0.0f};

@@ -31,13 +31,13 @@ class TerrainScene;
 struct FrameSettings {
   Camera camera;
   ShadingMode mode = ShadingMode::Approx;
-  // Sun, sky, haze and exposure (terrain/lighting.h).
+  // Sun, sky, haze and exposure (terrain/light/lighting.h).
   Lighting lighting;
   // Paint heights at or below this level (m) as water; none unless the user
   // asks (--water-level): a plain at 0 m is not a lake.
   std::optional<float> waterLevelM;
   // Containment-test obscurances and W (docs/design.md §6,
-  // terrain/obscurance.h): W multiplies the sky fill of the approx/exact modes;
+  // terrain/light/obscurance.h): W multiplies the sky fill of the approx/exact modes;
   // the debug-obscurance and debug-transfer modes show O and W. The renderer
   // takes the settings as given (tools validate them with
   // checkObscuranceSettings); radiusM 0 means defaultObscuranceRadiusM of the
@@ -45,7 +45,7 @@ struct FrameSettings {
   ObscuranceSettings obscurance;
   // A constant albedo for every texel, instead of the scene's image or palette.
   std::optional<glm::vec3> albedoValue;
-  // The terrain's quadtree LOD (terrain/quadtree_lod.h); the triangle budget
+  // The terrain's quadtree LOD (terrain/view/quadtree_lod.h); the triangle budget
   // is the scene's.
   LodSettings lod;
   // Pixels without terrain (the sky, or the debug views' black) get alpha 0
@@ -141,7 +141,7 @@ class TerrainRenderer {
   // this frame writes.
   void prepareHistory(VkCommandBuffer cmd);
   // Makes the exact mode's cap table for the frame's sun radius when it
-  // changed (on the host, terrain/cap_table.h) and records its upload.
+  // changed (on the host, terrain/light/cap_table.h) and records its upload.
   void updateCapTable(VkCommandBuffer cmd, const FrameSettings& settings);
   // AAL_ALBEDO_* of the frame.
   static int albedoSourceOf(const TerrainScene& scene, const FrameSettings& s);

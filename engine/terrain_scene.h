@@ -1,5 +1,5 @@
 // The GPU side of one DEM: height, aperture and albedo textures, the quadtree
-// LOD (terrain/quadtree_lod.h) and its patch mesh. DEMs beyond one image of
+// LOD (terrain/view/quadtree_lod.h) and its patch mesh. DEMs beyond one image of
 // the device (or a forced tile size) are split into tiles with borders
 // (engine/terrain_tiles.h); every tile stays resident (docs/rendering.md).
 #pragma once
@@ -66,7 +66,7 @@ class TerrainScene {
   // Device memory of the textures (bytes).
   uint64_t textureBytes() const { return textureBytes_; }
   bool hasAlbedo() const { return hasAlbedo_; }
-  // Directional horizons for the horizon mode (terrain/horizon_map.h): a 2D
+  // Directional horizons for the horizon mode (terrain/io/horizon_map.h): a 2D
   // array image the DEM's size, RGBA8 codes of directions 4l..4l+3 in layer
   // l, no mip levels (1 B per direction and texel). Scenes of one tile only
   // for now; throws std::invalid_argument for a tiled scene or a map of

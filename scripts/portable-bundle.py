@@ -6,7 +6,7 @@ packages (docs/performance.md, "On a GPU").
 Usage: scripts/portable-bundle.py OUT_DIR BINARY...
 
 Copies the binaries, the image plugin beside them (aal_oiio_images.so, which
-the tools open to read and write images: terrain/image_files.h), the compiled
+the tools open to read and write images: terrain/io/image_files.h), the compiled
 shaders and every library they load into OUT_DIR (binaries, the plugin and
 shaders/ at the top, libraries in lib/), except the C runtime (libc, libm,
 libstdc++, libgcc_s, the loader: the target's newer ones serve, and its GPU

@@ -1,5 +1,5 @@
 // The exact cap intersection against the sun read from a table: twin of
-// capIntersectionFromTable in terrain/cap_table.h (see there and
+// capIntersectionFromTable in terrain/light/cap_table.h (see there and
 // docs/caps.md for the parametrisation). The table is made for one sun
 // radius (the renderer's, when it changes); lightRadiusRad must be that one.
 #ifndef AAL_CAP_TABLE_GLSL

@@ -1,4 +1,4 @@
-// Spherical caps in GLSL: twins of terrain/caps.h (see there for the contract).
+// Spherical caps in GLSL: twins of terrain/light/caps.h (see there for the contract).
 // Radii and distances are arc lengths in radians; areas in steradians.
 #ifndef AAL_CAPS_GLSL
 #define AAL_CAPS_GLSL
@@ -22,7 +22,7 @@ float capIntersectionExact(float r0Rad, float r1Rad, float dRad) {
   if (d <= abs(r0 - r1)) return capArea(min(r0, r1));
   if (r0 + r1 + d >= 2.0 * pi) return capArea(r0) - capArea(pi - r1);  // A0 + A1 - 4 pi
 
-  // Sectors minus triangles, as terrain/caps.cpp explains.
+  // Sectors minus triangles, as terrain/light/caps.cpp explains.
   float s = 0.5 * (r0 + r1 + d);
   float sinS = sin(s), sinS0 = sin(s - r0), sinS1 = sin(s - r1), sinSd = sin(s - d);
   float a0 = 2.0 * atan(sqrt(sinS0 * sinSd), sqrt(sinS * sinS1));
@@ -47,7 +47,7 @@ float capIntersectionApprox(float r0Rad, float r1Rad, float dRad) {
 }
 
 // Centroid of the visible part of the light's cap: twin of
-// visibleLightCentroid in terrain/caps.h (see there).
+// visibleLightCentroid in terrain/light/caps.h (see there).
 vec3 visibleLightCentroid(vec3 bentNormal, vec3 lightDir, float dRad, float lightRadiusRad,
                           float visibleFraction) {
   float shift = min(dRad, (1.0 - clamp(visibleFraction, 0.0, 1.0)) * lightRadiusRad);

@@ -9,7 +9,7 @@
 // Workgroup size of the cap parity compute shader.
 #define AAL_CAPS_PARITY_GROUP_SIZE 64
 
-// Shading modes (terrain/shading.h ShadingMode, shaders/shading.glsl).
+// Shading modes (terrain/light/shading.h ShadingMode, shaders/shading.glsl).
 #define AAL_MODE_APPROX 0
 #define AAL_MODE_EXACT 1
 #define AAL_MODE_BASELINE_LAMBERT 2
@@ -21,7 +21,7 @@
 #define AAL_MODE_DEBUG_OBSCURANCE 8
 #define AAL_MODE_DEBUG_TRANSFER 9
 // The sun through the directional horizons, the sky through the aperture
-// (terrain/horizon_map.h; issue 18).
+// (terrain/io/horizon_map.h; issue 18).
 #define AAL_MODE_HORIZON 10
 
 // Specialisation constant IDs of the pipelines that shade (shaders/variant.glsl):
@@ -31,7 +31,7 @@
 #define AAL_SPEC_ALBEDO_SOURCE 1
 #define AAL_SPEC_DISPLAY_OUTPUT 2
 
-// The exact cap intersection against the sun as a table (terrain/cap_table.h,
+// The exact cap intersection against the sun as a table (terrain/light/cap_table.h,
 // shaders/cap_table.glsl, docs/caps.md): texels across the transition band
 // (t = 0: nested .. 1: disjoint) and rows of aperture arc length (graded
 // towards the aperture as large as the sun; (rows - 1) even puts that
@@ -42,11 +42,11 @@
 // Workgroup size of the shading parity compute shader.
 #define AAL_SHADING_PARITY_GROUP_SIZE 64
 
-// Containment-test obscurances (terrain/obscurance.h, shaders/obscurance.glsl).
+// Containment-test obscurances (terrain/light/obscurance.h, shaders/obscurance.glsl).
 // Largest sample count n (the sample uniform buffer holds this many).
 #define AAL_OBSCURANCE_MAX_SAMPLES 32
 // Sample sets, one per cell of the 4x4 interleave pattern
-// (kObscuranceSampleSets, terrain/obscurance_samples.h).
+// (kObscuranceSampleSets, terrain/light/obscurance_samples.h).
 #define AAL_OBSCURANCE_SAMPLE_SETS 16
 // The 4x4 filter skips neighbours whose view distance differs from the
 // centre's by more than this fraction of it (Umenhoffer et al., "Efficient
@@ -63,7 +63,7 @@
 // Workgroup size of the obscurance parity compute shader.
 #define AAL_OBSCURANCE_PARITY_GROUP_SIZE 64
 
-// Quadtree LOD (terrain/quadtree_lod.h, terrain/lod_patch.h, shaders/lod.glsl):
+// Quadtree LOD (terrain/view/quadtree_lod.h, terrain/view/lod_patch.h, shaders/lod.glsl):
 // quads across one patch (even, so that its quadrants and the morph's odd and
 // even grid points line up with the next coarser level).
 #define AAL_LOD_PATCH_QUADS 32
@@ -94,7 +94,7 @@
 // Workgroup size of the tile lookup parity compute shader.
 #define AAL_TILE_PARITY_GROUP_SIZE 64
 
-// Sun and sky (terrain/sky_model.h, terrain/tone_map.h, shaders/sky.glsl,
+// Sun and sky (terrain/light/sky_model.h, terrain/light/tone_map.h, shaders/sky.glsl,
 // shaders/tone_map.glsl).
 // Floor on cos(view zenith angle) in the Perez function: views at and below
 // the horizon see the horizon's value.
@@ -107,7 +107,7 @@
 #define AAL_XYZ_TO_LINEAR_SRGB_ROW2 0.0556434, -0.2040259, 1.0572252
 // CIE daylight locus y_D(x) = A x^2 + B x + C (CIE 15:2004, "Colorimetry",
 // eq. 3.3; Judd, MacAdam & Wyszecki 1964). The sky's chromaticity is kept on
-// or above it (terrain/sky_model.h, docs/sun-and-sky.md).
+// or above it (terrain/light/sky_model.h, docs/sun-and-sky.md).
 #define AAL_DAYLIGHT_LOCUS_A -3.000
 #define AAL_DAYLIGHT_LOCUS_B 2.870
 #define AAL_DAYLIGHT_LOCUS_C -0.275

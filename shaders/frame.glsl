@@ -19,13 +19,13 @@ layout(set = 0, binding = 0, std140) uniform Frame {
   vec3 cameraPos;         // 192 metres
   float pixelAngle;       // 204 2 tan(fov / 2) / extent.y: a pixel's size per metre away
 
-  // The lighting (terrain/lighting.h).
+  // The lighting (terrain/light/lighting.h).
   vec3 sunDirection;      // 208 unit vector to the sun
   float sunRadiusRad;     // 220 the sun's angular radius
   vec3 sunIrradiance;     // 224 rgb E_sun at normal incidence
   float hazeDensityPerM;  // 236 aerial perspective extinction (1/m)
   vec3 skyRadiance;       // 240 rgb average sky radiance L_sky
-  float exposure;         // 252 terrain/tone_map.h
+  float exposure;         // 252 terrain/light/tone_map.h
 
   // The DEM and its surface.
   vec2 demSize;           // 256 width, height (texels)

@@ -1,4 +1,4 @@
-// Directional horizons (terrain/horizon_map.h, docs/baking.md): twins of
+// Directional horizons (terrain/io/horizon_map.h, docs/baking.md): twins of
 // decodeHorizon and horizonAtAzimuth. The codes arrive as unorm values
 // (code / 255), possibly filtered between texels.
 #ifndef AAL_HORIZON_GLSL
@@ -6,7 +6,7 @@
 
 #include "config.h"
 
-// kHorizonMinRad, kHorizonMaxRad of terrain/horizon_map.h.
+// kHorizonMinRad, kHorizonMaxRad of terrain/io/horizon_map.h.
 const float kHorizonMinRad = -0.034906585;
 const float kHorizonMaxRad = 1.5707963;
 

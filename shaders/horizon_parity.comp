@@ -1,6 +1,6 @@
 #version 460
 // horizonAtAzimuth of horizon.glsl for a list of inputs, so the tests can
-// compare it with terrain/horizon_map.h (tests/engine/shading_parity_test.cpp).
+// compare it with terrain/io/horizon_map.h (tests/engine/shading_parity_test.cpp).
 #extension GL_GOOGLE_include_directive : require
 
 #include "horizon.glsl"

@@ -1,13 +1,13 @@
 // Quadtree LOD patches (CDLOD, Strugar 2009, JGT 14(4)): where a patch
 // vertex sits and how it morphs onto the next coarser level's grid. The C++
-// twins are in terrain/lod_patch.h; tests/engine/lod_parity_test.cpp runs
+// twins are in terrain/view/lod_patch.h; tests/engine/lod_parity_test.cpp runs
 // both.
 #ifndef AAL_LOD_GLSL
 #define AAL_LOD_GLSL
 
 #include "config.h"
 
-// One drawn patch (terrain/lod_patch.h LodPatch, std430).
+// One drawn patch (terrain/view/lod_patch.h LodPatch, std430).
 struct LodPatch {
   vec4 node;   // xy: north-west corner (texel column, row); z: quad size (texels); w: level
   vec4 morph;  // x, y: morph start and end (m from the camera)

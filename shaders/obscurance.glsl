@@ -1,5 +1,5 @@
 // Containment-test obscurances O and ambient transfer W of one heightfield
-// point: twin of terrain/obscurance.h (see there for the contract and units).
+// point: twin of terrain/light/obscurance.h (see there for the contract and units).
 // docs/design.md §6; Umenhoffer et al., "Efficient Methods for Ambient
 // Lighting", 2009, eq. 9.
 //

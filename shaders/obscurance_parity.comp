@@ -1,7 +1,7 @@
 #version 460
 // Evaluates estimateObscurance() of obscurance.glsl for a list of points on a
 // heightfield held in a storage buffer (bilinear, clamped to the edge, like
-// terrain/obscurance.h bilinearHeight), so the tests can compare it with the
+// terrain/light/obscurance.h bilinearHeight), so the tests can compare it with the
 // C++ estimator (tests/engine/obscurance_parity_test.cpp).
 #extension GL_GOOGLE_include_directive : require
 

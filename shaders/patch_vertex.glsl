@@ -29,7 +29,7 @@ vec3 patchVertex(LodPatch node, vec2 gridPoint, out vec2 texel) {
   // The morph factor comes from the unmorphed vertex, which neighbouring
   // patches share, so they morph it alike (Strugar 2009, §3.3); from its
   // true height, which lies in its node's box, as the crack-free ranges
-  // assume (terrain/quadtree_lod.h).
+  // assume (terrain/view/quadtree_lod.h).
   float distanceM =
       length(worldAt(lodPatchTexel(node, gridPoint, frame.demSize), 0.0) - frame.cameraPos);
   float k = lodMorphFactor(distanceM, node.morph.xy);

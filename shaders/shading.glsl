@@ -1,4 +1,4 @@
-// Ambient aperture lighting of one surface point: twin of terrain/shading.h
+// Ambient aperture lighting of one surface point: twin of terrain/light/shading.h
 // (see there for the contract and units). docs/design.md §5.
 #ifndef AAL_SHADING_GLSL
 #define AAL_SHADING_GLSL
@@ -34,7 +34,7 @@ struct ShadingTerms {
   vec3 skyIrradiance;
 };
 
-// Twin of horizonSunFraction (terrain/shading.h): the part of the sun's disk
+// Twin of horizonSunFraction (terrain/light/shading.h): the part of the sun's disk
 // above a straight horizon.
 float horizonSunFraction(float sunElevationRad, float horizonRad, float sunRadiusRad) {
   if (!(sunRadiusRad > 0.0)) return sunElevationRad > horizonRad ? 1.0 : 0.0;

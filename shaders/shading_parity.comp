@@ -1,6 +1,6 @@
 #version 460
 // Evaluates shade() of shading.glsl for a list of inputs, so the tests can
-// compare it with terrain/shading.h (tests/engine/shading_parity_test.cpp).
+// compare it with terrain/light/shading.h (tests/engine/shading_parity_test.cpp).
 #extension GL_GOOGLE_include_directive : require
 
 #define AAL_CAP_TABLE_BINDING 2  // the exact mode's table, for the queries' sun radius

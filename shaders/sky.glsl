@@ -1,4 +1,4 @@
-// Preetham et al. 1999 clear sky in GLSL: twin of terrain/sky_model.h (see
+// Preetham et al. 1999 clear sky in GLSL: twin of terrain/light/sky_model.h (see
 // there for the model, units and the twilight rule). The coefficients are
 // computed on the CPU by makePreethamSky; radiance is photometric RGB in kcd/m².
 #ifndef AAL_SKY_GLSL
@@ -30,7 +30,7 @@ vec3 xyYToLinearSrgb(float x, float y, float luminanceY) {
 }
 
 // The chromaticity y raised to the CIE daylight locus where it lies below it:
-// twin of daylightLocusLift in terrain/sky_model.h (why: docs/sun-and-sky.md).
+// twin of daylightLocusLift in terrain/light/sky_model.h (why: docs/sun-and-sky.md).
 float daylightLocusLift(float x, float y) {
   float locus = (float(AAL_DAYLIGHT_LOCUS_A) * x + float(AAL_DAYLIGHT_LOCUS_B)) * x +
                 float(AAL_DAYLIGHT_LOCUS_C);
@@ -38,7 +38,7 @@ float daylightLocusLift(float x, float y) {
 }
 
 // The midday colour-temperature floor, then the lift: twin of
-// daylightChromaticity in terrain/sky_model.h (why: docs/sun-and-sky.md).
+// daylightChromaticity in terrain/light/sky_model.h (why: docs/sun-and-sky.md).
 vec2 daylightChromaticity(float x, float y, float maxX, float strength) {
   float floored = x - strength * max(x - maxX, 0.0);
   float locusShift = ((float(AAL_DAYLIGHT_LOCUS_A) * floored + float(AAL_DAYLIGHT_LOCUS_B)) * floored +

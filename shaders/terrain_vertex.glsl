@@ -1,6 +1,6 @@
 // The body of terrain.vert and terrain_paged.vert (the variants: see
 // terrain_textures.glsl). Terrain patches of the quadtree LOD (shaders/lod.glsl,
-// terrain/quadtree_lod.h) displaced by the height texture (vertex texture
+// terrain/view/quadtree_lod.h) displaced by the height texture (vertex texture
 // fetch), with the CDLOD morph (patch_vertex.glsl). Each vertex finds its own
 // tile (terrain_textures.glsl), so a patch may straddle tiles.
 #ifndef AAL_TERRAIN_VERTEX_GLSL

@@ -1,5 +1,5 @@
 // Exposure, Hable's filmic curve and sRGB encoding in GLSL: twin of
-// terrain/tone_map.h (see there for the formulas and their sources).
+// terrain/light/tone_map.h (see there for the formulas and their sources).
 #ifndef AAL_TONE_MAP_GLSL
 #define AAL_TONE_MAP_GLSL
 

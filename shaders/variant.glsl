@@ -8,7 +8,7 @@
 
 #include "config.h"
 
-// AAL_MODE_* (terrain/shading.h ShadingMode).
+// AAL_MODE_* (terrain/light/shading.h ShadingMode).
 layout(constant_id = AAL_SPEC_SHADING_MODE) const int kShadingMode = AAL_MODE_APPROX;
 // AAL_ALBEDO_*: palette by height and slope, albedo image, constant.
 layout(constant_id = AAL_SPEC_ALBEDO_SOURCE) const int kAlbedoSource = AAL_ALBEDO_PALETTE;

@@ -1,4 +1,4 @@
-// The exact-intersection table (terrain/cap_table.h) as the sampled R32F
+// The exact-intersection table (terrain/light/cap_table.h) as the sampled R32F
 // image the parity shaders read, uploaded and ready.
 #pragma once
 

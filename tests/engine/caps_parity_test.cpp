@@ -1,5 +1,5 @@
 // The GLSL cap functions (shaders/caps.glsl) agree with the C++ ones
-// (terrain/caps.h) when run on the device.
+// (terrain/light/caps.h) when run on the device.
 #include <gtest/gtest.h>
 
 #include <cmath>

@@ -1,5 +1,5 @@
 // The GLSL LOD morph (shaders/lod.glsl) agrees with its C++ twin
-// (terrain/lod_patch.h) when run on the device; at and beyond the morph
+// (terrain/view/lod_patch.h) when run on the device; at and beyond the morph
 // range's end both put the vertex exactly on the coarser grid.
 #include <gtest/gtest.h>
 

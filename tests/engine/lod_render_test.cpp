@@ -1,4 +1,4 @@
-// The quadtree LOD on the device (docs/design.md §8, terrain/quadtree_lod.h):
+// The quadtree LOD on the device (docs/design.md §8, terrain/view/quadtree_lod.h):
 // seen from a grazing angle with several levels on screen, the terrain has no
 // holes — every pixel whose view ray must meet the terrain shows terrain, not
 // the sky behind it — and the check finds the cracks that unmorphed levels

@@ -1,4 +1,4 @@
-// The GPU's shading modes against the CPU reference (engine/mode_comparison):
+// The GPU's shading modes against the CPU reference (tools/mode_comparison):
 // the whole pipeline agrees where nothing is approximated, and ambient
 // aperture lighting beats the no-aperture baselines where shadows matter.
 #include "mode_comparison.h"

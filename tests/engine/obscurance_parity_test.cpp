@@ -1,5 +1,5 @@
 // estimateObscurance() of shaders/obscurance.glsl agrees with
-// terrain/obscurance.h on the device, on a synthetic heightfield, with every
+// terrain/light/obscurance.h on the device, on a synthetic heightfield, with every
 // interleave cell's sample set.
 #include <gtest/gtest.h>
 

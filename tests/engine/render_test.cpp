@@ -87,7 +87,7 @@ TEST_F(Render, LowWesternSunShadowsTheEastSlope) {
   // And in the shaded image the lit side is brighter: the sun at 20 degrees
   // on flat ground adds a/pi E_sun sin 20 to the sky light both sides get
   // (2.7 times the shadowed side here; it read 3 times more while the Lambert
-  // term was taken halfway between B and L, see terrain/caps.h).
+  // term was taken halfway between B and L, see terrain/light/caps.h).
   const FrameResult lit = renderer.render(scene, topView(f, ShadingMode::Approx, 270, 20), true);
   EXPECT_GT(red(lit, 64 - 14, 64), 2 * red(lit, 64 + 14, 64));
   // With the whole sun visible the direct light is the Lambert baseline's.

@@ -1,4 +1,4 @@
-// shade() of shaders/shading.glsl agrees with terrain/shading.h on the device.
+// shade() of shaders/shading.glsl agrees with terrain/light/shading.h on the device.
 #include <gtest/gtest.h>
 
 #include <array>
@@ -96,7 +96,7 @@ TEST_F(ShadingParity, GlslShadeMatchesCppForEveryMode) {
     modes.push_back(static_cast<ShadingMode>(mode));
     queries.push_back(queryOf(in, mode));
   };
-  // The cases of the CPU copy's closed-form tests (tests/terrain/shading_test.cpp):
+  // The cases of the CPU copy's closed-form tests (tests/terrain/light/shading_test.cpp):
   // apertures below pi/2 and bent normals 20 and 50 degrees from N, the sun
   // inside, on the rim of and outside the aperture. With those passing, this
   // test carries the closed forms over to the GLSL copy.
@@ -199,7 +199,7 @@ TEST_F(ShadingParity, ExactModeReadsTheTableOfTheFramesSun) {
   }
 }
 
-// horizonAtAzimuth of shaders/horizon.glsl against terrain/horizon_map.h:
+// horizonAtAzimuth of shaders/horizon.glsl against terrain/io/horizon_map.h:
 // random codes, azimuths all round (and beyond a turn both ways).
 TEST_F(ShadingParity, HorizonInterpolationMatchesCpp) {
   struct HorizonQuery {

@@ -1,5 +1,5 @@
 // The GLSL sky and tone map (shaders/sky.glsl, shaders/tone_map.glsl) agree
-// with the C++ ones (terrain/sky_model.h, terrain/tone_map.h) when run on the
+// with the C++ ones (terrain/light/sky_model.h, terrain/light/tone_map.h) when run on the
 // device, with PreethamSky passed in the renderer's std140 layout.
 #include <gtest/gtest.h>
 
@@ -97,7 +97,7 @@ TEST_F(SkyParity, GlslSkyRadianceMatchesCpp) {
     // The band 1-10° above the horizon all around, where a high sun's
     // chromaticity y falls below the daylight locus and is lifted, and where
     // the midday floor moves x (daylightChromaticity in sky.glsl and
-    // terrain/sky_model.h).
+    // terrain/light/sky_model.h).
     for (double e : {1.0, 3.0, 6.0, 10.0}) {
       for (double az = 0.0; az < 360.0; az += 30.0) {
         queries.push_back({glm::vec4(sunDirection(az, e), index)});

@@ -1,5 +1,5 @@
 // The aperture map's file format is the one OpenImageIO wrote before
-// terrain/aperture_map.cpp used OpenEXR directly (issue 16): maps written by
+// terrain/io/aperture_map.cpp used OpenEXR directly (issue 16): maps written by
 // either read the same in both, and a broken file is an InputError.
 #include <gtest/gtest.h>
 

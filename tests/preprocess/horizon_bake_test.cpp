@@ -1,4 +1,4 @@
-// The bake's directional horizons (BakeOptions::horizons, terrain/horizon_map.h)
+// The bake's directional horizons (BakeOptions::horizons, terrain/io/horizon_map.h)
 // against a brute-force ray march over the bilinear surface.
 #include <gtest/gtest.h>
 

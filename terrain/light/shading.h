@@ -1,0 +1,81 @@
+// Ambient aperture lighting of one surface point: docs/design.md §5. The GLSL
+// twin is shaders/shading.glsl (checked for parity on the device by the tests).
+//
+// Radiometry: albedo a in [0, 1]; irradiances E (sun at normal incidence)
+// and radiances L (sky) in one linear RGB unit (terrain/light/atmosphere.h); the
+// result is outgoing radiance a/pi * E in that unit.
+#pragma once
+
+#include <map>
+#include <string>
+
+#include <glm/vec3.hpp>
+
+#include "config.h"
+#include "lighting.h"
+
+namespace aal {
+
+enum class ShadingMode : int {
+  Approx = AAL_MODE_APPROX,                        // Oat's smoothstep cap intersection
+  Exact = AAL_MODE_EXACT,                          // exact cap intersection
+  BaselineLambert = AAL_MODE_BASELINE_LAMBERT,     // N.L, no shadow, constant sky ambient
+  BaselineAo = AAL_MODE_BASELINE_AO,               // N.L, sky ambient scaled by Omega/2pi
+  DebugVisible = AAL_MODE_DEBUG_VISIBLE,           // Omega/2pi as grey
+  DebugBentNormal = AAL_MODE_DEBUG_BENT_NORMAL,    // B * 0.5 + 0.5
+  DebugSunFraction = AAL_MODE_DEBUG_SUN_FRACTION,  // visible fraction f of the sun disk
+  DebugSkyFill = AAL_MODE_DEBUG_SKY_FILL,          // E_sky / (pi L_sky) as grey
+  // The obscurance pass's O as grey and W as RGB (docs/design.md §6): shade()
+  // returns the transfer input, which the renderer sets to O or W.
+  DebugObscurance = AAL_MODE_DEBUG_OBSCURANCE,
+  DebugTransfer = AAL_MODE_DEBUG_TRANSFER,
+  // The sun's visible fraction from the directional horizon at its azimuth
+  // (ShadingInputs::sunHorizonRad, terrain/io/horizon_map.h), the sky fill from
+  // the aperture as in Approx.
+  Horizon = AAL_MODE_HORIZON,
+};
+
+// Command-line / UI names of the modes (aal-render --mode, the viewer's panel).
+const std::map<std::string, ShadingMode>& shadingModeNames();
+
+struct ShadingInputs {
+  glm::vec3 albedo{0.2f};
+  glm::vec3 normal{0, 0, 1};           // unit shading normal N
+  glm::vec3 bentNormal{0, 0, 1};       // unit bent normal B (aperture centre)
+  float apertureRad = 1.5707963f;      // aperture cap arc length r_a
+  glm::vec3 sunDirection{0, 0, 1};     // unit L
+  float sunRadiusRad = kSunRadiusRad;  // r_s
+  glm::vec3 sunIrradiance{0.0f};       // E_sun at normal incidence
+  glm::vec3 skyRadiance{0.0f};         // average sky radiance L_sky
+  glm::vec3 transfer{1.0f};  // ambient transfer W (docs/design.md §6), 1 if nothing is near
+  // Horizon mode: the horizon's elevation in the sun's azimuth (rad).
+  float sunHorizonRad = -1.5707963f;
+};
+
+struct ShadingTerms {
+  glm::vec3 direct{0.0f};
+  glm::vec3 ambient{0.0f};
+  float sunFraction = 0;          // f: the part of the sun's disk seen through the aperture
+  glm::vec3 skyIrradiance{0.0f};  // E_sky
+};
+
+struct CapIntersectionTable;
+
+// The part of the sun's disk (angular radius sunRadiusRad, centre at
+// elevation sunElevationRad) above a horizon at elevation horizonRad: the
+// disk cut by a straight line (the horizon is straight at the sun's scale),
+// 1 - (acos x - x sqrt(1 - x^2)) / pi with x = (e - h) / r_s in [-1, 1].
+float horizonSunFraction(float sunElevationRad, float horizonRad, float sunRadiusRad);
+
+// The terms of docs/design.md §5 for the AAL modes (approx/exact) and the baselines.
+// Exact mode evaluates the closed form (capIntersectionExact, terrain/light/caps.h)
+// or, given `exactTable` (made for in.sunRadiusRad), reads it from the table
+// as the renderer's shaders do (terrain/light/cap_table.h).
+ShadingTerms shadingTerms(const ShadingInputs& in, ShadingMode mode,
+                          const CapIntersectionTable* exactTable = nullptr);
+
+// Final linear value: direct + ambient, or the debug quantity of the mode.
+glm::vec3 shade(const ShadingInputs& in, ShadingMode mode,
+                const CapIntersectionTable* exactTable = nullptr);
+
+}  // namespace aal

@@ -1,0 +1,152 @@
+// Directional horizons (terrain/io/horizon_map.h) and the horizon shading mode's
+// sun term (terrain/light/shading.h).
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <numbers>
+#include <random>
+#include <string>
+
+#include <unistd.h>
+
+#include <glm/geometric.hpp>
+
+#include "horizon_map.h"
+#include "shading.h"
+
+namespace aal {
+namespace {
+
+constexpr double kPi = std::numbers::pi;
+
+TEST(HorizonMap, CodesKeepTheElevationToHalfAStepFinestNearTheHorizontal) {
+  for (double e = -0.03; e < 1.57; e += 1e-4) {
+    const uint8_t c = encodeHorizon(float(e));
+    const double step =
+        decodeHorizon(uint8_t(std::min(255, c + 1))) - decodeHorizon(uint8_t(std::max(0, c - 1)));
+    EXPECT_LE(std::abs(decodeHorizon(c) - e), 0.5 * step + 1e-6) << e;
+  }
+  // Steps of 0.11 degrees at the horizontal, 0.26 at 10, 0.43 at 30.
+  const auto stepAt = [](double deg) {
+    const uint8_t c = encodeHorizon(float(deg * kPi / 180));
+    return (decodeHorizon(uint8_t(c + 1)) - decodeHorizon(c)) * 180 / kPi;
+  };
+  EXPECT_LT(stepAt(0), 0.12);
+  EXPECT_LT(stepAt(10), 0.27);
+  EXPECT_LT(stepAt(30), 0.45);
+  // Below the range (open ground, no terrain ahead): the minimum.
+  EXPECT_EQ(encodeHorizon(-1.0f), 0);
+  EXPECT_EQ(encodeHorizon(-1.5707963f), 0);
+  EXPECT_EQ(encodeHorizon(std::nanf("")), 0);
+  EXPECT_EQ(encodeHorizon(2.0f), 255);
+  EXPECT_FLOAT_EQ(decodeHorizon(0), kHorizonMinRad);
+  EXPECT_FLOAT_EQ(decodeHorizon(255), kHorizonMaxRad);
+}
+
+TEST(HorizonMap, AzimuthsBetweenStoredDirectionsInterpolateLinearly) {
+  uint8_t codes[kHorizonDirections];
+  for (int k = 0; k < kHorizonDirections; ++k) codes[k] = uint8_t(20 * k + 10);
+  const float step = float(2 * kPi / kHorizonDirections);
+  for (int k = 0; k < kHorizonDirections; ++k) {
+    EXPECT_NEAR(horizonAtAzimuth(codes, kHorizonDirections, k * step), decodeHorizon(codes[k]),
+                1e-6f);
+    const int next = (k + 1) % kHorizonDirections;
+    EXPECT_NEAR(horizonAtAzimuth(codes, kHorizonDirections, (k + 0.25f) * step),
+                0.75f * decodeHorizon(codes[k]) + 0.25f * decodeHorizon(codes[next]), 1e-6f);
+  }
+  // Wraps around: -10 degrees is 350 degrees, between the last and the first.
+  EXPECT_NEAR(horizonAtAzimuth(codes, kHorizonDirections, float(-10 * kPi / 180)),
+              horizonAtAzimuth(codes, kHorizonDirections, float(350 * kPi / 180)), 1e-6f);
+  EXPECT_NEAR(horizonAtAzimuth(codes, kHorizonDirections, float(2 * kPi)), decodeHorizon(codes[0]),
+              1e-6f);
+  // Sixteen directions: 22.5 degrees apart.
+  uint8_t sixteen[16];
+  for (int k = 0; k < 16; ++k) sixteen[k] = uint8_t(9 * k);
+  EXPECT_NEAR(horizonAtAzimuth(sixteen, 16, float(3.5 * kPi / 8)),
+              0.5f * (decodeHorizon(27) + decodeHorizon(36)), 1e-6f);
+}
+
+TEST(HorizonMap, FilesRoundTripAndForeignOrTruncatedFilesAreRefused) {
+  const std::filesystem::path dir =
+      std::filesystem::temp_directory_path() / ("aal-horizons-" + std::to_string(::getpid()));
+  std::filesystem::create_directories(dir);
+  HorizonMap map;
+  map.width = 5;
+  map.height = 3;
+  for (int i = 0; i < map.width * map.height * kHorizonDirections; ++i) {
+    map.codes.push_back(uint8_t(i * 7));
+  }
+  writeHorizonMap(dir / "h.bin", map);
+  const HorizonMap read = readHorizonMap(dir / "h.bin");
+  EXPECT_EQ(read.width, 5);
+  EXPECT_EQ(read.height, 3);
+  EXPECT_EQ(read.codes, map.codes);
+  EXPECT_EQ(std::filesystem::file_size(dir / "h.bin"),
+            std::string("aperture-horizons 1 5 3 8\n").size() + map.codes.size());
+
+  std::filesystem::resize_file(dir / "h.bin", std::filesystem::file_size(dir / "h.bin") - 1);
+  EXPECT_THROW(readHorizonMap(dir / "h.bin"), std::runtime_error);
+  std::ofstream(dir / "other.bin") << "aperture-horizons 1 5 3 6\n";
+  EXPECT_THROW(readHorizonMap(dir / "other.bin"), std::runtime_error);
+  std::ofstream(dir / "text.bin") << "hello\n";
+  EXPECT_THROW(readHorizonMap(dir / "text.bin"), std::runtime_error);
+  EXPECT_THROW(readHorizonMap(dir / "missing.bin"), std::runtime_error);
+  std::filesystem::remove_all(dir);
+}
+
+// The sun's part above a straight horizon against counting points of its
+// disk (planar at the sun's scale).
+TEST(HorizonShading, SunFractionIsTheDiskAboveTheHorizon) {
+  const float rs = 0.004653f;
+  EXPECT_FLOAT_EQ(horizonSunFraction(0.1f, 0.1f, rs), 0.5f);
+  EXPECT_FLOAT_EQ(horizonSunFraction(0.1f + rs, 0.1f, rs), 1.0f);
+  EXPECT_FLOAT_EQ(horizonSunFraction(0.1f - rs, 0.1f, rs), 0.0f);
+  EXPECT_EQ(horizonSunFraction(0.2f, 0.1f, 0.0f), 1.0f);
+  EXPECT_EQ(horizonSunFraction(0.05f, 0.1f, 0.0f), 0.0f);
+  for (float x = -1.2f; x <= 1.2f; x += 0.1f) {
+    int above = 0, total = 0;
+    for (int i = -200; i <= 200; ++i) {
+      for (int j = -200; j <= 200; ++j) {
+        const double u = i / 200.0, v = j / 200.0;
+        if (u * u + v * v > 1) continue;
+        ++total;
+        if (v > -x) ++above;  // the disk's centre x radii above the horizon
+      }
+    }
+    EXPECT_NEAR(horizonSunFraction(0.1f + x * rs, 0.1f, rs), double(above) / total, 3e-3) << x;
+  }
+}
+
+// Horizon mode: the sun through the horizon, the sky exactly as approx's.
+TEST(HorizonShading, SunFromTheHorizonSkyFromTheAperture) {
+  ShadingInputs in;
+  in.normal = glm::normalize(glm::vec3(0.2f, 0.1f, 1.0f));
+  in.bentNormal = glm::normalize(glm::vec3(0.1f, 0.3f, 1.0f));
+  in.apertureRad = 1.5f;
+  const float elevation = 0.1f;
+  in.sunDirection = {std::cos(elevation), 0.0f, std::sin(elevation)};
+  in.sunIrradiance = glm::vec3(100.0f);
+  in.skyRadiance = glm::vec3(5.0f);
+  in.transfer = glm::vec3(0.8f);
+  for (const float horizon : {-0.5f, elevation - 0.002f, elevation, elevation + 0.003f, 0.4f}) {
+    in.sunHorizonRad = horizon;
+    const ShadingTerms h = shadingTerms(in, ShadingMode::Horizon);
+    const ShadingTerms a = shadingTerms(in, ShadingMode::Approx);
+    const float f = horizonSunFraction(elevation, horizon, in.sunRadiusRad);
+    EXPECT_FLOAT_EQ(h.sunFraction, f);
+    const float nDotL = glm::dot(in.normal, in.sunDirection);
+    EXPECT_NEAR(h.direct.r, in.albedo.r / float(kPi) * 100.0f * f * nDotL, 1e-5f);
+    EXPECT_EQ(h.skyIrradiance, a.skyIrradiance);
+    EXPECT_EQ(h.ambient, a.ambient);
+  }
+  // The aperture alone (approx) lights this sun, 0.1 rad high and 0.12 rad
+  // inside the cap's rim: the horizon mode shadows it behind a ridge.
+  in.sunHorizonRad = 0.2f;
+  EXPECT_GT(shadingTerms(in, ShadingMode::Approx).sunFraction, 0.99f);
+  EXPECT_EQ(shadingTerms(in, ShadingMode::Horizon).sunFraction, 0.0f);
+}
+
+}  // namespace
+}  // namespace aal
