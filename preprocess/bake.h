@@ -31,7 +31,7 @@ struct BakeOptions {
   double refraction = 0.13;    // refraction coefficient k: drop = (1 - k) t^2 / 2R
   double maxDistanceM = 0;     // 0 = the whole DEM counts
   bool skyViewFactor = false;  // also compute SVF = 1 - mean sin(max(h, 0))
-  // Also keep the horizon of horizonDirections azimuths (terrain/horizon_map.h):
+  // Also keep the horizon of horizonDirections azimuths (terrain/io/horizon_map.h):
   // the sweep's own horizons at k * 360 / horizonDirections degrees, so
   // `azimuths` must be a multiple of horizonDirections.
   bool horizons = false;
