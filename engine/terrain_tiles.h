@@ -2,7 +2,7 @@
 // (the device's maxImageDimension2D or maxMemoryAllocationSize, or a smaller
 // forced tile size), and the lookup from a DEM texel position to a tile. No
 // Vulkan here: the C++ twin of shaders/tile_lookup.glsl
-// (tests/engine/tile_lookup_parity_test.cpp runs both).
+// (tests/engine/terrain_tiles_test.cpp, TileLookupParity runs both).
 //
 // Every tile owns a core of coreWidth x coreHeight DEM texels (the last tile
 // of a row or column owns fewer when the DEM ends) and carries a border of

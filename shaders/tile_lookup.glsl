@@ -1,6 +1,6 @@
 // Which tile of a tiled DEM holds a texel position, and where in the tile's
 // image it is: the twin of engine/terrain_tiles.h terrainTileTexel (see there
-// for the layout); tests/engine/tile_lookup_parity_test.cpp runs both.
+// for the layout); tests/engine/terrain_tiles_test.cpp, TileLookupParity runs both.
 #ifndef AAL_TILE_LOOKUP_GLSL
 #define AAL_TILE_LOOKUP_GLSL
 

@@ -1,7 +1,7 @@
 #version 460
 // Evaluates the tile lookup of tile_lookup.glsl for a list of texel positions
 // so the tests can compare it with the C++ twin
-// (tests/engine/tile_lookup_parity_test.cpp).
+// (tests/engine/terrain_tiles_test.cpp, TileLookupParity).
 #extension GL_GOOGLE_include_directive : require
 
 #include "tile_lookup.glsl"
