@@ -216,6 +216,15 @@ void sweepAllAzimuths(const BakeTerrain& terrain, const BakeOptions& o, float* s
       for (int c = 0; c < 4; ++c) sum[c] += terms[j][c];
     }
   };
+  // The texel-by-texel sweeps hand over one texel: a block of one.
+  const auto addTexelSlice = [&](size_t texel, double tanHorizon, const Slice& s) {
+    const float tanH = std::max(static_cast<float>(tanHorizon), kNoHorizonTangent);
+    const float east = terrain.slopeEast(texel), north = terrain.slopeNorth(texel);
+    HorizonBlock b{texel, 1, 1, &tanH};
+    b.slopeEast = &east;
+    b.slopeNorth = &north;
+    addSlices(b, s, nullptr);
+  };
   const auto sweepOne = [&](const Slice& s) {
     if (sweep.windowReachM > 0.0) {
       // Near horizons from the window's lines, far ones from the pyramid.
@@ -242,24 +251,12 @@ void sweepAllAzimuths(const BakeTerrain& terrain, const BakeOptions& o, float* s
       sweepHorizons(terrain, s.phi, sweep, [&](size_t texel, double tanHorizon) {
         const int col = w.col + static_cast<int>(texel % w.width);
         const int row = w.row + static_cast<int>(texel / w.width);
-        tanHorizon = std::max(tanHorizon, far.tangentAt(col, row, terrain.field->at(col, row)));
-        const float tanH = std::max(static_cast<float>(tanHorizon), kNoHorizonTangent);
-        const float east = terrain.slopeEast(texel), north = terrain.slopeNorth(texel);
-        HorizonBlock b{texel, 1, 1, &tanH};
-        b.slopeEast = &east;
-        b.slopeNorth = &north;
-        addSlices(b, s, nullptr);
+        addTexelSlice(
+            texel, std::max(tanHorizon, far.tangentAt(col, row, terrain.field->at(col, row))), s);
       });
     } else if (sweep.maxDistanceM > 0.0) {
-      // The distance-limited sweep visits texel by texel: blocks of one.
-      sweepHorizons(terrain, s.phi, sweep, [&](size_t texel, double tanHorizon) {
-        const float tanH = std::max(static_cast<float>(tanHorizon), kNoHorizonTangent);
-        const float east = terrain.slopeEast(texel), north = terrain.slopeNorth(texel);
-        HorizonBlock b{texel, 1, 1, &tanH};
-        b.slopeEast = &east;
-        b.slopeNorth = &north;
-        addSlices(b, s, nullptr);
-      });
+      sweepHorizons(terrain, s.phi, sweep,
+                    [&](size_t texel, double tanHorizon) { addTexelSlice(texel, tanHorizon, s); });
     } else {
       sweepHorizonBlocks(terrain, s.phi, sweep,
                          [&](const HorizonBlock& b) { addSlices(b, s, nullptr); });
