@@ -62,7 +62,6 @@ struct FrameSettings {
   std::optional<Base> base;
 };
 
-
 struct FrameResult {
   uint32_t width = 0, height = 0;
   std::vector<uint8_t> display;  // RGBA8, sRGB encoded (debug modes: raw values)
