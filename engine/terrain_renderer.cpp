@@ -89,18 +89,6 @@ void beginRendering(VkCommandBuffer cmd, uint32_t width, uint32_t height,
   vkCmdSetScissor(cmd, 0, 1, &scissor);
 }
 
-// The frame's uniforms at binding 0, the terrain textures
-// (shaders/terrain_textures.glsl: heights, apertures, albedo, slopes, each
-// kTerrainTilePages pages), then `rest`.
-std::vector<VkDescriptorType> terrainBindings(const std::vector<VkDescriptorType>& rest) {
-  static_assert(AAL_TERRAIN_TEXTURE_BINDING == 1);
-  std::vector<VkDescriptorType> bindings(AAL_TERRAIN_TEXTURES_END,
-                                         VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER);
-  bindings[0] = VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER;
-  bindings.insert(bindings.end(), rest.begin(), rest.end());
-  return bindings;
-}
-
 // Binding of the first descriptor after the terrain textures.
 static_assert(AAL_TERRAIN_TILE_PAGES == kTerrainTilePages);
 constexpr uint32_t kAfterTerrainTextures = AAL_TERRAIN_TEXTURES_END;
@@ -110,14 +98,14 @@ constexpr uint32_t kAfterTerrainTextures = AAL_TERRAIN_TEXTURES_END;
 DescriptorWrites terrainWrites(const Buffer& uniforms, const TerrainScene& scene,
                                VkSampler sampler) {
   DescriptorWrites writes;
-  writes.uniformBuffer(0, uniforms);
+  writes.buffer(0, uniforms);
   uint32_t binding = AAL_TERRAIN_TEXTURE_BINDING;
   static_assert(AAL_TERRAIN_TEXTURE_KINDS == 4);
   for (const std::vector<Image>* pages :
        {&scene.heightPages(), &scene.aperturePages(), &scene.albedoPages(), &scene.slopePages()}) {
     for (uint32_t page = 0; page < kTerrainTilePages; ++page) {
       const Image& image = page < pages->size() ? (*pages)[page] : pages->front();
-      writes.sampledImage(binding++, image.view(), sampler);
+      writes.image(binding++, image.view(), sampler);
     }
   }
   return writes;
@@ -184,29 +172,19 @@ struct TerrainRenderer::Passes {
         displayFormat(display),
         skyTable(d, {.vertexShader = "fullscreen.vert",
                      .fragmentShader = "sky_lut.frag",
-                     .bindings = {VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER},
                      .colorFormats = {kSkyTableFormat}}),
         filter(d, {.vertexShader = "fullscreen.vert",
                    .fragmentShader = "obscurance_filter.frag",
-                   .bindings = {VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER,
-                                VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER},
                    .colorFormats = {kTransferFormat}}),
         composite(d, {.vertexShader = "fullscreen.vert",
                       .fragmentShader = "composite.frag",
-                      .bindings = {VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER,
-                                   VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER,
-                                   VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER},
                       .colorFormats = {kHdrFormat},
                       .additiveBlend = true}),
         toneMap(d, {.vertexShader = "fullscreen.vert",
                     .fragmentShader = "tone_map.frag",
-                    .bindings = {VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER,
-                                 VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER},
                     .colorFormats = {display}}),
         upscale(d, {.vertexShader = "fullscreen.vert",
                     .fragmentShader = "upscale.frag",
-                    .bindings = {VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER,
-                                 VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER},
                     .colorFormats = {display}}),
         terrainSampler(d, VK_FILTER_LINEAR, true),
         nearest(d, VK_FILTER_NEAREST),
@@ -235,9 +213,6 @@ struct TerrainRenderer::Passes {
     if (gbuffer) formats = {kHdrFormat, kAmbientFormat, kSurfaceFormat};
     return cached(key, {.vertexShader = terrainVertexShader(paging),
                         .fragmentShader = terrainFragmentShader(paging, gbuffer),
-                        .bindings = terrainBindings({VK_DESCRIPTOR_TYPE_STORAGE_BUFFER,
-                                                     VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER,
-                                                     VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER}),
                         .colorFormats = formats,
                         .depthFormat = kDepthFormat,
                         .depthTest = true,
@@ -260,7 +235,6 @@ struct TerrainRenderer::Passes {
     if (gbuffer) formats = {kHdrFormat, kAmbientFormat, kSurfaceFormat};
     return cached(key, {.vertexShader = paged ? "base_paged.vert" : "base.vert",
                         .fragmentShader = gbuffer ? "base_gbuffer.frag" : "base.frag",
-                        .bindings = terrainBindings({VK_DESCRIPTOR_TYPE_STORAGE_BUFFER}),
                         .colorFormats = formats,
                         .depthFormat = kDepthFormat,
                         .depthTest = true,
@@ -280,8 +254,6 @@ struct TerrainRenderer::Passes {
     if (gbuffer) formats = {kHdrFormat, kAmbientFormat, kSurfaceFormat};
     return cached(key, {.vertexShader = "fullscreen.vert",
                         .fragmentShader = "sky.frag",
-                        .bindings = {VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER,
-                                     VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER},
                         .colorFormats = formats,
                         .depthFormat = kDepthFormat,
                         .depthTest = true,
@@ -291,15 +263,11 @@ struct TerrainRenderer::Passes {
 
   // The composite writing display values (the mode decides raw or tone-mapped).
   const GraphicsPipeline& compositeDisplay(ShadingMode mode) {
-    return cached(
-        "composite/" + std::to_string(int(mode)),
-        {.vertexShader = "fullscreen.vert",
-         .fragmentShader = "composite_display.frag",
-         .bindings = {VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER,
-                      VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER,
-                      VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER},
-         .colorFormats = {displayFormat},
-         .specialization = variantConstants(mode, 0, true)});
+    return cached("composite/" + std::to_string(int(mode)),
+                  {.vertexShader = "fullscreen.vert",
+                   .fragmentShader = "composite_display.frag",
+                   .colorFormats = {displayFormat},
+                   .specialization = variantConstants(mode, 0, true)});
   }
 
   // The obscurance pass reads heights and albedo, never apertures.
@@ -310,8 +278,6 @@ struct TerrainRenderer::Passes {
     const std::string key = std::string("obscurance/") + (paged ? "p/" : "1/") +
                             (temporal ? "t/" : "") + std::to_string(int(mode)) + "/" +
                             std::to_string(albedo);
-    std::vector<VkDescriptorType> rest(temporal ? 5 : 3, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER);
-    rest[0] = VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER;
     std::vector<VkFormat> formats{kTransferFormat};
     if (temporal) formats.insert(formats.end(), {kHistoryMeansFormat, kHistoryPointsFormat});
     const char* shader =
@@ -319,7 +285,6 @@ struct TerrainRenderer::Passes {
                  : (paged ? "obscurance_paged.frag" : "obscurance.frag");
     return cached(key, {.vertexShader = "fullscreen.vert",
                         .fragmentShader = shader,
-                        .bindings = terrainBindings(rest),
                         .colorFormats = formats,
                         .specialization = variantConstants(mode, albedo, false)});
   }
@@ -641,7 +606,7 @@ void TerrainRenderer::record(VkCommandBuffer cmd, const TerrainScene& scene, con
   const VkRenderingAttachmentInfo table = colorAttachment(skyTable_, false);
   timer_.begin(cmd, "sky table");
   beginRendering(cmd, AAL_SKY_LUT_WIDTH, AAL_SKY_LUT_HEIGHT, &table, 1, nullptr);
-  passes_->skyTable.bind(cmd, DescriptorWrites().uniformBuffer(0, uniforms_), nullptr);
+  passes_->skyTable.bind(cmd, DescriptorWrites().buffer(0, uniforms_), nullptr);
   vkCmdDraw(cmd, 3, 1, 0, 0);
   vkCmdEndRendering(cmd);
   timer_.end(cmd);
@@ -691,11 +656,11 @@ void TerrainRenderer::record(VkCommandBuffer cmd, const TerrainScene& scene, con
   passes_->terrain(paging, s.mode, albedo, obscurance, direct)
       .bind(cmd,
             terrainWrites(uniforms_, scene, passes_->terrainSampler.handle())
-                .storageBuffer(kAfterTerrainTextures, patches_)
-                .sampledImage(kAfterTerrainTextures + 1, capTable_.view(), passes_->linear.handle())
-                .sampledImage(kAfterTerrainTextures + 2,
-                              (scene.horizons() ? *scene.horizons() : noHorizons_).view(),
-                              passes_->linear.handle()),
+                .buffer(kAfterTerrainTextures, patches_)
+                .image(kAfterTerrainTextures + 1, capTable_.view(), passes_->linear.handle())
+                .image(kAfterTerrainTextures + 2,
+                       (scene.horizons() ? *scene.horizons() : noHorizons_).view(),
+                       passes_->linear.handle()),
             nullptr);
   vkCmdBindIndexBuffer(cmd, scene.indices().handle(), 0, VK_INDEX_TYPE_UINT32);
   drawPatches(cmd);
@@ -703,7 +668,7 @@ void TerrainRenderer::record(VkCommandBuffer cmd, const TerrainScene& scene, con
     passes_->base(paging, s.mode, obscurance, direct)
         .bind(cmd,
               terrainWrites(uniforms_, scene, passes_->terrainSampler.handle())
-                  .storageBuffer(kAfterTerrainTextures, patches_),
+                  .buffer(kAfterTerrainTextures, patches_),
               nullptr);
     drawBase(cmd, selection_, glm::vec2(scene.demInfo()));
   }
@@ -724,8 +689,8 @@ void TerrainRenderer::record(VkCommandBuffer cmd, const TerrainScene& scene, con
   passes_->sky(s.mode, direct, obscurance && !skyApart)
       .bind(cmd,
             DescriptorWrites()
-                .uniformBuffer(0, uniforms_)
-                .sampledImage(1, skyTable_.view(), passes_->skySampler.handle()),
+                .buffer(0, uniforms_)
+                .image(1, skyTable_.view(), passes_->skySampler.handle()),
             nullptr);
   vkCmdDraw(cmd, 3, 1, 0, 0);
   timer_.end(cmd);
@@ -739,11 +704,10 @@ void TerrainRenderer::record(VkCommandBuffer cmd, const TerrainScene& scene, con
                     VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL);
     beginRendering(cmd, extent_.width, extent_.height, &display, 1, nullptr);
     timer_.begin(cmd, "tone map");
-    passes_->toneMap.bind(cmd,
-                          DescriptorWrites()
-                              .uniformBuffer(0, uniforms_)
-                              .sampledImage(1, hdr_.view(), passes_->nearest.handle()),
-                          nullptr);
+    passes_->toneMap.bind(
+        cmd,
+        DescriptorWrites().buffer(0, uniforms_).image(1, hdr_.view(), passes_->nearest.handle()),
+        nullptr);
     vkCmdDraw(cmd, 3, 1, 0, 0);
     timer_.end(cmd);
     vkCmdEndRendering(cmd);
@@ -767,11 +731,10 @@ void TerrainRenderer::recordUpscale(VkCommandBuffer cmd, const FrameOutput& outp
   target.imageView = output.view;
   timer_.begin(cmd, "upscale");
   beginRendering(cmd, width_, height_, &target, 1, nullptr);
-  passes_->upscale.bind(cmd,
-                        DescriptorWrites()
-                            .uniformBuffer(0, uniforms_)
-                            .sampledImage(1, display_.view(), passes_->linear.handle()),
-                        nullptr);
+  passes_->upscale.bind(
+      cmd,
+      DescriptorWrites().buffer(0, uniforms_).image(1, display_.view(), passes_->linear.handle()),
+      nullptr);
   vkCmdDraw(cmd, 3, 1, 0, 0);
   vkCmdEndRendering(cmd);
   timer_.end(cmd);
@@ -799,17 +762,17 @@ void TerrainRenderer::recordObscurance(VkCommandBuffer cmd, const TerrainScene& 
   VkRenderingAttachmentInfo targets[3] = {colorAttachment(transfer_, false), {}, {}};
   DescriptorWrites writes =
       terrainWrites(uniforms_, scene, passes_->terrainSampler.handle())
-          .uniformBuffer(kAfterTerrainTextures, samples_)
-          .sampledImage(kAfterTerrainTextures + 1, surface_.view(), passes_->nearest.handle())
-          .sampledImage(kAfterTerrainTextures + 2, ambient_.view(), passes_->nearest.handle());
+          .buffer(kAfterTerrainTextures, samples_)
+          .image(kAfterTerrainTextures + 1, surface_.view(), passes_->nearest.handle())
+          .image(kAfterTerrainTextures + 2, ambient_.view(), passes_->nearest.handle());
   if (temporal) {
     targets[1] = colorAttachment(*historyMeans_[write], false);
     targets[2] = colorAttachment(*historyPoints_[write], false);
     writes
-        .sampledImage(kAfterTerrainTextures + 3, historyMeans_[historyRead_]->view(),
-                      passes_->nearest.handle())
-        .sampledImage(kAfterTerrainTextures + 4, historyPoints_[historyRead_]->view(),
-                      passes_->nearest.handle());
+        .image(kAfterTerrainTextures + 3, historyMeans_[historyRead_]->view(),
+               passes_->nearest.handle())
+        .image(kAfterTerrainTextures + 4, historyPoints_[historyRead_]->view(),
+               passes_->nearest.handle());
   }
   // Timestamps around the whole rendering: lavapipe rasterizes when a
   // rendering ends, so one inside it misses the work.
@@ -843,8 +806,8 @@ void TerrainRenderer::recordObscurance(VkCommandBuffer cmd, const TerrainScene& 
     beginRendering(cmd, passWidth, passHeight, &filtered, 1, nullptr);
     passes_->filter.bind(cmd,
                          DescriptorWrites()
-                             .uniformBuffer(0, uniforms_)
-                             .sampledImage(1, transfer_.view(), passes_->nearest.handle()),
+                             .buffer(0, uniforms_)
+                             .image(1, transfer_.view(), passes_->nearest.handle()),
                          nullptr);
     vkCmdDraw(cmd, 3, 1, 0, 0);
     vkCmdEndRendering(cmd);
@@ -855,9 +818,9 @@ void TerrainRenderer::recordObscurance(VkCommandBuffer cmd, const TerrainScene& 
   }
 
   DescriptorWrites composite;
-  composite.uniformBuffer(0, uniforms_)
-      .sampledImage(1, result->view(), passes_->nearest.handle())
-      .sampledImage(2, ambient_.view(), passes_->nearest.handle());
+  composite.buffer(0, uniforms_)
+      .image(1, result->view(), passes_->nearest.handle())
+      .image(2, ambient_.view(), passes_->nearest.handle());
   timer_.begin(cmd, "composite");
   if (linear) {
     // Blended onto the terrain pass's colour: order its writes before the
@@ -874,7 +837,7 @@ void TerrainRenderer::recordObscurance(VkCommandBuffer cmd, const TerrainScene& 
                     VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL);
     beginRendering(cmd, extent_.width, extent_.height, &display, 1, nullptr);
     passes_->compositeDisplay(frame.mode)
-        .bind(cmd, composite.sampledImage(3, hdr_.view(), passes_->nearest.handle()), nullptr);
+        .bind(cmd, composite.image(3, hdr_.view(), passes_->nearest.handle()), nullptr);
   }
   vkCmdDraw(cmd, 3, 1, 0, 0);
   vkCmdEndRendering(cmd);

@@ -144,9 +144,7 @@ void TerrainScene::computeSlopes(const Device& device, const Heightfield& field)
     int32_t level;
     float cellSizeXM, cellSizeYM;
   };
-  const ComputePipeline pipeline(
-      device, "slopes.comp",
-      {VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE}, sizeof(Push));
+  const ComputePipeline pipeline(device, "slopes.comp", sizeof(Push));
   const Sampler nearest(device, VK_FILTER_NEAREST, true);
   std::vector<std::unique_ptr<LevelView>> views;
   for (const Image& page : slopes_) {
@@ -165,8 +163,8 @@ void TerrainScene::computeSlopes(const Device& device, const Heightfield& field)
         const uint32_t w = page.desc().width >> level, h = page.desc().height >> level;
         pipeline.record(cmd,
                         DescriptorWrites()
-                            .sampledImage(0, heights_[p].view(), nearest.handle())
-                            .storageImage(1, views[view++]->handle()),
+                            .image(0, heights_[p].view(), nearest.handle())
+                            .image(1, views[view++]->handle()),
                         &push, (w + 7) / 8, (h + 7) / 8, page.desc().layers);
       }
       transitionImage(cmd, page, VK_IMAGE_LAYOUT_GENERAL, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL);

@@ -10,23 +10,20 @@
 namespace aal {
 
 ComputePipeline::ComputePipeline(const Device& device, const std::string& shaderName,
-                                 uint32_t storageBufferCount, uint32_t pushConstantBytes)
-    : ComputePipeline(
-          device, shaderName,
-          std::vector<VkDescriptorType>(storageBufferCount, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER),
-          pushConstantBytes) {}
-
-ComputePipeline::ComputePipeline(const Device& device, const std::string& shaderName,
-                                 const std::vector<VkDescriptorType>& bindings,
                                  uint32_t pushConstantBytes)
-    : device_(device.handle()),
-      layout_(device, bindings, VK_SHADER_STAGE_COMPUTE_BIT, pushConstantBytes) {
-  const ShaderModule module(device, shaderName);
+    : ComputePipeline(device, ShaderModule(device, shaderName), pushConstantBytes) {}
+
+ComputePipeline::ComputePipeline(const Device& device, const ShaderModule& shader,
+                                 uint32_t pushConstantBytes)
+    : device_(device.handle()), layout_(device, shader.shaderInterface(), pushConstantBytes) {
+  if (shader.shaderInterface().stages != VK_SHADER_STAGE_COMPUTE_BIT) {
+    throw std::logic_error("shader " + shader.name() + " is not a compute shader");
+  }
   const VkComputePipelineCreateInfo info{
       .sType = VK_STRUCTURE_TYPE_COMPUTE_PIPELINE_CREATE_INFO,
       .stage = {.sType = VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO,
                 .stage = VK_SHADER_STAGE_COMPUTE_BIT,
-                .module = module.handle(),
+                .module = shader.handle(),
                 .pName = "main"},
       .layout = layout_.handle()};
   AAL_VK_CHECK(vkCreateComputePipelines(device_, VK_NULL_HANDLE, 1, &info, nullptr, &pipeline_));
@@ -39,12 +36,12 @@ ComputePipeline::~ComputePipeline() {
 void ComputePipeline::record(VkCommandBuffer cmd, const std::vector<const Buffer*>& buffers,
                              const void* pushConstants, uint32_t groupsX, uint32_t groupsY,
                              uint32_t groupsZ) const {
-  if (buffers.size() != layout_.bindingCount()) {
+  if (buffers.size() != layout_.bindings().size()) {
     throw std::logic_error("ComputePipeline::record: wrong number of buffers");
   }
   DescriptorWrites writes;
   for (size_t i = 0; i < buffers.size(); ++i) {
-    writes.storageBuffer(static_cast<uint32_t>(i), *buffers[i]);
+    writes.buffer(static_cast<uint32_t>(i), *buffers[i]);
   }
   record(cmd, writes, pushConstants, groupsX, groupsY, groupsZ);
 }

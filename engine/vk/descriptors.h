@@ -6,17 +6,22 @@
 
 #include <vulkan/vulkan.h>
 
+#include "spirv_reflection.h"
+
 namespace aal {
 
 class Buffer;
 class Device;
 
-// Set 0 holds bindings 0..n-1 of the given types, visible to `stages`; an
-// optional push-constant block of pushConstantBytes follows.
+// The layout of a pipeline made of shader modules: set 0 holds the bindings
+// their SPIR-V declares (`shaders`, mergeShaderInterfaces), bound with push
+// descriptors; an optional push-constant block of pushConstantBytes is
+// visible to all the pipeline's stages.
 class PipelineLayout {
  public:
-  PipelineLayout(const Device& device, const std::vector<VkDescriptorType>& bindings,
-                 VkShaderStageFlags stages, uint32_t pushConstantBytes);
+  // Throws std::logic_error if the shaders use a set other than 0 or a
+  // runtime-sized array (lavapipe has no descriptor indexing).
+  PipelineLayout(const Device& device, const ShaderInterface& shaders, uint32_t pushConstantBytes);
   ~PipelineLayout();
   PipelineLayout(const PipelineLayout&) = delete;
   PipelineLayout& operator=(const PipelineLayout&) = delete;
@@ -24,7 +29,10 @@ class PipelineLayout {
   VkPipelineLayout handle() const { return layout_; }
   VkShaderStageFlags stages() const { return stages_; }
   uint32_t pushConstantBytes() const { return pushConstantBytes_; }
-  size_t bindingCount() const { return bindingCount_; }
+  // Set 0's bindings, sorted.
+  const std::vector<DescriptorBinding>& bindings() const { return bindings_; }
+  // The type of set 0's `binding`; throws std::logic_error if there is none.
+  VkDescriptorType descriptorType(uint32_t binding) const;
   PFN_vkCmdPushDescriptorSetKHR pushDescriptorSet() const { return pushDescriptorSet_; }
 
  private:
@@ -33,25 +41,26 @@ class PipelineLayout {
   VkPipelineLayout layout_ = VK_NULL_HANDLE;
   VkShaderStageFlags stages_ = 0;
   uint32_t pushConstantBytes_ = 0;
-  size_t bindingCount_ = 0;
+  std::vector<DescriptorBinding> bindings_;
   PFN_vkCmdPushDescriptorSetKHR pushDescriptorSet_ = nullptr;
 };
 
-// Collects the resources of one draw or dispatch and pushes them.
+// Collects the resources of one draw or dispatch and pushes them. Each
+// write's descriptor type is the one the pipeline's layout has at that
+// binding (a buffer: uniform or storage; an image: sampled with `sampler`,
+// or storage in VK_IMAGE_LAYOUT_GENERAL); push throws std::logic_error if a
+// resource does not fit its binding.
 class DescriptorWrites {
  public:
-  DescriptorWrites& uniformBuffer(uint32_t binding, const Buffer& buffer);
-  DescriptorWrites& storageBuffer(uint32_t binding, const Buffer& buffer);
-  DescriptorWrites& sampledImage(uint32_t binding, VkImageView view, VkSampler sampler);
-  // An image a compute shader writes, in VK_IMAGE_LAYOUT_GENERAL.
-  DescriptorWrites& storageImage(uint32_t binding, VkImageView view);
+  DescriptorWrites& buffer(uint32_t binding, const Buffer& buffer);
+  DescriptorWrites& image(uint32_t binding, VkImageView view, VkSampler sampler = VK_NULL_HANDLE);
 
   void push(VkCommandBuffer cmd, VkPipelineBindPoint bindPoint, const PipelineLayout& layout) const;
 
  private:
   struct Entry {
     uint32_t binding;
-    VkDescriptorType type;
+    bool isImage;
     VkDescriptorBufferInfo buffer;
     VkDescriptorImageInfo image;
   };

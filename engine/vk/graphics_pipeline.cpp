@@ -1,17 +1,35 @@
 #include "graphics_pipeline.h"
 
+#include <stdexcept>
+
 #include "device.h"
 #include "shader.h"
 #include "vk_check.h"
 
 namespace aal {
 
+namespace {
+
+const ShaderInterface& checkStage(const ShaderModule& shader, VkShaderStageFlags stage) {
+  if (shader.shaderInterface().stages != stage) {
+    throw std::logic_error("shader " + shader.name() + " is not of the stage it is used for");
+  }
+  return shader.shaderInterface();
+}
+
+}  // namespace
+
 GraphicsPipeline::GraphicsPipeline(const Device& device, const GraphicsPipelineDesc& desc)
+    : GraphicsPipeline(device, desc, ShaderModule(device, desc.vertexShader),
+                       ShaderModule(device, desc.fragmentShader)) {}
+
+GraphicsPipeline::GraphicsPipeline(const Device& device, const GraphicsPipelineDesc& desc,
+                                   const ShaderModule& vertex, const ShaderModule& fragment)
     : device_(device.handle()),
-      layout_(device, desc.bindings, VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT,
+      layout_(device,
+              mergeShaderInterfaces({checkStage(vertex, VK_SHADER_STAGE_VERTEX_BIT),
+                                     checkStage(fragment, VK_SHADER_STAGE_FRAGMENT_BIT)}),
               desc.pushConstantBytes) {
-  const ShaderModule vertex(device, desc.vertexShader);
-  const ShaderModule fragment(device, desc.fragmentShader);
   std::vector<VkSpecializationMapEntry> entries;
   for (uint32_t i = 0; i < desc.specialization.size(); ++i) {
     entries.push_back(

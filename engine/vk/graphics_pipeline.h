@@ -12,11 +12,12 @@
 namespace aal {
 
 class Device;
+class ShaderModule;
 
 struct GraphicsPipelineDesc {
   std::string vertexShader;    // e.g. "terrain.vert" (see loadSpirv)
   std::string fragmentShader;  // e.g. "terrain.frag"
-  std::vector<VkDescriptorType> bindings;
+  // (Descriptor bindings: those the two shaders declare, read from their SPIR-V.)
   uint32_t pushConstantBytes = 0;
   std::vector<VkFormat> colorFormats;
   VkFormat depthFormat = VK_FORMAT_UNDEFINED;
@@ -47,6 +48,9 @@ class GraphicsPipeline {
   void bind(VkCommandBuffer cmd, const DescriptorWrites& writes, const void* pushConstants) const;
 
  private:
+  GraphicsPipeline(const Device& device, const GraphicsPipelineDesc& desc,
+                   const ShaderModule& vertex, const ShaderModule& fragment);
+
   VkDevice device_ = VK_NULL_HANDLE;
   PipelineLayout layout_;
   VkPipeline pipeline_ = VK_NULL_HANDLE;

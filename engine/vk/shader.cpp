@@ -51,8 +51,13 @@ std::vector<uint32_t> loadSpirv(const std::string& name) {
 }
 
 ShaderModule::ShaderModule(const Device& device, const std::string& name)
-    : device_(device.handle()) {
+    : device_(device.handle()), name_(name) {
   const std::vector<uint32_t> code = loadSpirv(name);
+  try {
+    interface_ = reflectShaderInterface(code);
+  } catch (const SpirvError& e) {
+    throw SpirvError("shader " + name + ": " + e.what());
+  }
   const VkShaderModuleCreateInfo info{.sType = VK_STRUCTURE_TYPE_SHADER_MODULE_CREATE_INFO,
                                       .codeSize = code.size() * sizeof(uint32_t),
                                       .pCode = code.data()};

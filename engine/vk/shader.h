@@ -8,6 +8,8 @@
 
 #include <vulkan/vulkan.h>
 
+#include "spirv_reflection.h"
+
 namespace aal {
 
 class Device;
@@ -20,17 +22,24 @@ std::filesystem::path shaderDirectory();
 // Throws std::runtime_error naming the path if it is missing or malformed.
 std::vector<uint32_t> loadSpirv(const std::string& name);
 
+// A module and the descriptor bindings it declares (read from its SPIR-V).
 class ShaderModule {
  public:
+  // Throws std::runtime_error naming the shader if it cannot be read or
+  // reflected.
   ShaderModule(const Device& device, const std::string& name);
   ~ShaderModule();
   ShaderModule(const ShaderModule&) = delete;
   ShaderModule& operator=(const ShaderModule&) = delete;
 
   VkShaderModule handle() const { return module_; }
+  const std::string& name() const { return name_; }
+  const ShaderInterface& shaderInterface() const { return interface_; }
 
  private:
   VkDevice device_ = VK_NULL_HANDLE;
+  std::string name_;
+  ShaderInterface interface_;
   VkShaderModule module_ = VK_NULL_HANDLE;
 };
 

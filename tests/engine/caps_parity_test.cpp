@@ -86,7 +86,7 @@ TEST_F(CapsParity, GlslMatchesCpp) {
   input.write(queries.data(), count * sizeof(CapQuery));
 
   {
-    const ComputePipeline pipeline(device(), "caps_parity.comp", 2, sizeof(uint32_t));
+    const ComputePipeline pipeline(device(), "caps_parity.comp", sizeof(uint32_t));
     const uint32_t n = static_cast<uint32_t>(count);
     const uint32_t groups = (n + AAL_CAPS_PARITY_GROUP_SIZE - 1) / AAL_CAPS_PARITY_GROUP_SIZE;
     submitAndWait(device(), [&](VkCommandBuffer cmd) {
@@ -154,21 +154,17 @@ TEST_F(CapsParity, CapTableLookupMatchesCppAndTheClosedForm) {
     const Image image = test::capTableImage(device(), table);
     const Sampler sampler(device(), VK_FILTER_LINEAR);
     {
-      const ComputePipeline pipeline(
-          device(), "cap_table_parity.comp",
-          {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER,
-           VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER},
-          2 * sizeof(uint32_t));
+      const ComputePipeline pipeline(device(), "cap_table_parity.comp", 2 * sizeof(uint32_t));
       const struct {
         uint32_t count;
         float sun;
       } push{count, sun};
       submitAndWait(device(), [&](VkCommandBuffer cmd) {
-        pipeline.record(
-            cmd,
-            DescriptorWrites().storageBuffer(0, input).storageBuffer(1, output).sampledImage(
-                2, image.view(), sampler.handle()),
-            &push, (count + AAL_CAPS_PARITY_GROUP_SIZE - 1) / AAL_CAPS_PARITY_GROUP_SIZE);
+        pipeline.record(cmd,
+                        DescriptorWrites().buffer(0, input).buffer(1, output).image(
+                            2, image.view(), sampler.handle()),
+                        &push,
+                        (count + AAL_CAPS_PARITY_GROUP_SIZE - 1) / AAL_CAPS_PARITY_GROUP_SIZE);
       });
     }
     std::vector<float> answers(count);

@@ -91,12 +91,9 @@ TEST_F(FrameLayout, GlslReadsEveryMemberWhereCppWritesIt) {
   uniforms.write(block.data(), sizeof(FrameUniforms));
   Buffer words(device(), expected.size() * sizeof(uint32_t), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
                MemoryIntent::Readback);
-  const ComputePipeline pipeline(
-      device(), "frame_layout_parity.comp",
-      {VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER}, 0);
+  const ComputePipeline pipeline(device(), "frame_layout_parity.comp", 0);
   submitAndWait(device(), [&](VkCommandBuffer cmd) {
-    pipeline.record(cmd, DescriptorWrites().uniformBuffer(0, uniforms).storageBuffer(1, words),
-                    nullptr, 1);
+    pipeline.record(cmd, DescriptorWrites().buffer(0, uniforms).buffer(1, words), nullptr, 1);
   });
   std::vector<uint32_t> read(expected.size());
   words.read(read.data(), read.size() * sizeof(uint32_t));

@@ -54,7 +54,7 @@ TEST_F(LodParity, GlslMorphMatchesCpp) {
   input.write(queries.data(), count * sizeof(LodQuery));
   Buffer output(device(), count * sizeof(glm::vec4), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
                 MemoryIntent::Readback);
-  const ComputePipeline pipeline(device(), "lod_parity.comp", 2, sizeof(uint32_t));
+  const ComputePipeline pipeline(device(), "lod_parity.comp", sizeof(uint32_t));
   const uint32_t groups = (count + AAL_LOD_PARITY_GROUP_SIZE - 1) / AAL_LOD_PARITY_GROUP_SIZE;
   submitAndWait(device(), [&](VkCommandBuffer cmd) {
     pipeline.record(cmd, {&input, &output}, &count, groups);

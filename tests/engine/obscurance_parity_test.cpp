@@ -67,7 +67,7 @@ TEST_F(ObscuranceParity, GlslEstimatorMatchesCppOnATerrain) {
   Buffer albedoBuffer(device(), albedo.size() * sizeof(glm::vec4),
                       VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, MemoryIntent::Upload);
   albedoBuffer.write(albedo.data(), albedo.size() * sizeof(glm::vec4));
-  const ComputePipeline pipeline(device(), "obscurance_parity.comp", 5, sizeof(Push));
+  const ComputePipeline pipeline(device(), "obscurance_parity.comp", sizeof(Push));
 
   std::mt19937 rng(23);
   std::uniform_real_distribution<float> col(0.0f, 95.0f), row(0.0f, 79.0f), unit(0.0f, 1.0f);

@@ -54,16 +54,12 @@ class ShadingParity : public VulkanTest {
     const Image image = test::capTableImage(device(), table);
     const Sampler sampler(device(), VK_FILTER_LINEAR);
     {
-      const ComputePipeline pipeline(
-          device(), "shading_parity.comp",
-          {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER,
-           VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER},
-          sizeof(uint32_t));
+      const ComputePipeline pipeline(device(), "shading_parity.comp", sizeof(uint32_t));
       submitAndWait(device(), [&](VkCommandBuffer cmd) {
         pipeline.record(
             cmd,
-            DescriptorWrites().storageBuffer(0, input).storageBuffer(1, output).sampledImage(
-                2, image.view(), sampler.handle()),
+            DescriptorWrites().buffer(0, input).buffer(1, output).image(2, image.view(),
+                                                                        sampler.handle()),
             &count, (count + AAL_SHADING_PARITY_GROUP_SIZE - 1) / AAL_SHADING_PARITY_GROUP_SIZE);
       });
     }
@@ -233,7 +229,7 @@ TEST_F(ShadingParity, HorizonInterpolationMatchesCpp) {
                 MemoryIntent::Readback);
   input.write(queries.data(), count * sizeof(HorizonQuery));
   {
-    const ComputePipeline pipeline(device(), "horizon_parity.comp", 2, sizeof(uint32_t));
+    const ComputePipeline pipeline(device(), "horizon_parity.comp", sizeof(uint32_t));
     submitAndWait(device(), [&](VkCommandBuffer cmd) {
       pipeline.record(cmd, {&input, &output}, &count,
                       (count + AAL_SHADING_PARITY_GROUP_SIZE - 1) / AAL_SHADING_PARITY_GROUP_SIZE);

@@ -34,8 +34,7 @@ static_assert(sizeof(SkyQuery) == 16, "std430 layout");
 // is the output) and the query count as push constant.
 void dispatch(const Device& device, const char* shader, const std::vector<const Buffer*>& buffers,
               uint32_t count) {
-  const ComputePipeline pipeline(device, shader, static_cast<uint32_t>(buffers.size()),
-                                 sizeof(uint32_t));
+  const ComputePipeline pipeline(device, shader, sizeof(uint32_t));
   const uint32_t groups = (count + AAL_SKY_PARITY_GROUP_SIZE - 1) / AAL_SKY_PARITY_GROUP_SIZE;
   submitAndWait(device,
                 [&](VkCommandBuffer cmd) { pipeline.record(cmd, buffers, &count, groups); });

@@ -244,7 +244,7 @@ TEST_F(TileLookupParity, GlslLookupMatchesCpp) {
     input.write(texels.data(), count * sizeof(glm::vec2));
     Buffer output(device(), count * sizeof(glm::vec4), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
                   MemoryIntent::Readback);
-    const ComputePipeline pipeline(device(), "tile_lookup_parity.comp", 3, sizeof(uint32_t));
+    const ComputePipeline pipeline(device(), "tile_lookup_parity.comp", sizeof(uint32_t));
     const uint32_t groups = (count + AAL_TILE_PARITY_GROUP_SIZE - 1) / AAL_TILE_PARITY_GROUP_SIZE;
     submitAndWait(device(), [&](VkCommandBuffer cmd) {
       pipeline.record(cmd, {&layoutBuffer, &input, &output}, &count, groups);
