@@ -2,10 +2,11 @@
 // (issue 18 items 1 and 3), against a brute-force reference: Oat's single
 // aperture (approx and exact cap intersection), the directional horizons of
 // 8 and 16 azimuths (terrain/io/horizon_map.h), and K sector apertures and
-// anti-apertures (preprocess/sector_apertures.h) read three ways. Prints,
-// per sun and method, the mean |error| and the RMSE of the visible fraction
-// over the texels that face the sun (N.L > 0: elsewhere the Lambert term
-// hides the fraction). docs/comparison.md, "Several apertures per texel".
+// anti-apertures (preprocess/sector_apertures.h) read three ways, and the
+// single aperture less the anti-apertures. Prints, per sun and method, the
+// mean |error| and the RMSE of the visible fraction over the texels that
+// face the sun (N.L > 0: elsewhere the Lambert term hides the fraction).
+// docs/comparison.md, "Several apertures per texel".
 //
 //   bench_sun_visibility DEM|fbm
 //
@@ -189,6 +190,12 @@ int run(const std::string& dem) {
       methods.push_back({"anti-apertures K=" + std::to_string(k) + " " + l, 4 * k});
     }
   }
+  // Oat's two ideas together: the sun through the single aperture and not
+  // behind the anti-aperture of its sector (the product of the two
+  // fractions, which for a sun this small are nearly always 0 or 1).
+  for (const int k : kSectorCounts) {
+    methods.push_back({"aperture and anti-apertures K=" + std::to_string(k), 4 * k});
+  }
   const SectorLookup lookupOf[] = {SectorLookup::Containing, SectorLookup::Blended,
                                    SectorLookup::Union};
 
@@ -253,6 +260,10 @@ int run(const std::string& dem) {
             for (const SectorLookup l : lookupOf) {
               e[m++] = antiApertureSunFraction(s, i, sun.direction, float(kSunRadiusRad), l);
             }
+          }
+          for (const SectorApertures& s : sectors) {
+            e[m++] = e[1] * antiApertureSunFraction(s, i, sun.direction, float(kSunRadiusRad),
+                                                    SectorLookup::Containing);
           }
         }
       });
