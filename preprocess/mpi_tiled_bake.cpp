@@ -124,7 +124,7 @@ class TileWorker {
   // kBaked or kResumed.
   int work(int row, int column) {
     if (tileFinished(index_, folder_, row, column)) return kResumed;
-    if (hooks_.beforeTile) hooks_.beforeTile(baked_);
+    if (hooks_.beforeTile) hooks_.beforeTile(row, column);
     if (bandRow_ != row) {
       band_ = Heightfield{};  // free the previous band first
       const TexelWindow window = tileWindow(index_, row, 0);
@@ -132,7 +132,6 @@ class TileWorker {
       bandRow_ = row;
     }
     bakeTileInto(band_, far_, index_, bake_, tiled_, folder_, row, column);
-    ++baked_;
     return kBaked;
   }
   int bandRow() const { return bandRow_; }
@@ -149,7 +148,6 @@ class TileWorker {
   const int halo_;
   int bandRow_ = -1;
   Heightfield band_;
-  int baked_ = 0;
 };
 
 // Rank 0's side of the handout: answers every other rank until each has

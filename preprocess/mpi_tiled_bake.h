@@ -61,11 +61,10 @@ struct MpiTiledBakeSummary {
 };
 
 struct MpiTiledBakeHooks {
-  // Called on a rank before it bakes a tile it was given (not one it found
-  // finished), with its count of tiles baked so far: the tests kill a rank
-  // there, mid-bake, holding a tile it will never write (aal-bake-mpi's
-  // AAL_BAKE_MPI_KILL_AFTER).
-  std::function<void(int baked)> beforeTile;
+  // Called on a rank before it bakes tile (row, column), given to it and
+  // not found finished: the tests kill the rank there, mid-bake, holding a
+  // tile it will never write (aal-bake-mpi's AAL_BAKE_MPI_KILL_AT).
+  std::function<void(int row, int column)> beforeTile;
 };
 
 // Collective over `comm`: every rank calls it with the same arguments

@@ -55,16 +55,17 @@ int ranksOnThisHost() {
   return ranks;
 }
 
-// AAL_BAKE_MPI_KILL_AFTER=RANK:K (for the tests): rank RANK kills itself
-// with SIGKILL when it has baked K tiles and holds another, as a node
-// failure would.
-aal::MpiTiledBakeHooks testHooks(int rank) {
+// AAL_BAKE_MPI_KILL_AT=ROW,COLUMN (for the tests): the rank given tile
+// (ROW, COLUMN) to bake kills itself with SIGKILL before baking it, as a
+// node failure would. Every tile is given to some rank: the kill always
+// happens, whichever rank is fastest.
+aal::MpiTiledBakeHooks testHooks() {
   aal::MpiTiledBakeHooks hooks;
-  const char* kill = std::getenv("AAL_BAKE_MPI_KILL_AFTER");
-  int victim = -1, after = 0;
-  if (kill && std::sscanf(kill, "%d:%d", &victim, &after) == 2 && victim == rank) {
-    hooks.beforeTile = [after](int baked) {
-      if (baked >= after) std::raise(SIGKILL);
+  const char* kill = std::getenv("AAL_BAKE_MPI_KILL_AT");
+  int killRow = -1, killColumn = -1;
+  if (kill && std::sscanf(kill, "%d,%d", &killRow, &killColumn) == 2) {
+    hooks.beforeTile = [killRow, killColumn](int row, int column) {
+      if (row == killRow && column == killColumn) std::raise(SIGKILL);
     };
   }
   return hooks;
@@ -152,7 +153,7 @@ int run(const Options& o) {
   aal::MpiTiledBakeSummary summary;
   try {
     summary =
-        aal::bakeTiledMpi(MPI_COMM_WORLD, *dem, geometry, bake, tiling, o.output, testHooks(rank));
+        aal::bakeTiledMpi(MPI_COMM_WORLD, *dem, geometry, bake, tiling, o.output, testHooks());
   } catch (const aal::MpiPeerFailed& e) {
     return e.exitCode();  // rank 0 has said why
   } catch (const aal::MpiTileFailed& e) {
