@@ -39,6 +39,7 @@ struct Options {
   bool curvature = false;
   double refraction = 0.13;
   double maxDistance = 0;
+  double nearReach = 0;  // 0: the far field's default (kFarFieldReachCells)
   int threads = 0;
   bool fullFloat = false;
   std::string compression = "rle";
@@ -79,6 +80,9 @@ int checkOnRankZero(int rank, const Options& o) {
   if (rank == 0) {
     try {
       aal::checkDistinctFiles({{"DEM", o.dem}}, {{"-o", o.output}});
+      if (o.nearReach > 0 && o.maxDistance > 0) {
+        throw aal::InputError("--near-reach is the far field's, which --max-distance leaves out");
+      }
       namespace fs = std::filesystem;
       std::error_code error;
       if (fs::exists(o.output, error) && !fs::is_directory(o.output, error)) {
@@ -142,6 +146,7 @@ int run(const Options& o) {
                        : o.compression == "none" ? aal::MapCompression::None
                                                  : aal::MapCompression::Rle;
   tiling.sourceName = std::filesystem::path(o.dem).filename().string();
+  tiling.farField.nearReachM = o.nearReach;
 
   // By default a host's cores are shared among its ranks.
   const int cores = std::max(1, static_cast<int>(std::thread::hardware_concurrency()));
@@ -232,6 +237,11 @@ int main(int argc, char** argv) {
   app.add_option("--max-distance", o.maxDistance,
                  "only terrain within this many metres counts (0 = all, with a far field)")
       ->check(aal::kNonNegative);
+  app.add_option("--near-reach", o.nearReach,
+                 "without --max-distance: metres the near sweep covers before the far field's "
+                 "pyramid takes over (default 128 cells; each doubling divides the pyramid's "
+                 "memory by 4)")
+      ->check(aal::kPositive);
   app.add_option("--threads", o.threads,
                  "worker threads per rank (default: the host's cores shared among its ranks)")
       ->check(CLI::Range(1, 1024));

@@ -74,11 +74,12 @@ bool hasTemporaries(const fs::path& folder) {
 TEST(AalBakeMpi, ThreeRanksWriteTheSingleProcessFolderByteForByte) {
   TempDir dir;
   const fs::path dem = writeDem(dir, 150, 120);
-  // The far field (no max distance), and a distance-limited bake with the
-  // clamped edge, curvature and full floats.
-  for (const std::string options : {" --tile-size 32 --azimuths 16",
-                                    " --tile-size 32 --azimuths 8 --max-distance 300 "
-                                    "--edge clamp --curvature --float"}) {
+  // The far field (no max distance; its default reach and a shorter one),
+  // and a distance-limited bake with the clamped edge, curvature and full
+  // floats.
+  for (const std::string options :
+       {" --tile-size 32 --azimuths 16", " --tile-size 32 --azimuths 8 --near-reach 1500",
+        " --tile-size 32 --azimuths 8 --max-distance 300 --edge clamp --curvature --float"}) {
     SCOPED_TRACE(options);
     const fs::path single = dir.path() / "single", mpi = dir.path() / "mpi";
     fs::remove_all(single);
@@ -91,6 +92,9 @@ TEST(AalBakeMpi, ThreeRanksWriteTheSingleProcessFolderByteForByte) {
     const test::FolderContents want = folderContents(single), have = folderContents(mpi);
     EXPECT_EQ(have.size(), 23u);  // 20 tiles, index, manifest, lock
     EXPECT_TRUE(have.count("index.txt"));
+    if (options.find("--near-reach") != std::string::npos) {
+      EXPECT_NE(have.at("index.txt").find("reach 1500 m"), std::string::npos);
+    }
     for (const auto& [name, bytes] : want) {
       ASSERT_TRUE(have.count(name)) << name;
       EXPECT_TRUE(have.at(name) == bytes) << name << " differs";
