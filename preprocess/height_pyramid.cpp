@@ -61,6 +61,15 @@ void HeightPyramid::addRows(const float* rows, int count) {
   if (complete()) buildCoarserLevels();
 }
 
+void HeightPyramid::fillBaseLevel(
+    const std::function<void(float* max, float* mean, size_t count)>& fill) {
+  if (rowsAdded_ != 0) throw std::invalid_argument("height pyramid: rows were added already");
+  Level& base = levels_.front();
+  fill(base.max.data(), base.mean.data(), base.max.size());
+  rowsAdded_ = height_;
+  buildCoarserLevels();
+}
+
 void HeightPyramid::finishBlockRow(int blockRow) {
   Level& base = levels_.front();
   const int spanY = blockSpan(blockRow, base.shift, height_);

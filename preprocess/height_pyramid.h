@@ -6,6 +6,7 @@
 #pragma once
 
 #include <cstddef>
+#include <functional>
 #include <vector>
 
 #include "heightfield.h"
@@ -31,6 +32,12 @@ class HeightPyramid {
   // After the last row the coarser levels are built.
   void addRows(const float* rows, int count);
   bool complete() const { return rowsAdded_ == height_; }
+  // Instead of the rows: `fill` writes the finest level's maxima and means
+  // (`count` floats each, in place) as another pyramid of the same DEM holds
+  // them (level(baseShift())), then the coarser levels are built, the same
+  // bit for bit. How the ranks of an MPI bake take the pyramid that rank 0
+  // built (preprocess/mpi_tiled_bake.h).
+  void fillBaseLevel(const std::function<void(float* max, float* mean, size_t count)>& fill);
 
   int width() const { return width_; }
   int height() const { return height_; }

@@ -167,9 +167,8 @@ void checkFolderHoldsThisBake(const std::string& folder, const ApertureTileIndex
   }
 }
 
-// Whether tile (row, column) is already in the folder, finished and
-// verified. A tile of another bake is an InputError; an unreadable one, or
-// one whose pixels do not match their checksum, is baked again.
+}  // namespace
+
 bool tileFinished(const ApertureTileIndex& index, const std::string& folder, int row, int column) {
   const std::string path = (fs::path(folder) / apertureTileName(row, column)).string();
   if (!fs::exists(path)) return false;
@@ -192,8 +191,7 @@ bool tileFinished(const ApertureTileIndex& index, const std::string& folder, int
   return true;
 }
 
-// Creates the output folder (not its parents) when missing.
-void createFolder(const std::string& folder) {
+void createTileFolder(const std::string& folder) {
   std::error_code error;
   fs::create_directory(folder, error);
   if (!fs::is_directory(folder)) {
@@ -202,7 +200,51 @@ void createFolder(const std::string& folder) {
   }
 }
 
-}  // namespace
+ApertureTileIndex tiledBakeIndex(const Heightfield& geometry, const std::string& checksum,
+                                 const BakeOptions& bake, const TiledBakeOptions& tiled) {
+  BakeOptions tile = bake;
+  const FarField far{nullptr, resolvedFarField(geometry, tiled)};
+  if (!(bake.maxDistanceM > 0.0)) tile.farField = &far;  // its method names the far field
+  ApertureTileIndex index;
+  index.map.width = geometry.width;
+  index.map.height = geometry.height;
+  index.map.info = bakeInfo(geometry, tile);
+  index.map.info.source = tiled.sourceName;
+  index.map.info.sourceChecksum = checksum;
+  index.tileSize = tiled.tileSize;
+  return index;
+}
+
+void openTileFolder(const std::string& folder, const ApertureTileIndex& index) {
+  // Another bake's folder is refused before anything in it is touched.
+  checkFolderHoldsThisBake(folder, index);
+  // What a killed run left behind; a running bake's temporaries stay.
+  removeDeadTemporaries(folder);
+  if (!fs::exists(fs::path(folder) / kTiledBakeManifestName)) {
+    writeApertureTileIndex(folder, index, kTiledBakeManifestName);
+  }
+}
+
+TexelWindow tileWindow(const ApertureTileIndex& index, int row, int column) {
+  return TexelWindow{column * index.tileSize, row * index.tileSize, index.tileWidth(column),
+                     index.tileHeight(row)};
+}
+
+void bakeTileInto(const Heightfield& field, const FarField* far, const ApertureTileIndex& index,
+                  const BakeOptions& bake, const TiledBakeOptions& tiled, const std::string& folder,
+                  int row, int column) {
+  BakeOptions tile = bake;
+  if (!(bake.maxDistanceM > 0.0)) tile.farField = far;
+  const TexelWindow window = tileWindow(index, row, column);
+  BakeResult result = bakeApertureWindow(field, window, tile);
+  ApertureMapInfo& info = result.aperture.info;
+  info.source = index.map.info.source;
+  info.sourceChecksum = index.map.info.sourceChecksum;
+  info.originCol = window.col;
+  info.originRow = window.row;
+  writeApertureMap((fs::path(folder) / apertureTileName(row, column)).string(), result.aperture,
+                   tiled.halfFloat, tiled.compression);
+}
 
 namespace {
 
@@ -216,39 +258,24 @@ TiledBakeSummary bakeTiles(const Heightfield& geometry, const std::string& check
                            const BakeOptions& bake, const TiledBakeOptions& tiled,
                            const std::string& folder) {
   checkTiledBakeOptions(bake, tiled);
-  BakeOptions tile = bake;
-  FarField far{pyramid, resolvedFarField(geometry, tiled)};
-  if (!(bake.maxDistanceM > 0.0)) tile.farField = &far;
-  createFolder(folder);
+  createTileFolder(folder);
   // Held to the end: a second bake into this folder stops here, before it
   // could sweep this one's temporaries or write a tile (issue 17).
   std::optional<TiledBakeLock> ownLock;
   if (!tiled.lock) ownLock.emplace(folder);
-
-  ApertureTileIndex index;
-  index.map.width = geometry.width;
-  index.map.height = geometry.height;
-  index.map.info = bakeInfo(geometry, tile);
-  index.map.info.source = tiled.sourceName;
-  index.map.info.sourceChecksum = checksum;
-  index.tileSize = tiled.tileSize;
-  // Another bake's folder is refused before anything in it is touched.
-  checkFolderHoldsThisBake(folder, index);
-  // What a killed run left behind; a running bake's temporaries stay.
-  removeDeadTemporaries(folder);
-  if (!fs::exists(fs::path(folder) / kTiledBakeManifestName)) {
-    writeApertureTileIndex(folder, index, kTiledBakeManifestName);
-  }
+  const ApertureTileIndex index = tiledBakeIndex(geometry, checksum, bake, tiled);
+  openTileFolder(folder, index);
 
   TiledBakeSummary summary;
   summary.tiles = index.rows() * index.columns();
   const double total = static_cast<double>(geometry.texelCount());
   double done = 0;  // texels of finished tiles
+  BakeOptions tile = bake;
+  const FarField far{pyramid, resolvedFarField(geometry, tiled)};
   for (int row = 0; row < index.rows(); ++row) {
     const Heightfield* field = nullptr;  // read when a tile of this row needs baking
     for (int column = 0; column < index.columns(); ++column) {
-      const TexelWindow window{column * tiled.tileSize, row * tiled.tileSize,
-                               index.tileWidth(column), index.tileHeight(row)};
+      const TexelWindow window = tileWindow(index, row, column);
       const double texels = static_cast<double>(window.texelCount());
       if (tileFinished(index, folder, row, column)) {
         ++summary.resumed;
@@ -257,14 +284,7 @@ TiledBakeSummary bakeTiles(const Heightfield& geometry, const std::string& check
           tile.progress = [&](double f) { bake.progress((done + f * texels) / total); };
         }
         if (field == nullptr) field = &terrainFor(window.row, window.height);
-        BakeResult result = bakeApertureWindow(*field, window, tile);
-        ApertureMapInfo& info = result.aperture.info;
-        info.source = index.map.info.source;
-        info.sourceChecksum = index.map.info.sourceChecksum;
-        info.originCol = window.col;
-        info.originRow = window.row;
-        writeApertureMap((fs::path(folder) / apertureTileName(row, column)).string(),
-                         result.aperture, tiled.halfFloat, tiled.compression);
+        bakeTileInto(*field, &far, index, tile, tiled, folder, row, column);
         ++summary.baked;
       }
       done += texels;
@@ -289,12 +309,12 @@ std::pair<double, double> cellRange(const Heightfield& field) {
   return {smallest, largest};
 }
 
-int pyramidShiftFor(const Heightfield& geometry, const TiledBakeOptions& tiled) {
+}  // namespace
+
+int tiledBakePyramidShift(const Heightfield& geometry, const TiledBakeOptions& tiled) {
   const auto [smallest, largest] = cellRange(geometry);
   return farFieldBaseShift(resolvedFarField(geometry, tiled), smallest, largest);
 }
-
-}  // namespace
 
 FarFieldOptions resolvedFarField(const Heightfield& geometry, const TiledBakeOptions& tiled) {
   FarFieldOptions far = tiled.farField;
@@ -307,7 +327,7 @@ TiledBakeSummary bakeTiled(const Heightfield& field, const BakeOptions& bake,
   checkTiledBakeOptions(bake, tiled);
   std::optional<HeightPyramid> pyramid;
   if (!(bake.maxDistanceM > 0.0))
-    pyramid.emplace(buildHeightPyramid(field, pyramidShiftFor(field, tiled)));
+    pyramid.emplace(buildHeightPyramid(field, tiledBakePyramidShift(field, tiled)));
   return bakeTiles(
       field, heightfieldChecksum(field), [&](int, int) -> const Heightfield& { return field; },
       pyramid ? &*pyramid : nullptr, bake, tiled, folder);
@@ -325,6 +345,34 @@ int bandHaloRows(const Heightfield& geometry, const BakeOptions& bake,
   return detail::stepsCovering(prepareBakeTerrain(geometry), reach) + tiled.tileSize + 3;
 }
 
+Heightfield readTileRowBand(const DemSource& source, const Heightfield& geometry, int halo,
+                            int firstRow, int rows) {
+  const int top = std::max(0, firstRow - halo);
+  const int bottom = std::min(geometry.height, firstRow + rows + halo);
+  return readDemRows(source, geometry, top, bottom - top);
+}
+
+TiledBakeDemPass scanDemForTiledBake(const DemSource& source, const Heightfield& geometry,
+                                     const BakeOptions& bake, const TiledBakeOptions& tiled) {
+  HeightfieldHasher hasher(geometry.width, geometry.height);
+  TiledBakeDemPass pass;
+  if (!(bake.maxDistanceM > 0.0)) {
+    pass.pyramid.emplace(geometry.width, geometry.height, tiledBakePyramidShift(geometry, tiled));
+  }
+  const int chunk =
+      std::max(1, static_cast<int>((size_t{64} << 20) / (sizeof(float) * geometry.width)));
+  for (int row = 0; row < geometry.height; row += chunk) {
+    const Heightfield rows =
+        readDemRows(source, geometry, row, std::min(chunk, geometry.height - row));
+    hasher.add(rows.z.data(), rows.z.size());
+    if (pass.pyramid) pass.pyramid->addRows(rows.z.data(), rows.residentRows());
+    if (bake.progress) bake.progress(0.0);
+    if (bake.cancel && bake.cancel->load(std::memory_order_relaxed)) throw BakeCancelled();
+  }
+  pass.checksum = hasher.hex();
+  return pass;
+}
+
 TiledBakeSummary bakeTiledInBands(const DemSource& source, const Heightfield& geometry,
                                   const BakeOptions& bake, const TiledBakeOptions& tiled,
                                   const std::string& folder) {
@@ -334,35 +382,17 @@ TiledBakeSummary bakeTiledInBands(const DemSource& source, const Heightfield& ge
   std::optional<TiledBakeLock> ownLock;
   TiledBakeOptions locked = tiled;
   if (!locked.lock && fs::is_directory(folder)) locked.lock = &ownLock.emplace(folder);
-  // One pass for the DEM's checksum (and its voids, refused before any
-  // tile) and, without a max distance, its pyramid.
-  HeightfieldHasher hasher(geometry.width, geometry.height);
-  std::optional<HeightPyramid> pyramid;
-  if (!(bake.maxDistanceM > 0.0)) {
-    pyramid.emplace(geometry.width, geometry.height, pyramidShiftFor(geometry, tiled));
-  }
-  const int chunk =
-      std::max(1, static_cast<int>((size_t{64} << 20) / (sizeof(float) * geometry.width)));
-  for (int row = 0; row < geometry.height; row += chunk) {
-    const Heightfield rows =
-        readDemRows(source, geometry, row, std::min(chunk, geometry.height - row));
-    hasher.add(rows.z.data(), rows.z.size());
-    if (pyramid) pyramid->addRows(rows.z.data(), rows.residentRows());
-    if (bake.progress) bake.progress(0.0);
-    if (bake.cancel && bake.cancel->load(std::memory_order_relaxed)) throw BakeCancelled();
-  }
+  TiledBakeDemPass pass = scanDemForTiledBake(source, geometry, bake, tiled);
   const int halo = bandHaloRows(geometry, bake, tiled);
   Heightfield band;
   return bakeTiles(
-      geometry, hasher.hex(),
+      geometry, pass.checksum,
       [&](int firstRow, int rows) -> const Heightfield& {
-        const int top = std::max(0, firstRow - halo);
-        const int bottom = std::min(geometry.height, firstRow + rows + halo);
         band = Heightfield{};  // free the previous band first
-        band = readDemRows(source, geometry, top, bottom - top);
+        band = readTileRowBand(source, geometry, halo, firstRow, rows);
         return band;
       },
-      pyramid ? &*pyramid : nullptr, bake, locked, folder);
+      pass.pyramid ? &*pass.pyramid : nullptr, bake, locked, folder);
 }
 
 }  // namespace aal

@@ -7,11 +7,13 @@
 // whole DEM (far_horizon.h), close to the in-memory bake. docs/baking.md.
 #pragma once
 
+#include <optional>
 #include <stdexcept>
 #include <string>
 
 #include "bake.h"
 #include "far_horizon.h"
+#include "height_pyramid.h"
 
 namespace aal {
 
@@ -122,5 +124,48 @@ int bandHaloRows(const Heightfield& geometry, const BakeOptions& bake,
 // The far field a tiled bake of `geometry` without a max distance uses:
 // tiled.farField with nearReachM resolved.
 FarFieldOptions resolvedFarField(const Heightfield& geometry, const TiledBakeOptions& tiled);
+// The base shift of the pyramid that far field reads.
+int tiledBakePyramidShift(const Heightfield& geometry, const TiledBakeOptions& tiled);
+
+// The steps of a tiled bake, for a bake that spreads its tiles over
+// processes (preprocess/mpi_tiled_bake.h); bakeTiled and bakeTiledInBands
+// run them in one process, in this order.
+
+// What a pass over the whole DEM gives a tiled bake: the heights' checksum
+// (heightfieldChecksum's) and, without a max distance, the pyramid.
+struct TiledBakeDemPass {
+  std::string checksum;
+  std::optional<HeightPyramid> pyramid;
+};
+// The pass, reading `source` in chunks of 64 MB of rows. Voids are an
+// InputError (readDemRows); bake.cancel is polled between chunks.
+TiledBakeDemPass scanDemForTiledBake(const DemSource& source, const Heightfield& geometry,
+                                     const BakeOptions& bake, const TiledBakeOptions& tiled);
+// The index (and manifest) of the bake: the whole map's size and attributes.
+ApertureTileIndex tiledBakeIndex(const Heightfield& geometry, const std::string& checksum,
+                                 const BakeOptions& bake, const TiledBakeOptions& tiled);
+// Creates the output folder (not its parents) when missing.
+void createTileFolder(const std::string& folder);
+// With the folder's lock held: refuses (InputError, touching nothing) a
+// folder of another bake, removes dead processes' temporaries and writes
+// the manifest unless there is one.
+void openTileFolder(const std::string& folder, const ApertureTileIndex& index);
+// Whether tile (row, column) is already in the folder, finished and
+// verified. A tile of another bake is an InputError; an unreadable one, or
+// one whose pixels do not match their checksum, is to be baked again.
+bool tileFinished(const ApertureTileIndex& index, const std::string& folder, int row, int column);
+// The texels of tile (row, column).
+TexelWindow tileWindow(const ApertureTileIndex& index, int row, int column);
+// The rows a tile row [firstRow, firstRow + rows) is baked from: those rows
+// and `halo` (bandHaloRows) above and below, every column.
+Heightfield readTileRowBand(const DemSource& source, const Heightfield& geometry, int halo,
+                            int firstRow, int rows);
+// Bakes tile (row, column) from `field` (the whole DEM, or a band that
+// holds the tile row's band) and writes it into the folder (a temporary
+// file, renamed). `far`: the whole DEM's far field, for a bake without a
+// max distance (its options resolvedFarField's).
+void bakeTileInto(const Heightfield& field, const FarField* far, const ApertureTileIndex& index,
+                  const BakeOptions& bake, const TiledBakeOptions& tiled, const std::string& folder,
+                  int row, int column);
 
 }  // namespace aal

@@ -24,6 +24,9 @@ packages=(
   libxxhash-dev
   # parallelism, command line, tests, benchmarks
   libtbb-dev libcli11-dev libgtest-dev libgmock-dev libbenchmark-dev
+  # aal-bake-mpi, the tiled bake across MPI ranks (-DAAL_MPI=ON, which
+  # scripts/build.sh turns on)
+  libopenmpi-dev openmpi-bin
   # fuzzing the DEM parsers (scripts/fuzz.sh): clang with libFuzzer
   clang libclang-rt-14-dev
 )

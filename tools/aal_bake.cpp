@@ -83,7 +83,8 @@ struct Options {
   bool cog = false;
   bool lowMemory = false;
   std::string compression = "rle";
-  int tileSize = 0;  // 0: tiled only above the in-memory limit
+  int tileSize = 0;      // 0: tiled only above the in-memory limit
+  double nearReach = 0;  // 0: the far field's default (kFarFieldReachCells)
 };
 
 aal::MapCompression compressionOf(const Options& o) {
@@ -145,6 +146,9 @@ bool checkTiling(const Options& o, const aal::DemSource& dem) {
   if (!o.svfPath.empty() || !o.visiblePath.empty() || !o.horizonsPath.empty()) {
     throw aal::InputError(why + " writes no --svf, --visible or --horizons");
   }
+  if (o.nearReach > 0 && o.maxDistance > 0) {
+    throw aal::InputError("--near-reach is the far field's, which --max-distance leaves out");
+  }
   return true;
 }
 
@@ -173,6 +177,9 @@ int run(const Options& o) {
   const auto readStart = std::chrono::steady_clock::now();
   const aal::DemSource dem(o.dem, load);
   const bool tiled = checkTiling(o, dem);
+  if (!tiled && o.nearReach > 0) {
+    throw aal::InputError("--near-reach is for tiled bakes without --max-distance (--tile-size)");
+  }
   if (tiled != askedTiled) checkOutputs(o, tiled);
   // A tiled bake of a DEM that does not fit in memory reads it in bands.
   const bool inBands = tiled && (o.lowMemory || !fitsInMemory(dem));
@@ -230,6 +237,7 @@ int run(const Options& o) {
   tiling.compression = compressionOf(o);
   tiling.sourceName = source;
   tiling.lock = lock ? &*lock : nullptr;
+  tiling.farField.nearReachM = o.nearReach;
   try {
     if (inBands) {
       tiles = aal::bakeTiledInBands(dem, geometry, bake, tiling, o.output);
@@ -379,6 +387,11 @@ int main(int argc, char** argv) {
                  "texels are always baked tiled, in "
                  "tiles of 4096")
       ->check(CLI::Range(aal::kMinTileSize, aal::kMaxTileSize));
+  app.add_option("--near-reach", o.nearReach,
+                 "tiled, without --max-distance: metres the near sweep covers before the far "
+                 "field's pyramid takes over (default 128 cells; each doubling divides the "
+                 "pyramid's memory by 4 and adds that many steps to every tile's lines)")
+      ->check(aal::kPositive);
   app.add_flag("--low-memory", o.lowMemory,
                "read the DEM one band of rows at a time (a tile row plus its halo): a "
                "tiled bake then needs memory for one band, not the DEM; automatic when the DEM "

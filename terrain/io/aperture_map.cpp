@@ -69,13 +69,25 @@ void useEveryCoreForExr() {
   });
 }
 
-// "YYYY:MM:DD HH:MM:SS", local time: the capDate OpenImageIO wrote.
+// "YYYY:MM:DD HH:MM:SS", local time: the capDate OpenImageIO wrote. With
+// SOURCE_DATE_EPOCH set (seconds since 1970, the reproducible-builds.org
+// convention) that time in UTC instead, so that two bakes of the same DEM
+// (aal-bake's tiles and aal-bake-mpi's, say) are the same files byte for
+// byte.
 std::string captureDate() {
-  const std::time_t now = std::time(nullptr);
-  std::tm local{};
-  localtime_r(&now, &local);
+  std::time_t when = std::time(nullptr);
+  std::tm calendar{};
+  const char* epoch = std::getenv("SOURCE_DATE_EPOCH");
+  char* end = nullptr;
+  const long long fixed = epoch ? std::strtoll(epoch, &end, 10) : -1;
+  if (epoch && *epoch && end && *end == '\0' && fixed >= 0) {
+    when = static_cast<std::time_t>(fixed);
+    gmtime_r(&when, &calendar);
+  } else {
+    localtime_r(&when, &calendar);
+  }
   char text[32];
-  std::strftime(text, sizeof text, "%Y:%m:%d %H:%M:%S", &local);
+  std::strftime(text, sizeof text, "%Y:%m:%d %H:%M:%S", &calendar);
   return text;
 }
 

@@ -63,9 +63,19 @@ void removeDeadTemporaries(const fs::path& folder) {
   }
 }
 
+namespace {
+std::atomic<bool> removeOnWrite{true};
+}  // namespace
+
+void setRemoveDeadTemporariesOnWrite(bool remove) {
+  removeOnWrite.store(remove);
+}
+
 AtomicOutput::AtomicOutput(fs::path path) : final_(std::move(path)) {
   checkOutputWritable(final_);
-  removeDeadTemporaries(final_.has_parent_path() ? final_.parent_path() : fs::path("."));
+  if (removeOnWrite.load()) {
+    removeDeadTemporaries(final_.has_parent_path() ? final_.parent_path() : fs::path("."));
+  }
   static std::atomic<unsigned> counter{0};
   const std::string unique = std::to_string(::getpid()) + "-" + std::to_string(counter++);
   // Built with += : GCC 12 reports a false -Wrestrict for chained + here.

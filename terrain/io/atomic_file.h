@@ -18,6 +18,11 @@ void checkOutputWritable(const std::filesystem::path& path);
 // other files and sub-folders are kept; errors are ignored (a hint of
 // tidiness, not a guarantee). AtomicOutput calls it on its folder.
 void removeDeadTemporaries(const std::filesystem::path& folder);
+// Whether AtomicOutput calls it (on unless turned off). The ranks of an MPI
+// bake turn it off: their folder is written from other hosts at the same
+// time, and a PID names a process only on its own host, so a live rank's
+// temporary would look dead from another (preprocess/mpi_tiled_bake.h).
+void setRemoveDeadTemporariesOnWrite(bool remove);
 
 class AtomicOutput {
  public:

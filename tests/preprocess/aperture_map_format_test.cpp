@@ -8,6 +8,7 @@
 
 #include <algorithm>
 #include <cstdint>
+#include <cstdlib>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
@@ -281,6 +282,27 @@ TEST(ApertureMapFile, TruncatedAnywhereIsAnInputErrorNamingIt) {
       EXPECT_NE(std::string(e.what()).find(path), std::string::npos) << e.what();
     }
   }
+}
+
+// SOURCE_DATE_EPOCH (reproducible-builds.org) fixes the capDate, in UTC:
+// two writes of one map are then the same bytes (the MPI bake's tests
+// compare folders so). Without it the capDate is the time of the write.
+TEST(ApertureMapFile, SourceDateEpochFixesTheCaptureDate) {
+  test::TempDir dir;
+  const ApertureMap map = bakedMap();
+  const auto bytes = [](const std::filesystem::path& path) {
+    std::ifstream in(path, std::ios::binary);
+    return std::string(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+  };
+  ASSERT_EQ(setenv("SOURCE_DATE_EPOCH", "1700000000", 1), 0);
+  writeApertureMap((dir.path() / "a.exr").string(), map, true);
+  writeApertureMap((dir.path() / "b.exr").string(), map, true);
+  unsetenv("SOURCE_DATE_EPOCH");
+  const std::string a = bytes(dir.path() / "a.exr");
+  EXPECT_NE(a.find("2023:11:14 22:13:20"), std::string::npos);
+  EXPECT_TRUE(a == bytes(dir.path() / "b.exr"));
+  writeApertureMap((dir.path() / "c.exr").string(), map, true);
+  EXPECT_EQ(bytes(dir.path() / "c.exr").find("2023:11:14 22:13:20"), std::string::npos);
 }
 
 TEST(ApertureMapFile, ThreeChannelsAreAnInputError) {

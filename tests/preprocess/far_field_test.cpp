@@ -97,6 +97,28 @@ TEST(HeightPyramid, BandsOfRowsBuildTheSamePyramid) {
   EXPECT_THROW(bands.addRows(field.z.data(), 1), std::invalid_argument);
 }
 
+// The ranks of an MPI bake receive rank 0's finest level and build the
+// coarser ones themselves: every level the same floats as rank 0's.
+TEST(HeightPyramid, FilledFromAnotherBaseLevelIsTheSame) {
+  const Heightfield field = fbm(75, 46, 800);
+  const HeightPyramid whole = buildHeightPyramid(field, 1);
+  HeightPyramid copy(field.width, field.height, 1);
+  copy.fillBaseLevel([&](float* max, float* mean, size_t count) {
+    const HeightPyramid::Level& base = whole.level(1);
+    ASSERT_EQ(count, base.max.size());
+    std::copy(base.max.begin(), base.max.end(), max);
+    std::copy(base.mean.begin(), base.mean.end(), mean);
+  });
+  ASSERT_TRUE(copy.complete());
+  ASSERT_EQ(copy.coarsestShift(), whole.coarsestShift());
+  for (int shift = whole.baseShift(); shift <= whole.coarsestShift(); ++shift) {
+    EXPECT_EQ(copy.level(shift).max, whole.level(shift).max) << "shift " << shift;
+    EXPECT_EQ(copy.level(shift).mean, whole.level(shift).mean) << "shift " << shift;
+  }
+  // Filled once, and never after rows.
+  EXPECT_THROW(copy.fillBaseLevel([](float*, float*, size_t) {}), std::invalid_argument);
+}
+
 // A window's lines walked from windowReachM before it: each texel's horizon
 // covers at least that distance (no lower than the horizon within it) and
 // at most its whole line (no higher than the unlimited one).

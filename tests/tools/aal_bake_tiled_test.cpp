@@ -184,6 +184,8 @@ TEST(AalBakeTiled, BadTiledBakesExitWithTwoBeforeWork) {
            Case{out + " --tile-size 8 --max-distance 100", "--tile-size"},
            Case{out + " --tile-size 20000 --max-distance 100", "--tile-size"},
            Case{out + " --tile-size 16 --max-distance 100 --method rays", "sweep"},
+           Case{out + " --tile-size 16 --max-distance 100 --near-reach 600", "--near-reach"},
+           Case{quoted(dem) + " -o " + quoted(file) + " --near-reach 600", "--near-reach"},
            Case{out + " --tile-size 16 --max-distance 100 --svf " + quoted(dir.path() / "s.tif"),
                 "--svf"},
            Case{quoted(dem) + " -o " + quoted(file) + " --tile-size 16 --max-distance 100",

@@ -42,6 +42,21 @@ TEST(AtomicOutput, RemovesTheTemporariesOfDeadProcessesOnly) {
   EXPECT_TRUE(fs::is_directory(dir.path() / (".d.tmp-" + dead + "-0")));
 }
 
+// Turned off (the ranks of an MPI bake, whose folder other hosts write at
+// the same time), a write leaves every temporary; turned on again, it
+// sweeps as before.
+TEST(AtomicOutput, TheSweepAtEveryWriteCanBeTurnedOff) {
+  test::TempDir dir;
+  const fs::path killed = dir.path() / (".k.tmp-" + std::to_string(test::deadPid()) + "-0.exr");
+  touch(killed);
+  setRemoveDeadTemporariesOnWrite(false);
+  { AtomicOutput output(dir.path() / "result.png"); }
+  EXPECT_TRUE(fs::exists(killed));
+  setRemoveDeadTemporariesOnWrite(true);
+  { AtomicOutput output(dir.path() / "result.png"); }
+  EXPECT_FALSE(fs::exists(killed));
+}
+
 TEST(AtomicOutput, CommitRenamesAndAnAbandonedOutputLeavesNothing) {
   test::TempDir dir;
   const fs::path final = dir.path() / "out.txt";

@@ -1,0 +1,328 @@
+#include "mpi_tiled_bake.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cstring>
+#include <exception>
+#include <filesystem>
+#include <memory>
+#include <mutex>
+#include <optional>
+#include <thread>
+#include <utility>
+
+#include "atomic_file.h"
+#include "dem_source.h"
+#include "errors.h"
+
+namespace aal {
+
+namespace {
+
+constexpr int kRequestTag = 1;  // rank -> 0: {outcome of its last tile, its band's tile row}
+constexpr int kAssignTag = 2;   // 0 -> rank: {tile row, column}, or {-1, -1}: no more
+constexpr int kNoOutcome = 0, kBaked = 1, kResumed = 2;
+
+// Waits for `request` without spinning: Open MPI's blocking calls poll at
+// full speed, and a rank waiting for rank 0's pass over the DEM (minutes at
+// scale) or for another rank's last tile would take a core from the ranks
+// still baking on its node.
+void waitPolitely(MPI_Request& request, MPI_Status* status = MPI_STATUS_IGNORE) {
+  for (;;) {
+    int done = 0;
+    MPI_Test(&request, &done, status);
+    if (done) return;
+    std::this_thread::sleep_for(std::chrono::milliseconds(1));
+  }
+}
+
+void broadcastPolitely(void* data, int count, MPI_Datatype type, MPI_Comm comm) {
+  MPI_Request request;
+  MPI_Ibcast(data, count, type, 0, comm, &request);
+  waitPolitely(request);
+}
+
+// MPI counts are ints: a pyramid of a continental DEM holds more floats.
+void broadcastFloats(float* data, size_t count, MPI_Comm comm) {
+  constexpr size_t kChunk = size_t{1} << 28;
+  for (size_t first = 0; first < count; first += kChunk) {
+    MPI_Bcast(data + first, static_cast<int>(std::min(kChunk, count - first)), MPI_FLOAT, 0, comm);
+  }
+}
+
+// The tiles not yet handed out. A rank is given the next tile of the tile
+// row whose band it holds (no new read), else the first row nobody started,
+// else a tile of the row with the most left (its band read once more).
+class TileDispenser {
+ public:
+  TileDispenser(int rows, int columns)
+      : columns_(columns), nextColumn_(static_cast<size_t>(rows), 0) {}
+
+  std::optional<std::pair<int, int>> next(int bandRow) {
+    const std::lock_guard<std::mutex> guard(mutex_);
+    const int rows = static_cast<int>(nextColumn_.size());
+    int row = -1;
+    if (bandRow >= 0 && bandRow < rows && nextColumn_[bandRow] < columns_) {
+      row = bandRow;
+    } else {
+      while (firstUnstarted_ < rows && nextColumn_[firstUnstarted_] > 0) ++firstUnstarted_;
+      if (firstUnstarted_ < rows) {
+        row = firstUnstarted_;
+      } else {
+        int most = 0;
+        for (int r = 0; r < rows; ++r) {
+          if (columns_ - nextColumn_[r] > most) most = columns_ - nextColumn_[r], row = r;
+        }
+      }
+    }
+    if (row < 0) return std::nullopt;
+    return std::pair{row, nextColumn_[row]++};
+  }
+
+ private:
+  std::mutex mutex_;
+  int columns_;
+  std::vector<int> nextColumn_;
+  int firstUnstarted_ = 0;
+};
+
+// What the ranks did, as rank 0 hears it.
+class Tally {
+ public:
+  explicit Tally(int ranks) : baked_(static_cast<size_t>(ranks), 0) {}
+  void add(int rank, int outcome) {
+    const std::lock_guard<std::mutex> guard(mutex_);
+    if (outcome == kBaked) ++baked_[static_cast<size_t>(rank)];
+    if (outcome == kResumed) ++resumed_;
+  }
+  const std::vector<int>& baked() const { return baked_; }
+  int resumed() const { return resumed_; }
+
+ private:
+  std::mutex mutex_;
+  std::vector<int> baked_;
+  int resumed_ = 0;
+};
+
+// One rank's tiles: skips the finished ones, bakes the others from its
+// tile row's band, which it keeps while its tiles stay in that row.
+class TileWorker {
+ public:
+  TileWorker(const DemSource& source, const Heightfield& geometry, const ApertureTileIndex& index,
+             const FarField* far, const BakeOptions& bake, const TiledBakeOptions& tiled,
+             const std::string& folder, const MpiTiledBakeHooks& hooks)
+      : source_(source),
+        geometry_(geometry),
+        index_(index),
+        far_(far),
+        bake_(bake),
+        tiled_(tiled),
+        folder_(folder),
+        hooks_(hooks),
+        halo_(bandHaloRows(geometry, bake, tiled)) {}
+
+  // kBaked or kResumed.
+  int work(int row, int column) {
+    if (tileFinished(index_, folder_, row, column)) return kResumed;
+    if (hooks_.beforeTile) hooks_.beforeTile(row, column);
+    if (bandRow_ != row) {
+      band_ = Heightfield{};  // free the previous band first
+      const TexelWindow window = tileWindow(index_, row, 0);
+      band_ = readTileRowBand(source_, geometry_, halo_, window.row, window.height);
+      bandRow_ = row;
+    }
+    bakeTileInto(band_, far_, index_, bake_, tiled_, folder_, row, column);
+    return kBaked;
+  }
+  int bandRow() const { return bandRow_; }
+
+ private:
+  const DemSource& source_;
+  const Heightfield& geometry_;
+  const ApertureTileIndex& index_;
+  const FarField* far_;
+  const BakeOptions& bake_;
+  const TiledBakeOptions& tiled_;
+  const std::string& folder_;
+  const MpiTiledBakeHooks& hooks_;
+  const int halo_;
+  int bandRow_ = -1;
+  Heightfield band_;
+};
+
+// Rank 0's side of the handout: answers every other rank until each has
+// been told there is no more.
+void answerRanks(MPI_Comm comm, int ranks, TileDispenser& dispenser, Tally& tally) {
+  for (int active = ranks - 1; active > 0;) {
+    int message[2];
+    MPI_Request request;
+    MPI_Status status;
+    MPI_Irecv(message, 2, MPI_INT, MPI_ANY_SOURCE, kRequestTag, comm, &request);
+    waitPolitely(request, &status);
+    tally.add(status.MPI_SOURCE, message[0]);
+    const std::optional<std::pair<int, int>> tile = dispenser.next(message[1]);
+    int reply[2] = {-1, -1};
+    if (tile) {
+      reply[0] = tile->first;
+      reply[1] = tile->second;
+    } else {
+      --active;
+    }
+    MPI_Send(reply, 2, MPI_INT, status.MPI_SOURCE, kAssignTag, comm);
+  }
+}
+
+// A rank's side: asks rank 0 for tiles until there are none.
+void askForTiles(MPI_Comm comm, TileWorker& worker) {
+  int outcome = kNoOutcome;
+  for (;;) {
+    int message[2] = {outcome, worker.bandRow()};
+    MPI_Send(message, 2, MPI_INT, 0, kRequestTag, comm);
+    int tile[2];
+    MPI_Request request;
+    MPI_Irecv(tile, 2, MPI_INT, 0, kAssignTag, comm, &request);
+    waitPolitely(request);
+    if (tile[0] < 0) return;
+    outcome = worker.work(tile[0], tile[1]);
+  }
+}
+
+// The tile phase: rank 0 hands the tiles out (and bakes), the others bake
+// what they are given. On rank 0 `counts` gets the tally.
+void handOutAndBake(MPI_Comm comm, int rank, int ranks, const ApertureTileIndex& index,
+                    const std::string& folder, TileWorker& worker, std::vector<int>& counts) {
+  if (rank != 0) {
+    askForTiles(comm, worker);
+    return;
+  }
+  // Shared with the answering thread, which outlives this call when the
+  // bake here fails (detached; the job is then aborted).
+  const auto dispenser = std::make_shared<TileDispenser>(index.rows(), index.columns());
+  const auto tally = std::make_shared<Tally>(ranks);
+  int threading = MPI_THREAD_SINGLE;
+  MPI_Query_thread(&threading);
+  const bool rootBakes = ranks == 1 || threading == MPI_THREAD_MULTIPLE;
+  if (rootBakes) {
+    std::thread answering;
+    if (ranks > 1) {
+      answering = std::thread(
+          [comm, ranks, dispenser, tally] { answerRanks(comm, ranks, *dispenser, *tally); });
+    }
+    try {
+      while (const std::optional<std::pair<int, int>> tile = dispenser->next(worker.bandRow())) {
+        tally->add(0, worker.work(tile->first, tile->second));
+      }
+    } catch (...) {
+      // The caller ends the job; the thread waits for ranks that will not ask.
+      if (answering.joinable()) answering.detach();
+      throw;
+    }
+    if (answering.joinable()) answering.join();
+  } else {
+    answerRanks(comm, ranks, *dispenser, *tally);
+  }
+  // Every rank has asked again after its last tile: all are written.
+  writeApertureTileIndex(folder, index);
+  std::copy(tally->baked().begin(), tally->baked().end(), counts.begin());
+  counts[static_cast<size_t>(ranks)] = tally->resumed();
+  counts[static_cast<size_t>(ranks) + 1] = rootBakes ? 1 : 0;
+}
+
+int exitCodeOf(const std::exception_ptr& error) {
+  try {
+    std::rethrow_exception(error);
+  } catch (const InputError&) {
+    return 2;
+  } catch (...) {
+    return 1;
+  }
+}
+
+}  // namespace
+
+MpiTiledBakeSummary bakeTiledMpi(MPI_Comm comm, const DemSource& source,
+                                 const Heightfield& geometry, const BakeOptions& bake,
+                                 const TiledBakeOptions& tiled, const std::string& folder,
+                                 const MpiTiledBakeHooks& hooks) {
+  int rank = 0, ranks = 1;
+  MPI_Comm_rank(comm, &rank);
+  MPI_Comm_size(comm, &ranks);
+  // Rank 0 swept the folder's dead temporaries before any rank writes; a
+  // sweep at every write would take a live rank on another host for dead.
+  setRemoveDeadTemporariesOnWrite(false);
+
+  // Rank 0: the lock, the pass over the DEM and the folder.
+  const auto start = std::chrono::steady_clock::now();
+  std::optional<TiledBakeLock> lock;
+  TiledBakeDemPass pass;
+  std::exception_ptr error;
+  if (rank == 0) {
+    try {
+      checkTiledBakeOptions(bake, tiled);
+      namespace fs = std::filesystem;
+      // An existing folder is locked before the pass (a busy one fails at
+      // once), a new one after it (a refused DEM leaves no folder).
+      if (!tiled.lock && fs::is_directory(folder)) lock.emplace(folder);
+      pass = scanDemForTiledBake(source, geometry, bake, tiled);
+      createTileFolder(folder);
+      if (!tiled.lock && !lock) lock.emplace(folder);
+      openTileFolder(folder, tiledBakeIndex(geometry, pass.checksum, bake, tiled));
+    } catch (...) {
+      error = std::current_exception();
+    }
+  }
+  int status = error ? exitCodeOf(error) : 0;
+  broadcastPolitely(&status, 1, MPI_INT, comm);
+  if (status != 0) {
+    if (rank == 0) std::rethrow_exception(error);
+    throw MpiPeerFailed(status);
+  }
+
+  // The checksum and the pyramid's finest level to every rank.
+  char checksum[64] = {};
+  if (rank == 0) std::strncpy(checksum, pass.checksum.c_str(), sizeof checksum - 1);
+  MPI_Bcast(checksum, sizeof checksum, MPI_CHAR, 0, comm);
+  const bool farField = !(bake.maxDistanceM > 0.0);
+  if (farField && rank != 0) {
+    pass.pyramid.emplace(geometry.width, geometry.height, tiledBakePyramidShift(geometry, tiled));
+    pass.pyramid->fillBaseLevel([&](float* max, float* mean, size_t count) {
+      broadcastFloats(max, count, comm);
+      broadcastFloats(mean, count, comm);
+    });
+  } else if (farField) {
+    // MPI_Bcast takes the root's buffer as non-const; it only reads it.
+    const HeightPyramid::Level& base = pass.pyramid->level(pass.pyramid->baseShift());
+    broadcastFloats(const_cast<float*>(base.max.data()), base.max.size(), comm);
+    broadcastFloats(const_cast<float*>(base.mean.data()), base.mean.size(), comm);
+  }
+  MpiTiledBakeSummary summary;
+  summary.ranks = ranks;
+  summary.demPassSeconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+
+  const ApertureTileIndex index = tiledBakeIndex(geometry, checksum, bake, tiled);
+  const FarField far{pass.pyramid ? &*pass.pyramid : nullptr, resolvedFarField(geometry, tiled)};
+  TileWorker worker(source, geometry, index, farField ? &far : nullptr, bake, tiled, folder, hooks);
+  summary.tiles.tiles = index.rows() * index.columns();
+
+  // Baked per rank, then resumed, then whether rank 0 baked.
+  std::vector<int> counts(static_cast<size_t>(ranks) + 2, 0);
+  try {
+    handOutAndBake(comm, rank, ranks, index, folder, worker, counts);
+  } catch (const BakeCancelled&) {
+    throw MpiTileFailed(1, "interrupted; the finished tiles are kept in " + folder +
+                               ": run the same command again to resume");
+  } catch (const InputError& e) {
+    throw MpiTileFailed(2, e.what());
+  } catch (const std::exception& e) {
+    throw MpiTileFailed(1, std::string("error: ") + e.what());
+  }
+  broadcastPolitely(counts.data(), static_cast<int>(counts.size()), MPI_INT, comm);
+  summary.bakedByRank.assign(counts.begin(), counts.begin() + ranks);
+  for (int baked : summary.bakedByRank) summary.tiles.baked += baked;
+  summary.tiles.resumed = counts[static_cast<size_t>(ranks)];
+  summary.rootBakes = counts[static_cast<size_t>(ranks) + 1] != 0;
+  return summary;
+}
+
+}  // namespace aal

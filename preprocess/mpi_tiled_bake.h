@@ -1,0 +1,85 @@
+// A tiled bake spread over the ranks of an MPI job (aal-bake-mpi,
+// docs/baking.md, "Across machines: MPI"): the same folder, bit for bit, as
+// the single-process tiled bake (tiled_bake.h). Built only with -DAAL_MPI=ON.
+//
+// Rank 0 takes the folder's lock, makes one pass over the DEM (its checksum
+// and, without a max distance, the far field's pyramid), opens the folder
+// (refusing another bake's, removing dead temporaries, writing the
+// manifest) and broadcasts the checksum and the pyramid's finest level.
+// Then it hands the tiles out as ranks ask for them: a rank gets the next
+// tile of the tile row whose band it holds, else the first tile row nobody
+// started, else a tile of the row with the most left. Each rank reads its
+// tile row's band of the DEM through GDAL (readTileRowBand: never the whole
+// DEM), skips tiles already finished (tileFinished) and bakes and writes the
+// others. Rank 0 bakes too, on a thread of its own beside the one that
+// answers the ranks, when MPI gives it MPI_THREAD_MULTIPLE and the job has
+// more than one rank. When every tile is done rank 0 writes index.txt.
+#pragma once
+
+#include <mpi.h>
+
+#include <functional>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "tiled_bake.h"
+
+namespace aal {
+
+// Another rank failed before the tiles were handed out and has said why;
+// this rank ends with `exitCode` (1 or 2) without a message of its own.
+class MpiPeerFailed : public std::runtime_error {
+ public:
+  explicit MpiPeerFailed(int exitCode)
+      : std::runtime_error("another rank failed"), exitCode_(exitCode) {}
+  int exitCode() const { return exitCode_; }
+
+ private:
+  int exitCode_;
+};
+
+// This rank failed, or was interrupted, after the tiles were handed out:
+// the other ranks would wait for it, so the caller must end the job
+// (MPI_Abort with exitCode: 2 for bad input, else 1). what() says why.
+class MpiTileFailed : public std::runtime_error {
+ public:
+  MpiTileFailed(int exitCode, const std::string& what)
+      : std::runtime_error(what), exitCode_(exitCode) {}
+  int exitCode() const { return exitCode_; }
+
+ private:
+  int exitCode_;
+};
+
+struct MpiTiledBakeSummary {
+  TiledBakeSummary tiles;  // over all ranks
+  int ranks = 1;
+  bool rootBakes = false;        // rank 0 baked tiles too
+  std::vector<int> bakedByRank;  // tiles baked (not resumed) per rank
+  double demPassSeconds = 0.0;   // rank 0's pass over the DEM, and the broadcast
+};
+
+struct MpiTiledBakeHooks {
+  // Called on a rank before it bakes tile (row, column), given to it and
+  // not found finished: the tests kill the rank there, mid-bake, holding a
+  // tile it will never write (aal-bake-mpi's AAL_BAKE_MPI_KILL_AT).
+  std::function<void(int row, int column)> beforeTile;
+};
+
+// Collective over `comm`: every rank calls it with the same arguments
+// (`geometry` is demGeometry of `source` on every rank). Returns the same
+// summary on every rank. Errors before the tiles are handed out (bad
+// options, another bake's folder, a busy folder, voids) are thrown on rank
+// 0 and MpiPeerFailed on the others; an error or an interrupt while baking
+// is thrown as MpiTileFailed on the rank it happened on.
+// Memory per rank: one band (4 bytes per texel of the tile row and
+// bandHaloRows above and below it, every column), one tile's sums and the
+// pyramid (~0.67 bytes per DEM texel); rank 0's pass reads the DEM in 64 MB
+// chunks of rows.
+MpiTiledBakeSummary bakeTiledMpi(MPI_Comm comm, const DemSource& source,
+                                 const Heightfield& geometry, const BakeOptions& bake,
+                                 const TiledBakeOptions& tiled, const std::string& folder,
+                                 const MpiTiledBakeHooks& hooks = {});
+
+}  // namespace aal

@@ -1,0 +1,169 @@
+// aal-bake-mpi (built with -DAAL_MPI=ON): three ranks under mpirun write the
+// folder aal-bake's tiled bake writes, byte for byte, and a job whose rank
+// was killed finishes the same folder when run again.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <string>
+
+#include "aperture_map.h"
+#include "geotiff_writer.h"
+#include "run_tool.h"
+#include "synthetic.h"
+
+namespace aal {
+namespace {
+
+namespace fs = std::filesystem;
+using test::folderContents;
+using test::quoted;
+using test::runShell;
+using test::runTool;
+using test::TempDir;
+
+// A width x height synthetic DEM written as a projected float GeoTIFF.
+fs::path writeDem(const TempDir& dir, int width, int height) {
+  SyntheticTerrainOptions s;
+  s.width = width;
+  s.height = height;
+  s.cellSizeM = 30;
+  s.seed = 3;
+  s.featureSizeTexels = 24;
+  const Heightfield field = makeSyntheticTerrain(s);
+  GeoReference geo;
+  geo.crs = CrsKind::Projected;
+  geo.epsg = 32616;
+  geo.originX = 500000;
+  geo.originY = 4000000;
+  geo.stepX = geo.stepY = 30;
+  const fs::path path = dir.path() / "dem.tif";
+  writeFloatGeoTiff(path.string(), width, height, field.z.data(), geo);
+  return path;
+}
+
+// Every bake here stamps its EXRs with the same capDate (aperture_map.cpp):
+// two bakes a second apart are otherwise not the same bytes.
+const std::string kFixedDate = "SOURCE_DATE_EPOCH=1700000000";
+
+// aal-bake with kFixedDate.
+test::ToolResult runBake(const std::string& arguments) {
+  return runTool("aal-bake", arguments, kFixedDate);
+}
+
+// mpirun with `ranks` ranks on this machine, more ranks than cores allowed.
+// The tests run as root here and in CI, which mpirun refuses unless told;
+// the sanitizer build's LD_PRELOAD is for aal-view, not mpirun (its own
+// runtime is linked into aal-bake-mpi).
+test::ToolResult runMpi(int ranks, const std::string& arguments,
+                        const std::string& environment = "") {
+  return runShell("env -u LD_PRELOAD OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 " +
+                  kFixedDate + " " + environment + " " + quoted(AAL_TEST_MPIEXEC) + " -np " +
+                  std::to_string(ranks) + " --oversubscribe --bind-to none " +
+                  quoted(test::binDir() / "aal-bake-mpi") + " " + arguments);
+}
+
+bool hasTemporaries(const fs::path& folder) {
+  for (const fs::directory_entry& entry : fs::directory_iterator(folder)) {
+    if (entry.path().filename().string().find(".tmp-") != std::string::npos) return true;
+  }
+  return false;
+}
+
+// 150 x 120 texels in tiles of 32: 5 x 4 tiles, more than the ranks, so
+// that every rank asks again and rows are shared.
+TEST(AalBakeMpi, ThreeRanksWriteTheSingleProcessFolderByteForByte) {
+  TempDir dir;
+  const fs::path dem = writeDem(dir, 150, 120);
+  // The far field (no max distance; its default reach and a shorter one),
+  // and a distance-limited bake with the clamped edge, curvature and full
+  // floats.
+  for (const std::string options :
+       {" --tile-size 32 --azimuths 16", " --tile-size 32 --azimuths 8 --near-reach 1500",
+        " --tile-size 32 --azimuths 8 --max-distance 300 --edge clamp --curvature --float"}) {
+    SCOPED_TRACE(options);
+    const fs::path single = dir.path() / "single", mpi = dir.path() / "mpi";
+    fs::remove_all(single);
+    fs::remove_all(mpi);
+    const auto s = runBake(quoted(dem) + " -o " + quoted(single) + options + " -q");
+    ASSERT_EQ(s.exitCode, 0) << s.out;
+    const auto m = runMpi(3, quoted(dem) + " -o " + quoted(mpi) + options);
+    ASSERT_EQ(m.exitCode, 0) << m.out;
+    EXPECT_NE(m.out.find("on 3 ranks (20 baked"), std::string::npos) << m.out;
+    const test::FolderContents want = folderContents(single), have = folderContents(mpi);
+    EXPECT_EQ(have.size(), 23u);  // 20 tiles, index, manifest, lock
+    EXPECT_TRUE(have.count("index.txt"));
+    if (options.find("--near-reach") != std::string::npos) {
+      EXPECT_NE(have.at("index.txt").find("reach 1500 m"), std::string::npos);
+    }
+    for (const auto& [name, bytes] : want) {
+      ASSERT_TRUE(have.count(name)) << name;
+      EXPECT_TRUE(have.at(name) == bytes) << name << " differs";
+    }
+    EXPECT_EQ(have.size(), want.size());
+  }
+}
+
+// A rank killed with SIGKILL holding a tile ends the job (Open MPI aborts
+// it); the finished tiles stay, and the same command finishes the folder,
+// equal byte for byte to the single-process bake. So does aal-bake. (The
+// rank given tile (2, 2) dies, whichever it is: on a loaded machine which
+// rank bakes how many tiles varies.)
+TEST(AalBakeMpi, AKilledRankEndsTheJobAndRunningAgainFinishesTheFolder) {
+  TempDir dir;
+  const fs::path dem = writeDem(dir, 150, 120);
+  const std::string options = " --tile-size 32 --azimuths 16";
+  const fs::path single = dir.path() / "single", mpi = dir.path() / "mpi";
+  ASSERT_EQ(runBake(quoted(dem) + " -o " + quoted(single) + options + " -q").exitCode, 0);
+  const std::string command = quoted(dem) + " -o " + quoted(mpi) + options;
+  const auto killed = runMpi(3, command, "AAL_BAKE_MPI_KILL_AT=2,2");
+  EXPECT_NE(killed.exitCode, 0) << killed.out;
+  ASSERT_TRUE(fs::is_directory(mpi)) << killed.out;
+  EXPECT_FALSE(fs::exists(mpi / "index.txt"));
+  int tiles = 0;
+  for (const auto& [name, bytes] : folderContents(mpi)) tiles += name.rfind("tile_", 0) == 0;
+  EXPECT_FALSE(fs::exists(mpi / apertureTileName(2, 2)));
+  EXPECT_LT(tiles, 20);
+
+  const auto resumed = runMpi(2, command);
+  ASSERT_EQ(resumed.exitCode, 0) << resumed.out;
+  EXPECT_NE(resumed.out.find(std::to_string(tiles) + " resumed)"), std::string::npos)
+      << resumed.out;
+  EXPECT_FALSE(hasTemporaries(mpi));
+  EXPECT_TRUE(folderContents(mpi) == folderContents(single));
+
+  // A folder the MPI bake left unfinished is aal-bake's to finish too.
+  fs::remove(mpi / "index.txt");
+  fs::remove(mpi / apertureTileName(2, 3));
+  const auto plain = runBake(quoted(dem) + " -o " + quoted(mpi) + options);
+  ASSERT_EQ(plain.exitCode, 0) << plain.out;
+  EXPECT_NE(plain.out.find("(1 baked, 19 resumed)"), std::string::npos) << plain.out;
+  EXPECT_TRUE(folderContents(mpi) == folderContents(single));
+}
+
+// Bad input is said once, by rank 0, and every rank exits with 2; a folder
+// of another bake is left as it was.
+TEST(AalBakeMpi, BadInputIsSaidOnceAndExitsWithTwo) {
+  TempDir dir;
+  const auto missing = runMpi(
+      2, quoted(dir.path() / "none.tif") + " -o " + quoted(dir.path() / "out") + " --tile-size 32");
+  EXPECT_EQ(missing.exitCode, 2) << missing.out;
+  const size_t first = missing.out.find("none.tif");
+  ASSERT_NE(first, std::string::npos) << missing.out;
+  EXPECT_EQ(missing.out.find("aal-bake-mpi", missing.out.find("aal-bake-mpi") + 1),
+            std::string::npos)
+      << missing.out;
+
+  const fs::path dem = writeDem(dir, 70, 50), folder = dir.path() / "other";
+  ASSERT_EQ(
+      runBake(quoted(dem) + " -o " + quoted(folder) + " --tile-size 32 --azimuths 8 -q").exitCode,
+      0);
+  const test::FolderContents before = folderContents(folder);
+  const auto other =
+      runMpi(2, quoted(dem) + " -o " + quoted(folder) + " --tile-size 16 --azimuths 8");
+  EXPECT_EQ(other.exitCode, 2) << other.out;
+  EXPECT_NE(other.out.find("in tiles of 32, not 16"), std::string::npos) << other.out;
+  EXPECT_TRUE(folderContents(folder) == before);
+}
+
+}  // namespace
+}  // namespace aal

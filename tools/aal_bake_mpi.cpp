@@ -1,0 +1,275 @@
+// aal-bake-mpi: aal-bake's tiled bake across the ranks of an MPI job
+// (mpirun -np N aal-bake-mpi DEM --tile-size T -o FOLDER; docs/baking.md,
+// "Across machines: MPI"). The same folder, bit for bit, as aal-bake's.
+#include <mpi.h>
+
+#include <algorithm>
+#include <chrono>
+#include <csignal>
+#include <cstdio>
+#include <cstdlib>
+#include <exception>
+#include <filesystem>
+#include <optional>
+#include <string>
+#include <thread>
+
+#include <tbb/global_control.h>
+#include <CLI/CLI.hpp>
+
+#include "dem_loader.h"
+#include "dem_source.h"
+#include "errors.h"
+#include "interrupt.h"
+#include "mpi_tiled_bake.h"
+#include "tool_main.h"
+#include "tool_options.h"
+#include "tool_paths.h"
+
+namespace {
+
+struct Options {
+  std::string dem;
+  std::string output;
+  int tileSize = aal::kDefaultTileSize;
+  int azimuths = 64;
+  std::optional<double> cellSize;
+  std::optional<double> zScale;
+  std::string edge = "open";
+  bool curvature = false;
+  double refraction = 0.13;
+  double maxDistance = 0;
+  double nearReach = 0;  // 0: the far field's default (kFarFieldReachCells)
+  int threads = 0;
+  bool fullFloat = false;
+  std::string compression = "rle";
+  bool quiet = false;
+};
+
+// Ranks of this job on this host: a node's cores are shared among them.
+int ranksOnThisHost() {
+  MPI_Comm host;
+  MPI_Comm_split_type(MPI_COMM_WORLD, MPI_COMM_TYPE_SHARED, 0, MPI_INFO_NULL, &host);
+  int ranks = 1;
+  MPI_Comm_size(host, &ranks);
+  MPI_Comm_free(&host);
+  return ranks;
+}
+
+// AAL_BAKE_MPI_KILL_AT=ROW,COLUMN (for the tests): the rank given tile
+// (ROW, COLUMN) to bake kills itself with SIGKILL before baking it, as a
+// node failure would. Every tile is given to some rank: the kill always
+// happens, whichever rank is fastest.
+aal::MpiTiledBakeHooks testHooks() {
+  aal::MpiTiledBakeHooks hooks;
+  const char* kill = std::getenv("AAL_BAKE_MPI_KILL_AT");
+  int killRow = -1, killColumn = -1;
+  if (kill && std::sscanf(kill, "%d,%d", &killRow, &killColumn) == 2) {
+    hooks.beforeTile = [killRow, killColumn](int row, int column) {
+      if (row == killRow && column == killColumn) std::raise(SIGKILL);
+    };
+  }
+  return hooks;
+}
+
+// Rank 0 checks what can be checked before the DEM is read (the output
+// folder, the DEM's file) and tells the others whether to go on: one
+// message, not one per rank.
+int checkOnRankZero(int rank, const Options& o) {
+  int status = 0;
+  if (rank == 0) {
+    try {
+      aal::checkDistinctFiles({{"DEM", o.dem}}, {{"-o", o.output}});
+      if (o.nearReach > 0 && o.maxDistance > 0) {
+        throw aal::InputError("--near-reach is the far field's, which --max-distance leaves out");
+      }
+      namespace fs = std::filesystem;
+      std::error_code error;
+      if (fs::exists(o.output, error) && !fs::is_directory(o.output, error)) {
+        throw aal::InputError("a tiled bake writes a folder: " + o.output + " is a file");
+      }
+      aal::requireWritableOutput(fs::is_directory(o.output, error)
+                                     ? (fs::path(o.output) / "index.txt").string()
+                                     : o.output);
+      aal::DemLoadOptions load;
+      load.cellSizeM = o.cellSize;
+      load.zScale = o.zScale;
+      const aal::DemSource dem(o.dem, load);
+      aal::demGeometry(dem, load);  // its warnings, once
+    } catch (const aal::InputError& e) {
+      std::fprintf(stderr, "aal-bake-mpi: %s\n", e.what());
+      status = aal::kExitBadInput;
+    } catch (const std::exception& e) {
+      std::fprintf(stderr, "aal-bake-mpi: error: %s\n", e.what());
+      status = aal::kExitFailure;
+    }
+  }
+  MPI_Bcast(&status, 1, MPI_INT, 0, MPI_COMM_WORLD);
+  return status;
+}
+
+int run(const Options& o) {
+  int rank = 0, ranks = 1;
+  MPI_Comm_rank(MPI_COMM_WORLD, &rank);
+  MPI_Comm_size(MPI_COMM_WORLD, &ranks);
+  if (const int status = checkOnRankZero(rank, o); status != 0) return status;
+
+  // Every rank opens the DEM (a rank on another host may not reach it).
+  aal::DemLoadOptions load;
+  load.cellSizeM = o.cellSize;
+  load.zScale = o.zScale;
+  load.warn = nullptr;  // rank 0 has given them
+  std::optional<aal::DemSource> dem;
+  aal::Heightfield geometry;
+  int status = 0;
+  try {
+    dem.emplace(o.dem, load);
+    geometry = aal::demGeometry(*dem, load);
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "aal-bake-mpi: rank %d: %s\n", rank, e.what());
+    status = dynamic_cast<const aal::InputError*>(&e) ? aal::kExitBadInput : aal::kExitFailure;
+  }
+  MPI_Allreduce(MPI_IN_PLACE, &status, 1, MPI_INT, MPI_MAX, MPI_COMM_WORLD);
+  if (status != 0) return status;
+
+  aal::BakeOptions bake;
+  bake.azimuths = o.azimuths;
+  bake.clampEdge = o.edge == "clamp";
+  bake.curvature = o.curvature;
+  bake.refraction = o.refraction;
+  bake.maxDistanceM = o.maxDistance;
+  bake.cancel = &aal::interruptFlag();
+  aal::TiledBakeOptions tiling;
+  tiling.tileSize = o.tileSize;
+  tiling.halfFloat = !o.fullFloat;
+  tiling.compression = o.compression == "zip"    ? aal::MapCompression::Zip
+                       : o.compression == "none" ? aal::MapCompression::None
+                                                 : aal::MapCompression::Rle;
+  tiling.sourceName = std::filesystem::path(o.dem).filename().string();
+  tiling.farField.nearReachM = o.nearReach;
+
+  // By default a host's cores are shared among its ranks.
+  const int cores = std::max(1, static_cast<int>(std::thread::hardware_concurrency()));
+  const int threads = o.threads > 0 ? o.threads : std::max(1, cores / ranksOnThisHost());
+  tbb::global_control parallelism(tbb::global_control::max_allowed_parallelism,
+                                  static_cast<size_t>(threads));
+
+  const auto start = std::chrono::steady_clock::now();
+  aal::MpiTiledBakeSummary summary;
+  try {
+    summary =
+        aal::bakeTiledMpi(MPI_COMM_WORLD, *dem, geometry, bake, tiling, o.output, testHooks());
+  } catch (const aal::MpiPeerFailed& e) {
+    return e.exitCode();  // rank 0 has said why
+  } catch (const aal::MpiTileFailed& e) {
+    // The other ranks would wait for this one's tiles: end the job.
+    std::fprintf(stderr, "aal-bake-mpi: rank %d: %s\n", rank, e.what());
+    MPI_Abort(MPI_COMM_WORLD, e.exitCode());
+    return e.exitCode();
+  } catch (const aal::BakeCancelled&) {
+    // Rank 0, in its pass over the DEM: the others know and end too.
+    std::fprintf(stderr, "aal-bake-mpi: interrupted before any tile\n");
+    return aal::kExitFailure;
+  }
+  const double seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  if (rank == 0 && !o.quiet) {
+    std::string perRank;
+    for (int baked : summary.bakedByRank)
+      perRank += (perRank.empty() ? "" : ", ") + std::to_string(baked);
+    const double texels = static_cast<double>(geometry.texelCount()) * summary.tiles.baked /
+                          std::max(1, summary.tiles.tiles);
+    std::fprintf(stderr,
+                 "aal-bake-mpi: %s %dx%d, %d-texel tiles on %d ranks%s (%d baked: %s per rank; "
+                 "%d resumed), %d azimuths, %d threads per rank, in %.2f s (%.3g "
+                 "texel-azimuths/s; rank 0's pass over the DEM %.2f s) -> %s\n",
+                 tiling.sourceName.c_str(), geometry.width, geometry.height, o.tileSize, ranks,
+                 summary.rootBakes ? "" : " (rank 0 only hands out)", summary.tiles.baked,
+                 perRank.c_str(), summary.tiles.resumed, o.azimuths, threads, seconds,
+                 texels * o.azimuths / seconds, summary.demPassSeconds, o.output.c_str());
+  }
+  return aal::kExitOk;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  // MPI_THREAD_MULTIPLE lets rank 0 bake on one thread while another answers
+  // the ranks; without it rank 0 only hands out tiles.
+  int threading = MPI_THREAD_SINGLE;
+  MPI_Init_thread(&argc, &argv, MPI_THREAD_MULTIPLE, &threading);
+  int rank = 0;
+  MPI_Comm_rank(MPI_COMM_WORLD, &rank);
+
+  CLI::App app(
+      "aal-bake's tiled bake across the ranks of an MPI job: mpirun -np N aal-bake-mpi DEM "
+      "--tile-size T\n-o FOLDER (or srun under Slurm). Rank 0 reads the DEM once (its checksum "
+      "and, without\n--max-distance, the far field's pyramid, sent to every rank) and hands out "
+      "the tiles as\nranks ask; each rank reads its tile row's band of the DEM (never the whole "
+      "DEM) and\nwrites its tiles into FOLDER, which every rank must reach (a shared file "
+      "system). The\nfolder is the same, bit for bit, as aal-bake --tile-size T writes; a job "
+      "that died (a\nkilled rank ends the job) resumes from its finished tiles when run again, "
+      "with any\nnumber of ranks or with aal-bake. docs/baking.md.\n\n" +
+          aal::demFormatsHelp(),
+      "aal-bake-mpi");
+  Options o;
+  app.add_option("dem", o.dem, "input DEM (every rank reads it)")->required();
+  app.add_option("-o,--output", o.output, "output folder of the tiled bake")->required();
+  app.add_option("--tile-size", o.tileSize, "tiles of N x N texels")
+      ->check(CLI::Range(aal::kMinTileSize, aal::kMaxTileSize))
+      ->capture_default_str();
+  app.add_option("--azimuths", o.azimuths, "azimuth slices of the sweep")
+      ->check(CLI::Range(4, 4096))
+      ->capture_default_str();
+  app.add_option("--cell-size", o.cellSize, "texel spacing in metres (overrides the file)")
+      ->check(aal::kPositive);
+  app.add_option("--z-scale", o.zScale, "metres per height unit (overrides the file)")
+      ->check(aal::kPositive);
+  app.add_option("--edge", o.edge,
+                 "beyond the DEM: open sky, or terrain continuing flat at the edge height")
+      ->check(CLI::IsMember({"open", "clamp"}))
+      ->capture_default_str();
+  app.add_flag("--curvature", o.curvature, "drop distant terrain by the Earth's curvature");
+  app.add_option("--refraction", o.refraction,
+                 "refraction coefficient with --curvature: drop = (1 - k) d^2 / 2R")
+      ->check(CLI::Range(0.0, 0.99))
+      ->capture_default_str();
+  app.add_option("--max-distance", o.maxDistance,
+                 "only terrain within this many metres counts (0 = all, with a far field)")
+      ->check(aal::kNonNegative);
+  app.add_option("--near-reach", o.nearReach,
+                 "without --max-distance: metres the near sweep covers before the far field's "
+                 "pyramid takes over (default 128 cells; each doubling divides the pyramid's "
+                 "memory by 4)")
+      ->check(aal::kPositive);
+  app.add_option("--threads", o.threads,
+                 "worker threads per rank (default: the host's cores shared among its ranks)")
+      ->check(CLI::Range(1, 1024));
+  app.add_option("--compression", o.compression, "the tiles' EXR compression: rle, zip, none")
+      ->check(CLI::IsMember({"rle", "zip", "none"}))
+      ->capture_default_str();
+  app.add_flag("--float", o.fullFloat, "store 32-bit floats instead of 16-bit halves");
+  app.add_flag("-q,--quiet", o.quiet, "no summary");
+
+  aal::installInterruptHandler();
+  // Every rank parses the same command line; only rank 0 says what is wrong.
+  int code = 0;
+  if (rank == 0) {
+    code = aal::runToolBody(app, argc, argv, [&] { return run(o); });
+  } else {
+    try {
+      aal::checkFiniteArguments(app, argc, argv);
+      app.parse(argc, argv);
+      code = run(o);
+    } catch (const CLI::ParseError&) {
+      code = aal::kExitBadInput;
+    } catch (const aal::InputError&) {
+      code = aal::kExitBadInput;  // the same on rank 0, which said it
+    } catch (const std::exception& e) {
+      std::fprintf(stderr, "aal-bake-mpi: rank %d: error: %s\n", rank, e.what());
+      code = aal::kExitFailure;
+    }
+  }
+  MPI_Finalize();
+  return aal::endTool(code);
+}
