@@ -1,4 +1,5 @@
-// Closed forms for the visible sky in one azimuth slice. docs/design.md §3 step 2.
+// Closed forms for the visible sky in one azimuth slice. docs/design.md §3
+// step 2.
 //
 // In the slice of azimuth phi and width dPhi, the sky is visible above the
 // elevation theta0 = max(horizon, tangent plane). With solid angle
@@ -14,28 +15,21 @@
 #include <iterator>
 #include <numbers>
 
-#if defined(__x86_64__) && defined(__GNUC__)
-#include <immintrin.h>
-#define AAL_SKY_SLICE_AVX2 1
-#else
-#define AAL_SKY_SLICE_AVX2 0
-#endif
-
 namespace aal {
 
 // atan(y) for 0 <= y <= 1 to within 3.3e-7 rad (in float; 2.5e-7 exact):
 // the odd minimax polynomial of degree 13, fitted for this project by the
 // Remez exchange on [0, 1].
 // Its coefficients of y^13, y^11, ..., y (Horner order), shared with the
-// AVX2 copy below.
+// AVX2 copy (skySliceTermsAvx2 in bake_avx2.cpp).
 inline constexpr double kAtanUnitCoefficients[] = {
-    0.006811793290873252, -0.033604220565024996, 0.07962367236561659, -0.1323334209557463,
-    0.19807815564989179,  -0.3331736805474933,   0.9999961115495709};
+    0.006811793290873252, -0.033604220565024996, 0.07962367236561659,
+    -0.1323334209557463,  0.19807815564989179,   -0.3331736805474933,
+    0.9999961115495709};
 inline constexpr double kSliceHalfPi = std::numbers::pi / 2.0;
 inline constexpr double kSliceQuarterPi = std::numbers::pi / 4.0;
 
-template <class Real>
-inline Real atanUnit(Real y) {
+template <class Real> inline Real atanUnit(Real y) {
   const Real y2 = y * y;
   Real p = Real(kAtanUnitCoefficients[0]);
   for (size_t i = 1; i < std::size(kAtanUnitCoefficients); ++i) {
@@ -46,8 +40,7 @@ inline Real atanUnit(Real y) {
 
 // atan(x) to within 2e-6 rad, several times faster than std::atan: reduced
 // to |y| <= 1 by atan(x) = pi/2 - atan(1/x), then atanUnit.
-template <class Real>
-inline Real fastAtan(Real x) {
+template <class Real> inline Real fastAtan(Real x) {
   constexpr Real kHalfPi = Real(kSliceHalfPi);
   // Branch-free (selects, not jumps): the horizon tangents that reach here
   // change sign and size from texel to texel, so branches mispredict.
@@ -69,14 +62,15 @@ inline Real fastAtan(Real x) {
 // 4.5 ns with the earlier atan (two divisions), 5.2 ns computing cos theta0
 // and 1/|t| from one square root and one division (a longer dependency
 // chain), 5.2-7.4 ns with t clamped first (std::min/max or std::clamp).
-inline void skySliceTerms(float* term, float tanTheta0, float dPhi, float cosPhiDPhi,
-                          float sinPhiDPhi) {
+inline void skySliceTerms(float *term, float tanTheta0, float dPhi,
+                          float cosPhiDPhi, float sinPhiDPhi) {
   const float t = tanTheta0;
-  const float inv = 1.0f / (1.0f + t * t);  // cos^2 theta0
+  const float inv = 1.0f / (1.0f + t * t); // cos^2 theta0
   const float sinTheta = t * std::sqrt(inv);
   const float theta = fastAtan(t);
   constexpr float kQuarterPi = static_cast<float>(kSliceQuarterPi);
-  const float ic = kQuarterPi - 0.5f * theta - 0.5f * t * inv;  // sin(2 theta)/4 = t/(2(1+t^2))
+  const float ic = kQuarterPi - 0.5f * theta -
+                   0.5f * t * inv; // sin(2 theta)/4 = t/(2(1+t^2))
   const float is = 0.5f * inv;
   term[0] = cosPhiDPhi * ic;
   term[1] = sinPhiDPhi * ic;
@@ -84,42 +78,4 @@ inline void skySliceTerms(float* term, float tanTheta0, float dPhi, float cosPhi
   term[3] = dPhi * (1.0f - sinTheta);
 }
 
-#if AAL_SKY_SLICE_AVX2
-// skySliceTerms for 8 texels, transposed (terms[c] holds term[c] of each
-// lane), with the same operations in the same order: the same results bit
-// for bit where the caller is compiled without FMA (GCC fuses intrinsics'
-// multiplies and adds where it may).
-__attribute__((target("avx2"))) inline void skySliceTermsAvx2(__m256 terms[4], __m256 tanTheta0,
-                                                              float dPhi, float cosPhiDPhi,
-                                                              float sinPhiDPhi) {
-  const __m256 t = tanTheta0, one = _mm256_set1_ps(1.0f), half = _mm256_set1_ps(0.5f);
-  const __m256 inv = _mm256_div_ps(one, _mm256_add_ps(one, _mm256_mul_ps(t, t)));
-  const __m256 sinTheta = _mm256_mul_ps(t, _mm256_sqrt_ps(inv));
-  // fastAtan(t): std::max(a, m) is a < m ? m : a, and max_ps(m, a) the same.
-  const __m256 sign = _mm256_set1_ps(-0.0f);
-  const __m256 a = _mm256_andnot_ps(sign, t);
-  const __m256 inverted = _mm256_cmp_ps(a, one, _CMP_GT_OQ);
-  const __m256 inverse = _mm256_div_ps(one, _mm256_max_ps(_mm256_set1_ps(1e-30f), a));
-  const __m256 y = _mm256_blendv_ps(a, inverse, inverted);
-  const __m256 y2 = _mm256_mul_ps(y, y);
-  // atanUnit's polynomial, in its order.
-  __m256 p = _mm256_set1_ps(static_cast<float>(kAtanUnitCoefficients[0]));
-  for (size_t i = 1; i < std::size(kAtanUnitCoefficients); ++i) {
-    p = _mm256_add_ps(_mm256_set1_ps(static_cast<float>(kAtanUnitCoefficients[i])),
-                      _mm256_mul_ps(y2, p));
-  }
-  const __m256 series = _mm256_mul_ps(y, p);
-  const __m256 unsignedTheta = _mm256_blendv_ps(
-      series, _mm256_sub_ps(_mm256_set1_ps(static_cast<float>(kSliceHalfPi)), series), inverted);
-  const __m256 theta = _mm256_or_ps(unsignedTheta, _mm256_and_ps(sign, t));
-  const __m256 ic = _mm256_sub_ps(_mm256_sub_ps(_mm256_set1_ps(static_cast<float>(kSliceQuarterPi)),
-                                                _mm256_mul_ps(half, theta)),
-                                  _mm256_mul_ps(_mm256_mul_ps(half, t), inv));
-  terms[0] = _mm256_mul_ps(_mm256_set1_ps(cosPhiDPhi), ic);
-  terms[1] = _mm256_mul_ps(_mm256_set1_ps(sinPhiDPhi), ic);
-  terms[2] = _mm256_mul_ps(_mm256_set1_ps(dPhi), _mm256_mul_ps(half, inv));
-  terms[3] = _mm256_mul_ps(_mm256_set1_ps(dPhi), _mm256_sub_ps(one, sinTheta));
-}
-#endif
-
-}  // namespace aal
+} // namespace aal
