@@ -23,10 +23,9 @@ namespace {
 
 constexpr double kTwoPi = 2.0 * std::numbers::pi;
 
-void checkOptions(const Heightfield &field, const BakeOptions &o) {
+void checkOptions(const Heightfield& field, const BakeOptions& o) {
   // The whole field, or a band of its rows (Heightfield::firstRow).
-  const bool rows = field.width > 0 &&
-                    field.z.size() % static_cast<size_t>(field.width) == 0 &&
+  const bool rows = field.width > 0 && field.z.size() % static_cast<size_t>(field.width) == 0 &&
                     field.firstRow >= 0 && field.residentRows() >= 1 &&
                     field.firstRow + field.residentRows() <= field.height;
   if (field.width < 1 || field.height < 1 || !rows) {
@@ -35,8 +34,7 @@ void checkOptions(const Heightfield &field, const BakeOptions &o) {
   if (o.azimuths < 4 || o.azimuths > 4096) {
     throw std::invalid_argument("azimuths must be in [4, 4096]");
   }
-  if (o.rays < 16 || o.rays > 1 << 20)
-    throw std::invalid_argument("rays must be in [16, 2^20]");
+  if (o.rays < 16 || o.rays > 1 << 20) throw std::invalid_argument("rays must be in [16, 2^20]");
   if (!(o.maxDistanceM >= 0.0) || !std::isfinite(o.maxDistanceM)) {
     throw std::invalid_argument("max distance must be >= 0");
   }
@@ -46,41 +44,39 @@ void checkOptions(const Heightfield &field, const BakeOptions &o) {
   if (o.horizons && !validHorizonDirections(o.horizonDirections)) {
     throw std::invalid_argument("horizon directions must be 4, 8, 12 or 16");
   }
-  if (o.horizons && (o.method != BakeMethod::Sweep ||
-                     o.azimuths % o.horizonDirections != 0)) {
-    throw std::invalid_argument(
-        "directional horizons need the sweep with a multiple of " +
-        std::to_string(o.horizonDirections) + " azimuths");
+  if (o.horizons && (o.method != BakeMethod::Sweep || o.azimuths % o.horizonDirections != 0)) {
+    throw std::invalid_argument("directional horizons need the sweep with a multiple of " +
+                                std::to_string(o.horizonDirections) + " azimuths");
   }
 }
 
-void checkCancel(const BakeOptions &o) {
-  if (o.cancel && o.cancel->load(std::memory_order_relaxed))
-    throw BakeCancelled();
+void checkCancel(const BakeOptions& o) {
+  if (o.cancel && o.cancel->load(std::memory_order_relaxed)) throw BakeCancelled();
 }
 
 // Sums the sky slices of every azimuth into `sums`, and the SVF terms; with
 // `horizonCodes`, stores the horizons of the azimuths k * 2 pi /
 // o.horizonDirections there (that many codes per texel).
 class AzimuthSweeps {
-public:
-  AzimuthSweeps(const BakeTerrain &terrain, const BakeOptions &o, float *sums,
-                std::vector<float> &svf, uint8_t *horizonCodes)
-      : terrain_(terrain), o_(o), svf_(svf),
-        sums_(terrain, o, sums, svf, horizonCodes), dPhi_(kTwoPi / o.azimuths) {
+ public:
+  AzimuthSweeps(const BakeTerrain& terrain, const BakeOptions& o, float* sums,
+                std::vector<float>& svf, uint8_t* horizonCodes)
+      : terrain_(terrain),
+        o_(o),
+        svf_(svf),
+        sums_(terrain, o, sums, svf, horizonCodes),
+        dPhi_(kTwoPi / o.azimuths) {
     sweep_.clampEdge = o.clampEdge;
-    sweep_.curvature =
-        o.curvature ? (1.0 - o.refraction) / (2.0 * kEarthRadiusM) : 0.0;
+    sweep_.curvature = o.curvature ? (1.0 - o.refraction) / (2.0 * kEarthRadiusM) : 0.0;
     sweep_.maxDistanceM = o.maxDistanceM;
-    if (o.farField && o.maxDistanceM <= 0.0)
-      sweep_.windowReachM = o.farField->options.nearReachM;
+    if (o.farField && o.maxDistanceM <= 0.0) sweep_.windowReachM = o.farField->options.nearReachM;
   }
 
   void run() const {
     // Without a distance limit azimuths a and a + n/2 are swept together
     // (sweepOpposedHorizonBlocks): one pass over the sums for both.
-    const bool opposed = sweep_.maxDistanceM <= 0.0 &&
-                         sweep_.windowReachM <= 0.0 && o_.azimuths % 2 == 0;
+    const bool opposed =
+        sweep_.maxDistanceM <= 0.0 && sweep_.windowReachM <= 0.0 && o_.azimuths % 2 == 0;
     const int passes = opposed ? o_.azimuths / 2 : o_.azimuths;
     for (int pass = 0; pass < passes; ++pass) {
       checkCancel(o_);
@@ -94,17 +90,14 @@ public:
           sweepOne(opposite);
         }
       }
-      if (o_.progress)
-        o_.progress(static_cast<double>(pass + 1) / passes);
+      if (o_.progress) o_.progress(static_cast<double>(pass + 1) / passes);
     }
-    if (!svf_.empty())
-      finishSkyViewFactor();
+    if (!svf_.empty()) finishSkyViewFactor();
   }
 
-private:
+ private:
   AzimuthSlice sliceOf(int a) const {
-    const double phi = a * dPhi_, cosPhi = std::cos(phi),
-                 sinPhi = std::sin(phi);
+    const double phi = a * dPhi_, cosPhi = std::cos(phi), sinPhi = std::sin(phi);
     const bool stored = a * o_.horizonDirections % o_.azimuths == 0;
     return AzimuthSlice{phi,
                         static_cast<float>(cosPhi),
@@ -116,63 +109,53 @@ private:
   }
 
   // Both slices in one pass; false where their lines do not pair.
-  bool sweepOpposed(const AzimuthSlice &s, const AzimuthSlice &opposite) const {
+  bool sweepOpposed(const AzimuthSlice& s, const AzimuthSlice& opposite) const {
     return sweepOpposedHorizonBlocks(
         terrain_, s.phi, opposite.phi, sweep_,
-        [&](const HorizonBlock &b) { sums_.addBlock(b, s, &opposite); });
+        [&](const HorizonBlock& b) { sums_.addBlock(b, s, &opposite); });
   }
 
-  void sweepOne(const AzimuthSlice &s) const {
+  void sweepOne(const AzimuthSlice& s) const {
     if (sweep_.windowReachM > 0.0) {
       sweepNearAndFar(s);
     } else if (sweep_.maxDistanceM > 0.0) {
       sweepHorizons(terrain_, s.phi, sweep_,
-                    [&](size_t texel, double tanHorizon) {
-                      sums_.addTexel(texel, tanHorizon, s);
-                    });
+                    [&](size_t texel, double tanHorizon) { sums_.addTexel(texel, tanHorizon, s); });
     } else {
-      sweepHorizonBlocks(terrain_, s.phi, sweep_, [&](const HorizonBlock &b) {
-        sums_.addBlock(b, s, nullptr);
-      });
+      sweepHorizonBlocks(terrain_, s.phi, sweep_,
+                         [&](const HorizonBlock& b) { sums_.addBlock(b, s, nullptr); });
     }
   }
 
   // A far-field bake's window: near horizons from the window's lines, far
   // ones from the pyramid.
-  void sweepNearAndFar(const AzimuthSlice &s) const {
-    const FarHorizons far(*o_.farField, terrain_, s.phi, sweep_.curvature,
-                          sweep_.clampEdge);
-    const TexelWindow &w = terrain_.window;
+  void sweepNearAndFar(const AzimuthSlice& s) const {
+    const FarHorizons far(*o_.farField, terrain_, s.phi, sweep_.curvature, sweep_.clampEdge);
+    const TexelWindow& w = terrain_.window;
     if (!sweep_.clampEdge) {
-      sweepWindowHorizonBlocks(
-          terrain_, s.phi, sweep_, [&](const HorizonBlock &b) {
-            alignas(32) float merged[HorizonBlock::kPaddedTexels];
-            for (int j = 0; j < b.count; ++j) {
-              const size_t texel = b.firstTexel + j * b.stride;
-              const int col = w.col + static_cast<int>(texel % w.width);
-              const int row = w.row + static_cast<int>(texel / w.width);
-              const double tangent = far.mergedTangent(
-                  col, row, terrain_.field->at(col, row), b.tanHorizon[j]);
-              merged[j] = static_cast<float>(
-                  std::max(tangent, double(kNoHorizonTangent)));
-            }
-            HorizonBlock block = b;
-            block.tanHorizon = merged;
-            sums_.addBlock(block, s, nullptr);
-          });
+      sweepWindowHorizonBlocks(terrain_, s.phi, sweep_, [&](const HorizonBlock& b) {
+        alignas(32) float merged[HorizonBlock::kPaddedTexels];
+        for (int j = 0; j < b.count; ++j) {
+          const size_t texel = b.firstTexel + j * b.stride;
+          const int col = w.col + static_cast<int>(texel % w.width);
+          const int row = w.row + static_cast<int>(texel / w.width);
+          const double tangent =
+              far.mergedTangent(col, row, terrain_.field->at(col, row), b.tanHorizon[j]);
+          merged[j] = static_cast<float>(std::max(tangent, double(kNoHorizonTangent)));
+        }
+        HorizonBlock block = b;
+        block.tanHorizon = merged;
+        sums_.addBlock(block, s, nullptr);
+      });
       return;
     }
     // Clamped edges: the general sweep knows where a line's walk began.
-    sweepHorizons(
-        terrain_, s.phi, sweep_, [&](size_t texel, double tanHorizon) {
-          const int col = w.col + static_cast<int>(texel % w.width);
-          const int row = w.row + static_cast<int>(texel / w.width);
-          sums_.addTexel(
-              texel,
-              std::max(tanHorizon,
-                       far.tangentAt(col, row, terrain_.field->at(col, row))),
-              s);
-        });
+    sweepHorizons(terrain_, s.phi, sweep_, [&](size_t texel, double tanHorizon) {
+      const int col = w.col + static_cast<int>(texel % w.width);
+      const int row = w.row + static_cast<int>(texel / w.width);
+      sums_.addTexel(
+          texel, std::max(tanHorizon, far.tangentAt(col, row, terrain_.field->at(col, row))), s);
+    });
   }
 
   // The sums of the SVF terms to the sky-view factor.
@@ -182,25 +165,25 @@ private:
                       [&](size_t i) { svf_[i] = 1.0f - svf_[i] / azimuths; });
   }
 
-  const BakeTerrain &terrain_;
-  const BakeOptions &o_;
-  std::vector<float> &svf_;
+  const BakeTerrain& terrain_;
+  const BakeOptions& o_;
+  std::vector<float>& svf_;
   const SliceAccumulator sums_;
   const double dPhi_;
   HorizonSweepOptions sweep_;
 };
 
 // Turns the sums into unit bent normals and arc lengths, in place.
-void finishApertures(const BakeTerrain &terrain, std::vector<float> &texels) {
+void finishApertures(const BakeTerrain& terrain, std::vector<float>& texels) {
   tbb::parallel_for(size_t(0), texels.size() / 4, [&](size_t i) {
-    float *s = &texels[4 * i];
+    float* s = &texels[4 * i];
     double bx = s[0], by = s[1], bz = s[2];
     const double length = std::sqrt(bx * bx + by * by + bz * bz);
     if (length > 0.0) {
       bx /= length;
       by /= length;
       bz /= length;
-    } else { // nothing visible: fall back to the surface normal
+    } else {  // nothing visible: fall back to the surface normal
       const double sx = terrain.slopeEast(i), sy = terrain.slopeNorth(i);
       const double n = std::sqrt(1.0 + sx * sx + sy * sy);
       bx = -sx / n;
@@ -211,29 +194,25 @@ void finishApertures(const BakeTerrain &terrain, std::vector<float> &texels) {
     s[0] = static_cast<float>(bx);
     s[1] = static_cast<float>(by);
     s[2] = static_cast<float>(bz);
-    s[3] =
-        static_cast<float>(std::acos(1.0 - visible)); // arc length of the cap
+    s[3] = static_cast<float>(std::acos(1.0 - visible));  // arc length of the cap
   });
 }
 
 // Bakes the texels of the terrain's window; info.sourceChecksum is left to
 // the caller.
-BakeResult bakeWindow(const Heightfield &field, const BakeTerrain &terrain,
-                      const BakeOptions &o) {
+BakeResult bakeWindow(const Heightfield& field, const BakeTerrain& terrain, const BakeOptions& o) {
   // The running sums live in the output's own storage: 16 bytes per texel.
   BakeResult result;
-  ApertureMap &map = result.aperture;
+  ApertureMap& map = result.aperture;
   map.width = terrain.window.width;
   map.height = terrain.window.height;
   assignOnHugePages(map.texels, map.texelCount() * 4, 0.0f);
-  if (o.skyViewFactor)
-    result.skyViewFactor.assign(map.texelCount(), 0.0f);
+  if (o.skyViewFactor) result.skyViewFactor.assign(map.texelCount(), 0.0f);
   if (o.horizons) {
     result.horizons.width = map.width;
     result.horizons.height = map.height;
     result.horizons.directions = o.horizonDirections;
-    result.horizons.codes.assign(map.texelCount() * size_t(o.horizonDirections),
-                                 0);
+    result.horizons.codes.assign(map.texelCount() * size_t(o.horizonDirections), 0);
   }
 
   if (o.method == BakeMethod::Sweep) {
@@ -248,14 +227,13 @@ BakeResult bakeWindow(const Heightfield &field, const BakeTerrain &terrain,
   return result;
 }
 
-} // namespace
+}  // namespace
 
-ApertureMapInfo bakeInfo(const Heightfield &field, const BakeOptions &o) {
+ApertureMapInfo bakeInfo(const Heightfield& field, const BakeOptions& o) {
   ApertureMapInfo info;
   info.azimuths = o.method == BakeMethod::Sweep ? o.azimuths : 0;
   info.method = o.method == BakeMethod::Sweep ? "sweep" : "rays";
-  if (o.farField && o.maxDistanceM <= 0.0)
-    info.method = farFieldMethod(o.farField->options);
+  if (o.farField && o.maxDistanceM <= 0.0) info.method = farFieldMethod(o.farField->options);
   info.cellSizeX = field.cellSizeXM;
   info.cellSizeY = field.cellSizeYM;
   info.zScale = field.zScale;
@@ -268,7 +246,7 @@ ApertureMapInfo bakeInfo(const Heightfield &field, const BakeOptions &o) {
   return info;
 }
 
-BakeResult bakeApertures(const Heightfield &field, const BakeOptions &o) {
+BakeResult bakeApertures(const Heightfield& field, const BakeOptions& o) {
   checkOptions(field, o);
   if (field.z.size() != field.texelCount()) {
     throw std::invalid_argument("bake: a band of rows bakes only as windows");
@@ -290,15 +268,14 @@ BakeResult bakeApertures(const Heightfield &field, const BakeOptions &o) {
   return result;
 }
 
-BakeResult bakeApertureWindow(const Heightfield &field,
-                              const TexelWindow &window, const BakeOptions &o) {
+BakeResult bakeApertureWindow(const Heightfield& field, const TexelWindow& window,
+                              const BakeOptions& o) {
   checkOptions(field, o);
-  if (!window.covers(field) && (o.method != BakeMethod::Sweep ||
-                                !(o.maxDistanceM > 0.0 || o.farField))) {
-    throw std::invalid_argument(
-        "a bake window needs the sweep with a max distance or a far field");
+  if (!window.covers(field) &&
+      (o.method != BakeMethod::Sweep || !(o.maxDistanceM > 0.0 || o.farField))) {
+    throw std::invalid_argument("a bake window needs the sweep with a max distance or a far field");
   }
   return bakeWindow(field, prepareBakeTerrain(field, window), o);
 }
 
-} // namespace aal
+}  // namespace aal

@@ -34,40 +34,38 @@ struct BlockSlopes {
 
 // One thread's storage for the walks of its groups.
 struct BlockScratch {
-  std::vector<HullPointF> hulls; // kMaxLines stacks of majorLength points
-  std::vector<float> opposite;   // kLines tangents per step
+  std::vector<HullPointF> hulls;  // kMaxLines stacks of majorLength points
+  std::vector<float> opposite;    // kLines tangents per step
 };
 
 // The sweep of one azimuth: its layout and direction u = (ux, uy).
 struct BlockSweep {
-  const BakeTerrain &terrain;
-  const SweepLayout &layout;
+  const BakeTerrain& terrain;
+  const SweepLayout& layout;
   double ux, uy;
-  const HorizonSweepOptions &options;
+  const HorizonSweepOptions& options;
 };
 
 // The texels a group of lines hands over at each step, and what the blocks
 // point at.
-template <bool kMajorIsColumn> struct GroupTexels {
-  const SweepLayout &layout;
-  ptrdiff_t width;  // of the field
-  int first, count; // the group's lines first .. first + count - 1
+template <bool kMajorIsColumn>
+struct GroupTexels {
+  const SweepLayout& layout;
+  ptrdiff_t width;   // of the field
+  int first, count;  // the group's lines first .. first + count - 1
 
   // Minor range of the group's texels at `step` (empty: lo > hi): those
   // between its lines (and the line before them), on the grid.
   std::pair<int, int> at(int step) const {
     const int base = first - 1 + layout.floorOffset[step];
-    return {std::max(base + 1, 0),
-            std::min(base + count, layout.minorLength - 1)};
+    return {std::max(base + 1, 0), std::min(base + count, layout.minorLength - 1)};
   }
   size_t texel(int step, int minor) const {
     const ptrdiff_t major = layout.start + step * layout.step;
-    return static_cast<size_t>(kMajorIsColumn ? minor * width + major
-                                              : major * width + minor);
+    return static_cast<size_t>(kMajorIsColumn ? minor * width + major : major * width + minor);
   }
   // The block of `step`, with its texels kAheadSteps later.
-  HorizonBlock block(int step, const float *tanHorizon,
-                     const BlockSlopes &slopes) const {
+  HorizonBlock block(int step, const float* tanHorizon, const BlockSlopes& slopes) const {
     const auto [lo, hi] = at(step);
     HorizonBlock b;
     b.firstTexel = texel(step, lo);
@@ -90,23 +88,20 @@ template <bool kMajorIsColumn> struct GroupTexels {
 // kLines) lines of the sweep, concurrently, with the thread's scratch and
 // its hulls sized for the sweep.
 template <bool kMajorIsColumn, class WalkGroup>
-void forEachGroup(const BlockSweep &sweep, int groupLines,
-                  WalkGroup &&walkGroup) {
-  const SweepLayout &layout = sweep.layout;
+void forEachGroup(const BlockSweep& sweep, int groupLines, WalkGroup&& walkGroup) {
+  const SweepLayout& layout = sweep.layout;
   tbb::enumerable_thread_specific<BlockScratch> scratch;
   // As in sweepLines: texel (k, line + floorOffset[k]) lies between lines
   // c - 1 and c, so each group also walks the line just before it.
   const int firstLine = layout.firstLine + 1;
   const int groups = (layout.lastLine - firstLine + groupLines) / groupLines;
   tbb::parallel_for(0, groups, [&](int group) {
-    BlockScratch &s = scratch.local();
-    s.hulls.resize(
-        static_cast<size_t>(BlockLineWalker<kMajorIsColumn>::kMaxLines) *
-        layout.majorLength);
+    BlockScratch& s = scratch.local();
+    s.hulls.resize(static_cast<size_t>(BlockLineWalker<kMajorIsColumn>::kMaxLines) *
+                   layout.majorLength);
     const int first = firstLine + group * groupLines;
-    const GroupTexels<kMajorIsColumn> texels{
-        layout, sweep.terrain.field->width, first,
-        std::min(groupLines, layout.lastLine + 1 - first)};
+    const GroupTexels<kMajorIsColumn> texels{layout, sweep.terrain.field->width, first,
+                                             std::min(groupLines, layout.lastLine + 1 - first)};
     walkGroup(texels, s);
   });
 }
@@ -117,35 +112,29 @@ void forEachGroup(const BlockSweep &sweep, int groupLines,
 // visitStep(step, lo, hi, tanHorizon, slopes); elsewhere the step only
 // fills the hulls.
 template <bool kMajorIsColumn, class TexelsAt, class VisitStep>
-void walkGroup(const BlockSweep &sweep,
-               const GroupTexels<kMajorIsColumn> &texels, BlockScratch &s,
-               int firstStep, int endStep, TexelsAt &&texelsAt,
-               VisitStep &&visitStep) {
-  BlockLineWalker<kMajorIsColumn> walker(sweep.terrain, sweep.layout, sweep.ux,
-                                         sweep.uy, sweep.options,
-                                         s.hulls.data());
+void walkGroup(const BlockSweep& sweep, const GroupTexels<kMajorIsColumn>& texels, BlockScratch& s,
+               int firstStep, int endStep, TexelsAt&& texelsAt, VisitStep&& visitStep) {
+  BlockLineWalker<kMajorIsColumn> walker(sweep.terrain, sweep.layout, sweep.ux, sweep.uy,
+                                         sweep.options, s.hulls.data());
   walker.begin(texels.first - 1, texels.count + 1);
   float tanHorizon[HorizonBlock::kLines];
   BlockSlopes slopes;
   for (int step = firstStep; step < endStep; ++step) {
-    if (!walker.anyLineOnGrid(step))
-      continue;
+    if (!walker.anyLineOnGrid(step)) continue;
     const auto [lo, hi] = texelsAt(step);
     walker.step(step, lo, hi, tanHorizon, slopes.east, slopes.north);
-    if (lo <= hi)
-      visitStep(step, lo, hi, tanHorizon, slopes);
+    if (lo <= hi) visitStep(step, lo, hi, tanHorizon, slopes);
   }
 }
 
 template <bool kMajorIsColumn>
-void sweepBlocks(const BlockSweep &sweep, const HorizonBlockVisitor &visit) {
+void sweepBlocks(const BlockSweep& sweep, const HorizonBlockVisitor& visit) {
   forEachGroup<kMajorIsColumn>(
-      sweep, HorizonBlock::kLines, [&](const auto &texels, BlockScratch &s) {
+      sweep, HorizonBlock::kLines, [&](const auto& texels, BlockScratch& s) {
         walkGroup(
             sweep, texels, s, 0, sweep.layout.majorLength,
             [&](int step) { return texels.at(step); },
-            [&](int step, int, int, const float *tanHorizon,
-                const BlockSlopes &slopes) {
+            [&](int step, int, int, const float* tanHorizon, const BlockSlopes& slopes) {
               visit(texels.block(step, tanHorizon, slopes));
             });
       });
@@ -157,35 +146,30 @@ void sweepBlocks(const BlockSweep &sweep, const HorizonBlockVisitor &visit) {
 // the window's texels, indexed as BakeTerrain::windowIndex. Open edges
 // only: the walker takes a line's first point for the field's edge.
 template <bool kMajorIsColumn>
-void sweepWindowBlocks(const BlockSweep &sweep,
-                       const HorizonBlockVisitor &visit) {
-  const SweepLayout &layout = sweep.layout;
-  const BakeTerrain &terrain = sweep.terrain;
+void sweepWindowBlocks(const BlockSweep& sweep, const HorizonBlockVisitor& visit) {
+  const SweepLayout& layout = sweep.layout;
+  const BakeTerrain& terrain = sweep.terrain;
   forEachGroup<kMajorIsColumn>(
-      sweep, HorizonBlock::kLines, [&](const auto &texels, BlockScratch &s) {
+      sweep, HorizonBlock::kLines, [&](const auto& texels, BlockScratch& s) {
         const auto windowTexelsAt = [&](int step) {
           auto [lo, hi] = texels.at(step);
-          if (step < layout.visitStep)
-            hi = lo - 1; // only fills the hulls
-          return std::pair{std::max(lo, layout.minorBegin),
-                           std::min(hi, layout.minorEnd - 1)};
+          if (step < layout.visitStep) hi = lo - 1;  // only fills the hulls
+          return std::pair{std::max(lo, layout.minorBegin), std::min(hi, layout.minorEnd - 1)};
         };
-        walkGroup(sweep, texels, s, layout.firstStep, layout.endStep,
-                  windowTexelsAt,
-                  [&](int step, int lo, int hi, const float *tanHorizon,
-                      const BlockSlopes &slopes) {
-                    const int major = layout.start + step * layout.step;
-                    HorizonBlock b;
-                    b.firstTexel = kMajorIsColumn
-                                       ? terrain.windowIndex(major, lo)
-                                       : terrain.windowIndex(lo, major);
-                    b.stride = kMajorIsColumn ? terrain.window.width : 1;
-                    b.count = hi - lo + 1;
-                    b.tanHorizon = tanHorizon;
-                    b.slopeEast = slopes.east;
-                    b.slopeNorth = slopes.north;
-                    visit(b);
-                  });
+        walkGroup(
+            sweep, texels, s, layout.firstStep, layout.endStep, windowTexelsAt,
+            [&](int step, int lo, int hi, const float* tanHorizon, const BlockSlopes& slopes) {
+              const int major = layout.start + step * layout.step;
+              HorizonBlock b;
+              b.firstTexel =
+                  kMajorIsColumn ? terrain.windowIndex(major, lo) : terrain.windowIndex(lo, major);
+              b.stride = kMajorIsColumn ? terrain.window.width : 1;
+              b.count = hi - lo + 1;
+              b.tanHorizon = tanHorizon;
+              b.slopeEast = slopes.east;
+              b.slopeNorth = slopes.north;
+              visit(b);
+            });
       });
 }
 
@@ -195,34 +179,29 @@ void sweepWindowBlocks(const BlockSweep &sweep,
 // per step k. Texel minor m lies between opposite lines m - floorOffset - 1
 // and m - floorOffset there. False: the group has no texels.
 template <bool kMajorIsColumn>
-bool walkOpposite(const BlockSweep &opposite,
-                  const GroupTexels<kMajorIsColumn> &texels, BlockScratch &s) {
-  const SweepLayout &layout = opposite.layout;
+bool walkOpposite(const BlockSweep& opposite, const GroupTexels<kMajorIsColumn>& texels,
+                  BlockScratch& s) {
+  const SweepLayout& layout = opposite.layout;
   const int majorLength = layout.majorLength;
   s.opposite.resize(static_cast<size_t>(HorizonBlock::kLines) * majorLength);
   int oppositeFirst = std::numeric_limits<int>::max();
   int oppositeLast = std::numeric_limits<int>::min();
   for (int k = 0; k < majorLength; ++k) {
     const auto [lo, hi] = texels.at(k);
-    if (lo > hi)
-      continue;
+    if (lo > hi) continue;
     const int offset = layout.floorOffset[majorLength - 1 - k];
     oppositeFirst = std::min(oppositeFirst, lo - offset - 1);
     oppositeLast = std::max(oppositeLast, hi - offset);
   }
-  if (oppositeFirst > oppositeLast)
-    return false;
-  BlockLineWalker<kMajorIsColumn> backward(opposite.terrain, layout,
-                                           opposite.ux, opposite.uy,
+  if (oppositeFirst > oppositeLast) return false;
+  BlockLineWalker<kMajorIsColumn> backward(opposite.terrain, layout, opposite.ux, opposite.uy,
                                            opposite.options, s.hulls.data());
   backward.begin(oppositeFirst, oppositeLast - oppositeFirst + 1);
   for (int k = majorLength - 1; k >= 0; --k) {
-    if (!backward.anyLineOnGrid(majorLength - 1 - k))
-      continue;
+    if (!backward.anyLineOnGrid(majorLength - 1 - k)) continue;
     const auto [lo, hi] = texels.at(k);
     backward.step(majorLength - 1 - k, lo, hi,
-                  s.opposite.data() +
-                      static_cast<size_t>(k) * HorizonBlock::kLines);
+                  s.opposite.data() + static_cast<size_t>(k) * HorizonBlock::kLines);
   }
   return true;
 }
@@ -234,38 +213,31 @@ bool walkOpposite(const BlockSweep &opposite,
 // groupLines + 1 lines plus the spread of the opposite lines' offsets
 // against the group's (oppositeLines()).
 template <bool kMajorIsColumn>
-void sweepOpposedBlocks(const BlockSweep &sweep, const BlockSweep &opposite,
-                        int groupLines, const HorizonBlockVisitor &visit) {
-  forEachGroup<kMajorIsColumn>(
-      sweep, groupLines, [&](const auto &texels, BlockScratch &s) {
-        if (!walkOpposite(opposite, texels, s))
-          return;
-        walkGroup(
-            sweep, texels, s, 0, sweep.layout.majorLength,
-            [&](int step) { return texels.at(step); },
-            [&](int step, int, int, const float *tanHorizon,
-                const BlockSlopes &slopes) {
-              HorizonBlock block = texels.block(step, tanHorizon, slopes);
-              block.tanOpposite =
-                  s.opposite.data() +
-                  static_cast<size_t>(step) * HorizonBlock::kLines;
-              visit(block);
-            });
-      });
+void sweepOpposedBlocks(const BlockSweep& sweep, const BlockSweep& opposite, int groupLines,
+                        const HorizonBlockVisitor& visit) {
+  forEachGroup<kMajorIsColumn>(sweep, groupLines, [&](const auto& texels, BlockScratch& s) {
+    if (!walkOpposite(opposite, texels, s)) return;
+    walkGroup(
+        sweep, texels, s, 0, sweep.layout.majorLength, [&](int step) { return texels.at(step); },
+        [&](int step, int, int, const float* tanHorizon, const BlockSlopes& slopes) {
+          HorizonBlock block = texels.block(step, tanHorizon, slopes);
+          block.tanOpposite = s.opposite.data() + static_cast<size_t>(step) * HorizonBlock::kLines;
+          visit(block);
+        });
+  });
 }
 
 // Lines the opposite walk of sweepOpposedBlocks needs per group at most:
 // the group's texels' spread of offsets between the two layouts, plus the
 // group's lines and the one before. 0 when the layouts do not pair (the
 // lines advance along different axes).
-int oppositeLines(const SweepLayout &layout, const SweepLayout &opposite) {
+int oppositeLines(const SweepLayout& layout, const SweepLayout& opposite) {
   if (layout.majorIsColumn != opposite.majorIsColumn ||
       layout.majorLength != opposite.majorLength) {
     return 0;
   }
   const int n = layout.majorLength;
-  int lo = std::numeric_limits<int>::max(),
-      hi = std::numeric_limits<int>::min();
+  int lo = std::numeric_limits<int>::max(), hi = std::numeric_limits<int>::min();
   for (int k = 0; k < n; ++k) {
     const int d = layout.floorOffset[k] - opposite.floorOffset[n - 1 - k];
     lo = std::min(lo, d);
@@ -274,7 +246,7 @@ int oppositeLines(const SweepLayout &layout, const SweepLayout &opposite) {
   return HorizonBlock::kLines + 1 + (hi - lo);
 }
 
-} // namespace
+}  // namespace
 
 bool horizonAvx2() {
 #if AAL_HORIZON_AVX2
@@ -285,14 +257,13 @@ bool horizonAvx2() {
 #endif
 }
 
-} // namespace detail
+}  // namespace detail
 
 void setHorizonAvx2Allowed(bool allowed) {
   detail::horizonAvx2Allowed.store(allowed, std::memory_order_relaxed);
 }
 
-void sweepHorizonBlocks(const BakeTerrain &terrain, double phi,
-                        const HorizonSweepOptions &options,
+void sweepHorizonBlocks(const BakeTerrain& terrain, double phi, const HorizonSweepOptions& options,
                         HorizonBlockVisitor visit) {
   const double ux = std::cos(phi), uy = std::sin(phi);
   const detail::SweepLayout layout = detail::makeSweepLayout(terrain, ux, uy);
@@ -304,12 +275,10 @@ void sweepHorizonBlocks(const BakeTerrain &terrain, double phi,
   }
 }
 
-void sweepWindowHorizonBlocks(const BakeTerrain &terrain, double phi,
-                              const HorizonSweepOptions &options,
-                              HorizonBlockVisitor visit) {
+void sweepWindowHorizonBlocks(const BakeTerrain& terrain, double phi,
+                              const HorizonSweepOptions& options, HorizonBlockVisitor visit) {
   const double ux = std::cos(phi), uy = std::sin(phi);
-  const detail::SweepLayout layout =
-      detail::makeSweepLayout(terrain, ux, uy, options.windowReachM);
+  const detail::SweepLayout layout = detail::makeSweepLayout(terrain, ux, uy, options.windowReachM);
   const detail::BlockSweep sweep{terrain, layout, ux, uy, options};
   if (layout.majorIsColumn) {
     detail::sweepWindowBlocks<true>(sweep, visit);
@@ -318,26 +287,20 @@ void sweepWindowHorizonBlocks(const BakeTerrain &terrain, double phi,
   }
 }
 
-bool sweepOpposedHorizonBlocks(const BakeTerrain &terrain, double phi,
-                               double phiOpposite,
-                               const HorizonSweepOptions &options,
-                               HorizonBlockVisitor visit) {
+bool sweepOpposedHorizonBlocks(const BakeTerrain& terrain, double phi, double phiOpposite,
+                               const HorizonSweepOptions& options, HorizonBlockVisitor visit) {
   const double ux = std::cos(phi), uy = std::sin(phi);
-  const double oppositeUx = std::cos(phiOpposite),
-               oppositeUy = std::sin(phiOpposite);
+  const double oppositeUx = std::cos(phiOpposite), oppositeUy = std::sin(phiOpposite);
   const detail::SweepLayout layout = detail::makeSweepLayout(terrain, ux, uy);
   const detail::SweepLayout oppositeLayout =
       detail::makeSweepLayout(terrain, oppositeUx, oppositeUy);
   const int lines = detail::oppositeLines(layout, oppositeLayout);
-  if (lines < 1 || lines > detail::BlockLineWalker<true>::kMaxLines)
-    return false;
+  if (lines < 1 || lines > detail::BlockLineWalker<true>::kMaxLines) return false;
   // Where oblique lines spread (lines > kLines + 1), smaller groups keep the
   // opposite walk at kLines + 1 lines: 5 vectors of 8 rather than 6.
-  const int groupLines =
-      HorizonBlock::kLines - (lines - (HorizonBlock::kLines + 1));
+  const int groupLines = HorizonBlock::kLines - (lines - (HorizonBlock::kLines + 1));
   const detail::BlockSweep sweep{terrain, layout, ux, uy, options};
-  const detail::BlockSweep opposite{terrain, oppositeLayout, oppositeUx,
-                                    oppositeUy, options};
+  const detail::BlockSweep opposite{terrain, oppositeLayout, oppositeUx, oppositeUy, options};
   if (layout.majorIsColumn) {
     detail::sweepOpposedBlocks<true>(sweep, opposite, groupLines, visit);
   } else {
@@ -346,4 +309,4 @@ bool sweepOpposedHorizonBlocks(const BakeTerrain &terrain, double phi,
   return true;
 }
 
-} // namespace aal
+}  // namespace aal

@@ -47,19 +47,19 @@ struct HorizonBlock {
   size_t firstTexel = 0;
   ptrdiff_t stride = 1;
   int count = 0;
-  const float *tanHorizon = nullptr;
+  const float* tanHorizon = nullptr;
   // The same group's texels kAheadSteps steps later (aheadCount 0: none),
   // for the visitor to prefetch what it will touch there.
   static constexpr int kAheadSteps = 6;
   size_t aheadFirstTexel = 0;
   int aheadCount = 0;
   // sweepOpposedHorizonBlocks: the tangents of the opposite azimuth.
-  const float *tanOpposite = nullptr;
+  const float* tanOpposite = nullptr;
   // The surface's slopes at the texels, BakeTerrain::slopeEastAt and
   // slopeNorthAt bit for bit: the walk computes them from the heights it
   // loads anyway, so a bake needs no stored slopes.
-  const float *slopeEast = nullptr;
-  const float *slopeNorth = nullptr;
+  const float* slopeEast = nullptr;
+  const float* slopeNorth = nullptr;
   // Room for a block's texels in whole vectors of 8.
   static constexpr int kPaddedTexels = (kLines + 7) / 8 * 8;
 };
@@ -72,23 +72,21 @@ constexpr float kNoHorizonTangent = -1e30f;
 // compiled once (horizon_blocks.cpp) whoever calls them. One indirect call
 // per block of up to kLines texels.
 class HorizonBlockVisitor {
-public:
+ public:
   template <class Visit>
-  requires(std::is_invocable_v<Visit &, const HorizonBlock &> &&
+  requires(std::is_invocable_v<Visit&, const HorizonBlock&> &&
            !std::is_same_v<std::remove_cvref_t<Visit>, HorizonBlockVisitor>)
-      HorizonBlockVisitor(
-          Visit &&visit) // NOLINT(google-explicit-constructor): takes lambdas
-      : visit_(const_cast<void *>(
-            static_cast<const void *>(std::addressof(visit)))),
-        call_([](void *v, const HorizonBlock &b) {
-          (*static_cast<std::remove_reference_t<Visit> *>(v))(b);
+      HorizonBlockVisitor(Visit&& visit)  // NOLINT(google-explicit-constructor): takes lambdas
+      : visit_(const_cast<void*>(static_cast<const void*>(std::addressof(visit)))),
+        call_([](void* v, const HorizonBlock& b) {
+          (*static_cast<std::remove_reference_t<Visit>*>(v))(b);
         }) {}
 
-  void operator()(const HorizonBlock &b) const { call_(visit_, b); }
+  void operator()(const HorizonBlock& b) const { call_(visit_, b); }
 
-private:
-  void *visit_;
-  void (*call_)(void *, const HorizonBlock &);
+ private:
+  void* visit_;
+  void (*call_)(void*, const HorizonBlock&);
 };
 
 // Lets sweeps and bakes started from now on use AVX2 where the CPU has it
@@ -101,13 +99,12 @@ namespace detail {
 // bake's AVX2 visitor, and setHorizonAvx2Allowed allows them: the build
 // targets plain x86-64, so the choice is made at run time.
 bool horizonAvx2();
-} // namespace detail
+}  // namespace detail
 
 // Calls visit(const HorizonBlock&) for the texels of every step of every
 // group of lines of azimuth phi (as sweepHorizons(): each texel exactly once,
 // blocks concurrently). No distance limit: options.maxDistanceM must be 0.
-void sweepHorizonBlocks(const BakeTerrain &terrain, double phi,
-                        const HorizonSweepOptions &options,
+void sweepHorizonBlocks(const BakeTerrain& terrain, double phi, const HorizonSweepOptions& options,
                         HorizonBlockVisitor visit);
 
 // The texels of a partial window (terrain.window) for azimuth phi, its
@@ -116,9 +113,8 @@ void sweepHorizonBlocks(const BakeTerrain &terrain, double phi,
 // indices (BakeTerrain::windowIndex). Open edges only (options.clampEdge
 // must be false): the walk of a line that begins inside the field would
 // take its first point for the edge.
-void sweepWindowHorizonBlocks(const BakeTerrain &terrain, double phi,
-                              const HorizonSweepOptions &options,
-                              HorizonBlockVisitor visit);
+void sweepWindowHorizonBlocks(const BakeTerrain& terrain, double phi,
+                              const HorizonSweepOptions& options, HorizonBlockVisitor visit);
 
 // The same for two opposite azimuths phi and phiOpposite (phi + pi, as the
 // caller computes it) in one pass: each block holds both azimuths'
@@ -129,9 +125,7 @@ void sweepWindowHorizonBlocks(const BakeTerrain &terrain, double phi,
 // step and line. Returns false, having visited nothing, where the two
 // sweeps' lines do not pair up (their major axes differ, at exactly 45
 // degrees): then sweep each azimuth on its own.
-bool sweepOpposedHorizonBlocks(const BakeTerrain &terrain, double phi,
-                               double phiOpposite,
-                               const HorizonSweepOptions &options,
-                               HorizonBlockVisitor visit);
+bool sweepOpposedHorizonBlocks(const BakeTerrain& terrain, double phi, double phiOpposite,
+                               const HorizonSweepOptions& options, HorizonBlockVisitor visit);
 
-} // namespace aal
+}  // namespace aal

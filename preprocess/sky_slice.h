@@ -1,5 +1,4 @@
-// Closed forms for the visible sky in one azimuth slice. docs/design.md §3
-// step 2.
+// Closed forms for the visible sky in one azimuth slice. docs/design.md §3 step 2.
 //
 // In the slice of azimuth phi and width dPhi, the sky is visible above the
 // elevation theta0 = max(horizon, tangent plane). With solid angle
@@ -23,13 +22,13 @@ namespace aal {
 // Its coefficients of y^13, y^11, ..., y (Horner order), shared with the
 // AVX2 copy (skySliceTermsAvx2 in bake_avx2.cpp).
 inline constexpr double kAtanUnitCoefficients[] = {
-    0.006811793290873252, -0.033604220565024996, 0.07962367236561659,
-    -0.1323334209557463,  0.19807815564989179,   -0.3331736805474933,
-    0.9999961115495709};
+    0.006811793290873252, -0.033604220565024996, 0.07962367236561659, -0.1323334209557463,
+    0.19807815564989179,  -0.3331736805474933,   0.9999961115495709};
 inline constexpr double kSliceHalfPi = std::numbers::pi / 2.0;
 inline constexpr double kSliceQuarterPi = std::numbers::pi / 4.0;
 
-template <class Real> inline Real atanUnit(Real y) {
+template <class Real>
+inline Real atanUnit(Real y) {
   const Real y2 = y * y;
   Real p = Real(kAtanUnitCoefficients[0]);
   for (size_t i = 1; i < std::size(kAtanUnitCoefficients); ++i) {
@@ -40,7 +39,8 @@ template <class Real> inline Real atanUnit(Real y) {
 
 // atan(x) to within 2e-6 rad, several times faster than std::atan: reduced
 // to |y| <= 1 by atan(x) = pi/2 - atan(1/x), then atanUnit.
-template <class Real> inline Real fastAtan(Real x) {
+template <class Real>
+inline Real fastAtan(Real x) {
   constexpr Real kHalfPi = Real(kSliceHalfPi);
   // Branch-free (selects, not jumps): the horizon tangents that reach here
   // change sign and size from texel to texel, so branches mispredict.
@@ -62,15 +62,14 @@ template <class Real> inline Real fastAtan(Real x) {
 // 4.5 ns with the earlier atan (two divisions), 5.2 ns computing cos theta0
 // and 1/|t| from one square root and one division (a longer dependency
 // chain), 5.2-7.4 ns with t clamped first (std::min/max or std::clamp).
-inline void skySliceTerms(float *term, float tanTheta0, float dPhi,
-                          float cosPhiDPhi, float sinPhiDPhi) {
+inline void skySliceTerms(float* term, float tanTheta0, float dPhi, float cosPhiDPhi,
+                          float sinPhiDPhi) {
   const float t = tanTheta0;
-  const float inv = 1.0f / (1.0f + t * t); // cos^2 theta0
+  const float inv = 1.0f / (1.0f + t * t);  // cos^2 theta0
   const float sinTheta = t * std::sqrt(inv);
   const float theta = fastAtan(t);
   constexpr float kQuarterPi = static_cast<float>(kSliceQuarterPi);
-  const float ic = kQuarterPi - 0.5f * theta -
-                   0.5f * t * inv; // sin(2 theta)/4 = t/(2(1+t^2))
+  const float ic = kQuarterPi - 0.5f * theta - 0.5f * t * inv;  // sin(2 theta)/4 = t/(2(1+t^2))
   const float is = 0.5f * inv;
   term[0] = cosPhiDPhi * ic;
   term[1] = sinPhiDPhi * ic;
@@ -78,4 +77,4 @@ inline void skySliceTerms(float *term, float tanTheta0, float dPhi,
   term[3] = dPhi * (1.0f - sinTheta);
 }
 
-} // namespace aal
+}  // namespace aal

@@ -8,24 +8,23 @@
 
 namespace aal {
 
-SliceAccumulator::SliceAccumulator(const BakeTerrain &terrain,
-                                   const BakeOptions &o, float *sums,
-                                   std::vector<float> &svf,
-                                   uint8_t *horizonCodes)
-    : terrain_(terrain), o_(o), sums_(sums), svf_(svf),
-      horizonCodes_(horizonCodes), avx2_(detail::horizonAvx2()) {}
+SliceAccumulator::SliceAccumulator(const BakeTerrain& terrain, const BakeOptions& o, float* sums,
+                                   std::vector<float>& svf, uint8_t* horizonCodes)
+    : terrain_(terrain),
+      o_(o),
+      sums_(sums),
+      svf_(svf),
+      horizonCodes_(horizonCodes),
+      avx2_(detail::horizonAvx2()) {}
 
-void SliceAccumulator::addBlock(const HorizonBlock &b, const AzimuthSlice &s,
-                                const AzimuthSlice *opposite) const {
+void SliceAccumulator::addBlock(const HorizonBlock& b, const AzimuthSlice& s,
+                                const AzimuthSlice* opposite) const {
   // Here as well as between azimuths: one azimuth of a 32768^2 DEM takes
   // a minute. TBB carries the exception out of the sweep's parallel_for.
-  if (o_.cancel && o_.cancel->load(std::memory_order_relaxed))
-    throw BakeCancelled();
+  if (o_.cancel && o_.cancel->load(std::memory_order_relaxed)) throw BakeCancelled();
   if (horizonCodes_) {
-    if (s.horizonSlot >= 0)
-      storeHorizons(b, b.tanHorizon, s);
-    if (opposite && opposite->horizonSlot >= 0)
-      storeHorizons(b, b.tanOpposite, *opposite);
+    if (s.horizonSlot >= 0) storeHorizons(b, b.tanHorizon, s);
+    if (opposite && opposite->horizonSlot >= 0) storeHorizons(b, b.tanOpposite, *opposite);
   }
   prefetchAhead(b);
   const bool wantSvf = !svf_.empty();
@@ -35,8 +34,7 @@ void SliceAccumulator::addBlock(const HorizonBlock &b, const AzimuthSlice &s,
     detail::addSlicesAvx2(sums_, b, s, opposite);
     if (wantSvf) {
       addSkyViewFactor(b, b.tanHorizon);
-      if (opposite)
-        addSkyViewFactor(b, b.tanOpposite);
+      if (opposite) addSkyViewFactor(b, b.tanOpposite);
     }
     return;
   }
@@ -48,24 +46,19 @@ void SliceAccumulator::addBlock(const HorizonBlock &b, const AzimuthSlice &s,
     float oppositeTerms[HorizonBlock::kLines][4];
     sliceTerms(b, b.tanOpposite, *opposite, oppositeTerms);
     for (int j = 0; j < b.count; ++j) {
-      for (int c = 0; c < 4; ++c)
-        terms[j][c] += oppositeTerms[j][c];
+      for (int c = 0; c < 4; ++c) terms[j][c] += oppositeTerms[j][c];
     }
   }
   for (int j = 0; j < b.count; ++j) {
-    float *sum = sums_ + 4 * (b.firstTexel + j * b.stride);
-    for (int c = 0; c < 4; ++c)
-      sum[c] += terms[j][c];
+    float* sum = sums_ + 4 * (b.firstTexel + j * b.stride);
+    for (int c = 0; c < 4; ++c) sum[c] += terms[j][c];
   }
 }
 
-void SliceAccumulator::addTexel(size_t texel, double tanHorizon,
-                                const AzimuthSlice &s) const {
+void SliceAccumulator::addTexel(size_t texel, double tanHorizon, const AzimuthSlice& s) const {
   // A block of one.
-  const float tanH =
-      std::max(static_cast<float>(tanHorizon), kNoHorizonTangent);
-  const float east = terrain_.slopeEast(texel),
-              north = terrain_.slopeNorth(texel);
+  const float tanH = std::max(static_cast<float>(tanHorizon), kNoHorizonTangent);
+  const float east = terrain_.slopeEast(texel), north = terrain_.slopeNorth(texel);
   HorizonBlock b{texel, 1, 1, &tanH};
   b.slopeEast = &east;
   b.slopeNorth = &north;
@@ -76,11 +69,10 @@ void SliceAccumulator::addTexel(size_t texel, double tanHorizon,
 // row, where the hardware prefetcher does not look. Along a row, one
 // prefetch per cache line (4 texels' sums) and the last texel: 3 % faster
 // at 1024² than one per texel.
-void SliceAccumulator::prefetchAhead(const HorizonBlock &b) const {
+void SliceAccumulator::prefetchAhead(const HorizonBlock& b) const {
   if (b.stride == 1 && b.aheadCount > 0) {
     const size_t first = b.aheadFirstTexel, last = first + b.aheadCount - 1;
-    for (size_t texel = first; texel < last; texel += 4)
-      __builtin_prefetch(sums_ + 4 * texel, 1);
+    for (size_t texel = first; texel < last; texel += 4) __builtin_prefetch(sums_ + 4 * texel, 1);
     __builtin_prefetch(sums_ + 4 * last, 1);
   } else {
     for (int j = 0; j < b.aheadCount; ++j) {
@@ -90,39 +82,30 @@ void SliceAccumulator::prefetchAhead(const HorizonBlock &b) const {
 }
 
 // The horizon elevations of slice s at a block's texels, encoded.
-void SliceAccumulator::storeHorizons(const HorizonBlock &b,
-                                     const float *tanHorizon,
-                                     const AzimuthSlice &s) const {
+void SliceAccumulator::storeHorizons(const HorizonBlock& b, const float* tanHorizon,
+                                     const AzimuthSlice& s) const {
   for (int j = 0; j < b.count; ++j) {
     horizonCodes_[(b.firstTexel + j * b.stride) * size_t(o_.horizonDirections) +
-                  size_t(s.horizonSlot)] =
-        encodeHorizon(std::atan(tanHorizon[j]));
+                  size_t(s.horizonSlot)] = encodeHorizon(std::atan(tanHorizon[j]));
   }
 }
 
-void SliceAccumulator::addSkyViewFactor(const HorizonBlock &b,
-                                        const float *tanHorizon) const {
+void SliceAccumulator::addSkyViewFactor(const HorizonBlock& b, const float* tanHorizon) const {
   for (int j = 0; j < b.count; ++j) {
     const float t = tanHorizon[j];
-    if (t > 0.0f)
-      svf_[b.firstTexel + j * b.stride] += t / std::sqrt(1.0f + t * t);
+    if (t > 0.0f) svf_[b.firstTexel + j * b.stride] += t / std::sqrt(1.0f + t * t);
   }
 }
 
 // The terms of slice s at a block's texels, from their horizon tangents.
 // Directions below the tangent plane are outside the hemisphere.
-void SliceAccumulator::sliceTerms(const HorizonBlock &b,
-                                  const float *tanHorizon,
-                                  const AzimuthSlice &s,
-                                  float (*terms)[4]) const {
+void SliceAccumulator::sliceTerms(const HorizonBlock& b, const float* tanHorizon,
+                                  const AzimuthSlice& s, float (*terms)[4]) const {
   for (int j = 0; j < b.count; ++j) {
-    const float tanPlane =
-        b.slopeEast[j] * s.cosPhi + b.slopeNorth[j] * s.sinPhi;
-    skySliceTerms(terms[j], std::max(tanHorizon[j], tanPlane), s.dPhi,
-                  s.cosPhiDPhi, s.sinPhiDPhi);
+    const float tanPlane = b.slopeEast[j] * s.cosPhi + b.slopeNorth[j] * s.sinPhi;
+    skySliceTerms(terms[j], std::max(tanHorizon[j], tanPlane), s.dPhi, s.cosPhiDPhi, s.sinPhiDPhi);
   }
-  if (!svf_.empty())
-    addSkyViewFactor(b, tanHorizon);
+  if (!svf_.empty()) addSkyViewFactor(b, tanHorizon);
 }
 
-} // namespace aal
+}  // namespace aal

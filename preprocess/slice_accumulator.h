@@ -20,40 +20,37 @@ namespace aal {
 struct AzimuthSlice {
   double phi;
   float cosPhi, sinPhi, dPhi, cosPhiDPhi, sinPhiDPhi;
-  int horizonSlot =
-      -1; // direction of the horizon map this azimuth fills, or -1
+  int horizonSlot = -1;  // direction of the horizon map this azimuth fills, or -1
 };
 
 class SliceAccumulator {
-public:
+ public:
   // sums: 4 floats per texel of terrain.window (bent vector, solid angle);
   // svf: empty, or one float per texel for the sky-view factor's sum;
   // horizonCodes: null, or o.horizonDirections codes per texel.
-  SliceAccumulator(const BakeTerrain &terrain, const BakeOptions &o,
-                   float *sums, std::vector<float> &svf, uint8_t *horizonCodes);
+  SliceAccumulator(const BakeTerrain& terrain, const BakeOptions& o, float* sums,
+                   std::vector<float>& svf, uint8_t* horizonCodes);
 
   // Adds slice s (and, from b.tanOpposite, the opposite slice) to a block
   // of texels, reading and writing each texel's sums once. Throws
   // BakeCancelled when o.cancel is set. Safe to call concurrently for
   // blocks of different texels.
-  void addBlock(const HorizonBlock &b, const AzimuthSlice &s,
-                const AzimuthSlice *opposite) const;
+  void addBlock(const HorizonBlock& b, const AzimuthSlice& s, const AzimuthSlice* opposite) const;
   // The same for one texel (window index), from the texel-by-texel sweeps.
-  void addTexel(size_t texel, double tanHorizon, const AzimuthSlice &s) const;
+  void addTexel(size_t texel, double tanHorizon, const AzimuthSlice& s) const;
 
-private:
-  void prefetchAhead(const HorizonBlock &b) const;
-  void storeHorizons(const HorizonBlock &b, const float *tanHorizon,
-                     const AzimuthSlice &s) const;
-  void addSkyViewFactor(const HorizonBlock &b, const float *tanHorizon) const;
-  void sliceTerms(const HorizonBlock &b, const float *tanHorizon,
-                  const AzimuthSlice &s, float (*terms)[4]) const;
+ private:
+  void prefetchAhead(const HorizonBlock& b) const;
+  void storeHorizons(const HorizonBlock& b, const float* tanHorizon, const AzimuthSlice& s) const;
+  void addSkyViewFactor(const HorizonBlock& b, const float* tanHorizon) const;
+  void sliceTerms(const HorizonBlock& b, const float* tanHorizon, const AzimuthSlice& s,
+                  float (*terms)[4]) const;
 
-  const BakeTerrain &terrain_;
-  const BakeOptions &o_;
-  float *const sums_;
-  std::vector<float> &svf_;
-  uint8_t *const horizonCodes_;
+  const BakeTerrain& terrain_;
+  const BakeOptions& o_;
+  float* const sums_;
+  std::vector<float>& svf_;
+  uint8_t* const horizonCodes_;
   const bool avx2_;
 };
 
@@ -61,10 +58,10 @@ namespace detail {
 #if AAL_HORIZON_AVX2
 // SliceAccumulator::addBlock's sums 8 texels at a time, for CPUs with AVX2
 // (bake_avx2.cpp).
-__attribute__((target("avx2"))) void
-addSlicesAvx2(float *sums, const HorizonBlock &b, const AzimuthSlice &s,
-              const AzimuthSlice *opposite);
+__attribute__((target("avx2"))) void addSlicesAvx2(float* sums, const HorizonBlock& b,
+                                                   const AzimuthSlice& s,
+                                                   const AzimuthSlice* opposite);
 #endif
-} // namespace detail
+}  // namespace detail
 
-} // namespace aal
+}  // namespace aal
