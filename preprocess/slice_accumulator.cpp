@@ -19,6 +19,21 @@ SliceAccumulator::SliceAccumulator(const BakeTerrain& terrain, const BakeOptions
 
 void SliceAccumulator::addBlock(const HorizonBlock& b, const AzimuthSlice& s,
                                 const AzimuthSlice* opposite) const {
+  addSlices(b, s, opposite);
+}
+
+void SliceAccumulator::addTexel(size_t texel, double tanHorizon, const AzimuthSlice& s) const {
+  // A block of one.
+  const float tanH = std::max(static_cast<float>(tanHorizon), kNoHorizonTangent);
+  const float east = terrain_.slopeEast(texel), north = terrain_.slopeNorth(texel);
+  HorizonBlock b{texel, 1, 1, &tanH};
+  b.slopeEast = &east;
+  b.slopeNorth = &north;
+  addSlices(b, s, nullptr);
+}
+
+inline void SliceAccumulator::addSlices(const HorizonBlock& b, const AzimuthSlice& s,
+                                        const AzimuthSlice* opposite) const {
   // Here as well as between azimuths: one azimuth of a 32768^2 DEM takes
   // a minute. TBB carries the exception out of the sweep's parallel_for.
   if (o_.cancel && o_.cancel->load(std::memory_order_relaxed)) throw BakeCancelled();
@@ -55,21 +70,11 @@ void SliceAccumulator::addBlock(const HorizonBlock& b, const AzimuthSlice& s,
   }
 }
 
-void SliceAccumulator::addTexel(size_t texel, double tanHorizon, const AzimuthSlice& s) const {
-  // A block of one.
-  const float tanH = std::max(static_cast<float>(tanHorizon), kNoHorizonTangent);
-  const float east = terrain_.slopeEast(texel), north = terrain_.slopeNorth(texel);
-  HorizonBlock b{texel, 1, 1, &tanH};
-  b.slopeEast = &east;
-  b.slopeNorth = &north;
-  addBlock(b, s, nullptr);
-}
-
 // The texels a few steps on: their sums are a column apart or in another
 // row, where the hardware prefetcher does not look. Along a row, one
 // prefetch per cache line (4 texels' sums) and the last texel: 3 % faster
 // at 1024² than one per texel.
-void SliceAccumulator::prefetchAhead(const HorizonBlock& b) const {
+inline void SliceAccumulator::prefetchAhead(const HorizonBlock& b) const {
   if (b.stride == 1 && b.aheadCount > 0) {
     const size_t first = b.aheadFirstTexel, last = first + b.aheadCount - 1;
     for (size_t texel = first; texel < last; texel += 4) __builtin_prefetch(sums_ + 4 * texel, 1);
@@ -82,15 +87,16 @@ void SliceAccumulator::prefetchAhead(const HorizonBlock& b) const {
 }
 
 // The horizon elevations of slice s at a block's texels, encoded.
-void SliceAccumulator::storeHorizons(const HorizonBlock& b, const float* tanHorizon,
-                                     const AzimuthSlice& s) const {
+inline void SliceAccumulator::storeHorizons(const HorizonBlock& b, const float* tanHorizon,
+                                            const AzimuthSlice& s) const {
   for (int j = 0; j < b.count; ++j) {
     horizonCodes_[(b.firstTexel + j * b.stride) * size_t(o_.horizonDirections) +
                   size_t(s.horizonSlot)] = encodeHorizon(std::atan(tanHorizon[j]));
   }
 }
 
-void SliceAccumulator::addSkyViewFactor(const HorizonBlock& b, const float* tanHorizon) const {
+inline void SliceAccumulator::addSkyViewFactor(const HorizonBlock& b,
+                                               const float* tanHorizon) const {
   for (int j = 0; j < b.count; ++j) {
     const float t = tanHorizon[j];
     if (t > 0.0f) svf_[b.firstTexel + j * b.stride] += t / std::sqrt(1.0f + t * t);
@@ -99,8 +105,8 @@ void SliceAccumulator::addSkyViewFactor(const HorizonBlock& b, const float* tanH
 
 // The terms of slice s at a block's texels, from their horizon tangents.
 // Directions below the tangent plane are outside the hemisphere.
-void SliceAccumulator::sliceTerms(const HorizonBlock& b, const float* tanHorizon,
-                                  const AzimuthSlice& s, float (*terms)[4]) const {
+inline void SliceAccumulator::sliceTerms(const HorizonBlock& b, const float* tanHorizon,
+                                         const AzimuthSlice& s, float (*terms)[4]) const {
   for (int j = 0; j < b.count; ++j) {
     const float tanPlane = b.slopeEast[j] * s.cosPhi + b.slopeNorth[j] * s.sinPhi;
     skySliceTerms(terms[j], std::max(tanHorizon[j], tanPlane), s.dPhi, s.cosPhiDPhi, s.sinPhiDPhi);

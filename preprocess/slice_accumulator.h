@@ -40,11 +40,18 @@ class SliceAccumulator {
   void addTexel(size_t texel, double tanHorizon, const AzimuthSlice& s) const;
 
  private:
-  void prefetchAhead(const HorizonBlock& b) const;
-  void storeHorizons(const HorizonBlock& b, const float* tanHorizon, const AzimuthSlice& s) const;
-  void addSkyViewFactor(const HorizonBlock& b, const float* tanHorizon) const;
-  void sliceTerms(const HorizonBlock& b, const float* tanHorizon, const AzimuthSlice& s,
-                  float (*terms)[4]) const;
+  // The body of addBlock and addTexel, inlined into both: for addTexel's
+  // blocks of one it folds to straight-line code (the distance-limited
+  // sweep calls it once per texel and azimuth).
+  [[gnu::always_inline]] inline void addSlices(const HorizonBlock& b, const AzimuthSlice& s,
+                                               const AzimuthSlice* opposite) const;
+  [[gnu::always_inline]] inline void prefetchAhead(const HorizonBlock& b) const;
+  [[gnu::always_inline]] inline void storeHorizons(const HorizonBlock& b, const float* tanHorizon,
+                                                   const AzimuthSlice& s) const;
+  [[gnu::always_inline]] inline void addSkyViewFactor(const HorizonBlock& b,
+                                                      const float* tanHorizon) const;
+  [[gnu::always_inline]] inline void sliceTerms(const HorizonBlock& b, const float* tanHorizon,
+                                                const AzimuthSlice& s, float (*terms)[4]) const;
 
   const BakeTerrain& terrain_;
   const BakeOptions& o_;
