@@ -109,13 +109,16 @@ class BlockLineWalker {
   [[gnu::always_inline]] inline void loadSlice(int step, float* east, float* north,
                                                StepSlice& slice) const;
 
-  // The scalar walk (block_line_walker.cpp).
+  // The scalar walk (block_line_walker.cpp). Its steps, and the AVX2
+  // walk's, are always inlined into stepScalar and stepAvx2: the step's
+  // arrays then stay local to one function, so the compiler knows that no
+  // store to them changes the grid or the walker.
   void stepScalar(int step, int minorLo, int minorHi, float* out, float* east, float* north);
-  void lineSamples(int step, StepSlice& slice) const;
-  void updateHulls(const StepSlice& slice, LineValues& lines);
-  void lineHorizons(const StepSlice& slice, LineValues& lines) const;
-  void texelTangents(const StepSlice& slice, const LineValues& lines, int minorLo, int minorHi,
-                     float* out) const;
+  [[gnu::always_inline]] inline void lineSamples(int step, StepSlice& slice) const;
+  [[gnu::always_inline]] inline void updateHulls(const StepSlice& slice, LineValues& lines);
+  [[gnu::always_inline]] inline void lineHorizons(const StepSlice& slice, LineValues& lines) const;
+  [[gnu::always_inline]] inline void texelTangents(const StepSlice& slice, const LineValues& lines,
+                                                   int minorLo, int minorHi, float* out) const;
   [[gnu::always_inline]] inline void texelSlopes(const StepSlice& slice, int i, int j) const;
 
 #if AAL_HORIZON_AVX2
@@ -123,13 +126,15 @@ class BlockLineWalker {
   // or 8 lines at a time.
   __attribute__((target("avx2"))) void stepAvx2(int step, int minorLo, int minorHi, float* out,
                                                 float* east, float* north);
-  __attribute__((target("avx2"))) void lineSamplesAvx2(int step, StepSlice& slice) const;
-  __attribute__((target("avx2"))) void updateHullsAvx2(const StepSlice& slice, bool texels,
-                                                       float* lineHorizon);
-  __attribute__((target("avx2"))) void texelTangentsAvx2(const StepSlice& slice,
-                                                         const float* lineHorizon, int minorLo,
-                                                         int minorHi, float* out) const;
-  __attribute__((target("avx2"))) void texelSlopesAvx2(const StepSlice& slice, int i, int j) const;
+  __attribute__((target("avx2"), always_inline)) inline void lineSamplesAvx2(
+      int step, StepSlice& slice) const;
+  __attribute__((target("avx2"), always_inline)) inline void updateHullsAvx2(const StepSlice& slice,
+                                                                             bool texels,
+                                                                             float* lineHorizon);
+  __attribute__((target("avx2"), always_inline)) inline void texelTangentsAvx2(
+      const StepSlice& slice, const float* lineHorizon, int minorLo, int minorHi, float* out) const;
+  __attribute__((target("avx2"), always_inline)) inline void texelSlopesAvx2(const StepSlice& slice,
+                                                                             int i, int j) const;
 #endif
 
   float heightAt(int major, int minor) const {
