@@ -15,7 +15,7 @@
 #include "horizon_sweep.h"
 #include "huge_pages.h"
 #include "ray_bake.h"
-#include "sky_slice.h"
+#include "slice_accumulator.h"
 
 namespace aal {
 
@@ -54,240 +54,124 @@ void checkCancel(const BakeOptions& o) {
   if (o.cancel && o.cancel->load(std::memory_order_relaxed)) throw BakeCancelled();
 }
 
-// One azimuth's constants, in the single precision the slices are summed
-// in (sky_slice.h).
-struct Slice {
-  double phi;
-  float cosPhi, sinPhi, dPhi, cosPhiDPhi, sinPhiDPhi;
-  int horizonSlot = -1;  // direction of the horizon map this azimuth fills, or -1
-};
-
-#if AAL_HORIZON_AVX2
-// The terms of slice s at 8 texels (sliceTerms), transposed.
-__attribute__((target("avx2"), always_inline)) inline void sliceTermsAvx2(__m256 terms[4],
-                                                                          __m256 east, __m256 north,
-                                                                          const float* tanHorizon,
-                                                                          __m256i mask,
-                                                                          const Slice& s) {
-  const __m256 tanPlane = _mm256_add_ps(_mm256_mul_ps(east, _mm256_set1_ps(s.cosPhi)),
-                                        _mm256_mul_ps(north, _mm256_set1_ps(s.sinPhi)));
-  // std::max(tanHorizon, tanPlane) in the same lane order.
-  const __m256 t = _mm256_max_ps(tanPlane, _mm256_maskload_ps(tanHorizon, mask));
-  skySliceTermsAvx2(terms, t, s.dPhi, s.cosPhiDPhi, s.sinPhiDPhi);
-}
-
-// addSlices' sums 8 texels at a time, for CPUs with AVX2: the same
-// operations in the same order as the vector loops of the scalar path, so
-// the same sums bit for bit. Without FMA: fused multiply-adds (which GCC
-// would form from these intrinsics) measured 1-3 % faster, within the
-// noise on 2 threads, and would make a bake's result depend on the CPU.
-__attribute__((target("avx2"))) void addSlicesAvx2(float* sums, const HorizonBlock& b,
-                                                   const Slice& s, const Slice* opposite) {
-  const __m256i iota = _mm256_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7);
-  for (int j = 0; j < b.count; j += 8) {
-    const int n = std::min(8, b.count - j);
-    const __m256i mask = _mm256_cmpgt_epi32(_mm256_set1_epi32(n), iota);
-    const size_t first = b.firstTexel + j * b.stride;
-    const __m256 east = _mm256_maskload_ps(b.slopeEast + j, mask);
-    const __m256 north = _mm256_maskload_ps(b.slopeNorth + j, mask);
-    __m256 terms[4];
-    sliceTermsAvx2(terms, east, north, b.tanHorizon + j, mask, s);
-    if (opposite) {
-      __m256 oppositeTerms[4];
-      sliceTermsAvx2(oppositeTerms, east, north, b.tanOpposite + j, mask, *opposite);
-      for (int c = 0; c < 4; ++c) terms[c] = _mm256_add_ps(terms[c], oppositeTerms[c]);
-    }
-    // Back to one vector of 4 sums per texel: quads k and k + 4 share a
-    // register.
-    const __m256 xy0 = _mm256_unpacklo_ps(terms[0], terms[1]);
-    const __m256 xy1 = _mm256_unpackhi_ps(terms[0], terms[1]);
-    const __m256 zw0 = _mm256_unpacklo_ps(terms[2], terms[3]);
-    const __m256 zw1 = _mm256_unpackhi_ps(terms[2], terms[3]);
-    const __m256 quads[4] = {_mm256_shuffle_ps(xy0, zw0, _MM_SHUFFLE(1, 0, 1, 0)),
-                             _mm256_shuffle_ps(xy0, zw0, _MM_SHUFFLE(3, 2, 3, 2)),
-                             _mm256_shuffle_ps(xy1, zw1, _MM_SHUFFLE(1, 0, 1, 0)),
-                             _mm256_shuffle_ps(xy1, zw1, _MM_SHUFFLE(3, 2, 3, 2))};
-    for (int k = 0; k < n; ++k) {
-      float* sum = sums + 4 * (first + k * b.stride);
-      const __m128 quad =
-          k < 4 ? _mm256_castps256_ps128(quads[k & 3]) : _mm256_extractf128_ps(quads[k & 3], 1);
-      _mm_storeu_ps(sum, _mm_add_ps(_mm_loadu_ps(sum), quad));
-    }
-  }
-}
-#endif
-
 // Sums the sky slices of every azimuth into `sums`, and the SVF terms; with
 // `horizonCodes`, stores the horizons of the azimuths k * 2 pi /
 // o.horizonDirections there (that many codes per texel).
-void sweepAllAzimuths(const BakeTerrain& terrain, const BakeOptions& o, float* sums,
-                      std::vector<float>& svf, uint8_t* horizonCodes) {
-  HorizonSweepOptions sweep;
-  sweep.clampEdge = o.clampEdge;
-  sweep.curvature = o.curvature ? (1.0 - o.refraction) / (2.0 * kEarthRadiusM) : 0.0;
-  sweep.maxDistanceM = o.maxDistanceM;
-  if (o.farField && o.maxDistanceM <= 0.0) sweep.windowReachM = o.farField->options.nearReachM;
-  const double dPhi = kTwoPi / o.azimuths;
-  const bool wantSvf = !svf.empty();
+class AzimuthSweeps {
+ public:
+  AzimuthSweeps(const BakeTerrain& terrain, const BakeOptions& o, float* sums,
+                std::vector<float>& svf, uint8_t* horizonCodes)
+      : terrain_(terrain),
+        o_(o),
+        svf_(svf),
+        sums_(terrain, o, sums, svf, horizonCodes),
+        dPhi_(kTwoPi / o.azimuths) {
+    sweep_.clampEdge = o.clampEdge;
+    sweep_.curvature = o.curvature ? (1.0 - o.refraction) / (2.0 * kEarthRadiusM) : 0.0;
+    sweep_.maxDistanceM = o.maxDistanceM;
+    if (o.farField && o.maxDistanceM <= 0.0) sweep_.windowReachM = o.farField->options.nearReachM;
+  }
 
-  const auto sliceOf = [&](int a) {
-    const double phi = a * dPhi, cosPhi = std::cos(phi), sinPhi = std::sin(phi);
-    const bool stored = a * o.horizonDirections % o.azimuths == 0;
-    return Slice{phi,
-                 static_cast<float>(cosPhi),
-                 static_cast<float>(sinPhi),
-                 static_cast<float>(dPhi),
-                 static_cast<float>(cosPhi * dPhi),
-                 static_cast<float>(sinPhi * dPhi),
-                 stored ? a * o.horizonDirections / o.azimuths : -1};
-  };
-  // The horizon elevations of slice s at a block's texels, encoded.
-  const auto storeHorizons = [&](const HorizonBlock& b, const float* tanHorizon, const Slice& s) {
-    for (int j = 0; j < b.count; ++j) {
-      horizonCodes[(b.firstTexel + j * b.stride) * size_t(o.horizonDirections) +
-                   size_t(s.horizonSlot)] = encodeHorizon(std::atan(tanHorizon[j]));
+  void run() const {
+    // Without a distance limit azimuths a and a + n/2 are swept together
+    // (sweepOpposedHorizonBlocks): one pass over the sums for both.
+    const bool opposed =
+        sweep_.maxDistanceM <= 0.0 && sweep_.windowReachM <= 0.0 && o_.azimuths % 2 == 0;
+    const int passes = opposed ? o_.azimuths / 2 : o_.azimuths;
+    for (int pass = 0; pass < passes; ++pass) {
+      checkCancel(o_);
+      const AzimuthSlice s = sliceOf(pass);
+      if (!opposed) {
+        sweepOne(s);
+      } else {
+        const AzimuthSlice opposite = sliceOf(pass + passes);
+        if (!sweepOpposed(s, opposite)) {
+          sweepOne(s);
+          sweepOne(opposite);
+        }
+      }
+      if (o_.progress) o_.progress(static_cast<double>(pass + 1) / passes);
     }
-  };
-  constexpr int kLines = HorizonBlock::kLines;
-  const bool avx2 = detail::horizonAvx2();
-  const auto addSvf = [&](const HorizonBlock& b, const float* tanHorizon) {
-    for (int j = 0; j < b.count; ++j) {
-      const float t = tanHorizon[j];
-      if (t > 0.0f) svf[b.firstTexel + j * b.stride] += t / std::sqrt(1.0f + t * t);
-    }
-  };
-  // The terms of slice s at a block's texels, from their horizon tangents.
-  // Directions below the tangent plane are outside the hemisphere.
-  const auto sliceTerms = [&](const HorizonBlock& b, const float* tanHorizon, const Slice& s,
-                              float(*terms)[4]) {
-    for (int j = 0; j < b.count; ++j) {
-      const float tanPlane = b.slopeEast[j] * s.cosPhi + b.slopeNorth[j] * s.sinPhi;
-      skySliceTerms(terms[j], std::max(tanHorizon[j], tanPlane), s.dPhi, s.cosPhiDPhi,
-                    s.sinPhiDPhi);
-    }
-    if (wantSvf) addSvf(b, tanHorizon);
-  };
-  // Adds slice s (and, from b.tanOpposite, the opposite slice) to a block of
-  // texels in loops that compile to vector code, reading and writing each
-  // texel's sums once.
-  const auto addSlices = [&](const HorizonBlock& b, const Slice& s, const Slice* opposite) {
-    // Here as well as between azimuths: one azimuth of a 32768^2 DEM takes
-    // a minute. TBB carries the exception out of the sweep's parallel_for.
-    checkCancel(o);
-    if (horizonCodes) {
-      if (s.horizonSlot >= 0) storeHorizons(b, b.tanHorizon, s);
-      if (opposite && opposite->horizonSlot >= 0) storeHorizons(b, b.tanOpposite, *opposite);
-    }
-    // The texels a few steps on: their sums are a column apart or in
-    // another row, where the hardware prefetcher does not look. Along a row,
-    // one prefetch per cache line (4 texels' sums) and the last texel: 3 %
-    // faster at 1024² than one per texel.
-    if (b.stride == 1 && b.aheadCount > 0) {
-      const size_t first = b.aheadFirstTexel, last = first + b.aheadCount - 1;
-      for (size_t texel = first; texel < last; texel += 4) __builtin_prefetch(sums + 4 * texel, 1);
-      __builtin_prefetch(sums + 4 * last, 1);
+    if (!svf_.empty()) finishSkyViewFactor();
+  }
+
+ private:
+  AzimuthSlice sliceOf(int a) const {
+    const double phi = a * dPhi_, cosPhi = std::cos(phi), sinPhi = std::sin(phi);
+    const bool stored = a * o_.horizonDirections % o_.azimuths == 0;
+    return AzimuthSlice{phi,
+                        static_cast<float>(cosPhi),
+                        static_cast<float>(sinPhi),
+                        static_cast<float>(dPhi_),
+                        static_cast<float>(cosPhi * dPhi_),
+                        static_cast<float>(sinPhi * dPhi_),
+                        stored ? a * o_.horizonDirections / o_.azimuths : -1};
+  }
+
+  // Both slices in one pass; false where their lines do not pair.
+  bool sweepOpposed(const AzimuthSlice& s, const AzimuthSlice& opposite) const {
+    return sweepOpposedHorizonBlocks(
+        terrain_, s.phi, opposite.phi, sweep_,
+        [&](const HorizonBlock& b) { sums_.addBlock(b, s, &opposite); });
+  }
+
+  void sweepOne(const AzimuthSlice& s) const {
+    if (sweep_.windowReachM > 0.0) {
+      sweepNearAndFar(s);
+    } else if (sweep_.maxDistanceM > 0.0) {
+      sweepHorizons(terrain_, s.phi, sweep_,
+                    [&](size_t texel, double tanHorizon) { sums_.addTexel(texel, tanHorizon, s); });
     } else {
-      for (int j = 0; j < b.aheadCount; ++j) {
-        __builtin_prefetch(sums + 4 * (b.aheadFirstTexel + j * b.stride), 1);
-      }
+      sweepHorizonBlocks(terrain_, s.phi, sweep_,
+                         [&](const HorizonBlock& b) { sums_.addBlock(b, s, nullptr); });
     }
-#if AAL_HORIZON_AVX2
-    // Not for the distance-limited sweep's blocks of one: 20 % slower there.
-    if (avx2 && b.count > 1) {
-      addSlicesAvx2(sums, b, s, opposite);
-      if (wantSvf) {
-        addSvf(b, b.tanHorizon);
-        if (opposite) addSvf(b, b.tanOpposite);
-      }
+  }
+
+  // A far-field bake's window: near horizons from the window's lines, far
+  // ones from the pyramid.
+  void sweepNearAndFar(const AzimuthSlice& s) const {
+    const FarHorizons far(*o_.farField, terrain_, s.phi, sweep_.curvature, sweep_.clampEdge);
+    const TexelWindow& w = terrain_.window;
+    if (!sweep_.clampEdge) {
+      sweepWindowHorizonBlocks(terrain_, s.phi, sweep_, [&](const HorizonBlock& b) {
+        alignas(32) float merged[HorizonBlock::kPaddedTexels];
+        for (int j = 0; j < b.count; ++j) {
+          const size_t texel = b.firstTexel + j * b.stride;
+          const int col = w.col + static_cast<int>(texel % w.width);
+          const int row = w.row + static_cast<int>(texel / w.width);
+          const double tangent =
+              far.mergedTangent(col, row, terrain_.field->at(col, row), b.tanHorizon[j]);
+          merged[j] = static_cast<float>(std::max(tangent, double(kNoHorizonTangent)));
+        }
+        HorizonBlock block = b;
+        block.tanHorizon = merged;
+        sums_.addBlock(block, s, nullptr);
+      });
       return;
     }
-#endif
-    float terms[kLines][4];
-    sliceTerms(b, b.tanHorizon, s, terms);
-    if (opposite) {
-      float oppositeTerms[kLines][4];
-      sliceTerms(b, b.tanOpposite, *opposite, oppositeTerms);
-      for (int j = 0; j < b.count; ++j) {
-        for (int c = 0; c < 4; ++c) terms[j][c] += oppositeTerms[j][c];
-      }
-    }
-    for (int j = 0; j < b.count; ++j) {
-      float* sum = sums + 4 * (b.firstTexel + j * b.stride);
-      for (int c = 0; c < 4; ++c) sum[c] += terms[j][c];
-    }
-  };
-  // The texel-by-texel sweeps hand over one texel: a block of one.
-  const auto addTexelSlice = [&](size_t texel, double tanHorizon, const Slice& s) {
-    const float tanH = std::max(static_cast<float>(tanHorizon), kNoHorizonTangent);
-    const float east = terrain.slopeEast(texel), north = terrain.slopeNorth(texel);
-    HorizonBlock b{texel, 1, 1, &tanH};
-    b.slopeEast = &east;
-    b.slopeNorth = &north;
-    addSlices(b, s, nullptr);
-  };
-  const auto sweepOne = [&](const Slice& s) {
-    if (sweep.windowReachM > 0.0) {
-      // Near horizons from the window's lines, far ones from the pyramid.
-      const FarHorizons far(*o.farField, terrain, s.phi, sweep.curvature, sweep.clampEdge);
-      const TexelWindow& w = terrain.window;
-      if (!sweep.clampEdge) {
-        sweepWindowHorizonBlocks(terrain, s.phi, sweep, [&](const HorizonBlock& b) {
-          alignas(32) float merged[HorizonBlock::kPaddedTexels];
-          for (int j = 0; j < b.count; ++j) {
-            const size_t texel = b.firstTexel + j * b.stride;
-            const int col = w.col + static_cast<int>(texel % w.width);
-            const int row = w.row + static_cast<int>(texel / w.width);
-            const double tangent =
-                far.mergedTangent(col, row, terrain.field->at(col, row), b.tanHorizon[j]);
-            merged[j] = static_cast<float>(std::max(tangent, double(kNoHorizonTangent)));
-          }
-          HorizonBlock block = b;
-          block.tanHorizon = merged;
-          addSlices(block, s, nullptr);
-        });
-        return;
-      }
-      // Clamped edges: the general sweep knows where a line's walk began.
-      sweepHorizons(terrain, s.phi, sweep, [&](size_t texel, double tanHorizon) {
-        const int col = w.col + static_cast<int>(texel % w.width);
-        const int row = w.row + static_cast<int>(texel / w.width);
-        addTexelSlice(
-            texel, std::max(tanHorizon, far.tangentAt(col, row, terrain.field->at(col, row))), s);
-      });
-    } else if (sweep.maxDistanceM > 0.0) {
-      sweepHorizons(terrain, s.phi, sweep,
-                    [&](size_t texel, double tanHorizon) { addTexelSlice(texel, tanHorizon, s); });
-    } else {
-      sweepHorizonBlocks(terrain, s.phi, sweep,
-                         [&](const HorizonBlock& b) { addSlices(b, s, nullptr); });
-    }
-  };
+    // Clamped edges: the general sweep knows where a line's walk began.
+    sweepHorizons(terrain_, s.phi, sweep_, [&](size_t texel, double tanHorizon) {
+      const int col = w.col + static_cast<int>(texel % w.width);
+      const int row = w.row + static_cast<int>(texel / w.width);
+      sums_.addTexel(
+          texel, std::max(tanHorizon, far.tangentAt(col, row, terrain_.field->at(col, row))), s);
+    });
+  }
 
-  // Without a distance limit azimuths a and a + n/2 are swept together
-  // (sweepOpposedHorizonBlocks): one pass over the sums for both.
-  const bool opposed =
-      sweep.maxDistanceM <= 0.0 && sweep.windowReachM <= 0.0 && o.azimuths % 2 == 0;
-  const int passes = opposed ? o.azimuths / 2 : o.azimuths;
-  for (int pass = 0; pass < passes; ++pass) {
-    checkCancel(o);
-    const Slice s = sliceOf(pass);
-    if (!opposed) {
-      sweepOne(s);
-    } else {
-      const Slice opposite = sliceOf(pass + passes);
-      if (!sweepOpposedHorizonBlocks(terrain, s.phi, opposite.phi, sweep,
-                                     [&](const HorizonBlock& b) { addSlices(b, s, &opposite); })) {
-        sweepOne(s);
-        sweepOne(opposite);
-      }
-    }
-    if (o.progress) o.progress(static_cast<double>(pass + 1) / passes);
+  // The sums of the SVF terms to the sky-view factor.
+  void finishSkyViewFactor() const {
+    const int azimuths = o_.azimuths;
+    tbb::parallel_for(size_t(0), svf_.size(),
+                      [&](size_t i) { svf_[i] = 1.0f - svf_[i] / azimuths; });
   }
-  if (wantSvf) {
-    tbb::parallel_for(size_t(0), svf.size(),
-                      [&](size_t i) { svf[i] = 1.0f - svf[i] / o.azimuths; });
-  }
-}
+
+  const BakeTerrain& terrain_;
+  const BakeOptions& o_;
+  std::vector<float>& svf_;
+  const SliceAccumulator sums_;
+  const double dPhi_;
+  HorizonSweepOptions sweep_;
+};
 
 // Turns the sums into unit bent normals and arc lengths, in place.
 void finishApertures(const BakeTerrain& terrain, std::vector<float>& texels) {
@@ -332,8 +216,9 @@ BakeResult bakeWindow(const Heightfield& field, const BakeTerrain& terrain, cons
   }
 
   if (o.method == BakeMethod::Sweep) {
-    sweepAllAzimuths(terrain, o, map.texels.data(), result.skyViewFactor,
-                     o.horizons ? result.horizons.codes.data() : nullptr);
+    AzimuthSweeps(terrain, o, map.texels.data(), result.skyViewFactor,
+                  o.horizons ? result.horizons.codes.data() : nullptr)
+        .run();
   } else {
     bakeRays(terrain, o, map.texels.data(), result.skyViewFactor);
   }

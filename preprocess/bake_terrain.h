@@ -38,9 +38,9 @@ struct BakeTerrain {
   // (east) and dz/dy (north): central differences inside, one-sided at the
   // field's edges, 0 across a field one texel wide. Single precision, in
   // exactly the operations of the block sweep, which computes the same
-  // values from the heights its walk loads anyway (horizon_blocks.h): no
-  // stored slopes, which cost 8 bytes per texel of memory and of traffic
-  // per azimuth pair.
+  // values from the heights its walk loads anyway (block_line_walker.cpp,
+  // bake_avx2.cpp): no stored slopes, which cost 8 bytes per texel of
+  // memory and of traffic per azimuth pair.
   float slopeEastAt(int col, int row) const {
     const int west = col > 0 ? col - 1 : col, east = col + 1 < width ? col + 1 : col;
     return (field->at(east, row) - field->at(west, row)) *

@@ -14,20 +14,13 @@
 #include <iterator>
 #include <numbers>
 
-#if defined(__x86_64__) && defined(__GNUC__)
-#include <immintrin.h>
-#define AAL_SKY_SLICE_AVX2 1
-#else
-#define AAL_SKY_SLICE_AVX2 0
-#endif
-
 namespace aal {
 
 // atan(y) for 0 <= y <= 1 to within 3.3e-7 rad (in float; 2.5e-7 exact):
 // the odd minimax polynomial of degree 13, fitted for this project by the
 // Remez exchange on [0, 1].
 // Its coefficients of y^13, y^11, ..., y (Horner order), shared with the
-// AVX2 copy below.
+// AVX2 copy (skySliceTermsAvx2 in bake_avx2.cpp).
 inline constexpr double kAtanUnitCoefficients[] = {
     0.006811793290873252, -0.033604220565024996, 0.07962367236561659, -0.1323334209557463,
     0.19807815564989179,  -0.3331736805474933,   0.9999961115495709};
@@ -83,43 +76,5 @@ inline void skySliceTerms(float* term, float tanTheta0, float dPhi, float cosPhi
   term[2] = dPhi * is;
   term[3] = dPhi * (1.0f - sinTheta);
 }
-
-#if AAL_SKY_SLICE_AVX2
-// skySliceTerms for 8 texels, transposed (terms[c] holds term[c] of each
-// lane), with the same operations in the same order: the same results bit
-// for bit where the caller is compiled without FMA (GCC fuses intrinsics'
-// multiplies and adds where it may).
-__attribute__((target("avx2"))) inline void skySliceTermsAvx2(__m256 terms[4], __m256 tanTheta0,
-                                                              float dPhi, float cosPhiDPhi,
-                                                              float sinPhiDPhi) {
-  const __m256 t = tanTheta0, one = _mm256_set1_ps(1.0f), half = _mm256_set1_ps(0.5f);
-  const __m256 inv = _mm256_div_ps(one, _mm256_add_ps(one, _mm256_mul_ps(t, t)));
-  const __m256 sinTheta = _mm256_mul_ps(t, _mm256_sqrt_ps(inv));
-  // fastAtan(t): std::max(a, m) is a < m ? m : a, and max_ps(m, a) the same.
-  const __m256 sign = _mm256_set1_ps(-0.0f);
-  const __m256 a = _mm256_andnot_ps(sign, t);
-  const __m256 inverted = _mm256_cmp_ps(a, one, _CMP_GT_OQ);
-  const __m256 inverse = _mm256_div_ps(one, _mm256_max_ps(_mm256_set1_ps(1e-30f), a));
-  const __m256 y = _mm256_blendv_ps(a, inverse, inverted);
-  const __m256 y2 = _mm256_mul_ps(y, y);
-  // atanUnit's polynomial, in its order.
-  __m256 p = _mm256_set1_ps(static_cast<float>(kAtanUnitCoefficients[0]));
-  for (size_t i = 1; i < std::size(kAtanUnitCoefficients); ++i) {
-    p = _mm256_add_ps(_mm256_set1_ps(static_cast<float>(kAtanUnitCoefficients[i])),
-                      _mm256_mul_ps(y2, p));
-  }
-  const __m256 series = _mm256_mul_ps(y, p);
-  const __m256 unsignedTheta = _mm256_blendv_ps(
-      series, _mm256_sub_ps(_mm256_set1_ps(static_cast<float>(kSliceHalfPi)), series), inverted);
-  const __m256 theta = _mm256_or_ps(unsignedTheta, _mm256_and_ps(sign, t));
-  const __m256 ic = _mm256_sub_ps(_mm256_sub_ps(_mm256_set1_ps(static_cast<float>(kSliceQuarterPi)),
-                                                _mm256_mul_ps(half, theta)),
-                                  _mm256_mul_ps(_mm256_mul_ps(half, t), inv));
-  terms[0] = _mm256_mul_ps(_mm256_set1_ps(cosPhiDPhi), ic);
-  terms[1] = _mm256_mul_ps(_mm256_set1_ps(sinPhiDPhi), ic);
-  terms[2] = _mm256_mul_ps(_mm256_set1_ps(dPhi), _mm256_mul_ps(half, inv));
-  terms[3] = _mm256_mul_ps(_mm256_set1_ps(dPhi), _mm256_sub_ps(one, sinTheta));
-}
-#endif
 
 }  // namespace aal

@@ -1,0 +1,253 @@
+// One group of lines of the block sweep (horizon_blocks.h), walked in
+// lockstep. Instantiated for both layouts in block_line_walker.cpp (the
+// scalar walk) and bake_avx2.cpp (the AVX2 walk); the parts both walks
+// share are here.
+#pragma once
+
+#include <algorithm>
+#include <cmath>
+#include <cstddef>
+
+#include "bake_terrain.h"
+#include "horizon_blocks.h"
+#include "horizon_sweep.h"
+
+namespace aal::detail {
+
+struct HullPointF {
+  float t, z;  // distance along u (m), height with the curvature drop (m)
+};
+
+// clampedEdgeSlope() in single precision, written with selects.
+inline float clampedEdgeSlopeF(float rise, float toEdge, float curvature) {
+  const float tangentDistance = std::sqrt(std::max(0.0f, -rise) / std::max(curvature, 1e-30f));
+  const float curved =
+      tangentDistance <= toEdge ? kNoHorizonTangent : -2.0f * std::sqrt(-rise * curvature);
+  const float beyond = rise >= 0.0f ? kNoHorizonTangent : (curvature <= 0.0f ? 0.0f : curved);
+  return toEdge <= 0.0f ? 0.0f : beyond;
+}
+
+// A run of neighbouring lines of one layout, walked in lockstep: per sweep
+// step, the texels between consecutive walked lines get their horizon
+// tangents (blended between the two lines, at least the leaving slope).
+// kMajorIsColumn: lines advance column by column. The hull stacks live in
+// caller-owned storage of kMaxLines * majorLength points.
+template <bool kMajorIsColumn>
+class BlockLineWalker {
+ public:
+  // A group's lines, the line before them, and room for the few more an
+  // opposite walk needs to cover the same texels (sweepOpposedHorizonBlocks).
+  static constexpr int kMaxLines = HorizonBlock::kLines + 4;
+
+  BlockLineWalker(const BakeTerrain& terrain, const SweepLayout& layout, double ux, double uy,
+                  const HorizonSweepOptions& options, HullPointF* hulls);
+
+  // Starts walking lines firstLine .. firstLine + lines - 1 (lines <=
+  // kMaxLines) from the sweep's first step.
+  void begin(int firstLine, int lines);
+
+  // Whether any walked line may be on the grid at `step` (with a texel of
+  // margin against rounding; a step's texels lie between walked lines, so
+  // none are on the grid either where this is false). At other steps step()
+  // changes nothing and may be skipped: oblique sweeps have twice as many
+  // lines as the grid has rows or columns, and each group is on the grid
+  // for only part of the steps (skipping them, with the smaller groups of
+  // sweepOpposedHorizonBlocks, made 45° passes 20 % faster at 1024²).
+  bool anyLineOnGrid(int step) const {
+    const double shift = step * layout_.minorPerStep;
+    return firstLine_ + shift <= minorMax_ + 1.0 && firstLine_ + lines_ - 1 + shift >= -1.0;
+  }
+
+  // Advances every line by sweep step `step` (steps in order from 0; those
+  // where !anyLineOnGrid(step) may be left out) and
+  // writes the tangents of the texels with minor coordinates minorLo ..
+  // minorHi (on the grid, between walked lines; none when minorLo > minorHi)
+  // to out[minor - minorLo], and where east and north are given, their
+  // slopes (HorizonBlock::slopeEast, slopeNorth) there; those two have room
+  // for HorizonBlock::kPaddedTexels.
+  void step(int step, int minorLo, int minorHi, float* out, float* east = nullptr,
+            float* north = nullptr);
+
+ private:
+  // Per-line arrays run to whole vectors of 8 lines.
+  static constexpr int kPaddedLines = (kMaxLines + 7) / 8 * 8;
+
+  // What a step reads before the hull updates. Index j of the height
+  // arrays holds minor coordinate base - 1 + j; index i of lineT, walked
+  // line i.
+  struct StepSlice {
+    int major;
+    // Walked line i passes between texels base + i and base + i + 1: the
+    // texels between walked lines are base + 1 .. base + lines - 1.
+    int base;
+    int lineFirst,
+        lineLast;       // the walked lines on the grid (none: first > last)
+    float w;            // the lines' fraction of a texel past base + i
+    bool offGridMajor;  // the cell ahead is off the grid: no leaving slope
+    float heights[kPaddedLines + 2], nextSlice[kPaddedLines + 2], backSlice[kPaddedLines + 2];
+    float invCellX[kPaddedLines + 2];
+    float lineT[kPaddedLines];  // the lines' distances along u
+    // The slopes' neighbours: the slices at major - 1 and major + 1
+    // (heights where off the grid) and their difference's scale.
+    const float *majorLow, *majorHigh;
+    float majorScale;
+    float *east, *north;  // null: no slopes wanted
+  };
+
+  // The scalar walk's per-line values of a step.
+  struct LineValues {
+    float z[kPaddedLines], curvedZ[kPaddedLines];
+    float riseToNear[kPaddedLines], runToNear[kPaddedLines], horizon[kPaddedLines];
+  };
+
+  // Both walks: the heights a few steps ahead into the cache.
+  [[gnu::always_inline]] inline void prefetchAhead(int step) const;
+  // Both walks: the step's slice of the grid, its heights and the slopes'
+  // neighbours (slopes only where east and north are given). kAvx2:
+  // inlined into stepAvx2, where the loop inside the grid is AVX2 code.
+  template <bool kAvx2>
+  [[gnu::always_inline]] inline void loadSlice(int step, float* east, float* north,
+                                               StepSlice& slice) const;
+
+  // The scalar walk (block_line_walker.cpp). Its steps, and the AVX2
+  // walk's, are always inlined into stepScalar and stepAvx2: the step's
+  // arrays then stay local to one function, so the compiler knows that no
+  // store to them changes the grid or the walker.
+  void stepScalar(int step, int minorLo, int minorHi, float* out, float* east, float* north);
+  [[gnu::always_inline]] inline void lineSamples(int step, StepSlice& slice) const;
+  [[gnu::always_inline]] inline void updateHulls(const StepSlice& slice, LineValues& lines);
+  [[gnu::always_inline]] inline void lineHorizons(const StepSlice& slice, LineValues& lines) const;
+  [[gnu::always_inline]] inline void texelTangents(const StepSlice& slice, const LineValues& lines,
+                                                   int minorLo, int minorHi, float* out) const;
+  [[gnu::always_inline]] inline void texelSlopes(const StepSlice& slice, int i, int j) const;
+
+#if AAL_HORIZON_AVX2
+  // The AVX2 walk (bake_avx2.cpp): line samples, hull updates and texels 4
+  // or 8 lines at a time.
+  __attribute__((target("avx2"))) void stepAvx2(int step, int minorLo, int minorHi, float* out,
+                                                float* east, float* north);
+  __attribute__((target("avx2"), always_inline)) inline void lineSamplesAvx2(
+      int step, StepSlice& slice) const;
+  __attribute__((target("avx2"), always_inline)) inline void updateHullsAvx2(const StepSlice& slice,
+                                                                             bool texels,
+                                                                             float* lineHorizon);
+  __attribute__((target("avx2"), always_inline)) inline void texelTangentsAvx2(
+      const StepSlice& slice, const float* lineHorizon, int minorLo, int minorHi, float* out) const;
+  __attribute__((target("avx2"), always_inline)) inline void texelSlopesAvx2(const StepSlice& slice,
+                                                                             int i, int j) const;
+#endif
+
+  float heightAt(int major, int minor) const {
+    return kMajorIsColumn ? field_.at(major, minor) : field_.at(minor, major);
+  }
+
+  const BakeTerrain& terrain_;
+  const Heightfield& field_;
+  const SweepLayout& layout_;
+  const double ux_, uy_;
+  HullPointF* const hulls_;
+  const float curvature_;
+  const bool clampEdge_;
+  const int minorMax_;
+  const float rowCentre_;
+  const bool avx2_;
+  int dMajorNeighbour_, dMinorNeighbour_;
+  float wMajorNeighbour_, wMinorNeighbour_, invCellY_;
+  int firstLine_ = 0, lines_ = 0;
+  // Per walked line: hull size (0: not started) and the DEM edge ahead.
+  alignas(32) int size_[kPaddedLines];
+  alignas(32) float edgeT_[kPaddedLines], edgeZ_[kPaddedLines];
+  // The AVX2 walk's copy of the top three hull points, hull[size - 1],
+  // hull[size - 2] and hull[size - 3]: the first two pop tests of a step
+  // need no gather (4 % faster than two at 1024²; most lines pop once).
+  alignas(32) float topT_[kPaddedLines], topZ_[kPaddedLines];
+  alignas(32) float belowT_[kPaddedLines], belowZ_[kPaddedLines];
+  alignas(32) float thirdT_[kPaddedLines], thirdZ_[kPaddedLines];
+};
+
+template <bool kMajorIsColumn>
+inline void BlockLineWalker<kMajorIsColumn>::prefetchAhead(int step) const {
+  // The heights of steps ahead, a row or a column that the hardware
+  // prefetcher does not foresee (the previous step's are on the next
+  // slice): 6 % faster at 4096², the same at 1024² (in cache anyway).
+  const int majorLength = layout_.majorLength, lines = lines_, minorMax = minorMax_;
+  if constexpr (kMajorIsColumn) {
+    // A cache line holds 16 columns: every 8 steps, the column 16 on.
+    const int ahead = step + 16;
+    if ((step & 7) == 0 && ahead < majorLength) {
+      const int aheadMajor = layout_.start + ahead * layout_.step;
+      const int aheadBase = firstLine_ + layout_.floorOffset[ahead];
+      for (int j = std::max(aheadBase - 1, 0); j <= std::min(aheadBase + lines, minorMax); ++j) {
+        __builtin_prefetch(&field_.z[field_.index(aheadMajor, j)]);
+      }
+    }
+  } else {
+    const int ahead = step + 2;
+    if (ahead < majorLength) {
+      const int aheadMajor = layout_.start + ahead * layout_.step;
+      const int aheadBase = firstLine_ + layout_.floorOffset[ahead];
+      const int lo = std::max(aheadBase - 1, 0), hi = std::min(aheadBase + lines, minorMax);
+      const float* row = &field_.z[field_.index(0, aheadMajor)];
+      for (int j = lo; j < hi; j += 16) __builtin_prefetch(row + j);
+      if (lo <= hi) __builtin_prefetch(row + hi);
+    }
+  }
+}
+
+template <bool kMajorIsColumn>
+template <bool kAvx2>
+inline void BlockLineWalker<kMajorIsColumn>::loadSlice(int step, float* east, float* north,
+                                                       StepSlice& slice) const {
+  const int lines = lines_, majorLength = layout_.majorLength, minorMax = minorMax_;
+  const int major = layout_.start + step * layout_.step;
+  const int base = firstLine_ + layout_.floorOffset[step];
+  slice.major = major;
+  slice.base = base;
+  slice.w = static_cast<float>(layout_.fraction[step]);
+  slice.east = east;
+  slice.north = north;
+  // Heights around the lines on this slice and, for the leaving slope, on
+  // the next one (clamped to the grid; what lies off it is masked).
+  const int nextMajor = major + dMajorNeighbour_;
+  const bool haveNextSlice = nextMajor >= 0 && nextMajor < majorLength;
+  // The cell ahead is off the grid: no leaving slope
+  // (LineWalker::leavingSlope).
+  slice.offGridMajor = wMajorNeighbour_ > 0.0f && !haveNextSlice;
+  // For the slopes, the slice behind too: the previous step's, in cache.
+  const int backMajor = major - dMajorNeighbour_;
+  const bool haveBackSlice = slice.east && backMajor >= 0 && backMajor < majorLength;
+  float* heights = slice.heights;
+  float* nextSlice = slice.nextSlice;
+  float* backSlice = slice.backSlice;
+  float* invCellX = slice.invCellX;
+  if (kAvx2 && base >= 1 && base + lines <= minorMax) {
+    // Inside the grid: no clamps, so the loop is vector code.
+    for (int j = 0; j < lines + 2; ++j) {
+      heights[j] = heightAt(major, base - 1 + j);
+      nextSlice[j] = haveNextSlice ? heightAt(nextMajor, base - 1 + j) : 0.0f;
+      backSlice[j] = haveBackSlice ? heightAt(backMajor, base - 1 + j) : 0.0f;
+      invCellX[j] = static_cast<float>(
+          terrain_.rowInvCellX[kMajorIsColumn ? static_cast<size_t>(base - 1 + j) : major]);
+    }
+  } else {
+    for (int j = 0; j < lines + 2; ++j) {
+      const int minor = std::clamp(base - 1 + j, 0, minorMax);
+      heights[j] = heightAt(major, minor);
+      nextSlice[j] = haveNextSlice ? heightAt(nextMajor, minor) : 0.0f;
+      backSlice[j] = haveBackSlice ? heightAt(backMajor, minor) : 0.0f;
+      invCellX[j] = static_cast<float>(
+          terrain_.rowInvCellX[kMajorIsColumn ? static_cast<size_t>(minor) : major]);
+    }
+  }
+
+  // The slices at major - 1 and major + 1 as BakeTerrain::slopeEastAt and
+  // slopeNorthAt read them: clamped to the grid.
+  const float* ahead = haveNextSlice ? nextSlice : heights;
+  const float* behind = haveBackSlice ? backSlice : heights;
+  slice.majorLow = dMajorNeighbour_ > 0 ? behind : ahead;
+  slice.majorHigh = dMajorNeighbour_ > 0 ? ahead : behind;
+  slice.majorScale =
+      BakeTerrain::differenceScale(std::max(major - 1, 0), std::min(major + 1, majorLength - 1));
+}
+
+}  // namespace aal::detail

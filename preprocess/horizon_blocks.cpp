@@ -1,0 +1,312 @@
+// The block sweeps of horizon_blocks.h: the lines of an azimuth in groups,
+// one task per group, each group walked by a BlockLineWalker
+// (block_line_walker.h).
+#include "horizon_blocks.h"
+
+#include <algorithm>
+#include <atomic>
+#include <cmath>
+#include <cstddef>
+#include <limits>
+#include <utility>
+#include <vector>
+
+#include <tbb/enumerable_thread_specific.h>
+#include <tbb/parallel_for.h>
+
+#include "block_line_walker.h"
+
+namespace aal {
+
+namespace detail {
+
+namespace {
+
+// setHorizonAvx2Allowed(): off, the scalar paths run even where AVX2 would.
+std::atomic<bool> horizonAvx2Allowed{true};
+
+// A step's slopes (HorizonBlock::slopeEast, slopeNorth), zeroed once so
+// that the vector loops never meet stale lanes.
+struct BlockSlopes {
+  alignas(32) float east[HorizonBlock::kPaddedTexels] = {};
+  alignas(32) float north[HorizonBlock::kPaddedTexels] = {};
+};
+
+// One thread's storage for the walks of its groups.
+struct BlockScratch {
+  std::vector<HullPointF> hulls;  // kMaxLines stacks of majorLength points
+  std::vector<float> opposite;    // kLines tangents per step
+};
+
+// The sweep of one azimuth: its layout and direction u = (ux, uy).
+struct BlockSweep {
+  const BakeTerrain& terrain;
+  const SweepLayout& layout;
+  double ux, uy;
+  const HorizonSweepOptions& options;
+};
+
+// The texels a group of lines hands over at each step, and what the blocks
+// point at.
+template <bool kMajorIsColumn>
+struct GroupTexels {
+  const SweepLayout& layout;
+  ptrdiff_t width;   // of the field
+  int first, count;  // the group's lines first .. first + count - 1
+
+  // Minor range of the group's texels at `step` (empty: lo > hi): those
+  // between its lines (and the line before them), on the grid.
+  std::pair<int, int> at(int step) const {
+    const int base = first - 1 + layout.floorOffset[step];
+    return {std::max(base + 1, 0), std::min(base + count, layout.minorLength - 1)};
+  }
+  size_t texel(int step, int minor) const {
+    const ptrdiff_t major = layout.start + step * layout.step;
+    return static_cast<size_t>(kMajorIsColumn ? minor * width + major : major * width + minor);
+  }
+  // The block of `step`, with its texels kAheadSteps later.
+  HorizonBlock block(int step, const float* tanHorizon, const BlockSlopes& slopes) const {
+    const auto [lo, hi] = at(step);
+    HorizonBlock b;
+    b.firstTexel = texel(step, lo);
+    b.stride = kMajorIsColumn ? width : 1;
+    b.count = hi - lo + 1;
+    b.tanHorizon = tanHorizon;
+    b.slopeEast = slopes.east;
+    b.slopeNorth = slopes.north;
+    const int ahead = step + HorizonBlock::kAheadSteps;
+    if (ahead < layout.majorLength) {
+      const auto [aheadLo, aheadHi] = at(ahead);
+      b.aheadFirstTexel = texel(ahead, aheadLo);
+      b.aheadCount = std::max(0, aheadHi - aheadLo + 1);
+    }
+    return b;
+  }
+};
+
+// Calls walkGroup(texels, scratch) for every group of groupLines (<=
+// kLines) lines of the sweep, concurrently, with the thread's scratch and
+// its hulls sized for the sweep.
+template <bool kMajorIsColumn, class WalkGroup>
+void forEachGroup(const BlockSweep& sweep, int groupLines, WalkGroup&& walkGroup) {
+  const SweepLayout& layout = sweep.layout;
+  tbb::enumerable_thread_specific<BlockScratch> scratch;
+  // As in sweepLines: texel (k, line + floorOffset[k]) lies between lines
+  // c - 1 and c, so each group also walks the line just before it.
+  const int firstLine = layout.firstLine + 1;
+  const int groups = (layout.lastLine - firstLine + groupLines) / groupLines;
+  tbb::parallel_for(0, groups, [&](int group) {
+    BlockScratch& s = scratch.local();
+    s.hulls.resize(static_cast<size_t>(BlockLineWalker<kMajorIsColumn>::kMaxLines) *
+                   layout.majorLength);
+    const int first = firstLine + group * groupLines;
+    const GroupTexels<kMajorIsColumn> texels{layout, sweep.terrain.field->width, first,
+                                             std::min(groupLines, layout.lastLine + 1 - first)};
+    walkGroup(texels, s);
+  });
+}
+
+// Walks a group's own lines (and the one before them) over steps
+// [firstStep, endStep): where texelsAt(step) is a range lo .. hi that is
+// not empty, the step's texels' tangents and slopes go to
+// visitStep(step, lo, hi, tanHorizon, slopes); elsewhere the step only
+// fills the hulls.
+template <bool kMajorIsColumn, class TexelsAt, class VisitStep>
+void walkGroup(const BlockSweep& sweep, const GroupTexels<kMajorIsColumn>& texels, BlockScratch& s,
+               int firstStep, int endStep, TexelsAt&& texelsAt, VisitStep&& visitStep) {
+  BlockLineWalker<kMajorIsColumn> walker(sweep.terrain, sweep.layout, sweep.ux, sweep.uy,
+                                         sweep.options, s.hulls.data());
+  walker.begin(texels.first - 1, texels.count + 1);
+  float tanHorizon[HorizonBlock::kLines];
+  BlockSlopes slopes;
+  for (int step = firstStep; step < endStep; ++step) {
+    if (!walker.anyLineOnGrid(step)) continue;
+    const auto [lo, hi] = texelsAt(step);
+    walker.step(step, lo, hi, tanHorizon, slopes.east, slopes.north);
+    if (lo <= hi) visitStep(step, lo, hi, tanHorizon, slopes);
+  }
+}
+
+template <bool kMajorIsColumn>
+void sweepBlocks(const BlockSweep& sweep, const HorizonBlockVisitor& visit) {
+  forEachGroup<kMajorIsColumn>(
+      sweep, HorizonBlock::kLines, [&](const auto& texels, BlockScratch& s) {
+        walkGroup(
+            sweep, texels, s, 0, sweep.layout.majorLength,
+            [&](int step) { return texels.at(step); },
+            [&](int step, int, int, const float* tanHorizon, const BlockSlopes& slopes) {
+              visit(texels.block(step, tanHorizon, slopes));
+            });
+      });
+}
+
+// sweepBlocks for a partial window without a distance limit (the near
+// sweep of a far-field bake, far_horizon.h): the window's lines walked from
+// layout.firstStep (options.windowReachM before the window), blocks only of
+// the window's texels, indexed as BakeTerrain::windowIndex. Open edges
+// only: the walker takes a line's first point for the field's edge.
+template <bool kMajorIsColumn>
+void sweepWindowBlocks(const BlockSweep& sweep, const HorizonBlockVisitor& visit) {
+  const SweepLayout& layout = sweep.layout;
+  const BakeTerrain& terrain = sweep.terrain;
+  forEachGroup<kMajorIsColumn>(
+      sweep, HorizonBlock::kLines, [&](const auto& texels, BlockScratch& s) {
+        const auto windowTexelsAt = [&](int step) {
+          auto [lo, hi] = texels.at(step);
+          if (step < layout.visitStep) hi = lo - 1;  // only fills the hulls
+          return std::pair{std::max(lo, layout.minorBegin), std::min(hi, layout.minorEnd - 1)};
+        };
+        walkGroup(
+            sweep, texels, s, layout.firstStep, layout.endStep, windowTexelsAt,
+            [&](int step, int lo, int hi, const float* tanHorizon, const BlockSlopes& slopes) {
+              const int major = layout.start + step * layout.step;
+              HorizonBlock b;
+              b.firstTexel =
+                  kMajorIsColumn ? terrain.windowIndex(major, lo) : terrain.windowIndex(lo, major);
+              b.stride = kMajorIsColumn ? terrain.window.width : 1;
+              b.count = hi - lo + 1;
+              b.tanHorizon = tanHorizon;
+              b.slopeEast = slopes.east;
+              b.slopeNorth = slopes.north;
+              visit(b);
+            });
+      });
+}
+
+// Step k of `sweep` is step majorLength - 1 - k of the opposite sweep (the
+// same slice): walks the opposite lines that pass beside a group's texels
+// backwards over the steps and leaves their tangents in s.opposite, kLines
+// per step k. Texel minor m lies between opposite lines m - floorOffset - 1
+// and m - floorOffset there. False: the group has no texels.
+template <bool kMajorIsColumn>
+bool walkOpposite(const BlockSweep& opposite, const GroupTexels<kMajorIsColumn>& texels,
+                  BlockScratch& s) {
+  const SweepLayout& layout = opposite.layout;
+  const int majorLength = layout.majorLength;
+  s.opposite.resize(static_cast<size_t>(HorizonBlock::kLines) * majorLength);
+  int oppositeFirst = std::numeric_limits<int>::max();
+  int oppositeLast = std::numeric_limits<int>::min();
+  for (int k = 0; k < majorLength; ++k) {
+    const auto [lo, hi] = texels.at(k);
+    if (lo > hi) continue;
+    const int offset = layout.floorOffset[majorLength - 1 - k];
+    oppositeFirst = std::min(oppositeFirst, lo - offset - 1);
+    oppositeLast = std::max(oppositeLast, hi - offset);
+  }
+  if (oppositeFirst > oppositeLast) return false;
+  BlockLineWalker<kMajorIsColumn> backward(opposite.terrain, layout, opposite.ux, opposite.uy,
+                                           opposite.options, s.hulls.data());
+  backward.begin(oppositeFirst, oppositeLast - oppositeFirst + 1);
+  for (int k = majorLength - 1; k >= 0; --k) {
+    if (!backward.anyLineOnGrid(majorLength - 1 - k)) continue;
+    const auto [lo, hi] = texels.at(k);
+    backward.step(majorLength - 1 - k, lo, hi,
+                  s.opposite.data() + static_cast<size_t>(k) * HorizonBlock::kLines);
+  }
+  return true;
+}
+
+// Both azimuths at once: lines of `sweep` in groups as in sweepBlocks, and
+// for each group the lines of `opposite` (the sweep of -u) that pass beside
+// the same texels, walked first, their tangents kept per step. Groups of
+// groupLines (<= kLines) lines: the opposite walk of a group walks
+// groupLines + 1 lines plus the spread of the opposite lines' offsets
+// against the group's (oppositeLines()).
+template <bool kMajorIsColumn>
+void sweepOpposedBlocks(const BlockSweep& sweep, const BlockSweep& opposite, int groupLines,
+                        const HorizonBlockVisitor& visit) {
+  forEachGroup<kMajorIsColumn>(sweep, groupLines, [&](const auto& texels, BlockScratch& s) {
+    if (!walkOpposite(opposite, texels, s)) return;
+    walkGroup(
+        sweep, texels, s, 0, sweep.layout.majorLength, [&](int step) { return texels.at(step); },
+        [&](int step, int, int, const float* tanHorizon, const BlockSlopes& slopes) {
+          HorizonBlock block = texels.block(step, tanHorizon, slopes);
+          block.tanOpposite = s.opposite.data() + static_cast<size_t>(step) * HorizonBlock::kLines;
+          visit(block);
+        });
+  });
+}
+
+// Lines the opposite walk of sweepOpposedBlocks needs per group at most:
+// the group's texels' spread of offsets between the two layouts, plus the
+// group's lines and the one before. 0 when the layouts do not pair (the
+// lines advance along different axes).
+int oppositeLines(const SweepLayout& layout, const SweepLayout& opposite) {
+  if (layout.majorIsColumn != opposite.majorIsColumn ||
+      layout.majorLength != opposite.majorLength) {
+    return 0;
+  }
+  const int n = layout.majorLength;
+  int lo = std::numeric_limits<int>::max(), hi = std::numeric_limits<int>::min();
+  for (int k = 0; k < n; ++k) {
+    const int d = layout.floorOffset[k] - opposite.floorOffset[n - 1 - k];
+    lo = std::min(lo, d);
+    hi = std::max(hi, d);
+  }
+  return HorizonBlock::kLines + 1 + (hi - lo);
+}
+
+}  // namespace
+
+bool horizonAvx2() {
+#if AAL_HORIZON_AVX2
+  static const bool avx2 = __builtin_cpu_supports("avx2");
+  return avx2 && horizonAvx2Allowed.load(std::memory_order_relaxed);
+#else
+  return false;
+#endif
+}
+
+}  // namespace detail
+
+void setHorizonAvx2Allowed(bool allowed) {
+  detail::horizonAvx2Allowed.store(allowed, std::memory_order_relaxed);
+}
+
+void sweepHorizonBlocks(const BakeTerrain& terrain, double phi, const HorizonSweepOptions& options,
+                        HorizonBlockVisitor visit) {
+  const double ux = std::cos(phi), uy = std::sin(phi);
+  const detail::SweepLayout layout = detail::makeSweepLayout(terrain, ux, uy);
+  const detail::BlockSweep sweep{terrain, layout, ux, uy, options};
+  if (layout.majorIsColumn) {
+    detail::sweepBlocks<true>(sweep, visit);
+  } else {
+    detail::sweepBlocks<false>(sweep, visit);
+  }
+}
+
+void sweepWindowHorizonBlocks(const BakeTerrain& terrain, double phi,
+                              const HorizonSweepOptions& options, HorizonBlockVisitor visit) {
+  const double ux = std::cos(phi), uy = std::sin(phi);
+  const detail::SweepLayout layout = detail::makeSweepLayout(terrain, ux, uy, options.windowReachM);
+  const detail::BlockSweep sweep{terrain, layout, ux, uy, options};
+  if (layout.majorIsColumn) {
+    detail::sweepWindowBlocks<true>(sweep, visit);
+  } else {
+    detail::sweepWindowBlocks<false>(sweep, visit);
+  }
+}
+
+bool sweepOpposedHorizonBlocks(const BakeTerrain& terrain, double phi, double phiOpposite,
+                               const HorizonSweepOptions& options, HorizonBlockVisitor visit) {
+  const double ux = std::cos(phi), uy = std::sin(phi);
+  const double oppositeUx = std::cos(phiOpposite), oppositeUy = std::sin(phiOpposite);
+  const detail::SweepLayout layout = detail::makeSweepLayout(terrain, ux, uy);
+  const detail::SweepLayout oppositeLayout =
+      detail::makeSweepLayout(terrain, oppositeUx, oppositeUy);
+  const int lines = detail::oppositeLines(layout, oppositeLayout);
+  if (lines < 1 || lines > detail::BlockLineWalker<true>::kMaxLines) return false;
+  // Where oblique lines spread (lines > kLines + 1), smaller groups keep the
+  // opposite walk at kLines + 1 lines: 5 vectors of 8 rather than 6.
+  const int groupLines = HorizonBlock::kLines - (lines - (HorizonBlock::kLines + 1));
+  const detail::BlockSweep sweep{terrain, layout, ux, uy, options};
+  const detail::BlockSweep opposite{terrain, oppositeLayout, oppositeUx, oppositeUy, options};
+  if (layout.majorIsColumn) {
+    detail::sweepOpposedBlocks<true>(sweep, opposite, groupLines, visit);
+  } else {
+    detail::sweepOpposedBlocks<false>(sweep, opposite, groupLines, visit);
+  }
+  return true;
+}
+
+}  // namespace aal

@@ -1,0 +1,74 @@
+// A bake's running sums of sky slices (docs/design.md §3 step 2): the
+// visitor of the horizon sweeps (horizon_blocks.h, horizon_sweep.h), which
+// adds each slice's closed-form terms (sky_slice.h) to the 4 floats of every
+// texel it is given, and the sky-view factor's terms and the directional
+// horizons where wanted.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <vector>
+
+#include "bake.h"
+#include "bake_terrain.h"
+#include "horizon_blocks.h"
+
+namespace aal {
+
+// One azimuth's constants, in the single precision the slices are summed
+// in (sky_slice.h).
+struct AzimuthSlice {
+  double phi;
+  float cosPhi, sinPhi, dPhi, cosPhiDPhi, sinPhiDPhi;
+  int horizonSlot = -1;  // direction of the horizon map this azimuth fills, or -1
+};
+
+class SliceAccumulator {
+ public:
+  // sums: 4 floats per texel of terrain.window (bent vector, solid angle);
+  // svf: empty, or one float per texel for the sky-view factor's sum;
+  // horizonCodes: null, or o.horizonDirections codes per texel.
+  SliceAccumulator(const BakeTerrain& terrain, const BakeOptions& o, float* sums,
+                   std::vector<float>& svf, uint8_t* horizonCodes);
+
+  // Adds slice s (and, from b.tanOpposite, the opposite slice) to a block
+  // of texels, reading and writing each texel's sums once. Throws
+  // BakeCancelled when o.cancel is set. Safe to call concurrently for
+  // blocks of different texels.
+  void addBlock(const HorizonBlock& b, const AzimuthSlice& s, const AzimuthSlice* opposite) const;
+  // The same for one texel (window index), from the texel-by-texel sweeps.
+  void addTexel(size_t texel, double tanHorizon, const AzimuthSlice& s) const;
+
+ private:
+  // The body of addBlock and addTexel, inlined into both: for addTexel's
+  // blocks of one it folds to straight-line code (the distance-limited
+  // sweep calls it once per texel and azimuth).
+  [[gnu::always_inline]] inline void addSlices(const HorizonBlock& b, const AzimuthSlice& s,
+                                               const AzimuthSlice* opposite) const;
+  [[gnu::always_inline]] inline void prefetchAhead(const HorizonBlock& b) const;
+  [[gnu::always_inline]] inline void storeHorizons(const HorizonBlock& b, const float* tanHorizon,
+                                                   const AzimuthSlice& s) const;
+  [[gnu::always_inline]] inline void addSkyViewFactor(const HorizonBlock& b,
+                                                      const float* tanHorizon) const;
+  [[gnu::always_inline]] inline void sliceTerms(const HorizonBlock& b, const float* tanHorizon,
+                                                const AzimuthSlice& s, float (*terms)[4]) const;
+
+  const BakeTerrain& terrain_;
+  const BakeOptions& o_;
+  float* const sums_;
+  std::vector<float>& svf_;
+  uint8_t* const horizonCodes_;
+  const bool avx2_;
+};
+
+namespace detail {
+#if AAL_HORIZON_AVX2
+// SliceAccumulator::addBlock's sums 8 texels at a time, for CPUs with AVX2
+// (bake_avx2.cpp).
+__attribute__((target("avx2"))) void addSlicesAvx2(float* sums, const HorizonBlock& b,
+                                                   const AzimuthSlice& s,
+                                                   const AzimuthSlice* opposite);
+#endif
+}  // namespace detail
+
+}  // namespace aal
