@@ -40,6 +40,7 @@ struct Options {
   double refraction = 0.13;
   double maxDistance = 0;
   double nearReach = 0;  // 0: the far field's default (kFarFieldReachCells)
+  bool svf = false;
   int threads = 0;
   bool fullFloat = false;
   std::string compression = "rle";
@@ -138,6 +139,7 @@ int run(const Options& o) {
   bake.curvature = o.curvature;
   bake.refraction = o.refraction;
   bake.maxDistanceM = o.maxDistance;
+  bake.skyViewFactor = o.svf;
   bake.cancel = &aal::interruptFlag();
   aal::TiledBakeOptions tiling;
   tiling.tileSize = o.tileSize;
@@ -242,6 +244,10 @@ int main(int argc, char** argv) {
                  "pyramid takes over (default 128 cells; each doubling divides the pyramid's "
                  "memory by 4)")
       ->check(aal::kPositive);
+  app.add_flag("--svf", o.svf,
+               "also write the sky-view factor (Zaksek) into the folder: svf_ROW_COL.tif per tile "
+               "(float32 GeoTIFF placed like that window of the DEM) and their mosaic "
+               "sky_view_factor.vrt, written by rank 0 at the end");
   app.add_option("--threads", o.threads,
                  "worker threads per rank (default: the host's cores shared among its ranks)")
       ->check(CLI::Range(1, 1024));
