@@ -76,10 +76,11 @@ TEST(AalBakeMpi, ThreeRanksWriteTheSingleProcessFolderByteForByte) {
   const fs::path dem = writeDem(dir, 150, 120);
   // The far field (no max distance; its default reach and a shorter one),
   // and a distance-limited bake with the clamped edge, curvature and full
-  // floats.
+  // floats; two with the sky-view factor (its GeoTIFFs and VRT too).
   for (const std::string options :
-       {" --tile-size 32 --azimuths 16", " --tile-size 32 --azimuths 8 --near-reach 1500",
-        " --tile-size 32 --azimuths 8 --max-distance 300 --edge clamp --curvature --float"}) {
+       {" --tile-size 32 --azimuths 16 --svf", " --tile-size 32 --azimuths 8 --near-reach 1500",
+        " --tile-size 32 --azimuths 8 --max-distance 300 --edge clamp --curvature --float "
+        "--svf"}) {
     SCOPED_TRACE(options);
     const fs::path single = dir.path() / "single", mpi = dir.path() / "mpi";
     fs::remove_all(single);
@@ -90,8 +91,11 @@ TEST(AalBakeMpi, ThreeRanksWriteTheSingleProcessFolderByteForByte) {
     ASSERT_EQ(m.exitCode, 0) << m.out;
     EXPECT_NE(m.out.find("on 3 ranks (20 baked"), std::string::npos) << m.out;
     const test::FolderContents want = folderContents(single), have = folderContents(mpi);
-    EXPECT_EQ(have.size(), 23u);  // 20 tiles, index, manifest, lock
+    // 20 tiles, index, manifest, lock; with --svf 20 GeoTIFFs and the VRT.
+    const bool svf = options.find("--svf") != std::string::npos;
+    EXPECT_EQ(have.size(), svf ? 44u : 23u);
     EXPECT_TRUE(have.count("index.txt"));
+    EXPECT_EQ(have.count("sky_view_factor.vrt"), svf ? 1u : 0u);
     if (options.find("--near-reach") != std::string::npos) {
       EXPECT_NE(have.at("index.txt").find("reach 1500 m"), std::string::npos);
     }
