@@ -414,8 +414,10 @@ int main(int argc, char** argv) {
                "tiled bake then needs memory for one band, not the DEM; automatic when the DEM "
                "does not fit in memory; the DEM must have no voids (gdal_fillnodata.py fills "
                "them)");
-  app.add_flag("--cog", o.cog,
-               "write --svf and --visible as cloud-optimized GeoTIFFs (tiled, with overviews)");
+  app.add_flag(
+      "--cog", o.cog,
+      "write --svf and --visible as cloud-optimized GeoTIFFs (tiled, with overviews); not a "
+      "tiled bake's SVF tiles");
   app.add_option("--compression", o.compression,
                  "the map's EXR compression: rle (fast), zip (~25 % smaller, ~5x slower to "
                  "write), none")
