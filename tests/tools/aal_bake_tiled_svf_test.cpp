@@ -107,7 +107,9 @@ test::FolderContents bakeFiles(const fs::path& folder) {
 // With --max-distance the tiles are the whole-DEM bake's texels, so the SVF
 // mosaic read through the VRT is the whole-DEM --svf GeoTIFF bit for bit,
 // placed exactly like the DEM (geotransform, CRS, nodata and its voids), on
-// a projected grid with voids and on a geographic one; each tile is placed
+// a projected grid with voids and on a geographic one (20 tiles of a step of
+// 1/1200 degree, whose mean over the tiles, GDALBuildVRT's default
+// resolution, is not the step); each tile is placed
 // like its window; the folder moved elsewhere still reads (relative paths).
 TEST(AalBakeTiledSvf, MosaicEqualsTheWholeDemSvfWithMaxDistance) {
   TempDir dir;
@@ -123,10 +125,10 @@ TEST(AalBakeTiledSvf, MosaicEqualsTheWholeDemSvfWithMaxDistance) {
                      quoted(dem) + " -o " + quoted(single) + " --svf " + quoted(svf) + options);
     ASSERT_EQ(r.exitCode, 0) << r.out;
     r = runTool("aal-bake",
-                quoted(dem) + " -o " + quoted(folder) + " --tile-size 32 --svf" + options);
+                quoted(dem) + " -o " + quoted(folder) + " --tile-size 20 --svf" + options);
     ASSERT_EQ(r.exitCode, 0) << r.out;
-    for (int row = 0; row < 3; ++row) {
-      for (int column = 0; column < 3; ++column) {
+    for (int row = 0; row < 4; ++row) {
+      for (int column = 0; column < 5; ++column) {
         char name[32];
         std::snprintf(name, sizeof name, "svf_%04d_%04d.tif", row, column);
         EXPECT_TRUE(fs::exists(folder / name)) << name;
@@ -153,12 +155,12 @@ TEST(AalBakeTiledSvf, MosaicEqualsTheWholeDemSvfWithMaxDistance) {
                             [](float v) { return v > 0.0f && v < 0.99f; }),
               100);
 
-    // Tile (1, 2) is the DEM's window from column 64, row 32.
-    const Raster tile = readRaster(folder / "svf_0001_0002.tif");
-    EXPECT_EQ(tile.width, 26);
-    EXPECT_EQ(tile.height, 32);
-    EXPECT_DOUBLE_EQ(tile.transform[0], demRaster.transform[0] + 64 * demRaster.transform[1]);
-    EXPECT_DOUBLE_EQ(tile.transform[3], demRaster.transform[3] + 32 * demRaster.transform[5]);
+    // Tile (3, 4) is the DEM's window from column 80, row 60.
+    const Raster tile = readRaster(folder / "svf_0003_0004.tif");
+    EXPECT_EQ(tile.width, 10);
+    EXPECT_EQ(tile.height, 10);
+    EXPECT_DOUBLE_EQ(tile.transform[0], demRaster.transform[0] + 80 * demRaster.transform[1]);
+    EXPECT_DOUBLE_EQ(tile.transform[3], demRaster.transform[3] + 60 * demRaster.transform[5]);
     EXPECT_EQ(tile.transform[1], demRaster.transform[1]);
     EXPECT_EQ(tile.transform[5], demRaster.transform[5]);
     EXPECT_TRUE(tile.crs.IsSame(&demRaster.crs));
