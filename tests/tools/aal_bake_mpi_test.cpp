@@ -109,13 +109,15 @@ TEST(AalBakeMpi, ThreeRanksWriteTheSingleProcessFolderByteForByte) {
 
 // A rank killed with SIGKILL holding a tile ends the job (Open MPI aborts
 // it); the finished tiles stay, and the same command finishes the folder,
-// equal byte for byte to the single-process bake. So does aal-bake. (The
-// rank given tile (2, 2) dies, whichever it is: on a loaded machine which
-// rank bakes how many tiles varies.)
+// equal byte for byte to the single-process bake. So does aal-bake, also for
+// a tile whose SVF GeoTIFF is missing. (The rank given tile (2, 2) dies,
+// whichever it is: on a loaded machine which rank bakes how many tiles
+// varies.)
 TEST(AalBakeMpi, AKilledRankEndsTheJobAndRunningAgainFinishesTheFolder) {
   TempDir dir;
   const fs::path dem = writeDem(dir, 150, 120);
-  const std::string options = " --tile-size 32 --azimuths 16";
+  // With the SVF: a tile is finished with its GeoTIFF, and the VRT comes at the end.
+  const std::string options = " --tile-size 32 --azimuths 16 --svf";
   const fs::path single = dir.path() / "single", mpi = dir.path() / "mpi";
   ASSERT_EQ(runBake(quoted(dem) + " -o " + quoted(single) + options + " -q").exitCode, 0);
   const std::string command = quoted(dem) + " -o " + quoted(mpi) + options;
@@ -123,6 +125,7 @@ TEST(AalBakeMpi, AKilledRankEndsTheJobAndRunningAgainFinishesTheFolder) {
   EXPECT_NE(killed.exitCode, 0) << killed.out;
   ASSERT_TRUE(fs::is_directory(mpi)) << killed.out;
   EXPECT_FALSE(fs::exists(mpi / "index.txt"));
+  EXPECT_FALSE(fs::exists(mpi / "sky_view_factor.vrt"));
   int tiles = 0;
   for (const auto& [name, bytes] : folderContents(mpi)) tiles += name.rfind("tile_", 0) == 0;
   EXPECT_FALSE(fs::exists(mpi / apertureTileName(2, 2)));
@@ -138,9 +141,10 @@ TEST(AalBakeMpi, AKilledRankEndsTheJobAndRunningAgainFinishesTheFolder) {
   // A folder the MPI bake left unfinished is aal-bake's to finish too.
   fs::remove(mpi / "index.txt");
   fs::remove(mpi / apertureTileName(2, 3));
+  fs::remove(mpi / "svf_0001_0004.tif");
   const auto plain = runBake(quoted(dem) + " -o " + quoted(mpi) + options);
   ASSERT_EQ(plain.exitCode, 0) << plain.out;
-  EXPECT_NE(plain.out.find("(1 baked, 19 resumed)"), std::string::npos) << plain.out;
+  EXPECT_NE(plain.out.find("(2 baked, 18 resumed)"), std::string::npos) << plain.out;
   EXPECT_TRUE(folderContents(mpi) == folderContents(single));
 }
 
