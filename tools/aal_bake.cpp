@@ -311,6 +311,11 @@ int run(const Options& o) {
   }
   const double work = texels * (bake.method == aal::BakeMethod::Sweep ? o.azimuths : o.rays);
   if (!o.quiet) {
+    std::string target = o.output;
+    if (tiled && o.svf) {
+      target += " (sky-view factor: " +
+                (std::filesystem::path(o.output) / aal::kSkyViewFactorMosaicName).string() + ")";
+    }
     // A bake that only resumed finished tiles has no rate to report.
     char rate[64] = "nothing baked";
     if (work > 0) {
@@ -324,7 +329,7 @@ int run(const Options& o) {
                  (bake.method == aal::BakeMethod::Sweep ? std::to_string(o.azimuths) + " azimuths"
                                                         : std::to_string(o.rays) + " rays")
                      .c_str(),
-                 seconds, rate, readSeconds, writeSeconds, o.output.c_str());
+                 seconds, rate, readSeconds, writeSeconds, target.c_str());
   }
   return aal::kExitOk;
 }

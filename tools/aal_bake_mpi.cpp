@@ -22,6 +22,7 @@
 #include "errors.h"
 #include "interrupt.h"
 #include "mpi_tiled_bake.h"
+#include "sky_view_factor_tiles.h"
 #include "tool_main.h"
 #include "tool_options.h"
 #include "tool_paths.h"
@@ -179,6 +180,11 @@ int run(const Options& o) {
     std::string perRank;
     for (int baked : summary.bakedByRank)
       perRank += (perRank.empty() ? "" : ", ") + std::to_string(baked);
+    std::string target = o.output;
+    if (o.svf) {
+      target += " (sky-view factor: " +
+                (std::filesystem::path(o.output) / aal::kSkyViewFactorMosaicName).string() + ")";
+    }
     const double texels = static_cast<double>(geometry.texelCount()) * summary.tiles.baked /
                           std::max(1, summary.tiles.tiles);
     std::fprintf(stderr,
@@ -188,7 +194,7 @@ int run(const Options& o) {
                  tiling.sourceName.c_str(), geometry.width, geometry.height, o.tileSize, ranks,
                  summary.rootBakes ? "" : " (rank 0 only hands out)", summary.tiles.baked,
                  perRank.c_str(), summary.tiles.resumed, o.azimuths, threads, seconds,
-                 texels * o.azimuths / seconds, summary.demPassSeconds, o.output.c_str());
+                 texels * o.azimuths / seconds, summary.demPassSeconds, target.c_str());
   }
   return aal::kExitOk;
 }
