@@ -14,6 +14,7 @@
 #include "atomic_file.h"
 #include "dem_source.h"
 #include "errors.h"
+#include "sky_view_factor_tiles.h"
 
 namespace aal {
 
@@ -222,7 +223,7 @@ void handOutAndBake(MPI_Comm comm, int rank, int ranks, const ApertureTileIndex&
     answerRanks(comm, ranks, *dispenser, *tally);
   }
   // Every rank has asked again after its last tile: all are written.
-  writeApertureTileIndex(folder, index);
+  finishTileFolder(folder, index);
   std::copy(tally->baked().begin(), tally->baked().end(), counts.begin());
   counts[static_cast<size_t>(ranks)] = tally->resumed();
   counts[static_cast<size_t>(ranks) + 1] = rootBakes ? 1 : 0;
@@ -259,6 +260,7 @@ MpiTiledBakeSummary bakeTiledMpi(MPI_Comm comm, const DemSource& source,
   if (rank == 0) {
     try {
       checkTiledBakeOptions(bake, tiled);
+      checkSkyViewFactorTiles(geometry, bake.skyViewFactor);
       namespace fs = std::filesystem;
       // An existing folder is locked before the pass (a busy one fails at
       // once), a new one after it (a refused DEM leaves no folder).

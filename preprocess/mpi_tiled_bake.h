@@ -13,7 +13,8 @@
 // DEM), skips tiles already finished (tileFinished) and bakes and writes the
 // others. Rank 0 bakes too, on a thread of its own beside the one that
 // answers the ranks, when MPI gives it MPI_THREAD_MULTIPLE and the job has
-// more than one rank. When every tile is done rank 0 writes index.txt.
+// more than one rank. When every tile is done rank 0 writes the SVF mosaic
+// (with --svf) and index.txt.
 #pragma once
 
 #include <mpi.h>

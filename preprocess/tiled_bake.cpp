@@ -26,6 +26,7 @@
 #include "height_pyramid.h"
 #include "heightfield_checksum.h"
 #include "horizon_sweep.h"
+#include "sky_view_factor_tiles.h"
 
 namespace aal {
 
@@ -71,9 +72,6 @@ void checkTiledBakeOptions(const BakeOptions& bake, const TiledBakeOptions& tile
     throw std::invalid_argument(
         "far field: lattice spacing, resolution or near reach out of range");
   }
-  if (bake.skyViewFactor) {
-    throw std::invalid_argument("a tiled bake writes no sky-view factor");
-  }
 }
 
 namespace {
@@ -111,6 +109,13 @@ void checkSameBake(const std::string& folder, const std::string& name,
   if (have.tileSize != want.tileSize) {
     throw InputError(folder + " holds a tiled bake of this DEM in tiles of " +
                      std::to_string(have.tileSize) + ", not " + std::to_string(want.tileSize) +
+                     whose + pickAnotherFolder(folder));
+  }
+  // Adding the SVF to a bake means sweeping every tile again, as a new bake
+  // does; a folder is one command's output (docs/baking.md).
+  if (have.skyViewFactor != want.skyViewFactor) {
+    throw InputError(folder + " holds a tiled bake of this DEM " +
+                     (have.skyViewFactor ? "with" : "without") + " the sky-view factor (--svf)" +
                      whose + pickAnotherFolder(folder));
   }
 }
@@ -188,7 +193,7 @@ bool tileFinished(const ApertureTileIndex& index, const std::string& folder, int
   } catch (const InputError&) {
     return false;
   }
-  return true;
+  return !index.skyViewFactor || skyViewFactorTileFinished(index, folder, row, column);
 }
 
 void createTileFolder(const std::string& folder) {
@@ -212,7 +217,13 @@ ApertureTileIndex tiledBakeIndex(const Heightfield& geometry, const std::string&
   index.map.info.source = tiled.sourceName;
   index.map.info.sourceChecksum = checksum;
   index.tileSize = tiled.tileSize;
+  index.skyViewFactor = bake.skyViewFactor;
   return index;
+}
+
+void finishTileFolder(const std::string& folder, const ApertureTileIndex& index) {
+  if (index.skyViewFactor) writeSkyViewFactorMosaic(index, folder);
+  writeApertureTileIndex(folder, index);
 }
 
 void openTileFolder(const std::string& folder, const ApertureTileIndex& index) {
@@ -242,6 +253,10 @@ void bakeTileInto(const Heightfield& field, const FarField* far, const ApertureT
   info.sourceChecksum = index.map.info.sourceChecksum;
   info.originCol = window.col;
   info.originRow = window.row;
+  if (bake.skyViewFactor) {
+    writeSkyViewFactorTile((fs::path(folder) / skyViewFactorTileName(row, column)).string(),
+                           std::move(result.skyViewFactor), field, window);
+  }
   writeApertureMap((fs::path(folder) / apertureTileName(row, column)).string(), result.aperture,
                    tiled.halfFloat, tiled.compression);
 }
@@ -258,6 +273,7 @@ TiledBakeSummary bakeTiles(const Heightfield& geometry, const std::string& check
                            const BakeOptions& bake, const TiledBakeOptions& tiled,
                            const std::string& folder) {
   checkTiledBakeOptions(bake, tiled);
+  checkSkyViewFactorTiles(geometry, bake.skyViewFactor);
   createTileFolder(folder);
   // Held to the end: a second bake into this folder stops here, before it
   // could sweep this one's temporaries or write a tile (issue 17).
@@ -291,7 +307,7 @@ TiledBakeSummary bakeTiles(const Heightfield& geometry, const std::string& check
       if (bake.progress) bake.progress(done / total);
     }
   }
-  writeApertureTileIndex(folder, index);
+  finishTileFolder(folder, index);
   return summary;
 }
 
@@ -325,6 +341,7 @@ FarFieldOptions resolvedFarField(const Heightfield& geometry, const TiledBakeOpt
 TiledBakeSummary bakeTiled(const Heightfield& field, const BakeOptions& bake,
                            const TiledBakeOptions& tiled, const std::string& folder) {
   checkTiledBakeOptions(bake, tiled);
+  checkSkyViewFactorTiles(field, bake.skyViewFactor);
   std::optional<HeightPyramid> pyramid;
   if (!(bake.maxDistanceM > 0.0))
     pyramid.emplace(buildHeightPyramid(field, tiledBakePyramidShift(field, tiled)));
@@ -377,6 +394,7 @@ TiledBakeSummary bakeTiledInBands(const DemSource& source, const Heightfield& ge
                                   const BakeOptions& bake, const TiledBakeOptions& tiled,
                                   const std::string& folder) {
   checkTiledBakeOptions(bake, tiled);
+  checkSkyViewFactorTiles(geometry, bake.skyViewFactor);
   // An existing folder is locked before the checksum pass, so that a busy
   // one fails at once (bakeTiles creates and locks a new one).
   std::optional<TiledBakeLock> ownLock;

@@ -79,17 +79,20 @@ struct TiledBakeSummary {
 };
 
 // Throws std::invalid_argument for options a tiled bake cannot take: a tile
-// size outside [kMinTileSize, kMaxTileSize], the ray method, the sky-view
-// factor, far-field options out of range (bakeApertures' range checks apply
-// too).
+// size outside [kMinTileSize, kMaxTileSize], the ray method, far-field
+// options out of range (bakeApertures' range checks apply too).
 void checkTiledBakeOptions(const BakeOptions& bake, const TiledBakeOptions& tiled);
 
 // Bakes `field` into `folder` (created if missing; its parent must exist):
-// one EXR per tile, written as it finishes, then index.txt. The folder is
+// one EXR per tile, written as it finishes, then index.txt. With
+// bake.skyViewFactor each tile's SVF too, as a GeoTIFF beside its EXR, and
+// before index.txt their mosaic sky_view_factor.vrt
+// (sky_view_factor_tiles.h); the DEM must be georeferenced. The folder is
 // locked for the whole bake (TiledBakeLock: TiledBakeBusy when another bake
 // holds it, before anything is touched). A folder whose index.txt or
 // manifest.txt (or, without either, a tile) is of another DEM, other
-// options or another tile size is an InputError saying whose bake it holds;
+// options, another tile size or the SVF where it has none (or none where it
+// has it) is an InputError saying whose bake it holds;
 // nothing is touched. Tiles already in the folder from an interrupted run
 // of the same bake are kept when they verify (every pixel decodes and
 // matches its checksum), else baked again. bake.progress sees the fraction
@@ -151,8 +154,10 @@ void createTileFolder(const std::string& folder);
 // the manifest unless there is one.
 void openTileFolder(const std::string& folder, const ApertureTileIndex& index);
 // Whether tile (row, column) is already in the folder, finished and
-// verified. A tile of another bake is an InputError; an unreadable one, or
-// one whose pixels do not match their checksum, is to be baked again.
+// verified: its EXR and, when the bake writes the SVF, its SVF GeoTIFF
+// (read back by GDAL at the tile's size). A tile of another bake is an
+// InputError; an unreadable one, or one whose pixels do not match their
+// checksum, or one without its SVF, is to be baked again.
 bool tileFinished(const ApertureTileIndex& index, const std::string& folder, int row, int column);
 // The texels of tile (row, column).
 TexelWindow tileWindow(const ApertureTileIndex& index, int row, int column);
@@ -162,10 +167,14 @@ Heightfield readTileRowBand(const DemSource& source, const Heightfield& geometry
                             int firstRow, int rows);
 // Bakes tile (row, column) from `field` (the whole DEM, or a band that
 // holds the tile row's band) and writes it into the folder (a temporary
-// file, renamed). `far`: the whole DEM's far field, for a bake without a
-// max distance (its options resolvedFarField's).
+// file, renamed), with its SVF GeoTIFF when the bake writes the SVF. `far`:
+// the whole DEM's far field, for a bake without a max distance (its
+// options resolvedFarField's).
 void bakeTileInto(const Heightfield& field, const FarField* far, const ApertureTileIndex& index,
                   const BakeOptions& bake, const TiledBakeOptions& tiled, const std::string& folder,
                   int row, int column);
+// Once every tile is finished: the SVF mosaic when the bake writes the SVF,
+// then index.txt, which says the bake has finished.
+void finishTileFolder(const std::string& folder, const ApertureTileIndex& index);
 
 }  // namespace aal

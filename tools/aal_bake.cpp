@@ -25,6 +25,7 @@
 #include "interrupt.h"
 #include "memory_budget.h"
 #include "progress.h"
+#include "sky_view_factor_tiles.h"
 #include "tiled_bake.h"
 #include "tool_main.h"
 #include "tool_options.h"
@@ -74,6 +75,7 @@ struct Options {
   double refraction = 0.13;
   double maxDistance = 0;
   std::string svfPath;
+  bool svf = false;          // --svf given: with svfPath, or, tiled, into the folder
   std::string horizonsPath;  // directional horizons (docs/baking.md)
   int horizonDirections = aal::kHorizonDirections;
   std::string visiblePath;
@@ -143,8 +145,15 @@ bool checkTiling(const Options& o, const aal::DemSource& dem) {
           : "the DEM is " + std::to_string(dem.width()) + "x" + std::to_string(dem.height()) +
                 ": above 16384x16384 texels only a tiled bake fits in memory, which";
   if (o.method != "sweep") throw aal::InputError(why + " needs --method sweep");
-  if (!o.svfPath.empty() || !o.visiblePath.empty() || !o.horizonsPath.empty()) {
-    throw aal::InputError(why + " writes no --svf, --visible or --horizons");
+  if (!o.svfPath.empty()) {
+    throw aal::InputError(
+        "--svf " + o.svfPath + ": " + why +
+        " writes the sky-view factor into its folder (one GeoTIFF per tile and their mosaic " +
+        (std::filesystem::path(o.output) / aal::kSkyViewFactorMosaicName).string() +
+        "): give --svf without a path");
+  }
+  if (!o.visiblePath.empty() || !o.horizonsPath.empty()) {
+    throw aal::InputError(why + " writes no --visible or --horizons");
   }
   if (o.nearReach > 0 && o.maxDistance > 0) {
     throw aal::InputError("--near-reach is the far field's, which --max-distance leaves out");
@@ -180,6 +189,11 @@ int run(const Options& o) {
   if (!tiled && o.nearReach > 0) {
     throw aal::InputError("--near-reach is for tiled bakes without --max-distance (--tile-size)");
   }
+  if (!tiled && o.svf && o.svfPath.empty()) {
+    throw aal::InputError(
+        "--svf needs a path (a GeoTIFF) for a bake into one file; only a tiled bake "
+        "(--tile-size) writes it into its folder");
+  }
   if (tiled != askedTiled) checkOutputs(o, tiled);
   // A tiled bake of a DEM that does not fit in memory reads it in bands.
   const bool inBands = tiled && (o.lowMemory || !fitsInMemory(dem));
@@ -204,7 +218,7 @@ int run(const Options& o) {
   bake.curvature = o.curvature;
   bake.refraction = o.refraction;
   bake.maxDistanceM = o.maxDistance;
-  bake.skyViewFactor = !o.svfPath.empty();
+  bake.skyViewFactor = o.svf;
   if (bake.skyViewFactor && bake.method == aal::BakeMethod::Rays) {
     throw aal::InputError("--svf needs --method sweep (the ray reference has no horizons)");
   }
@@ -297,6 +311,11 @@ int run(const Options& o) {
   }
   const double work = texels * (bake.method == aal::BakeMethod::Sweep ? o.azimuths : o.rays);
   if (!o.quiet) {
+    std::string target = o.output;
+    if (tiled && o.svf) {
+      target += " (sky-view factor: " +
+                (std::filesystem::path(o.output) / aal::kSkyViewFactorMosaicName).string() + ")";
+    }
     // A bake that only resumed finished tiles has no rate to report.
     char rate[64] = "nothing baked";
     if (work > 0) {
@@ -310,7 +329,7 @@ int run(const Options& o) {
                  (bake.method == aal::BakeMethod::Sweep ? std::to_string(o.azimuths) + " azimuths"
                                                         : std::to_string(o.rays) + " rays")
                      .c_str(),
-                 seconds, rate, readSeconds, writeSeconds, o.output.c_str());
+                 seconds, rate, readSeconds, writeSeconds, target.c_str());
   }
   return aal::kExitOk;
 }
@@ -365,9 +384,12 @@ int main(int argc, char** argv) {
   app.add_option("--max-distance", o.maxDistance,
                  "only terrain within this many metres counts (0 = all; slower when set)")
       ->check(aal::kNonNegative);
-  app.add_option("--svf", o.svfPath,
-                 "also write the sky-view factor (Zaksek) as a float32 GeoTIFF placed like the DEM "
-                 "(its voids nodata)");
+  CLI::Option* svf = app.add_option(
+      "--svf", o.svfPath,
+      "also write the sky-view factor (Zaksek) as a float32 GeoTIFF placed like the DEM (its "
+      "voids nodata); a tiled bake takes --svf without a path and writes it into its folder: "
+      "svf_ROW_COL.tif per tile and their mosaic sky_view_factor.vrt");
+  svf->expected(0, 1);
   app.add_option(
       "--horizons", o.horizonsPath,
       "also write the directional horizons (--horizon-directions azimuths, 8 bits each) for "
@@ -397,8 +419,10 @@ int main(int argc, char** argv) {
                "tiled bake then needs memory for one band, not the DEM; automatic when the DEM "
                "does not fit in memory; the DEM must have no voids (gdal_fillnodata.py fills "
                "them)");
-  app.add_flag("--cog", o.cog,
-               "write --svf and --visible as cloud-optimized GeoTIFFs (tiled, with overviews)");
+  app.add_flag(
+      "--cog", o.cog,
+      "write --svf and --visible as cloud-optimized GeoTIFFs (tiled, with overviews); not a "
+      "tiled bake's SVF tiles");
   app.add_option("--compression", o.compression,
                  "the map's EXR compression: rle (fast), zip (~25 % smaller, ~5x slower to "
                  "write), none")
@@ -408,5 +432,8 @@ int main(int argc, char** argv) {
   app.add_flag("-q,--quiet", o.quiet, "no progress and no summary");
 
   aal::installInterruptHandler();
-  return aal::runTool(app, argc, argv, [&] { return run(o); });
+  return aal::runTool(app, argc, argv, [&] {
+    o.svf = svf->count() > 0;
+    return run(o);
+  });
 }

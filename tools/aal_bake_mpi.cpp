@@ -22,6 +22,7 @@
 #include "errors.h"
 #include "interrupt.h"
 #include "mpi_tiled_bake.h"
+#include "sky_view_factor_tiles.h"
 #include "tool_main.h"
 #include "tool_options.h"
 #include "tool_paths.h"
@@ -40,6 +41,7 @@ struct Options {
   double refraction = 0.13;
   double maxDistance = 0;
   double nearReach = 0;  // 0: the far field's default (kFarFieldReachCells)
+  bool svf = false;
   int threads = 0;
   bool fullFloat = false;
   std::string compression = "rle";
@@ -138,6 +140,7 @@ int run(const Options& o) {
   bake.curvature = o.curvature;
   bake.refraction = o.refraction;
   bake.maxDistanceM = o.maxDistance;
+  bake.skyViewFactor = o.svf;
   bake.cancel = &aal::interruptFlag();
   aal::TiledBakeOptions tiling;
   tiling.tileSize = o.tileSize;
@@ -177,6 +180,11 @@ int run(const Options& o) {
     std::string perRank;
     for (int baked : summary.bakedByRank)
       perRank += (perRank.empty() ? "" : ", ") + std::to_string(baked);
+    std::string target = o.output;
+    if (o.svf) {
+      target += " (sky-view factor: " +
+                (std::filesystem::path(o.output) / aal::kSkyViewFactorMosaicName).string() + ")";
+    }
     const double texels = static_cast<double>(geometry.texelCount()) * summary.tiles.baked /
                           std::max(1, summary.tiles.tiles);
     std::fprintf(stderr,
@@ -186,7 +194,7 @@ int run(const Options& o) {
                  tiling.sourceName.c_str(), geometry.width, geometry.height, o.tileSize, ranks,
                  summary.rootBakes ? "" : " (rank 0 only hands out)", summary.tiles.baked,
                  perRank.c_str(), summary.tiles.resumed, o.azimuths, threads, seconds,
-                 texels * o.azimuths / seconds, summary.demPassSeconds, o.output.c_str());
+                 texels * o.azimuths / seconds, summary.demPassSeconds, target.c_str());
   }
   return aal::kExitOk;
 }
@@ -242,6 +250,10 @@ int main(int argc, char** argv) {
                  "pyramid takes over (default 128 cells; each doubling divides the pyramid's "
                  "memory by 4)")
       ->check(aal::kPositive);
+  app.add_flag("--svf", o.svf,
+               "also write the sky-view factor (Zaksek) into the folder: svf_ROW_COL.tif per tile "
+               "(float32 GeoTIFF placed like that window of the DEM) and their mosaic "
+               "sky_view_factor.vrt, written by rank 0 at the end");
   app.add_option("--threads", o.threads,
                  "worker threads per rank (default: the host's cores shared among its ranks)")
       ->check(CLI::Range(1, 1024));

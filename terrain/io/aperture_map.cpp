@@ -463,6 +463,7 @@ void writeApertureTileIndex(const std::string& folder, const ApertureTileIndex& 
        << "curvature " << (i.curvature ? 1 : 0) << "\n"
        << "refraction " << i.refraction << "\n"
        << "max-distance " << i.maxDistanceM << "\n"
+       << "sky-view-factor " << (index.skyViewFactor ? 1 : 0) << "\n"
        << "source " << i.source << "\n";
   std::ofstream out(output.temporaryPath());
   out << text.str();
@@ -530,6 +531,7 @@ ApertureTileIndex readApertureTileIndex(const std::string& folder, const std::st
   i.refraction = number("refraction");
   i.maxDistanceM = number("max-distance");
   i.source = text("source");
+  index.skyViewFactor = values.count("sky-view-factor") && integer("sky-view-factor", 0) != 0;
   i.sourceWidth = index.map.width;
   i.sourceHeight = index.map.height;
   return index;

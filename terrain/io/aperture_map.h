@@ -80,6 +80,10 @@ ApertureMap readApertureMap(const std::string& path);
 struct ApertureTileIndex {
   ApertureMapHeader map;  // the whole map: full size, the bake's attributes
   int tileSize = 0;       // tiles are tileSize square, less at the right and bottom edges
+  // The folder also holds the sky-view factor (a GeoTIFF per tile and a VRT
+  // mosaic, preprocess/sky_view_factor_tiles.h). Indexes written before it
+  // was recorded say nothing: false.
+  bool skyViewFactor = false;
 
   int columns() const { return (map.width + tileSize - 1) / tileSize; }
   int rows() const { return (map.height + tileSize - 1) / tileSize; }

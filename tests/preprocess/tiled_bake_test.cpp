@@ -24,6 +24,7 @@
 #include "aperture_map.h"
 #include "errors.h"
 #include "horizon_sweep.h"
+#include "sky_view_factor_tiles.h"
 #include "synthetic.h"
 
 namespace aal {
@@ -366,9 +367,16 @@ TEST(TiledBake, RejectsWhatItCannotBake) {
   o = distanceLimited(100);
   o.method = BakeMethod::Rays;
   EXPECT_THROW(checkTiledBakeOptions(o, t), std::invalid_argument);
+  // The SVF is written beside the tiles, placed by the DEM's
+  // georeferencing, which a synthetic field has not.
   o = distanceLimited(100);
   o.skyViewFactor = true;
-  EXPECT_THROW(checkTiledBakeOptions(o, t), std::invalid_argument);
+  EXPECT_NO_THROW(checkTiledBakeOptions(o, t));
+  ASSERT_EQ(field.geo.crs, CrsKind::None);
+  const test::TempDir dir;
+  EXPECT_THROW(bakeTiled(field, o, t, (dir.path() / "t").string()), InputError);
+  EXPECT_FALSE(fs::exists(dir.path() / "t"));  // refused before the folder is made
+  EXPECT_NO_THROW(checkSkyViewFactorTiles(field, false));
   EXPECT_THROW(bakeApertureWindow(field, TexelWindow{30, 0, 16, 16}, distanceLimited(100)),
                std::invalid_argument);  // outside the field
 }

@@ -76,10 +76,11 @@ TEST(AalBakeMpi, ThreeRanksWriteTheSingleProcessFolderByteForByte) {
   const fs::path dem = writeDem(dir, 150, 120);
   // The far field (no max distance; its default reach and a shorter one),
   // and a distance-limited bake with the clamped edge, curvature and full
-  // floats.
+  // floats; two with the sky-view factor (its GeoTIFFs and VRT too).
   for (const std::string options :
-       {" --tile-size 32 --azimuths 16", " --tile-size 32 --azimuths 8 --near-reach 1500",
-        " --tile-size 32 --azimuths 8 --max-distance 300 --edge clamp --curvature --float"}) {
+       {" --tile-size 32 --azimuths 16 --svf", " --tile-size 32 --azimuths 8 --near-reach 1500",
+        " --tile-size 32 --azimuths 8 --max-distance 300 --edge clamp --curvature --float "
+        "--svf"}) {
     SCOPED_TRACE(options);
     const fs::path single = dir.path() / "single", mpi = dir.path() / "mpi";
     fs::remove_all(single);
@@ -90,8 +91,11 @@ TEST(AalBakeMpi, ThreeRanksWriteTheSingleProcessFolderByteForByte) {
     ASSERT_EQ(m.exitCode, 0) << m.out;
     EXPECT_NE(m.out.find("on 3 ranks (20 baked"), std::string::npos) << m.out;
     const test::FolderContents want = folderContents(single), have = folderContents(mpi);
-    EXPECT_EQ(have.size(), 23u);  // 20 tiles, index, manifest, lock
+    // 20 tiles, index, manifest, lock; with --svf 20 GeoTIFFs and the VRT.
+    const bool svf = options.find("--svf") != std::string::npos;
+    EXPECT_EQ(have.size(), svf ? 44u : 23u);
     EXPECT_TRUE(have.count("index.txt"));
+    EXPECT_EQ(have.count("sky_view_factor.vrt"), svf ? 1u : 0u);
     if (options.find("--near-reach") != std::string::npos) {
       EXPECT_NE(have.at("index.txt").find("reach 1500 m"), std::string::npos);
     }
@@ -105,13 +109,15 @@ TEST(AalBakeMpi, ThreeRanksWriteTheSingleProcessFolderByteForByte) {
 
 // A rank killed with SIGKILL holding a tile ends the job (Open MPI aborts
 // it); the finished tiles stay, and the same command finishes the folder,
-// equal byte for byte to the single-process bake. So does aal-bake. (The
-// rank given tile (2, 2) dies, whichever it is: on a loaded machine which
-// rank bakes how many tiles varies.)
+// equal byte for byte to the single-process bake. So does aal-bake, also for
+// a tile whose SVF GeoTIFF is missing. (The rank given tile (2, 2) dies,
+// whichever it is: on a loaded machine which rank bakes how many tiles
+// varies.)
 TEST(AalBakeMpi, AKilledRankEndsTheJobAndRunningAgainFinishesTheFolder) {
   TempDir dir;
   const fs::path dem = writeDem(dir, 150, 120);
-  const std::string options = " --tile-size 32 --azimuths 16";
+  // With the SVF: a tile is finished with its GeoTIFF, and the VRT comes at the end.
+  const std::string options = " --tile-size 32 --azimuths 16 --svf";
   const fs::path single = dir.path() / "single", mpi = dir.path() / "mpi";
   ASSERT_EQ(runBake(quoted(dem) + " -o " + quoted(single) + options + " -q").exitCode, 0);
   const std::string command = quoted(dem) + " -o " + quoted(mpi) + options;
@@ -119,6 +125,7 @@ TEST(AalBakeMpi, AKilledRankEndsTheJobAndRunningAgainFinishesTheFolder) {
   EXPECT_NE(killed.exitCode, 0) << killed.out;
   ASSERT_TRUE(fs::is_directory(mpi)) << killed.out;
   EXPECT_FALSE(fs::exists(mpi / "index.txt"));
+  EXPECT_FALSE(fs::exists(mpi / "sky_view_factor.vrt"));
   int tiles = 0;
   for (const auto& [name, bytes] : folderContents(mpi)) tiles += name.rfind("tile_", 0) == 0;
   EXPECT_FALSE(fs::exists(mpi / apertureTileName(2, 2)));
@@ -134,9 +141,10 @@ TEST(AalBakeMpi, AKilledRankEndsTheJobAndRunningAgainFinishesTheFolder) {
   // A folder the MPI bake left unfinished is aal-bake's to finish too.
   fs::remove(mpi / "index.txt");
   fs::remove(mpi / apertureTileName(2, 3));
+  fs::remove(mpi / "svf_0001_0004.tif");
   const auto plain = runBake(quoted(dem) + " -o " + quoted(mpi) + options);
   ASSERT_EQ(plain.exitCode, 0) << plain.out;
-  EXPECT_NE(plain.out.find("(1 baked, 19 resumed)"), std::string::npos) << plain.out;
+  EXPECT_NE(plain.out.find("(2 baked, 18 resumed)"), std::string::npos) << plain.out;
   EXPECT_TRUE(folderContents(mpi) == folderContents(single));
 }
 

@@ -187,7 +187,7 @@ TEST(AalBakeTiled, BadTiledBakesExitWithTwoBeforeWork) {
            Case{out + " --tile-size 16 --max-distance 100 --near-reach 600", "--near-reach"},
            Case{quoted(dem) + " -o " + quoted(file) + " --near-reach 600", "--near-reach"},
            Case{out + " --tile-size 16 --max-distance 100 --svf " + quoted(dir.path() / "s.tif"),
-                "--svf"},
+                "give --svf without a path"},
            Case{quoted(dem) + " -o " + quoted(file) + " --tile-size 16 --max-distance 100",
                 "is a file"},
            Case{quoted(dem) + " -o " + quoted(dir.path() / "no" / "t") +

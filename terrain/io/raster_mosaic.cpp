@@ -1,0 +1,60 @@
+#include "raster_mosaic.h"
+
+#include <filesystem>
+#include <stdexcept>
+
+#include <cpl_string.h>
+#include <gdal_priv.h>
+#include <gdal_utils.h>
+
+#include "atomic_file.h"
+#include "gdal_session.h"
+
+namespace aal {
+
+std::optional<RasterShape> readRasterShape(const std::string& path) {
+  ensureGdal();
+  CPLErrorReset();
+  GDALDatasetUniquePtr dataset(GDALDataset::Open(path.c_str(), GDAL_OF_RASTER | GDAL_OF_READONLY,
+                                                 nullptr, nullptr, nullptr));
+  if (!dataset || dataset->GetRasterCount() < 1) return std::nullopt;
+  RasterShape shape;
+  shape.width = dataset->GetRasterXSize();
+  shape.height = dataset->GetRasterYSize();
+  shape.bands = dataset->GetRasterCount();
+  shape.float32 = dataset->GetRasterBand(1)->GetRasterDataType() == GDT_Float32;
+  return shape;
+}
+
+void writeVrtMosaic(const std::string& path, const std::vector<std::string>& tiles) {
+  namespace fs = std::filesystem;
+  ensureGdal();
+  AtomicOutput output(path);
+  // Absolute names on both sides: the VRT driver then writes the tiles
+  // under its folder relative to it, whatever the working directory.
+  const std::string temporary = fs::absolute(output.temporaryPath()).string();
+  CPLStringList names;
+  for (const std::string& tile : tiles) names.AddString(fs::absolute(tile).string().c_str());
+  // The finest resolution, not the mean: the tiles share one, which the
+  // mean of many would change in its last bits.
+  CPLStringList arguments;
+  arguments.AddString("-resolution");
+  arguments.AddString("highest");
+  arguments.AddString("-q");
+  GDALBuildVRTOptions* options = GDALBuildVRTOptionsNew(arguments.List(), nullptr);
+  if (options == nullptr) throw output.failure(gdalLastError(), "the VRT");
+  CPLErrorReset();
+  int usageError = FALSE;
+  GDALDatasetH vrt =
+      GDALBuildVRT(temporary.c_str(), names.Count(), nullptr, names.List(), options, &usageError);
+  GDALBuildVRTOptionsFree(options);
+  if (vrt == nullptr) throw output.failure(gdalLastError(), "the VRT");
+  // Closing the dataset writes it.
+  GDALClose(vrt);
+  if (CPLGetLastErrorType() == CE_Failure) {
+    throw output.failure(gdalLastError(), "the VRT");
+  }
+  output.commit();
+}
+
+}  // namespace aal
