@@ -19,6 +19,7 @@
 #include "aperture_map.h"
 #include "atomic_file.h"
 #include "bake.h"
+#include "bake_command_line.h"
 #include "dem_loader.h"
 #include "dem_source.h"
 #include "geotiff_writer.h"
@@ -62,18 +63,11 @@ bool fitsInMemory(const aal::DemSource& dem) {
   return !available || 9.0 * texels <= 0.8 * static_cast<double>(*available);
 }
 
-struct Options {
+struct Options : aal::SweepCommandLine {
   std::string dem;
   std::string output;
   std::string method = "sweep";
-  int azimuths = 64;
   int rays = 1024;
-  std::optional<double> cellSize;
-  std::optional<double> zScale;
-  std::string edge = "open";
-  bool curvature = false;
-  double refraction = 0.13;
-  double maxDistance = 0;
   std::string svfPath;
   bool svf = false;          // --svf given: with svfPath, or, tiled, into the folder
   std::string horizonsPath;  // directional horizons (docs/baking.md)
@@ -81,19 +75,10 @@ struct Options {
   std::string visiblePath;
   int threads = 0;
   bool quiet = false;
-  bool fullFloat = false;
   bool cog = false;
   bool lowMemory = false;
-  std::string compression = "rle";
-  int tileSize = 0;      // 0: tiled only above the in-memory limit
-  double nearReach = 0;  // 0: the far field's default (kFarFieldReachCells)
+  int tileSize = 0;  // 0: tiled only above the in-memory limit
 };
-
-aal::MapCompression compressionOf(const Options& o) {
-  return o.compression == "zip"    ? aal::MapCompression::Zip
-         : o.compression == "none" ? aal::MapCompression::None
-                                   : aal::MapCompression::Rle;
-}
 
 // A tiled bake's output folder: an existing writable folder, or a new one
 // in an existing writable folder.
@@ -155,9 +140,7 @@ bool checkTiling(const Options& o, const aal::DemSource& dem) {
   if (!o.visiblePath.empty() || !o.horizonsPath.empty()) {
     throw aal::InputError(why + " writes no --visible or --horizons");
   }
-  if (o.nearReach > 0 && o.maxDistance > 0) {
-    throw aal::InputError("--near-reach is the far field's, which --max-distance leaves out");
-  }
+  aal::checkSweepOptions(o);
   return true;
 }
 
@@ -180,9 +163,7 @@ int run(const Options& o) {
   // (exit 1, TiledBakeBusy); the lock is held to the end of the bake.
   std::optional<aal::TiledBakeLock> lock;
   if (askedTiled && std::filesystem::is_directory(o.output)) lock.emplace(o.output);
-  aal::DemLoadOptions load;
-  load.cellSizeM = o.cellSize;
-  load.zScale = o.zScale;
+  const aal::DemLoadOptions load = aal::demLoadOptions(o);
   const auto readStart = std::chrono::steady_clock::now();
   const aal::DemSource dem(o.dem, load);
   const bool tiled = checkTiling(o, dem);
@@ -212,12 +193,8 @@ int run(const Options& o) {
 
   aal::BakeOptions bake;
   bake.method = o.method == "rays" ? aal::BakeMethod::Rays : aal::BakeMethod::Sweep;
-  bake.azimuths = o.azimuths;
+  aal::applySweepOptions(o, bake);
   bake.rays = o.rays;
-  bake.clampEdge = o.edge == "clamp";
-  bake.curvature = o.curvature;
-  bake.refraction = o.refraction;
-  bake.maxDistanceM = o.maxDistance;
   bake.skyViewFactor = o.svf;
   if (bake.skyViewFactor && bake.method == aal::BakeMethod::Rays) {
     throw aal::InputError("--svf needs --method sweep (the ray reference has no horizons)");
@@ -248,7 +225,7 @@ int run(const Options& o) {
   aal::TiledBakeOptions tiling;
   tiling.tileSize = o.tileSize > 0 ? o.tileSize : aal::kDefaultTileSize;
   tiling.halfFloat = !o.fullFloat;
-  tiling.compression = compressionOf(o);
+  tiling.compression = aal::mapCompression(o);
   tiling.sourceName = source;
   tiling.lock = lock ? &*lock : nullptr;
   tiling.farField.nearReachM = o.nearReach;
@@ -281,7 +258,7 @@ int run(const Options& o) {
   try {
     if (!tiled) {
       result.aperture.info.source = source;
-      aal::writeApertureMap(o.output, result.aperture, !o.fullFloat, compressionOf(o));
+      aal::writeApertureMap(o.output, result.aperture, !o.fullFloat, aal::mapCompression(o));
     }
     if (!o.svfPath.empty()) {
       writeGisRaster(o.svfPath, std::move(result.skyViewFactor), field, o.cog);
@@ -362,28 +339,10 @@ int main(int argc, char** argv) {
                  "sweep: exact horizons by line sweep (fast); rays: brute-force reference")
       ->check(CLI::IsMember({"sweep", "rays"}))
       ->capture_default_str();
-  app.add_option("--azimuths", o.azimuths, "azimuth slices of the sweep")
-      ->check(CLI::Range(4, 4096))
-      ->capture_default_str();
   app.add_option("--rays", o.rays, "rays per texel for --method rays")
       ->check(CLI::Range(16, 1 << 20))
       ->capture_default_str();
-  app.add_option("--cell-size", o.cellSize, "texel spacing in metres (overrides the file)")
-      ->check(aal::kPositive);
-  app.add_option("--z-scale", o.zScale, "metres per height unit (overrides the file)")
-      ->check(aal::kPositive);
-  app.add_option("--edge", o.edge,
-                 "beyond the DEM: open sky, or terrain continuing flat at the edge height")
-      ->check(CLI::IsMember({"open", "clamp"}))
-      ->capture_default_str();
-  app.add_flag("--curvature", o.curvature, "drop distant terrain by the Earth's curvature");
-  app.add_option("--refraction", o.refraction,
-                 "refraction coefficient with --curvature: drop = (1 - k) d^2 / 2R")
-      ->check(CLI::Range(0.0, 0.99))
-      ->capture_default_str();
-  app.add_option("--max-distance", o.maxDistance,
-                 "only terrain within this many metres counts (0 = all; slower when set)")
-      ->check(aal::kNonNegative);
+  aal::addSweepOptions(app, o);
   CLI::Option* svf = app.add_option(
       "--svf", o.svfPath,
       "also write the sky-view factor (Zaksek) as a float32 GeoTIFF placed like the DEM (its "
@@ -409,11 +368,7 @@ int main(int argc, char** argv) {
                  "texels are always baked tiled, in "
                  "tiles of 4096")
       ->check(CLI::Range(aal::kMinTileSize, aal::kMaxTileSize));
-  app.add_option("--near-reach", o.nearReach,
-                 "tiled, without --max-distance: metres the near sweep covers before the far "
-                 "field's pyramid takes over (default 128 cells; each doubling divides the "
-                 "pyramid's memory by 4 and adds that many steps to every tile's lines)")
-      ->check(aal::kPositive);
+  aal::addNearReachOption(app, o);
   app.add_flag("--low-memory", o.lowMemory,
                "read the DEM one band of rows at a time (a tile row plus its halo): a "
                "tiled bake then needs memory for one band, not the DEM; automatic when the DEM "
@@ -423,12 +378,7 @@ int main(int argc, char** argv) {
       "--cog", o.cog,
       "write --svf and --visible as cloud-optimized GeoTIFFs (tiled, with overviews); not a "
       "tiled bake's SVF tiles");
-  app.add_option("--compression", o.compression,
-                 "the map's EXR compression: rle (fast), zip (~25 % smaller, ~5x slower to "
-                 "write), none")
-      ->check(CLI::IsMember({"rle", "zip", "none"}))
-      ->capture_default_str();
-  app.add_flag("--float", o.fullFloat, "store 32-bit floats instead of 16-bit halves");
+  aal::addMapStorageOptions(app, o);
   app.add_flag("-q,--quiet", o.quiet, "no progress and no summary");
 
   aal::installInterruptHandler();

@@ -17,6 +17,7 @@
 #include <tbb/global_control.h>
 #include <CLI/CLI.hpp>
 
+#include "bake_command_line.h"
 #include "dem_loader.h"
 #include "dem_source.h"
 #include "errors.h"
@@ -29,22 +30,12 @@
 
 namespace {
 
-struct Options {
+struct Options : aal::SweepCommandLine {
   std::string dem;
   std::string output;
   int tileSize = aal::kDefaultTileSize;
-  int azimuths = 64;
-  std::optional<double> cellSize;
-  std::optional<double> zScale;
-  std::string edge = "open";
-  bool curvature = false;
-  double refraction = 0.13;
-  double maxDistance = 0;
-  double nearReach = 0;  // 0: the far field's default (kFarFieldReachCells)
   bool svf = false;
   int threads = 0;
-  bool fullFloat = false;
-  std::string compression = "rle";
   bool quiet = false;
 };
 
@@ -82,9 +73,7 @@ int checkOnRankZero(int rank, const Options& o) {
   if (rank == 0) {
     try {
       aal::checkDistinctFiles({{"DEM", o.dem}}, {{"-o", o.output}});
-      if (o.nearReach > 0 && o.maxDistance > 0) {
-        throw aal::InputError("--near-reach is the far field's, which --max-distance leaves out");
-      }
+      aal::checkSweepOptions(o);
       namespace fs = std::filesystem;
       std::error_code error;
       if (fs::exists(o.output, error) && !fs::is_directory(o.output, error)) {
@@ -93,9 +82,7 @@ int checkOnRankZero(int rank, const Options& o) {
       aal::requireWritableOutput(fs::is_directory(o.output, error)
                                      ? (fs::path(o.output) / "index.txt").string()
                                      : o.output);
-      aal::DemLoadOptions load;
-      load.cellSizeM = o.cellSize;
-      load.zScale = o.zScale;
+      const aal::DemLoadOptions load = aal::demLoadOptions(o);
       const aal::DemSource dem(o.dem, load);
       aal::demGeometry(dem, load);  // its warnings, once
     } catch (const aal::InputError& e) {
@@ -117,9 +104,7 @@ int run(const Options& o) {
   if (const int status = checkOnRankZero(rank, o); status != 0) return status;
 
   // Every rank opens the DEM (a rank on another host may not reach it).
-  aal::DemLoadOptions load;
-  load.cellSizeM = o.cellSize;
-  load.zScale = o.zScale;
+  aal::DemLoadOptions load = aal::demLoadOptions(o);
   load.warn = nullptr;  // rank 0 has given them
   std::optional<aal::DemSource> dem;
   aal::Heightfield geometry;
@@ -135,19 +120,13 @@ int run(const Options& o) {
   if (status != 0) return status;
 
   aal::BakeOptions bake;
-  bake.azimuths = o.azimuths;
-  bake.clampEdge = o.edge == "clamp";
-  bake.curvature = o.curvature;
-  bake.refraction = o.refraction;
-  bake.maxDistanceM = o.maxDistance;
+  aal::applySweepOptions(o, bake);
   bake.skyViewFactor = o.svf;
   bake.cancel = &aal::interruptFlag();
   aal::TiledBakeOptions tiling;
   tiling.tileSize = o.tileSize;
   tiling.halfFloat = !o.fullFloat;
-  tiling.compression = o.compression == "zip"    ? aal::MapCompression::Zip
-                       : o.compression == "none" ? aal::MapCompression::None
-                                                 : aal::MapCompression::Rle;
+  tiling.compression = aal::mapCompression(o);
   tiling.sourceName = std::filesystem::path(o.dem).filename().string();
   tiling.farField.nearReachM = o.nearReach;
 
@@ -226,30 +205,8 @@ int main(int argc, char** argv) {
   app.add_option("--tile-size", o.tileSize, "tiles of N x N texels")
       ->check(CLI::Range(aal::kMinTileSize, aal::kMaxTileSize))
       ->capture_default_str();
-  app.add_option("--azimuths", o.azimuths, "azimuth slices of the sweep")
-      ->check(CLI::Range(4, 4096))
-      ->capture_default_str();
-  app.add_option("--cell-size", o.cellSize, "texel spacing in metres (overrides the file)")
-      ->check(aal::kPositive);
-  app.add_option("--z-scale", o.zScale, "metres per height unit (overrides the file)")
-      ->check(aal::kPositive);
-  app.add_option("--edge", o.edge,
-                 "beyond the DEM: open sky, or terrain continuing flat at the edge height")
-      ->check(CLI::IsMember({"open", "clamp"}))
-      ->capture_default_str();
-  app.add_flag("--curvature", o.curvature, "drop distant terrain by the Earth's curvature");
-  app.add_option("--refraction", o.refraction,
-                 "refraction coefficient with --curvature: drop = (1 - k) d^2 / 2R")
-      ->check(CLI::Range(0.0, 0.99))
-      ->capture_default_str();
-  app.add_option("--max-distance", o.maxDistance,
-                 "only terrain within this many metres counts (0 = all, with a far field)")
-      ->check(aal::kNonNegative);
-  app.add_option("--near-reach", o.nearReach,
-                 "without --max-distance: metres the near sweep covers before the far field's "
-                 "pyramid takes over (default 128 cells; each doubling divides the pyramid's "
-                 "memory by 4)")
-      ->check(aal::kPositive);
+  aal::addSweepOptions(app, o);
+  aal::addNearReachOption(app, o);
   app.add_flag("--svf", o.svf,
                "also write the sky-view factor (Zaksek) into the folder: svf_ROW_COL.tif per tile "
                "(float32 GeoTIFF placed like that window of the DEM) and their mosaic "
@@ -257,10 +214,7 @@ int main(int argc, char** argv) {
   app.add_option("--threads", o.threads,
                  "worker threads per rank (default: the host's cores shared among its ranks)")
       ->check(CLI::Range(1, 1024));
-  app.add_option("--compression", o.compression, "the tiles' EXR compression: rle, zip, none")
-      ->check(CLI::IsMember({"rle", "zip", "none"}))
-      ->capture_default_str();
-  app.add_flag("--float", o.fullFloat, "store 32-bit floats instead of 16-bit halves");
+  aal::addMapStorageOptions(app, o);
   app.add_flag("-q,--quiet", o.quiet, "no summary");
 
   aal::installInterruptHandler();

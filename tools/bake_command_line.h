@@ -1,0 +1,105 @@
+// The options aal-bake and aal-bake-mpi share: how the sweep sees the
+// terrain and how the tiles are stored. Declared once, so the two tools'
+// --help and defaults cannot drift apart (docs/baking.md).
+#pragma once
+
+#include <optional>
+#include <string>
+
+#include <CLI/CLI.hpp>
+
+#include "bake.h"
+#include "dem_loader.h"
+#include "errors.h"
+#include "map_compression.h"
+#include "tool_main.h"
+
+namespace aal {
+
+struct SweepCommandLine {
+  int azimuths = 64;
+  std::optional<double> cellSize;
+  std::optional<double> zScale;
+  std::string edge = "open";
+  bool curvature = false;
+  double refraction = 0.13;
+  double maxDistance = 0;
+  double nearReach = 0;  // 0: the far field's default (kFarFieldReachCells)
+  std::string compression = "rle";
+  bool fullFloat = false;
+};
+
+// --azimuths, --cell-size, --z-scale, --edge, --curvature, --refraction,
+// --max-distance.
+inline void addSweepOptions(CLI::App& app, SweepCommandLine& o) {
+  app.add_option("--azimuths", o.azimuths, "azimuth slices of the sweep")
+      ->check(CLI::Range(4, 4096))
+      ->capture_default_str();
+  app.add_option("--cell-size", o.cellSize, "texel spacing in metres (overrides the file)")
+      ->check(kPositive);
+  app.add_option("--z-scale", o.zScale, "metres per height unit (overrides the file)")
+      ->check(kPositive);
+  app.add_option("--edge", o.edge,
+                 "beyond the DEM: open sky, or terrain continuing flat at the edge height")
+      ->check(CLI::IsMember({"open", "clamp"}))
+      ->capture_default_str();
+  app.add_flag("--curvature", o.curvature, "drop distant terrain by the Earth's curvature");
+  app.add_option("--refraction", o.refraction,
+                 "refraction coefficient with --curvature: drop = (1 - k) d^2 / 2R")
+      ->check(CLI::Range(0.0, 0.99))
+      ->capture_default_str();
+  app.add_option("--max-distance", o.maxDistance,
+                 "only terrain within this many metres counts (0 = all; slower when set; a "
+                 "tiled bake without it takes its far horizons from a pyramid)")
+      ->check(kNonNegative);
+}
+
+// --near-reach (tiled bakes without --max-distance).
+inline void addNearReachOption(CLI::App& app, SweepCommandLine& o) {
+  app.add_option("--near-reach", o.nearReach,
+                 "tiled, without --max-distance: metres the near sweep covers before the far "
+                 "field's pyramid takes over (default 128 cells; each doubling divides the "
+                 "pyramid's memory by 4 and adds that many steps to every tile's lines)")
+      ->check(kPositive);
+}
+
+// --compression, --float.
+inline void addMapStorageOptions(CLI::App& app, SweepCommandLine& o) {
+  app.add_option("--compression", o.compression,
+                 "the maps' EXR compression: rle (fast), zip (~25 % smaller, ~5x slower to "
+                 "write), none")
+      ->check(CLI::IsMember({"rle", "zip", "none"}))
+      ->capture_default_str();
+  app.add_flag("--float", o.fullFloat, "store 32-bit floats instead of 16-bit halves");
+}
+
+// InputError when the options contradict each other.
+inline void checkSweepOptions(const SweepCommandLine& o) {
+  if (o.nearReach > 0 && o.maxDistance > 0) {
+    throw InputError("--near-reach is the far field's, which --max-distance leaves out");
+  }
+}
+
+inline DemLoadOptions demLoadOptions(const SweepCommandLine& o) {
+  DemLoadOptions load;
+  load.cellSizeM = o.cellSize;
+  load.zScale = o.zScale;
+  return load;
+}
+
+// The sweep's part of BakeOptions; the rest keeps `bake`'s values.
+inline void applySweepOptions(const SweepCommandLine& o, BakeOptions& bake) {
+  bake.azimuths = o.azimuths;
+  bake.clampEdge = o.edge == "clamp";
+  bake.curvature = o.curvature;
+  bake.refraction = o.refraction;
+  bake.maxDistanceM = o.maxDistance;
+}
+
+inline MapCompression mapCompression(const SweepCommandLine& o) {
+  return o.compression == "zip"    ? MapCompression::Zip
+         : o.compression == "none" ? MapCompression::None
+                                   : MapCompression::Rle;
+}
+
+}  // namespace aal
