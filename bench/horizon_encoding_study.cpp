@@ -60,24 +60,16 @@ float circularLinear(const float* values, int n, double phi) {
 struct PowerCode {
   int levels;
   double lo, hi, p;
-  bool topIsZenith = false;  // the highest code means 90 degrees
   float operator()(float e) const {
-    if (topIsZenith) {
-      float best = 0, bestDistance = 1e9f;
-      for (int c = 0; c < levels; ++c) {
-        const float v = c == levels - 1 ? float(kPi / 2)
-                                        : float(lo + std::pow(double(c) / (levels - 1), p) * (hi - lo));
-        if (std::abs(v - std::max(e, float(lo))) < bestDistance) best = v, bestDistance = std::abs(v - std::max(e, float(lo)));
-      }
-      return best;
-    }
     const double x = std::clamp((e - lo) / (hi - lo), 0.0, 1.0);
     const double c = std::round(std::pow(x, 1.0 / p) * (levels - 1));
     return float(lo + std::pow(c / (levels - 1), p) * (hi - lo));
   }
 };
 
-float eightBit(float e) { return aal::decodeHorizon(aal::encodeHorizon(e)); }
+float eightBit(float e) {
+  return aal::decodeHorizon(aal::encodeHorizon(e));
+}
 
 // n directions, each the sector statistic `stat` of the fine horizons
 // within +-halfWidth fine steps, quantised by q, interpolated linearly.
@@ -101,10 +93,11 @@ Encoding sectorEncoding(int n, int halfWidth, std::function<float(const float*, 
                   }};
 }
 
-float centre(const float* w, int m) { return w[m / 2]; }
-float maximum(const float* w, int m) { return *std::max_element(w, w + m); }
-float triangle(const float* w, int m) {
-  return m == 3 ? 0.25f * w[0] + 0.5f * w[1] + 0.25f * w[2] : w[m / 2];
+float centre(const float* w, int m) {
+  return w[m / 2];
+}
+float maximum(const float* w, int m) {
+  return *std::max_element(w, w + m);
 }
 float mean(const float* w, int m) {
   double s = 0;
@@ -118,21 +111,22 @@ float planeElevation(const Texel& t, double phi) {
   return float(std::atan(-(t.nx * std::cos(phi) + t.ny * std::sin(phi)) / t.nz));
 }
 Encoding planeEncoding(int n, std::function<float(float)> q) {
-  return Encoding{[=](const Texel& t) {
-                    std::vector<float> stored(n);
-                    for (int k = 0; k < n; ++k) {
-                      const double phi = 2 * kPi * k / n;
-                      stored[k] = q(std::max(0.0f, t.horizon[k * kFine / n] - planeElevation(t, phi)));
-                    }
-                    std::vector<float> withNormal = stored;
-                    withNormal.push_back(t.nx), withNormal.push_back(t.ny), withNormal.push_back(t.nz);
-                    return withNormal;
-                  },
-                  [=](const std::vector<float>& stored, double phi) {
-                    Texel t;
-                    t.nx = stored[n], t.ny = stored[n + 1], t.nz = stored[n + 2];
-                    return circularLinear(stored.data(), n, phi) + planeElevation(t, phi);
-                  }};
+  return Encoding{
+      [=](const Texel& t) {
+        std::vector<float> stored(n);
+        for (int k = 0; k < n; ++k) {
+          const double phi = 2 * kPi * k / n;
+          stored[k] = q(std::max(0.0f, t.horizon[k * kFine / n] - planeElevation(t, phi)));
+        }
+        std::vector<float> withNormal = stored;
+        withNormal.push_back(t.nx), withNormal.push_back(t.ny), withNormal.push_back(t.nz);
+        return withNormal;
+      },
+      [=](const std::vector<float>& stored, double phi) {
+        Texel t;
+        t.nx = stored[n], t.ny = stored[n + 1], t.nz = stored[n + 2];
+        return circularLinear(stored.data(), n, phi) + planeElevation(t, phi);
+      }};
 }
 
 // Interpolation of tangents instead of angles.
@@ -224,36 +218,38 @@ int main(int argc, char** argv) {
     }
 
     const auto q8 = eightBit;
+    const auto q4 = [](float e) { return aal::decodeHorizon(aal::encodeHorizon(e, 4), 4); };
     const auto id = [](float e) { return e; };
     const PowerCode sqrt4{16, -2 * kDeg, 90 * kDeg, 2.0};
-    const PowerCode low4{16, -2 * kDeg, 40 * kDeg, 2.0};
-    const PowerCode low4b{16, -2 * kDeg, 30 * kDeg, 1.6};
-    const PowerCode lin4{16, -2 * kDeg, 20 * kDeg, 1.0};
-    const PowerCode low3{8, -2 * kDeg, 30 * kDeg, 1.8};
+    const PowerCode p15to30{16, -2 * kDeg, 30 * kDeg, 1.5};
+    const PowerCode d15to45{16, 0, 45 * kDeg, 1.5};
+    const PowerCode p18to30x8{8, -2 * kDeg, 30 * kDeg, 1.8};
     struct Named {
       const char* name;
       Encoding e;
     };
-    const PowerCode p2to60{16, -2 * kDeg, 60 * kDeg, 2.0};
-    const PowerCode p15to45{16, -2 * kDeg, 45 * kDeg, 1.5};
-    const PowerCode d2to45{16, 0, 45 * kDeg, 2.0};
-    const PowerCode d15to45{16, 0, 45 * kDeg, 1.5};
-    const PowerCode d2to30{16, 0, 30 * kDeg, 2.0};
-    const PowerCode p15to45z{16, -2 * kDeg, 45 * kDeg, 1.5, true};
-    const PowerCode e15to45{256, -2 * kDeg, 45 * kDeg, 1.5};
-    const PowerCode e15to45z{256, -2 * kDeg, 45 * kDeg, 1.5, true};
     const std::vector<Named> encodings = {
-        {"8x8 point", sectorEncoding(8, 0, centre, q8)},
-        {"8x8 p1.5 45", sectorEncoding(8, 0, centre, e15to45)},
-        {"16x8 point (16 B)", sectorEncoding(16, 0, centre, q8)},
-        {"16x8 p1.5 45 (16 B)", sectorEncoding(16, 0, centre, e15to45)},
-        {"16x8 p1.5 45z (16 B)", sectorEncoding(16, 0, centre, e15to45z)},
-        {"16x4 p1.5 45", sectorEncoding(16, 0, centre, p15to45)},
-        {"16x4 p1.5 45z", sectorEncoding(16, 0, centre, p15to45z)},
+        {"8x8 (8 B)", sectorEncoding(8, 0, centre, q8)},
+        {"8x8 tangents (8 B)", tangentEncoding(8, q8)},
+        {"8x8 mean +-11 (8 B)", sectorEncoding(8, 2, mean, q8)},
+        {"8x8 max +-6 (8 B)", sectorEncoding(8, 1, maximum, q8)},
+        {"8x8 max +-11 (8 B)", sectorEncoding(8, 2, maximum, q8)},
+        {"16x8 (16 B)", sectorEncoding(16, 0, centre, q8)},
+        {"16x4 sqrt to 90 (8 B)", sectorEncoding(16, 0, centre, sqrt4)},
+        {"16x4 p1.5 to 30 (8 B)", sectorEncoding(16, 0, centre, p15to30)},
+        {"16x4, aal-bake's (8 B)", sectorEncoding(16, 0, centre, q4)},
+        {"16x4 45 mean +-6 (8 B)", sectorEncoding(16, 1, mean, q4)},
+        {"16x4 45 max +-6 (8 B)", sectorEncoding(16, 1, maximum, q4)},
+        {"16x4 45 above plane", planeEncoding(16, d15to45)},
+        {"16 floats above plane", planeEncoding(16, id)},
+        {"32x3 p1.8 to 30 (12 B)", sectorEncoding(32, 0, centre, p18to30x8)},
+        {"32 floats (128 B)", sectorEncoding(32, 0, centre, id)},
+        {"Fourier 0-3 (7 floats)", fourierEncoding(3)},
+        {"Fourier 0-7 (15 floats)", fourierEncoding(7)},
     };
     const float sunRadius = 0.004653f;
-    const double elevations[] = {3, 5, 8, 12, 20, 30, 45, 60};
-    constexpr int kElevations = 8;
+    const double elevations[] = {3, 5, 8, 12, 20, 30, 45};
+    constexpr int kElevations = 7;
     std::printf("%-24s", "encoding \\ elevation");
     for (double e : elevations) std::printf(" %7.0f", e);
     std::printf("   (RMS of the Lambert-weighted sun fraction error / baseline-lambert's)\n");
@@ -267,8 +263,7 @@ int main(int argc, char** argv) {
     };
     const auto sunOf = [&](size_t c, int e) {
       const double phi = (90.0 - compass[c]) * kDeg, el = elevations[e] * kDeg;
-      return Sun{phi, el, std::cos(el) * std::cos(phi), std::cos(el) * std::sin(phi),
-                 std::sin(el)};
+      return Sun{phi, el, std::cos(el) * std::cos(phi), std::cos(el) * std::sin(phi), std::sin(el)};
     };
     const auto lambertOf = [](const Texel& t, const Sun& s) {
       return std::max(0.0, t.nx * s.lx + t.ny * s.ly + t.nz * s.lz);
@@ -306,7 +301,8 @@ int main(int argc, char** argv) {
         }
       }
       std::printf("%-24s", "approx (Oat's cap)");
-      for (int e = 0; e < kElevations; ++e) std::printf(" %7.3f", std::sqrt(sum[e] / lambertSum[e]));
+      for (int e = 0; e < kElevations; ++e)
+        std::printf(" %7.3f", std::sqrt(sum[e] / lambertSum[e]));
       std::printf("\n");
     }
     for (const Named& encoding : encodings) {
@@ -327,7 +323,8 @@ int main(int argc, char** argv) {
         }
       }
       std::printf("%-24s", encoding.name);
-      for (int e = 0; e < kElevations; ++e) std::printf(" %7.3f", std::sqrt(sum[e] / lambertSum[e]));
+      for (int e = 0; e < kElevations; ++e)
+        std::printf(" %7.3f", std::sqrt(sum[e] / lambertSum[e]));
       std::printf("\n");
       std::fflush(stdout);
     }

@@ -85,7 +85,8 @@ void main() {
     horizonNeighbours(4 * textureSize(terrainHorizons, 0).z, azimuth, k0, k1, f);
     vec4 layer0 = textureLod(terrainHorizons, vec3(uv, float(k0 / 4)), 0.0);
     vec4 layer1 = textureLod(terrainHorizons, vec3(uv, float(k1 / 4)), 0.0);
-    s.sunHorizonRad = horizonBetween(horizonCode(layer0, k0), horizonCode(layer1, k1), f);
+    s.sunHorizonRad =
+        horizonBetween(horizonCode(layer0, k0), horizonCode(layer1, k1), f, frame.horizonBits);
   }
   // Aerial perspective: radiance (direct + ambient W) T + L_sky (1 - T).
   float distance = length(worldPosition - frame.cameraPos);
