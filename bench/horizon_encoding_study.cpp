@@ -4,8 +4,9 @@
 // needs no renderer: per texel, the direct light's Lambert-weighted
 // visible fraction from an encoding against the one from the sweep's exact
 // horizon in the sun's own azimuth, as an RMS over the DEM relative to that
-// of baseline-lambert (no shadow), for sun elevations 3, 5, 8, 12 degrees
-// and every whole-degree azimuth (or the azimuths given).
+// of baseline-lambert (no shadow), for sun elevations 3, 5, 8, 12, 20, 30
+// and 45 degrees and the compass azimuths 1, 6, ..., 356 (never a stored
+// direction; or the azimuths given).
 //   bench_horizon_encoding_study DEM|fbm [COMPASS_AZIMUTH...]
 // "fbm" is aal-synth --size 256 --amplitude 2500 --feature-size 64.
 #include <algorithm>
