@@ -14,7 +14,9 @@ const float kHorizon4BitMaxRad = 0.78539816;
 
 // `bits`: 8 (square-root code to 90 degrees) or 4 (power 3/2 to 45).
 float decodeHorizon(float unorm, int bits) {
-  if (bits == 4) return kHorizonMinRad + unorm * sqrt(unorm) * (kHorizon4BitMaxRad - kHorizonMinRad);
+  if (bits == 4) {
+    return kHorizonMinRad + unorm * sqrt(unorm) * (kHorizon4BitMaxRad - kHorizonMinRad);
+  }
   return kHorizonMinRad + unorm * unorm * (kHorizonMaxRad - kHorizonMinRad);
 }
 

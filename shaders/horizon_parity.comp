@@ -8,7 +8,7 @@
 layout(local_size_x = AAL_SHADING_PARITY_GROUP_SIZE) in;
 
 struct Query {
-  vec4 codes[4];  // directions 4l..4l+3 in codes[l] (code / 255)
+  vec4 codes[4];  // directions 4l..4l+3 in codes[l] (code / 255, or / 15 for 4 bits)
   vec4 azimuth;   // x: azimuth (rad), y: directions, z: code bits
 };
 

@@ -213,10 +213,14 @@ int runComparison(const Options& o, const aal::Heightfield& field, aal::TerrainS
   aal::ProgressBar bar("ray tracing the reference", !o.quiet);
   std::vector<aal::ComparedMode> modes = aal::defaultComparedModes(settings);
   for (size_t i = 0; i < horizons.size(); ++i) {
-    aal::ComparedMode m{horizons.size() == 1
-                            ? std::string("horizon")
-                            : "horizon-" + std::filesystem::path(o.horizons[i]).stem().string(),
-                        aal::ShadingMode::Horizon, settings.obscurance.enabled};
+    std::string name = horizons.size() == 1
+                           ? std::string("horizon")
+                           : "horizon-" + std::filesystem::path(o.horizons[i]).stem().string();
+    // Files of the same name in other folders: numbered, so no output is lost.
+    for (const aal::ComparedMode& other : modes) {
+      if (other.name == name) name.append("-").append(std::to_string(i + 1));
+    }
+    aal::ComparedMode m{name, aal::ShadingMode::Horizon, settings.obscurance.enabled};
     if (horizons.size() > 1) {
       m.prepare = [&scene, &device, &horizons, i] { scene.setHorizons(device, horizons[i]); };
     }
