@@ -42,6 +42,12 @@ struct Fixture {
     field = aal::loadDem(dem ? dem : AAL_SOURCE_DIR "/heightmaps/jacksboro_fault_dem.tif");
     aal::BakeOptions bake;
     bake.horizons = true;  // for the horizon mode (BM_RenderFrame/10)
+    // AAL_BENCH_HORIZON_DIRECTIONS, AAL_BENCH_HORIZON_BITS: the horizons' layout
+    // (default 8 directions of 8 bits; docs/performance.md measures 16 of 4).
+    if (const char* d = std::getenv("AAL_BENCH_HORIZON_DIRECTIONS")) {
+      bake.horizonDirections = std::atoi(d);
+    }
+    if (const char* b = std::getenv("AAL_BENCH_HORIZON_BITS")) bake.horizonBits = std::atoi(b);
     const aal::BakeResult baked = aal::bakeApertures(field, bake);
     const aal::ApertureMap& aperture = baked.aperture;
     // AAL_BENCH_ALBEDO: an albedo image (resampled to the DEM); default: the palette.

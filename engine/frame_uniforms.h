@@ -65,7 +65,8 @@ struct FrameUniforms {
   int32_t heightLayersPerPage = 0;
   int32_t apertureLayersPerPage = 0;
   int32_t albedoLayersPerPage = 0;
-  int32_t unused[2] = {0, 0};
+  int32_t horizonBits = 8;  // of the scene's directional horizons (horizon mode)
+  int32_t unused = 0;
 
   PreethamSky sky;
 };
@@ -97,6 +98,7 @@ static_assert(offsetof(FrameUniforms, tileCoreSize) == 368 &&
               offsetof(FrameUniforms, tileImageSize) == 384);
 static_assert(offsetof(FrameUniforms, tileBorder) == 392 &&
               offsetof(FrameUniforms, albedoLayersPerPage) == 404);
+static_assert(offsetof(FrameUniforms, horizonBits) == 408);
 static_assert(offsetof(FrameUniforms, sky) == 416, "std140 aligns the sky to 16 bytes");
 static_assert(sizeof(FrameUniforms) == 416 + sizeof(PreethamSky));
 

@@ -515,6 +515,7 @@ bool TerrainRenderer::writeUniforms(const TerrainScene& scene, const FrameSettin
   u.heightLayersPerPage = int32_t(tiles.layersPerPage[0]);
   u.apertureLayersPerPage = int32_t(tiles.layersPerPage[1]);
   u.albedoLayersPerPage = int32_t(tiles.layersPerPage[2]);
+  u.horizonBits = scene.horizonBits();
   uniforms_.write(&u, sizeof u);
   return obscurance;
 }

@@ -67,12 +67,14 @@ class TerrainScene {
   uint64_t textureBytes() const { return textureBytes_; }
   bool hasAlbedo() const { return hasAlbedo_; }
   // Directional horizons for the horizon mode (terrain/io/horizon_map.h): a 2D
-  // array image the DEM's size, RGBA8 codes of directions 4l..4l+3 in layer
-  // l, no mip levels (1 B per direction and texel). Scenes of one tile only
-  // for now; throws std::invalid_argument for a tiled scene or a map of
-  // another size.
+  // array image the DEM's size, the codes of directions 4l..4l+3 in layer l
+  // as RGBA (RGBA8 for 8-bit codes, 1 B per direction and texel; BGRA4 for
+  // 4-bit ones, half a byte), no mip levels. Scenes of one tile only for
+  // now; throws std::invalid_argument for a tiled scene or a map of another
+  // size.
   void setHorizons(const Device& device, const HorizonMap& map);
   const Image* horizons() const { return horizons_.get(); }  // null: none
+  int horizonBits() const { return horizonBits_; }
   // The LOD patch's index buffer (makeLodPatchIndices).
   const Buffer& indices() const { return indices_; }
   const LodQuadtree& lod() const { return *lod_; }
@@ -99,6 +101,8 @@ class TerrainScene {
   TerrainTileLayout tiles_;
   std::vector<Image> heights_, aperture_, albedo_, slopes_;
   std::unique_ptr<Image> horizons_;
+  int horizonBits_ = kHorizonBits;
+  uint64_t horizonBytes_ = 0;
   uint64_t textureBytes_ = 0;
   Buffer indices_;
   bool hasAlbedo_ = false;

@@ -44,6 +44,9 @@ void checkOptions(const Heightfield& field, const BakeOptions& o) {
   if (o.horizons && !validHorizonDirections(o.horizonDirections)) {
     throw std::invalid_argument("horizon directions must be 4, 8, 12 or 16");
   }
+  if (o.horizons && !validHorizonBits(o.horizonBits)) {
+    throw std::invalid_argument("horizon codes must have 8 or 4 bits");
+  }
   if (o.horizons && (o.method != BakeMethod::Sweep || o.azimuths % o.horizonDirections != 0)) {
     throw std::invalid_argument("directional horizons need the sweep with a multiple of " +
                                 std::to_string(o.horizonDirections) + " azimuths");
@@ -212,6 +215,7 @@ BakeResult bakeWindow(const Heightfield& field, const BakeTerrain& terrain, cons
     result.horizons.width = map.width;
     result.horizons.height = map.height;
     result.horizons.directions = o.horizonDirections;
+    result.horizons.bits = o.horizonBits;
     result.horizons.codes.assign(map.texelCount() * size_t(o.horizonDirections), 0);
   }
 

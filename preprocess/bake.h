@@ -36,6 +36,7 @@ struct BakeOptions {
   // `azimuths` must be a multiple of horizonDirections.
   bool horizons = false;
   int horizonDirections = kHorizonDirections;
+  int horizonBits = kHorizonBits;  // 8 or 4 bits per code
   // A window's horizons beyond its halo, for a tiled bake without a max
   // distance (far_horizon.h): the near sweep walks the window's lines from
   // farField->options.nearReachM before it, the far field adds the rest.

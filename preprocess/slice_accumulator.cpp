@@ -91,7 +91,7 @@ inline void SliceAccumulator::storeHorizons(const HorizonBlock& b, const float* 
                                             const AzimuthSlice& s) const {
   for (int j = 0; j < b.count; ++j) {
     horizonCodes_[(b.firstTexel + j * b.stride) * size_t(o_.horizonDirections) +
-                  size_t(s.horizonSlot)] = encodeHorizon(std::atan(tanHorizon[j]));
+                  size_t(s.horizonSlot)] = encodeHorizon(std::atan(tanHorizon[j]), o_.horizonBits);
   }
 }
 

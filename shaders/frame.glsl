@@ -59,7 +59,8 @@ layout(set = 0, binding = 0, std140) uniform Frame {
   int heightLayersPerPage;     // 396 tiles (layers) per texture page of each kind
   int apertureLayersPerPage;   // 400
   int albedoLayersPerPage;     // 404
-  int unused0, unused1;        // 408 (the sky starts on 16 bytes)
+  int horizonBits;             // 408 bits of the directional horizons' codes (horizon.glsl)
+  int unused1;                 // 412 (the sky starts on 16 bytes)
 
   PreethamSky sky;  // 416 .. 528
 }

@@ -1,16 +1,22 @@
 // Directional horizons (terrain/io/horizon_map.h, docs/baking.md): twins of
-// decodeHorizon and horizonAtAzimuth. The codes arrive as unorm values
-// (code / 255), possibly filtered between texels.
+// decodeHorizonUnorm and horizonAtAzimuth. The codes arrive as unorm values
+// (code / 255, or code / 15 for 4-bit codes), possibly filtered between
+// texels.
 #ifndef AAL_HORIZON_GLSL
 #define AAL_HORIZON_GLSL
 
 #include "config.h"
 
-// kHorizonMinRad, kHorizonMaxRad of terrain/io/horizon_map.h.
+// kHorizonMinRad, kHorizonMaxRad, kHorizon4BitMaxRad of terrain/io/horizon_map.h.
 const float kHorizonMinRad = -0.034906585;
 const float kHorizonMaxRad = 1.5707963;
+const float kHorizon4BitMaxRad = 0.78539816;
 
-float decodeHorizon(float unorm) {
+// `bits`: 8 (square-root code to 90 degrees) or 4 (power 3/2 to 45).
+float decodeHorizon(float unorm, int bits) {
+  if (bits == 4) {
+    return kHorizonMinRad + unorm * sqrt(unorm) * (kHorizon4BitMaxRad - kHorizonMinRad);
+  }
   return kHorizonMinRad + unorm * unorm * (kHorizonMaxRad - kHorizonMinRad);
 }
 
@@ -32,16 +38,16 @@ float horizonCode(vec4 layer, int k) {
   return dot(layer, vec4(equal(ivec4(0, 1, 2, 3), ivec4(k & 3))));
 }
 
-float horizonBetween(float code0, float code1, float f) {
-  return (1.0 - f) * decodeHorizon(code0) + f * decodeHorizon(code1);
+float horizonBetween(float code0, float code1, float f, int bits) {
+  return (1.0 - f) * decodeHorizon(code0, bits) + f * decodeHorizon(code1, bits);
 }
 
 // The same from all the codes at once (codes[l]: layer l's).
-float horizonAtAzimuth(vec4 codes[4], int directions, float azimuthRad) {
+float horizonAtAzimuth(vec4 codes[4], int directions, float azimuthRad, int bits) {
   int k0, k1;
   float f;
   horizonNeighbours(directions, azimuthRad, k0, k1, f);
-  return horizonBetween(horizonCode(codes[k0 / 4], k0), horizonCode(codes[k1 / 4], k1), f);
+  return horizonBetween(horizonCode(codes[k0 / 4], k0), horizonCode(codes[k1 / 4], k1), f, bits);
 }
 
 #endif

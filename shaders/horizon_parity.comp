@@ -8,8 +8,8 @@
 layout(local_size_x = AAL_SHADING_PARITY_GROUP_SIZE) in;
 
 struct Query {
-  vec4 codes[4];  // directions 4l..4l+3 in codes[l] (code / 255)
-  vec4 azimuth;   // x: azimuth (rad), y: directions
+  vec4 codes[4];  // directions 4l..4l+3 in codes[l] (code / 255, or / 15 for 4 bits)
+  vec4 azimuth;   // x: azimuth (rad), y: directions, z: code bits
 };
 
 layout(set = 0, binding = 0, std430) readonly buffer Queries { Query queries[]; };
@@ -20,5 +20,6 @@ void main() {
   uint i = gl_GlobalInvocationID.x;
   if (i >= count) return;
   vec4 codes[4] = queries[i].codes;
-  answers[i] = horizonAtAzimuth(codes, int(queries[i].azimuth.y), queries[i].azimuth.x);
+  answers[i] = horizonAtAzimuth(codes, int(queries[i].azimuth.y), queries[i].azimuth.x,
+                                int(queries[i].azimuth.z));
 }

@@ -77,15 +77,19 @@ void main() {
   if (kShadingMode == AAL_MODE_HORIZON) {
     // The horizon in the sun's azimuth, bilinear between texel centres.
     vec2 uv = (texelPosition + 0.5) / frame.demSize;
-    // Only the layers of the two directions beside the sun: two fetches.
+    // Only the layers of the two directions beside the sun: two fetches, one
+    // where both lie in the same layer (the sun is the frame's: a uniform
+    // branch).
     vec3 l = s.sunDirection;
     float azimuth = abs(l.x) + abs(l.y) > 0.0 ? atan(l.y, l.x) : 0.0;  // any at the zenith
     int k0, k1;
     float f;
     horizonNeighbours(4 * textureSize(terrainHorizons, 0).z, azimuth, k0, k1, f);
     vec4 layer0 = textureLod(terrainHorizons, vec3(uv, float(k0 / 4)), 0.0);
-    vec4 layer1 = textureLod(terrainHorizons, vec3(uv, float(k1 / 4)), 0.0);
-    s.sunHorizonRad = horizonBetween(horizonCode(layer0, k0), horizonCode(layer1, k1), f);
+    vec4 layer1 = layer0;
+    if (k1 / 4 != k0 / 4) layer1 = textureLod(terrainHorizons, vec3(uv, float(k1 / 4)), 0.0);
+    s.sunHorizonRad =
+        horizonBetween(horizonCode(layer0, k0), horizonCode(layer1, k1), f, frame.horizonBits);
   }
   // Aerial perspective: radiance (direct + ambient W) T + L_sky (1 - T).
   float distance = length(worldPosition - frame.cameraPos);

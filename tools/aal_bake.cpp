@@ -72,6 +72,7 @@ struct Options : aal::SweepCommandLine {
   bool svf = false;          // --svf given: with svfPath, or, tiled, into the folder
   std::string horizonsPath;  // directional horizons (docs/baking.md)
   int horizonDirections = aal::kHorizonDirections;
+  int horizonBits = aal::kHorizonBits;
   std::string visiblePath;
   int threads = 0;
   bool quiet = false;
@@ -204,6 +205,7 @@ int run(const Options& o) {
     throw aal::InputError("--horizons needs --method sweep (the ray reference has no horizons)");
   }
   bake.horizonDirections = o.horizonDirections;
+  bake.horizonBits = o.horizonBits;
   if (bake.horizons && o.azimuths % o.horizonDirections != 0) {
     throw aal::InputError("--horizons needs --azimuths a multiple of --horizon-directions " +
                           std::to_string(o.horizonDirections) +
@@ -351,11 +353,16 @@ int main(int argc, char** argv) {
   svf->expected(0, 1);
   app.add_option(
       "--horizons", o.horizonsPath,
-      "also write the directional horizons (--horizon-directions azimuths, 8 bits each) for "
-      "aal-render --mode horizon (docs/baking.md)");
+      "also write the directional horizons (--horizon-directions azimuths, --horizon-bits "
+      "each) for aal-render --mode horizon (docs/baking.md)");
   app.add_option("--horizon-directions", o.horizonDirections,
-                 "azimuths of --horizons: 4, 8, 12 or 16 (1 byte each per texel)")
+                 "azimuths of --horizons: 4, 8, 12 or 16")
       ->check(CLI::IsMember({4, 8, 12, 16}))
+      ->capture_default_str();
+  app.add_option("--horizon-bits", o.horizonBits,
+                 "bits per direction and texel on the device: 8 (elevations to 90 degrees) or 4 "
+                 "(to 45 degrees, coarser; 16 directions in 8 bytes, docs/comparison.md)")
+      ->check(CLI::IsMember({4, 8}))
       ->capture_default_str();
   app.add_option(
       "--visible", o.visiblePath,

@@ -2,6 +2,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <filesystem>
 #include <map>
 #include <memory>
 #include <numbers>
@@ -50,7 +51,8 @@ const std::map<std::string, aal::ShadingMode> kModes = [] {
 
 struct Options {
   std::string dem, aperture, output, albedo;
-  std::string horizons;  // directional horizons (aal-bake --horizons)
+  // Directional horizons (aal-bake --horizons); --compare takes several.
+  std::vector<std::string> horizons;
   std::string size = "1280x720";
   std::string camera, lookAt;
   double fovDeg = 40;
@@ -202,13 +204,27 @@ int renderReferenceImage(const Options& o, const aal::Heightfield& field,
 }
 
 // --compare FOLDER: every mode against the reference, a table on stdout.
-int runComparison(const Options& o, const aal::Heightfield& field, const aal::TerrainScene& scene,
+// With several horizon maps, one horizon mode for each ("horizon-STEM"), the
+// scene given each map before its rendering: one reference for all.
+int runComparison(const Options& o, const aal::Heightfield& field, aal::TerrainScene& scene,
                   aal::TerrainRenderer& renderer, const aal::FrameSettings& settings,
-                  const std::optional<glm::vec3>& albedoValue) {
+                  const std::optional<glm::vec3>& albedoValue, const aal::Device& device,
+                  const std::vector<aal::HorizonMap>& horizons) {
   aal::ProgressBar bar("ray tracing the reference", !o.quiet);
   std::vector<aal::ComparedMode> modes = aal::defaultComparedModes(settings);
-  if (scene.horizons()) {
-    modes.push_back({"horizon", aal::ShadingMode::Horizon, settings.obscurance.enabled});
+  for (size_t i = 0; i < horizons.size(); ++i) {
+    std::string name = horizons.size() == 1
+                           ? std::string("horizon")
+                           : "horizon-" + std::filesystem::path(o.horizons[i]).stem().string();
+    // Files of the same name in other folders: numbered, so no output is lost.
+    for (const aal::ComparedMode& other : modes) {
+      if (other.name == name) name.append("-").append(std::to_string(i + 1));
+    }
+    aal::ComparedMode m{name, aal::ShadingMode::Horizon, settings.obscurance.enabled};
+    if (horizons.size() > 1) {
+      m.prepare = [&scene, &device, &horizons, i] { scene.setHorizons(device, horizons[i]); };
+    }
+    modes.push_back(std::move(m));
   }
   const aal::Comparison c =
       aal::compareModes(renderer, scene, field, settings, modes, comparisonOptions(o, albedoValue),
@@ -291,8 +307,15 @@ int run(const Options& o) {
   aal::checkDistinctFiles({{"DEM", o.dem},
                            {"--aperture", o.aperture},
                            {"--albedo", o.albedo},
-                           {"--horizons", o.horizons}},
+                           {"--horizons", o.horizons.empty() ? "" : o.horizons.front()}},
                           {{"-o", o.output}});
+  for (size_t i = 1; i < o.horizons.size(); ++i) {
+    if (o.compare.empty()) {
+      throw aal::InputError("--horizons given " + std::to_string(o.horizons.size()) +
+                            " times: only --compare takes several");
+    }
+    aal::checkDistinctFiles({{"--horizons", o.horizons[i]}}, {{"-o", o.output}});
+  }
   if (mode == aal::ShadingMode::Horizon && o.horizons.empty()) {
     throw aal::InputError("--mode horizon needs --horizons FILE (aal-bake --horizons)");
   }
@@ -422,16 +445,17 @@ int run(const Options& o) {
   }
   inMemory = {};
   albedo.reset();
-  if (!o.horizons.empty()) {
+  std::vector<aal::HorizonMap> horizonMaps;
+  for (const std::string& path : o.horizons) {
     aal::HorizonMap horizons;
     try {
-      horizons = aal::readHorizonMap(o.horizons);
+      horizons = aal::readHorizonMap(path);
     } catch (const std::runtime_error& e) {
       throw aal::InputError(std::string("--horizons: ") + e.what());
     }
     if (horizons.width != field.width || horizons.height != field.height) {
-      throw aal::InputError("--horizons " + o.horizons + " is " + std::to_string(horizons.width) +
-                            "x" + std::to_string(horizons.height) + ", the DEM " +
+      throw aal::InputError("--horizons " + path + " is " + std::to_string(horizons.width) + "x" +
+                            std::to_string(horizons.height) + ", the DEM " +
                             std::to_string(field.width) + "x" + std::to_string(field.height));
     }
     try {
@@ -439,9 +463,12 @@ int run(const Options& o) {
     } catch (const std::invalid_argument& e) {
       throw aal::InputError(std::string("--horizons: ") + e.what());
     }
+    horizonMaps.push_back(std::move(horizons));
   }
   aal::TerrainRenderer renderer(device, width, height);
-  if (!o.compare.empty()) return runComparison(o, field, *scene, renderer, settings, albedoValue);
+  if (!o.compare.empty()) {
+    return runComparison(o, field, *scene, renderer, settings, albedoValue, device, horizonMaps);
+  }
   if (sequence) return renderSequence(o, *sequence, field, *scene, renderer, settings);
   const aal::FrameResult frame =
       renderer.render(*scene, settings, aal::wantsLinearOutput(o.output));
@@ -486,7 +513,9 @@ int main(int argc, char** argv) {
   app.add_option("--aperture", o.aperture, "aperture map baked from this DEM by aal-bake");
   app.add_option("--horizons", o.horizons,
                  "directional horizons baked from this DEM by aal-bake --horizons: for --mode "
-                 "horizon, and --compare adds that mode");
+                 "horizon, and --compare adds that mode (given several times, --compare adds "
+                 "one horizon-STEM mode for each file)")
+      ->allow_extra_args(false);
   app.add_option("-o,--output", o.output, "output image: .png (display) or .exr (linear HDR)");
   app.add_option("--compare", o.compare,
                  "instead of -o: render every shading mode and the CPU reference into this "

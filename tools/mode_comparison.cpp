@@ -100,6 +100,7 @@ Comparison compareModes(TerrainRenderer& renderer, const TerrainScene& scene,
     s.mode = m.mode;
     s.obscurance.enabled = m.obscurance;
     s.albedoValue = options.albedo;
+    if (m.prepare) m.prepare();
     ModeError e;
     e.mode = m.name;
     e.frame = renderer.render(scene, s, true);

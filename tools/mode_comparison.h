@@ -23,6 +23,9 @@ struct ComparedMode {
   std::string name;
   ShadingMode mode = ShadingMode::Approx;
   bool obscurance = true;
+  // Called just before this mode's rendering when set (aal-render gives the
+  // scene each of several horizon maps this way).
+  std::function<void()> prepare;
 };
 
 // approx, exact (with W when the settings enable it), approx without W,

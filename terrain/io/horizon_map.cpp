@@ -17,7 +17,7 @@ namespace {
 
 constexpr float kTwoPi = 2.0f * std::numbers::pi_v<float>;
 constexpr const char* kMagic = "aperture-horizons";
-constexpr int kVersion = 1;
+constexpr int kVersion = 2;  // 1: 8-bit codes, no bits field
 
 }  // namespace
 
@@ -25,38 +25,61 @@ bool validHorizonDirections(int directions) {
   return directions >= 4 && directions <= kMaxHorizonDirections && directions % 4 == 0;
 }
 
-uint8_t encodeHorizon(float elevationRad) {
+bool validHorizonBits(int bits) {
+  return bits == 8 || bits == 4;
+}
+
+float decodeHorizonUnorm(float unorm, int bits) {
+  if (bits == 4) {
+    return kHorizonMinRad + unorm * std::sqrt(unorm) * (kHorizon4BitMaxRad - kHorizonMinRad);
+  }
+  return kHorizonMinRad + unorm * unorm * (kHorizonMaxRad - kHorizonMinRad);
+}
+
+uint8_t encodeHorizon(float elevationRad, int bits) {
   if (!(elevationRad > kHorizonMinRad)) return 0;  // NaN (no terrain ahead) too
+  if (bits == 4) {
+    // The nearest of the 16 levels in elevation (the code's spacing grows
+    // with the elevation, so rounding the code would not be).
+    const float x =
+        std::min(1.0f, (elevationRad - kHorizonMinRad) / (kHorizon4BitMaxRad - kHorizonMinRad));
+    const int below = std::min(14, int(15.0f * std::cbrt(x * x)));
+    const float lower = decodeHorizon(uint8_t(below), 4),
+                upper = decodeHorizon(uint8_t(below + 1), 4);
+    return uint8_t(elevationRad - lower <= upper - elevationRad ? below : below + 1);
+  }
   const float x =
       std::min(1.0f, (elevationRad - kHorizonMinRad) / (kHorizonMaxRad - kHorizonMinRad));
   return static_cast<uint8_t>(std::lround(255.0f * std::sqrt(x)));
 }
 
-float decodeHorizon(uint8_t code) {
-  const float c = float(code) / 255.0f;
-  return kHorizonMinRad + c * c * (kHorizonMaxRad - kHorizonMinRad);
+float decodeHorizon(uint8_t code, int bits) {
+  return decodeHorizonUnorm(float(code) / float((1 << bits) - 1), bits);
 }
 
-float horizonAtAzimuth(const uint8_t* codes, int directions, float azimuthRad) {
+float horizonAtAzimuth(const uint8_t* codes, int directions, float azimuthRad, int bits) {
   const float n = float(directions);
   float x = azimuthRad / kTwoPi * n;
   x -= n * std::floor(x / n);  // [0, n)
   const int k0 = std::min(int(x), directions - 1);
   const int k1 = (k0 + 1) % directions;
   const float f = x - float(k0);
-  return (1.0f - f) * decodeHorizon(codes[k0]) + f * decodeHorizon(codes[k1]);
+  return (1.0f - f) * decodeHorizon(codes[k0], bits) + f * decodeHorizon(codes[k1], bits);
 }
 
 void writeHorizonMap(const std::filesystem::path& path, const HorizonMap& map) {
   if (map.width < 1 || map.height < 1 || !validHorizonDirections(map.directions) ||
-      map.codes.size() != size_t(map.width) * size_t(map.height) * size_t(map.directions)) {
+      !validHorizonBits(map.bits) ||
+      map.codes.size() != size_t(map.width) * size_t(map.height) * size_t(map.directions) ||
+      std::any_of(map.codes.begin(), map.codes.end(),
+                  [&](uint8_t c) { return c >= (1 << map.bits); })) {
     throw std::invalid_argument("writeHorizonMap: inconsistent map");
   }
   AtomicOutput output(path);
   {
     std::ofstream out(output.temporaryPath(), std::ios::binary);
     out << kMagic << ' ' << kVersion << ' ' << map.width << ' ' << map.height << ' '
-        << map.directions << '\n';
+        << map.directions << ' ' << map.bits << '\n';
     out.write(reinterpret_cast<const char*>(map.codes.data()),
               static_cast<std::streamsize>(map.codes.size()));
     out.flush();
@@ -75,17 +98,26 @@ HorizonMap readHorizonMap(const std::filesystem::path& path) {
   int version = 0;
   HorizonMap map;
   fields >> magic >> version >> map.width >> map.height >> map.directions;
-  if (!fields || magic != kMagic || version != kVersion ||
-      !validHorizonDirections(map.directions) || map.width < 1 || map.height < 1 ||
-      map.width > (1 << 20) || map.height > (1 << 20)) {
+  map.bits = kHorizonBits;
+  if (version == kVersion) fields >> map.bits;
+  if (!fields || magic != kMagic || (version != 1 && version != kVersion) ||
+      !validHorizonDirections(map.directions) || !validHorizonBits(map.bits) || map.width < 1 ||
+      map.height < 1 || map.width > (1 << 20) || map.height > (1 << 20)) {
     throw std::runtime_error(path.string() + " is not a horizon map (\"" + kMagic + " " +
-                             std::to_string(kVersion) + "\" with 4, 8, 12 or 16 directions)");
+                             std::to_string(kVersion) +
+                             "\" with 4, 8, 12 or 16 directions of 8 or 4 bits)");
   }
   map.codes.resize(size_t(map.width) * size_t(map.height) * size_t(map.directions));
   in.read(reinterpret_cast<char*>(map.codes.data()),
           static_cast<std::streamsize>(map.codes.size()));
   if (in.gcount() != static_cast<std::streamsize>(map.codes.size())) {
     throw std::runtime_error("horizon map " + path.string() + " is truncated");
+  }
+  const int maxCode = (1 << map.bits) - 1;
+  if (std::any_of(map.codes.begin(), map.codes.end(), [&](uint8_t c) { return c > maxCode; })) {
+    throw std::runtime_error("horizon map " + path.string() + " holds codes above " +
+                             std::to_string(maxCode) + " for " + std::to_string(map.bits) +
+                             "-bit codes");
   }
   return map;
 }

@@ -1,5 +1,5 @@
 // Directional horizons (issue 18): per texel the horizon's elevation in 8
-// (or 4, 12, 16) azimuths, 8 bits each, beside the aperture map. The sun
+// (or 4, 12, 16) azimuths, 8 or 4 bits each, beside the aperture map. The sun
 // is tiny, so whether a texel sees it depends on the horizon in the sun's
 // azimuth, which one aperture cap summarises poorly at a low sun
 // (docs/comparison.md); the `horizon` shading mode (terrain/light/shading.h) takes
@@ -21,21 +21,32 @@ constexpr int kHorizonDirections = 8;
 constexpr int kMaxHorizonDirections = 16;
 bool validHorizonDirections(int directions);
 
-// The stored elevation range: codes 0..255 map to [kHorizonMinRad,
+// The stored elevation range. 8-bit codes 0..255 map to [kHorizonMinRad,
 // kHorizonMaxRad] with code = 255 sqrt((e - min) / (max - min)), so steps
 // are finest near the horizontal where low suns are (0.11 degrees at 0,
-// 0.26 at 10, 0.43 at 30 degrees). Lower horizons (open ground, peaks)
-// read as the minimum, 2 degrees below the horizontal: a sun above it is
-// wholly visible there.
-constexpr float kHorizonMinRad = -0.034906585f;  // -2 degrees
-constexpr float kHorizonMaxRad = 1.5707963f;     // 90 degrees
+// 0.26 at 10, 0.43 at 30 degrees). 4-bit codes 0..15 (twice the directions
+// in the same memory, docs/comparison.md) spend their 16 levels on
+// [kHorizonMinRad, kHorizon4BitMaxRad] with code = 15 ((e - min) / (max -
+// min))^(2/3): levels 1.9 degrees apart near the horizontal, 3.1 at 10
+// degrees, 4.6 at 40; higher horizons read as 45 degrees (a sun above 45 degrees is
+// not shadowed by them). Lower horizons (open ground, peaks) read as the
+// minimum, 2 degrees below the horizontal: a sun above it is wholly visible
+// there.
+constexpr float kHorizonMinRad = -0.034906585f;    // -2 degrees
+constexpr float kHorizonMaxRad = 1.5707963f;       // 90 degrees
+constexpr float kHorizon4BitMaxRad = 0.78539816f;  // 45 degrees
+constexpr int kHorizonBits = 8;
+bool validHorizonBits(int bits);  // 8 or 4
 
-uint8_t encodeHorizon(float elevationRad);
-float decodeHorizon(uint8_t code);
+uint8_t encodeHorizon(float elevationRad, int bits = kHorizonBits);
+float decodeHorizon(uint8_t code, int bits = kHorizonBits);
+// The same from code / (2^bits - 1), as the device samples (and filters) it.
+float decodeHorizonUnorm(float unorm, int bits);
 
 struct HorizonMap {
   int width = 0, height = 0;
   int directions = kHorizonDirections;
+  int bits = kHorizonBits;  // of each code (one code per byte in memory and file)
   // `directions` codes per texel, rows top (north) to bottom as the aperture
   // map's, directions in order.
   std::vector<uint8_t> codes;
@@ -47,10 +58,12 @@ struct HorizonMap {
 
 // The horizon elevation (rad) in azimuth azimuthRad (counter-clockwise from
 // east), linear between the two of `directions` stored directions beside it.
-float horizonAtAzimuth(const uint8_t* codes, int directions, float azimuthRad);
+float horizonAtAzimuth(const uint8_t* codes, int directions, float azimuthRad,
+                       int bits = kHorizonBits);
 
-// Writes / reads the file format of docs/baking.md ("aperture-horizons 1"
-// header line, then the codes). Reading throws std::runtime_error naming the
+// Writes / reads the file format of docs/baking.md ("aperture-horizons 2"
+// header line with the code bits, then the codes; version 1 files, without
+// the bits, hold 8-bit codes). Reading throws std::runtime_error naming the
 // file for anything that is not such a file or is truncated.
 void writeHorizonMap(const std::filesystem::path& path, const HorizonMap& map);
 HorizonMap readHorizonMap(const std::filesystem::path& path);

@@ -17,6 +17,7 @@
 #include "bake.h"
 #include "camera.h"
 #include "dem_loader.h"
+#include "horizon_map.h"
 #include "screenshot.h"
 #include "sky_lighting.h"
 #include "synthetic.h"
@@ -132,6 +133,53 @@ TEST_F(Render, HorizonModeShadowsThePlainBehindTheRidge) {
   small.width -= 1;
   small.codes.resize(size_t(small.width) * small.height * size_t(small.directions));
   EXPECT_THROW(scene.setHorizons(device(), small), std::invalid_argument);
+}
+
+// The device image holds every stored direction where the shader looks for
+// it: RGBA8 layers for 8-bit codes, BGRA4 layers (bits packed by
+// TerrainScene::setHorizons) for 4-bit ones. Flat ground whose horizons are
+// made up: every direction's horizon is 45 degrees or -2, in a pattern that
+// no swap of two channels or two layers keeps; a sun 30 degrees up in each stored
+// direction must be hidden exactly where its direction's horizon is high.
+TEST_F(Render, HorizonModeReadsEveryStoredDirection) {
+  Heightfield f;
+  f.width = f.height = 33;
+  f.cellSizeXM = f.cellSizeYM = 20;
+  f.z.assign(f.texelCount(), 100.0f);
+  TerrainScene scene(device(), f, bake(f), nullptr, 100000);
+  TerrainRenderer renderer(device(), 64, 64);
+  for (const int bits : {8, 4}) {
+    HorizonMap map;
+    map.width = f.width;
+    map.height = f.height;
+    map.directions = 16;
+    map.bits = bits;
+    // Per layer (R, G, B, A): 1000, 0100, 0010, 1101 — the layers differ, and
+    // for every two channels some layer holds different values in them.
+    const auto high = [](int k) {
+      constexpr bool kHigh[16] = {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 1, 1, 0, 1};
+      return kHigh[k];
+    };
+    for (size_t texel = 0; texel < f.texelCount(); ++texel) {
+      for (int k = 0; k < map.directions; ++k) {
+        map.codes.push_back(encodeHorizon(high(k) ? 0.7853982f : -0.0349066f, bits));
+      }
+    }
+    scene.setHorizons(device(), map);
+    for (int k = 0; k < map.directions; ++k) {
+      // Direction k is k * 22.5 degrees counter-clockwise from east: compass 90 - that.
+      FrameSettings s = topView(f, ShadingMode::Horizon, 90.0 - 22.5 * k, 30);
+      s.obscurance.enabled = false;
+      const float lit = red(renderer.render(scene, s, true), 32, 32);
+      s.mode = ShadingMode::BaselineLambert;
+      const float lambert = red(renderer.render(scene, s, true), 32, 32);
+      if (high(k)) {
+        EXPECT_LT(lit, 0.5f * lambert) << bits << "-bit codes, direction " << k << ": hidden";
+      } else {
+        EXPECT_GT(lit, 0.8f * lambert) << bits << "-bit codes, direction " << k << ": seen";
+      }
+    }
+  }
 }
 
 TEST_F(Render, ShadowsSoftenAsTheSunGrows) {

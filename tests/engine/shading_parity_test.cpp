@@ -196,7 +196,8 @@ TEST_F(ShadingParity, ExactModeReadsTheTableOfTheFramesSun) {
 }
 
 // horizonAtAzimuth of shaders/horizon.glsl against terrain/io/horizon_map.h:
-// random codes, azimuths all round (and beyond a turn both ways).
+// random 8-bit and 4-bit codes, azimuths all round (and beyond a turn both
+// ways).
 TEST_F(ShadingParity, HorizonInterpolationMatchesCpp) {
   struct HorizonQuery {
     glm::vec4 codes[4], azimuth;
@@ -206,20 +207,24 @@ TEST_F(ShadingParity, HorizonInterpolationMatchesCpp) {
   std::uniform_real_distribution<float> azimuth(-7.0f, 14.0f);
   std::vector<HorizonQuery> queries;
   std::vector<std::array<uint8_t, kMaxHorizonDirections>> codes;
-  std::vector<int> directions;
-  for (int i = 0; i < 4000; ++i) {
+  std::vector<int> directions, bits;
+  for (int i = 0; i < 8000; ++i) {
+    const int b = i < 4000 ? 8 : 4;
+    const int maxCode = (1 << b) - 1;
     std::array<uint8_t, kMaxHorizonDirections> c;
-    for (uint8_t& v : c) v = uint8_t(code(rng));
+    for (uint8_t& v : c) v = uint8_t(code(rng) % (maxCode + 1));
     const int n = 4 * (1 + i % 4);  // 4, 8, 12, 16
     // Every stored direction exactly, then anywhere.
-    const float a = i < 256 ? float(i / 4) * float(2 * std::numbers::pi / n) : azimuth(rng);
+    const float a =
+        i % 4000 < 256 ? float(i % 4000 / 4) * float(2 * std::numbers::pi / n) : azimuth(rng);
     codes.push_back(c);
     directions.push_back(n);
+    bits.push_back(b);
     HorizonQuery q;
     for (int l = 0; l < 4; ++l) {
-      q.codes[l] = glm::vec4(c[4 * l], c[4 * l + 1], c[4 * l + 2], c[4 * l + 3]) / 255.0f;
+      q.codes[l] = glm::vec4(c[4 * l], c[4 * l + 1], c[4 * l + 2], c[4 * l + 3]) / float(maxCode);
     }
-    q.azimuth = glm::vec4(a, float(n), 0, 0);
+    q.azimuth = glm::vec4(a, float(n), float(b), 0);
     queries.push_back(q);
   }
   const uint32_t count = static_cast<uint32_t>(queries.size());
@@ -239,10 +244,11 @@ TEST_F(ShadingParity, HorizonInterpolationMatchesCpp) {
   output.read(answers.data(), count * sizeof(float));
   double worst = 0;
   for (uint32_t i = 0; i < count; ++i) {
-    const float expected = horizonAtAzimuth(codes[i].data(), directions[i], queries[i].azimuth.x);
+    const float expected =
+        horizonAtAzimuth(codes[i].data(), directions[i], queries[i].azimuth.x, bits[i]);
     // Float rounding of the azimuth's position between directions.
     EXPECT_NEAR(answers[i], expected, 1e-5f)
-        << "query " << i << " azimuth " << queries[i].azimuth.x;
+        << "query " << i << " azimuth " << queries[i].azimuth.x << " bits " << bits[i];
     worst = std::max(worst, double(std::abs(answers[i] - expected)));
   }
   std::printf("horizon interpolation parity over %u inputs: worst %.3g rad\n", count, worst);

@@ -127,6 +127,63 @@ TEST(HorizonBake, StoredHorizonsFollowARayMarchInEveryDirection) {
   EXPECT_GT(shadowing, int(map.codes.size() / 4));
 }
 
+// 4-bit codes of sixteen directions: along the axes (where the sweep's
+// lines pass through texel centres and its horizon is the march's) each
+// stored code is the level nearest the marched horizon but at a level's
+// boundary; in every direction the 8-bit bake's horizon re-coded is the
+// same level, or (where the 8-bit rounding crossed a 4-bit boundary) the next.
+TEST(HorizonBake, FourBitCodesHoldTheMarchedHorizonToTheNearestLevel) {
+  SyntheticTerrainOptions s;
+  s.width = 48;
+  s.height = 40;
+  s.cellSizeM = 30;
+  s.amplitudeM = 800;
+  s.featureSizeTexels = 24;
+  const Heightfield field = makeSyntheticTerrain(s);
+  BakeOptions o;
+  o.azimuths = 64;
+  o.horizons = true;
+  o.horizonDirections = 16;
+  o.horizonBits = 4;
+  const HorizonMap four = bakeApertures(field, o).horizons;
+  ASSERT_EQ(four.bits, 4);
+  ASSERT_EQ(four.codes.size(), field.texelCount() * 16);
+  int checked = 0, raised = 0;
+  for (int k = 0; k < 16; k += 4) {  // east, north, west, south
+    const double phi = k * 2 * kPi / 16;
+    for (int row = 0; row < field.height; ++row) {
+      for (int col = 0; col < field.width; ++col) {
+        const double marched = marchedHorizon(field, col, row, phi);
+        const uint8_t code = four.texel(col, row)[k];
+        ASSERT_LE(code, 15);
+        const double stored = decodeHorizon(code, 4);
+        if (marched > kHorizonMinRad) ++raised;
+        // The nearest level, or its neighbour where the march lies within
+        // float rounding of the midpoint between two levels.
+        const double kept = std::min(marched, double(kHorizon4BitMaxRad));
+        const double nearest = decodeHorizon(encodeHorizon(float(marched), 4), 4);
+        if (std::abs(stored - nearest) > 1e-6) {
+          const double mid = 0.5 * (stored + nearest);
+          EXPECT_NEAR(kept, mid, 1e-5) << "direction " << k << " texel " << col << "," << row;
+        }
+        ++checked;
+      }
+    }
+  }
+  EXPECT_GT(raised, checked / 4) << "rough enough to mean something";
+  o.horizonBits = 8;
+  const HorizonMap eight = bakeApertures(field, o).horizons;
+  size_t same = 0;
+  for (size_t i = 0; i < eight.codes.size(); ++i) {
+    const int recoded = encodeHorizon(decodeHorizon(eight.codes[i]), 4);
+    ASSERT_LE(std::abs(int(four.codes[i]) - recoded), 1) << i;
+    same += size_t(four.codes[i] == recoded);
+  }
+  EXPECT_GT(same, eight.codes.size() * 95 / 100);
+  o.horizonBits = 6;
+  EXPECT_THROW(bakeApertures(field, o), std::invalid_argument);
+}
+
 // Sixteen directions hold the eight's in their even slots: the same sweeps.
 TEST(HorizonBake, SixteenDirectionsHoldTheEight) {
   SyntheticTerrainOptions s;

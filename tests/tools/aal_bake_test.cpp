@@ -100,9 +100,23 @@ TEST(AalBake, WritesTheDirectionalHorizons) {
   o.azimuths = 16;
   o.horizons = true;
   EXPECT_EQ(map.codes, bakeApertures(loadDem(dem.string()), o).horizons.codes);
+  // 16 directions of 4 bits.
+  const fs::path four = dir.path() / "four.horizons";
+  const auto r4 = runTool("aal-bake", quoted(dem) + " -o " + quoted(dir.path() / "c.exr") +
+                                          " --azimuths 16 --horizon-directions 16 --horizon-bits 4 "
+                                          "--horizons " +
+                                          quoted(four) + " -q");
+  ASSERT_EQ(r4.exitCode, 0) << r4.out;
+  const HorizonMap fourMap = readHorizonMap(four);
+  EXPECT_EQ(fourMap.bits, 4);
+  EXPECT_EQ(fourMap.directions, 16);
+  o.horizonDirections = 16;
+  o.horizonBits = 4;
+  EXPECT_EQ(fourMap.codes, bakeApertures(loadDem(dem.string()), o).horizons.codes);
   // Horizons the bake cannot give, or that would overwrite another output.
   for (const std::string& args :
        {" --azimuths 12 --horizons " + quoted(dir.path() / "h1"),
+        " --horizon-bits 6 --horizons " + quoted(dir.path() / "h1"),
         " --method rays --horizons " + quoted(dir.path() / "h2"),
         " --horizons " + quoted(dir.path() / "b.exr"),  // the -o of the same run
         " --tile-size 16 --max-distance 100 --horizons " + quoted(dir.path() / "h3")}) {

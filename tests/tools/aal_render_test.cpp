@@ -615,6 +615,25 @@ TEST(AalRender, HorizonModeTakesTheBakesDirectionalHorizons) {
   ASSERT_EQ(c.exitCode, 0) << c.out;
   EXPECT_TRUE(fs::exists(dir.path() / "cmp" / "horizon-error.png"));
   EXPECT_NE(c.out.find("horizon"), std::string::npos) << c.out;
+  // Several horizon maps: one reference, a horizon-STEM mode for each; only
+  // --compare takes more than one.
+  const fs::path four = dir.path() / "four.horizons";
+  ASSERT_EQ(runTool("aal-bake", quoted(kDem) + " -o " + quoted(dir.path() / "b.exr") +
+                                    " --horizon-directions 16 --horizon-bits 4 --horizons " +
+                                    quoted(four) + " -q")
+                .exitCode,
+            0);
+  const auto both = render(dir, common + "--horizons " + quoted(horizons) + " --horizons " +
+                                    quoted(four) + " --compare " + quoted(dir.path() / "cmp2") +
+                                    " --reference-sky-rays 16 --reference-sun-rays 4");
+  ASSERT_EQ(both.exitCode, 0) << both.out;
+  EXPECT_TRUE(fs::exists(dir.path() / "cmp2" / "horizon-a-error.png"));
+  EXPECT_TRUE(fs::exists(dir.path() / "cmp2" / "horizon-four-error.png"));
+  const auto twice =
+      render(dir, common + "--horizons " + quoted(horizons) + " --horizons " + quoted(four) +
+                      " --mode horizon -o " + quoted(dir.path() / "t.png"));
+  EXPECT_EQ(twice.exitCode, 2) << twice.out;
+  EXPECT_FALSE(fs::exists(dir.path() / "t.png"));
 
   const auto missing = render(dir, common + "--mode horizon -o " + quoted(dir.path() / "m.png"));
   EXPECT_EQ(missing.exitCode, 2) << missing.out;

@@ -45,6 +45,35 @@ TEST(HorizonMap, CodesKeepTheElevationToHalfAStepFinestNearTheHorizontal) {
   EXPECT_FLOAT_EQ(decodeHorizon(255), kHorizonMaxRad);
 }
 
+// 4-bit codes: the nearest of 16 levels in elevation, to 45 degrees.
+TEST(HorizonMap, FourBitCodesKeepTheNearestLevelUpTo45Degrees) {
+  for (double e = -0.03; e < 1.57; e += 1e-4) {
+    const uint8_t c = encodeHorizon(float(e), 4);
+    ASSERT_LE(c, 15);
+    const double kept = std::min(e, double(kHorizon4BitMaxRad));
+    for (int other = 0; other < 16; ++other) {
+      EXPECT_LE(std::abs(decodeHorizon(c, 4) - kept),
+                std::abs(decodeHorizon(uint8_t(other), 4) - kept) + 1e-6)
+          << e << " took code " << int(c) << ", " << other << " is nearer";
+    }
+  }
+  // Levels (degrees) -2, -1.19, 0.29, 2.20, 4.47, 7.05, 9.89, 12.98, ...,
+  // 40.38, 45: 1.9 apart at the horizontal, 3.1 at 10, 4.6 at 40.
+  const auto stepAt = [](double deg) {
+    const uint8_t c = encodeHorizon(float(deg * kPi / 180), 4);
+    return (decodeHorizon(uint8_t(c + 1), 4) - decodeHorizon(c, 4)) * 180 / kPi;
+  };
+  EXPECT_LT(stepAt(0), 2.0);
+  EXPECT_LT(stepAt(10), 3.1);
+  EXPECT_LT(stepAt(40), 4.63);
+  EXPECT_EQ(encodeHorizon(-1.0f, 4), 0);
+  EXPECT_EQ(encodeHorizon(std::nanf(""), 4), 0);
+  EXPECT_EQ(encodeHorizon(1.0f, 4), 15);
+  EXPECT_FLOAT_EQ(decodeHorizon(0, 4), kHorizonMinRad);
+  EXPECT_FLOAT_EQ(decodeHorizon(15, 4), kHorizon4BitMaxRad);
+  EXPECT_FLOAT_EQ(decodeHorizonUnorm(7.0f / 15.0f, 4), decodeHorizon(7, 4));
+}
+
 TEST(HorizonMap, AzimuthsBetweenStoredDirectionsInterpolateLinearly) {
   uint8_t codes[kHorizonDirections];
   for (int k = 0; k < kHorizonDirections; ++k) codes[k] = uint8_t(20 * k + 10);
@@ -83,8 +112,36 @@ TEST(HorizonMap, FilesRoundTripAndForeignOrTruncatedFilesAreRefused) {
   EXPECT_EQ(read.width, 5);
   EXPECT_EQ(read.height, 3);
   EXPECT_EQ(read.codes, map.codes);
+  EXPECT_EQ(read.bits, 8);
   EXPECT_EQ(std::filesystem::file_size(dir / "h.bin"),
-            std::string("aperture-horizons 1 5 3 8\n").size() + map.codes.size());
+            std::string("aperture-horizons 2 5 3 8 8\n").size() + map.codes.size());
+  // Version 1 (before 4-bit codes): 8 bits, no bits field.
+  {
+    std::ofstream old(dir / "v1.bin", std::ios::binary);
+    old << "aperture-horizons 1 5 3 8\n";
+    old.write(reinterpret_cast<const char*>(map.codes.data()), std::streamsize(map.codes.size()));
+  }
+  const HorizonMap v1 = readHorizonMap(dir / "v1.bin");
+  EXPECT_EQ(v1.bits, 8);
+  EXPECT_EQ(v1.codes, map.codes);
+  // 4-bit codes, one per byte; a code above 15 is refused.
+  HorizonMap four = map;
+  four.bits = 4;
+  for (uint8_t& c : four.codes) c &= 15;
+  writeHorizonMap(dir / "four.bin", four);
+  const HorizonMap readFour = readHorizonMap(dir / "four.bin");
+  EXPECT_EQ(readFour.bits, 4);
+  EXPECT_EQ(readFour.codes, four.codes);
+  four.codes[3] = 16;
+  EXPECT_THROW(writeHorizonMap(dir / "bad.bin", four), std::invalid_argument);
+  {
+    std::ofstream bad(dir / "bad.bin", std::ios::binary);
+    bad << "aperture-horizons 2 5 3 8 4\n";
+    bad.write(reinterpret_cast<const char*>(four.codes.data()), std::streamsize(four.codes.size()));
+  }
+  EXPECT_THROW(readHorizonMap(dir / "bad.bin"), std::runtime_error);
+  std::ofstream(dir / "bits.bin") << "aperture-horizons 2 5 3 8 6\n";
+  EXPECT_THROW(readHorizonMap(dir / "bits.bin"), std::runtime_error);
 
   std::filesystem::resize_file(dir / "h.bin", std::filesystem::file_size(dir / "h.bin") - 1);
   EXPECT_THROW(readHorizonMap(dir / "h.bin"), std::runtime_error);
