@@ -61,14 +61,20 @@ double diagonalHorizon(const Heightfield& f, int col, int row, int dc, int dr) {
   return std::atan(best);
 }
 
-TEST(HorizonBake, StoredHorizonsFollowARayMarchInEveryDirection) {
+// 48 x 40 fBm of 800 m relief on 30 m cells: most texels see a raised
+// horizon in some direction.
+Heightfield roughTerrain() {
   SyntheticTerrainOptions s;
   s.width = 48;
   s.height = 40;
   s.cellSizeM = 30;
   s.amplitudeM = 800;
   s.featureSizeTexels = 24;
-  const Heightfield field = makeSyntheticTerrain(s);
+  return makeSyntheticTerrain(s);
+}
+
+TEST(HorizonBake, StoredHorizonsFollowARayMarchInEveryDirection) {
+  const Heightfield field = roughTerrain();
   BakeOptions o;
   o.azimuths = 64;
   o.horizons = true;
@@ -133,13 +139,7 @@ TEST(HorizonBake, StoredHorizonsFollowARayMarchInEveryDirection) {
 // boundary; in every direction the 8-bit bake's horizon re-coded is the
 // same level, or (where the 8-bit rounding crossed a 4-bit boundary) the next.
 TEST(HorizonBake, FourBitCodesHoldTheMarchedHorizonToTheNearestLevel) {
-  SyntheticTerrainOptions s;
-  s.width = 48;
-  s.height = 40;
-  s.cellSizeM = 30;
-  s.amplitudeM = 800;
-  s.featureSizeTexels = 24;
-  const Heightfield field = makeSyntheticTerrain(s);
+  const Heightfield field = roughTerrain();
   BakeOptions o;
   o.azimuths = 64;
   o.horizons = true;

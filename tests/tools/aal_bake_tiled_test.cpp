@@ -22,7 +22,7 @@
 #include "aperture_map.h"
 #include "geotiff_writer.h"
 #include "run_tool.h"
-#include "synthetic.h"
+#include "synthetic_dem_file.h"
 
 namespace aal {
 namespace {
@@ -32,24 +32,8 @@ using test::quoted;
 using test::runTool;
 using test::TempDir;
 
-// A width x height synthetic DEM written as a projected float GeoTIFF.
 fs::path writeDem(const TempDir& dir, int width, int height, uint64_t seed = 1) {
-  SyntheticTerrainOptions s;
-  s.width = width;
-  s.height = height;
-  s.cellSizeM = 30;
-  s.seed = seed;
-  s.featureSizeTexels = 24;
-  const Heightfield field = makeSyntheticTerrain(s);
-  GeoReference geo;
-  geo.crs = CrsKind::Projected;
-  geo.epsg = 32616;
-  geo.originX = 500000;
-  geo.originY = 4000000;
-  geo.stepX = geo.stepY = 30;
-  const fs::path path = dir.path() / ("dem" + std::to_string(seed) + ".tif");
-  writeFloatGeoTiff(path.string(), width, height, field.z.data(), geo);
-  return path;
+  return test::writeSyntheticDem(dir, width, height, seed);
 }
 
 const std::string kOptions = " --azimuths 16 --max-distance 200 -q";
