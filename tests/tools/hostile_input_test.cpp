@@ -40,12 +40,16 @@ std::vector<std::string> entriesOf(const fs::path& folder) {
 }
 
 struct ToolCase {
-  std::string tool, arguments;  // arguments hold X where the hostile value goes
+  std::string tool, arguments;  // arguments hold kValue where the hostile value goes
 };
 
+// Not a plain letter: the temporary folder's random name in the same
+// arguments may hold any letter (an 'X' there once took the value).
+constexpr const char* kValue = "{value}";
+
 std::string withValue(std::string text, const std::string& value) {
-  const size_t at = text.find('X');
-  if (at != std::string::npos) text.replace(at, 1, value);
+  const size_t at = text.rfind(kValue);
+  if (at != std::string::npos) text.replace(at, std::string(kValue).size(), value);
   return text;
 }
 
@@ -53,13 +57,13 @@ TEST(HostileInput, NumbersThatAreNotFiniteExitWithTwoInEveryTool) {
   TempDir dir;
   const std::string dem = quoted(kDem), out = quoted(dir.path() / "out");
   const std::vector<ToolCase> cases = {
-      {"aal-bake", dem + " -o " + out + ".exr --max-distance X"},
-      {"aal-render", dem + " -o " + out + ".png --size 32x18 --fov X"},
-      {"aal-view", dem + " --sun-elevation X --sun-azimuth 10"},
-      {"aal-caps", "--table " + out + ".csv --max-radius X"},
-      {"aal-info", dem + " --cell-size X"},
-      {"aal-synth", "-o " + out + ".tif --amplitude X"},
-      {"aal-relief", dem + " -o " + out + ".tif --sun-elevation X"},
+      {"aal-bake", dem + " -o " + out + ".exr --max-distance {value}"},
+      {"aal-render", dem + " -o " + out + ".png --size 32x18 --fov {value}"},
+      {"aal-view", dem + " --sun-elevation {value} --sun-azimuth 10"},
+      {"aal-caps", "--table " + out + ".csv --max-radius {value}"},
+      {"aal-info", dem + " --cell-size {value}"},
+      {"aal-synth", "-o " + out + ".tif --amplitude {value}"},
+      {"aal-relief", dem + " -o " + out + ".tif --sun-elevation {value}"},
   };
   for (const ToolCase& c : cases) {
     for (const std::string value : {"nan", "inf", "-inf", "1e999", "-NaN"}) {
