@@ -32,21 +32,26 @@ void checkSkyViewFactorTiles(const Heightfield& geometry, bool skyViewFactor) {
   }
 }
 
+std::optional<float> markVoidsAsNodata(std::vector<float>& values, const Heightfield& field,
+                                       const TexelWindow& window) {
+  if (field.voidCount == 0 && !field.nodata) return std::nullopt;
+  const bool fits = field.nodata && std::isfinite(static_cast<float>(*field.nodata));
+  const float nodata =
+      fits ? static_cast<float>(*field.nodata) : std::numeric_limits<float>::quiet_NaN();
+  for (size_t i = 0; i < values.size(); ++i) {
+    const int col = window.col + static_cast<int>(i % static_cast<size_t>(window.width));
+    const int row = window.row + static_cast<int>(i / static_cast<size_t>(window.width));
+    if (field.isVoid(col, row)) values[i] = nodata;
+  }
+  return nodata;
+}
+
 void writeSkyViewFactorTile(const std::string& path, std::vector<float> values,
                             const Heightfield& field, const TexelWindow& window) {
   RasterWriteOptions options;
-  // The whole-DEM bake's rule (aal-bake's writeGisRaster): the same nodata
-  // value in every tile, so that the mosaic has one.
-  if (field.voidCount > 0 || field.nodata) {
-    const bool fits = field.nodata && std::isfinite(static_cast<float>(*field.nodata));
-    const float nodata =
-        fits ? static_cast<float>(*field.nodata) : std::numeric_limits<float>::quiet_NaN();
-    options.nodata = nodata;
-    for (size_t i = 0; i < values.size(); ++i) {
-      const int col = window.col + static_cast<int>(i % static_cast<size_t>(window.width));
-      const int row = window.row + static_cast<int>(i / static_cast<size_t>(window.width));
-      if (field.isVoid(col, row)) values[i] = nodata;
-    }
+  // The same nodata value in every tile, so that the mosaic has one.
+  if (const std::optional<float> nodata = markVoidsAsNodata(values, field, window)) {
+    options.nodata = *nodata;
   }
   GeoReference geo = field.geo;
   geo.originX += window.col * geo.stepX;

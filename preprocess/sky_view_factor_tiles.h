@@ -4,6 +4,7 @@
 // that GIS tools open as one raster placed like the DEM.
 #pragma once
 
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -24,6 +25,14 @@ std::string skyViewFactorTileName(int row, int column);
 // sky-view factor: the tiles are placed (and mosaicked) by the DEM's
 // georeferencing, which it must have. Nothing to check without the SVF.
 void checkSkyViewFactorTiles(const Heightfield& geometry, bool skyViewFactor);
+
+// The rule of every per-texel GeoTIFF a bake writes (--svf, --visible):
+// the DEM's voids hold nodata, the DEM's own nodata value when a float holds
+// it, else NaN. `values` are `window`'s texels of `field`, row-major.
+// Returns the nodata value, or none when the DEM has neither voids nor a
+// nodata value (then nothing is changed).
+std::optional<float> markVoidsAsNodata(std::vector<float>& values, const Heightfield& field,
+                                       const TexelWindow& window);
 
 // Writes `values` (the window's texels, row-major) as a float32 GeoTIFF
 // placed like `window` of the DEM: `field` (the DEM, or a band of its rows

@@ -7,7 +7,6 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
-#include <limits>
 #include <optional>
 #include <string>
 #include <thread>
@@ -40,16 +39,9 @@ void writeGisRaster(const std::string& path, std::vector<float> values,
                     const aal::Heightfield& field, bool cog) {
   aal::RasterWriteOptions options;
   options.cog = cog;
-  if (field.voidCount > 0 || field.nodata) {
-    const bool fits = field.nodata && std::isfinite(static_cast<float>(*field.nodata));
-    const float nodata =
-        fits ? static_cast<float>(*field.nodata) : std::numeric_limits<float>::quiet_NaN();
-    options.nodata = nodata;
-    for (size_t i = 0; i < values.size(); ++i) {
-      if (field.isVoid(static_cast<int>(i % field.width), static_cast<int>(i / field.width))) {
-        values[i] = nodata;
-      }
-    }
+  const aal::TexelWindow whole{.width = field.width, .height = field.height};
+  if (const std::optional<float> nodata = aal::markVoidsAsNodata(values, field, whole)) {
+    options.nodata = *nodata;
   }
   aal::writeFloatGeoTiff(path, field.width, field.height, values.data(), field.geo, options);
 }
