@@ -22,6 +22,7 @@
 #include "geotiff_writer.h"
 #include "run_tool.h"
 #include "synthetic.h"
+#include "synthetic_dem_file.h"
 
 namespace aal {
 namespace {
@@ -49,12 +50,7 @@ fs::path writeDem(const TempDir& dir, const std::string& name, int width, int he
     options.nodata = -9999.0;
     for (int i = 0; i < voids; ++i) field.z[static_cast<size_t>(i) * 97 % field.z.size()] = -9999;
   }
-  GeoReference geo;
-  geo.crs = geographic ? CrsKind::Geographic : CrsKind::Projected;
-  geo.epsg = geographic ? 4326 : 32616;
-  geo.originX = geographic ? -84.4 : 500000;
-  geo.originY = geographic ? 60.0 : 4000000;
-  geo.stepX = geo.stepY = geographic ? 1.0 / 1200 : 30;
+  const GeoReference geo = test::testGeoReference(geographic);
   const fs::path path = dir.path() / name;
   writeFloatGeoTiff(path.string(), width, height, field.z.data(), geo, options);
   return path;

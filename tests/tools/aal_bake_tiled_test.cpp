@@ -82,12 +82,7 @@ TEST(AalBakeTiled, BandsOfRowsEqualTheSingleFileBake) {
     s.seed = 4;
     s.featureSizeTexels = 16;
     const Heightfield field = makeSyntheticTerrain(s);
-    GeoReference geo;
-    geo.crs = geographic ? CrsKind::Geographic : CrsKind::Projected;
-    geo.epsg = geographic ? 4326 : 32616;
-    geo.originX = geographic ? -84.4 : 500000;
-    geo.originY = geographic ? 60.0 : 4000000;
-    geo.stepX = geo.stepY = geographic ? 1.0 / 1200 : 30;
+    const GeoReference geo = test::testGeoReference(geographic);
     const fs::path dem = dir.path() / (geographic ? "geo.tif" : "utm.tif");
     writeFloatGeoTiff(dem.string(), s.width, s.height, field.z.data(), geo);
     const std::string options = " --azimuths 32 --max-distance 250 -q";
