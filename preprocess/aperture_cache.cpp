@@ -3,6 +3,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <functional>
+#include <string>
 #include <system_error>
 
 #include "errors.h"
@@ -22,21 +23,50 @@ fs::path apertureCacheDirectory() {
   return fs::temp_directory_path() / "aperture-cache";
 }
 
-fs::path cachedAperturePath(const Heightfield& field, const BakeOptions& o) {
-  // The heights' checksum does not see the cell size: the name carries it.
-  char name[200];
-  std::snprintf(name, sizeof name, "%s-s%.9gx%.9g-%s-a%d-r%d-%s-c%d-k%.3f-d%.0f.exr",
-                heightfieldChecksum(field).c_str(), field.cellSizeXM, field.cellSizeYM,
+namespace {
+
+// The cache file's name: the heights' checksum, then the options. The
+// checksum does not see the cell size: the name carries it.
+std::string cacheName(const std::string& checksum, const Heightfield& field, const BakeOptions& o) {
+  char options[160];
+  std::snprintf(options, sizeof options, "-s%.9gx%.9g-%s-a%d-r%d-%s-c%d-k%.3f-d%.0f.exr",
+                field.cellSizeXM, field.cellSizeYM,
                 o.method == BakeMethod::Sweep ? "sweep" : "rays", o.azimuths, o.rays,
                 o.clampEdge ? "clamp" : "open", o.curvature ? 1 : 0, o.refraction, o.maxDistanceM);
-  return apertureCacheDirectory() / name;
+  return checksum + options;
+}
+
+// The entry a cache filled before issue 20 holds for this DEM: named by the
+// older checksum (heightfield_checksum.h), which is computed only when the
+// folder holds a name of that form with these options.
+fs::path legacyCachedAperture(const Heightfield& field, const BakeOptions& o) {
+  const std::string options = cacheName("", field, o);
+  std::error_code error;
+  for (const fs::directory_entry& entry : fs::directory_iterator(apertureCacheDirectory(), error)) {
+    const std::string name = entry.path().filename().string();
+    if (name.size() > options.size() &&
+        name.compare(name.size() - options.size(), options.size(), options) == 0 &&
+        isLegacyHeightChecksum(name.substr(0, name.size() - options.size()))) {
+      const fs::path legacy =
+          apertureCacheDirectory() / cacheName(legacyHeightfieldChecksum(field), field, o);
+      return fs::exists(legacy, error) ? legacy : fs::path();
+    }
+  }
+  return {};
+}
+
+}  // namespace
+
+fs::path cachedAperturePath(const Heightfield& field, const BakeOptions& o) {
+  return apertureCacheDirectory() / cacheName(heightfieldChecksum(field), field, o);
 }
 
 fs::path findCachedAperture(const Heightfield& field, const std::string& demPath,
                             const BakeOptions& options, std::string* whyUnusable) {
-  const fs::path path = cachedAperturePath(field, options);
+  fs::path path = cachedAperturePath(field, options);
   std::error_code error;
-  if (!fs::exists(path, error)) return {};
+  if (!fs::exists(path, error)) path = legacyCachedAperture(field, options);
+  if (path.empty()) return {};
   try {
     ApertureMapReader reader(path.string());
     checkApertureMatchesDem(reader.header(), path.string(), field, demPath);

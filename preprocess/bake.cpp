@@ -255,8 +255,8 @@ BakeResult bakeApertures(const Heightfield& field, const BakeOptions& o) {
   if (field.z.size() != field.texelCount()) {
     throw std::invalid_argument("bake: a band of rows bakes only as windows");
   }
-  // The DEM's checksum is one serial pass over its bytes (5 ms at 1024^2,
-  // 2 % of the bake): a task beside the sweeps rather than a wait after them.
+  // The DEM's checksum (its rows hashed in parallel) is a task beside the
+  // sweeps rather than a wait after them.
   std::string checksum;
   tbb::task_group beside;
   beside.run([&] { checksum = heightfieldChecksum(field); });

@@ -47,12 +47,6 @@ float ApertureMap::visibleFraction(size_t texel) const {
   return 1.0f - std::cos(texels[4 * texel + 3]);
 }
 
-std::string heightfieldChecksum(const Heightfield& field) {
-  HeightfieldHasher hasher(field.width, field.height);
-  hasher.add(field.z.data(), field.z.size());
-  return hasher.hex();
-}
-
 namespace {
 
 // The file format is the one OpenImageIO wrote before this file used OpenEXR
@@ -659,7 +653,8 @@ void checkApertureMatchesDem(const ApertureMapHeader& map, const std::string& ma
                      std::to_string(map.height) + ", DEM is " + std::to_string(field.width) + "x" +
                      std::to_string(field.height));
   }
-  if (map.info.sourceChecksum != heightfieldChecksum(field)) {
+  // A map baked before issue 20 carries the older checksum: computed for it.
+  if (!heightfieldMatchesChecksum(field, map.info.sourceChecksum)) {
     // Another z scale (a vertical exaggeration is one) changes every height:
     // say so, and how to get a matching map.
     if (map.info.zScale > 0 &&

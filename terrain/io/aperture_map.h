@@ -20,6 +20,7 @@
 #include <vector>
 
 #include "heightfield.h"
+#include "heightfield_checksum.h"
 #include "map_compression.h"
 
 namespace aal {
@@ -31,7 +32,7 @@ struct ApertureMapInfo {
   double cellSizeX = 0, cellSizeY = 0, zScale = 1;
   std::string source;  // file name of the DEM (no folder)
   int sourceWidth = 0, sourceHeight = 0;
-  std::string sourceChecksum;  // heightfieldChecksum() of the DEM, hex
+  std::string sourceChecksum;  // heightfieldChecksum() of the DEM (heightfield_checksum.h)
   std::string edge = "open";   // "open" or "clamp"
   bool curvature = false;
   double refraction = 0;    // used when curvature is on
@@ -50,10 +51,6 @@ struct ApertureMap {
   // Visible solid angle over 2 pi, in [0, 1]: 1 - cos r.
   float visibleFraction(size_t texel) const;
 };
-
-// 64-bit FNV-1a of the DEM's size and heights, as 16 hex digits: identifies
-// the DEM an aperture map was baked from (and keys bake caches).
-std::string heightfieldChecksum(const Heightfield& field);
 
 // Writes the map as EXR via a temporary file renamed into place. halfFloat
 // stores 16-bit floats (bent normal to ~1e-3, arc length to ~1e-3 rad). The

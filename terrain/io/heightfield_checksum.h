@@ -1,26 +1,55 @@
-// The DEM identity an aperture map carries (aal:sourceChecksum), computed
-// in parts: 64-bit FNV-1a over the width, the height and every height in
-// row order, as 16 hex digits. heightfieldChecksum (aperture_map.h) is the
-// same over a whole heightfield; a tiled bake of a DEM larger than memory
-// feeds it band by band.
+// The DEM identity an aperture map carries (aal:sourceChecksum,
+// docs/baking.md "Output"). Two versions:
+//
+// - "r2-" and 16 hex digits (issue 20; every bake writes it): 64-bit FNV-1a
+//   over the width and height (int32) and then, in row order, each row's
+//   XXH64 (seed 0) of its heights as float32, all little-endian. Rows are
+//   hashed apart, so any thread or MPI rank can hash any rows; only the
+//   combination (8 bytes a row) is in order.
+// - 16 hex digits, no prefix (maps baked before issue 20): 64-bit FNV-1a
+//   over the width, the height and every height in row order, byte by byte,
+//   which no two processes can share. Kept to check the maps users hold.
 #pragma once
 
 #include <cstddef>
 #include <cstdint>
 #include <string>
 
+#include "heightfield.h"
+
 namespace aal {
 
-class HeightfieldHasher {
+// What precedes the 16 hex digits of a row-hash checksum.
+constexpr const char* kRowHashChecksumPrefix = "r2-";
+
+// A row's part of the checksum: XXH64 of its `width` heights' bytes.
+uint64_t heightRowHash(const float* row, int width);
+// The checksum of a width x height DEM from its rows' hashes, in order.
+std::string rowHashChecksum(int width, int height, const uint64_t* rowHashes);
+
+// Whether `checksum` is the byte-serial FNV-1a of maps baked before issue 20
+// (16 hex digits without the version prefix).
+bool isLegacyHeightChecksum(const std::string& checksum);
+
+// The byte-serial checksum of maps baked before issue 20, fed in parts.
+class LegacyHeightfieldHasher {
  public:
-  HeightfieldHasher(int width, int height);
+  LegacyHeightfieldHasher(int width, int height);
   // The next `count` heights in row order.
   void add(const float* heights, size_t count);
   std::string hex() const;
 
  private:
-  void mix(const void* data, size_t bytes);
-  uint64_t hash_ = 0xcbf29ce484222325ull;
+  uint64_t hash_;
 };
+
+// The checksum every bake writes, of a field holding all its rows (the rows
+// hashed on all cores).
+std::string heightfieldChecksum(const Heightfield& field);
+// The checksum maps baked before issue 20 carry.
+std::string legacyHeightfieldChecksum(const Heightfield& field);
+// Whether `recorded` (a map's aal:sourceChecksum, of either version) is the
+// checksum of `field`: computed in the version `recorded` has.
+bool heightfieldMatchesChecksum(const Heightfield& field, const std::string& recorded);
 
 }  // namespace aal

@@ -125,5 +125,30 @@ TEST_F(ApertureCache, AnEntryWithoutAPixelChecksumIsRebaked) {
   expectRebaked(path, "no pixel checksum");
 }
 
+// A cache filled before issue 20 names its entries by the older checksum
+// (and they carry it): such an entry of this DEM is still used; one of
+// another DEM is not.
+TEST_F(ApertureCache, AnEntryNamedByTheOlderChecksumIsUsed) {
+  const fs::path entry = bakedEntry();
+  const std::string name = entry.filename().string();
+  ASSERT_EQ(name.rfind(heightfieldChecksum(field_) + "-s", 0), 0u) << name;
+  const std::string options = name.substr(name.find("-s"));
+  ApertureMap map = readApertureMap(entry.string());
+  map.info.sourceChecksum = legacyHeightfieldChecksum(field_);
+  const fs::path legacy = entry.parent_path() / (map.info.sourceChecksum + options);
+  writeApertureMap(legacy.string(), map, /*halfFloat=*/true);
+  fs::remove(entry);
+  std::string said;
+  EXPECT_EQ(lookUp(&said).path, legacy);
+  EXPECT_EQ(said, "");
+  EXPECT_FALSE(fs::exists(entry));
+
+  // The same name with another DEM's older checksum is not this DEM's.
+  fs::remove(legacy);
+  map.info.sourceChecksum = "0123456789abcdef";
+  writeApertureMap((entry.parent_path() / (map.info.sourceChecksum + options)).string(), map, true);
+  EXPECT_TRUE(findCachedAperture(field_, "wavy.tif", options_).empty());
+}
+
 }  // namespace
 }  // namespace aal

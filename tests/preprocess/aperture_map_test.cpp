@@ -93,6 +93,24 @@ TEST(ApertureMap, RefusesAMapOfAnotherDem) {
   EXPECT_THROW(checkApertureMatchesDem(r.aperture, "a.exr", bigger, "b.tif"), InputError);
 }
 
+// Maps baked before issue 20 carry the byte-serial checksum: still accepted
+// with their DEM (the older checksum is computed for them), refused with
+// another.
+TEST(ApertureMap, AMapWithTheOlderChecksumMatchesItsDemOnly) {
+  test::TempDir dir;
+  const Heightfield field = smallField();
+  BakeResult r = bakeApertures(field, BakeOptions{});
+  EXPECT_EQ(r.aperture.info.sourceChecksum, heightfieldChecksum(field));
+  r.aperture.info.sourceChecksum = legacyHeightfieldChecksum(field);
+  const std::string path = (dir.path() / "old.exr").string();
+  writeApertureMap(path, r.aperture, /*halfFloat=*/true);
+  ApertureMapReader reader(path);
+  EXPECT_EQ(reader.header().info.sourceChecksum, legacyHeightfieldChecksum(field));
+  EXPECT_NO_THROW(checkApertureMatchesDem(reader.header(), path, field, "small.tif"));
+  EXPECT_THROW(checkApertureMatchesDem(reader.header(), path, smallField(1.0), "other.tif"),
+               InputError);
+}
+
 TEST(ApertureMap, BadFilesGiveInputErrors) {
   test::TempDir dir;
   EXPECT_THROW(readApertureMap((dir.path() / "missing.exr").string()), InputError);
