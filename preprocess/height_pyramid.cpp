@@ -2,8 +2,13 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstddef>
 #include <limits>
 #include <stdexcept>
+#include <string>
+
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
 
 namespace aal {
 
@@ -38,11 +43,15 @@ HeightPyramid::HeightPyramid(int width, int height, int baseShift)
                   -std::numeric_limits<float>::infinity());
   base.mean.assign(base.max.size(), 0.0f);
   rowSums_.assign(static_cast<size_t>(base.width), 0.0);
+  filled_.assign(static_cast<size_t>(base.height), 0);
 }
 
 void HeightPyramid::addRows(const float* rows, int count) {
   if (count < 0 || rowsAdded_ + count > height_) {
     throw std::invalid_argument("height pyramid: more rows than the DEM has");
+  }
+  if (rowsAdded_ == 0 && filledBlockRows_ > 0) {
+    throw std::invalid_argument("height pyramid: rows in order after block rows");
   }
   Level& base = levels_.front();
   for (int i = 0; i < count; ++i) {
@@ -61,16 +70,74 @@ void HeightPyramid::addRows(const float* rows, int count) {
   if (complete()) buildCoarserLevels();
 }
 
-void HeightPyramid::fillBaseLevel(
-    const std::function<void(float* max, float* mean, size_t count)>& fill) {
+void HeightPyramid::addBlockRows(int firstRow, const float* rows, int count) {
+  Level& base = levels_.front();
+  const int blockTexels = 1 << base.shift;
+  if (rowsAdded_ != 0 || firstRow < 0 || count < 1 || firstRow + count > height_ ||
+      firstRow % blockTexels != 0 || (count % blockTexels != 0 && firstRow + count != height_)) {
+    throw std::invalid_argument("height pyramid: rows " + std::to_string(firstRow) + " + " +
+                                std::to_string(count) + " are not whole block rows");
+  }
+  const int firstBlock = firstRow >> base.shift;
+  const int blockRows = blocks(count, base.shift);
+  markFilled(firstBlock, blockRows);
+  // Each block row as addRows makes it: rows in order, columns in order,
+  // the sums in doubles, so the means are the same floats.
+  tbb::parallel_for(tbb::blocked_range<int>(0, blockRows), [&](const tbb::blocked_range<int>& r) {
+    std::vector<double> sums(static_cast<size_t>(base.width));
+    for (int b = r.begin(); b < r.end(); ++b) {
+      const int blockRow = firstBlock + b;
+      const int spanY = blockSpan(blockRow, base.shift, height_);
+      float* max = base.max.data() + static_cast<size_t>(blockRow) * base.width;
+      std::fill(sums.begin(), sums.end(), 0.0);
+      for (int i = 0; i < spanY; ++i) {
+        const float* z = rows + static_cast<size_t>(b * blockTexels + i) * width_;
+        for (int col = 0; col < width_; ++col) {
+          const int bx = col >> base.shift;
+          max[bx] = std::max(max[bx], z[col]);
+          sums[static_cast<size_t>(bx)] += z[col];
+        }
+      }
+      float* mean = base.mean.data() + static_cast<size_t>(blockRow) * base.width;
+      for (int bx = 0; bx < base.width; ++bx) {
+        const double texels = double(blockSpan(bx, base.shift, width_)) * spanY;
+        mean[bx] = static_cast<float>(sums[static_cast<size_t>(bx)] / texels);
+      }
+    }
+  });
+  if (complete()) buildCoarserLevels();
+}
+
+void HeightPyramid::setBaseBlockRows(int firstBlockRow, int count, const float* max,
+                                     const float* mean) {
   if (rowsAdded_ != 0) throw std::invalid_argument("height pyramid: rows were added already");
   Level& base = levels_.front();
-  fill(base.max.data(), base.mean.data(), base.max.size());
-  rowsAdded_ = height_;
-  buildCoarserLevels();
+  markFilled(firstBlockRow, count);
+  const size_t first = static_cast<size_t>(firstBlockRow) * base.width;
+  const size_t floats = static_cast<size_t>(count) * base.width;
+  std::copy(max, max + floats, base.max.begin() + static_cast<std::ptrdiff_t>(first));
+  std::copy(mean, mean + floats, base.mean.begin() + static_cast<std::ptrdiff_t>(first));
+  if (complete()) buildCoarserLevels();
+}
+
+void HeightPyramid::markFilled(int first, int count) {
+  const int blockRows = levels_.front().height;
+  if (complete()) throw std::invalid_argument("height pyramid: every block row is filled");
+  if (first < 0 || count < 0 || first + count > blockRows) {
+    throw std::invalid_argument("height pyramid: block rows outside the finest level");
+  }
+  for (int b = first; b < first + count; ++b) {
+    if (filled_[static_cast<size_t>(b)]) {
+      throw std::invalid_argument("height pyramid: block row " + std::to_string(b) +
+                                  " filled twice");
+    }
+  }
+  std::fill(filled_.begin() + first, filled_.begin() + first + count, char{1});
+  filledBlockRows_ += count;
 }
 
 void HeightPyramid::finishBlockRow(int blockRow) {
+  markFilled(blockRow, 1);
   Level& base = levels_.front();
   const int spanY = blockSpan(blockRow, base.shift, height_);
   for (int bx = 0; bx < base.width; ++bx) {
@@ -83,6 +150,7 @@ void HeightPyramid::finishBlockRow(int blockRow) {
 
 void HeightPyramid::buildCoarserLevels() {
   rowSums_ = {};
+  filled_ = {};
   for (size_t l = 1; l < levels_.size(); ++l) {
     const Level& fine = levels_[l - 1];
     Level& coarse = levels_[l];

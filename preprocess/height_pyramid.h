@@ -6,7 +6,6 @@
 #pragma once
 
 #include <cstddef>
-#include <functional>
 #include <vector>
 
 #include "heightfield.h"
@@ -31,13 +30,20 @@ class HeightPyramid {
   // Hands over the next `count` rows (width floats each), top to bottom.
   // After the last row the coarser levels are built.
   void addRows(const float* rows, int count);
-  bool complete() const { return rowsAdded_ == height_; }
-  // Instead of the rows: `fill` writes the finest level's maxima and means
-  // (`count` floats each, in place) as another pyramid of the same DEM holds
-  // them (level(baseShift())), then the coarser levels are built, the same
-  // bit for bit. How the ranks of an MPI bake take the pyramid that rank 0
-  // built (preprocess/mpi_tiled_bake.h).
-  void fillBaseLevel(const std::function<void(float* max, float* mean, size_t count)>& fill);
+  bool complete() const { return filledBlockRows_ == levels_.front().height; }
+  // Rows [firstRow, firstRow + count), in any order: firstRow must start a
+  // block row of the finest level (a multiple of 2^baseShift) and count be
+  // whole block rows unless the rows end at the DEM's last row. Fills those
+  // block rows of the finest level (in parallel), the same floats as
+  // addRows; after the last block row the coarser levels are built. How a
+  // pass over the DEM split over threads or MPI ranks fills the pyramid
+  // (preprocess/mpi_tiled_bake.h). Not mixed with addRows.
+  void addBlockRows(int firstRow, const float* rows, int count);
+  // Instead of their rows: block rows [firstBlockRow, firstBlockRow + count)
+  // of the finest level as another pyramid of the same DEM holds them (count
+  // x level width maxima and means, from level(baseShift())). How the ranks
+  // of an MPI bake take the block rows other ranks made.
+  void setBaseBlockRows(int firstBlockRow, int count, const float* max, const float* mean);
 
   int width() const { return width_; }
   int height() const { return height_; }
@@ -49,10 +55,14 @@ class HeightPyramid {
 
  private:
   void finishBlockRow(int blockRow);
+  // Counts block rows [first, first + count) as filled, once each.
+  void markFilled(int first, int count);
   void buildCoarserLevels();
 
   int width_, height_;
-  int rowsAdded_ = 0;
+  int rowsAdded_ = 0;  // by addRows
+  int filledBlockRows_ = 0;
+  std::vector<char> filled_;  // per block row of the finest level
   std::vector<Level> levels_;
   std::vector<double> rowSums_;  // the base level's block row being filled
 };

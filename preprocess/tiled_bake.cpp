@@ -18,6 +18,10 @@
 #include <utility>
 #include <vector>
 
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+#include <tbb/parallel_invoke.h>
+
 #include "atomic_file.h"
 #include "bake_terrain.h"
 #include "dem_loader.h"
@@ -267,8 +271,11 @@ namespace {
 // rows that holds the tile row and the terrain within the max distance.
 using TileRowTerrain = std::function<const Heightfield&(int firstRow, int rows)>;
 
-// `pyramid`: the whole DEM's, for a bake without a max distance.
+// `pyramid`: the whole DEM's, for a bake without a max distance;
+// `legacyChecksum`: the DEM's checksum as maps baked before issue 20 carry
+// it (tiledBakeChecksum).
 TiledBakeSummary bakeTiles(const Heightfield& geometry, const std::string& checksum,
+                           const std::function<std::string()>& legacyChecksum,
                            const TileRowTerrain& terrainFor, const HeightPyramid* pyramid,
                            const BakeOptions& bake, const TiledBakeOptions& tiled,
                            const std::string& folder) {
@@ -279,7 +286,8 @@ TiledBakeSummary bakeTiles(const Heightfield& geometry, const std::string& check
   // could sweep this one's temporaries or write a tile (issue 17).
   std::optional<TiledBakeLock> ownLock;
   if (!tiled.lock) ownLock.emplace(folder);
-  const ApertureTileIndex index = tiledBakeIndex(geometry, checksum, bake, tiled);
+  const ApertureTileIndex index =
+      tiledBakeIndex(geometry, tiledBakeChecksum(folder, checksum, legacyChecksum), bake, tiled);
   openTileFolder(folder, index);
 
   TiledBakeSummary summary;
@@ -346,8 +354,9 @@ TiledBakeSummary bakeTiled(const Heightfield& field, const BakeOptions& bake,
   if (!(bake.maxDistanceM > 0.0))
     pyramid.emplace(buildHeightPyramid(field, tiledBakePyramidShift(field, tiled)));
   return bakeTiles(
-      field, heightfieldChecksum(field), [&](int, int) -> const Heightfield& { return field; },
-      pyramid ? &*pyramid : nullptr, bake, tiled, folder);
+      field, heightfieldChecksum(field), [&] { return legacyHeightfieldChecksum(field); },
+      [&](int, int) -> const Heightfield& { return field; }, pyramid ? &*pyramid : nullptr, bake,
+      tiled, folder);
 }
 
 int bandHaloRows(const Heightfield& geometry, const BakeOptions& bake,
@@ -369,25 +378,80 @@ Heightfield readTileRowBand(const DemSource& source, const Heightfield& geometry
   return readDemRows(source, geometry, top, bottom - top);
 }
 
+std::optional<HeightPyramid> emptyTiledBakePyramid(const Heightfield& geometry,
+                                                   const BakeOptions& bake,
+                                                   const TiledBakeOptions& tiled) {
+  if (bake.maxDistanceM > 0.0) return std::nullopt;
+  return HeightPyramid(geometry.width, geometry.height, tiledBakePyramidShift(geometry, tiled));
+}
+
+int demPassChunkRows(const Heightfield& geometry, const HeightPyramid* pyramid) {
+  const int blockRows = pyramid ? 1 << pyramid->baseShift() : 1;
+  const size_t rows = (size_t{64} << 20) / (sizeof(float) * static_cast<size_t>(geometry.width));
+  const size_t blocks = std::max<size_t>(1, rows / static_cast<size_t>(blockRows));
+  return static_cast<int>(
+      std::min<size_t>(blocks * blockRows, static_cast<size_t>(geometry.height)));
+}
+
+void scanDemChunk(const DemSource& source, const Heightfield& geometry, int firstRow, int count,
+                  uint64_t* rowHashes, HeightPyramid* pyramid) {
+  const Heightfield rows = readDemRows(source, geometry, firstRow, count);
+  tbb::parallel_invoke(
+      [&] {
+        tbb::parallel_for(tbb::blocked_range<int>(0, count), [&](const tbb::blocked_range<int>& r) {
+          for (int i = r.begin(); i < r.end(); ++i) {
+            rowHashes[firstRow + i] = heightRowHash(
+                rows.z.data() + static_cast<size_t>(i) * geometry.width, geometry.width);
+          }
+        });
+      },
+      [&] {
+        if (pyramid) pyramid->addBlockRows(firstRow, rows.z.data(), count);
+      });
+}
+
 TiledBakeDemPass scanDemForTiledBake(const DemSource& source, const Heightfield& geometry,
                                      const BakeOptions& bake, const TiledBakeOptions& tiled) {
-  HeightfieldHasher hasher(geometry.width, geometry.height);
   TiledBakeDemPass pass;
-  if (!(bake.maxDistanceM > 0.0)) {
-    pass.pyramid.emplace(geometry.width, geometry.height, tiledBakePyramidShift(geometry, tiled));
+  pass.pyramid = emptyTiledBakePyramid(geometry, bake, tiled);
+  HeightPyramid* pyramid = pass.pyramid ? &*pass.pyramid : nullptr;
+  std::vector<uint64_t> rowHashes(static_cast<size_t>(geometry.height));
+  const int chunk = demPassChunkRows(geometry, pyramid);
+  for (int row = 0; row < geometry.height; row += chunk) {
+    scanDemChunk(source, geometry, row, std::min(chunk, geometry.height - row), rowHashes.data(),
+                 pyramid);
+    if (bake.progress) bake.progress(0.0);
+    if (bake.cancel && bake.cancel->load(std::memory_order_relaxed)) throw BakeCancelled();
   }
-  const int chunk =
-      std::max(1, static_cast<int>((size_t{64} << 20) / (sizeof(float) * geometry.width)));
+  pass.checksum = rowHashChecksum(geometry.width, geometry.height, rowHashes.data());
+  return pass;
+}
+
+std::string legacyDemChecksum(const DemSource& source, const Heightfield& geometry) {
+  LegacyHeightfieldHasher hasher(geometry.width, geometry.height);
+  const int chunk = demPassChunkRows(geometry, nullptr);
   for (int row = 0; row < geometry.height; row += chunk) {
     const Heightfield rows =
         readDemRows(source, geometry, row, std::min(chunk, geometry.height - row));
     hasher.add(rows.z.data(), rows.z.size());
-    if (pass.pyramid) pass.pyramid->addRows(rows.z.data(), rows.residentRows());
-    if (bake.progress) bake.progress(0.0);
-    if (bake.cancel && bake.cancel->load(std::memory_order_relaxed)) throw BakeCancelled();
   }
-  pass.checksum = hasher.hex();
-  return pass;
+  return hasher.hex();
+}
+
+std::string tiledBakeChecksum(const std::string& folder, const std::string& checksum,
+                              const std::function<std::string()>& legacyChecksum) {
+  for (const char* name : {"index.txt", kTiledBakeManifestName}) {
+    if (!fs::exists(fs::path(folder) / name)) continue;
+    std::string recorded;
+    try {
+      recorded = readApertureTileIndex(folder, name).map.info.sourceChecksum;
+    } catch (const std::exception&) {
+      return checksum;  // openTileFolder says what is wrong with it
+    }
+    if (!isLegacyHeightChecksum(recorded)) return checksum;
+    return legacyChecksum() == recorded ? recorded : checksum;
+  }
+  return checksum;
 }
 
 TiledBakeSummary bakeTiledInBands(const DemSource& source, const Heightfield& geometry,
@@ -404,7 +468,7 @@ TiledBakeSummary bakeTiledInBands(const DemSource& source, const Heightfield& ge
   const int halo = bandHaloRows(geometry, bake, tiled);
   Heightfield band;
   return bakeTiles(
-      geometry, pass.checksum,
+      geometry, pass.checksum, [&] { return legacyDemChecksum(source, geometry); },
       [&](int firstRow, int rows) -> const Heightfield& {
         band = Heightfield{};  // free the previous band first
         band = readTileRowBand(source, geometry, halo, firstRow, rows);

@@ -7,6 +7,8 @@
 // whole DEM (far_horizon.h), close to the in-memory bake. docs/baking.md.
 #pragma once
 
+#include <cstdint>
+#include <functional>
 #include <optional>
 #include <stdexcept>
 #include <string>
@@ -140,10 +142,35 @@ struct TiledBakeDemPass {
   std::string checksum;
   std::optional<HeightPyramid> pyramid;
 };
-// The pass, reading `source` in chunks of 64 MB of rows. Voids are an
-// InputError (readDemRows); bake.cancel is polled between chunks.
+// The pass, reading `source` in chunks of demPassChunkRows rows, each
+// hashed and added to the pyramid on all cores. Voids are an InputError
+// (readDemRows); bake.cancel is polled between chunks.
 TiledBakeDemPass scanDemForTiledBake(const DemSource& source, const Heightfield& geometry,
                                      const BakeOptions& bake, const TiledBakeOptions& tiled);
+// The parts of the pass, which an MPI bake shares among its ranks.
+// The pass's pyramid, empty; nothing for a bake with a max distance.
+std::optional<HeightPyramid> emptyTiledBakePyramid(const Heightfield& geometry,
+                                                   const BakeOptions& bake,
+                                                   const TiledBakeOptions& tiled);
+// Rows per chunk: about 64 MB, whole block rows of `pyramid`'s finest level
+// (when there is one), so that chunks can be read in any order and by any
+// process.
+int demPassChunkRows(const Heightfield& geometry, const HeightPyramid* pyramid);
+// Reads rows [firstRow, firstRow + count) (a chunk), puts their hashes
+// (heightRowHash) at rowHashes[firstRow...] and adds their block rows to
+// `pyramid` (addBlockRows) when there is one.
+void scanDemChunk(const DemSource& source, const Heightfield& geometry, int firstRow, int count,
+                  uint64_t* rowHashes, HeightPyramid* pyramid);
+// The checksum maps baked before issue 20 carry, of the DEM read in chunks:
+// serial, for a folder such a bake left unfinished.
+std::string legacyDemChecksum(const DemSource& source, const Heightfield& geometry);
+// The heights checksum a bake into `folder` records: `checksum`, unless
+// the folder's index.txt or manifest.txt records the older checksum
+// (isLegacyHeightChecksum) and `legacyChecksum()` (called then only) is
+// that: then the older one, so that a bake started before issue 20 resumes
+// as one bake. Call with the folder's lock held.
+std::string tiledBakeChecksum(const std::string& folder, const std::string& checksum,
+                              const std::function<std::string()>& legacyChecksum);
 // The index (and manifest) of the bake: the whole map's size and attributes.
 ApertureTileIndex tiledBakeIndex(const Heightfield& geometry, const std::string& checksum,
                                  const BakeOptions& bake, const TiledBakeOptions& tiled);

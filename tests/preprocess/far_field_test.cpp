@@ -97,26 +97,64 @@ TEST(HeightPyramid, BandsOfRowsBuildTheSamePyramid) {
   EXPECT_THROW(bands.addRows(field.z.data(), 1), std::invalid_argument);
 }
 
-// The ranks of an MPI bake receive rank 0's finest level and build the
-// coarser ones themselves: every level the same floats as rank 0's.
-TEST(HeightPyramid, FilledFromAnotherBaseLevelIsTheSame) {
+void expectSamePyramid(const HeightPyramid& have, const HeightPyramid& want) {
+  ASSERT_TRUE(have.complete());
+  ASSERT_EQ(have.coarsestShift(), want.coarsestShift());
+  for (int shift = want.baseShift(); shift <= want.coarsestShift(); ++shift) {
+    EXPECT_EQ(have.level(shift).max, want.level(shift).max) << "shift " << shift;
+    EXPECT_EQ(have.level(shift).mean, want.level(shift).mean) << "shift " << shift;
+  }
+}
+
+// A pass split over threads or MPI ranks hands over whole block rows in any
+// order: the same pyramid, bit for bit, as the rows in order, also when
+// the DEM's height is not a multiple of the block (46 rows, blocks of 4 and
+// 8: a last block row of 2 and 6 rows).
+TEST(HeightPyramid, BlockRowsInAnyOrderBuildTheSamePyramid) {
+  const Heightfield field = fbm(75, 46, 800);
+  for (int shift : {2, 3}) {
+    SCOPED_TRACE(shift);
+    const HeightPyramid whole = buildHeightPyramid(field, shift);
+    const int block = 1 << shift;
+    // Chunks of 1, 2 and 3 block rows, last chunk first.
+    std::vector<std::pair<int, int>> chunks;  // first row, rows
+    for (int row = 0, n = 1; row < field.height; row += n * block, n = n % 3 + 1) {
+      chunks.emplace_back(row, std::min(n * block, field.height - row));
+    }
+    std::reverse(chunks.begin(), chunks.end());
+    HeightPyramid parts(field.width, field.height, shift);
+    for (const auto& [row, rows] : chunks) {
+      EXPECT_FALSE(parts.complete());
+      parts.addBlockRows(row, field.z.data() + static_cast<size_t>(row) * field.width, rows);
+    }
+    expectSamePyramid(parts, whole);
+    // Not whole block rows, or twice.
+    HeightPyramid bad(field.width, field.height, shift);
+    EXPECT_THROW(bad.addBlockRows(1, field.z.data(), block), std::invalid_argument);
+    EXPECT_THROW(bad.addBlockRows(0, field.z.data(), block + 1), std::invalid_argument);
+    bad.addBlockRows(0, field.z.data(), block);
+    EXPECT_THROW(bad.addBlockRows(0, field.z.data(), block), std::invalid_argument);
+    EXPECT_THROW(bad.addRows(field.z.data(), 1), std::invalid_argument);
+  }
+}
+
+// The ranks of an MPI bake take the block rows other ranks made and build
+// the coarser levels themselves: every level the same floats.
+TEST(HeightPyramid, BlockRowsFromAnotherPyramidAreTheSame) {
   const Heightfield field = fbm(75, 46, 800);
   const HeightPyramid whole = buildHeightPyramid(field, 1);
+  const HeightPyramid::Level& base = whole.level(1);
+  ASSERT_EQ(base.height, 23);
   HeightPyramid copy(field.width, field.height, 1);
-  copy.fillBaseLevel([&](float* max, float* mean, size_t count) {
-    const HeightPyramid::Level& base = whole.level(1);
-    ASSERT_EQ(count, base.max.size());
-    std::copy(base.max.begin(), base.max.end(), max);
-    std::copy(base.mean.begin(), base.mean.end(), mean);
-  });
-  ASSERT_TRUE(copy.complete());
-  ASSERT_EQ(copy.coarsestShift(), whole.coarsestShift());
-  for (int shift = whole.baseShift(); shift <= whole.coarsestShift(); ++shift) {
-    EXPECT_EQ(copy.level(shift).max, whole.level(shift).max) << "shift " << shift;
-    EXPECT_EQ(copy.level(shift).mean, whole.level(shift).mean) << "shift " << shift;
-  }
-  // Filled once, and never after rows.
-  EXPECT_THROW(copy.fillBaseLevel([](float*, float*, size_t) {}), std::invalid_argument);
+  // Block rows 10-22 given, 0-9 made from their rows.
+  const size_t given = static_cast<size_t>(10) * base.width;
+  copy.setBaseBlockRows(10, 13, base.max.data() + given, base.mean.data() + given);
+  EXPECT_FALSE(copy.complete());
+  copy.addBlockRows(0, field.z.data(), 20);
+  expectSamePyramid(copy, whole);
+  // Filled once.
+  EXPECT_THROW(copy.setBaseBlockRows(0, 1, base.max.data(), base.mean.data()),
+               std::invalid_argument);
 }
 
 // A window's lines walked from windowReachM before it: each texel's horizon

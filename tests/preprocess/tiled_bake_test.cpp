@@ -299,6 +299,47 @@ TEST(TiledBake, AFolderOfAnotherBakeIsAnError) {
                          "tile_0000_0000.exr", "a tile of another bake was accepted");
 }
 
+// A folder a bake before issue 20 left unfinished records the byte-serial
+// checksum in its manifest and tiles: the same bake of the same DEM resumes
+// it with that checksum (the folder stays one bake); another DEM is
+// refused. A new folder records the row-hash checksum.
+TEST(TiledBake, AFolderWithTheOlderChecksumResumesAsOneBake) {
+  test::TempDir dir;
+  const Heightfield field = fbmField(100, 70);
+  const BakeOptions o = distanceLimited(100);
+  TiledBakeOptions t;
+  t.tileSize = 32;  // 4 x 3 tiles
+  const std::string folder = (dir.path() / "tiles").string();
+  bakeTiled(field, o, t, folder);
+  const std::string legacy = legacyHeightfieldChecksum(field);
+  ApertureTileIndex index = readApertureTileIndex(folder);
+  EXPECT_EQ(index.map.info.sourceChecksum, heightfieldChecksum(field));
+  // The folder as the older bake would have left it, a tile short.
+  index.map.info.sourceChecksum = legacy;
+  writeApertureTileIndex(folder, index, kTiledBakeManifestName);
+  for (int i = 0; i < 12; ++i) {
+    const std::string tile = (fs::path(folder) / apertureTileName(i / 4, i % 4)).string();
+    ApertureMap map = readApertureMap(tile);
+    map.info.sourceChecksum = legacy;
+    writeApertureMap(tile, map, t.halfFloat, t.compression);
+  }
+  fs::remove(fs::path(folder) / "index.txt");
+  fs::remove(fs::path(folder) / apertureTileName(1, 2));
+
+  Heightfield other = field;  // one height differs
+  other.z[4321] += 0.5f;
+  EXPECT_THROW(bakeTiled(other, o, t, folder), InputError);
+  const TiledBakeSummary resumed = bakeTiled(field, o, t, folder);
+  EXPECT_EQ(resumed.baked, 1);
+  EXPECT_EQ(resumed.resumed, 11);
+  EXPECT_EQ(readApertureTileIndex(folder).map.info.sourceChecksum, legacy);
+  ApertureMapReader reader(folder);
+  EXPECT_EQ(reader.header().info.sourceChecksum, legacy);
+  reader.verify();  // every tile, the new one too, belongs to the index
+  EXPECT_NO_THROW(checkApertureMatchesDem(reader.header(), folder, field, "fbm.tif"));
+  EXPECT_THROW(checkApertureMatchesDem(reader.header(), folder, other, "b.tif"), InputError);
+}
+
 TEST(TiledBake, CorruptOrMissingTilesAreNamed) {
   test::TempDir dir;
   const Heightfield field = fbmField(100, 70);
