@@ -2,18 +2,23 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cstdint>
 #include <cstring>
 #include <exception>
 #include <filesystem>
 #include <memory>
 #include <mutex>
 #include <optional>
+#include <stdexcept>
+#include <string>
 #include <thread>
 #include <utility>
+#include <vector>
 
 #include "atomic_file.h"
 #include "dem_source.h"
 #include "errors.h"
+#include "heightfield_checksum.h"
 #include "sky_view_factor_tiles.h"
 
 namespace aal {
@@ -22,6 +27,7 @@ namespace {
 
 constexpr int kRequestTag = 1;  // rank -> 0: {outcome of its last tile, its band's tile row}
 constexpr int kAssignTag = 2;   // 0 -> rank: {tile row, column}, or {-1, -1}: no more
+constexpr int kFailureTag = 3;  // rank -> 0: why it failed before the handout
 constexpr int kNoOutcome = 0, kBaked = 1, kResumed = 2;
 
 // Waits for `request` without spinning: Open MPI's blocking calls poll at
@@ -43,12 +49,72 @@ void broadcastPolitely(void* data, int count, MPI_Datatype type, MPI_Comm comm) 
   waitPolitely(request);
 }
 
-// MPI counts are ints: a pyramid of a continental DEM holds more floats.
-void broadcastFloats(float* data, size_t count, MPI_Comm comm) {
+// MPI counts are ints: the block rows of a chunk of a DEM a million columns
+// wide may hold more floats.
+void broadcastFloats(float* data, size_t count, int root, MPI_Comm comm) {
   constexpr size_t kChunk = size_t{1} << 28;
   for (size_t first = 0; first < count; first += kChunk) {
-    MPI_Bcast(data + first, static_cast<int>(std::min(kChunk, count - first)), MPI_FLOAT, 0, comm);
+    MPI_Bcast(data + first, static_cast<int>(std::min(kChunk, count - first)), MPI_FLOAT, root,
+              comm);
   }
+}
+
+// How a step before the handout ended on a rank: 0, an exit code (1 or 2),
+// or kInterrupted.
+constexpr int kInterrupted = 3;
+
+int statusOf(const std::exception_ptr& error) {
+  if (!error) return 0;
+  try {
+    std::rethrow_exception(error);
+  } catch (const BakeCancelled&) {
+    return kInterrupted;
+  } catch (const InputError&) {
+    return 2;
+  } catch (...) {
+    return 1;
+  }
+}
+
+std::string messageOf(const std::exception_ptr& error) {
+  try {
+    std::rethrow_exception(error);
+  } catch (const std::exception& e) {
+    return e.what();
+  } catch (...) {
+    return "unknown error";
+  }
+}
+
+// Every rank's outcome of a step before the handout, agreed on. When a rank
+// failed, the lowest such rank's error is thrown on rank 0, which says it
+// (once for the job), and MpiPeerFailed on the others.
+void agreeBeforeHandout(MPI_Comm comm, int rank, int ranks, const std::exception_ptr& error) {
+  int first = error ? rank : ranks;
+  MPI_Request request;
+  MPI_Iallreduce(MPI_IN_PLACE, &first, 1, MPI_INT, MPI_MIN, comm, &request);
+  waitPolitely(request);
+  if (first == ranks) return;
+  int status = rank == first ? statusOf(error) : 0;
+  std::string message = rank == first ? messageOf(error) : std::string();
+  if (first != 0 && rank == first) {
+    MPI_Send(&status, 1, MPI_INT, 0, kFailureTag, comm);
+    MPI_Send(message.data(), static_cast<int>(message.size()), MPI_CHAR, 0, kFailureTag, comm);
+  } else if (first != 0 && rank == 0) {
+    MPI_Recv(&status, 1, MPI_INT, first, kFailureTag, comm, MPI_STATUS_IGNORE);
+    MPI_Status probe;
+    MPI_Probe(first, kFailureTag, comm, &probe);
+    int length = 0;
+    MPI_Get_count(&probe, MPI_CHAR, &length);
+    message.resize(static_cast<size_t>(length));
+    MPI_Recv(message.data(), length, MPI_CHAR, first, kFailureTag, comm, MPI_STATUS_IGNORE);
+  }
+  broadcastPolitely(&status, 1, MPI_INT, comm);
+  if (rank != 0) throw MpiPeerFailed(status == kInterrupted ? 1 : status);
+  if (first == 0) std::rethrow_exception(error);
+  if (status == kInterrupted) throw BakeCancelled();
+  if (status == 2) throw InputError(message);  // a void, say: the DEM's fault, not the rank's
+  throw std::runtime_error("rank " + std::to_string(first) + ": " + message);
 }
 
 // The tiles not yet handed out. A rank is given the next tile of the tile
@@ -229,17 +295,89 @@ void handOutAndBake(MPI_Comm comm, int rank, int ranks, const ApertureTileIndex&
   counts[static_cast<size_t>(ranks) + 1] = rootBakes ? 1 : 0;
 }
 
-int exitCodeOf(const std::exception_ptr& error) {
-  try {
-    std::rethrow_exception(error);
-  } catch (const InputError&) {
-    return 2;
-  } catch (...) {
-    return 1;
-  }
+}  // namespace
+
+int evenDemChunkOwner(int chunk, int chunks, int ranks) {
+  // Rank r reads chunks [r * chunks / ranks, (r + 1) * chunks / ranks).
+  return static_cast<int>((static_cast<int64_t>(chunk + 1) * ranks - 1) / chunks);
 }
 
-}  // namespace
+TiledBakeDemPass sharedDemPass(MPI_Comm comm, const DemSource& source, const Heightfield& geometry,
+                               const BakeOptions& bake, const TiledBakeOptions& tiled,
+                               const DemPassShares& shares) {
+  int rank = 0, ranks = 1;
+  MPI_Comm_rank(comm, &rank);
+  MPI_Comm_size(comm, &ranks);
+  TiledBakeDemPass pass;
+  pass.pyramid = emptyTiledBakePyramid(geometry, bake, tiled);
+  HeightPyramid* pyramid = pass.pyramid ? &*pass.pyramid : nullptr;
+  const int blockTexels = pyramid ? 1 << pyramid->baseShift() : 1;
+  const int chunkRows = shares.chunkRows > 0
+                            ? std::min(geometry.height, (shares.chunkRows + blockTexels - 1) /
+                                                            blockTexels * blockTexels)
+                            : demPassChunkRows(geometry, pyramid);
+  const int chunks = (geometry.height + chunkRows - 1) / chunkRows;
+  const auto rowsOf = [&](int chunk) {
+    return std::min(chunkRows, geometry.height - chunk * chunkRows);
+  };
+
+  // This rank's chunks: their rows' hashes (0 for the others' rows) and
+  // their block rows of the pyramid.
+  std::vector<uint64_t> rowHashes(static_cast<size_t>(geometry.height), 0);
+  std::vector<int> owners(static_cast<size_t>(chunks));
+  std::exception_ptr error;
+  try {
+    for (int chunk = 0; chunk < chunks; ++chunk) {
+      owners[static_cast<size_t>(chunk)] = shares.owner(chunk, chunks, ranks);
+      if (owners[static_cast<size_t>(chunk)] < 0 || owners[static_cast<size_t>(chunk)] >= ranks) {
+        throw std::invalid_argument("pass over the DEM: chunk " + std::to_string(chunk) +
+                                    " has no rank");
+      }
+    }
+    for (int chunk = 0; chunk < chunks; ++chunk) {
+      if (owners[static_cast<size_t>(chunk)] != rank) continue;
+      scanDemChunk(source, geometry, chunk * chunkRows, rowsOf(chunk), rowHashes.data(), pyramid);
+      if (bake.progress) bake.progress(0.0);
+      if (bake.cancel && bake.cancel->load(std::memory_order_relaxed)) throw BakeCancelled();
+    }
+  } catch (...) {
+    error = std::current_exception();
+  }
+  agreeBeforeHandout(comm, rank, ranks, error);
+
+  // Each row's hash is on one rank, 0 on the others: their sum is the hash.
+  MPI_Request request;
+  MPI_Ireduce(rank == 0 ? MPI_IN_PLACE : rowHashes.data(), rowHashes.data(), geometry.height,
+              MPI_UINT64_T, MPI_SUM, 0, comm, &request);
+  waitPolitely(request);
+  if (rank == 0) pass.checksum = rowHashChecksum(geometry.width, geometry.height, rowHashes.data());
+
+  // Every chunk's block rows from its owner to the others.
+  if (pyramid) {
+    const int shift = pyramid->baseShift();
+    const HeightPyramid::Level& base = pyramid->level(shift);
+    std::vector<float> max, mean;
+    for (int chunk = 0; chunk < chunks; ++chunk) {
+      const int from = owners[static_cast<size_t>(chunk)];
+      const int firstBlockRow = (chunk * chunkRows) >> shift;
+      const int blockRows = ((rowsOf(chunk) - 1) >> shift) + 1;
+      const size_t count = static_cast<size_t>(blockRows) * base.width;
+      if (rank == from) {
+        // MPI_Bcast takes the root's buffer as non-const; it only reads it.
+        const size_t first = static_cast<size_t>(firstBlockRow) * base.width;
+        broadcastFloats(const_cast<float*>(base.max.data() + first), count, from, comm);
+        broadcastFloats(const_cast<float*>(base.mean.data() + first), count, from, comm);
+      } else {
+        max.resize(count);
+        mean.resize(count);
+        broadcastFloats(max.data(), count, from, comm);
+        broadcastFloats(mean.data(), count, from, comm);
+        pyramid->setBaseBlockRows(firstBlockRow, blockRows, max.data(), mean.data());
+      }
+    }
+  }
+  return pass;
+}
 
 MpiTiledBakeSummary bakeTiledMpi(MPI_Comm comm, const DemSource& source,
                                  const Heightfield& geometry, const BakeOptions& bake,
@@ -252,51 +390,44 @@ MpiTiledBakeSummary bakeTiledMpi(MPI_Comm comm, const DemSource& source,
   // sweep at every write would take a live rank on another host for dead.
   setRemoveDeadTemporariesOnWrite(false);
 
-  // Rank 0: the lock, the pass over the DEM and the folder.
+  // Rank 0 checks the options and locks an existing folder before any rank
+  // reads the DEM (a busy folder fails at once); a new folder is made and
+  // locked after the pass (a refused DEM leaves no folder).
   const auto start = std::chrono::steady_clock::now();
   std::optional<TiledBakeLock> lock;
-  TiledBakeDemPass pass;
   std::exception_ptr error;
+  namespace fs = std::filesystem;
   if (rank == 0) {
     try {
       checkTiledBakeOptions(bake, tiled);
       checkSkyViewFactorTiles(geometry, bake.skyViewFactor);
-      namespace fs = std::filesystem;
-      // An existing folder is locked before the pass (a busy one fails at
-      // once), a new one after it (a refused DEM leaves no folder).
       if (!tiled.lock && fs::is_directory(folder)) lock.emplace(folder);
-      pass = scanDemForTiledBake(source, geometry, bake, tiled);
+    } catch (...) {
+      error = std::current_exception();
+    }
+  }
+  agreeBeforeHandout(comm, rank, ranks, error);
+
+  // Every rank: its share of the pass; the whole pyramid.
+  TiledBakeDemPass pass = sharedDemPass(comm, source, geometry, bake, tiled);
+  const bool farField = !(bake.maxDistanceM > 0.0);
+
+  // Rank 0: the folder, then the checksum to every rank.
+  if (rank == 0) {
+    try {
       createTileFolder(folder);
       if (!tiled.lock && !lock) lock.emplace(folder);
+      pass.checksum = tiledBakeChecksum(folder, pass.checksum,
+                                        [&] { return legacyDemChecksum(source, geometry); });
       openTileFolder(folder, tiledBakeIndex(geometry, pass.checksum, bake, tiled));
     } catch (...) {
       error = std::current_exception();
     }
   }
-  int status = error ? exitCodeOf(error) : 0;
-  broadcastPolitely(&status, 1, MPI_INT, comm);
-  if (status != 0) {
-    if (rank == 0) std::rethrow_exception(error);
-    throw MpiPeerFailed(status);
-  }
-
-  // The checksum and the pyramid's finest level to every rank.
+  agreeBeforeHandout(comm, rank, ranks, error);
   char checksum[64] = {};
   if (rank == 0) std::strncpy(checksum, pass.checksum.c_str(), sizeof checksum - 1);
-  MPI_Bcast(checksum, sizeof checksum, MPI_CHAR, 0, comm);
-  const bool farField = !(bake.maxDistanceM > 0.0);
-  if (farField && rank != 0) {
-    pass.pyramid.emplace(geometry.width, geometry.height, tiledBakePyramidShift(geometry, tiled));
-    pass.pyramid->fillBaseLevel([&](float* max, float* mean, size_t count) {
-      broadcastFloats(max, count, comm);
-      broadcastFloats(mean, count, comm);
-    });
-  } else if (farField) {
-    // MPI_Bcast takes the root's buffer as non-const; it only reads it.
-    const HeightPyramid::Level& base = pass.pyramid->level(pass.pyramid->baseShift());
-    broadcastFloats(const_cast<float*>(base.max.data()), base.max.size(), comm);
-    broadcastFloats(const_cast<float*>(base.mean.data()), base.mean.size(), comm);
-  }
+  broadcastPolitely(checksum, sizeof checksum, MPI_CHAR, comm);
   MpiTiledBakeSummary summary;
   summary.ranks = ranks;
   summary.demPassSeconds =

@@ -2,11 +2,13 @@
 // docs/baking.md, "Across machines: MPI"): the same folder, bit for bit, as
 // the single-process tiled bake (tiled_bake.h). Built only with -DAAL_MPI=ON.
 //
-// Rank 0 takes the folder's lock, makes one pass over the DEM (its checksum
-// and, without a max distance, the far field's pyramid), opens the folder
-// (refusing another bake's, removing dead temporaries, writing the
-// manifest) and broadcasts the checksum and the pyramid's finest level.
-// Then it hands the tiles out as ranks ask for them: a rank gets the next
+// Rank 0 checks the options and takes the folder's lock. The ranks share
+// one pass over the DEM (sharedDemPass): each reads its share of the rows,
+// hashes them and builds their block rows of the far field's pyramid; the
+// row hashes go to rank 0, which makes the checksum, and every rank gets
+// every block row. Rank 0 opens the folder (refusing another bake's,
+// removing dead temporaries, writing the manifest) and broadcasts the
+// checksum. Then it hands the tiles out as ranks ask for them: a rank gets the next
 // tile of the tile row whose band it holds, else the first tile row nobody
 // started, else a tile of the row with the most left. Each rank reads its
 // tile row's band of the DEM through GDAL (readTileRowBand: never the whole
@@ -58,7 +60,7 @@ struct MpiTiledBakeSummary {
   int ranks = 1;
   bool rootBakes = false;        // rank 0 baked tiles too
   std::vector<int> bakedByRank;  // tiles baked (not resumed) per rank
-  double demPassSeconds = 0.0;   // rank 0's pass over the DEM, and the broadcast
+  double demPassSeconds = 0.0;   // the pass over the DEM, with the folder's opening
 };
 
 struct MpiTiledBakeHooks {
@@ -68,6 +70,33 @@ struct MpiTiledBakeHooks {
   std::function<void(int row, int column)> beforeTile;
 };
 
+// Which rank reads chunk `chunk` of `chunks` in a pass shared by `ranks`.
+using DemChunkOwner = std::function<int(int chunk, int chunks, int ranks)>;
+// The default: contiguous runs of chunks, as even as they come.
+int evenDemChunkOwner(int chunk, int chunks, int ranks);
+
+// How the pass's rows are shared; the tests choose other shares.
+struct DemPassShares {
+  DemChunkOwner owner = evenDemChunkOwner;
+  // Rows per chunk, rounded up to whole block rows of the pyramid; 0:
+  // demPassChunkRows.
+  int chunkRows = 0;
+};
+
+// Collective over `comm`: the pass over the DEM (scanDemForTiledBake's),
+// shared. The DEM is read in chunks of demPassChunkRows rows (whole block
+// rows of the pyramid); shares.owner says who reads which. Each rank hashes its
+// chunks' rows and fills their block rows of the pyramid's finest level;
+// the hashes are summed into rank 0, which alone returns the checksum, and
+// each chunk's block rows are broadcast from its owner, so that every rank
+// returns the whole pyramid (without a max distance), the same floats as
+// one process's pass. bake.cancel is polled between chunks. An error on
+// any rank (voids are an InputError; BakeCancelled) is thrown on rank 0,
+// the lowest failing rank's, and MpiPeerFailed on the others.
+TiledBakeDemPass sharedDemPass(MPI_Comm comm, const DemSource& source, const Heightfield& geometry,
+                               const BakeOptions& bake, const TiledBakeOptions& tiled,
+                               const DemPassShares& shares = {});
+
 // Collective over `comm`: every rank calls it with the same arguments
 // (`geometry` is demGeometry of `source` on every rank). Returns the same
 // summary on every rank. Errors before the tiles are handed out (bad
@@ -76,8 +105,8 @@ struct MpiTiledBakeHooks {
 // is thrown as MpiTileFailed on the rank it happened on.
 // Memory per rank: one band (4 bytes per texel of the tile row and
 // bandHaloRows above and below it, every column), one tile's sums and the
-// pyramid (~0.67 bytes per DEM texel); rank 0's pass reads the DEM in 64 MB
-// chunks of rows.
+// pyramid (~0.67 bytes per DEM texel); during the pass one 64 MB chunk of
+// rows and 8 bytes per DEM row.
 MpiTiledBakeSummary bakeTiledMpi(MPI_Comm comm, const DemSource& source,
                                  const Heightfield& geometry, const BakeOptions& bake,
                                  const TiledBakeOptions& tiled, const std::string& folder,

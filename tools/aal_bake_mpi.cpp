@@ -149,7 +149,7 @@ int run(const Options& o) {
     MPI_Abort(MPI_COMM_WORLD, e.exitCode());
     return e.exitCode();
   } catch (const aal::BakeCancelled&) {
-    // Rank 0, in its pass over the DEM: the others know and end too.
+    // Rank 0, in the pass over the DEM: the others know and end too.
     std::fprintf(stderr, "aal-bake-mpi: interrupted before any tile\n");
     return aal::kExitFailure;
   }
@@ -169,7 +169,7 @@ int run(const Options& o) {
     std::fprintf(stderr,
                  "aal-bake-mpi: %s %dx%d, %d-texel tiles on %d ranks%s (%d baked: %s per rank; "
                  "%d resumed), %d azimuths, %d threads per rank, in %.2f s (%.3g "
-                 "texel-azimuths/s; rank 0's pass over the DEM %.2f s) -> %s\n",
+                 "texel-azimuths/s; the pass over the DEM %.2f s) -> %s\n",
                  tiling.sourceName.c_str(), geometry.width, geometry.height, o.tileSize, ranks,
                  summary.rootBakes ? "" : " (rank 0 only hands out)", summary.tiles.baked,
                  perRank.c_str(), summary.tiles.resumed, o.azimuths, threads, seconds,
@@ -190,9 +190,10 @@ int main(int argc, char** argv) {
 
   CLI::App app(
       "aal-bake's tiled bake across the ranks of an MPI job: mpirun -np N aal-bake-mpi DEM "
-      "--tile-size T\n-o FOLDER (or srun under Slurm). Rank 0 reads the DEM once (its checksum "
-      "and, without\n--max-distance, the far field's pyramid, sent to every rank) and hands out "
-      "the tiles as\nranks ask; each rank reads its tile row's band of the DEM (never the whole "
+      "--tile-size T\n-o FOLDER (or srun under Slurm). The ranks share one read of the DEM (its "
+      "checksum and,\nwithout --max-distance, the far field's pyramid, which every rank gets), "
+      "then rank 0 hands out\nthe tiles as ranks ask; each rank reads its tile row's band of the "
+      "DEM (never the whole "
       "DEM) and\nwrites its tiles into FOLDER, which every rank must reach (a shared file "
       "system). The\nfolder is the same, bit for bit, as aal-bake --tile-size T writes; a job "
       "that died (a\nkilled rank ends the job) resumes from its finished tiles when run again, "

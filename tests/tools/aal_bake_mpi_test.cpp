@@ -94,6 +94,13 @@ TEST(AalBakeMpi, ThreeRanksWriteTheSingleProcessFolderByteForByte) {
     }
     EXPECT_EQ(have.size(), want.size());
   }
+  // The ranks' shared pass records the checksum aal-bake's in-memory bake
+  // writes (the row-hash version, issue 20).
+  const fs::path one = dir.path() / "one.exr";
+  ASSERT_EQ(runBake(quoted(dem) + " -o " + quoted(one) + " --azimuths 8 -q").exitCode, 0);
+  const std::string checksum = ApertureMapReader(one.string()).header().info.sourceChecksum;
+  EXPECT_EQ(checksum.rfind(kRowHashChecksumPrefix, 0), 0u) << checksum;
+  EXPECT_EQ(readApertureTileIndex((dir.path() / "mpi").string()).map.info.sourceChecksum, checksum);
 }
 
 // A rank killed with SIGKILL holding a tile ends the job (Open MPI aborts
