@@ -237,6 +237,7 @@ void TerrainScene::build(const Device& device, const Heightfield& field,
   static std::atomic<uint64_t> scenes{0};
   id_ = ++scenes;
   const uint32_t w = static_cast<uint32_t>(field.width), h = static_cast<uint32_t>(field.height);
+  tiling_ = tiling;
   tiles_ = planTerrainTiles(w, h, deviceTileLimits(device, tiling));
   hasAlbedo_ = albedo != nullptr;
 
@@ -354,7 +355,7 @@ void TerrainScene::setHorizons(const Device& device, const HorizonMap& map) {
   const uint32_t layersPerTile = uint32_t(map.directions / 4), texelBytes = fourBits ? 2 : 4;
   const uint32_t layers = layersPerTile * tiles_.tileCount();
   const uint64_t bytes = uint64_t{tiles_.imageWidth()} * tiles_.imageHeight() * layers * texelBytes;
-  const TerrainTileLimits limits = deviceTileLimits(device, {});
+  const TerrainTileLimits limits = deviceTileLimits(device, tiling_);
   if (layers > limits.maxArrayLayers || bytes > limits.maxAllocationBytes / 16 * 15) {
     throw std::runtime_error("the directional horizons of " + describeTerrainTiles(tiles_) + " (" +
                              std::to_string(layers) + " layers, " + std::to_string(bytes >> 20) +

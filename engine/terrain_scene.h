@@ -72,8 +72,8 @@ class TerrainScene {
   // 4l..4l+3 in layer t * directions / 4 + l as RGBA (RGBA8 for 8-bit codes,
   // 1 B per direction and texel; BGRA4 for 4-bit ones, half a byte). Throws
   // std::invalid_argument for a map of another size, std::runtime_error
-  // when the layers do not fit one image of the device (the shaders bind
-  // one).
+  // when the layers do not fit one image of the device, or one page of the
+  // scene's TerrainTiling (the shaders bind one).
   void setHorizons(const Device& device, const HorizonMap& map);
   const Image* horizons() const { return horizons_.get(); }  // null: none
   uint64_t horizonBytes() const { return horizonBytes_; }    // of textureBytes()
@@ -101,6 +101,7 @@ class TerrainScene {
                  apertureRows,
              const AlbedoImage* albedo, size_t triangleBudget, const TerrainTiling& tiling);
 
+  TerrainTiling tiling_;  // what the caller asked for beyond the device's limits
   TerrainTileLayout tiles_;
   std::vector<Image> heights_, aperture_, albedo_, slopes_;
   std::unique_ptr<Image> horizons_;

@@ -14,6 +14,7 @@
 #include <cstdio>
 #include <cstring>
 #include <numbers>
+#include <stdexcept>
 #include <string>
 #include <utility>
 
@@ -425,6 +426,18 @@ TEST_F(TileRender, HorizonModeTiledAsOneImage) {
                                         texelBytes);
     EXPECT_EQ(tiled.textureBytes(), tiledBytes + tiled.horizonBytes());
     EXPECT_EQ(single.textureBytes(), singleBytes + single.horizonBytes());
+    // The shader binds the horizons as one image: pages smaller than all
+    // their layers (here the heights' pages of ten layers) refuse them.
+    const uint64_t pageBytes = 10 * tiled.tiles().layerTexels() * 4 * 16 / 15;
+    ASSERT_LT(pageBytes, tiled.horizonBytes());
+    TerrainScene smallPages(device(), field, baked.aperture, &colours, 400000, {kTile, pageBytes});
+    try {
+      smallPages.setHorizons(device(), baked.horizons);
+      ADD_FAILURE() << "horizons of " << tiled.horizonBytes() << " B in pages of " << pageBytes;
+    } catch (const std::runtime_error& e) {
+      EXPECT_NE(std::string(e.what()).find("do not fit one image"), std::string::npos) << e.what();
+    }
+    EXPECT_EQ(smallPages.horizons(), nullptr);
     std::printf(
         "%d directions of %d bits: horizons %llu B one tile (%.2f B per DEM texel), "
         "%llu B in 20 tiles (%.2f B per DEM texel)\n",
