@@ -237,6 +237,7 @@ void TerrainScene::build(const Device& device, const Heightfield& field,
   static std::atomic<uint64_t> scenes{0};
   id_ = ++scenes;
   const uint32_t w = static_cast<uint32_t>(field.width), h = static_cast<uint32_t>(field.height);
+  tiling_ = tiling;
   tiles_ = planTerrainTiles(w, h, deviceTileLimits(device, tiling));
   hasAlbedo_ = albedo != nullptr;
 
@@ -336,9 +337,6 @@ void TerrainScene::build(const Device& device, const Heightfield& field,
 }
 
 void TerrainScene::setHorizons(const Device& device, const HorizonMap& map) {
-  if (tiles_.tilesX * tiles_.tilesY != 1) {
-    throw std::invalid_argument("directional horizons are drawn for DEMs of one tile only");
-  }
   const glm::vec4 dem = demInfo_;
   if (map.width != int(dem.x) || map.height != int(dem.y) ||
       !validHorizonDirections(map.directions) || !validHorizonBits(map.bits) ||
@@ -349,18 +347,33 @@ void TerrainScene::setHorizons(const Device& device, const HorizonMap& map) {
   }
   // Four directions per layer, as R, G, B, A: RGBA8, or for 4-bit codes
   // BGRA4 (whose linear filtering every Vulkan device supports), R in bits
-  // 4..7 of each 16-bit texel, G in 8..11, B in 12..15, A in 0..3.
+  // 4..7 of each 16-bit texel, G in 8..11, B in 12..15, A in 0..3. Laid out
+  // in the other textures' tiles (borders included, no mip levels), so the
+  // shader finds them with the same lookup: tile t's layer l is layer
+  // t * layersPerTile + l of one image.
   const bool fourBits = map.bits == 4;
-  const uint32_t layers = uint32_t(map.directions / 4), texelBytes = fourBits ? 2 : 4;
+  const uint32_t layersPerTile = uint32_t(map.directions / 4), texelBytes = fourBits ? 2 : 4;
+  const uint32_t layers = layersPerTile * tiles_.tileCount();
+  const uint64_t bytes = uint64_t{tiles_.imageWidth()} * tiles_.imageHeight() * layers * texelBytes;
+  const TerrainTileLimits limits = deviceTileLimits(device, tiling_);
+  if (layers > limits.maxArrayLayers || bytes > limits.maxAllocationBytes / 16 * 15) {
+    throw std::runtime_error("the directional horizons of " + describeTerrainTiles(tiles_) + " (" +
+                             std::to_string(layers) + " layers, " + std::to_string(bytes >> 20) +
+                             " MiB) do not fit one image of the device (" +
+                             std::to_string(limits.maxArrayLayers) + " layers, " +
+                             std::to_string(limits.maxAllocationBytes >> 20) +
+                             " MiB an allocation); the renderer binds one");
+  }
   auto image = std::make_unique<Image>(
-      device, ImageDesc{uint32_t(map.width), uint32_t(map.height),
+      device, ImageDesc{tiles_.imageWidth(), tiles_.imageHeight(),
                         fourBits ? VK_FORMAT_B4G4R4A4_UNORM_PACK16 : VK_FORMAT_R8G8B8A8_UNORM,
                         VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT,
                         VK_IMAGE_ASPECT_COLOR_BIT, layers, true});
-  UploadBatch upload(device);
-  for (uint32_t layer = 0; layer < layers; ++layer) {
-    upload.addImage(
-        *image, texelBytes,
+  // Whole DEM rows of layer l's texels, cut into tiles by tileRows.
+  std::vector<DemRows> layerRows;
+  layerRows.reserve(layersPerTile);  // tileRows keeps references to them
+  for (uint32_t layer = 0; layer < layersPerTile; ++layer) {
+    layerRows.emplace_back(
         [&map, layer, fourBits](uint32_t firstRow, uint32_t endRow, void* destination) {
           auto* out = static_cast<uint8_t*>(destination);
           for (uint32_t row = firstRow; row < endRow; ++row) {
@@ -377,13 +390,22 @@ void TerrainScene::setHorizons(const Device& device, const HorizonMap& map) {
               }
             }
           }
-        },
-        layer);
+        });
+  }
+  UploadBatch upload(device);
+  std::vector<unsigned char> scratch;  // one band of DEM rows while a tile is filled
+  for (uint32_t tile = 0; tile < tiles_.tileCount(); ++tile) {
+    for (uint32_t layer = 0; layer < layersPerTile; ++layer) {
+      upload.addImage(*image, texelBytes,
+                      tileRows(tiles_, tile % tiles_.tilesX, tile / tiles_.tilesX, texelBytes,
+                               layerRows[layer], scratch),
+                      tile * layersPerTile + layer);
+    }
   }
   upload.submit();
   // A second map replaces the first.
   textureBytes_ -= horizonBytes_;
-  horizonBytes_ = uint64_t(map.width) * uint64_t(map.height) * layers * texelBytes;
+  horizonBytes_ = bytes;
   textureBytes_ += horizonBytes_;
   horizons_ = std::move(image);
   horizonBits_ = map.bits;

@@ -67,13 +67,16 @@ class TerrainScene {
   uint64_t textureBytes() const { return textureBytes_; }
   bool hasAlbedo() const { return hasAlbedo_; }
   // Directional horizons for the horizon mode (terrain/io/horizon_map.h): a 2D
-  // array image the DEM's size, the codes of directions 4l..4l+3 in layer l
-  // as RGBA (RGBA8 for 8-bit codes, 1 B per direction and texel; BGRA4 for
-  // 4-bit ones, half a byte), no mip levels. Scenes of one tile only for
-  // now; throws std::invalid_argument for a tiled scene or a map of another
-  // size.
+  // array image in the layout of the other textures' tiles (tiles(): the
+  // same image size, borders included; no mip levels), tile t's directions
+  // 4l..4l+3 in layer t * directions / 4 + l as RGBA (RGBA8 for 8-bit codes,
+  // 1 B per direction and texel; BGRA4 for 4-bit ones, half a byte). Throws
+  // std::invalid_argument for a map of another size, std::runtime_error
+  // when the layers do not fit one image of the device, or one page of the
+  // scene's TerrainTiling (the shaders bind one).
   void setHorizons(const Device& device, const HorizonMap& map);
   const Image* horizons() const { return horizons_.get(); }  // null: none
+  uint64_t horizonBytes() const { return horizonBytes_; }    // of textureBytes()
   int horizonBits() const { return horizonBits_; }
   // The LOD patch's index buffer (makeLodPatchIndices).
   const Buffer& indices() const { return indices_; }
@@ -98,6 +101,7 @@ class TerrainScene {
                  apertureRows,
              const AlbedoImage* albedo, size_t triangleBudget, const TerrainTiling& tiling);
 
+  TerrainTiling tiling_;  // what the caller asked for beyond the device's limits
   TerrainTileLayout tiles_;
   std::vector<Image> heights_, aperture_, albedo_, slopes_;
   std::unique_ptr<Image> horizons_;

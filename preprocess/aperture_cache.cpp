@@ -61,6 +61,30 @@ fs::path cachedAperturePath(const Heightfield& field, const BakeOptions& o) {
   return apertureCacheDirectory() / cacheName(heightfieldChecksum(field), field, o);
 }
 
+fs::path cachedHorizonsPath(const Heightfield& field, const BakeOptions& o) {
+  fs::path path = cachedAperturePath(field, o);
+  path.replace_extension("");
+  path += "-h" + std::to_string(o.horizonDirections) + "x" + std::to_string(o.horizonBits) +
+          ".horizons";
+  return path;
+}
+
+HorizonMap findCachedHorizons(const Heightfield& field, const BakeOptions& options) {
+  const fs::path path = cachedHorizonsPath(field, options);
+  std::error_code error;
+  if (!fs::exists(path, error)) return {};
+  try {
+    HorizonMap horizons = readHorizonMap(path);
+    if (horizons.width == field.width && horizons.height == field.height &&
+        horizons.directions == options.horizonDirections && horizons.bits == options.horizonBits) {
+      return horizons;
+    }
+  } catch (const std::exception&) {
+    // A damaged file is as good as none: the next bake replaces it.
+  }
+  return {};
+}
+
 fs::path findCachedAperture(const Heightfield& field, const std::string& demPath,
                             const BakeOptions& options, std::string* whyUnusable) {
   fs::path path = cachedAperturePath(field, options);
@@ -93,7 +117,7 @@ CachedAperture cachedOrBakedAperture(const Heightfield& field, const std::string
   std::error_code error;
   std::string whyUnusable;
   if (fs::path found = findCachedAperture(field, demPath, options, &whyUnusable); !found.empty()) {
-    return {found, {}};
+    return {found, {}, options.horizons ? findCachedHorizons(field, options) : HorizonMap{}};
   }
   // A damaged or stale cache entry is replaced (atomically, by the
   // writer's rename), not fatal; said even when quiet, as a DEM's warnings.
@@ -120,15 +144,17 @@ CachedAperture cachedOrBakedAperture(const Heightfield& field, const std::string
       std::fprintf(stderr, "note: cannot create cache folder %s (%s); not caching\n",
                    path.parent_path().c_str(), error.message().c_str());
     }
-    return {{}, std::move(result.aperture)};
+    return {{}, std::move(result.aperture), std::move(result.horizons)};
   }
   try {
+    // The horizons first: a map found in the cache has its horizons beside it.
+    if (options.horizons) writeHorizonMap(cachedHorizonsPath(field, options), result.horizons);
     writeApertureMap(path.string(), result.aperture, /*halfFloat=*/true);
-    return {path, {}};
+    return {path, {}, std::move(result.horizons)};
   } catch (const std::exception& e) {
     if (!quiet) std::fprintf(stderr, "note: not caching the aperture map: %s\n", e.what());
   }
-  return {{}, std::move(result.aperture)};
+  return {{}, std::move(result.aperture), std::move(result.horizons)};
 }
 
 }  // namespace aal

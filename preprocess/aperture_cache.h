@@ -10,6 +10,7 @@
 #include "aperture_map.h"
 #include "bake.h"
 #include "heightfield.h"
+#include "horizon_map.h"
 
 namespace aal {
 
@@ -26,19 +27,32 @@ std::filesystem::path findCachedAperture(const Heightfield& field, const std::st
                                          const BakeOptions& options,
                                          std::string* whyUnusable = nullptr);
 
+// Where the directional horizons of a cache entry baked with
+// options.horizons lie: beside it, named by its name, the directions and
+// the code bits.
+std::filesystem::path cachedHorizonsPath(const Heightfield& field, const BakeOptions& options);
+
+// The cached horizons for this DEM and these options when they exist and
+// are of this DEM's size; else an empty map (width 0).
+HorizonMap findCachedHorizons(const Heightfield& field, const BakeOptions& options);
+
 // An aperture map for a DEM: the path of a valid cache entry, or the map in
 // memory when the cache cannot be written.
 struct CachedAperture {
   std::filesystem::path path;  // empty when not cached
   ApertureMap map;             // filled only when not cached
+  // With options.horizons: the bake's directional horizons (cached beside
+  // the map too), or a cache hit's (findCachedHorizons; empty when the entry
+  // was baked without them).
+  HorizonMap horizons;
 };
 
 // The cached map when present and verified (findCachedAperture), else a
 // fresh bake (with progress on stderr unless quiet) written to the cache
-// atomically; an unusable entry is replaced, with a warning line on stderr
-// naming it and why. `demPath` names the
-// DEM in the map's aal:source. options.progress, when set, is called too;
-// options.cancel stops the bake (BakeCancelled) before anything is written.
+// atomically (with options.horizons, the horizons beside it); an unusable entry is replaced, with a
+// warning line on stderr naming it and why. `demPath` names the DEM in the map's aal:source.
+// options.progress, when set, is called too; options.cancel stops the bake (BakeCancelled) before
+// anything is written.
 CachedAperture cachedOrBakedAperture(const Heightfield& field, const std::string& demPath,
                                      BakeOptions options, bool quiet);
 

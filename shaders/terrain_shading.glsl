@@ -20,8 +20,9 @@
 #include "tone_map.glsl"
 #include "variant.glsl"
 
-// Directions 4l..4l+3 in layer l, the DEM's size, one tile
-// (engine/terrain_scene.h setHorizons; a 1-texel stand-in without them).
+// In the tiles of the other textures, one image: tile t's directions
+// 4l..4l+3 in layer t * (directions / 4) + l (engine/terrain_scene.h
+// setHorizons; a 1-texel stand-in without them).
 layout(set = 0, binding = AAL_HORIZON_BINDING) uniform sampler2DArray terrainHorizons;
 
 layout(location = 0) in vec3 worldPosition;
@@ -75,8 +76,11 @@ void main() {
   s.transfer = vec3(1.0);
   s.sunHorizonRad = -0.5 * float(AAL_PI);
   if (kShadingMode == AAL_MODE_HORIZON) {
-    // The horizon in the sun's azimuth, bilinear between texel centres.
-    vec2 uv = (texelPosition + 0.5) / frame.demSize;
+    // The horizon in the sun's azimuth, bilinear between texel centres, from
+    // the texel's tile (layersPerPage beyond any index: the layer is the tile's).
+    TerrainTileTexel tile = terrainTexel(texelPosition, 1 << 30);
+    int layersPerTile =
+        max(1, textureSize(terrainHorizons, 0).z / (frame.tileCount.x * frame.tileCount.y));
     // Only the layers of the two directions beside the sun: two fetches, one
     // where both lie in the same layer (the sun is the frame's: a uniform
     // branch).
@@ -84,10 +88,13 @@ void main() {
     float azimuth = abs(l.x) + abs(l.y) > 0.0 ? atan(l.y, l.x) : 0.0;  // any at the zenith
     int k0, k1;
     float f;
-    horizonNeighbours(4 * textureSize(terrainHorizons, 0).z, azimuth, k0, k1, f);
-    vec4 layer0 = textureLod(terrainHorizons, vec3(uv, float(k0 / 4)), 0.0);
+    horizonNeighbours(4 * layersPerTile, azimuth, k0, k1, f);
+    int first = tile.layer * layersPerTile;
+    vec4 layer0 = textureLod(terrainHorizons, vec3(tile.uv, float(first + k0 / 4)), 0.0);
     vec4 layer1 = layer0;
-    if (k1 / 4 != k0 / 4) layer1 = textureLod(terrainHorizons, vec3(uv, float(k1 / 4)), 0.0);
+    if (k1 / 4 != k0 / 4) {
+      layer1 = textureLod(terrainHorizons, vec3(tile.uv, float(first + k1 / 4)), 0.0);
+    }
     s.sunHorizonRad =
         horizonBetween(horizonCode(layer0, k0), horizonCode(layer1, k1), f, frame.horizonBits);
   }

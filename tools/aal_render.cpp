@@ -22,6 +22,7 @@
 #include "camera_path.h"
 #include "dem_loader.h"
 #include "device.h"
+#include "horizon_option.h"
 #include "instance.h"
 #include "interrupt.h"
 #include "lighting_defaults.h"
@@ -41,13 +42,7 @@
 
 namespace {
 
-// The shading modes of every tool, and the horizon mode, which needs the
-// DEM's directional horizons (--horizons; docs/baking.md).
-const std::map<std::string, aal::ShadingMode> kModes = [] {
-  std::map<std::string, aal::ShadingMode> modes = aal::shadingModeNames();
-  modes.emplace("horizon", aal::ShadingMode::Horizon);
-  return modes;
-}();
+const std::map<std::string, aal::ShadingMode>& kModes = aal::toolShadingModes();
 
 struct Options {
   std::string dem, aperture, output, albedo;
@@ -447,17 +442,7 @@ int run(const Options& o) {
   albedo.reset();
   std::vector<aal::HorizonMap> horizonMaps;
   for (const std::string& path : o.horizons) {
-    aal::HorizonMap horizons;
-    try {
-      horizons = aal::readHorizonMap(path);
-    } catch (const std::runtime_error& e) {
-      throw aal::InputError(std::string("--horizons: ") + e.what());
-    }
-    if (horizons.width != field.width || horizons.height != field.height) {
-      throw aal::InputError("--horizons " + path + " is " + std::to_string(horizons.width) + "x" +
-                            std::to_string(horizons.height) + ", the DEM " +
-                            std::to_string(field.width) + "x" + std::to_string(field.height));
-    }
+    aal::HorizonMap horizons = aal::readHorizonsOfDem(path, field);
     try {
       scene->setHorizons(device, horizons);
     } catch (const std::invalid_argument& e) {
@@ -480,6 +465,9 @@ int run(const Options& o) {
     std::printf("triangles  %zu\n", frame.triangles);
     std::printf("textures   %s, %.1f MiB\n", aal::describeTerrainTiles(scene->tiles()).c_str(),
                 double(scene->textureBytes()) / (1 << 20));
+    if (scene->horizons()) {
+      std::printf("horizons   %.1f MiB of them\n", double(scene->horizonBytes()) / (1 << 20));
+    }
     std::printf("sun        azimuth %.2f deg, elevation %.2f deg\n", sun.azimuthDeg,
                 sun.elevationDeg);
     if (obscurance.enabled) {

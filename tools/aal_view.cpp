@@ -1,4 +1,5 @@
 // aal-view: fly over a DEM with live sun, sky and lighting controls.
+#include <memory>
 #include <optional>
 #include <string>
 
@@ -6,6 +7,7 @@
 
 #include "aperture_map.h"
 #include "atomic_file.h"
+#include "horizon_option.h"
 #include "screenshot.h"
 #include "tool_main.h"
 #include "tool_options.h"
@@ -25,12 +27,13 @@ constexpr const char* kControls = R"(Controls:
   F12                 save a screenshot (aal-view-DATE-TIME.png in the current folder)
   drop a DEM file     open it (a file that cannot be read leaves the current terrain)
 The panel sets the date, time of day (play/pause), place or a direct sun azimuth/elevation,
-sun radius, turbidity, sun/sky intensity, exposure, shading mode, obscurance, vsync,
+sun radius, turbidity, sun/sky intensity, exposure, shading mode (horizon with --horizons),
+obscurance, vsync,
 and shows the frame rate and GPU time per pass. See docs/viewer.md.)";
 
 struct Options {
-  std::string dem, aperture, cameraPath, screenshot, drop, size = "1280x720";
-  std::optional<std::string> resizeAfter, minimiseAfter, toggleVsyncAfter;  // test hooks
+  std::string dem, aperture, horizons, cameraPath, screenshot, drop, size = "1280x720";
+  std::optional<std::string> resizeAfter, minimiseAfter, toggleVsyncAfter, modeAfter;  // test hooks
   std::string mode = "approx", time;
   std::optional<double> lat, lon, sunAzimuth, sunElevation, waterLevelM;
   double exaggeration = 1.0;
@@ -48,9 +51,11 @@ void checkScript(const Options& o) {
   if (o.frames && *o.frames < 1) {
     throw aal::InputError("--frames must be at least 1, got " + std::to_string(*o.frames));
   }
-  aal::checkDistinctFiles(
-      {{"DEM", o.dem}, {"--aperture", o.aperture}, {"--camera-path", o.cameraPath}},
-      {{"--screenshot", o.screenshot}});
+  aal::checkDistinctFiles({{"DEM", o.dem},
+                           {"--aperture", o.aperture},
+                           {"--horizons", o.horizons},
+                           {"--camera-path", o.cameraPath}},
+                          {{"--screenshot", o.screenshot}});
   if (!o.screenshot.empty()) {
     if (!o.frames) throw aal::InputError("--screenshot needs --frames N (saved after frame N)");
     if (!aal::isSupportedImageOutput(o.screenshot) || aal::wantsLinearOutput(o.screenshot)) {
@@ -102,6 +107,15 @@ aal::WindowScript windowScript(const Options& o) {
     s.toggleVsyncAfterFrame =
         parseAfterFrame("--toggle-vsync-after", *o.toggleVsyncAfter, o.frames);
   }
+  if (o.modeAfter) {
+    std::string mode;
+    s.modeAfterFrame = parseAfterFrame("--mode-after", *o.modeAfter, o.frames, &mode);
+    const auto known = aal::toolShadingModes().find(mode);
+    if (known == aal::toolShadingModes().end()) {
+      throw aal::InputError("--mode-after " + *o.modeAfter + ": no shading mode '" + mode + "'");
+    }
+    s.modeAfter = known->second;
+  }
   return s;
 }
 
@@ -136,7 +150,7 @@ int run(const Options& o) {
   v.width = static_cast<int>(width);
   v.height = static_cast<int>(height);
   v.vsync = !o.noVsync;
-  v.mode = aal::shadingModeNames().at(o.mode);
+  v.mode = aal::toolShadingModes().at(o.mode);
   v.obscurance = !o.noObscurance;
   v.device = o.device;
   v.triangleBudget = o.triangleBudget;
@@ -151,12 +165,25 @@ int run(const Options& o) {
   v.timeoutS = o.timeoutS;
   v.dropAfterFirstFrame = o.drop;
   v.script = windowScript(o);
+  if (o.horizons.empty() && v.mode == aal::ShadingMode::Horizon) {
+    throw aal::InputError("--mode horizon needs --horizons FILE (aal-bake --horizons)");
+  }
+  // Later, the viewer's own bake may have kept them (not for --aperture).
+  if (o.horizons.empty() && !o.aperture.empty() && v.script.modeAfterFrame > 0 &&
+      v.script.modeAfter == aal::ShadingMode::Horizon) {
+    throw aal::InputError("--mode-after " + *o.modeAfter +
+                          " with --aperture needs --horizons FILE (aal-bake --horizons)");
+  }
   v.stats = o.stats;
   // Bad input fails here, before a window opens.
   std::shared_ptr<const aal::Heightfield> field = aal::loadViewerDem(o.dem, o.exaggeration);
   if (!o.aperture.empty()) {
     const aal::ApertureMapReader map(o.aperture);
     aal::checkApertureMatchesDem(map.header(), o.aperture, *field, o.dem);
+  }
+  if (!o.horizons.empty()) {
+    v.horizons =
+        std::make_shared<const aal::HorizonMap>(aal::readHorizonsOfDem(o.horizons, *field));
   }
   v.lighting = initialLighting(o, *field);
   aal::Viewer viewer(v, std::move(field));
@@ -175,15 +202,18 @@ int main(int argc, char** argv) {
   app.footer(kControls);
   Options o;
   std::string modes;
-  for (const auto& [name, mode] : aal::shadingModeNames())
+  for (const auto& [name, mode] : aal::toolShadingModes())
     modes += (modes.empty() ? "" : ", ") + name;
   app.add_option("dem", o.dem, "input DEM (any raster GDAL reads: GeoTIFF, VRT, .hgt, .asc, ...)")
       ->required();
   app.add_option("--aperture", o.aperture, "aperture map baked from this DEM by aal-bake");
   app.add_option("--size", o.size, "window size WIDTHxHEIGHT (screen coordinates)")
       ->capture_default_str();
-  app.add_option("--mode", o.mode, "shading: " + modes)
-      ->check(CLI::IsMember(aal::shadingModeNames()))
+  app.add_option("--horizons", o.horizons,
+                 "directional horizons baked from this DEM by aal-bake --horizons: the panel "
+                 "then offers the horizon mode (the sun through the horizon in its azimuth)");
+  app.add_option("--mode", o.mode, "shading: " + modes + " (horizon needs --horizons)")
+      ->check(CLI::IsMember(aal::toolShadingModes()))
       ->capture_default_str();
   app.add_option("--time", o.time, "UTC date and time (ISO 8601) for the sun position");
   app.add_option("--lat", o.lat, "latitude for the sun (default: the DEM's centre, else 45)")
@@ -221,6 +251,9 @@ int main(int argc, char** argv) {
                  "iterations later (tests, demos; a window manager does the minimising)");
   app.add_option("--toggle-vsync-after", o.toggleVsyncAfter,
                  "FRAME: switch vsync after frame FRAME, as the panel does (tests, demos)");
+  app.add_option("--mode-after", o.modeAfter,
+                 "FRAME:MODE: switch the shading mode after frame FRAME, as the panel does "
+                 "(tests, demos)");
   app.add_flag("--no-obscurance", o.noObscurance,
                "start with the obscurance pass off (the panel switches it)");
   app.add_flag("--no-vsync", o.noVsync, "present without waiting for vsync (MAILBOX/IMMEDIATE)");

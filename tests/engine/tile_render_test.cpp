@@ -14,7 +14,9 @@
 #include <cstdio>
 #include <cstring>
 #include <numbers>
+#include <stdexcept>
 #include <string>
+#include <utility>
 
 #include <Imath/half.h>
 #include <glm/vec3.hpp>
@@ -388,6 +390,80 @@ TEST_F(TileRender, TiledTexturesRenderAsOneImageInEveryMode) {
         EXPECT_LE(d.pixelsBeyondOne, size_t(kWidth * kHeight / 10000)) << what;
         EXPECT_LE(d.maxBeyondEdge, 1) << what;
       }
+    }
+  }
+}
+
+// The horizon mode (issue 18) in a tiled scene: the directional horizons
+// lie in the other textures' tiles (engine/terrain_scene.h setHorizons) and
+// the shader finds them with the same lookup. 8-bit codes of 8 directions
+// and 4-bit codes of 16, a sun 9 degrees up (the horizons hide it where the
+// aperture's cap does not), from above and obliquely: the tolerance of
+// TiledTexturesRenderAsOneImageInEveryMode.
+TEST_F(TileRender, HorizonModeTiledAsOneImage) {
+  const Heightfield field = fbm();
+  const AlbedoImage colours = albedo();
+  TerrainRenderer renderer(device(), kWidth, kHeight);
+  for (const auto& [directions, bits] : {std::pair{8, 8}, std::pair{16, 4}}) {
+    BakeOptions bake;
+    bake.azimuths = 16;
+    bake.horizons = true;
+    bake.horizonDirections = directions;
+    bake.horizonBits = bits;
+    const BakeResult baked = bakeApertures(field, bake);
+    TerrainScene single(device(), field, baked.aperture, &colours, 400000);
+    TerrainScene tiled(device(), field, baked.aperture, &colours, 400000, {kTile, 0});
+    ASSERT_EQ(tiled.tiles().tileCount(), 20u);
+    const uint64_t singleBytes = single.textureBytes(), tiledBytes = tiled.textureBytes();
+    single.setHorizons(device(), baked.horizons);
+    tiled.setHorizons(device(), baked.horizons);
+    ASSERT_EQ(tiled.horizons()->desc().layers, 20u * uint32_t(directions) / 4);
+    ASSERT_EQ(tiled.horizons()->desc().width, tiled.tiles().imageWidth());
+    // Device bytes: a tile image's texels (core, border, alignment) per layer.
+    const uint64_t texelBytes = bits == 4 ? 2 : 4;
+    EXPECT_EQ(tiled.horizonBytes(), uint64_t{tiled.tiles().imageWidth()} *
+                                        tiled.tiles().imageHeight() * 20 * (directions / 4) *
+                                        texelBytes);
+    EXPECT_EQ(tiled.textureBytes(), tiledBytes + tiled.horizonBytes());
+    EXPECT_EQ(single.textureBytes(), singleBytes + single.horizonBytes());
+    // The shader binds the horizons as one image: pages smaller than all
+    // their layers (here the heights' pages of ten layers) refuse them.
+    const uint64_t pageBytes = 10 * tiled.tiles().layerTexels() * 4 * 16 / 15;
+    ASSERT_LT(pageBytes, tiled.horizonBytes());
+    TerrainScene smallPages(device(), field, baked.aperture, &colours, 400000, {kTile, pageBytes});
+    try {
+      smallPages.setHorizons(device(), baked.horizons);
+      ADD_FAILURE() << "horizons of " << tiled.horizonBytes() << " B in pages of " << pageBytes;
+    } catch (const std::runtime_error& e) {
+      EXPECT_NE(std::string(e.what()).find("do not fit one image"), std::string::npos) << e.what();
+    }
+    EXPECT_EQ(smallPages.horizons(), nullptr);
+    std::printf(
+        "%d directions of %d bits: horizons %llu B one tile (%.2f B per DEM texel), "
+        "%llu B in 20 tiles (%.2f B per DEM texel)\n",
+        directions, bits, static_cast<unsigned long long>(single.horizonBytes()),
+        double(single.horizonBytes()) / (kWidth * kHeight),
+        static_cast<unsigned long long>(tiled.horizonBytes()),
+        double(tiled.horizonBytes()) / (kWidth * kHeight));
+    for (const bool top : {true, false}) {
+      FrameSettings s = top ? topView(ShadingMode::Horizon) : obliqueView(ShadingMode::Horizon);
+      setSunAndSky(s.lighting, 230, 9, 2.5);
+      const FrameResult reference = renderer.render(single, s, false);
+      const Difference d = compare(renderer.render(tiled, s, false), reference, top);
+      const std::string what = std::to_string(directions) + " directions of " +
+                               std::to_string(bits) + " bits" + (top ? ", top" : ", oblique");
+      std::printf("%s: max %d LSB (seams %d), %zu of %d pixels differ, %zu beyond 1 LSB\n",
+                  what.c_str(), d.maxLsb, d.maxLsbAtSeams, d.pixelsOff, kWidth * kHeight,
+                  d.pixelsBeyondOne);
+      EXPECT_LE(d.maxLsbAtSeams, 1) << what;
+      EXPECT_LE(d.pixelsOff, size_t(kWidth * kHeight / 1000)) << what;
+      EXPECT_LE(d.pixelsBeyondOne, size_t(kWidth * kHeight / 10000)) << what;
+      EXPECT_LE(d.maxBeyondEdge, 1) << what;
+      // The horizons matter in this view: approx lights much that they hide.
+      FrameSettings approx = s;
+      approx.mode = ShadingMode::Approx;
+      const Difference fromApprox = compare(renderer.render(single, approx, false), reference, top);
+      EXPECT_GT(fromApprox.pixelsBeyondOne, size_t(kWidth * kHeight / 50)) << what;
     }
   }
 }

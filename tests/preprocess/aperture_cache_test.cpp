@@ -150,5 +150,40 @@ TEST_F(ApertureCache, AnEntryNamedByTheOlderChecksumIsUsed) {
   EXPECT_TRUE(findCachedAperture(field_, "wavy.tif", options_).empty());
 }
 
+// With options.horizons (aal-view's background bake): the bake's
+// directional horizons come back with the map and are cached beside it, so
+// a cache hit has them too; an entry without them (aal-render's), or with
+// a damaged horizons file, is a hit without horizons, not an error.
+TEST_F(ApertureCache, KeepsTheBakesHorizonsBesideTheEntry) {
+  BakeOptions withHorizons = options_;
+  withHorizons.horizons = true;
+  const HorizonMap expected = bakeApertures(field_, withHorizons).horizons;
+  ASSERT_EQ(expected.width, field_.width);
+  const CachedAperture baked = cachedOrBakedAperture(field_, "wavy.tif", withHorizons, true);
+  ASSERT_FALSE(baked.path.empty());
+  EXPECT_EQ(baked.horizons.codes, expected.codes);
+  const fs::path beside = cachedHorizonsPath(field_, withHorizons);
+  EXPECT_EQ(beside.parent_path(), baked.path.parent_path());
+  EXPECT_EQ(readHorizonMap(beside).codes, expected.codes);
+  const CachedAperture hit = cachedOrBakedAperture(field_, "wavy.tif", withHorizons, true);
+  EXPECT_EQ(hit.path, baked.path);
+  EXPECT_EQ(hit.horizons.codes, expected.codes);
+  EXPECT_EQ(hit.horizons.directions, withHorizons.horizonDirections);
+  // The same entry asked for without horizons: none read.
+  EXPECT_EQ(lookUp().horizons.width, 0);
+  // Damaged or missing: the map is still a hit.
+  fs::resize_file(beside, fs::file_size(beside) / 2);
+  const CachedAperture damaged = cachedOrBakedAperture(field_, "wavy.tif", withHorizons, true);
+  EXPECT_EQ(damaged.path, baked.path);
+  EXPECT_EQ(damaged.horizons.width, 0);
+  fs::remove(beside);
+  EXPECT_EQ(findCachedHorizons(field_, withHorizons).width, 0);
+  // Other directions or bits are another file.
+  BakeOptions sixteen = withHorizons;
+  sixteen.horizonDirections = 16;
+  sixteen.horizonBits = 4;
+  EXPECT_NE(cachedHorizonsPath(field_, sixteen), beside);
+}
+
 }  // namespace
 }  // namespace aal

@@ -7,11 +7,15 @@
 
 #include <OpenImageIO/imageio.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <set>
+#include <string>
+#include <utility>
+#include <vector>
 
 #include "run_tool.h"
 
@@ -93,9 +97,10 @@ TEST(AalView, ScriptedFlightShowsTerrainWithoutValidationMessages) {
   EXPECT_NE(r.out.find("frames     4"), std::string::npos) << r.out;
   EXPECT_NE(r.out.find("present    fifo (vsync)"), std::string::npos) << r.out;
   EXPECT_NE(r.out.find("gpu terrain"), std::string::npos) << r.out;
-  // The aperture map was baked in the background and cached.
+  // The aperture map was baked in the background and cached, with its
+  // directional horizons beside it.
   EXPECT_NE(r.out.find("aperture map ready"), std::string::npos) << r.out;
-  EXPECT_EQ(filesIn(dir.path() / "cache"), 1u);
+  EXPECT_EQ(filesIn(dir.path() / "cache"), 2u);
 
   const Picture p = readPng(shot);
   ASSERT_EQ(p.width, 320);
@@ -180,7 +185,7 @@ TEST(AalView, UsesTheCachedApertureMapOnTheSecondRunAndPresentsWithoutVsync) {
   // Without vsync: MAILBOX or IMMEDIATE (lavapipe's X11 surfaces offer both).
   EXPECT_EQ(again.out.find("present    fifo"), std::string::npos) << again.out;
   EXPECT_EQ(again.out.find("aperture map ready"), std::string::npos) << again.out;
-  EXPECT_EQ(filesIn(dir.path() / "cache"), 1u);
+  EXPECT_EQ(filesIn(dir.path() / "cache"), 2u);  // the map and its horizons
 }
 
 TEST(AalView, ClosingDuringABakeCancelsItAndCachesNothing) {
@@ -222,8 +227,9 @@ TEST(AalView, ADroppedDemReplacesTheTerrain) {
   const auto r = view(dir, quoted(first) + " --size 160x120 --frames 2 --drop " + quoted(dem));
   ASSERT_EQ(r.exitCode, 0) << r.out;
   EXPECT_NE(r.out.find("opened"), std::string::npos) << r.out;
-  // The first DEM's bake was cancelled when the second replaced it.
-  EXPECT_EQ(filesIn(dir.path() / "cache"), 1u);
+  // The first DEM's bake was cancelled when the second replaced it: the
+  // second's map and horizons.
+  EXPECT_EQ(filesIn(dir.path() / "cache"), 2u);
 }
 
 TEST(AalView, WithoutADisplayItPointsToAalRender) {
@@ -374,6 +380,95 @@ TEST(AalView, MinimisingUnderXvfbLeavesTheWindowDrawing) {
   ASSERT_EQ(p.width, 160);
   ASSERT_EQ(p.height, 120);
   EXPECT_GT(greenSpread(p, 0, 120), 2.0);
+}
+
+// --horizons (aal-bake --horizons): the horizon mode, chosen at the start or
+// switched to mid-flight as from the panel (a new pipeline variant and the
+// horizons' binding), renders without validation messages; under a low sun
+// its picture is not approx's. Without horizons, or with another DEM's,
+// exit 2 before a window opens.
+TEST(AalView, HorizonModeWithTheBakesHorizonsAlsoSwitchedMidFlight) {
+  TempDir dir;
+  const fs::path map = dir.path() / "a.exr", horizons = dir.path() / "a.horizons";
+  ASSERT_EQ(runTool("aal-bake",
+                    quoted(kDem) + " -o " + quoted(map) + " --horizons " + quoted(horizons) + " -q")
+                .exitCode,
+            0);
+  const std::string common = quoted(kDem) + " --aperture " + quoted(map) +
+                             " --sun-azimuth 250 --sun-elevation 12 --size 160x120 --frames 4"
+                             " --timeout 60 --stats --screenshot ";
+  const fs::path approxShot = dir.path() / "approx.png", horizonShot = dir.path() / "horizon.png",
+                 switchedShot = dir.path() / "switched.png";
+  const auto approx = view(dir, common + quoted(approxShot));
+  ASSERT_EQ(approx.exitCode, 0) << approx.out;
+  const auto horizon =
+      view(dir, common + quoted(horizonShot) + " --mode horizon --horizons " + quoted(horizons));
+  ASSERT_EQ(horizon.exitCode, 0) << horizon.out;  // 1 on any validation message
+  EXPECT_NE(horizon.out.find("validation on, 0 messages"), std::string::npos) << horizon.out;
+  const auto switched = view(dir, common + quoted(switchedShot) + " --mode-after 2:horizon" +
+                                      " --horizons " + quoted(horizons));
+  ASSERT_EQ(switched.exitCode, 0) << switched.out;
+  EXPECT_NE(switched.out.find("validation on, 0 messages"), std::string::npos) << switched.out;
+  EXPECT_NE(switched.out.find("frames     4"), std::string::npos) << switched.out;
+
+  const Picture a = readPng(approxShot), h = readPng(horizonShot), s = readPng(switchedShot);
+  ASSERT_EQ(h.width, 160);
+  ASSERT_EQ(s.rgba.size(), h.rgba.size());
+  ASSERT_EQ(a.rgba.size(), h.rgba.size());
+  expectTerrain(h);
+  int switchedWorst = 0;
+  size_t differs = 0;  // green channels more than 2 LSB from approx's
+  for (size_t i = 0; i < h.rgba.size(); ++i) {
+    switchedWorst = std::max(switchedWorst, std::abs(int(s.rgba[i]) - int(h.rgba[i])));
+    if (i % 4 == 1 && std::abs(int(h.rgba[i]) - int(a.rgba[i])) > 2) ++differs;
+  }
+  EXPECT_LE(switchedWorst, 1) << "the switched run ends on the horizon mode's picture";
+  // The sun 12 degrees up: the horizons change a few % of the picture
+  // (jacksboro's relief is gentle).
+  EXPECT_GT(differs, h.rgba.size() / 4 / 100) << "the horizon mode looks like approx";
+
+  // Without --aperture the viewer's own bake keeps the horizons (and caches
+  // them beside the map): the mode is offered once baked, and again from the
+  // cache, with aal-bake's picture.
+  const std::string own = quoted(kDem) +
+                          " --sun-azimuth 250 --sun-elevation 12 --size 160x120 --frames 4"
+                          " --timeout 120 --stats --mode-after 2:horizon --screenshot ";
+  for (const char* run : {"baked.png", "cached.png"}) {
+    const fs::path shot = dir.path() / run;
+    const auto r = view(dir, own + quoted(shot));
+    ASSERT_EQ(r.exitCode, 0) << r.out;
+    EXPECT_NE(r.out.find("switched the shading mode"), std::string::npos) << run << r.out;
+    const Picture p = readPng(shot);
+    ASSERT_EQ(p.rgba.size(), h.rgba.size());
+    int worst = 0;
+    for (size_t i = 0; i < h.rgba.size(); ++i) {
+      worst = std::max(worst, std::abs(int(p.rgba[i]) - int(h.rgba[i])));
+    }
+    EXPECT_LE(worst, 1) << run;
+  }
+  EXPECT_EQ(filesIn(dir.path() / "cache"), 2u) << "the map and its horizons";
+
+  const fs::path other = dir.path() / "other.tif", otherHorizons = dir.path() / "o.horizons";
+  ASSERT_EQ(runTool("aal-synth", "-o " + quoted(other) + " --size 32").exitCode, 0);
+  ASSERT_EQ(runTool("aal-bake", quoted(other) + " -o " + quoted(dir.path() / "o.exr") +
+                                    " --horizons " + quoted(otherHorizons) + " -q")
+                .exitCode,
+            0);
+  const std::string dem = quoted(kDem) + " --frames 2 ";
+  for (const auto& [args, message] : std::vector<std::pair<std::string, std::string>>{
+           {dem + "--mode horizon", "--horizons FILE"},
+           {dem + "--aperture " + quoted(map) + " --mode-after 1:horizon", "--horizons FILE"},
+           {dem + "--mode-after 1:magic", "--mode-after"},
+           {dem + "--horizons " + quoted(otherHorizons), "32x32, the DEM 403x344"},
+           {dem + "--horizons " + quoted(other), "not a horizon map"},
+           {dem + "--horizons " + quoted(dir.path() / "none.horizons"), "cannot open"}}) {
+    const auto r = runTool("aal-view", args, "-u DISPLAY -u WAYLAND_DISPLAY");
+    EXPECT_EQ(r.exitCode, 2) << args << "\n" << r.out;
+    EXPECT_NE(r.out.find(message), std::string::npos) << args << "\n" << r.out;
+  }
+  const auto help = runTool("aal-view", "--help");
+  EXPECT_NE(help.out.find("--horizons"), std::string::npos) << help.out;
+  EXPECT_NE(help.out.find("--mode-after"), std::string::npos) << help.out;
 }
 
 TEST(AalView, WindowHooksAreInTheHelpAndMalformedOnesExitWithTwo) {

@@ -3,8 +3,11 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <string>
 
 #include <imgui.h>
+
+#include "horizon_option.h"
 
 namespace aal {
 
@@ -60,11 +63,17 @@ void sunControls(ViewLighting& l) {
 
 void shadingControls(ViewPanelModel& m) {
   const char* current = "?";
-  for (const auto& [name, mode] : shadingModeNames()) {
+  for (const auto& [name, mode] : toolShadingModes()) {
     if (mode == m.mode) current = name.c_str();
   }
   if (ImGui::BeginCombo("shading", current)) {
-    for (const auto& [name, mode] : shadingModeNames()) {
+    for (const auto& [name, mode] : toolShadingModes()) {
+      // The horizon mode needs the DEM's directional horizons.
+      if (mode == ShadingMode::Horizon && !m.horizonsMissing.empty()) {
+        const std::string label = name + " (" + m.horizonsMissing + ")";
+        ImGui::Selectable(label.c_str(), false, ImGuiSelectableFlags_Disabled);
+        continue;
+      }
       if (ImGui::Selectable(name.c_str(), mode == m.mode)) m.mode = mode;
     }
     ImGui::EndCombo();

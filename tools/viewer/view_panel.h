@@ -27,6 +27,9 @@ struct ViewPanelModel {
   size_t triangles = 0;
   std::optional<double> bakeProgress;  // set while the aperture map is baked
   std::string message;                 // last message (load errors, screenshots)
+  // Why the horizon mode is not offered (shown disabled with it); empty:
+  // the scene has directional horizons.
+  std::string horizonsMissing;
   double framesPerSecond = 0, frameMs = 0;
   std::vector<std::pair<std::string, double>> passMs;  // GPU time per pass
   float resolutionScale = 1;                           // of the last frame (dynamic resolution)

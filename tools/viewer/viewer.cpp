@@ -7,6 +7,8 @@
 #include <ctime>
 #include <filesystem>
 #include <map>
+#include <memory>
+#include <utility>
 
 #include "aperture_cache.h"
 #include "buffer.h"
@@ -28,7 +30,8 @@ struct Viewer::Terrain {
   std::string path;
   std::shared_ptr<const Heightfield> field;
   std::unique_ptr<TerrainScene> scene;
-  std::unique_ptr<BackgroundBake> bake;  // set while the aperture map is baked
+  std::unique_ptr<BackgroundBake> bake;        // set while the aperture map is baked
+  std::shared_ptr<const HorizonMap> horizons;  // null: no horizon mode
 };
 
 struct Viewer::Timing {
@@ -159,10 +162,19 @@ bool sameView(const FrameSettings& a, const FrameSettings& b) {
 // a running bake's progress bar) when no event wakes it.
 constexpr double kIdleWaitS = 0.1;
 
+// The bake also keeps the sweep's horizons of 8 azimuths (8-bit codes) for
+// the horizon mode when the azimuths allow: no extra sweep, 8 B per texel
+// (docs/viewer.md).
 BakeOptions viewerBakeOptions(int azimuths) {
   BakeOptions options;
   options.azimuths = azimuths;
+  options.horizons = azimuths % options.horizonDirections == 0;
   return options;
+}
+
+std::shared_ptr<const HorizonMap> sharedHorizons(HorizonMap&& horizons) {
+  if (horizons.width == 0) return nullptr;
+  return std::make_shared<const HorizonMap>(std::move(horizons));
 }
 
 }  // namespace
@@ -193,7 +205,7 @@ Viewer::Viewer(const ViewerOptions& options, std::shared_ptr<const Heightfield> 
   obscurance_.enabled = options.obscurance;
   renderer_ = std::make_unique<TerrainRenderer>(device_, swapchain_.extent().width,
                                                 swapchain_.extent().height, swapchain_.format());
-  showTerrain(std::move(field), options.dem, options.aperture);
+  showTerrain(std::move(field), options.dem, options.aperture, options.horizons);
 }
 
 Viewer::~Viewer() {
@@ -203,13 +215,21 @@ Viewer::~Viewer() {
 }
 
 void Viewer::showTerrain(std::shared_ptr<const Heightfield> field, const std::string& path,
-                         const std::string& aperturePath) {
+                         const std::string& aperturePath,
+                         std::shared_ptr<const HorizonMap> horizons) {
   auto terrain = std::make_unique<Terrain>();
   terrain->path = path;
   terrain->field = field;
+  terrain->horizons = std::move(horizons);
   const BakeOptions bakeOptions = viewerBakeOptions(options_.bakeAzimuths);
   std::string mapPath = aperturePath;
-  if (mapPath.empty()) mapPath = findCachedAperture(*field, path, bakeOptions).string();
+  if (mapPath.empty()) {
+    mapPath = findCachedAperture(*field, path, bakeOptions).string();
+    // The horizons of the cached map's bake, when it kept them.
+    if (!mapPath.empty() && !terrain->horizons && bakeOptions.horizons) {
+      terrain->horizons = sharedHorizons(findCachedHorizons(*field, bakeOptions));
+    }
+  }
   // The GPU may still draw the previous terrain.
   device_.waitIdle();
   if (!mapPath.empty()) {
@@ -225,16 +245,31 @@ void Viewer::showTerrain(std::shared_ptr<const Heightfield> field, const std::st
     terrain->bake = std::make_unique<BackgroundBake>(field, path, bakeOptions);
   }
   terrain_ = std::move(terrain);
+  attachHorizons();
   const VkExtent2D extent = swapchain_.extent();
   camera_ = std::make_unique<CameraController>(field, double(extent.width) / extent.height);
   window_.setTitle("aal-view - " + fs::path(path).filename().string());
+}
+
+void Viewer::attachHorizons() {
+  Terrain& t = *terrain_;
+  if (!t.horizons) return;
+  try {
+    t.scene->setHorizons(device_, *t.horizons);
+  } catch (const std::exception& e) {
+    t.horizons.reset();
+    setMessage(std::string("no horizon mode: ") + e.what());
+  }
 }
 
 void Viewer::openDroppedDem(const std::string& path) {
   try {
     std::shared_ptr<const Heightfield> field = loadViewerDem(path, options_.exaggeration);
     const GeoPlace place = defaultSunPlace(*field);
-    showTerrain(field, path, "");
+    showTerrain(field, path, "");  // without --horizons: they were the first DEM's
+    if (mode_ == ShadingMode::Horizon && !terrain_->scene->horizons() && !terrain_->bake) {
+      mode_ = ShadingMode::Approx;
+    }
     // The same local solar time at the new place.
     lighting_.hourUtc = std::fmod(
         lighting_.hourUtc - (place.longitudeDeg - lighting_.longitudeDeg) / 15.0 + 48.0, 24.0);
@@ -252,6 +287,7 @@ void Viewer::updateBake() {
   if (!t.bake || !t.bake->finished()) return;
   try {
     CachedAperture cached = t.bake->take();
+    if (!t.horizons) t.horizons = sharedHorizons(std::move(cached.horizons));
     device_.waitIdle();
     if (!cached.path.empty()) {
       ApertureMapReader reader(cached.path.string());
@@ -261,6 +297,7 @@ void Viewer::updateBake() {
       t.scene = std::make_unique<TerrainScene>(device_, *t.field, cached.map, nullptr,
                                                options_.triangleBudget);
     }
+    attachHorizons();
     setMessage("aperture map ready" + (cached.path.empty()
                                            ? std::string(" (not cached)")
                                            : ", cached as " + cached.path.string()));
@@ -335,6 +372,11 @@ void Viewer::drawUi() {
   ui_.beginFrame();
   const Heightfield& field = *terrain_->field;
   ViewPanelModel model{lighting_, mode_, obscurance_, vsync_};
+  if (!terrain_->scene->horizons()) {
+    model.horizonsMissing = terrain_->bake && viewerBakeOptions(options_.bakeAzimuths).horizons
+                                ? "after the bake"
+                                : "needs --horizons FILE";
+  }
   model.cameraMode = camera_->mode();
   model.demName = fs::path(terrain_->path).filename().string();
   model.demWidth = field.width;
@@ -369,6 +411,8 @@ FrameSettings Viewer::frameSettings() const {
   s.camera = camera_->camera();
   // The placeholder aperture is an open sky: only the baselines are honest.
   s.mode = terrain_->bake ? ShadingMode::BaselineLambert : mode_;
+  // The panel offers the horizon mode only with horizons; a stale choice draws approx.
+  if (s.mode == ShadingMode::Horizon && !terrain_->scene->horizons()) s.mode = ShadingMode::Approx;
   applyViewLighting(lighting_, *terrain_->field, s);
   s.obscurance = obscurance_;
   s.lod.maxErrorPixels = options_.lodErrorPixels;
@@ -530,6 +574,15 @@ void Viewer::runWindowScript() {
   if (scriptedFrame_ == s.toggleVsyncAfterFrame) {
     vsync_ = !vsync_;
     swapchainStale_ = true;
+  }
+  if (scriptedFrame_ == s.modeAfterFrame) {
+    // As the panel: the horizon mode only where it is offered.
+    if (s.modeAfter == ShadingMode::Horizon && !terrain_->scene->horizons()) {
+      setMessage("the horizon mode is not offered: no directional horizons");
+    } else {
+      mode_ = s.modeAfter;
+      setMessage("switched the shading mode");
+    }
   }
   if (scriptedFrame_ == s.minimiseAfterFrame) {
     setMessage("minimising the window");

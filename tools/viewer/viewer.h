@@ -17,6 +17,7 @@
 #include "device.h"
 #include "dynamic_resolution.h"
 #include "frame_sync.h"
+#include "horizon_map.h"
 #include "instance.h"
 #include "swapchain.h"
 #include "terrain_renderer.h"
@@ -36,11 +37,16 @@ struct WindowScript {
   int resizeWidth = 0, resizeHeight = 0;  // screen coordinates
   int minimiseAfterFrame = 0;             // restored a few event-loop iterations later
   int toggleVsyncAfterFrame = 0;          // as the panel's vsync checkbox
+  int modeAfterFrame = 0;                 // as the panel's shading list: switch to modeAfter
+  ShadingMode modeAfter = ShadingMode::Approx;
 };
 
 struct ViewerOptions {
-  std::string dem;                 // the DEM first shown
-  std::string aperture;            // its aperture map; empty: cached or baked in the background
+  std::string dem;       // the DEM first shown
+  std::string aperture;  // its aperture map; empty: cached or baked in the background
+  // Its directional horizons (aal-bake --horizons), for the horizon mode;
+  // null: none (the mode is not offered). Checked against the DEM already.
+  std::shared_ptr<const HorizonMap> horizons;
   int width = 1280, height = 720;  // window size in screen coordinates
   bool vsync = true;
   ShadingMode mode = ShadingMode::Approx;
@@ -86,7 +92,11 @@ class Viewer {
   struct Timing;
 
   void showTerrain(std::shared_ptr<const Heightfield> field, const std::string& path,
-                   const std::string& aperturePath);
+                   const std::string& aperturePath,
+                   std::shared_ptr<const HorizonMap> horizons = nullptr);
+  // Gives the terrain's scene its horizons, if it has any (a scene is made
+  // again when the bake finishes).
+  void attachHorizons();
   void openDroppedDem(const std::string& path);
   void updateBake();
   void handleKeys();

@@ -1,0 +1,47 @@
+// --horizons FILE and the horizon shading mode, as aal-render and aal-view
+// take them: the directional horizons of aal-bake --horizons (docs/baking.md,
+// "Directional horizons"), checked against the DEM before anything is drawn.
+#pragma once
+
+#include <map>
+#include <string>
+
+#include "errors.h"
+#include "heightfield.h"
+#include "horizon_map.h"
+#include "shading.h"
+
+namespace aal {
+
+// The shading modes of every tool and the horizon mode, which needs the
+// DEM's directional horizons.
+inline const std::map<std::string, ShadingMode>& toolShadingModes() {
+  static const std::map<std::string, ShadingMode> modes = [] {
+    std::map<std::string, ShadingMode> m = shadingModeNames();
+    m.emplace("horizon", ShadingMode::Horizon);
+    return m;
+  }();
+  return modes;
+}
+
+// The horizon map at `path`, which must be of `field`: InputError naming
+// the file when it cannot be read, is not a horizon map or has another size.
+// The format holds no checksum of the heights, so only the size can be
+// checked (bake both maps in one aal-bake run).
+inline HorizonMap readHorizonsOfDem(const std::string& path, const Heightfield& field) {
+  HorizonMap horizons;
+  try {
+    horizons = readHorizonMap(path);
+  } catch (const std::runtime_error& e) {
+    throw InputError(std::string("--horizons: ") + e.what());
+  }
+  if (horizons.width != field.width || horizons.height != field.height) {
+    throw InputError("--horizons " + path + " is " + std::to_string(horizons.width) + "x" +
+                     std::to_string(horizons.height) + ", the DEM " + std::to_string(field.width) +
+                     "x" + std::to_string(field.height) +
+                     ": bake them from this DEM (aal-bake DEM --horizons FILE)");
+  }
+  return horizons;
+}
+
+}  // namespace aal
