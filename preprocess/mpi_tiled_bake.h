@@ -7,11 +7,13 @@
 // (refusing another bake's, removing dead temporaries, writing the
 // manifest) and broadcasts the checksum and the pyramid's finest level.
 // Then it hands the tiles out as ranks ask for them: a rank gets the next
-// tile of the tile row whose band it holds, else the first tile row nobody
-// started, else a tile of the row with the most left. Each rank reads its
-// tile row's band of the DEM through GDAL (readTileRowBand: never the whole
-// DEM), skips tiles already finished (tileFinished) and bakes and writes the
-// others. Rank 0 bakes too, on a thread of its own beside the one that
+// tile of the tile row whose window it holds, else the first tile row
+// nobody started, else a tile of the row with the most left. Each rank
+// skips tiles already finished (tileFinished) and bakes and writes the
+// others, each from its window of the DEM read through GDAL (the tile and
+// tileHalo around it, never the whole DEM), slid along the tile row
+// (TileWindowReader: the next tile of the row reads only its new columns).
+// Rank 0 bakes too, on a thread of its own beside the one that
 // answers the ranks, when MPI gives it MPI_THREAD_MULTIPLE and the job has
 // more than one rank. When every tile is done rank 0 writes the SVF mosaic
 // (with --svf) and index.txt.
@@ -19,6 +21,7 @@
 
 #include <mpi.h>
 
+#include <cstdint>
 #include <functional>
 #include <stdexcept>
 #include <string>
@@ -58,7 +61,9 @@ struct MpiTiledBakeSummary {
   int ranks = 1;
   bool rootBakes = false;        // rank 0 baked tiles too
   std::vector<int> bakedByRank;  // tiles baked (not resumed) per rank
-  double demPassSeconds = 0.0;   // rank 0's pass over the DEM, and the broadcast
+  // DEM samples each rank's tile windows read (rank 0's pass not counted).
+  std::vector<uint64_t> texelsReadByRank;
+  double demPassSeconds = 0.0;  // rank 0's pass over the DEM, and the broadcast
 };
 
 struct MpiTiledBakeHooks {
@@ -74,10 +79,11 @@ struct MpiTiledBakeHooks {
 // options, another bake's folder, a busy folder, voids) are thrown on rank
 // 0 and MpiPeerFailed on the others; an error or an interrupt while baking
 // is thrown as MpiTileFailed on the rank it happened on.
-// Memory per rank: one band (4 bytes per texel of the tile row and
-// bandHaloRows above and below it, every column), one tile's sums and the
-// pyramid (~0.67 bytes per DEM texel); rank 0's pass reads the DEM in 64 MB
-// chunks of rows.
+// Memory per rank: two windows (4 bytes per texel of the tile and tileHalo
+// around it: (3 T + 2 S)^2 for tiles of T and S steps of the near reach or
+// max distance, whatever the DEM's width), one tile's sums and the pyramid
+// (~0.67 bytes per DEM texel); rank 0's pass reads the DEM in 64 MB chunks
+// of rows.
 MpiTiledBakeSummary bakeTiledMpi(MPI_Comm comm, const DemSource& source,
                                  const Heightfield& geometry, const BakeOptions& bake,
                                  const TiledBakeOptions& tiled, const std::string& folder,
