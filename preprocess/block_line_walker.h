@@ -137,8 +137,15 @@ class BlockLineWalker {
                                                                              int i, int j) const;
 #endif
 
+  // Heightfield::at over the resident part, from the walker's own copy of
+  // its layout (one subtraction, as before the field held windows: the
+  // whole-DEM bake was 5-9 % slower through at()).
+  const float* heightPointer(int major, int minor) const {
+    const ptrdiff_t col = kMajorIsColumn ? major : minor, row = kMajorIsColumn ? minor : major;
+    return residentHeights_ + (row * rowStride_ + col - residentOffset_);
+  }
   float heightAt(int major, int minor) const {
-    return kMajorIsColumn ? field_.at(major, minor) : field_.at(minor, major);
+    return *heightPointer(major, minor);
   }
 
   const BakeTerrain& terrain_;
@@ -151,8 +158,11 @@ class BlockLineWalker {
   const int minorMax_;
   const float rowCentre_;
   const bool avx2_;
-  // The first and last major and minor coordinates of the field's
-  // resident part, for the prefetches.
+  // The field's resident part: its heights, row stride, the offset of its
+  // first texel (firstRow * stride + firstColumn), and its first and last
+  // major and minor coordinates, for the prefetches.
+  const float* residentHeights_;
+  ptrdiff_t rowStride_, residentOffset_;
   int residentMajor_[2], residentMinor_[2];
   int dMajorNeighbour_, dMinorNeighbour_;
   float wMajorNeighbour_, wMinorNeighbour_, invCellY_;
@@ -185,7 +195,7 @@ inline void BlockLineWalker<kMajorIsColumn>::prefetchAhead(int step) const {
       if (aheadMajor < residentMajor_[0] || aheadMajor > residentMajor_[1]) return;
       const int lo = std::max(aheadBase - 1, residentMinor_[0]);
       const int hi = std::min(aheadBase + lines, residentMinor_[1]);
-      for (int j = lo; j <= hi; ++j) __builtin_prefetch(&field_.z[field_.index(aheadMajor, j)]);
+      for (int j = lo; j <= hi; ++j) __builtin_prefetch(heightPointer(aheadMajor, j));
     }
   } else {
     const int ahead = step + 2;
@@ -196,7 +206,7 @@ inline void BlockLineWalker<kMajorIsColumn>::prefetchAhead(int step) const {
       const int lo = std::max(aheadBase - 1, residentMinor_[0]);
       const int hi = std::min(aheadBase + lines, residentMinor_[1]);
       if (lo > hi) return;
-      const float* row = &field_.z[field_.index(lo, aheadMajor)];
+      const float* row = heightPointer(aheadMajor, lo);
       for (int j = 0; j < hi - lo; j += 16) __builtin_prefetch(row + j);
       __builtin_prefetch(row + (hi - lo));
     }
