@@ -24,11 +24,13 @@ namespace {
 constexpr double kTwoPi = 2.0 * std::numbers::pi;
 
 void checkOptions(const Heightfield& field, const BakeOptions& o) {
-  // The whole field, or a band of its rows (Heightfield::firstRow).
-  const bool rows = field.width > 0 && field.z.size() % static_cast<size_t>(field.width) == 0 &&
-                    field.firstRow >= 0 && field.residentRows() >= 1 &&
-                    field.firstRow + field.residentRows() <= field.height;
-  if (field.width < 1 || field.height < 1 || !rows) {
+  // The whole field, or a window of it (Heightfield::firstRow, firstColumn).
+  const int columns = field.residentColumns();
+  const bool window = columns >= 1 && field.z.size() % static_cast<size_t>(columns) == 0 &&
+                      field.firstColumn >= 0 && field.firstColumn + columns <= field.width &&
+                      field.firstRow >= 0 && field.residentRows() >= 1 &&
+                      field.firstRow + field.residentRows() <= field.height;
+  if (field.width < 1 || field.height < 1 || !window) {
     throw std::invalid_argument("bake: empty or inconsistent heightfield");
   }
   if (o.azimuths < 4 || o.azimuths > 4096) {
@@ -253,7 +255,7 @@ ApertureMapInfo bakeInfo(const Heightfield& field, const BakeOptions& o) {
 BakeResult bakeApertures(const Heightfield& field, const BakeOptions& o) {
   checkOptions(field, o);
   if (field.z.size() != field.texelCount()) {
-    throw std::invalid_argument("bake: a band of rows bakes only as windows");
+    throw std::invalid_argument("bake: a window of the field bakes only as windows");
   }
   // The DEM's checksum (its rows hashed in parallel) is a task beside the
   // sweeps rather than a wait after them.
@@ -278,6 +280,12 @@ BakeResult bakeApertureWindow(const Heightfield& field, const TexelWindow& windo
   if (!window.covers(field) &&
       (o.method != BakeMethod::Sweep || !(o.maxDistanceM > 0.0 || o.farField))) {
     throw std::invalid_argument("a bake window needs the sweep with a max distance or a far field");
+  }
+  // A window read in parts must at least hold the tile; the halo around it
+  // is the caller's (tileHalo, tiled_bake.h).
+  if (!field.holdsColumn(window.col) || !field.holdsColumn(window.col + window.width - 1) ||
+      !field.holdsRow(window.row) || !field.holdsRow(window.row + window.height - 1)) {
+    throw std::invalid_argument("bake window outside the heightfield's resident part");
   }
   return bakeWindow(field, prepareBakeTerrain(field, window), o);
 }

@@ -35,6 +35,13 @@ BlockLineWalker<kMajorIsColumn>::BlockLineWalker(const BakeTerrain& terrain,
   wMajorNeighbour_ = kMajorIsColumn ? wx : wy;
   wMinorNeighbour_ = kMajorIsColumn ? wy : wx;
   invCellY_ = static_cast<float>(1.0 / terrain.cellY);
+  residentHeights_ = field_.z.data();
+  rowStride_ = field_.residentColumns();
+  residentOffset_ = field_.firstRow * rowStride_ + field_.firstColumn;
+  const int columns[2] = {field_.firstColumn, field_.firstColumn + field_.residentColumns() - 1};
+  const int rows[2] = {field_.firstRow, field_.firstRow + field_.residentRows() - 1};
+  std::copy(kMajorIsColumn ? columns : rows, (kMajorIsColumn ? columns : rows) + 2, residentMajor_);
+  std::copy(kMajorIsColumn ? rows : columns, (kMajorIsColumn ? rows : columns) + 2, residentMinor_);
 }
 
 template <bool kMajorIsColumn>

@@ -110,9 +110,8 @@ FarHorizons::Point FarHorizons::march(const BakeTerrain& terrain, int col, int r
   row = std::min(row, terrain.height - 1);
   const Heightfield& field = *terrain.field;
   // The height the best sample is chosen for: the point's own (from the
-  // finest level where its row is not in memory).
-  const int resident = std::clamp(row, field.firstRow, field.firstRow + field.residentRows() - 1);
-  const double zRef = resident == row
+  // finest level where it is not in memory).
+  const double zRef = field.holdsColumn(col) && field.holdsRow(row)
                           ? field.at(col, row)
                           : pyramid.level(pyramid.baseShift())
                                 .meanAt(col >> pyramid.baseShift(), row >> pyramid.baseShift());

@@ -184,8 +184,8 @@ size_t HeightPyramid::bytes() const {
 }
 
 HeightPyramid buildHeightPyramid(const Heightfield& field, int baseShift) {
-  if (field.firstRow != 0 || field.residentRows() != field.height) {
-    throw std::invalid_argument("height pyramid: the field must hold all its rows");
+  if (field.z.size() != field.texelCount()) {
+    throw std::invalid_argument("height pyramid: the field must hold all its texels");
   }
   HeightPyramid pyramid(field.width, field.height, baseShift);
   pyramid.addRows(field.z.data(), field.height);

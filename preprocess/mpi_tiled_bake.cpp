@@ -20,12 +20,13 @@
 #include "errors.h"
 #include "heightfield_checksum.h"
 #include "sky_view_factor_tiles.h"
+#include "tile_window_reader.h"
 
 namespace aal {
 
 namespace {
 
-constexpr int kRequestTag = 1;  // rank -> 0: {outcome of its last tile, its band's tile row}
+constexpr int kRequestTag = 1;  // rank -> 0: {outcome of its last tile, its window's tile row}
 constexpr int kAssignTag = 2;   // 0 -> rank: {tile row, column}, or {-1, -1}: no more
 constexpr int kFailureTag = 3;  // rank -> 0: why it failed before the handout
 constexpr int kNoOutcome = 0, kBaked = 1, kResumed = 2;
@@ -118,8 +119,8 @@ void agreeBeforeHandout(MPI_Comm comm, int rank, int ranks, const std::exception
 }
 
 // The tiles not yet handed out. A rank is given the next tile of the tile
-// row whose band it holds (no new read), else the first row nobody started,
-// else a tile of the row with the most left (its band read once more).
+// row whose window it holds (only new columns read), else the first row
+// nobody started, else a tile of the row with the most left.
 class TileDispenser {
  public:
   TileDispenser(int rows, int columns)
@@ -171,50 +172,45 @@ class Tally {
   int resumed_ = 0;
 };
 
-// One rank's tiles: skips the finished ones, bakes the others from its
-// tile row's band, which it keeps while its tiles stay in that row.
+// One rank's tiles: skips the finished ones, bakes the others from their
+// windows of the DEM (TileWindowReader), slid along a tile row while its
+// tiles stay in that row.
 class TileWorker {
  public:
   TileWorker(const DemSource& source, const Heightfield& geometry, const ApertureTileIndex& index,
              const FarField* far, const BakeOptions& bake, const TiledBakeOptions& tiled,
              const std::string& folder, const MpiTiledBakeHooks& hooks)
-      : source_(source),
-        geometry_(geometry),
-        index_(index),
+      : index_(index),
         far_(far),
         bake_(bake),
         tiled_(tiled),
         folder_(folder),
         hooks_(hooks),
-        halo_(bandHaloRows(geometry, bake, tiled)) {}
+        reader_(source, geometry, tileHalo(geometry, bake, tiled)) {}
 
   // kBaked or kResumed.
   int work(int row, int column) {
     if (tileFinished(index_, folder_, row, column)) return kResumed;
     if (hooks_.beforeTile) hooks_.beforeTile(row, column);
-    if (bandRow_ != row) {
-      band_ = Heightfield{};  // free the previous band first
-      const TexelWindow window = tileWindow(index_, row, 0);
-      band_ = readTileRowBand(source_, geometry_, halo_, window.row, window.height);
-      bandRow_ = row;
-    }
-    bakeTileInto(band_, far_, index_, bake_, tiled_, folder_, row, column);
+    const Heightfield& window = reader_.windowFor(tileWindow(index_, row, column));
+    bandRow_ = row;
+    bakeTileInto(window, far_, index_, bake_, tiled_, folder_, row, column);
     return kBaked;
   }
+  // The tile row of the window held (-1: none): its next tile reads only
+  // the columns it does not share.
   int bandRow() const { return bandRow_; }
+  uint64_t texelsRead() const { return reader_.texelsRead(); }
 
  private:
-  const DemSource& source_;
-  const Heightfield& geometry_;
   const ApertureTileIndex& index_;
   const FarField* far_;
   const BakeOptions& bake_;
   const TiledBakeOptions& tiled_;
   const std::string& folder_;
   const MpiTiledBakeHooks& hooks_;
-  const int halo_;
+  TileWindowReader reader_;
   int bandRow_ = -1;
-  Heightfield band_;
 };
 
 // Rank 0's side of the handout: answers every other rank until each has
@@ -451,6 +447,11 @@ MpiTiledBakeSummary bakeTiledMpi(MPI_Comm comm, const DemSource& source,
     throw MpiTileFailed(1, std::string("error: ") + e.what());
   }
   broadcastPolitely(counts.data(), static_cast<int>(counts.size()), MPI_INT, comm);
+  // Every rank is here once the counts arrive: this gather does not wait.
+  const uint64_t texelsRead = worker.texelsRead();
+  summary.texelsReadByRank.assign(static_cast<size_t>(ranks), 0);
+  MPI_Allgather(&texelsRead, 1, MPI_UINT64_T, summary.texelsReadByRank.data(), 1, MPI_UINT64_T,
+                comm);
   summary.bakedByRank.assign(counts.begin(), counts.begin() + ranks);
   for (int baked : summary.bakedByRank) summary.tiles.baked += baked;
   summary.tiles.resumed = counts[static_cast<size_t>(ranks)];

@@ -8,12 +8,14 @@
 // row hashes go to rank 0, which makes the checksum, and every rank gets
 // every block row. Rank 0 opens the folder (refusing another bake's,
 // removing dead temporaries, writing the manifest) and broadcasts the
-// checksum. Then it hands the tiles out as ranks ask for them: a rank gets the next
-// tile of the tile row whose band it holds, else the first tile row nobody
-// started, else a tile of the row with the most left. Each rank reads its
-// tile row's band of the DEM through GDAL (readTileRowBand: never the whole
-// DEM), skips tiles already finished (tileFinished) and bakes and writes the
-// others. Rank 0 bakes too, on a thread of its own beside the one that
+// checksum. Then it hands the tiles out as ranks ask for them: a rank gets
+// the next tile of the tile row whose window it holds, else the first tile
+// row nobody started, else a tile of the row with the most left. Each rank
+// skips tiles already finished (tileFinished) and bakes and writes the
+// others, each from its window of the DEM read through GDAL (the tile and
+// tileHalo around it, never the whole DEM), slid along the tile row
+// (TileWindowReader: the next tile of the row reads only its new columns).
+// Rank 0 bakes too, on a thread of its own beside the one that
 // answers the ranks, when MPI gives it MPI_THREAD_MULTIPLE and the job has
 // more than one rank. When every tile is done rank 0 writes the SVF mosaic
 // (with --svf) and index.txt.
@@ -21,6 +23,7 @@
 
 #include <mpi.h>
 
+#include <cstdint>
 #include <functional>
 #include <stdexcept>
 #include <string>
@@ -60,7 +63,9 @@ struct MpiTiledBakeSummary {
   int ranks = 1;
   bool rootBakes = false;        // rank 0 baked tiles too
   std::vector<int> bakedByRank;  // tiles baked (not resumed) per rank
-  double demPassSeconds = 0.0;   // the pass over the DEM, with the folder's opening
+  // DEM samples each rank's tile windows read (the pass not counted).
+  std::vector<uint64_t> texelsReadByRank;
+  double demPassSeconds = 0.0;  // the pass over the DEM, with the folder's opening
 };
 
 struct MpiTiledBakeHooks {
@@ -103,10 +108,11 @@ TiledBakeDemPass sharedDemPass(MPI_Comm comm, const DemSource& source, const Hei
 // options, another bake's folder, a busy folder, voids) are thrown on rank
 // 0 and MpiPeerFailed on the others; an error or an interrupt while baking
 // is thrown as MpiTileFailed on the rank it happened on.
-// Memory per rank: one band (4 bytes per texel of the tile row and
-// bandHaloRows above and below it, every column), one tile's sums and the
-// pyramid (~0.67 bytes per DEM texel); during the pass one 64 MB chunk of
-// rows and 8 bytes per DEM row.
+// Memory per rank: two windows (4 bytes per texel of the tile and tileHalo
+// around it: (3 T + 2 S)^2 for tiles of T and S steps of the near reach or
+// max distance, whatever the DEM's width), one tile's sums and the pyramid
+// (~0.67 bytes per DEM texel); during the pass one 64 MB chunk of rows and
+// 8 bytes per DEM row.
 MpiTiledBakeSummary bakeTiledMpi(MPI_Comm comm, const DemSource& source,
                                  const Heightfield& geometry, const BakeOptions& bake,
                                  const TiledBakeOptions& tiled, const std::string& folder,

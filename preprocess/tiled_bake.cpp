@@ -31,6 +31,7 @@
 #include "heightfield_checksum.h"
 #include "horizon_sweep.h"
 #include "sky_view_factor_tiles.h"
+#include "tile_window_reader.h"
 
 namespace aal {
 
@@ -267,16 +268,16 @@ void bakeTileInto(const Heightfield& field, const FarField* far, const ApertureT
 
 namespace {
 
-// Gives the field a tile row is baked from: the whole DEM, or a band of its
-// rows that holds the tile row and the terrain within the max distance.
-using TileRowTerrain = std::function<const Heightfield&(int firstRow, int rows)>;
+// Gives the field a tile is baked from: the whole DEM, or a window of it
+// that holds the tile and the terrain its sweeps read (tileHalo).
+using TileTerrain = std::function<const Heightfield&(const TexelWindow& tile)>;
 
 // `pyramid`: the whole DEM's, for a bake without a max distance;
 // `legacyChecksum`: the DEM's checksum as maps baked before issue 20 carry
 // it (tiledBakeChecksum).
 TiledBakeSummary bakeTiles(const Heightfield& geometry, const std::string& checksum,
                            const std::function<std::string()>& legacyChecksum,
-                           const TileRowTerrain& terrainFor, const HeightPyramid* pyramid,
+                           const TileTerrain& terrainFor, const HeightPyramid* pyramid,
                            const BakeOptions& bake, const TiledBakeOptions& tiled,
                            const std::string& folder) {
   checkTiledBakeOptions(bake, tiled);
@@ -297,7 +298,6 @@ TiledBakeSummary bakeTiles(const Heightfield& geometry, const std::string& check
   BakeOptions tile = bake;
   const FarField far{pyramid, resolvedFarField(geometry, tiled)};
   for (int row = 0; row < index.rows(); ++row) {
-    const Heightfield* field = nullptr;  // read when a tile of this row needs baking
     for (int column = 0; column < index.columns(); ++column) {
       const TexelWindow window = tileWindow(index, row, column);
       const double texels = static_cast<double>(window.texelCount());
@@ -307,8 +307,7 @@ TiledBakeSummary bakeTiles(const Heightfield& geometry, const std::string& check
         if (bake.progress) {
           tile.progress = [&](double f) { bake.progress((done + f * texels) / total); };
         }
-        if (field == nullptr) field = &terrainFor(window.row, window.height);
-        bakeTileInto(*field, &far, index, tile, tiled, folder, row, column);
+        bakeTileInto(terrainFor(window), &far, index, tile, tiled, folder, row, column);
         ++summary.baked;
       }
       done += texels;
@@ -355,27 +354,25 @@ TiledBakeSummary bakeTiled(const Heightfield& field, const BakeOptions& bake,
     pyramid.emplace(buildHeightPyramid(field, tiledBakePyramidShift(field, tiled)));
   return bakeTiles(
       field, heightfieldChecksum(field), [&] { return legacyHeightfieldChecksum(field); },
-      [&](int, int) -> const Heightfield& { return field; }, pyramid ? &*pyramid : nullptr, bake,
-      tiled, folder);
+      [&](const TexelWindow&) -> const Heightfield& { return field; },
+      pyramid ? &*pyramid : nullptr, bake, tiled, folder);
 }
 
-int bandHaloRows(const Heightfield& geometry, const BakeOptions& bake,
-                 const TiledBakeOptions& tiled) {
-  // Every line that reaches the tile is walked from stepsCovering(max
-  // distance) steps before the tile to its far side, moving by up to one row
-  // a step: lines advancing by columns drift up to the tile's width plus
-  // those steps in rows (the points beyond the max distance are read, then
-  // ignored). The slopes reach one row further, the interpolation one more.
+int tileHalo(const Heightfield& geometry, const BakeOptions& bake, const TiledBakeOptions& tiled) {
+  // Every line that reaches the tile is walked from S = stepsCovering(max
+  // distance) steps before the tile to its far side (horizon_sweep.h,
+  // makeSweepLayout). Along its major axis it reads the tile, the S steps
+  // before it and the neighbouring slice either side (the slopes). Across
+  // it, it moves by up to one texel a step (|minorPerStep| <= 1): the lines
+  // that reach the tile's texels drift up to the tile's side plus S, and
+  // the walk reads one texel either side of them (interpolation, slopes).
+  // The sweep is the same with rows and columns swapped, so lines advancing
+  // by rows drift as far in columns as lines advancing by columns drift in
+  // rows, and one halo serves both directions (the points beyond the max
+  // distance are read, then ignored; TileWindow.* tests the bound).
   const double reach =
       bake.maxDistanceM > 0.0 ? bake.maxDistanceM : resolvedFarField(geometry, tiled).nearReachM;
   return detail::stepsCovering(prepareBakeTerrain(geometry), reach) + tiled.tileSize + 3;
-}
-
-Heightfield readTileRowBand(const DemSource& source, const Heightfield& geometry, int halo,
-                            int firstRow, int rows) {
-  const int top = std::max(0, firstRow - halo);
-  const int bottom = std::min(geometry.height, firstRow + rows + halo);
-  return readDemRows(source, geometry, top, bottom - top);
 }
 
 std::optional<HeightPyramid> emptyTiledBakePyramid(const Heightfield& geometry,
@@ -465,16 +462,13 @@ TiledBakeSummary bakeTiledInBands(const DemSource& source, const Heightfield& ge
   TiledBakeOptions locked = tiled;
   if (!locked.lock && fs::is_directory(folder)) locked.lock = &ownLock.emplace(folder);
   TiledBakeDemPass pass = scanDemForTiledBake(source, geometry, bake, tiled);
-  const int halo = bandHaloRows(geometry, bake, tiled);
-  Heightfield band;
-  return bakeTiles(
+  TileWindowReader reader(source, geometry, tileHalo(geometry, bake, tiled));
+  TiledBakeSummary summary = bakeTiles(
       geometry, pass.checksum, [&] { return legacyDemChecksum(source, geometry); },
-      [&](int firstRow, int rows) -> const Heightfield& {
-        band = Heightfield{};  // free the previous band first
-        band = readTileRowBand(source, geometry, halo, firstRow, rows);
-        return band;
-      },
+      [&](const TexelWindow& tile) -> const Heightfield& { return reader.windowFor(tile); },
       pass.pyramid ? &*pass.pyramid : nullptr, bake, locked, folder);
+  summary.texelsRead = reader.texelsRead();
+  return summary;
 }
 
 }  // namespace aal

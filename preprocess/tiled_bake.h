@@ -78,6 +78,9 @@ struct TiledBakeSummary {
   int tiles = 0;
   int baked = 0;    // baked by this run
   int resumed = 0;  // found finished in the folder and kept
+  // DEM samples the tiles' windows read (bakeTiledInBands; the pass over
+  // the whole DEM for its checksum not counted).
+  uint64_t texelsRead = 0;
 };
 
 // Throws std::invalid_argument for options a tiled bake cannot take: a tile
@@ -107,24 +110,24 @@ TiledBakeSummary bakeTiled(const Heightfield& field, const BakeOptions& bake,
 
 class DemSource;
 
-// The same bake, bit for bit, with the DEM read from `source` one band of
-// rows at a time: a tile row plus the rows its sweeps read above and below
-// it (bandHaloRows), every column. Memory: one band (4 bytes per texel of
-// about three tile rows) plus one tile, whatever the DEM's height; the DEM
-// is read once more for its checksum (and, without a max distance, its
-// pyramid). `geometry` is demGeometry of the
-// source. The DEM must have no voids (filling them needs all of it):
-// InputError naming gdal_fillnodata.py otherwise, before any tile. An
-// existing folder is locked before the checksum pass.
+// The same bake, bit for bit, with the DEM read from `source` one window at
+// a time: a tile plus the texels its sweeps read around it (tileHalo) in
+// both directions, slid along the tile row (TileWindowReader: the columns
+// the next tile shares are kept, only the new ones read; about three reads
+// of each DEM texel in all). Memory: two windows (4 bytes per texel of
+// about (3 tiles)^2) plus one tile, whatever the DEM's size; the DEM is
+// read once more for its checksum (and, without a max distance, its
+// pyramid). `geometry` is demGeometry of the source. The DEM must have no voids (filling them needs
+// all of it): InputError naming gdal_fillnodata.py otherwise, before any tile. An existing folder
+// is locked before the checksum pass.
 TiledBakeSummary bakeTiledInBands(const DemSource& source, const Heightfield& geometry,
                                   const BakeOptions& bake, const TiledBakeOptions& tiled,
                                   const std::string& folder);
 
-// Rows above and below a tile row that its tiles' sweeps read: the tile
-// size plus the steps of the max distance or, without one, of the far
+// Texels around a tile, in rows and in columns, that its sweeps read: the
+// tile size plus the steps of the max distance or, without one, of the far
 // field's near reach (+ 3).
-int bandHaloRows(const Heightfield& geometry, const BakeOptions& bake,
-                 const TiledBakeOptions& tiled);
+int tileHalo(const Heightfield& geometry, const BakeOptions& bake, const TiledBakeOptions& tiled);
 
 // The far field a tiled bake of `geometry` without a max distance uses:
 // tiled.farField with nearReachM resolved.
@@ -188,15 +191,10 @@ void openTileFolder(const std::string& folder, const ApertureTileIndex& index);
 bool tileFinished(const ApertureTileIndex& index, const std::string& folder, int row, int column);
 // The texels of tile (row, column).
 TexelWindow tileWindow(const ApertureTileIndex& index, int row, int column);
-// The rows a tile row [firstRow, firstRow + rows) is baked from: those rows
-// and `halo` (bandHaloRows) above and below, every column.
-Heightfield readTileRowBand(const DemSource& source, const Heightfield& geometry, int halo,
-                            int firstRow, int rows);
-// Bakes tile (row, column) from `field` (the whole DEM, or a band that
-// holds the tile row's band) and writes it into the folder (a temporary
-// file, renamed), with its SVF GeoTIFF when the bake writes the SVF. `far`:
-// the whole DEM's far field, for a bake without a max distance (its
-// options resolvedFarField's).
+// Bakes tile (row, column) from `field` (the whole DEM, or a window that
+// holds the tile and tileHalo around it: TileWindowReader) and writes it into the folder (a
+// temporary file, renamed), with its SVF GeoTIFF when the bake writes the SVF. `far`: the whole
+// DEM's far field, for a bake without a max distance (its options resolvedFarField's).
 void bakeTileInto(const Heightfield& field, const FarField* far, const ApertureTileIndex& index,
                   const BakeOptions& bake, const TiledBakeOptions& tiled, const std::string& folder,
                   int row, int column);

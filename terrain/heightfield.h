@@ -70,18 +70,26 @@ struct Heightfield {
   std::optional<double> nodata;
   std::string zUnitName;
 
-  // The first row held in z and voidMask: 0 but in a row band of a DEM read
-  // in parts (a tiled bake of a DEM larger than memory, preprocess/
-  // tiled_bake.h), whose z holds only rows [firstRow, firstRow +
-  // residentRows()). index() and at() take the whole DEM's rows either way.
-  int firstRow = 0;
+  // The part held in z and voidMask: every texel, but in a window of a DEM
+  // read in parts (a tiled bake of a DEM larger than memory, preprocess/
+  // tiled_bake.h), whose z holds only columns [firstColumn, firstColumn +
+  // residentColumns()) of rows [firstRow, firstRow + residentRows()), row
+  // after row. index() and at() take the whole DEM's columns and rows either
+  // way; only the resident texels may be read.
+  int firstRow = 0, firstColumn = 0;
+  int windowColumns = 0;  // columns held per row; 0: every column
 
   size_t texelCount() const { return static_cast<size_t>(width) * static_cast<size_t>(height); }
+  int residentColumns() const { return windowColumns > 0 ? windowColumns : width; }
   int residentRows() const {
-    return width > 0 ? static_cast<int>(z.size() / static_cast<size_t>(width)) : 0;
+    const int columns = residentColumns();
+    return columns > 0 ? static_cast<int>(z.size() / static_cast<size_t>(columns)) : 0;
   }
+  bool holdsColumn(int x) const { return x >= firstColumn && x < firstColumn + residentColumns(); }
+  bool holdsRow(int y) const { return y >= firstRow && y < firstRow + residentRows(); }
   size_t index(int x, int y) const {
-    return static_cast<size_t>(y - firstRow) * static_cast<size_t>(width) + static_cast<size_t>(x);
+    return static_cast<size_t>(y - firstRow) * static_cast<size_t>(residentColumns()) +
+           static_cast<size_t>(x - firstColumn);
   }
   float at(int x, int y) const { return z[index(x, y)]; }
   bool isVoid(int x, int y) const { return !voidMask.empty() && voidMask[index(x, y)] != 0; }

@@ -113,7 +113,8 @@ void checkOutputs(const Options& o, bool tiled) {
 bool checkTiling(const Options& o, const aal::DemSource& dem) {
   const size_t texels = static_cast<size_t>(dem.width()) * static_cast<size_t>(dem.height());
   if (o.lowMemory && o.tileSize == 0 && texels <= aal::kInMemoryBakeTexelLimit) {
-    throw aal::InputError("--low-memory reads the DEM in bands for a tiled bake: give --tile-size");
+    throw aal::InputError(
+        "--low-memory reads the DEM in windows for a tiled bake: give --tile-size");
   }
   const bool tooLarge = texels > aal::kInMemoryBakeTexelLimit;
   if (o.tileSize == 0 && !tooLarge) return false;
@@ -169,7 +170,7 @@ int run(const Options& o) {
         "(--tile-size) writes it into its folder");
   }
   if (tiled != askedTiled) checkOutputs(o, tiled);
-  // A tiled bake of a DEM that does not fit in memory reads it in bands.
+  // A tiled bake of a DEM that does not fit in memory reads it in windows.
   const bool inBands = tiled && (o.lowMemory || !fitsInMemory(dem));
   // The samples first: DemSource finds the CRS while they decode.
   std::optional<aal::RawDem> samples;
@@ -276,8 +277,14 @@ int run(const Options& o) {
   std::string layout;
   if (tiled) {
     layout = ", " + std::to_string(tiling.tileSize) + "-texel tiles" +
-             (inBands ? " read in bands" : "") + " (" + std::to_string(tiles.baked) + " baked, " +
+             (inBands ? " read in windows" : "") + " (" + std::to_string(tiles.baked) + " baked, " +
              std::to_string(tiles.resumed) + " resumed)";
+    if (inBands && tiles.baked > 0) {
+      char reads[96];
+      std::snprintf(reads, sizeof reads, ", windows of %.3g DEM texels read per texel",
+                    static_cast<double>(tiles.texelsRead) / geometry.texelCount());
+      layout += reads;
+    }
     if (tiles.tiles > 0) texels *= static_cast<double>(tiles.baked) / tiles.tiles;
   }
   const double work = texels * (bake.method == aal::BakeMethod::Sweep ? o.azimuths : o.rays);
@@ -369,8 +376,9 @@ int main(int argc, char** argv) {
       ->check(CLI::Range(aal::kMinTileSize, aal::kMaxTileSize));
   aal::addNearReachOption(app, o);
   app.add_flag("--low-memory", o.lowMemory,
-               "read the DEM one band of rows at a time (a tile row plus its halo): a "
-               "tiled bake then needs memory for one band, not the DEM; automatic when the DEM "
+               "read the DEM one window at a time (a tile plus its halo, slid along the tile "
+               "row): a tiled bake then needs memory for two windows, not the DEM; automatic "
+               "when the DEM "
                "does not fit in memory; the DEM must have no voids (gdal_fillnodata.py fills "
                "them)");
   app.add_flag(

@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <chrono>
 #include <csignal>
+#include <cstdint>
 #include <cstdio>
 #include <cstdlib>
 #include <exception>
@@ -166,14 +167,19 @@ int run(const Options& o) {
     }
     const double texels = static_cast<double>(geometry.texelCount()) * summary.tiles.baked /
                           std::max(1, summary.tiles.tiles);
+    // DEM texels the ranks' windows read, per DEM texel.
+    double read = 0.0;
+    for (uint64_t rankTexels : summary.texelsReadByRank) read += static_cast<double>(rankTexels);
+    read /= static_cast<double>(geometry.texelCount());
     std::fprintf(stderr,
                  "aal-bake-mpi: %s %dx%d, %d-texel tiles on %d ranks%s (%d baked: %s per rank; "
                  "%d resumed), %d azimuths, %d threads per rank, in %.2f s (%.3g "
-                 "texel-azimuths/s; the pass over the DEM %.2f s) -> %s\n",
+                 "texel-azimuths/s; the pass over the DEM %.2f s; windows of %.3g DEM "
+                 "texels read per texel) -> %s\n",
                  tiling.sourceName.c_str(), geometry.width, geometry.height, o.tileSize, ranks,
                  summary.rootBakes ? "" : " (rank 0 only hands out)", summary.tiles.baked,
                  perRank.c_str(), summary.tiles.resumed, o.azimuths, threads, seconds,
-                 texels * o.azimuths / seconds, summary.demPassSeconds, target.c_str());
+                 texels * o.azimuths / seconds, summary.demPassSeconds, read, target.c_str());
   }
   return aal::kExitOk;
 }
@@ -192,12 +198,12 @@ int main(int argc, char** argv) {
       "aal-bake's tiled bake across the ranks of an MPI job: mpirun -np N aal-bake-mpi DEM "
       "--tile-size T\n-o FOLDER (or srun under Slurm). The ranks share one read of the DEM (its "
       "checksum and,\nwithout --max-distance, the far field's pyramid, which every rank gets), "
-      "then rank 0 hands out\nthe tiles as ranks ask; each rank reads its tile row's band of the "
-      "DEM (never the whole "
-      "DEM) and\nwrites its tiles into FOLDER, which every rank must reach (a shared file "
-      "system). The\nfolder is the same, bit for bit, as aal-bake --tile-size T writes; a job "
-      "that died (a\nkilled rank ends the job) resumes from its finished tiles when run again, "
-      "with any\nnumber of ranks or with aal-bake. docs/baking.md.\n\n" +
+      "then rank 0 hands out\nthe tiles as ranks ask; each rank reads each tile's window of the DEM "
+      "(the tile and its\nhalo, never the whole DEM) and writes its tiles into FOLDER, which every "
+      "rank must reach\n(a shared file system). The folder is the same, bit for bit, as aal-bake "
+      "--tile-size T\nwrites; a job that died (a killed rank ends the job) resumes from its "
+      "finished tiles\nwhen run again, with any number of ranks or with aal-bake. "
+      "docs/baking.md.\n\n" +
           aal::demFormatsHelp(),
       "aal-bake-mpi");
   Options o;

@@ -30,7 +30,7 @@ void checkOptions(const DemLoadOptions& options) {
 }
 
 [[noreturn]] void refuseHeight(const std::string& path, const RawDem& raw, size_t texel,
-                               int firstRow, double zScale) {
+                               int firstRow, int firstColumn, double zScale) {
   char text[512];
   std::snprintf(text, sizeof text,
                 ": height %.6g m (stored %.6g, z scale %.6g) at column %zu, row %zu is beyond any "
@@ -38,7 +38,7 @@ void checkOptions(const DemLoadOptions& options) {
                 "`gdal_translate -a_nodata %.9g DEM fixed.tif`; if the heights are in other "
                 "units, give --z-scale",
                 raw.z[texel] * zScale, double{raw.z[texel]}, zScale,
-                texel % static_cast<size_t>(raw.width),
+                texel % static_cast<size_t>(raw.width) + static_cast<size_t>(firstColumn),
                 texel / static_cast<size_t>(raw.width) + static_cast<size_t>(firstRow), kMaxHeightM,
                 double{raw.z[texel]});
   throw InputError(path + text);
@@ -116,13 +116,15 @@ Heightfield geometryOf(const RawDem& raw, const std::string& path, const DemLoad
 // Heights times the z scale; non-finite products become voids, heights
 // beyond kMaxHeightM are refused (float horizons lose all precision near
 // such spikes: a 1e30 m one gave its neighbours a full sky).
-size_t scaleHeights(RawDem& raw, double zScale, const std::string& path, int firstRow) {
+size_t scaleHeights(RawDem& raw, double zScale, const std::string& path, int firstRow,
+                    int firstColumn) {
   size_t voids = 0;
   for (size_t i = 0; i < raw.z.size(); ++i) {
     if (!raw.voidMask[i]) {
       const double scaled = raw.z[i] * zScale;
       if (std::isfinite(scaled) && std::isfinite(raw.z[i])) {
-        if (!(std::abs(scaled) <= kMaxHeightM)) refuseHeight(path, raw, i, firstRow, zScale);
+        if (!(std::abs(scaled) <= kMaxHeightM))
+          refuseHeight(path, raw, i, firstRow, firstColumn, zScale);
         raw.z[i] = static_cast<float>(scaled);
         continue;
       }
@@ -159,6 +161,27 @@ Heightfield readDemRows(const DemSource& source, const Heightfield& geometry, in
   band.firstRow = firstRow;
   band.z = std::move(raw.z);
   return band;
+}
+
+Heightfield readDemWindow(const DemSource& source, const Heightfield& geometry, int firstColumn,
+                          int firstRow, int columns, int rows) {
+  RawDem raw = source.read(firstColumn, firstRow, columns, rows);
+  const size_t voids = scaleHeights(raw, geometry.zScale, source.path(), firstRow, firstColumn);
+  if (voids > 0) {
+    throw InputError(source.path() + ": has voids (" + std::to_string(voids) + " in columns " +
+                     std::to_string(firstColumn) + " to " +
+                     std::to_string(firstColumn + columns - 1) + " of rows " +
+                     std::to_string(firstRow) + " to " + std::to_string(firstRow + rows - 1) +
+                     "); a DEM read in parts cannot be filled, since filling needs the whole "
+                     "DEM: fill them first, e.g. `gdal_fillnodata.py " +
+                     source.path() + " filled.tif`");
+  }
+  Heightfield window = geometry;
+  window.firstColumn = firstColumn;
+  window.firstRow = firstRow;
+  window.windowColumns = columns;
+  window.z = std::move(raw.z);
+  return window;
 }
 
 Heightfield heightfieldFromRaw(RawDem raw, const std::string& path, const DemLoadOptions& options) {

@@ -45,9 +45,18 @@ Heightfield demGeometry(const DemSource& source, const DemLoadOptions& options);
 Heightfield readDemRows(const DemSource& source, const Heightfield& geometry, int firstRow,
                         int rows);
 
-// Heights of `raw` (rows from firstRow of the DEM at `path`) times zScale,
-// in place; non-finite ones flagged as voids (set to 0) and counted.
-// Throws InputError naming the texel when a height exceeds kMaxHeightM.
-size_t scaleHeights(RawDem& raw, double zScale, const std::string& path, int firstRow = 0);
+// Columns [firstColumn, firstColumn + columns) of rows [firstRow, firstRow +
+// rows) of the DEM as a window of `geometry`, as readDemRows gives a band:
+// Heightfield::firstColumn, firstRow and windowColumns set, z holding those
+// texels row after row. The same InputError for voids.
+Heightfield readDemWindow(const DemSource& source, const Heightfield& geometry, int firstColumn,
+                          int firstRow, int columns, int rows);
+
+// Heights of `raw` (the window from firstColumn, firstRow of the DEM at
+// `path`) times zScale, in place; non-finite ones flagged as voids (set to
+// 0) and counted. Throws InputError naming the texel when a height exceeds
+// kMaxHeightM.
+size_t scaleHeights(RawDem& raw, double zScale, const std::string& path, int firstRow = 0,
+                    int firstColumn = 0);
 
 }  // namespace aal

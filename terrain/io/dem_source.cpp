@@ -562,6 +562,7 @@ RawDem DemSource::read(int column, int row, int w, int h) const {
                 "(`gdal_translate -srcwin`) or coarsen it (`gdal_translate -outsize 50% 50%`)");
   RawDem dem;  // the samples; the description joins them at the end
   dem.allocate(w, h);
+  texelsRead_ += static_cast<uint64_t>(w) * static_cast<uint64_t>(h);
 
   GDALRasterBand& band = *impl_->band;
   const int fileRow = impl_->southUp ? whole.height - row - h : row;

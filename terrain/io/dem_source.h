@@ -3,6 +3,7 @@
 // window at a time, so that a caller needs in memory only what it uses.
 #pragma once
 
+#include <cstdint>
 #include <memory>
 #include <optional>
 #include <string>
@@ -46,6 +47,9 @@ class DemSource {
   // truncated or corrupt data. Not thread-safe: one reader per thread.
   RawDem read(int column, int row, int width, int height) const;
   RawDem readAll() const { return read(0, 0, width(), height()); }
+  // Samples read so far, every read's width x height: what a caller reading
+  // the DEM in parts has read (docs/baking.md, tiled bakes).
+  uint64_t texelsRead() const { return texelsRead_; }
 
  private:
   struct Impl;
@@ -53,6 +57,7 @@ class DemSource {
 
   std::string path_;
   mutable RawDem description_;
+  mutable uint64_t texelsRead_ = 0;
   std::unique_ptr<Impl> impl_;
 };
 

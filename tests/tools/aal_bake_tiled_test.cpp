@@ -68,8 +68,8 @@ TEST(AalBakeTiled, FolderEqualsTheSingleFileBake) {
   EXPECT_EQ(b.info.source, dem.filename().string());
 }
 
-// A DEM read in bands of rows (--low-memory): each tile row's band holds
-// only its rows and the rows within the max distance, yet every tile equals
+// A DEM read in windows (--low-memory): each tile's window holds only its
+// texels and those within the max distance, yet every tile equals
 // the single-file bake, on a projected and on a geographic grid (whose x
 // spacing changes with the row).
 TEST(AalBakeTiled, BandsOfRowsEqualTheSingleFileBake) {
@@ -93,10 +93,57 @@ TEST(AalBakeTiled, BandsOfRowsEqualTheSingleFileBake) {
                                            " --tile-size 32 --low-memory --azimuths 32 "
                                            "--max-distance 250");
     ASSERT_EQ(r.exitCode, 0) << r.out;
-    EXPECT_NE(r.out.find("32-texel tiles read in bands (15 baked"), std::string::npos) << r.out;
+    EXPECT_NE(r.out.find("32-texel tiles read in windows (15 baked"), std::string::npos) << r.out;
     const ApertureMap a = readApertureMap(single.string()), b = readApertureMap(folder.string());
     EXPECT_EQ(a.texels, b.texels) << (geographic ? "geographic" : "projected");
     EXPECT_EQ(a.info.sourceChecksum, b.info.sourceChecksum);
+  }
+}
+
+// A DEM several tiles wide and tall read in windows (--low-memory): each
+// tile's window holds the tile and its halo, a part of the rows and of the
+// columns, yet the folder is the in-memory tiled bake's byte for byte (the
+// SVF GeoTIFFs and the VRT too), with a max distance and with the far field,
+// on a projected and on a geographic grid; 200 x 130 in tiles of 32 leaves
+// tiles of 8 columns and of 2 rows at the edges.
+TEST(AalBakeTiled, WindowsOfAWideDemEqualTheInMemoryFolder) {
+  TempDir dir;
+  const std::string fixedDate = "SOURCE_DATE_EPOCH=1700000000";
+  for (const bool geographic : {false, true}) {
+    SyntheticTerrainOptions s;
+    s.width = 200;
+    s.height = 130;
+    s.cellSizeM = 30;
+    s.seed = 7;
+    s.featureSizeTexels = 20;
+    const Heightfield field = makeSyntheticTerrain(s);
+    const fs::path dem = dir.path() / (geographic ? "geo.tif" : "utm.tif");
+    writeFloatGeoTiff(dem.string(), s.width, s.height, field.z.data(),
+                      test::testGeoReference(geographic));
+    for (const std::string options :
+         {" --tile-size 32 --azimuths 12 --max-distance 200 --svf",
+          " --tile-size 32 --azimuths 12 --near-reach 400 --edge clamp --curvature --svf"}) {
+      SCOPED_TRACE(std::string(geographic ? "geographic" : "projected") + options);
+      const fs::path memory = dir.path() / "memory", windows = dir.path() / "windows";
+      fs::remove_all(memory);
+      fs::remove_all(windows);
+      auto r =
+          runTool("aal-bake", quoted(dem) + " -o " + quoted(memory) + options + " -q", fixedDate);
+      ASSERT_EQ(r.exitCode, 0) << r.out;
+      r = runTool("aal-bake", quoted(dem) + " -o " + quoted(windows) + options + " --low-memory",
+                  fixedDate);
+      ASSERT_EQ(r.exitCode, 0) << r.out;
+      EXPECT_NE(r.out.find("32-texel tiles read in windows (35 baked, 0 resumed), windows of"),
+                std::string::npos)
+          << r.out;
+      const test::FolderContents want = test::folderContents(memory),
+                                 have = test::folderContents(windows);
+      EXPECT_EQ(have.size(), 35u + 35u + 4u);  // EXRs, GeoTIFFs, VRT, index, manifest, lock
+      for (const auto& [name, bytes] : want) {
+        ASSERT_TRUE(have.count(name)) << name;
+        EXPECT_TRUE(have.at(name) == bytes) << name << " differs";
+      }
+    }
   }
 }
 
@@ -206,7 +253,7 @@ TEST(AalBakeTiled, WithoutMaxDistanceTheFarFieldCompletesTheHorizons) {
   const auto b = runTool("aal-bake", quoted(dem) + " -o " + quoted(bands) +
                                          " --tile-size 16 --low-memory --azimuths 16");
   ASSERT_EQ(b.exitCode, 0) << b.out;
-  EXPECT_NE(b.out.find("16-texel tiles read in bands (80 baked"), std::string::npos) << b.out;
+  EXPECT_NE(b.out.find("16-texel tiles read in windows (80 baked"), std::string::npos) << b.out;
   const ApertureMap a = readApertureMap(single.string());
   const ApertureMap m = readApertureMap(memory.string()), n = readApertureMap(bands.string());
   EXPECT_EQ(m.texels, n.texels);
