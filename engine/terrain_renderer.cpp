@@ -15,6 +15,7 @@
 #include "descriptors.h"
 #include "device.h"
 #include "frame_uniforms.h"
+#include "horizon_map.h"
 #include "obscurance_samples.h"
 #include "terrain_scene.h"
 #include "vk_check.h"
@@ -516,6 +517,17 @@ bool TerrainRenderer::writeUniforms(const TerrainScene& scene, const FrameSettin
   u.apertureLayersPerPage = int32_t(tiles.layersPerPage[1]);
   u.albedoLayersPerPage = int32_t(tiles.layersPerPage[2]);
   u.horizonBits = scene.horizonBits();
+  if (const Image* horizons = scene.horizons()) {
+    const glm::vec3 l = u.sunDirection;
+    const float azimuth =
+        std::abs(l.x) + std::abs(l.y) > 0.0f ? std::atan2(l.y, l.x) : 0.0f;  // any at the zenith
+    const HorizonLayerWeights w =
+        horizonLayerWeights(4 * int(horizons->desc().layers), azimuth, scene.horizonBits());
+    u.horizonWeights0 = glm::vec4(w.weights0[0], w.weights0[1], w.weights0[2], w.weights0[3]);
+    u.horizonWeights1 = glm::vec4(w.weights1[0], w.weights1[1], w.weights1[2], w.weights1[3]);
+    u.horizonLayer0 = w.layer0;
+    u.horizonLayer1 = w.layer1;
+  }
   uniforms_.write(&u, sizeof u);
   return obscurance;
 }

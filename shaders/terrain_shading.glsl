@@ -21,7 +21,8 @@
 #include "variant.glsl"
 
 // Directions 4l..4l+3 in layer l, the DEM's size, one tile
-// (engine/terrain_scene.h setHorizons; a 1-texel stand-in without them).
+// (engine/terrain_scene.h setHorizons; a 1-texel stand-in without them),
+// read texel by texel.
 layout(set = 0, binding = AAL_HORIZON_BINDING) uniform sampler2DArray terrainHorizons;
 
 layout(location = 0) in vec3 worldPosition;
@@ -75,21 +76,20 @@ void main() {
   s.transfer = vec3(1.0);
   s.sunHorizonRad = -0.5 * float(AAL_PI);
   if (kShadingMode == AAL_MODE_HORIZON) {
-    // The horizon in the sun's azimuth, bilinear between texel centres.
-    vec2 uv = (texelPosition + 0.5) / frame.demSize;
-    // Only the layers of the two directions beside the sun: two fetches, one
-    // where both lie in the same layer (the sun is the frame's: a uniform
-    // branch).
-    vec3 l = s.sunDirection;
-    float azimuth = abs(l.x) + abs(l.y) > 0.0 ? atan(l.y, l.x) : 0.0;  // any at the zenith
-    int k0, k1;
-    float f;
-    horizonNeighbours(4 * textureSize(terrainHorizons, 0).z, azimuth, k0, k1, f);
-    vec4 layer0 = textureLod(terrainHorizons, vec3(uv, float(k0 / 4)), 0.0);
-    vec4 layer1 = layer0;
-    if (k1 / 4 != k0 / 4) layer1 = textureLod(terrainHorizons, vec3(uv, float(k1 / 4)), 0.0);
-    s.sunHorizonRad =
-        horizonBetween(horizonCode(layer0, k0), horizonCode(layer1, k1), f, frame.horizonBits);
+    // The horizon in the sun's azimuth at the nearest texel centre: which
+    // layers and channels to read, and their weights, come with the frame
+    // (horizonLayerWeights, terrain/io/horizon_map.h; the sun is the
+    // frame's); one fetch where both directions lie in one layer. Unfiltered:
+    // lavapipe's bilinear filtering cost +11 % of the frame, the point fetch
+    // +3 %, for the same error against the ray tracer (docs/performance.md).
+    ivec2 texel = clamp(ivec2(texelPosition + 0.5), ivec2(0), ivec2(frame.demSize) - 1);
+    vec4 layer0 = texelFetch(terrainHorizons, ivec3(texel, frame.horizonLayer0), 0);
+    vec4 layer1 = vec4(0.0);
+    if (frame.horizonLayer1 != frame.horizonLayer0) {
+      layer1 = texelFetch(terrainHorizons, ivec3(texel, frame.horizonLayer1), 0);
+    }
+    s.sunHorizonRad = horizonFromLayers(layer0, frame.horizonWeights0, layer1,
+                                        frame.horizonWeights1, frame.horizonBits);
   }
   // Aerial perspective: radiance (direct + ambient W) T + L_sky (1 - T).
   float distance = length(worldPosition - frame.cameraPos);
