@@ -1,0 +1,71 @@
+#!/usr/bin/env bash
+# The horizon mode's frame cost over approx (issue 18: at most +10 %), before
+# and after a change of the terrain shaders, in one run: bench_render's
+# BM_RenderFrame (jacksboro, 1280x720, sun at 25 degrees, no obscurance) for
+# approx and horizon, with horizons of 8 directions of 8 bits and of 16
+# directions of 4 bits, each with this tree's shaders ("new") and with those
+# of BASE ("old", default: main). "old" is the same bench_render with the
+# terrain's fragment and vertex shaders recompiled from BASE's sources into a
+# copy of the build's shader folder (AAL_SHADER_DIR); the frame uniforms only
+# grew at their end, so BASE's shaders read theirs where they were.
+#
+#   scripts/bench-horizon-ab.sh [ROUNDS] [BASE]      (default 4, main)
+#
+# Every round runs the four cases (old/new x 8x8/16x4) in random order, each
+# a process that measures approx and horizon interleaved in random order
+# (--benchmark_enable_random_interleaving), REPS repetitions of each (default
+# 7), wall time per frame. Prints per process the two medians and their ratio
+# (the machine's load swings between processes, hardly within one), then per
+# case the median ratio over the rounds, with the load average before and
+# after. AAL_BENCH_SUN_AZIMUTH (bench/render_bench.cpp) moves the sun: 250
+# (default) puts both directions beside it in one layer, 285 in two.
+set -euo pipefail
+root=$(cd "$(dirname "$0")/.." && pwd)
+rounds=${1:-4}
+base=${2:-main}
+reps=${REPS:-7}
+build=${AAL_BUILD_DIR:-$root/build}
+
+[ -d "$build" ] || { echo "bench-horizon-ab: no build folder $build" >&2; exit 2; }
+git -C "$root" rev-parse --verify -q "$base^{commit}" >/dev/null ||
+  { echo "bench-horizon-ab: unknown revision $base" >&2; exit 2; }
+ninja -C "$build" bench_render aal_shaders >/dev/null
+
+work=$(mktemp -d)
+trap 'rm -rf "$work"' EXIT
+# BASE's shader sources, and the build's shaders with BASE's terrain variants.
+mkdir -p "$work/src" "$work/old"
+git -C "$root" archive "$base" shaders | tar -x -C "$work/src"
+cp "$build"/shaders/*.spv "$work/old/"
+for stub in "$build"/shaders/variants/terrain*; do
+  glslangValidator --quiet --target-env vulkan1.2 -I"$work/src/shaders" \
+    -o "$work/old/$(basename "$stub").spv" "$stub"
+done
+
+echo "bench-horizon-ab: $rounds rounds, $reps repetitions; old = $base ($(git -C "$root" \
+  rev-parse --short "$base")), new = this tree; load average: $(cut -d' ' -f1-3 /proc/loadavg)"
+results=$work/results
+for ((round = 1; round <= rounds; ++round)); do
+  for c in "old 8 8" "old 16 4" "new 8 8" "new 16 4"; do echo "$c"; done | shuf |
+    while read -r shaders directions bits; do
+      dir=$build/shaders
+      [ "$shaders" = old ] && dir=$work/old
+      AAL_SHADER_DIR=$dir AAL_BENCH_HORIZON_DIRECTIONS=$directions AAL_BENCH_HORIZON_BITS=$bits \
+        "$build/bin/bench_render" --benchmark_filter='BM_RenderFrame/(0|10)/' \
+        --benchmark_repetitions="$reps" --benchmark_enable_random_interleaving=true \
+        --benchmark_report_aggregates_only=true 2>/dev/null |
+        awk -v r="$round" -v c="$shaders ${directions}x$bits" '
+          /BM_RenderFrame\/0\/.*_median/ { approx = $2 }
+          /BM_RenderFrame\/10\/.*_median/ { horizon = $2 }
+          END { printf "round %d  %-10s approx %6.1f ms  horizon %6.1f ms  ratio %.3f\n",
+                       r, c, approx, horizon, horizon / approx }'
+    done | tee -a "$results"
+done
+echo "load average after: $(cut -d' ' -f1-3 /proc/loadavg)"
+echo "median horizon/approx over $rounds rounds (range):"
+for c in "old 8x8" "old 16x4" "new 8x8" "new 16x4"; do
+  grep -F " $c " "$results" | awk '{print $NF}' | sort -n |
+    awk -v c="$c" '{ v[NR] = $1 }
+      END { m = NR % 2 ? v[(NR + 1) / 2] : (v[NR / 2] + v[NR / 2 + 1]) / 2
+            printf "  %-9s %.3f (%+.0f %%; %.3f .. %.3f)\n", c, m, 100 * (m - 1), v[1], v[NR] }'
+done
