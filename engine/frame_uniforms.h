@@ -74,8 +74,8 @@ struct FrameUniforms {
   // terrain/io/horizon_map.h): the same for every fragment, so made once here.
   glm::vec4 horizonWeights0{0.0f};
   glm::vec4 horizonWeights1{0.0f};
-  int32_t horizonLayer0 = 0;
-  int32_t horizonLayer1 = 0;
+  float horizonLayer0 = 0;  // as sampler2DArray coordinates
+  float horizonLayer1 = 0;
 };
 
 // The std140 offsets of shaders/frame.glsl.

@@ -525,8 +525,8 @@ bool TerrainRenderer::writeUniforms(const TerrainScene& scene, const FrameSettin
         horizonLayerWeights(4 * int(horizons->desc().layers), azimuth, scene.horizonBits());
     u.horizonWeights0 = glm::vec4(w.weights0[0], w.weights0[1], w.weights0[2], w.weights0[3]);
     u.horizonWeights1 = glm::vec4(w.weights1[0], w.weights1[1], w.weights1[2], w.weights1[3]);
-    u.horizonLayer0 = w.layer0;
-    u.horizonLayer1 = w.layer1;
+    u.horizonLayer0 = float(w.layer0);
+    u.horizonLayer1 = float(w.layer1);
   }
   uniforms_.write(&u, sizeof u);
   return obscurance;

@@ -21,8 +21,7 @@
 #include "variant.glsl"
 
 // Directions 4l..4l+3 in layer l, the DEM's size, one tile
-// (engine/terrain_scene.h setHorizons; a 1-texel stand-in without them),
-// read texel by texel.
+// (engine/terrain_scene.h setHorizons; a 1-texel stand-in without them).
 layout(set = 0, binding = AAL_HORIZON_BINDING) uniform sampler2DArray terrainHorizons;
 
 layout(location = 0) in vec3 worldPosition;
@@ -76,17 +75,17 @@ void main() {
   s.transfer = vec3(1.0);
   s.sunHorizonRad = -0.5 * float(AAL_PI);
   if (kShadingMode == AAL_MODE_HORIZON) {
-    // The horizon in the sun's azimuth at the nearest texel centre: which
+    // The horizon in the sun's azimuth, bilinear between texel centres: which
     // layers and channels to read, and their weights, come with the frame
     // (horizonLayerWeights, terrain/io/horizon_map.h; the sun is the
-    // frame's); one fetch where both directions lie in one layer. Unfiltered:
-    // lavapipe's bilinear filtering cost +11 % of the frame, the point fetch
-    // +3 %, for the same error against the ray tracer (docs/performance.md).
-    ivec2 texel = clamp(ivec2(texelPosition + 0.5), ivec2(0), ivec2(frame.demSize) - 1);
-    vec4 layer0 = texelFetch(terrainHorizons, ivec3(texel, frame.horizonLayer0), 0);
+    // frame's); one fetch where both directions lie in one layer. Filtered:
+    // the nearest texel alone was cheaper on lavapipe but raised the error
+    // against the ray tracer (docs/performance.md).
+    vec2 uv = (texelPosition + 0.5) / frame.demSize;
+    vec4 layer0 = textureLod(terrainHorizons, vec3(uv, frame.horizonLayer0), 0.0);
     vec4 layer1 = vec4(0.0);
     if (frame.horizonLayer1 != frame.horizonLayer0) {
-      layer1 = texelFetch(terrainHorizons, ivec3(texel, frame.horizonLayer1), 0);
+      layer1 = textureLod(terrainHorizons, vec3(uv, frame.horizonLayer1), 0.0);
     }
     s.sunHorizonRad = horizonFromLayers(layer0, frame.horizonWeights0, layer1,
                                         frame.horizonWeights1, frame.horizonBits);
