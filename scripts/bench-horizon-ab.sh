@@ -14,10 +14,11 @@
 # Every round runs the four cases (old/new x 8x8/16x4) in random order, each
 # a process that measures approx and horizon interleaved in random order
 # (--benchmark_enable_random_interleaving), REPS repetitions of each (default
-# 7), wall time per frame. Prints per process the two medians and their ratio
-# (the machine's load swings between processes, hardly within one), then per
-# case the median ratio over the rounds, with the load average before and
-# after. AAL_BENCH_SUN_AZIMUTH (bench/render_bench.cpp) moves the sun: 250
+# 7). Prints per process the medians of the process's CPU time per frame
+# (lavapipe's threads' work; less sensitive to other processes than wall
+# time) and of wall time, and the ratios horizon / approx (the machine's load
+# swings between processes, less within one), then per case the median CPU
+# time ratio over the rounds, with the load average before and after. AAL_BENCH_SUN_AZIMUTH (bench/render_bench.cpp) moves the sun: 250
 # (default) puts both directions beside it in one layer, 285 in two.
 set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
@@ -55,14 +56,15 @@ for ((round = 1; round <= rounds; ++round)); do
         --benchmark_repetitions="$reps" --benchmark_enable_random_interleaving=true \
         --benchmark_report_aggregates_only=true 2>/dev/null |
         awk -v r="$round" -v c="$shaders ${directions}x$bits" '
-          /BM_RenderFrame\/0\/.*_median/ { approx = $2 }
-          /BM_RenderFrame\/10\/.*_median/ { horizon = $2 }
-          END { printf "round %d  %-10s approx %6.1f ms  horizon %6.1f ms  ratio %.3f\n",
-                       r, c, approx, horizon, horizon / approx }'
+          /BM_RenderFrame\/0\/.*_median/ { approx = $4; approxWall = $2 }
+          /BM_RenderFrame\/10\/.*_median/ { horizon = $4; horizonWall = $2 }
+          END { printf "round %d  %-10s CPU approx %6.1f ms  horizon %6.1f ms  wall %6.1f, %6.1f ms  wall ratio %.3f  ratio %.3f\n",
+                       r, c, approx, horizon, approxWall, horizonWall, horizonWall / approxWall,
+                       horizon / approx }'
     done | tee -a "$results"
 done
 echo "load average after: $(cut -d' ' -f1-3 /proc/loadavg)"
-echo "median horizon/approx over $rounds rounds (range):"
+echo "median horizon/approx of CPU time per frame over $rounds rounds (range):"
 for c in "old 8x8" "old 16x4" "new 8x8" "new 16x4"; do
   grep -F " $c " "$results" | awk '{print $NF}' | sort -n |
     awk -v c="$c" '{ v[NR] = $1 }
