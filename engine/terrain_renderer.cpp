@@ -147,6 +147,14 @@ const char* terrainFragmentShader(TexturePaging paging, bool gbuffer) {
   return gbuffer ? "terrain_gbuffer_paged.frag" : "terrain_paged.frag";
 }
 
+// Which of the scene's horizon layers (two or one) the horizon mode reads for
+// this sun, and their weights: the same for every fragment of the frame.
+HorizonLayerWeights sunHorizonWeights(const TerrainScene& scene, const glm::vec3& sun) {
+  const float azimuth = std::abs(sun.x) + std::abs(sun.y) > 0.0f ? std::atan2(sun.y, sun.x)
+                                                                 : 0.0f;  // any at the zenith
+  return horizonLayerWeights(4 * int(scene.horizonLayers().size()), azimuth, scene.horizonBits());
+}
+
 // The constants of shaders/variant.glsl, in AAL_SPEC_* order.
 std::vector<int32_t> variantConstants(ShadingMode mode, int albedoSource, bool display) {
   static_assert(AAL_SPEC_SHADING_MODE == 0 && AAL_SPEC_ALBEDO_SOURCE == 1 &&
@@ -359,7 +367,7 @@ TerrainRenderer::TerrainRenderer(const Device& device, uint32_t width, uint32_t 
                        VK_BUFFER_USAGE_TRANSFER_SRC_BIT, MemoryIntent::Upload),
       noHorizons_(device, {1, 1, VK_FORMAT_R8G8B8A8_UNORM,
                            VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT,
-                           VK_IMAGE_ASPECT_COLOR_BIT, 2, true}),
+                           VK_IMAGE_ASPECT_COLOR_BIT}),
       uniforms_(device, sizeof(FrameUniforms), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT,
                 MemoryIntent::Upload),
       samples_(device, sizeof(ObscuranceSampleBlock), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT,
@@ -517,12 +525,8 @@ bool TerrainRenderer::writeUniforms(const TerrainScene& scene, const FrameSettin
   u.apertureLayersPerPage = int32_t(tiles.layersPerPage[1]);
   u.albedoLayersPerPage = int32_t(tiles.layersPerPage[2]);
   u.horizonBits = scene.horizonBits();
-  if (const Image* horizons = scene.horizons()) {
-    const glm::vec3 l = u.sunDirection;
-    const float azimuth =
-        std::abs(l.x) + std::abs(l.y) > 0.0f ? std::atan2(l.y, l.x) : 0.0f;  // any at the zenith
-    const HorizonLayerWeights w =
-        horizonLayerWeights(4 * int(horizons->desc().layers), azimuth, scene.horizonBits());
+  if (!scene.horizonLayers().empty()) {
+    const HorizonLayerWeights w = sunHorizonWeights(scene, u.sunDirection);
     u.horizonWeights0 = glm::vec4(w.weights0[0], w.weights0[1], w.weights0[2], w.weights0[3]);
     u.horizonWeights1 = glm::vec4(w.weights1[0], w.weights1[1], w.weights1[2], w.weights1[3]);
     u.horizonLayer0 = float(w.layer0);
@@ -591,7 +595,7 @@ void TerrainRenderer::record(VkCommandBuffer cmd, const TerrainScene& scene, con
   // Without linear output or the obscurance pass the terrain and the sky
   // write display values at once: no HDR target, no tone-map pass.
   const bool direct = !linear && !obscurance;
-  if (s.mode == ShadingMode::Horizon && !scene.horizons()) {
+  if (s.mode == ShadingMode::Horizon && scene.horizonLayers().empty()) {
     throw std::invalid_argument(
         "the horizon mode needs the DEM's directional horizons (aal-bake --horizons)");
   }
@@ -605,7 +609,7 @@ void TerrainRenderer::record(VkCommandBuffer cmd, const TerrainScene& scene, con
                                       .baseMipLevel = 0,
                                       .levelCount = 1,
                                       .baseArrayLayer = 0,
-                                      .layerCount = 2};
+                                      .layerCount = 1};
     vkCmdClearColorImage(cmd, noHorizons_.handle(), VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, &zero, 1,
                          &all);
     transitionImage(cmd, noHorizons_, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL,
@@ -666,14 +670,22 @@ void TerrainRenderer::record(VkCommandBuffer cmd, const TerrainScene& scene, con
       .clearValue = {.depthStencil = {.depth = 1.0f, .stencil = 0}}};
   beginRendering(cmd, extent_.width, extent_.height, colors, obscurance ? 3 : 1, &depth);
   timer_.begin(cmd, "terrain");
+  // The horizon mode's layers for this sun (the same image twice where one
+  // holds both directions; the frame uniforms carry their weights).
+  const Image* horizon0 = &noHorizons_;
+  const Image* horizon1 = &noHorizons_;
+  if (!scene.horizonLayers().empty()) {
+    const HorizonLayerWeights w = sunHorizonWeights(scene, s.lighting.sunDirection);
+    horizon0 = &scene.horizonLayers()[size_t(w.layer0)];
+    horizon1 = &scene.horizonLayers()[size_t(w.layer1)];
+  }
   passes_->terrain(paging, s.mode, albedo, obscurance, direct)
       .bind(cmd,
             terrainWrites(uniforms_, scene, passes_->terrainSampler.handle())
                 .buffer(kAfterTerrainTextures, patches_)
                 .image(kAfterTerrainTextures + 1, capTable_.view(), passes_->linear.handle())
-                .image(kAfterTerrainTextures + 2,
-                       (scene.horizons() ? *scene.horizons() : noHorizons_).view(),
-                       passes_->linear.handle()),
+                .image(kAfterTerrainTextures + 2, horizon0->view(), passes_->linear.handle())
+                .image(kAfterTerrainTextures + 3, horizon1->view(), passes_->linear.handle()),
             nullptr);
   vkCmdBindIndexBuffer(cmd, scene.indices().handle(), 0, VK_INDEX_TYPE_UINT32);
   drawPatches(cmd);

@@ -352,40 +352,40 @@ void TerrainScene::setHorizons(const Device& device, const HorizonMap& map) {
   // 4..7 of each 16-bit texel, G in 8..11, B in 12..15, A in 0..3.
   const bool fourBits = map.bits == 4;
   const uint32_t layers = uint32_t(map.directions / 4), texelBytes = fourBits ? 2 : 4;
-  auto image = std::make_unique<Image>(
-      device, ImageDesc{uint32_t(map.width), uint32_t(map.height),
-                        fourBits ? VK_FORMAT_B4G4R4A4_UNORM_PACK16 : VK_FORMAT_R8G8B8A8_UNORM,
-                        VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT,
-                        VK_IMAGE_ASPECT_COLOR_BIT, layers, true});
+  std::vector<Image> images;
+  for (uint32_t layer = 0; layer < layers; ++layer) {
+    images.emplace_back(
+        device, ImageDesc{uint32_t(map.width), uint32_t(map.height),
+                          fourBits ? VK_FORMAT_B4G4R4A4_UNORM_PACK16 : VK_FORMAT_R8G8B8A8_UNORM,
+                          VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT});
+  }
   UploadBatch upload(device);
   for (uint32_t layer = 0; layer < layers; ++layer) {
-    upload.addImage(
-        *image, texelBytes,
-        [&map, layer, fourBits](uint32_t firstRow, uint32_t endRow, void* destination) {
-          auto* out = static_cast<uint8_t*>(destination);
-          for (uint32_t row = firstRow; row < endRow; ++row) {
-            for (int col = 0; col < map.width; ++col) {
-              const uint8_t* codes = map.texel(col, int(row)) + 4 * layer;
-              if (fourBits) {
-                const uint16_t texel =
-                    uint16_t(codes[0] << 4 | codes[1] << 8 | codes[2] << 12 | codes[3]);
-                std::memcpy(out, &texel, 2);
-                out += 2;
-              } else {
-                std::copy(codes, codes + 4, out);
-                out += 4;
-              }
-            }
-          }
-        },
-        layer);
+    upload.addImage(images[layer], texelBytes,
+                    [&map, layer, fourBits](uint32_t firstRow, uint32_t endRow, void* destination) {
+                      auto* out = static_cast<uint8_t*>(destination);
+                      for (uint32_t row = firstRow; row < endRow; ++row) {
+                        for (int col = 0; col < map.width; ++col) {
+                          const uint8_t* codes = map.texel(col, int(row)) + 4 * layer;
+                          if (fourBits) {
+                            const uint16_t texel =
+                                uint16_t(codes[0] << 4 | codes[1] << 8 | codes[2] << 12 | codes[3]);
+                            std::memcpy(out, &texel, 2);
+                            out += 2;
+                          } else {
+                            std::copy(codes, codes + 4, out);
+                            out += 4;
+                          }
+                        }
+                      }
+                    });
   }
   upload.submit();
   // A second map replaces the first.
   textureBytes_ -= horizonBytes_;
   horizonBytes_ = uint64_t(map.width) * uint64_t(map.height) * layers * texelBytes;
   textureBytes_ += horizonBytes_;
-  horizons_ = std::move(image);
+  horizons_ = std::move(images);
   horizonBits_ = map.bits;
 }
 

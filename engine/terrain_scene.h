@@ -66,14 +66,16 @@ class TerrainScene {
   // Device memory of the textures (bytes).
   uint64_t textureBytes() const { return textureBytes_; }
   bool hasAlbedo() const { return hasAlbedo_; }
-  // Directional horizons for the horizon mode (terrain/io/horizon_map.h): a 2D
-  // array image the DEM's size, the codes of directions 4l..4l+3 in layer l
-  // as RGBA (RGBA8 for 8-bit codes, 1 B per direction and texel; BGRA4 for
-  // 4-bit ones, half a byte), no mip levels. Scenes of one tile only for
-  // now; throws std::invalid_argument for a tiled scene or a map of another
-  // size.
+  // Directional horizons for the horizon mode (terrain/io/horizon_map.h): one
+  // 2D image per four directions (layer l: directions 4l..4l+3 as RGBA; RGBA8
+  // for 8-bit codes, 1 B per direction and texel; BGRA4 for 4-bit ones, half
+  // a byte), the DEM's size, no mip levels. 2D images rather than one array:
+  // lavapipe filters a 2D image's texels several times faster
+  // (docs/performance.md); the renderer binds the sun's two. Scenes of one
+  // tile only for now; throws std::invalid_argument for a tiled scene or a
+  // map of another size.
   void setHorizons(const Device& device, const HorizonMap& map);
-  const Image* horizons() const { return horizons_.get(); }  // null: none
+  const std::vector<Image>& horizonLayers() const { return horizons_; }  // empty: none
   int horizonBits() const { return horizonBits_; }
   // The LOD patch's index buffer (makeLodPatchIndices).
   const Buffer& indices() const { return indices_; }
@@ -100,7 +102,7 @@ class TerrainScene {
 
   TerrainTileLayout tiles_;
   std::vector<Image> heights_, aperture_, albedo_, slopes_;
-  std::unique_ptr<Image> horizons_;
+  std::vector<Image> horizons_;
   int horizonBits_ = kHorizonBits;
   uint64_t horizonBytes_ = 0;
   uint64_t textureBytes_ = 0;

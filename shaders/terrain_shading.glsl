@@ -20,9 +20,11 @@
 #include "tone_map.glsl"
 #include "variant.glsl"
 
-// Directions 4l..4l+3 in layer l, the DEM's size, one tile
-// (engine/terrain_scene.h setHorizons; a 1-texel stand-in without them).
-layout(set = 0, binding = AAL_HORIZON_BINDING) uniform sampler2DArray terrainHorizons;
+// The directional horizons' layers of the two stored directions beside the
+// sun (the same layer twice where it holds both), the DEM's size, one tile
+// (engine/terrain_scene.h setHorizons; 1-texel stand-ins without them).
+layout(set = 0, binding = AAL_HORIZON_BINDING) uniform sampler2D sunHorizons0;
+layout(set = 0, binding = AAL_HORIZON_BINDING + 1) uniform sampler2D sunHorizons1;
 
 layout(location = 0) in vec3 worldPosition;
 layout(location = 1) in vec2 texelPosition;
@@ -78,15 +80,11 @@ void main() {
     // The horizon in the sun's azimuth, bilinear between texel centres: which
     // layers and channels to read, and their weights, come with the frame
     // (horizonLayerWeights, terrain/io/horizon_map.h; the sun is the
-    // frame's); one fetch where both directions lie in one layer. Filtered:
-    // the nearest texel alone was cheaper on lavapipe but raised the error
-    // against the ray tracer (docs/performance.md).
+    // frame's); one fetch where both directions lie in one layer.
     vec2 uv = (texelPosition + 0.5) / frame.demSize;
-    vec4 layer0 = textureLod(terrainHorizons, vec3(uv, frame.horizonLayer0), 0.0);
+    vec4 layer0 = textureLod(sunHorizons0, uv, 0.0);
     vec4 layer1 = vec4(0.0);
-    if (frame.horizonLayer1 != frame.horizonLayer0) {
-      layer1 = textureLod(terrainHorizons, vec3(uv, frame.horizonLayer1), 0.0);
-    }
+    if (frame.horizonLayer1 != frame.horizonLayer0) layer1 = textureLod(sunHorizons1, uv, 0.0);
     s.sunHorizonRad = horizonFromLayers(layer0, frame.horizonWeights0, layer1,
                                         frame.horizonWeights1, frame.horizonBits);
   }
