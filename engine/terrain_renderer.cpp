@@ -156,10 +156,11 @@ HorizonLayerWeights sunHorizonWeights(const TerrainScene& scene, const glm::vec3
 }
 
 // The constants of shaders/variant.glsl, in AAL_SPEC_* order.
-std::vector<int32_t> variantConstants(ShadingMode mode, int albedoSource, bool display) {
+std::vector<int32_t> variantConstants(ShadingMode mode, int albedoSource, bool display,
+                                      int horizonLayers = 1) {
   static_assert(AAL_SPEC_SHADING_MODE == 0 && AAL_SPEC_ALBEDO_SOURCE == 1 &&
-                AAL_SPEC_DISPLAY_OUTPUT == 2);
-  return {static_cast<int32_t>(mode), albedoSource, display ? 1 : 0};
+                AAL_SPEC_DISPLAY_OUTPUT == 2 && AAL_SPEC_HORIZON_LAYERS == 3);
+  return {static_cast<int32_t>(mode), albedoSource, display ? 1 : 0, horizonLayers};
 }
 
 }  // namespace
@@ -208,14 +209,16 @@ struct TerrainRenderer::Passes {
 
   // The terrain pass: forward into the display (or HDR) target, or with the
   // obscurance pass into its three targets.
+  // `horizonLayers`: the horizon mode's fetches (kHorizonLayers, variant.glsl).
   const GraphicsPipeline& terrain(TexturePaging paging, ShadingMode mode, int albedo, bool gbuffer,
-                                  bool display) {
+                                  bool display, int horizonLayers) {
     display = display && !gbuffer;
     const std::string key = "terrain/" + std::to_string(int(paging)) + "/" +
                             std::to_string(int(mode)) + "/" + std::to_string(albedo) + "/" +
                             (gbuffer   ? "g"
                              : display ? "d"
-                                       : "h");
+                                       : "h") +
+                            "/" + std::to_string(horizonLayers);
     std::vector<VkFormat> formats{display ? displayFormat : kHdrFormat};
     // With the obscurance pass the terrain also writes the ambient term and
     // the surface point; without it the frame pays nothing for them.
@@ -226,7 +229,7 @@ struct TerrainRenderer::Passes {
                         .depthFormat = kDepthFormat,
                         .depthTest = true,
                         .depthWrite = true,
-                        .specialization = variantConstants(mode, albedo, display)});
+                        .specialization = variantConstants(mode, albedo, display, horizonLayers)});
   }
 
   // The solid base, drawn in the terrain's rendering with the terrain's
@@ -674,12 +677,14 @@ void TerrainRenderer::record(VkCommandBuffer cmd, const TerrainScene& scene, con
   // holds both directions; the frame uniforms carry their weights).
   const Image* horizon0 = &noHorizons_;
   const Image* horizon1 = &noHorizons_;
+  int horizonLayers = 1;
   if (!scene.horizonLayers().empty()) {
     const HorizonLayerWeights w = sunHorizonWeights(scene, s.lighting.sunDirection);
     horizon0 = &scene.horizonLayers()[size_t(w.layer0)];
     horizon1 = &scene.horizonLayers()[size_t(w.layer1)];
+    if (s.mode == ShadingMode::Horizon && w.layer1 != w.layer0) horizonLayers = 2;
   }
-  passes_->terrain(paging, s.mode, albedo, obscurance, direct)
+  passes_->terrain(paging, s.mode, albedo, obscurance, direct, horizonLayers)
       .bind(cmd,
             terrainWrites(uniforms_, scene, passes_->terrainSampler.handle())
                 .buffer(kAfterTerrainTextures, patches_)

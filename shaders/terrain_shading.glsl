@@ -80,11 +80,12 @@ void main() {
     // The horizon in the sun's azimuth, bilinear between texel centres: which
     // layers and channels to read, and their weights, come with the frame
     // (horizonLayerWeights, terrain/io/horizon_map.h; the sun is the
-    // frame's); one fetch where both directions lie in one layer.
+    // frame's); one fetch where both directions lie in one layer (a
+    // pipeline of its own, kHorizonLayers).
     vec2 uv = (texelPosition + 0.5) / frame.demSize;
     vec4 layer0 = textureLod(sunHorizons0, uv, 0.0);
     vec4 layer1 = vec4(0.0);
-    if (frame.horizonLayer1 != frame.horizonLayer0) layer1 = textureLod(sunHorizons1, uv, 0.0);
+    if (kHorizonLayers == 2) layer1 = textureLod(sunHorizons1, uv, 0.0);
     s.sunHorizonRad = horizonFromLayers(layer0, frame.horizonWeights0, layer1,
                                         frame.horizonWeights1, frame.horizonBits);
   }
