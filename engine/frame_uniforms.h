@@ -74,7 +74,7 @@ struct FrameUniforms {
   // terrain/io/horizon_map.h): the same for every fragment, so made once here.
   glm::vec4 horizonWeights0{0.0f};
   glm::vec4 horizonWeights1{0.0f};
-  float horizonLayer0 = 0;  // bound as sunHorizons0/1; equal: one fetch
+  float horizonLayer0 = 0;  // bound as sunHorizons0/1 (kHorizonLayers: whether they differ)
   float horizonLayer1 = 0;
 };
 

@@ -67,8 +67,8 @@ layout(set = 0, binding = 0, std140) uniform Frame {
   // The horizon mode's lookup for the frame's sun (horizon.glsl horizonFromLayers).
   vec4 horizonWeights0;  // 528
   vec4 horizonWeights1;  // 544
-  float horizonLayer0;   // 560 the layers of the directions beside the sun
-  float horizonLayer1;   // 564 (bound as sunHorizons0/1; equal: one fetch)
+  float horizonLayer0;   // 560 the layers of the directions beside the sun (bound
+  float horizonLayer1;   // 564 as sunHorizons0/1; kHorizonLayers says if they differ)
 }
 frame;
 
