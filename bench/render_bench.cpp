@@ -59,7 +59,11 @@ struct Fixture {
     scene->setHorizons(device, baked.horizons);
     renderer = std::make_unique<aal::TerrainRenderer>(device, 1280, 720);
     settings.camera = aal::defaultCamera(field, 1280.0 / 720.0);
-    aal::setSunAndSky(settings.lighting, 250, 25, 2.5);
+    // AAL_BENCH_SUN_AZIMUTH (degrees, default 250): at 250 the two stored
+    // horizon directions beside the sun lie in one layer for 8 and 16
+    // directions; at 285 in two (docs/performance.md).
+    const char* sunAzimuth = std::getenv("AAL_BENCH_SUN_AZIMUTH");
+    aal::setSunAndSky(settings.lighting, sunAzimuth ? std::atof(sunAzimuth) : 250.0, 25, 2.5);
     settings.lighting.exposure = 0.07f;
   }
 };
@@ -85,10 +89,14 @@ void BM_RenderFrame(benchmark::State& state) {
                  : state.range(0) == 3 ? "baseline-ao"
                                        : "horizon");
 }
+// CPU time: the whole process's (lavapipe's threads shade the frame), less
+// sensitive than wall time to other processes on a shared machine
+// (scripts/bench-horizon-ab.sh compares it).
 BENCHMARK(BM_RenderFrame)
     ->DenseRange(0, 3)
     ->Arg(AAL_MODE_HORIZON)
     ->Unit(benchmark::kMillisecond)
+    ->MeasureProcessCPUTime()
     ->UseRealTime();
 
 // Issue 15: the frame over jacksboro from three views (0: the framed start

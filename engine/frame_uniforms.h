@@ -69,6 +69,13 @@ struct FrameUniforms {
   int32_t unused = 0;
 
   PreethamSky sky;
+
+  // The horizon mode's lookup for the frame's sun (horizonLayerWeights,
+  // terrain/io/horizon_map.h): the same for every fragment, so made once here.
+  glm::vec4 horizonWeights0{0.0f};
+  glm::vec4 horizonWeights1{0.0f};
+  float horizonLayer0 = 0;  // within a tile's layers (kHorizonLayers: whether they differ)
+  float horizonLayer1 = 0;
 };
 
 // The std140 offsets of shaders/frame.glsl.
@@ -100,6 +107,11 @@ static_assert(offsetof(FrameUniforms, tileBorder) == 392 &&
               offsetof(FrameUniforms, albedoLayersPerPage) == 404);
 static_assert(offsetof(FrameUniforms, horizonBits) == 408);
 static_assert(offsetof(FrameUniforms, sky) == 416, "std140 aligns the sky to 16 bytes");
-static_assert(sizeof(FrameUniforms) == 416 + sizeof(PreethamSky));
+static_assert(offsetof(FrameUniforms, horizonWeights0) == 416 + sizeof(PreethamSky) &&
+              offsetof(FrameUniforms, horizonWeights0) == 528);
+static_assert(offsetof(FrameUniforms, horizonWeights1) == 544 &&
+              offsetof(FrameUniforms, horizonLayer0) == 560 &&
+              offsetof(FrameUniforms, horizonLayer1) == 564);
+static_assert(sizeof(FrameUniforms) == 568);
 
 }  // namespace aal

@@ -15,6 +15,7 @@
 #include "descriptors.h"
 #include "device.h"
 #include "frame_uniforms.h"
+#include "horizon_map.h"
 #include "obscurance_samples.h"
 #include "terrain_scene.h"
 #include "vk_check.h"
@@ -146,11 +147,20 @@ const char* terrainFragmentShader(TexturePaging paging, bool gbuffer) {
   return gbuffer ? "terrain_gbuffer_paged.frag" : "terrain_paged.frag";
 }
 
+// Which of a tile's horizon layers (two or one) the horizon mode reads for
+// this sun, and their weights: the same for every fragment of the frame.
+HorizonLayerWeights sunHorizonWeights(const TerrainScene& scene, const glm::vec3& sun) {
+  const float azimuth = std::abs(sun.x) + std::abs(sun.y) > 0.0f ? std::atan2(sun.y, sun.x)
+                                                                 : 0.0f;  // any at the zenith
+  return horizonLayerWeights(scene.horizonDirections(), azimuth, scene.horizonBits());
+}
+
 // The constants of shaders/variant.glsl, in AAL_SPEC_* order.
-std::vector<int32_t> variantConstants(ShadingMode mode, int albedoSource, bool display) {
+std::vector<int32_t> variantConstants(ShadingMode mode, int albedoSource, bool display,
+                                      int horizonLayers = 1) {
   static_assert(AAL_SPEC_SHADING_MODE == 0 && AAL_SPEC_ALBEDO_SOURCE == 1 &&
-                AAL_SPEC_DISPLAY_OUTPUT == 2);
-  return {static_cast<int32_t>(mode), albedoSource, display ? 1 : 0};
+                AAL_SPEC_DISPLAY_OUTPUT == 2 && AAL_SPEC_HORIZON_LAYERS == 3);
+  return {static_cast<int32_t>(mode), albedoSource, display ? 1 : 0, horizonLayers};
 }
 
 }  // namespace
@@ -199,14 +209,16 @@ struct TerrainRenderer::Passes {
 
   // The terrain pass: forward into the display (or HDR) target, or with the
   // obscurance pass into its three targets.
+  // `horizonLayers`: the horizon mode's fetches (kHorizonLayers, variant.glsl).
   const GraphicsPipeline& terrain(TexturePaging paging, ShadingMode mode, int albedo, bool gbuffer,
-                                  bool display) {
+                                  bool display, int horizonLayers) {
     display = display && !gbuffer;
     const std::string key = "terrain/" + std::to_string(int(paging)) + "/" +
                             std::to_string(int(mode)) + "/" + std::to_string(albedo) + "/" +
                             (gbuffer   ? "g"
                              : display ? "d"
-                                       : "h");
+                                       : "h") +
+                            "/" + std::to_string(horizonLayers);
     std::vector<VkFormat> formats{display ? displayFormat : kHdrFormat};
     // With the obscurance pass the terrain also writes the ambient term and
     // the surface point; without it the frame pays nothing for them.
@@ -217,7 +229,7 @@ struct TerrainRenderer::Passes {
                         .depthFormat = kDepthFormat,
                         .depthTest = true,
                         .depthWrite = true,
-                        .specialization = variantConstants(mode, albedo, display)});
+                        .specialization = variantConstants(mode, albedo, display, horizonLayers)});
   }
 
   // The solid base, drawn in the terrain's rendering with the terrain's
@@ -516,6 +528,13 @@ bool TerrainRenderer::writeUniforms(const TerrainScene& scene, const FrameSettin
   u.apertureLayersPerPage = int32_t(tiles.layersPerPage[1]);
   u.albedoLayersPerPage = int32_t(tiles.layersPerPage[2]);
   u.horizonBits = scene.horizonBits();
+  if (scene.horizons()) {
+    const HorizonLayerWeights w = sunHorizonWeights(scene, u.sunDirection);
+    u.horizonWeights0 = glm::vec4(w.weights0[0], w.weights0[1], w.weights0[2], w.weights0[3]);
+    u.horizonWeights1 = glm::vec4(w.weights1[0], w.weights1[1], w.weights1[2], w.weights1[3]);
+    u.horizonLayer0 = float(w.layer0);
+    u.horizonLayer1 = float(w.layer1);
+  }
   uniforms_.write(&u, sizeof u);
   return obscurance;
 }
@@ -654,7 +673,15 @@ void TerrainRenderer::record(VkCommandBuffer cmd, const TerrainScene& scene, con
       .clearValue = {.depthStencil = {.depth = 1.0f, .stencil = 0}}};
   beginRendering(cmd, extent_.width, extent_.height, colors, obscurance ? 3 : 1, &depth);
   timer_.begin(cmd, "terrain");
-  passes_->terrain(paging, s.mode, albedo, obscurance, direct)
+  // The horizon mode reads one layer per tile, or two where the directions
+  // beside the sun lie in different layers (a pipeline of its own; the frame
+  // uniforms carry the layers and their weights).
+  int horizonLayers = 1;
+  if (s.mode == ShadingMode::Horizon && scene.horizons()) {
+    const HorizonLayerWeights w = sunHorizonWeights(scene, s.lighting.sunDirection);
+    if (w.layer1 != w.layer0) horizonLayers = 2;
+  }
+  passes_->terrain(paging, s.mode, albedo, obscurance, direct, horizonLayers)
       .bind(cmd,
             terrainWrites(uniforms_, scene, passes_->terrainSampler.handle())
                 .buffer(kAfterTerrainTextures, patches_)

@@ -409,6 +409,7 @@ void TerrainScene::setHorizons(const Device& device, const HorizonMap& map) {
   textureBytes_ += horizonBytes_;
   horizons_ = std::move(image);
   horizonBits_ = map.bits;
+  horizonDirections_ = map.directions;
 }
 
 }  // namespace aal

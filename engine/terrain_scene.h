@@ -78,6 +78,7 @@ class TerrainScene {
   const Image* horizons() const { return horizons_.get(); }  // null: none
   uint64_t horizonBytes() const { return horizonBytes_; }    // of textureBytes()
   int horizonBits() const { return horizonBits_; }
+  int horizonDirections() const { return horizonDirections_; }  // 0: none
   // The LOD patch's index buffer (makeLodPatchIndices).
   const Buffer& indices() const { return indices_; }
   const LodQuadtree& lod() const { return *lod_; }
@@ -106,6 +107,7 @@ class TerrainScene {
   std::vector<Image> heights_, aperture_, albedo_, slopes_;
   std::unique_ptr<Image> horizons_;
   int horizonBits_ = kHorizonBits;
+  int horizonDirections_ = 0;
   uint64_t horizonBytes_ = 0;
   uint64_t textureBytes_ = 0;
   Buffer indices_;

@@ -77,26 +77,23 @@ void main() {
   s.sunHorizonRad = -0.5 * float(AAL_PI);
   if (kShadingMode == AAL_MODE_HORIZON) {
     // The horizon in the sun's azimuth, bilinear between texel centres, from
-    // the texel's tile (layersPerPage beyond any index: the layer is the tile's).
+    // the texel's tile (layersPerPage beyond any index: the layer is the
+    // tile's). Which of the tile's layers and channels to read, and their
+    // weights, come with the frame (horizonLayerWeights,
+    // terrain/io/horizon_map.h; the sun is the frame's): one fetch where both
+    // directions beside the sun lie in one layer, two in a pipeline of its
+    // own (kHorizonLayers) where they do not.
     TerrainTileTexel tile = terrainTexel(texelPosition, 1 << 30);
     int layersPerTile =
         max(1, textureSize(terrainHorizons, 0).z / (frame.tileCount.x * frame.tileCount.y));
-    // Only the layers of the two directions beside the sun: two fetches, one
-    // where both lie in the same layer (the sun is the frame's: a uniform
-    // branch).
-    vec3 l = s.sunDirection;
-    float azimuth = abs(l.x) + abs(l.y) > 0.0 ? atan(l.y, l.x) : 0.0;  // any at the zenith
-    int k0, k1;
-    float f;
-    horizonNeighbours(4 * layersPerTile, azimuth, k0, k1, f);
-    int first = tile.layer * layersPerTile;
-    vec4 layer0 = textureLod(terrainHorizons, vec3(tile.uv, float(first + k0 / 4)), 0.0);
-    vec4 layer1 = layer0;
-    if (k1 / 4 != k0 / 4) {
-      layer1 = textureLod(terrainHorizons, vec3(tile.uv, float(first + k1 / 4)), 0.0);
+    float first = float(tile.layer * layersPerTile);
+    vec4 layer0 = textureLod(terrainHorizons, vec3(tile.uv, first + frame.horizonLayer0), 0.0);
+    vec4 layer1 = vec4(0.0);
+    if (kHorizonLayers == 2) {
+      layer1 = textureLod(terrainHorizons, vec3(tile.uv, first + frame.horizonLayer1), 0.0);
     }
-    s.sunHorizonRad =
-        horizonBetween(horizonCode(layer0, k0), horizonCode(layer1, k1), f, frame.horizonBits);
+    s.sunHorizonRad = horizonFromLayers(layer0, frame.horizonWeights0, layer1,
+                                        frame.horizonWeights1, frame.horizonBits);
   }
   // Aerial perspective: radiance (direct + ambient W) T + L_sky (1 - T).
   float distance = length(worldPosition - frame.cameraPos);

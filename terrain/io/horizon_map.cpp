@@ -57,14 +57,44 @@ float decodeHorizon(uint8_t code, int bits) {
   return decodeHorizonUnorm(float(code) / float((1 << bits) - 1), bits);
 }
 
-float horizonAtAzimuth(const uint8_t* codes, int directions, float azimuthRad, int bits) {
+namespace {
+
+// The two of `directions` stored azimuths beside azimuthRad, and the weight f
+// of the second: the horizon is linear between them.
+struct HorizonNeighbours {
+  int k0 = 0, k1 = 0;
+  float f = 0;
+};
+
+HorizonNeighbours horizonNeighbours(int directions, float azimuthRad) {
   const float n = float(directions);
   float x = azimuthRad / kTwoPi * n;
   x -= n * std::floor(x / n);  // [0, n)
-  const int k0 = std::min(int(x), directions - 1);
-  const int k1 = (k0 + 1) % directions;
-  const float f = x - float(k0);
-  return (1.0f - f) * decodeHorizon(codes[k0], bits) + f * decodeHorizon(codes[k1], bits);
+  HorizonNeighbours h;
+  h.k0 = std::min(int(x), directions - 1);
+  h.k1 = (h.k0 + 1) % directions;
+  h.f = x - float(h.k0);
+  return h;
+}
+
+}  // namespace
+
+float horizonAtAzimuth(const uint8_t* codes, int directions, float azimuthRad, int bits) {
+  const HorizonNeighbours h = horizonNeighbours(directions, azimuthRad);
+  return (1.0f - h.f) * decodeHorizon(codes[h.k0], bits) + h.f * decodeHorizon(codes[h.k1], bits);
+}
+
+HorizonLayerWeights horizonLayerWeights(int directions, float azimuthRad, int bits) {
+  const HorizonNeighbours h = horizonNeighbours(directions, azimuthRad);
+  // decodeHorizonUnorm: kHorizonMinRad + p(u) * range.
+  const float range = (bits == 4 ? kHorizon4BitMaxRad : kHorizonMaxRad) - kHorizonMinRad;
+  HorizonLayerWeights w;
+  w.layer0 = h.k0 / 4;
+  w.layer1 = h.k1 / 4;
+  w.weights0[size_t(h.k0 % 4)] = (1.0f - h.f) * range;
+  std::array<float, 4>& second = w.layer1 == w.layer0 ? w.weights0 : w.weights1;
+  second[size_t(h.k1 % 4)] += h.f * range;
+  return w;
 }
 
 void writeHorizonMap(const std::filesystem::path& path, const HorizonMap& map) {

@@ -61,6 +61,23 @@ struct HorizonMap {
 float horizonAtAzimuth(const uint8_t* codes, int directions, float azimuthRad,
                        int bits = kHorizonBits);
 
+// What a shader needs to read the horizon at one azimuth from the device's
+// layers (directions 4l..4l+3 in layer l as R, G, B, A; engine/terrain_scene.h):
+// the layers of the two stored directions beside the azimuth and, per channel,
+// the weight of the code's power p(u) (u = code / (2^bits - 1); p(u) = u^2 for
+// 8-bit codes, u^1.5 for 4-bit ones), the interpolation's weight and the
+// decode's scale in one, so that
+//   horizon = kHorizonMinRad + dot(p(layer0), weights0) + dot(p(layer1), weights1)
+// equals horizonAtAzimuth (up to float rounding). Where both directions lie in
+// one layer, layer1 == layer0 and weights1 is zero: one fetch suffices. The
+// sun is the frame's, so the renderer computes this once per frame instead of
+// every fragment (docs/rendering.md, the horizon mode).
+struct HorizonLayerWeights {
+  int layer0 = 0, layer1 = 0;
+  std::array<float, 4> weights0{}, weights1{};
+};
+HorizonLayerWeights horizonLayerWeights(int directions, float azimuthRad, int bits = kHorizonBits);
+
 // Writes / reads the file format of docs/baking.md ("aperture-horizons 2"
 // header line with the code bits, then the codes; version 1 files, without
 // the bits, hold 8-bit codes). Reading throws std::runtime_error naming the

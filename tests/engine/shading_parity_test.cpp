@@ -254,5 +254,70 @@ TEST_F(ShadingParity, HorizonInterpolationMatchesCpp) {
   std::printf("horizon interpolation parity over %u inputs: worst %.3g rad\n", count, worst);
 }
 
+// The terrain shader's horizon: horizonFromLayers of shaders/horizon.glsl with
+// the per-frame weights of horizonLayerWeights (terrain/io/horizon_map.h),
+// against horizonAtAzimuth: random 8-bit and 4-bit codes, 4 to 16
+// directions, azimuths all round (and beyond a turn both ways), every stored
+// direction and every midpoint between two.
+TEST_F(ShadingParity, HorizonLayerWeightsMatchCpp) {
+  struct LayersQuery {
+    glm::vec4 codes[4], weights0, weights1, layers;
+  };
+  std::mt19937 rng(1818);
+  std::uniform_real_distribution<float> azimuth(-7.0f, 14.0f);
+  std::vector<LayersQuery> queries;
+  std::vector<std::array<uint8_t, kMaxHorizonDirections>> codes;
+  std::vector<int> directions, bits;
+  std::vector<float> azimuths;
+  for (int i = 0; i < 8000; ++i) {
+    const int b = i < 4000 ? 8 : 4;
+    const int maxCode = (1 << b) - 1;
+    std::uniform_int_distribution<int> code(0, maxCode);
+    std::array<uint8_t, kMaxHorizonDirections> c;
+    for (uint8_t& v : c) v = uint8_t(code(rng));
+    const int n = 4 * (1 + i % 4);  // 4, 8, 12, 16
+    // Every stored direction and midpoint, then anywhere.
+    const float a =
+        i % 4000 < 512 ? float(i % 4000 / 4) * float(std::numbers::pi / n) : azimuth(rng);
+    const HorizonLayerWeights w = horizonLayerWeights(n, a, b);
+    LayersQuery q;
+    for (int l = 0; l < 4; ++l) {
+      q.codes[l] = glm::vec4(c[4 * l], c[4 * l + 1], c[4 * l + 2], c[4 * l + 3]) / float(maxCode);
+    }
+    q.weights0 = glm::vec4(w.weights0[0], w.weights0[1], w.weights0[2], w.weights0[3]);
+    q.weights1 = glm::vec4(w.weights1[0], w.weights1[1], w.weights1[2], w.weights1[3]);
+    q.layers = glm::vec4(float(w.layer0), float(w.layer1), float(b), 0);
+    queries.push_back(q);
+    codes.push_back(c);
+    directions.push_back(n);
+    bits.push_back(b);
+    azimuths.push_back(a);
+  }
+  const uint32_t count = static_cast<uint32_t>(queries.size());
+  Buffer input(device(), count * sizeof(LayersQuery), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
+               MemoryIntent::Upload);
+  Buffer output(device(), count * sizeof(float), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
+                MemoryIntent::Readback);
+  input.write(queries.data(), count * sizeof(LayersQuery));
+  {
+    const ComputePipeline pipeline(device(), "horizon_layers_parity.comp", sizeof(uint32_t));
+    submitAndWait(device(), [&](VkCommandBuffer cmd) {
+      pipeline.record(cmd, {&input, &output}, &count,
+                      (count + AAL_SHADING_PARITY_GROUP_SIZE - 1) / AAL_SHADING_PARITY_GROUP_SIZE);
+    });
+  }
+  std::vector<float> answers(count);
+  output.read(answers.data(), count * sizeof(float));
+  double worst = 0;
+  for (uint32_t i = 0; i < count; ++i) {
+    const float expected = horizonAtAzimuth(codes[i].data(), directions[i], azimuths[i], bits[i]);
+    // Float rounding of the weights and sums (the neighbours are the CPU's own).
+    EXPECT_NEAR(answers[i], expected, 1e-5f)
+        << "query " << i << " azimuth " << azimuths[i] << " bits " << bits[i];
+    worst = std::max(worst, double(std::abs(answers[i] - expected)));
+  }
+  std::printf("horizon layer weights parity over %u inputs: worst %.3g rad\n", count, worst);
+}
+
 }  // namespace
 }  // namespace aal

@@ -97,6 +97,42 @@ TEST(HorizonMap, AzimuthsBetweenStoredDirectionsInterpolateLinearly) {
               0.5f * (decodeHorizon(27) + decodeHorizon(36)), 1e-6f);
 }
 
+// The per-frame weights the renderer hands the shader (horizonLayerWeights)
+// give horizonAtAzimuth's horizon, evaluated as the shader does (power of
+// each channel's code times its weight), in double precision here; the
+// second layer carries weight only where the two directions lie in different
+// layers.
+TEST(HorizonMap, LayerWeightsGiveTheHorizonAtEveryAzimuth) {
+  std::mt19937 rng(18);
+  std::uniform_real_distribution<float> azimuth(-7.0f, 14.0f);
+  for (const int bits : {8, 4}) {
+    for (const int directions : {4, 8, 12, 16}) {
+      std::uniform_int_distribution<int> code(0, (1 << bits) - 1);
+      for (int i = 0; i < 500; ++i) {
+        uint8_t codes[kMaxHorizonDirections];
+        for (uint8_t& c : codes) c = uint8_t(code(rng));
+        const float a = i < 2 * directions ? float(i) * float(kPi / directions) : azimuth(rng);
+        const HorizonLayerWeights w = horizonLayerWeights(directions, a, bits);
+        ASSERT_GE(w.layer0, 0);
+        ASSERT_LT(w.layer1, directions / 4);
+        double h = kHorizonMinRad;
+        for (int c = 0; c < 4; ++c) {
+          const double u0 = double(codes[4 * w.layer0 + c]) / ((1 << bits) - 1);
+          const double u1 = double(codes[4 * w.layer1 + c]) / ((1 << bits) - 1);
+          const double p0 = bits == 4 ? u0 * std::sqrt(u0) : u0 * u0;
+          const double p1 = bits == 4 ? u1 * std::sqrt(u1) : u1 * u1;
+          h += p0 * double(w.weights0[size_t(c)]) + p1 * double(w.weights1[size_t(c)]);
+          if (w.layer1 == w.layer0) {
+            EXPECT_EQ(w.weights1[size_t(c)], 0.0f);
+          }
+        }
+        EXPECT_NEAR(h, horizonAtAzimuth(codes, directions, a, bits), 2e-6)
+            << bits << " bits, " << directions << " directions, azimuth " << a;
+      }
+    }
+  }
+}
+
 TEST(HorizonMap, FilesRoundTripAndForeignOrTruncatedFilesAreRefused) {
   const std::filesystem::path dir =
       std::filesystem::temp_directory_path() / ("aal-horizons-" + std::to_string(::getpid()));
