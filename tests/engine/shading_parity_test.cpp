@@ -67,6 +67,29 @@ class ShadingParity : public VulkanTest {
     output.read(answers.data(), count * sizeof(glm::vec4));
     return answers;
   }
+
+  // One float per query from a compute shader that reads the queries at
+  // binding 0 and writes its answers at binding 1 (the horizon twins).
+  template <class Q>
+  std::vector<float> floatsOnDevice(const char* shader, const std::vector<Q>& queries) {
+    const uint32_t count = static_cast<uint32_t>(queries.size());
+    Buffer input(device(), count * sizeof(Q), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
+                 MemoryIntent::Upload);
+    Buffer output(device(), count * sizeof(float), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
+                  MemoryIntent::Readback);
+    input.write(queries.data(), count * sizeof(Q));
+    {
+      const ComputePipeline pipeline(device(), shader, sizeof(uint32_t));
+      submitAndWait(device(), [&](VkCommandBuffer cmd) {
+        pipeline.record(
+            cmd, {&input, &output}, &count,
+            (count + AAL_SHADING_PARITY_GROUP_SIZE - 1) / AAL_SHADING_PARITY_GROUP_SIZE);
+      });
+    }
+    std::vector<float> answers(count);
+    output.read(answers.data(), count * sizeof(float));
+    return answers;
+  }
 };
 
 Query queryOf(const ShadingInputs& in, int mode) {
@@ -228,20 +251,7 @@ TEST_F(ShadingParity, HorizonInterpolationMatchesCpp) {
     queries.push_back(q);
   }
   const uint32_t count = static_cast<uint32_t>(queries.size());
-  Buffer input(device(), count * sizeof(HorizonQuery), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
-               MemoryIntent::Upload);
-  Buffer output(device(), count * sizeof(float), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
-                MemoryIntent::Readback);
-  input.write(queries.data(), count * sizeof(HorizonQuery));
-  {
-    const ComputePipeline pipeline(device(), "horizon_parity.comp", sizeof(uint32_t));
-    submitAndWait(device(), [&](VkCommandBuffer cmd) {
-      pipeline.record(cmd, {&input, &output}, &count,
-                      (count + AAL_SHADING_PARITY_GROUP_SIZE - 1) / AAL_SHADING_PARITY_GROUP_SIZE);
-    });
-  }
-  std::vector<float> answers(count);
-  output.read(answers.data(), count * sizeof(float));
+  const std::vector<float> answers = floatsOnDevice("horizon_parity.comp", queries);
   double worst = 0;
   for (uint32_t i = 0; i < count; ++i) {
     const float expected =
@@ -294,20 +304,7 @@ TEST_F(ShadingParity, HorizonLayerWeightsMatchCpp) {
     azimuths.push_back(a);
   }
   const uint32_t count = static_cast<uint32_t>(queries.size());
-  Buffer input(device(), count * sizeof(LayersQuery), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
-               MemoryIntent::Upload);
-  Buffer output(device(), count * sizeof(float), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
-                MemoryIntent::Readback);
-  input.write(queries.data(), count * sizeof(LayersQuery));
-  {
-    const ComputePipeline pipeline(device(), "horizon_layers_parity.comp", sizeof(uint32_t));
-    submitAndWait(device(), [&](VkCommandBuffer cmd) {
-      pipeline.record(cmd, {&input, &output}, &count,
-                      (count + AAL_SHADING_PARITY_GROUP_SIZE - 1) / AAL_SHADING_PARITY_GROUP_SIZE);
-    });
-  }
-  std::vector<float> answers(count);
-  output.read(answers.data(), count * sizeof(float));
+  const std::vector<float> answers = floatsOnDevice("horizon_layers_parity.comp", queries);
   double worst = 0;
   for (uint32_t i = 0; i < count; ++i) {
     const float expected = horizonAtAzimuth(codes[i].data(), directions[i], azimuths[i], bits[i]);
