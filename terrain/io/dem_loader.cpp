@@ -148,18 +148,9 @@ Heightfield demGeometry(const DemSource& source, const DemLoadOptions& options) 
 
 Heightfield readDemRows(const DemSource& source, const Heightfield& geometry, int firstRow,
                         int rows) {
-  RawDem raw = source.read(0, firstRow, source.width(), rows);
-  const size_t voids = scaleHeights(raw, geometry.zScale, source.path(), firstRow);
-  if (voids > 0) {
-    throw InputError(source.path() + ": has voids (" + std::to_string(voids) + " in rows " +
-                     std::to_string(firstRow) + " to " + std::to_string(firstRow + rows - 1) +
-                     "); a DEM read in parts cannot be filled, since filling needs the whole "
-                     "DEM: fill them first, e.g. `gdal_fillnodata.py " +
-                     source.path() + " filled.tif`");
-  }
-  Heightfield band = geometry;
-  band.firstRow = firstRow;
-  band.z = std::move(raw.z);
+  // A window of every column, held as whole rows (windowColumns 0).
+  Heightfield band = readDemWindow(source, geometry, 0, firstRow, source.width(), rows);
+  band.windowColumns = 0;
   return band;
 }
 

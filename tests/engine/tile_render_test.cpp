@@ -135,6 +135,21 @@ Difference compare(const FrameResult& a, const FrameResult& reference, bool topV
   return d;
 }
 
+// A tiled scene's picture against the single image's, printed and checked.
+// Tolerance: 1 LSB of the 8-bit output (a fetch's coordinate rounds
+// differently in a tile's image: heights differ by ~1e-5 of a texel's
+// slope), none more at the seams, and a handful of pixels (<= 0.01%)
+// beyond it, each on an edge of the picture that explains its difference.
+void expectTiledAsOneImage(const Difference& d, const std::string& what) {
+  std::printf("%s: max %d LSB (seams %d), %zu of %d pixels differ, %zu beyond 1 LSB\n",
+              what.c_str(), d.maxLsb, d.maxLsbAtSeams, d.pixelsOff, kWidth * kHeight,
+              d.pixelsBeyondOne);
+  EXPECT_LE(d.maxLsbAtSeams, 1) << what;
+  EXPECT_LE(d.pixelsOff, size_t(kWidth * kHeight / 1000)) << what;
+  EXPECT_LE(d.pixelsBeyondOne, size_t(kWidth * kHeight / 10000)) << what;
+  EXPECT_LE(d.maxBeyondEdge, 1) << what;
+}
+
 class TileRender : public VulkanTest {};
 
 // The texels of mip level `level` of layer `layer` of a texture page, as
@@ -377,18 +392,7 @@ TEST_F(TileRender, TiledTexturesRenderAsOneImageInEveryMode) {
         const Difference d = compare(frame, reference, top);
         const std::string what = "mode " + std::to_string(int(mode)) + (top ? " top" : " oblique") +
                                  ", " + describeTerrainTiles(tiled->tiles());
-        std::printf("%s: max %d LSB (seams %d), %zu of %d pixels differ, %zu beyond 1 LSB\n",
-                    what.c_str(), d.maxLsb, d.maxLsbAtSeams, d.pixelsOff, kWidth * kHeight,
-                    d.pixelsBeyondOne);
-        // Tolerance: 1 LSB of the 8-bit output (a fetch's coordinate rounds
-        // differently in a tile's image: heights differ by ~1e-5 of a
-        // texel's slope), none more at the seams, and a handful of pixels
-        // (<= 0.01%) beyond it, each on an edge of the picture that explains
-        // its difference.
-        EXPECT_LE(d.maxLsbAtSeams, 1) << what;
-        EXPECT_LE(d.pixelsOff, size_t(kWidth * kHeight / 1000)) << what;
-        EXPECT_LE(d.pixelsBeyondOne, size_t(kWidth * kHeight / 10000)) << what;
-        EXPECT_LE(d.maxBeyondEdge, 1) << what;
+        expectTiledAsOneImage(d, what);
       }
     }
   }
@@ -452,13 +456,7 @@ TEST_F(TileRender, HorizonModeTiledAsOneImage) {
       const Difference d = compare(renderer.render(tiled, s, false), reference, top);
       const std::string what = std::to_string(directions) + " directions of " +
                                std::to_string(bits) + " bits" + (top ? ", top" : ", oblique");
-      std::printf("%s: max %d LSB (seams %d), %zu of %d pixels differ, %zu beyond 1 LSB\n",
-                  what.c_str(), d.maxLsb, d.maxLsbAtSeams, d.pixelsOff, kWidth * kHeight,
-                  d.pixelsBeyondOne);
-      EXPECT_LE(d.maxLsbAtSeams, 1) << what;
-      EXPECT_LE(d.pixelsOff, size_t(kWidth * kHeight / 1000)) << what;
-      EXPECT_LE(d.pixelsBeyondOne, size_t(kWidth * kHeight / 10000)) << what;
-      EXPECT_LE(d.maxBeyondEdge, 1) << what;
+      expectTiledAsOneImage(d, what);
       // The horizons matter in this view: approx lights much that they hide.
       FrameSettings approx = s;
       approx.mode = ShadingMode::Approx;

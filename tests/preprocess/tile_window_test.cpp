@@ -16,6 +16,7 @@
 #include <vector>
 
 #include "../tools/run_tool.h"
+#include "../tools/synthetic_dem_file.h"
 #include "bake.h"
 #include "dem_loader.h"
 #include "dem_source.h"
@@ -211,14 +212,9 @@ TEST(TileWindow, TheHaloHoldsEveryReadInRowsAndInColumnsAlike) {
 TEST(TileWindow, TheReaderSlidesAlongATileRowReadingOnlyTheNewColumns) {
   test::TempDir dir;
   const Heightfield field = fbmField(200, 90);
-  GeoReference geo;
-  geo.crs = CrsKind::Projected;
-  geo.epsg = 32616;
-  geo.originX = 500000;
-  geo.originY = 4000000;
-  geo.stepX = geo.stepY = 30;
   const fs::path path = dir.path() / "dem.tif";
-  writeFloatGeoTiff(path.string(), field.width, field.height, field.z.data(), geo);
+  writeFloatGeoTiff(path.string(), field.width, field.height, field.z.data(),
+                    test::testGeoReference(false));
   const DemSource source(path.string(), DemLoadOptions{});
   const Heightfield geometry = demGeometry(source, DemLoadOptions{});
   constexpr int kTile = 32, kHalo = 30;
@@ -261,14 +257,9 @@ TEST(TileWindow, TheReaderSlidesAlongATileRowReadingOnlyTheNewColumns) {
 TEST(TileWindow, BakesInWindowsReadEachTileRowOnceAndEqualTheInMemoryBake) {
   test::TempDir dir;
   const Heightfield field = fbmField(230, 100);
-  GeoReference geo;
-  geo.crs = CrsKind::Projected;
-  geo.epsg = 32616;
-  geo.originX = 500000;
-  geo.originY = 4000000;
-  geo.stepX = geo.stepY = 30;
   const fs::path path = dir.path() / "dem.tif";
-  writeFloatGeoTiff(path.string(), field.width, field.height, field.z.data(), geo);
+  writeFloatGeoTiff(path.string(), field.width, field.height, field.z.data(),
+                    test::testGeoReference(false));
   const DemSource source(path.string(), DemLoadOptions{});
   const Heightfield geometry = demGeometry(source, DemLoadOptions{});
   const Heightfield loaded = loadDem(path.string());
