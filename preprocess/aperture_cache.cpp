@@ -76,7 +76,9 @@ HorizonMap findCachedHorizons(const Heightfield& field, const BakeOptions& optio
   try {
     HorizonMap horizons = readHorizonMap(path);
     if (horizons.width == field.width && horizons.height == field.height &&
-        horizons.directions == options.horizonDirections && horizons.bits == options.horizonBits) {
+        horizons.directions == options.horizonDirections && horizons.bits == options.horizonBits &&
+        (horizons.sourceChecksum.empty() ||  // version 2: the entry's name holds it
+         horizons.sourceChecksum == heightfieldChecksum(field))) {
       return horizons;
     }
   } catch (const std::exception&) {

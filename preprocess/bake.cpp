@@ -271,6 +271,7 @@ BakeResult bakeApertures(const Heightfield& field, const BakeOptions& o) {
   }
   beside.wait();
   result.aperture.info.sourceChecksum = checksum;
+  result.horizons.sourceChecksum = checksum;
   return result;
 }
 

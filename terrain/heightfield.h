@@ -85,6 +85,11 @@ struct Heightfield {
     const int columns = residentColumns();
     return columns > 0 ? static_cast<int>(z.size() / static_cast<size_t>(columns)) : 0;
   }
+  // Every texel of the DEM, not a window of it.
+  bool holdsEveryTexel() const {
+    return firstRow == 0 && firstColumn == 0 && residentColumns() == width &&
+           residentRows() == height;
+  }
   bool holdsColumn(int x) const { return x >= firstColumn && x < firstColumn + residentColumns(); }
   bool holdsRow(int y) const { return y >= firstRow && y < firstRow + residentRows(); }
   size_t index(int x, int y) const {

@@ -3,11 +3,13 @@
 // "Directional horizons"), checked against the DEM before anything is drawn.
 #pragma once
 
+#include <cstdio>
 #include <map>
 #include <string>
 
 #include "errors.h"
 #include "heightfield.h"
+#include "heightfield_checksum.h"
 #include "horizon_map.h"
 #include "shading.h"
 
@@ -25,9 +27,10 @@ inline const std::map<std::string, ShadingMode>& toolShadingModes() {
 }
 
 // The horizon map at `path`, which must be of `field`: InputError naming
-// the file when it cannot be read, is not a horizon map or has another size.
-// The format holds no checksum of the heights, so only the size can be
-// checked (bake both maps in one aal-bake run).
+// the file when it cannot be read, is not a horizon map, has another size or
+// was baked from other heights (its checksum, as the aperture map's). Files
+// from before the checksum (versions 1 and 2) are checked by size alone,
+// with a note saying so.
 inline HorizonMap readHorizonsOfDem(const std::string& path, const Heightfield& field) {
   HorizonMap horizons;
   try {
@@ -40,6 +43,17 @@ inline HorizonMap readHorizonsOfDem(const std::string& path, const Heightfield& 
                      std::to_string(horizons.height) + ", the DEM " + std::to_string(field.width) +
                      "x" + std::to_string(field.height) +
                      ": bake them from this DEM (aal-bake DEM --horizons FILE)");
+  }
+  if (horizons.sourceChecksum.empty()) {
+    std::fprintf(stderr,
+                 "note: --horizons %s predates the heights checksum: only its size is checked "
+                 "against the DEM\n",
+                 path.c_str());
+  } else if (!heightfieldMatchesChecksum(field, horizons.sourceChecksum)) {
+    throw InputError("--horizons " + path + " was baked from other heights than this DEM's (" +
+                     horizons.sourceChecksum + ", the DEM " + heightfieldChecksum(field) +
+                     "; the z scale or --exaggeration counts): bake them from this DEM "
+                     "(aal-bake DEM --horizons FILE)");
   }
   return horizons;
 }

@@ -8,6 +8,7 @@
 #include <sstream>
 #include <stdexcept>
 #include <string>
+#include <system_error>
 
 #include "atomic_file.h"
 
@@ -17,7 +18,13 @@ namespace {
 
 constexpr float kTwoPi = 2.0f * std::numbers::pi_v<float>;
 constexpr const char* kMagic = "aperture-horizons";
-constexpr int kVersion = 2;  // 1: 8-bit codes, no bits field
+constexpr int kVersion = 3;  // 2: no checksum; 1: 8-bit codes, no bits field
+
+// A checksum as the header carries it: one word, printable.
+bool validChecksumWord(const std::string& checksum) {
+  return !checksum.empty() && checksum.size() <= 64 &&
+         std::all_of(checksum.begin(), checksum.end(), [](char c) { return c > ' ' && c < 127; });
+}
 
 }  // namespace
 
@@ -99,7 +106,7 @@ HorizonLayerWeights horizonLayerWeights(int directions, float azimuthRad, int bi
 
 void writeHorizonMap(const std::filesystem::path& path, const HorizonMap& map) {
   if (map.width < 1 || map.height < 1 || !validHorizonDirections(map.directions) ||
-      !validHorizonBits(map.bits) ||
+      !validHorizonBits(map.bits) || !validChecksumWord(map.sourceChecksum) ||
       map.codes.size() != size_t(map.width) * size_t(map.height) * size_t(map.directions) ||
       std::any_of(map.codes.begin(), map.codes.end(),
                   [&](uint8_t c) { return c >= (1 << map.bits); })) {
@@ -109,7 +116,7 @@ void writeHorizonMap(const std::filesystem::path& path, const HorizonMap& map) {
   {
     std::ofstream out(output.temporaryPath(), std::ios::binary);
     out << kMagic << ' ' << kVersion << ' ' << map.width << ' ' << map.height << ' '
-        << map.directions << ' ' << map.bits << '\n';
+        << map.directions << ' ' << map.bits << ' ' << map.sourceChecksum << '\n';
     out.write(reinterpret_cast<const char*>(map.codes.data()),
               static_cast<std::streamsize>(map.codes.size()));
     out.flush();
@@ -129,15 +136,26 @@ HorizonMap readHorizonMap(const std::filesystem::path& path) {
   HorizonMap map;
   fields >> magic >> version >> map.width >> map.height >> map.directions;
   map.bits = kHorizonBits;
-  if (version == kVersion) fields >> map.bits;
-  if (!fields || magic != kMagic || (version != 1 && version != kVersion) ||
+  if (version >= 2) fields >> map.bits;
+  if (version >= 3) fields >> map.sourceChecksum;
+  if (!fields || magic != kMagic || version < 1 || version > kVersion ||
+      (version >= 3 && !validChecksumWord(map.sourceChecksum)) ||
       !validHorizonDirections(map.directions) || !validHorizonBits(map.bits) || map.width < 1 ||
       map.height < 1 || map.width > (1 << 20) || map.height > (1 << 20)) {
     throw std::runtime_error(path.string() + " is not a horizon map (\"" + kMagic + " " +
                              std::to_string(kVersion) +
-                             "\" with 4, 8, 12 or 16 directions of 8 or 4 bits)");
+                             " WIDTH HEIGHT DIRECTIONS BITS CHECKSUM\" with 4, 8, 12 or 16 "
+                             "directions of 8 or 4 bits)");
   }
-  map.codes.resize(size_t(map.width) * size_t(map.height) * size_t(map.directions));
+  // The header's size against the file's before allocating: a damaged
+  // header must not ask for terabytes.
+  const size_t codeCount = size_t(map.width) * size_t(map.height) * size_t(map.directions);
+  std::error_code error;
+  const uintmax_t fileBytes = std::filesystem::file_size(path, error);
+  if (!error && fileBytes < uintmax_t(in.tellg()) + codeCount) {
+    throw std::runtime_error("horizon map " + path.string() + " is truncated");
+  }
+  map.codes.resize(codeCount);
   in.read(reinterpret_cast<char*>(map.codes.data()),
           static_cast<std::streamsize>(map.codes.size()));
   if (in.gcount() != static_cast<std::streamsize>(map.codes.size())) {

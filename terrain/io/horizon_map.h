@@ -10,6 +10,7 @@
 #include <array>
 #include <cstdint>
 #include <filesystem>
+#include <string>
 #include <vector>
 
 namespace aal {
@@ -47,6 +48,10 @@ struct HorizonMap {
   int width = 0, height = 0;
   int directions = kHorizonDirections;
   int bits = kHorizonBits;  // of each code (one code per byte in memory and file)
+  // heightfieldChecksum() of the DEM they were baked from (terrain/io/
+  // heightfield_checksum.h), as the aperture map's; empty in files of
+  // versions 1 and 2, which predate it (then only the size can be checked).
+  std::string sourceChecksum;
   // `directions` codes per texel, rows top (north) to bottom as the aperture
   // map's, directions in order.
   std::vector<uint8_t> codes;
@@ -78,10 +83,12 @@ struct HorizonLayerWeights {
 };
 HorizonLayerWeights horizonLayerWeights(int directions, float azimuthRad, int bits = kHorizonBits);
 
-// Writes / reads the file format of docs/baking.md ("aperture-horizons 2"
-// header line with the code bits, then the codes; version 1 files, without
-// the bits, hold 8-bit codes). Reading throws std::runtime_error naming the
-// file for anything that is not such a file or is truncated.
+// Writes / reads the file format of docs/baking.md ("aperture-horizons 3"
+// header line with the code bits and the DEM's checksum, then the codes;
+// version 2 files have no checksum, version 1 files neither the bits: they
+// hold 8-bit codes). Writing needs the checksum. Reading throws
+// std::runtime_error naming the file for anything that is not such a file or
+// is truncated.
 void writeHorizonMap(const std::filesystem::path& path, const HorizonMap& map);
 HorizonMap readHorizonMap(const std::filesystem::path& path);
 

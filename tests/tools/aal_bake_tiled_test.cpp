@@ -72,7 +72,7 @@ TEST(AalBakeTiled, FolderEqualsTheSingleFileBake) {
 // texels and those within the max distance, yet every tile equals
 // the single-file bake, on a projected and on a geographic grid (whose x
 // spacing changes with the row).
-TEST(AalBakeTiled, BandsOfRowsEqualTheSingleFileBake) {
+TEST(AalBakeTiled, WindowsOfTheDemEqualTheSingleFileBake) {
   TempDir dir;
   for (const bool geographic : {false, true}) {
     SyntheticTerrainOptions s;

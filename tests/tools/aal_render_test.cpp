@@ -8,6 +8,7 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <string>
 #include <utility>
 #include <vector>
@@ -317,6 +318,45 @@ TEST(AalRender, RefusesAnApertureMapOfAnotherDem) {
   EXPECT_EQ(r.exitCode, 2) << r.out;
   EXPECT_NE(r.out.find("other.exr"), std::string::npos) << r.out;
   EXPECT_NE(r.out.find("jacksboro_fault_dem.tif"), std::string::npos) << r.out;
+}
+
+// Directional horizons carry the heights' checksum (format version 3): of
+// the same size but baked from other heights (here the DEM at twice its z
+// scale), they are refused before anything is drawn; a file from before the
+// checksum (version 2) is checked by its size alone, with a note.
+TEST(AalRender, RefusesHorizonsBakedFromOtherHeights) {
+  TempDir dir;
+  const fs::path map = dir.path() / "a.exr", horizons = dir.path() / "a.horizons",
+                 steep = dir.path() / "steep.horizons";
+  ASSERT_EQ(runTool("aal-bake",
+                    quoted(kDem) + " -o " + quoted(map) + " --horizons " + quoted(horizons) + " -q")
+                .exitCode,
+            0);
+  ASSERT_EQ(
+      runTool("aal-bake", quoted(kDem) + " --z-scale 2 -o " + quoted(dir.path() / "steep.exr") +
+                              " --horizons " + quoted(steep) + " -q")
+          .exitCode,
+      0);
+  const std::string common = "-o " + quoted(dir.path() / "x.png") + " --size 32x18 --aperture " +
+                             quoted(map) + " --mode horizon --horizons ";
+  const auto ok = render(dir, common + quoted(horizons));
+  EXPECT_EQ(ok.exitCode, 0) << ok.out;
+  EXPECT_EQ(ok.out.find("predates"), std::string::npos) << ok.out;
+  const auto other = render(dir, common + quoted(steep));
+  EXPECT_EQ(other.exitCode, 2) << other.out;
+  EXPECT_NE(other.out.find("steep.horizons was baked from other heights"), std::string::npos)
+      << other.out;
+  // The same codes under a version 2 header.
+  std::ifstream in(horizons, std::ios::binary);
+  std::string header;
+  std::getline(in, header);
+  const std::string codes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  ASSERT_EQ(header.rfind("aperture-horizons 3 403 344 8 8 r2-", 0), 0u) << header;
+  const fs::path old = dir.path() / "old.horizons";
+  std::ofstream(old, std::ios::binary) << "aperture-horizons 2 403 344 8 8\n" << codes;
+  const auto legacy = render(dir, common + quoted(old));
+  EXPECT_EQ(legacy.exitCode, 0) << legacy.out;
+  EXPECT_NE(legacy.out.find("predates the heights checksum"), std::string::npos) << legacy.out;
 }
 
 TEST(AalRender, RefusesAnApertureMapBakedForAnotherCellSize) {

@@ -140,6 +140,7 @@ TEST(HorizonMap, FilesRoundTripAndForeignOrTruncatedFilesAreRefused) {
   HorizonMap map;
   map.width = 5;
   map.height = 3;
+  map.sourceChecksum = "r2-0123456789abcdef";
   for (int i = 0; i < map.width * map.height * kHorizonDirections; ++i) {
     map.codes.push_back(uint8_t(i * 7));
   }
@@ -149,8 +150,29 @@ TEST(HorizonMap, FilesRoundTripAndForeignOrTruncatedFilesAreRefused) {
   EXPECT_EQ(read.height, 3);
   EXPECT_EQ(read.codes, map.codes);
   EXPECT_EQ(read.bits, 8);
-  EXPECT_EQ(std::filesystem::file_size(dir / "h.bin"),
-            std::string("aperture-horizons 2 5 3 8 8\n").size() + map.codes.size());
+  EXPECT_EQ(read.sourceChecksum, map.sourceChecksum);
+  EXPECT_EQ(
+      std::filesystem::file_size(dir / "h.bin"),
+      std::string("aperture-horizons 3 5 3 8 8 r2-0123456789abcdef\n").size() + map.codes.size());
+  // Without the DEM's checksum there is nothing to check it against later.
+  HorizonMap unchecked = map;
+  unchecked.sourceChecksum.clear();
+  EXPECT_THROW(writeHorizonMap(dir / "unchecked.bin", unchecked), std::invalid_argument);
+  unchecked.sourceChecksum = "two words";
+  EXPECT_THROW(writeHorizonMap(dir / "unchecked.bin", unchecked), std::invalid_argument);
+  EXPECT_FALSE(std::filesystem::exists(dir / "unchecked.bin"));
+  // Version 3 without its checksum is damaged.
+  std::ofstream(dir / "nosum.bin") << "aperture-horizons 3 5 3 8 8\n";
+  EXPECT_THROW(readHorizonMap(dir / "nosum.bin"), std::runtime_error);
+  // Version 2 (before the checksum): read, the checksum unknown.
+  {
+    std::ofstream v2(dir / "v2.bin", std::ios::binary);
+    v2 << "aperture-horizons 2 5 3 8 8\n";
+    v2.write(reinterpret_cast<const char*>(map.codes.data()), std::streamsize(map.codes.size()));
+  }
+  const HorizonMap v2 = readHorizonMap(dir / "v2.bin");
+  EXPECT_EQ(v2.codes, map.codes);
+  EXPECT_TRUE(v2.sourceChecksum.empty());
   // Version 1 (before 4-bit codes): 8 bits, no bits field.
   {
     std::ofstream old(dir / "v1.bin", std::ios::binary);
@@ -160,6 +182,7 @@ TEST(HorizonMap, FilesRoundTripAndForeignOrTruncatedFilesAreRefused) {
   const HorizonMap v1 = readHorizonMap(dir / "v1.bin");
   EXPECT_EQ(v1.bits, 8);
   EXPECT_EQ(v1.codes, map.codes);
+  EXPECT_TRUE(v1.sourceChecksum.empty());
   // 4-bit codes, one per byte; a code above 15 is refused.
   HorizonMap four = map;
   four.bits = 4;
@@ -168,6 +191,7 @@ TEST(HorizonMap, FilesRoundTripAndForeignOrTruncatedFilesAreRefused) {
   const HorizonMap readFour = readHorizonMap(dir / "four.bin");
   EXPECT_EQ(readFour.bits, 4);
   EXPECT_EQ(readFour.codes, four.codes);
+  EXPECT_EQ(readFour.sourceChecksum, map.sourceChecksum);
   four.codes[3] = 16;
   EXPECT_THROW(writeHorizonMap(dir / "bad.bin", four), std::invalid_argument);
   {
@@ -183,6 +207,9 @@ TEST(HorizonMap, FilesRoundTripAndForeignOrTruncatedFilesAreRefused) {
   EXPECT_THROW(readHorizonMap(dir / "h.bin"), std::runtime_error);
   std::ofstream(dir / "other.bin") << "aperture-horizons 1 5 3 6\n";
   EXPECT_THROW(readHorizonMap(dir / "other.bin"), std::runtime_error);
+  // A header asking for 16 TB is a damaged file, not an allocation.
+  std::ofstream(dir / "huge.bin") << "aperture-horizons 3 1048576 1048576 16 8 r2-0\n";
+  EXPECT_THROW(readHorizonMap(dir / "huge.bin"), std::runtime_error);
   std::ofstream(dir / "text.bin") << "hello\n";
   EXPECT_THROW(readHorizonMap(dir / "text.bin"), std::runtime_error);
   EXPECT_THROW(readHorizonMap(dir / "missing.bin"), std::runtime_error);

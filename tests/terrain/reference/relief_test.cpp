@@ -316,8 +316,26 @@ TEST(Relief, HalfMapsShadeAsTheirFloats) {
 TEST(Relief, RefusesAMismatchedMap) {
   const Heightfield f = plane(8, 10, 0, 0);
   ApertureMap m = openAperture(f, {0, 0, 1});
+  const ReliefSettings s = sunAt(250, 30, 0.3f);  // (ReliefSettings{} is refused for itself)
+  ASSERT_NO_THROW(shadeRelief(f, m, s));
   m.width = 7;
-  EXPECT_THROW(shadeRelief(f, m, ReliefSettings{}), std::invalid_argument);
+  EXPECT_THROW(shadeRelief(f, m, s), std::invalid_argument);
+}
+
+// A window of a DEM (preprocess/tile_window_reader.h) is not the DEM, even
+// one that holds every row.
+TEST(Relief, RefusesAWindowOfTheDem) {
+  const Heightfield whole = plane(8, 10, 0, 0);
+  const ApertureMap m = openAperture(whole, {0, 0, 1});
+  const ReliefSettings s = sunAt(250, 30, 0.3f);
+  ASSERT_NO_THROW(shadeRelief(whole, m, s));
+  Heightfield window = whole;
+  window.firstColumn = 2;
+  window.windowColumns = 4;
+  window.z.resize(size_t(window.windowColumns) * size_t(window.height));
+  ASSERT_EQ(window.residentRows(), window.height);
+  EXPECT_THROW(shadeRelief(window, m, s), std::invalid_argument);
+  EXPECT_THROW(shadeRelief(window, toHalfApertureMap(m), s), std::invalid_argument);
 }
 
 }  // namespace
