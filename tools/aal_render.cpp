@@ -82,6 +82,7 @@ struct Options {
   std::optional<int> frames;
   double fps = 30;
   int referenceSunRays = 16, referenceSkyRays = 64;
+  int referenceSubpixels = 2;  // per axis
 };
 
 // The CPU ray tracer's name on --mode (not a GPU shading mode).
@@ -172,6 +173,7 @@ aal::ComparisonOptions comparisonOptions(const Options& o,
   aal::ComparisonOptions c;
   c.sunRays = o.referenceSunRays;
   c.skyRays = o.referenceSkyRays;
+  c.subpixels = o.referenceSubpixels;
   c.albedo = albedoValue.value_or(glm::vec3(aal::kReferenceTerrainAlbedo));
   return c;
 }
@@ -192,8 +194,9 @@ int renderReferenceImage(const Options& o, const aal::Heightfield& field,
     const double seconds =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     std::fprintf(stderr,
-                 "aal-render: reference (%d sun + %d sky rays per pixel) in %.1f s, wrote %s\n",
-                 r.sunRays, r.skyRays, seconds, o.output.c_str());
+                 "aal-render: reference (%d sun + %d sky rays per pixel over %d x %d "
+                 "subpixels) in %.1f s, wrote %s\n",
+                 r.sunRays, r.skyRays, r.subpixels, r.subpixels, seconds, o.output.c_str());
   }
   return aal::kExitOk;
 }
@@ -516,6 +519,12 @@ int main(int argc, char** argv) {
   app.add_option("--reference-sky-rays", o.referenceSkyRays,
                  "reference: cosine-weighted sky rays per pixel (one bounce where they hit)")
       ->check(CLI::Range(1, 65536))
+      ->capture_default_str();
+  app.add_option("--reference-subpixels", o.referenceSubpixels,
+                 "reference: N x N point samples per pixel, averaged (the pixel's footprint, "
+                 "as the GPU's mip levels prefilter it); they share the pixel's sun and sky "
+                 "rays. 1: the one point through the pixel's centre")
+      ->check(CLI::Range(1, aal::kMaxReferenceSubpixels))
       ->capture_default_str();
   app.add_option("--albedo", o.albedo,
                  "surface colour image, e.g. an orthophoto (resampled to the DEM when its size "

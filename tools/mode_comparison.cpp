@@ -57,6 +57,7 @@ ReferenceSettings referenceSettingsFor(const FrameSettings& settings, uint32_t w
   r.albedo = options.albedo;
   r.sunRays = options.sunRays;
   r.skyRays = options.skyRays;
+  r.subpixels = options.subpixels;
   r.interreflection = options.interreflection;
   r.skyBackground = true;
   return r;

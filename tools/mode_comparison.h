@@ -35,6 +35,7 @@ std::vector<ComparedMode> defaultComparedModes(const FrameSettings& settings);
 struct ComparisonOptions {
   int sunRays = 16;
   int skyRays = 64;
+  int subpixels = 1;  // per axis (ReferenceSettings::subpixels)
   // Ground albedo of both renderers (the GPU gets it as FrameSettings::
   // albedoValue): the reference knows only a constant.
   glm::vec3 albedo{0.2f};

@@ -1,11 +1,14 @@
 #include "reference_renderer.h"
 
+#include "terrain_surface.h"
+
 #include <algorithm>
 #include <atomic>
 #include <cmath>
 #include <numbers>
 #include <random>
 #include <stdexcept>
+#include <string>
 
 #include <tbb/parallel_for.h>
 #include <glm/geometric.hpp>
@@ -18,105 +21,6 @@ namespace {
 
 constexpr double kPi = std::numbers::pi;
 
-// The bilinear terrain in world metres, as the GPU sees it: uniform cells
-// (the centre row's for geographic grids), heights clamped at the edges.
-class TerrainSurface {
- public:
-  explicit TerrainSurface(const Heightfield& field)
-      : field_(field),
-        cellX_(field.cellSizeXM),
-        cellY_(field.cellSizeYM),
-        halfX_(0.5 * (field.width - 1)),
-        halfY_(0.5 * (field.height - 1)),
-        maxHeight_(*std::max_element(field.z.begin(), field.z.end())),
-        step_(0.5 * std::min(cellX_, cellY_)) {}
-
-  bool inside(double x, double y) const {
-    return std::abs(x) <= halfX_ * cellX_ + 1e-9 && std::abs(y) <= halfY_ * cellY_ + 1e-9;
-  }
-
-  double heightAtTexel(double col, double row) const { return field_.bilinearHeight(col, row); }
-
-  double heightAt(double x, double y) const { return heightAtTexel(col(x), row(y)); }
-  double col(double x) const { return x / cellX_ + halfX_; }
-  double row(double y) const { return halfY_ - y / cellY_; }
-
-  // Central differences one texel apart (shaders/terrain_shading.glsl surfaceNormal).
-  glm::dvec3 normalAt(double x, double y) const {
-    const double c = col(x), r = row(y);
-    const double dx = heightAtTexel(c + 1, r) - heightAtTexel(c - 1, r);
-    const double dy = heightAtTexel(c, r - 1) - heightAtTexel(c, r + 1);  // north is row - 1
-    return glm::normalize(glm::dvec3(-dx / (2 * cellX_), -dy / (2 * cellY_), 1.0));
-  }
-
-  // First crossing of the surface by origin + s * dir for s in (sStart,
-  // sEnd], by marching in steps of half a cell (horizontally and vertically)
-  // and bisecting the last step. A ray that starts under the surface (one
-  // entering the DEM's box through a side, below the edge) hits where it
-  // comes up through it, as the GPU's two-sided triangles would show.
-  // Leaving the DEM's box or rising above its top escapes.
-  bool intersect(const glm::dvec3& origin, const glm::dvec3& dir, double sStart, double sEnd,
-                 double& sHit) const {
-    const double horizontal = std::hypot(dir.x, dir.y);
-    const double ds = step_ / std::max({horizontal, std::abs(dir.z), 1e-9});
-    const auto below = [&](double s) {
-      const glm::dvec3 p = origin + s * dir;
-      return p.z < heightAt(p.x, p.y);
-    };
-    const bool startsBelow = below(sStart);
-    double sPrev = sStart;
-    for (double s = sStart + ds;; s += ds) {
-      const bool last = s >= sEnd;
-      if (last) s = sEnd;
-      const glm::dvec3 p = origin + s * dir;
-      if (!inside(p.x, p.y)) return false;
-      if (dir.z >= 0 && p.z > maxHeight_) return false;
-      if (below(s) != startsBelow) {
-        double lo = sPrev, hi = s;
-        for (int i = 0; i < 20; ++i) {
-          const double mid = 0.5 * (lo + hi);
-          (below(mid) != startsBelow ? hi : lo) = mid;
-        }
-        sHit = hi;
-        return true;
-      }
-      if (last) return false;
-      sPrev = s;
-    }
-  }
-
-  // The part [sIn, sOut] of origin + s * dir (s >= 0) inside the DEM's
-  // footprint and below its top; false when there is none.
-  bool clipToBox(const glm::dvec3& origin, const glm::dvec3& dir, double& sIn, double& sOut) const {
-    sIn = 0;
-    sOut = 1e300;
-    const double lo[3] = {-halfX_ * cellX_, -halfY_ * cellY_, -1e300};
-    // The top a hair above the highest texel, so that a ray entering through
-    // it starts above the surface (a flat DEM's surface is its top).
-    const double hi[3] = {halfX_ * cellX_, halfY_ * cellY_, maxHeight_ + 1e-3 * cell()};
-    for (int a = 0; a < 3; ++a) {
-      if (std::abs(dir[a]) < 1e-300) {
-        if (origin[a] < lo[a] || origin[a] > hi[a]) return false;
-        continue;
-      }
-      double s0 = (lo[a] - origin[a]) / dir[a], s1 = (hi[a] - origin[a]) / dir[a];
-      if (s0 > s1) std::swap(s0, s1);
-      sIn = std::max(sIn, s0);
-      sOut = std::min(sOut, s1);
-    }
-    // A hair inside, so that the first sample is within the footprint.
-    const double inset = 1e-9 * (1 + sIn);
-    sIn += inset;
-    sOut -= inset;
-    return sIn < sOut;
-  }
-  double cell() const { return std::min(cellX_, cellY_); }
-
- private:
-  const Heightfield& field_;
-  double cellX_, cellY_, halfX_, halfY_, maxHeight_, step_;
-};
-
 // An orthonormal frame around n (Duff et al. 2017, "Building an Orthonormal
 // Basis, Revisited").
 void frameAround(const glm::dvec3& n, glm::dvec3& t, glm::dvec3& b) {
@@ -127,13 +31,20 @@ void frameAround(const glm::dvec3& n, glm::dvec3& t, glm::dvec3& b) {
   b = {c, sign + n.y * n.y * a, -n.y};
 }
 
-// Stratified samples on a k x k grid of the unit square (k = ceil(sqrt(n)),
-// the first n strata), jittered.
+// Jittered samples on a rows x columns grid of the unit square with exactly
+// n cells (rows the largest divisor of n not above its square root: k x k
+// for square n, 8 x 16 for 128, 1 x n for a prime), one sample per cell.
+// Every cell has the same area, so the mean is unbiased for any n. (A k x k
+// grid with k = ceil(sqrt(n)) and its first n cells leaves the last cells
+// empty: with 128 rays the sky's azimuths 330-360 degrees around N and part
+// of 300-330 were never sampled, docs/comparison.md.)
 template <class Rng>
 glm::dvec2 stratified(int i, int n, Rng& rng) {
-  const int k = static_cast<int>(std::ceil(std::sqrt(double(n))));
+  int rows = static_cast<int>(std::sqrt(double(n)));
+  while (n % rows != 0) --rows;
+  const int columns = n / rows;
   std::uniform_real_distribution<double> u(0.0, 1.0);
-  return {((i % k) + u(rng)) / k, ((i / k) + u(rng)) / k};
+  return {((i % columns) + u(rng)) / columns, ((i / columns) + u(rng)) / rows};
 }
 
 class PixelShader {
@@ -216,8 +127,11 @@ ReferenceImage renderReference(const Heightfield& field, const ReferenceSettings
                                const std::function<void(double)>& progress) {
   if (s.width == 0 || s.height == 0) throw std::invalid_argument("reference: empty image");
   if (s.sunRays < 1 || s.skyRays < 1) throw std::invalid_argument("reference: ray counts < 1");
+  if (s.subpixels < 1 || s.subpixels > kMaxReferenceSubpixels) {
+    throw std::invalid_argument("reference: subpixels per axis must be 1.." +
+                                std::to_string(kMaxReferenceSubpixels));
+  }
   const TerrainSurface surface(field);
-  const PixelShader shader(surface, s);
 
   // Primary rays from the GPU's own matrices, through pixel centres.
   const double aspect = double(s.width) / double(s.height);
@@ -232,29 +146,44 @@ ReferenceImage renderReference(const Heightfield& field, const ReferenceSettings
   image.radiance.assign(size_t(s.width) * s.height, glm::vec3(0.0f));
   image.terrain.assign(size_t(s.width) * s.height, 0);
   std::atomic<uint32_t> rowsDone{0};
+  // Each pixel's subpixels share its ray budget (docs/comparison.md, the
+  // pixel's footprint).
+  const int n = s.subpixels;
+  const int subpixelCount = n * n;
+  ReferenceSettings shared = s;
+  shared.sunRays = (s.sunRays + subpixelCount - 1) / subpixelCount;
+  shared.skyRays = (s.skyRays + subpixelCount - 1) / subpixelCount;
+  const PixelShader subpixelShader(surface, shared);
   tbb::parallel_for(uint32_t(0), s.height, [&](uint32_t y) {
     for (uint32_t x = 0; x < s.width; ++x) {
-      const glm::dvec4 ndc((x + 0.5) / s.width * 2 - 1, (y + 0.5) / s.height * 2 - 1, 1.0, 1.0);
-      const glm::dvec4 farPoint = invViewProj * ndc;
-      const glm::dvec3 dir = glm::normalize(glm::dvec3(farPoint) / farPoint.w - eye);
-      double sHit;
-      double sIn, sOut;
       const size_t pixel = size_t(y) * s.width + x;
-      if (!surface.clipToBox(eye, dir, sIn, sOut) ||
-          !surface.intersect(eye, dir, sIn, sOut, sHit)) {
-        if (s.skyBackground) {
-          const glm::vec3 up(dir.x, dir.y, std::max(dir.z, 1e-3));
-          image.radiance[pixel] = skyRadiance(s.lighting.sky, glm::normalize(up));
+      glm::dvec3 sum(0.0);
+      bool allTerrain = true;
+      for (int j = 0; j < subpixelCount; ++j) {
+        // Subpixel centres of a regular n x n grid (the pixel's centre for n = 1).
+        const double sx = x + (j % n + 0.5) / n, sy = y + (j / n + 0.5) / n;
+        const glm::dvec4 ndc(sx / s.width * 2 - 1, sy / s.height * 2 - 1, 1.0, 1.0);
+        const glm::dvec4 farPoint = invViewProj * ndc;
+        const glm::dvec3 dir = glm::normalize(glm::dvec3(farPoint) / farPoint.w - eye);
+        double sHit;
+        double sIn, sOut;
+        if (!surface.clipToBox(eye, dir, sIn, sOut) ||
+            !surface.intersect(eye, dir, sIn, sOut, sHit)) {
+          allTerrain = false;
+          if (s.skyBackground) {
+            const glm::vec3 up(dir.x, dir.y, std::max(dir.z, 1e-3));
+            sum += glm::dvec3(skyRadiance(s.lighting.sky, glm::normalize(up)));
+          }
+          continue;
         }
-        continue;
+        std::mt19937 rng(s.seed * 2654435761u +
+                         static_cast<uint32_t>(pixel * size_t(subpixelCount) + size_t(j)));
+        glm::dvec3 radiance = subpixelShader.shade(eye + sHit * dir, rng);
+        const double transmittance = std::exp(-double(s.lighting.hazeDensityPerM) * sHit);
+        sum += radiance * transmittance + glm::dvec3(s.lighting.skyRadiance) * (1 - transmittance);
       }
-      std::mt19937 rng(s.seed * 2654435761u + static_cast<uint32_t>(pixel));
-      glm::dvec3 radiance = shader.shade(eye + sHit * dir, rng);
-      const double transmittance = std::exp(-double(s.lighting.hazeDensityPerM) * sHit);
-      radiance =
-          radiance * transmittance + glm::dvec3(s.lighting.skyRadiance) * (1 - transmittance);
-      image.radiance[pixel] = glm::vec3(radiance);
-      image.terrain[pixel] = 1;
+      image.radiance[pixel] = glm::vec3(sum / double(subpixelCount));
+      image.terrain[pixel] = allTerrain ? 1 : 0;
     }
     if (progress) progress(double(++rowsDone) / s.height);
   });

@@ -29,13 +29,21 @@
 
 namespace aal {
 
+constexpr int kMaxReferenceSubpixels = 16;  // per axis
+
 struct ReferenceSettings {
   Camera camera;
   uint32_t width = 0, height = 0;
-  Lighting lighting;            // its exposure is the caller's, for display
-  glm::vec3 albedo{0.2f};       // constant ground albedo
-  int sunRays = 16;             // shadow rays per pixel towards the sun's disk
-  int skyRays = 64;             // hemisphere rays per pixel
+  Lighting lighting;       // its exposure is the caller's, for display
+  glm::vec3 albedo{0.2f};  // constant ground albedo
+  int sunRays = 16;        // shadow rays per pixel towards the sun's disk
+  int skyRays = 64;        // hemisphere rays per pixel
+  // The pixel's footprint: the mean of subpixels x subpixels point samples
+  // on a regular grid over the pixel (1: the point through its centre),
+  // which share the pixel's rays (each ceil(rays / subpixels^2)). The GPU's
+  // mip levels prefilter what a pixel covers; a point sample aliases it
+  // (docs/comparison.md).
+  int subpixels = 1;
   bool interreflection = true;  // false: rays that hit the terrain bring no light
   uint32_t seed = 1;
   // Pixels that miss the terrain get lighting.sky (as shaders/sky.frag: below
@@ -50,9 +58,11 @@ struct ReferenceImage {
 };
 
 // Renders the terrain pixels; the others get the background sky (or stay
-// black) and terrain = 0. Runs in
-// parallel over rows; `progress` (may be empty) gets the finished fraction.
-// Throws std::invalid_argument on a zero size or ray counts < 1.
+// black) and terrain = 0 (with subpixels, terrain = 1 where every subpixel's
+// ray hits the terrain; a pixel on the silhouette mixes terrain and sky).
+// Runs in parallel over rows; `progress` (may be empty) gets the finished
+// fraction. Throws std::invalid_argument on a zero size, ray counts < 1 or
+// subpixels outside 1..kMaxReferenceSubpixels.
 ReferenceImage renderReference(const Heightfield& field, const ReferenceSettings& settings,
                                const std::function<void(double)>& progress = {});
 

@@ -141,6 +141,111 @@ TEST(ReferenceRenderer, ImageOfFlatGroundIsUniformWithoutHaze) {
   EXPECT_LT(relativeRmse(image.radiance, closedForm, image.terrain), 1e-3);
 }
 
+// A ridge 80 m high along y, 80 m east of the shaded point, across the whole
+// DEM (rows reach 640 m north and south). In azimuth phi (from east) the
+// horizon is the ramp's highest point within the DEM: the ramp rises from 0
+// at x = 70 m to 80 m at the ridge (x = 80 m), z/r = 8 (x - 70) cos(phi) / x
+// grows with x, so the horizon is at the ridge or where the ray leaves the
+// DEM. Cosine-weighted, the sky it hides is (1/pi) int sin^2(e(phi)) / 2 dphi.
+double ridgeHiddenSkyShare() {
+  const int steps = 200000;
+  double sum = 0;
+  for (int i = 0; i < steps; ++i) {
+    const double phi = -kPi / 2 + (i + 0.5) * kPi / steps;
+    const double x = std::min(80.0, 640.0 / std::max(std::abs(std::tan(phi)), 1e-12));
+    if (x <= 70) continue;
+    const double e = std::atan(8 * (x - 70) * std::cos(phi) / x);
+    sum += std::sin(e) * std::sin(e) / 2;
+  }
+  return sum * (kPi / steps) / kPi;
+}
+
+TEST(ReferenceRenderer, OneWallHidesItsShareOfTheSkyWhateverTheRayCount) {
+  Heightfield f = field(129, 10, flat);
+  for (int row = 0; row < f.height; ++row) {
+    for (int col = 0; col < f.width; ++col) f.z[f.index(col, row)] = col == 72 ? 80.0f : 0.0f;
+  }
+  ReferenceSettings s = lighting(40);
+  s.lighting.sunIrradiance = glm::vec3(0.0f);
+  s.interreflection = false;
+  const double expected = 0.3 * s.lighting.skyRadiance.b * (1 - ridgeHiddenSkyShare());
+  // Square counts and others: 128 once left the azimuths 300-360 degrees
+  // around N (east of it, where the ridge is) unsampled, 5 % too bright.
+  for (int rays : {64, 128, 100, 37, 200}) {
+    s.skyRays = rays;
+    double sum = 0;
+    const int seeds = 64;
+    for (int seed = 0; seed < seeds; ++seed) sum += referenceRadianceAt(f, s, {0, 0, 0}, seed).b;
+    EXPECT_NEAR(sum / seeds, expected, 0.005 * expected) << rays << " rays";
+  }
+}
+
+// Gentle waves under a high sun with a point-like disk, no sky: nothing is
+// random, so a pixel of n x n subpixels is exactly the mean of the n x n
+// pixels of an image n times as wide and high.
+double waves(double x, double y) {
+  return 20 * std::sin(x / 150) * std::cos(y / 170);
+}
+
+TEST(ReferenceFootprint, IsTheMeanOfPointSamplesOverThePixel) {
+  const Heightfield f = field(65, 10, waves);
+  ReferenceSettings s = lighting(60);
+  s.lighting.sunRadiusRad = 1e-6f;
+  s.lighting.skyRadiance = glm::vec3(0.0f);
+  s.interreflection = false;
+  s.camera.position = {0, -200, 500};
+  s.camera.lookAt = {0, 0, 0};
+  s.camera.verticalFovDeg = 30;
+  s.width = 12;
+  s.height = 8;
+  s.subpixels = 2;
+  const ReferenceImage pixels = renderReference(f, s);
+  s.width = 24;
+  s.height = 16;
+  s.subpixels = 1;
+  const ReferenceImage points = renderReference(f, s);
+  int checked = 0, differFromTheCentre = 0;
+  for (uint32_t y = 0; y < 8; ++y) {
+    for (uint32_t x = 0; x < 12; ++x) {
+      const size_t i = y * 12 + x;
+      ASSERT_EQ(pixels.terrain[i], 1) << x << "," << y;
+      glm::vec3 mean(0.0f);
+      for (uint32_t j = 0; j < 4; ++j)
+        mean += points.radiance[(2 * y + j / 2) * 24 + 2 * x + j % 2];
+      mean /= 4.0f;
+      EXPECT_NEAR(pixels.radiance[i].g, mean.g, 1e-5 * mean.g) << x << "," << y;
+      ++checked;
+      // The footprint matters: the mean is not the centre's value (which
+      // lies between the four point samples).
+      const float a = points.radiance[(2 * y) * 24 + 2 * x].g;
+      const float d = points.radiance[(2 * y + 1) * 24 + 2 * x + 1].g;
+      if (std::abs(a - d) > 1e-3f * mean.g) ++differFromTheCentre;
+    }
+  }
+  EXPECT_EQ(checked, 96);
+  EXPECT_GT(differFromTheCentre, 48);
+}
+
+TEST(ReferenceFootprint, OneSubpixelIsThePointThroughThePixelCentre) {
+  // One subpixel is the ray through the pixel's centre: a 1 x 1 image and a
+  // 3 x 3 image's middle pixel look along the same ray (in the deterministic
+  // scene of the test above, so that seeds do not matter).
+  const Heightfield f = field(65, 10, waves);
+  ReferenceSettings s = lighting(60);
+  s.lighting.sunRadiusRad = 1e-6f;
+  s.lighting.skyRadiance = glm::vec3(0.0f);
+  s.interreflection = false;
+  s.camera.position = {0, -200, 500};
+  s.camera.lookAt = {0, 0, 0};
+  s.camera.verticalFovDeg = 30;
+  s.width = s.height = 1;
+  const ReferenceImage one = renderReference(f, s);
+  s.width = s.height = 3;
+  const ReferenceImage three = renderReference(f, s);
+  ASSERT_EQ(one.terrain[0], 1);
+  EXPECT_NEAR(one.radiance[0].g, three.radiance[4].g, 1e-5 * three.radiance[4].g);
+}
+
 TEST(ReferenceRenderer, RelativeRmseAndInteriorMask) {
   const std::vector<glm::vec3> ref(4, glm::vec3(1.0f));
   std::vector<glm::vec3> test(4, glm::vec3(1.1f));
@@ -165,6 +270,13 @@ TEST(ReferenceRenderer, RefusesEmptyImagesAndNoRays) {
   s.width = s.height = 4;
   s.skyRays = 0;
   EXPECT_THROW(renderReference(f, s), std::invalid_argument);
+  s.skyRays = 4;
+  s.subpixels = 0;
+  EXPECT_THROW(renderReference(f, s), std::invalid_argument);
+  s.subpixels = kMaxReferenceSubpixels + 1;
+  EXPECT_THROW(renderReference(f, s), std::invalid_argument);
+  s.subpixels = kMaxReferenceSubpixels;
+  EXPECT_NO_THROW(renderReference(f, s));
 }
 
 }  // namespace
