@@ -122,14 +122,13 @@ class TerrainScene {
              const std::function<void(uint32_t firstRow, uint32_t endRow, void* destination)>&
                  apertureRows,
              const AlbedoImage* albedo, size_t triangleBudget, const TerrainTiling& tiling);
-
-  TerrainTiling tiling_;  // what the caller asked for beyond the device's limits
-  TerrainTileLayout tiles_;
-  std::vector<Image> heights_, aperture_, albedo_, slopes_;
   // Uploads `map`'s layers into `image` in the order of `rotation`.
   void uploadHorizons(const Device& device, const Image& image, const HorizonMap& map,
                       int rotation) const;
 
+  TerrainTiling tiling_;  // what the caller asked for beyond the device's limits
+  TerrainTileLayout tiles_;
+  std::vector<Image> heights_, aperture_, albedo_, slopes_;
   std::unique_ptr<Image> horizons_;
   std::shared_ptr<const HorizonMap> horizonMap_;  // the host copy (for re-laying)
   int horizonBits_ = kHorizonBits;
