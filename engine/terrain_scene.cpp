@@ -9,6 +9,8 @@
 #include <string>
 
 #include <Imath/half.h>
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
 
 #include "commands.h"
 #include "compute.h"
@@ -422,28 +424,29 @@ void TerrainScene::uploadHorizons(const Device& device, const Image& image, cons
     std::array<int, 4> direction{};
     for (int c = 0; c < 4; ++c)
       direction[size_t(c)] = (int(4 * layer) + rotation + c) % map.directions;
-    layerRows.emplace_back(
-        [&map, direction, fourBits](uint32_t firstRow, uint32_t endRow, void* destination) {
-          auto* out = static_cast<uint8_t*>(destination);
-          for (uint32_t row = firstRow; row < endRow; ++row) {
-            for (int col = 0; col < map.width; ++col) {
-              const uint8_t* codes = map.texel(col, int(row));
-              const uint8_t r = codes[direction[0]], g = codes[direction[1]],
-                            b = codes[direction[2]], a = codes[direction[3]];
-              if (fourBits) {
-                const uint16_t texel = uint16_t(r << 4 | g << 8 | b << 12 | a);
-                std::memcpy(out, &texel, 2);
-                out += 2;
-              } else {
-                out[0] = r;
-                out[1] = g;
-                out[2] = b;
-                out[3] = a;
-                out += 4;
-              }
+    layerRows.emplace_back([&map, direction, fourBits, texelBytes](
+                               uint32_t firstRow, uint32_t endRow, void* destination) {
+      // Rows in parallel: each layer reads the whole map (memory bound; a
+      // re-lay in aal-view is a hitch, docs/performance.md).
+      const size_t width = size_t(map.width), n = size_t(map.directions);
+      tbb::parallel_for(tbb::blocked_range<uint32_t>(firstRow, endRow, 8), [&](const auto& rows) {
+        for (uint32_t row = rows.begin(); row < rows.end(); ++row) {
+          const uint8_t* codes = map.texel(0, int(row));
+          auto* out = static_cast<uint8_t*>(destination) + (row - firstRow) * width * texelBytes;
+          for (size_t col = 0; col < width; ++col, codes += n) {
+            const uint8_t r = codes[direction[0]], g = codes[direction[1]], b = codes[direction[2]],
+                          a = codes[direction[3]];
+            if (fourBits) {
+              const uint16_t texel = uint16_t(r << 4 | g << 8 | b << 12 | a);
+              std::memcpy(out + 2 * col, &texel, 2);
+            } else {
+              const uint8_t texel[4] = {r, g, b, a};
+              std::memcpy(out + 4 * col, texel, 4);
             }
           }
-        });
+        }
+      });
+    });
   }
   UploadBatch upload(device);
   std::vector<unsigned char> scratch;  // one band of DEM rows while a tile is filled
