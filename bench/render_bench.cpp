@@ -60,8 +60,10 @@ struct Fixture {
     renderer = std::make_unique<aal::TerrainRenderer>(device, 1280, 720);
     settings.camera = aal::defaultCamera(field, 1280.0 / 720.0);
     // AAL_BENCH_SUN_AZIMUTH (degrees, default 250): at 250 the two stored
-    // horizon directions beside the sun lie in one layer for 8 and 16
-    // directions; at 285 in two (docs/performance.md).
+    // horizon directions beside the sun lie in one layer of rotation 0 for 8
+    // and 16 directions; at 285 in two (the renderer before the rotated
+    // layout fetched two layers there; now it re-lays them for rotation 2 in
+    // the first frame, docs/rendering.md; docs/performance.md).
     const char* sunAzimuth = std::getenv("AAL_BENCH_SUN_AZIMUTH");
     aal::setSunAndSky(settings.lighting, sunAzimuth ? std::atof(sunAzimuth) : 250.0, 25, 2.5);
     settings.lighting.exposure = 0.07f;

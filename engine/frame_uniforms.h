@@ -72,10 +72,8 @@ struct FrameUniforms {
 
   // The horizon mode's lookup for the frame's sun (horizonLayerWeights,
   // terrain/io/horizon_map.h): the same for every fragment, so made once here.
-  glm::vec4 horizonWeights0{0.0f};
-  glm::vec4 horizonWeights1{0.0f};
-  float horizonLayer0 = 0;  // within a tile's layers (kHorizonLayers: whether they differ)
-  float horizonLayer1 = 0;
+  glm::vec4 horizonWeights{0.0f};
+  float horizonLayer = 0;  // within a tile's layers, as the scene laid them out (its rotation)
 };
 
 // The std140 offsets of shaders/frame.glsl.
@@ -107,11 +105,9 @@ static_assert(offsetof(FrameUniforms, tileBorder) == 392 &&
               offsetof(FrameUniforms, albedoLayersPerPage) == 404);
 static_assert(offsetof(FrameUniforms, horizonBits) == 408);
 static_assert(offsetof(FrameUniforms, sky) == 416, "std140 aligns the sky to 16 bytes");
-static_assert(offsetof(FrameUniforms, horizonWeights0) == 416 + sizeof(PreethamSky) &&
-              offsetof(FrameUniforms, horizonWeights0) == 528);
-static_assert(offsetof(FrameUniforms, horizonWeights1) == 544 &&
-              offsetof(FrameUniforms, horizonLayer0) == 560 &&
-              offsetof(FrameUniforms, horizonLayer1) == 564);
-static_assert(sizeof(FrameUniforms) == 568);
+static_assert(offsetof(FrameUniforms, horizonWeights) == 416 + sizeof(PreethamSky) &&
+              offsetof(FrameUniforms, horizonWeights) == 528);
+static_assert(offsetof(FrameUniforms, horizonLayer) == 544);
+static_assert(sizeof(FrameUniforms) == 548);
 
 }  // namespace aal

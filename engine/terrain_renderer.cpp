@@ -147,20 +147,19 @@ const char* terrainFragmentShader(TexturePaging paging, bool gbuffer) {
   return gbuffer ? "terrain_gbuffer_paged.frag" : "terrain_paged.frag";
 }
 
-// Which of a tile's horizon layers (two or one) the horizon mode reads for
-// this sun, and their weights: the same for every fragment of the frame.
+// Which of a tile's horizon layers the horizon mode reads for this sun, and
+// its weights, as the scene's layers lie now (one that serves the sun:
+// record() re-lays them first): the same for every fragment of the frame.
 HorizonLayerWeights sunHorizonWeights(const TerrainScene& scene, const glm::vec3& sun) {
-  const float azimuth = std::abs(sun.x) + std::abs(sun.y) > 0.0f ? std::atan2(sun.y, sun.x)
-                                                                 : 0.0f;  // any at the zenith
-  return horizonLayerWeights(scene.horizonDirections(), azimuth, scene.horizonBits());
+  return horizonLayerWeights(scene.horizonDirections(), sunAzimuthRad(sun), scene.horizonBits(),
+                             scene.horizonRotation());
 }
 
 // The constants of shaders/variant.glsl, in AAL_SPEC_* order.
-std::vector<int32_t> variantConstants(ShadingMode mode, int albedoSource, bool display,
-                                      int horizonLayers = 1) {
+std::vector<int32_t> variantConstants(ShadingMode mode, int albedoSource, bool display) {
   static_assert(AAL_SPEC_SHADING_MODE == 0 && AAL_SPEC_ALBEDO_SOURCE == 1 &&
-                AAL_SPEC_DISPLAY_OUTPUT == 2 && AAL_SPEC_HORIZON_LAYERS == 3);
-  return {static_cast<int32_t>(mode), albedoSource, display ? 1 : 0, horizonLayers};
+                AAL_SPEC_DISPLAY_OUTPUT == 2);
+  return {static_cast<int32_t>(mode), albedoSource, display ? 1 : 0};
 }
 
 }  // namespace
@@ -209,16 +208,14 @@ struct TerrainRenderer::Passes {
 
   // The terrain pass: forward into the display (or HDR) target, or with the
   // obscurance pass into its three targets.
-  // `horizonLayers`: the horizon mode's fetches (kHorizonLayers, variant.glsl).
   const GraphicsPipeline& terrain(TexturePaging paging, ShadingMode mode, int albedo, bool gbuffer,
-                                  bool display, int horizonLayers) {
+                                  bool display) {
     display = display && !gbuffer;
     const std::string key = "terrain/" + std::to_string(int(paging)) + "/" +
                             std::to_string(int(mode)) + "/" + std::to_string(albedo) + "/" +
                             (gbuffer   ? "g"
                              : display ? "d"
-                                       : "h") +
-                            "/" + std::to_string(horizonLayers);
+                                       : "h");
     std::vector<VkFormat> formats{display ? displayFormat : kHdrFormat};
     // With the obscurance pass the terrain also writes the ambient term and
     // the surface point; without it the frame pays nothing for them.
@@ -229,7 +226,7 @@ struct TerrainRenderer::Passes {
                         .depthFormat = kDepthFormat,
                         .depthTest = true,
                         .depthWrite = true,
-                        .specialization = variantConstants(mode, albedo, display, horizonLayers)});
+                        .specialization = variantConstants(mode, albedo, display)});
   }
 
   // The solid base, drawn in the terrain's rendering with the terrain's
@@ -528,12 +525,10 @@ bool TerrainRenderer::writeUniforms(const TerrainScene& scene, const FrameSettin
   u.apertureLayersPerPage = int32_t(tiles.layersPerPage[1]);
   u.albedoLayersPerPage = int32_t(tiles.layersPerPage[2]);
   u.horizonBits = scene.horizonBits();
-  if (scene.horizons()) {
+  if (s.mode == ShadingMode::Horizon && scene.horizons()) {
     const HorizonLayerWeights w = sunHorizonWeights(scene, u.sunDirection);
-    u.horizonWeights0 = glm::vec4(w.weights0[0], w.weights0[1], w.weights0[2], w.weights0[3]);
-    u.horizonWeights1 = glm::vec4(w.weights1[0], w.weights1[1], w.weights1[2], w.weights1[3]);
-    u.horizonLayer0 = float(w.layer0);
-    u.horizonLayer1 = float(w.layer1);
+    u.horizonWeights = glm::vec4(w.weights[0], w.weights[1], w.weights[2], w.weights[3]);
+    u.horizonLayer = float(w.layer);
   }
   uniforms_.write(&u, sizeof u);
   return obscurance;
@@ -584,6 +579,19 @@ void TerrainRenderer::record(VkCommandBuffer cmd, const TerrainScene& scene, con
   }
   extent_ = {std::max(1u, static_cast<uint32_t>(std::lround(width_ * scale))),
              std::max(1u, static_cast<uint32_t>(std::lround(height_ * scale)))};
+  if (s.mode == ShadingMode::Horizon && scene.horizons()) {
+    // One layer must hold both directions beside the sun: lay the horizons
+    // out for its azimuth when it left the current rotation's (with the
+    // hysteresis of horizonRotationFor, so a sun on a seam does not re-lay
+    // every frame). Safe here: the previous frame's submission has finished
+    // (as writeUniforms below requires; aal-view keeps one frame in flight,
+    // engine/vk/frame_sync.h, so no frame still reads the image), and the
+    // upload waits for itself before this frame's commands are submitted.
+    // With more frames in flight this would need the device idle first.
+    scene.relayHorizons(device_, horizonRotationFor(scene.horizonDirections(),
+                                                    sunAzimuthRad(s.lighting.sunDirection),
+                                                    scene.horizonRotation()));
+  }
   const bool obscurance = writeUniforms(scene, s);
   selectPatches(scene, s);
   const int albedo = albedoSourceOf(scene, s);
@@ -673,15 +681,7 @@ void TerrainRenderer::record(VkCommandBuffer cmd, const TerrainScene& scene, con
       .clearValue = {.depthStencil = {.depth = 1.0f, .stencil = 0}}};
   beginRendering(cmd, extent_.width, extent_.height, colors, obscurance ? 3 : 1, &depth);
   timer_.begin(cmd, "terrain");
-  // The horizon mode reads one layer per tile, or two where the directions
-  // beside the sun lie in different layers (a pipeline of its own; the frame
-  // uniforms carry the layers and their weights).
-  int horizonLayers = 1;
-  if (s.mode == ShadingMode::Horizon && scene.horizons()) {
-    const HorizonLayerWeights w = sunHorizonWeights(scene, s.lighting.sunDirection);
-    if (w.layer1 != w.layer0) horizonLayers = 2;
-  }
-  passes_->terrain(paging, s.mode, albedo, obscurance, direct, horizonLayers)
+  passes_->terrain(paging, s.mode, albedo, obscurance, direct)
       .bind(cmd,
             terrainWrites(uniforms_, scene, passes_->terrainSampler.handle())
                 .buffer(kAfterTerrainTextures, patches_)

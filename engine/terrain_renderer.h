@@ -105,9 +105,11 @@ class TerrainRenderer {
 
   // Records the frame's passes into `cmd` (the windowed viewer presents the
   // result; see FrameOutput for where it goes). Writes the frame's uniforms
-  // at once, so the previous frame's submission must have finished. With
-  // `output.linear` hdrImage() then holds the linear radiance, in
-  // VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL.
+  // at once, so the previous frame's submission must have finished. In the
+  // horizon mode it first re-lays the scene's horizons when the frame's sun
+  // needs the other rotation (TerrainScene::relayHorizons: an upload, waited
+  // for; docs/rendering.md). With `output.linear` hdrImage() then holds the
+  // linear radiance, in VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL.
   void record(VkCommandBuffer cmd, const TerrainScene& scene, const FrameSettings& settings,
               const FrameOutput& output = {});
 

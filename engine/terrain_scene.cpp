@@ -1,12 +1,16 @@
 #include "terrain_scene.h"
 
 #include <algorithm>
+#include <array>
 #include <atomic>
+#include <cmath>
 #include <cstring>
 #include <stdexcept>
 #include <string>
 
 #include <Imath/half.h>
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
 
 #include "commands.h"
 #include "compute.h"
@@ -170,6 +174,10 @@ void TerrainScene::computeSlopes(const Device& device, const Heightfield& field)
       transitionImage(cmd, page, VK_IMAGE_LAYOUT_GENERAL, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL);
     }
   });
+}
+
+float sunAzimuthRad(const glm::vec3& sun) {
+  return std::abs(sun.x) + std::abs(sun.y) > 0.0f ? std::atan2(sun.y, sun.x) : 0.0f;
 }
 
 TerrainTileLimits deviceTileLimits(const Device& device, const TerrainTiling& tiling) {
@@ -336,7 +344,14 @@ void TerrainScene::build(const Device& device, const Heightfield& field,
   maxHeight_ = *hi;
 }
 
-void TerrainScene::setHorizons(const Device& device, const HorizonMap& map) {
+void TerrainScene::setHorizons(const Device& device, const HorizonMap& map, int rotation) {
+  setHorizons(device, std::make_shared<const HorizonMap>(map), rotation);
+}
+
+void TerrainScene::setHorizons(const Device& device, std::shared_ptr<const HorizonMap> shared,
+                               int rotation) {
+  if (!shared) throw std::invalid_argument("setHorizons: no horizon map");
+  const HorizonMap& map = *shared;
   const glm::vec4 dem = demInfo_;
   if (map.width != int(dem.x) || map.height != int(dem.y) ||
       !validHorizonDirections(map.directions) || !validHorizonBits(map.bits) ||
@@ -344,6 +359,9 @@ void TerrainScene::setHorizons(const Device& device, const HorizonMap& map) {
     throw std::invalid_argument("the horizon map is " + std::to_string(map.width) + "x" +
                                 std::to_string(map.height) + ", the DEM " +
                                 std::to_string(int(dem.x)) + "x" + std::to_string(int(dem.y)));
+  }
+  if (!validHorizonRotation(rotation)) {
+    throw std::invalid_argument("setHorizons: rotation " + std::to_string(rotation) + " (0 or 2)");
   }
   // Four directions per layer, as R, G, B, A: RGBA8, or for 4-bit codes
   // BGRA4 (whose linear filtering every Vulkan device supports), R in bits
@@ -369,47 +387,78 @@ void TerrainScene::setHorizons(const Device& device, const HorizonMap& map) {
                         fourBits ? VK_FORMAT_B4G4R4A4_UNORM_PACK16 : VK_FORMAT_R8G8B8A8_UNORM,
                         VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT,
                         VK_IMAGE_ASPECT_COLOR_BIT, layers, true});
-  // Whole DEM rows of layer l's texels, cut into tiles by tileRows.
+  uploadHorizons(device, *image, map, rotation);
+  // A second map replaces the first.
+  textureBytes_ -= horizonBytes_;
+  horizonBytes_ = bytes;
+  textureBytes_ += horizonBytes_;
+  horizons_ = std::move(image);
+  horizonMap_ = std::move(shared);
+  horizonBits_ = map.bits;
+  horizonDirections_ = map.directions;
+  horizonRotation_ = rotation;
+}
+
+void TerrainScene::relayHorizons(const Device& device, int rotation) const {
+  if (!validHorizonRotation(rotation)) {
+    throw std::invalid_argument("relayHorizons: rotation " + std::to_string(rotation) +
+                                " (0 or 2)");
+  }
+  if (!horizons_ || rotation == horizonRotation_) return;
+  // The same image: its size and format do not change, and the previous
+  // frame has finished reading it (the caller's promise).
+  uploadHorizons(device, *horizons_, *horizonMap_, rotation);
+  horizonRotation_ = rotation;
+  ++horizonRelays_;
+}
+
+void TerrainScene::uploadHorizons(const Device& device, const Image& image, const HorizonMap& map,
+                                  int rotation) const {
+  const bool fourBits = map.bits == 4;
+  const uint32_t layersPerTile = uint32_t(map.directions / 4), texelBytes = fourBits ? 2 : 4;
+  // Whole DEM rows of layer l's texels (directions 4l + rotation + c mod n
+  // in channel c), cut into tiles by tileRows.
   std::vector<DemRows> layerRows;
   layerRows.reserve(layersPerTile);  // tileRows keeps references to them
   for (uint32_t layer = 0; layer < layersPerTile; ++layer) {
-    layerRows.emplace_back(
-        [&map, layer, fourBits](uint32_t firstRow, uint32_t endRow, void* destination) {
-          auto* out = static_cast<uint8_t*>(destination);
-          for (uint32_t row = firstRow; row < endRow; ++row) {
-            for (int col = 0; col < map.width; ++col) {
-              const uint8_t* codes = map.texel(col, int(row)) + 4 * layer;
-              if (fourBits) {
-                const uint16_t texel =
-                    uint16_t(codes[0] << 4 | codes[1] << 8 | codes[2] << 12 | codes[3]);
-                std::memcpy(out, &texel, 2);
-                out += 2;
-              } else {
-                std::copy(codes, codes + 4, out);
-                out += 4;
-              }
+    std::array<int, 4> direction{};
+    for (int c = 0; c < 4; ++c)
+      direction[size_t(c)] = (int(4 * layer) + rotation + c) % map.directions;
+    layerRows.emplace_back([&map, direction, fourBits, texelBytes](
+                               uint32_t firstRow, uint32_t endRow, void* destination) {
+      // Rows in parallel: each layer reads the whole map (memory bound; a
+      // re-lay in aal-view is a hitch, docs/performance.md).
+      const size_t width = size_t(map.width), n = size_t(map.directions);
+      tbb::parallel_for(tbb::blocked_range<uint32_t>(firstRow, endRow, 8), [&](const auto& rows) {
+        for (uint32_t row = rows.begin(); row < rows.end(); ++row) {
+          const uint8_t* codes = map.texel(0, int(row));
+          auto* out = static_cast<uint8_t*>(destination) + (row - firstRow) * width * texelBytes;
+          for (size_t col = 0; col < width; ++col, codes += n) {
+            const uint8_t r = codes[direction[0]], g = codes[direction[1]], b = codes[direction[2]],
+                          a = codes[direction[3]];
+            if (fourBits) {
+              const uint16_t texel = uint16_t(r << 4 | g << 8 | b << 12 | a);
+              std::memcpy(out + 2 * col, &texel, 2);
+            } else {
+              const uint8_t texel[4] = {r, g, b, a};
+              std::memcpy(out + 4 * col, texel, 4);
             }
           }
-        });
+        }
+      });
+    });
   }
   UploadBatch upload(device);
   std::vector<unsigned char> scratch;  // one band of DEM rows while a tile is filled
   for (uint32_t tile = 0; tile < tiles_.tileCount(); ++tile) {
     for (uint32_t layer = 0; layer < layersPerTile; ++layer) {
-      upload.addImage(*image, texelBytes,
+      upload.addImage(image, texelBytes,
                       tileRows(tiles_, tile % tiles_.tilesX, tile / tiles_.tilesX, texelBytes,
                                layerRows[layer], scratch),
                       tile * layersPerTile + layer);
     }
   }
   upload.submit();
-  // A second map replaces the first.
-  textureBytes_ -= horizonBytes_;
-  horizonBytes_ = bytes;
-  textureBytes_ += horizonBytes_;
-  horizons_ = std::move(image);
-  horizonBits_ = map.bits;
-  horizonDirections_ = map.directions;
 }
 
 }  // namespace aal

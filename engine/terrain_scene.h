@@ -10,6 +10,7 @@
 #include <memory>
 #include <vector>
 
+#include <glm/vec3.hpp>
 #include <glm/vec4.hpp>
 
 #include "albedo_image.h"
@@ -28,6 +29,12 @@ class Device;
 // The tile limits of `device` (image size, array layers, allocation size),
 // narrowed by `tiling`: what TerrainScene plans its tiles with.
 TerrainTileLimits deviceTileLimits(const Device& device, const TerrainTiling& tiling);
+
+// The azimuth of a sun direction (DEM frame: x east, y north, z up) in the
+// directional horizons' convention: rad counter-clockwise from east; 0 at
+// the zenith, where any azimuth serves. What the renderer picks the
+// horizons' rotation and weights with (horizonRotationFor).
+float sunAzimuthRad(const glm::vec3& sunDirection);
 
 class TerrainScene {
  public:
@@ -68,17 +75,31 @@ class TerrainScene {
   bool hasAlbedo() const { return hasAlbedo_; }
   // Directional horizons for the horizon mode (terrain/io/horizon_map.h): a 2D
   // array image in the layout of the other textures' tiles (tiles(): the
-  // same image size, borders included; no mip levels), tile t's directions
-  // 4l..4l+3 in layer t * directions / 4 + l as RGBA (RGBA8 for 8-bit codes,
-  // 1 B per direction and texel; BGRA4 for 4-bit ones, half a byte). Throws
-  // std::invalid_argument for a map of another size, std::runtime_error
-  // when the layers do not fit one image of the device, or one page of the
-  // scene's TerrainTiling (the shaders bind one).
-  void setHorizons(const Device& device, const HorizonMap& map);
+  // same image size, borders included; no mip levels), tile t's layer l in
+  // layer t * directions / 4 + l, holding directions (4l + r) .. (4l + r + 3)
+  // mod directions as RGBA for the rotation r (0 or 2, horizonRotationFor;
+  // RGBA8 for 8-bit codes, 1 B per direction and texel; BGRA4 for 4-bit
+  // ones, half a byte). The scene keeps `map` (shared, not copied) to lay the
+  // layers out again for another rotation. Throws std::invalid_argument for
+  // a map of another size or an invalid rotation, std::runtime_error when the
+  // layers do not fit one image of the device, or one page of the scene's
+  // TerrainTiling (the shaders bind one).
+  void setHorizons(const Device& device, std::shared_ptr<const HorizonMap> map, int rotation = 0);
+  // The same with a copy of `map` (tests; the tools share theirs).
+  void setHorizons(const Device& device, const HorizonMap& map, int rotation = 0);
+  // Uploads the horizons' layers again in the order of `rotation` (into the
+  // same image; nothing when it is the current one). The device must not be
+  // reading the image: TerrainRenderer::record calls it for a frame's sun,
+  // when the previous frame has finished. Const: the horizons stay what they
+  // are, only their order on the device changes.
+  void relayHorizons(const Device& device, int rotation) const;
   const Image* horizons() const { return horizons_.get(); }  // null: none
   uint64_t horizonBytes() const { return horizonBytes_; }    // of textureBytes()
   int horizonBits() const { return horizonBits_; }
   int horizonDirections() const { return horizonDirections_; }  // 0: none
+  int horizonRotation() const { return horizonRotation_; }      // of the layers on the device
+  // Re-lays so far (TerrainRenderer's, tests).
+  uint64_t horizonRelays() const { return horizonRelays_; }
   // The LOD patch's index buffer (makeLodPatchIndices).
   const Buffer& indices() const { return indices_; }
   const LodQuadtree& lod() const { return *lod_; }
@@ -101,13 +122,21 @@ class TerrainScene {
              const std::function<void(uint32_t firstRow, uint32_t endRow, void* destination)>&
                  apertureRows,
              const AlbedoImage* albedo, size_t triangleBudget, const TerrainTiling& tiling);
+  // Uploads `map`'s layers into `image` in the order of `rotation`.
+  void uploadHorizons(const Device& device, const Image& image, const HorizonMap& map,
+                      int rotation) const;
 
   TerrainTiling tiling_;  // what the caller asked for beyond the device's limits
   TerrainTileLayout tiles_;
   std::vector<Image> heights_, aperture_, albedo_, slopes_;
   std::unique_ptr<Image> horizons_;
+  std::shared_ptr<const HorizonMap> horizonMap_;  // the host copy (for re-laying)
   int horizonBits_ = kHorizonBits;
   int horizonDirections_ = 0;
+  // How the layers lie on the device now: the device's state, not the scene's
+  // content (relayHorizons is const).
+  mutable int horizonRotation_ = 0;
+  mutable uint64_t horizonRelays_ = 0;
   uint64_t horizonBytes_ = 0;
   uint64_t textureBytes_ = 0;
   Buffer indices_;

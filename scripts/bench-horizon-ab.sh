@@ -20,7 +20,9 @@
 # swings between processes, less within one), then per case the median CPU
 # time ratio over the rounds, with the load average before and after.
 # AAL_BENCH_SUN_AZIMUTH (bench/render_bench.cpp) moves the sun: 250 (default)
-# puts both directions beside it in one layer, 285 in two.
+# puts both directions beside it in one layer of rotation 0, 285 in two (a
+# renderer with the rotated layout re-lays the horizons once for it, before
+# the measured frames; one without fetches two layers).
 set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
 rounds=${1:-4}

@@ -30,7 +30,6 @@
 #define AAL_SPEC_SHADING_MODE 0
 #define AAL_SPEC_ALBEDO_SOURCE 1
 #define AAL_SPEC_DISPLAY_OUTPUT 2
-#define AAL_SPEC_HORIZON_LAYERS 3
 
 // The exact cap intersection against the sun as a table (terrain/light/cap_table.h,
 // shaders/cap_table.glsl, docs/caps.md): texels across the transition band

@@ -64,11 +64,9 @@ layout(set = 0, binding = 0, std140) uniform Frame {
 
   PreethamSky sky;  // 416 .. 528
 
-  // The horizon mode's lookup for the frame's sun (horizon.glsl horizonFromLayers).
-  vec4 horizonWeights0;  // 528
-  vec4 horizonWeights1;  // 544
-  float horizonLayer0;   // 560 the layers, within a tile's, of the directions beside
-  float horizonLayer1;   // 564 the sun (kHorizonLayers says whether they differ)
+  // The horizon mode's lookup for the frame's sun (horizon.glsl horizonFromLayer).
+  vec4 horizonWeights;  // 528
+  float horizonLayer;   // 544 the layer, within a tile's, of both directions beside the sun
 }
 frame;
 

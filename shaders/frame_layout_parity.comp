@@ -67,8 +67,6 @@ void main() {
   put(frame.sky.perezE);
   put(frame.sky.zenith);
   put(frame.sky.sunDirection);
-  put(frame.horizonWeights0);
-  put(frame.horizonWeights1);
-  put(frame.horizonLayer0);
-  put(frame.horizonLayer1);
+  put(frame.horizonWeights);
+  put(frame.horizonLayer);
 }

@@ -37,30 +37,24 @@ vec4 horizonCodePower(vec4 unorm, int bits) {
   return bits == 4 ? unorm * sqrt(unorm) : unorm * unorm;
 }
 
-// The horizon from the layers of the two directions beside an azimuth and
-// their weights (twin of horizonLayerWeights, terrain/io/horizon_map.h: the
-// interpolation's weight times the decode's scale in the directions'
-// channels, zero elsewhere): vector arithmetic, no selection of channels.
-float horizonFromLayers(vec4 layer0, vec4 weights0, vec4 layer1, vec4 weights1, int bits) {
-  return kHorizonMinRad + dot(horizonCodePower(layer0, bits), weights0) +
-         dot(horizonCodePower(layer1, bits), weights1);
+// The horizon from the one layer that holds both directions beside an
+// azimuth and their weights (twin of horizonLayerWeights,
+// terrain/io/horizon_map.h: the interpolation's weight times the decode's
+// scale in the directions' channels, zero elsewhere; the renderer lays the
+// layers out so that one holds both): vector arithmetic, no selection of
+// channels.
+float horizonFromLayer(vec4 layer, vec4 weights, int bits) {
+  return kHorizonMinRad + dot(horizonCodePower(layer, bits), weights);
 }
 
-// The same from all the codes at once (codes[l]: layer l's), the weights
-// made here as horizonLayerWeights makes them.
+// The same from all the codes at once (codes[l]: directions 4l..4l+3),
+// decoded and interpolated as horizonAtAzimuth does.
 float horizonAtAzimuth(vec4 codes[4], int directions, float azimuthRad, int bits) {
   int k0, k1;
   float f;
   horizonNeighbours(directions, azimuthRad, k0, k1, f);
-  float range = (bits == 4 ? kHorizon4BitMaxRad : kHorizonMaxRad) - kHorizonMinRad;
-  vec4 channel0 = vec4(equal(ivec4(0, 1, 2, 3), ivec4(k0 & 3)));
-  vec4 channel1 = vec4(equal(ivec4(0, 1, 2, 3), ivec4(k1 & 3)));
-  vec4 weights0 = (1.0 - f) * range * channel0, weights1 = f * range * channel1;
-  if (k1 / 4 == k0 / 4) {
-    weights0 += weights1;
-    weights1 = vec4(0.0);
-  }
-  return horizonFromLayers(codes[k0 / 4], weights0, codes[k1 / 4], weights1, bits);
+  return (1.0 - f) * decodeHorizon(codes[k0 / 4][k0 & 3], bits) +
+         f * decodeHorizon(codes[k1 / 4][k1 & 3], bits);
 }
 
 #endif

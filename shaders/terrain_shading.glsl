@@ -80,20 +80,15 @@ void main() {
     // the texel's tile (layersPerPage beyond any index: the layer is the
     // tile's). Which of the tile's layers and channels to read, and their
     // weights, come with the frame (horizonLayerWeights,
-    // terrain/io/horizon_map.h; the sun is the frame's): one fetch where both
-    // directions beside the sun lie in one layer, two in a pipeline of its
-    // own (kHorizonLayers) where they do not.
+    // terrain/io/horizon_map.h; the sun is the frame's): one fetch, the
+    // renderer having laid the layers out so that one holds both directions
+    // beside the sun (horizonRotationFor; docs/rendering.md).
     TerrainTileTexel tile = terrainTexel(texelPosition, 1 << 30);
     int layersPerTile =
         max(1, textureSize(terrainHorizons, 0).z / (frame.tileCount.x * frame.tileCount.y));
     float first = float(tile.layer * layersPerTile);
-    vec4 layer0 = textureLod(terrainHorizons, vec3(tile.uv, first + frame.horizonLayer0), 0.0);
-    vec4 layer1 = vec4(0.0);
-    if (kHorizonLayers == 2) {
-      layer1 = textureLod(terrainHorizons, vec3(tile.uv, first + frame.horizonLayer1), 0.0);
-    }
-    s.sunHorizonRad = horizonFromLayers(layer0, frame.horizonWeights0, layer1,
-                                        frame.horizonWeights1, frame.horizonBits);
+    vec4 layer = textureLod(terrainHorizons, vec3(tile.uv, first + frame.horizonLayer), 0.0);
+    s.sunHorizonRad = horizonFromLayer(layer, frame.horizonWeights, frame.horizonBits);
   }
   // Aerial perspective: radiance (direct + ambient W) T + L_sky (1 - T).
   float distance = length(worldPosition - frame.cameraPos);

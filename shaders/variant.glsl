@@ -15,10 +15,6 @@ layout(constant_id = AAL_SPEC_ALBEDO_SOURCE) const int kAlbedoSource = AAL_ALBED
 // true: the pass writes display values (tone-mapped, sRGB encoded; debug
 // modes their raw values) instead of linear radiance.
 layout(constant_id = AAL_SPEC_DISPLAY_OUTPUT) const bool kDisplayOutput = false;
-// The horizon mode's layers this frame (1 or 2): whether the two stored
-// directions beside the sun lie in different layers. A constant, not a
-// uniform branch: lavapipe would run a second fetch that no fragment takes.
-layout(constant_id = AAL_SPEC_HORIZON_LAYERS) const int kHorizonLayers = 1;
 
 // Debug modes show raw values: no aerial perspective, no tone map.
 const bool kRawOutput =

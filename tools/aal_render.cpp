@@ -207,7 +207,7 @@ int renderReferenceImage(const Options& o, const aal::Heightfield& field,
 int runComparison(const Options& o, const aal::Heightfield& field, aal::TerrainScene& scene,
                   aal::TerrainRenderer& renderer, const aal::FrameSettings& settings,
                   const std::optional<glm::vec3>& albedoValue, const aal::Device& device,
-                  const std::vector<aal::HorizonMap>& horizons) {
+                  const std::vector<std::shared_ptr<const aal::HorizonMap>>& horizons) {
   aal::ProgressBar bar("ray tracing the reference", !o.quiet);
   std::vector<aal::ComparedMode> modes = aal::defaultComparedModes(settings);
   for (size_t i = 0; i < horizons.size(); ++i) {
@@ -220,7 +220,12 @@ int runComparison(const Options& o, const aal::Heightfield& field, aal::TerrainS
     }
     aal::ComparedMode m{name, aal::ShadingMode::Horizon, settings.obscurance.enabled};
     if (horizons.size() > 1) {
-      m.prepare = [&scene, &device, &horizons, i] { scene.setHorizons(device, horizons[i]); };
+      // Laid out for the one sun (horizonRotationFor): no re-lay in the frame.
+      const int rotation = aal::horizonRotationFor(
+          horizons[i]->directions, aal::sunAzimuthRad(settings.lighting.sunDirection), -1);
+      m.prepare = [&scene, &device, &horizons, i, rotation] {
+        scene.setHorizons(device, horizons[i], rotation);
+      };
     }
     modes.push_back(std::move(m));
   }
@@ -241,23 +246,31 @@ int runComparison(const Options& o, const aal::Heightfield& field, aal::TerrainS
   return aal::kExitOk;
 }
 
+// Frame i of a sequence: the camera along the path, the sun at the frame's
+// time.
+void setSequenceFrame(const Options& o, const Sequence& seq, const aal::Heightfield& field, int i,
+                      aal::FrameSettings& settings) {
+  if (seq.path) settings.camera = seq.path->at(seq.path->frameTime(i, seq.frames));
+  if (seq.start) {
+    const aal::GeoPlace place = aal::defaultSunPlace(field);
+    const double lat = o.lat.value_or(place.latitudeDeg), lon = o.lon.value_or(place.longitudeDeg);
+    const aal::UtcTime t = aal::sequenceTime(*seq.start, *seq.end, i, seq.frames);
+    const aal::SolarPosition sun = aal::solarPosition(t, lat, lon);
+    aal::setSunAndSky(settings.lighting, sun.azimuthDeg, sun.elevationDeg, o.turbidity,
+                      sun.sunDistanceAu);
+  }
+}
+
 // --camera-path / --time-range: frames OUT-0001.ext ... and, for PNG frames
-// with ffmpeg installed, OUT.mp4 (docs/rendering.md).
+// with ffmpeg installed, OUT.mp4 (docs/rendering.md). The renderer re-lays
+// the horizons when a frame's sun needs it (TerrainRenderer::record).
 int renderSequence(const Options& o, const Sequence& seq, const aal::Heightfield& field,
                    const aal::TerrainScene& scene, aal::TerrainRenderer& renderer,
                    aal::FrameSettings settings) {
-  const aal::GeoPlace place = aal::defaultSunPlace(field);
-  const double lat = o.lat.value_or(place.latitudeDeg), lon = o.lon.value_or(place.longitudeDeg);
   aal::ProgressBar bar("rendering " + std::to_string(seq.frames) + " frames", !o.quiet);
   const auto start = std::chrono::steady_clock::now();
   for (int i = 0; i < seq.frames; ++i) {
-    if (seq.path) settings.camera = seq.path->at(seq.path->frameTime(i, seq.frames));
-    if (seq.start) {
-      const aal::UtcTime t = aal::sequenceTime(*seq.start, *seq.end, i, seq.frames);
-      const aal::SolarPosition sun = aal::solarPosition(t, lat, lon);
-      aal::setSunAndSky(settings.lighting, sun.azimuthDeg, sun.elevationDeg, o.turbidity,
-                        sun.sunDistanceAu);
-    }
+    setSequenceFrame(o, seq, field, i, settings);
     aal::throwIfInterrupted();
     const aal::FrameResult frame =
         renderer.render(scene, settings, aal::wantsLinearOutput(o.output));
@@ -443,11 +456,18 @@ int run(const Options& o) {
   }
   inMemory = {};
   albedo.reset();
-  std::vector<aal::HorizonMap> horizonMaps;
+  // The horizons' layers laid out for the first frame's sun (one layer
+  // holds both directions beside it, horizonRotationFor): no re-lay before
+  // it. A sequence's later suns re-lay when they need it.
+  aal::FrameSettings first = settings;
+  if (sequence) setSequenceFrame(o, *sequence, field, 0, first);
+  const float firstAzimuth = aal::sunAzimuthRad(first.lighting.sunDirection);
+  std::vector<std::shared_ptr<const aal::HorizonMap>> horizonMaps;
   for (const std::string& path : o.horizons) {
-    aal::HorizonMap horizons = aal::readHorizonsOfDem(path, field);
+    auto horizons = std::make_shared<const aal::HorizonMap>(aal::readHorizonsOfDem(path, field));
     try {
-      scene->setHorizons(device, horizons);
+      scene->setHorizons(device, horizons,
+                         aal::horizonRotationFor(horizons->directions, firstAzimuth, -1));
     } catch (const std::invalid_argument& e) {
       throw aal::InputError(std::string("--horizons: ") + e.what());
     }

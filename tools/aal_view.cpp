@@ -1,4 +1,5 @@
 // aal-view: fly over a DEM with live sun, sky and lighting controls.
+#include <exception>
 #include <memory>
 #include <optional>
 #include <string>
@@ -33,7 +34,8 @@ and shows the frame rate and GPU time per pass. See docs/viewer.md.)";
 
 struct Options {
   std::string dem, aperture, horizons, cameraPath, screenshot, drop, size = "1280x720";
-  std::optional<std::string> resizeAfter, minimiseAfter, toggleVsyncAfter, modeAfter;  // test hooks
+  std::optional<std::string> resizeAfter, minimiseAfter, toggleVsyncAfter, modeAfter,
+      sunAzimuthAfter;  // test hooks
   std::string mode = "approx", time;
   std::optional<double> lat, lon, sunAzimuth, sunElevation, waterLevelM;
   double exaggeration = 1.0;
@@ -115,6 +117,23 @@ aal::WindowScript windowScript(const Options& o) {
       throw aal::InputError("--mode-after " + *o.modeAfter + ": no shading mode '" + mode + "'");
     }
     s.modeAfter = known->second;
+  }
+  if (o.sunAzimuthAfter) {
+    std::string degrees;
+    s.sunAzimuthAfterFrame =
+        parseAfterFrame("--sun-azimuth-after", *o.sunAzimuthAfter, o.frames, &degrees);
+    size_t used = 0;
+    double value = 0;
+    try {
+      value = std::stod(degrees, &used);
+    } catch (const std::exception&) {
+      used = 0;
+    }
+    if (used == 0 || used != degrees.size() || !(value >= -360.0 && value <= 720.0)) {
+      throw aal::InputError("--sun-azimuth-after " + *o.sunAzimuthAfter +
+                            ": the azimuth must be degrees in [-360, 720]");
+    }
+    s.sunAzimuthAfterDeg = value;
   }
   return s;
 }
@@ -254,6 +273,9 @@ int main(int argc, char** argv) {
   app.add_option("--mode-after", o.modeAfter,
                  "FRAME:MODE: switch the shading mode after frame FRAME, as the panel does "
                  "(tests, demos)");
+  app.add_option("--sun-azimuth-after", o.sunAzimuthAfter,
+                 "FRAME:DEG: after frame FRAME set the sun's azimuth (degrees clockwise from "
+                 "north, the elevation kept), as the panel's direct sun does (tests, demos)");
   app.add_flag("--no-obscurance", o.noObscurance,
                "start with the obscurance pass off (the panel switches it)");
   app.add_flag("--no-vsync", o.noVsync, "present without waiting for vsync (MAILBOX/IMMEDIATE)");

@@ -66,6 +66,14 @@ float decodeHorizon(uint8_t code, int bits) {
 
 namespace {
 
+// The azimuth in direction steps, [0, n) (what horizonNeighbours reads).
+float directionPosition(int directions, float azimuthRad) {
+  const float n = float(directions);
+  float x = azimuthRad / kTwoPi * n;
+  x -= n * std::floor(x / n);  // [0, n)
+  return x;
+}
+
 // The two of `directions` stored azimuths beside azimuthRad, and the weight f
 // of the second: the horizon is linear between them.
 struct HorizonNeighbours {
@@ -73,15 +81,36 @@ struct HorizonNeighbours {
   float f = 0;
 };
 
-HorizonNeighbours horizonNeighbours(int directions, float azimuthRad) {
-  const float n = float(directions);
-  float x = azimuthRad / kTwoPi * n;
-  x -= n * std::floor(x / n);  // [0, n)
+HorizonNeighbours neighboursAt(int directions, float x) {
   HorizonNeighbours h;
   h.k0 = std::min(int(x), directions - 1);
   h.k1 = (h.k0 + 1) % directions;
   h.f = x - float(h.k0);
   return h;
+}
+
+HorizonNeighbours horizonNeighbours(int directions, float azimuthRad) {
+  return neighboursAt(directions, directionPosition(directions, azimuthRad));
+}
+
+// Direction k's layer and channel on the device, layers rotated by `rotation`.
+int rotatedSlot(int directions, int k, int rotation) {
+  return ((k - rotation) % directions + directions) % directions;
+}
+
+bool servesNeighbours(int directions, const HorizonNeighbours& h, int rotation) {
+  return rotatedSlot(directions, h.k0, rotation) / 4 == rotatedSlot(directions, h.k1, rotation) / 4;
+}
+
+// Whether `rotation` serves every position within the margin of x (x in [0, n)).
+bool servesWithMargin(int directions, float x, int rotation) {
+  const float n = float(directions);
+  for (float y : {x - kHorizonRotationMargin, x, x + kHorizonRotationMargin}) {
+    if (y < 0.0f) y += n;
+    if (y >= n) y -= n;
+    if (!servesNeighbours(directions, neighboursAt(directions, y), rotation)) return false;
+  }
+  return true;
 }
 
 }  // namespace
@@ -91,16 +120,43 @@ float horizonAtAzimuth(const uint8_t* codes, int directions, float azimuthRad, i
   return (1.0f - h.f) * decodeHorizon(codes[h.k0], bits) + h.f * decodeHorizon(codes[h.k1], bits);
 }
 
-HorizonLayerWeights horizonLayerWeights(int directions, float azimuthRad, int bits) {
+bool validHorizonRotation(int rotation) {
+  return rotation == 0 || rotation == 2;
+}
+
+bool horizonRotationServes(int directions, float azimuthRad, int rotation) {
+  return servesNeighbours(directions, horizonNeighbours(directions, azimuthRad), rotation);
+}
+
+int horizonRotationFor(int directions, float azimuthRad, int currentRotation) {
+  const float x = directionPosition(directions, azimuthRad);
+  if (validHorizonRotation(currentRotation) && servesWithMargin(directions, x, currentRotation)) {
+    return currentRotation;
+  }
+  // The seams of one rotation lie two steps from the other's, so one of them
+  // serves with the margin (with 4 directions both do: one layer).
+  for (const int rotation : kHorizonRotations) {
+    if (rotation != currentRotation && servesWithMargin(directions, x, rotation)) return rotation;
+  }
+  return validHorizonRotation(currentRotation) ? currentRotation : 0;  // not reached
+}
+
+HorizonLayerWeights horizonLayerWeights(int directions, float azimuthRad, int bits, int rotation) {
   const HorizonNeighbours h = horizonNeighbours(directions, azimuthRad);
+  if (!validHorizonRotation(rotation) || !servesNeighbours(directions, h, rotation)) {
+    throw std::invalid_argument(
+        "horizonLayerWeights: the directions beside the azimuth lie in "
+        "two layers of rotation " +
+        std::to_string(rotation));
+  }
   // decodeHorizonUnorm: kHorizonMinRad + p(u) * range.
   const float range = (bits == 4 ? kHorizon4BitMaxRad : kHorizonMaxRad) - kHorizonMinRad;
+  const int slot0 = rotatedSlot(directions, h.k0, rotation),
+            slot1 = rotatedSlot(directions, h.k1, rotation);
   HorizonLayerWeights w;
-  w.layer0 = h.k0 / 4;
-  w.layer1 = h.k1 / 4;
-  w.weights0[size_t(h.k0 % 4)] = (1.0f - h.f) * range;
-  std::array<float, 4>& second = w.layer1 == w.layer0 ? w.weights0 : w.weights1;
-  second[size_t(h.k1 % 4)] += h.f * range;
+  w.layer = slot0 / 4;
+  w.weights[size_t(slot0 % 4)] = (1.0f - h.f) * range;
+  w.weights[size_t(slot1 % 4)] = h.f * range;
   return w;
 }
 

@@ -66,22 +66,45 @@ struct HorizonMap {
 float horizonAtAzimuth(const uint8_t* codes, int directions, float azimuthRad,
                        int bits = kHorizonBits);
 
+// The device lays the directions out four to an RGBA layer (engine/
+// terrain_scene.h), rotated by r = 0 or 2: layer l holds directions
+// (4l + r) .. (4l + r + 3) mod n as R, G, B, A. The two stored directions
+// beside an azimuth lie in one layer for at least one of the two rotations
+// (the layers' seams of one lie mid-layer of the other), so the horizon
+// mode fetches one layer per fragment whatever the sun, the renderer
+// re-laying the layers when the sun crosses a seam (docs/rendering.md, the
+// horizon mode).
+constexpr int kHorizonRotations[] = {0, 2};
+bool validHorizonRotation(int rotation);  // 0 or 2
+// Whether both stored directions beside azimuthRad lie in one layer when
+// the layers are rotated by `rotation`.
+bool horizonRotationServes(int directions, float azimuthRad, int rotation);
+// The rotation to draw a sun at azimuthRad with: `currentRotation` while it
+// serves the azimuth and the sun is more than kHorizonRotationMargin of a
+// direction step from its seams (hysteresis: a sun resting on a seam, or
+// jittering about it, does not re-lay every frame), else the other one
+// (which then serves with that margin). `currentRotation` outside 0 and 2
+// (none laid yet): whichever serves with the margin, 0 when both do.
+// Always a rotation that serves azimuthRad.
+constexpr float kHorizonRotationMargin = 0.125f;
+int horizonRotationFor(int directions, float azimuthRad, int currentRotation);
+
 // What a shader needs to read the horizon at one azimuth from the device's
-// layers (directions 4l..4l+3 in layer l as R, G, B, A; engine/terrain_scene.h):
-// the layers of the two stored directions beside the azimuth and, per channel,
-// the weight of the code's power p(u) (u = code / (2^bits - 1); p(u) = u^2 for
-// 8-bit codes, u^1.5 for 4-bit ones), the interpolation's weight and the
-// decode's scale in one, so that
-//   horizon = kHorizonMinRad + dot(p(layer0), weights0) + dot(p(layer1), weights1)
-// equals horizonAtAzimuth (up to float rounding). Where both directions lie in
-// one layer, layer1 == layer0 and weights1 is zero: one fetch suffices. The
-// sun is the frame's, so the renderer computes this once per frame instead of
-// every fragment (docs/rendering.md, the horizon mode).
+// layers rotated by `rotation`: the layer of the two stored directions
+// beside the azimuth and, per channel, the weight of the code's power p(u)
+// (u = code / (2^bits - 1); p(u) = u^2 for 8-bit codes, u^1.5 for 4-bit
+// ones), the interpolation's weight and the decode's scale in one, so that
+//   horizon = kHorizonMinRad + dot(p(layer), weights)
+// equals horizonAtAzimuth (up to float rounding): one fetch. The sun is the
+// frame's, so the renderer computes this once per frame instead of every
+// fragment (docs/rendering.md, the horizon mode). Throws
+// std::invalid_argument where `rotation` does not serve the azimuth
+// (horizonRotationFor picks one that does).
 struct HorizonLayerWeights {
-  int layer0 = 0, layer1 = 0;
-  std::array<float, 4> weights0{}, weights1{};
+  int layer = 0;
+  std::array<float, 4> weights{};
 };
-HorizonLayerWeights horizonLayerWeights(int directions, float azimuthRad, int bits = kHorizonBits);
+HorizonLayerWeights horizonLayerWeights(int directions, float azimuthRad, int bits, int rotation);
 
 // Writes / reads the file format of docs/baking.md ("aperture-horizons 3"
 // header line with the code bits and the DEM's checksum, then the codes;

@@ -66,10 +66,8 @@ std::vector<uint32_t> memberWords() {
   AAL_MEMBER(albedoLayersPerPage, 1);
   AAL_MEMBER(horizonBits, 1);
   AAL_MEMBER(sky, 7 * 4);
-  AAL_MEMBER(horizonWeights0, 4);
-  AAL_MEMBER(horizonWeights1, 4);
-  AAL_MEMBER(horizonLayer0, 1);
-  AAL_MEMBER(horizonLayer1, 1);
+  AAL_MEMBER(horizonWeights, 4);
+  AAL_MEMBER(horizonLayer, 1);
 #undef AAL_MEMBER
   return w;
 }

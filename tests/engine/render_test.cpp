@@ -9,6 +9,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
+#include <memory>
 #include <numbers>
 #include <string>
 #include <tuple>
@@ -137,10 +138,15 @@ TEST_F(Render, HorizonModeShadowsThePlainBehindTheRidge) {
 
 // The device image holds every stored direction where the shader looks for
 // it: RGBA8 layers for 8-bit codes, BGRA4 layers (bits packed by
-// TerrainScene::setHorizons) for 4-bit ones. Flat ground whose horizons are
-// made up: every direction's horizon is 45 degrees or -2, in a pattern that
-// no swap of two channels or two layers keeps; a sun 30 degrees up in each stored
-// direction must be hidden exactly where its direction's horizon is high.
+// TerrainScene::setHorizons) for 4-bit ones, laid out with either rotation
+// (layer l holding directions 4l + r .. 4l + r + 3). Flat ground whose
+// horizons are made up: every direction's horizon is 45 degrees or -2, in a
+// pattern that no swap of two channels or two layers keeps; a sun 30 degrees
+// up in each stored direction, and a fifth of a step to either side of it,
+// must be hidden exactly where its direction's horizon is high. Each sun is
+// drawn with the scene's layers laid out with rotation 0 and with 2 before
+// the frame: the renderer keeps the one that serves the sun, or re-lays; so
+// every direction is read through both layouts.
 TEST_F(Render, HorizonModeReadsEveryStoredDirection) {
   Heightfield f;
   f.width = f.height = 33;
@@ -154,8 +160,9 @@ TEST_F(Render, HorizonModeReadsEveryStoredDirection) {
     map.height = f.height;
     map.directions = 16;
     map.bits = bits;
-    // Per layer (R, G, B, A): 1000, 0100, 0010, 1101 — the layers differ, and
-    // for every two channels some layer holds different values in them.
+    // Per layer of rotation 0 (R, G, B, A): 1000, 0100, 0010, 1101 — the
+    // layers differ, and for every two channels some layer holds different
+    // values in them; of rotation 2: 0001, 0000, 1010, 1110.
     const auto high = [](int k) {
       constexpr bool kHigh[16] = {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 1, 1, 0, 1};
       return kHigh[k];
@@ -167,19 +174,91 @@ TEST_F(Render, HorizonModeReadsEveryStoredDirection) {
     }
     scene.setHorizons(device(), map);
     for (int k = 0; k < map.directions; ++k) {
-      // Direction k is k * 22.5 degrees counter-clockwise from east: compass 90 - that.
-      FrameSettings s = topView(f, ShadingMode::Horizon, 90.0 - 22.5 * k, 30);
-      s.obscurance.enabled = false;
-      const float lit = red(renderer.render(scene, s, true), 32, 32);
-      s.mode = ShadingMode::BaselineLambert;
-      const float lambert = red(renderer.render(scene, s, true), 32, 32);
-      if (high(k)) {
-        EXPECT_LT(lit, 0.5f * lambert) << bits << "-bit codes, direction " << k << ": hidden";
-      } else {
-        EXPECT_GT(lit, 0.8f * lambert) << bits << "-bit codes, direction " << k << ": seen";
+      bool readWith[2] = {false, false};
+      for (const double offset : {0.0, -0.2, 0.2}) {
+        // Direction k is k * 22.5 degrees counter-clockwise from east: compass
+        // 90 - that. A fifth of a step away the horizon is still high (above
+        // 35 degrees) or low (below 8) as direction k's.
+        FrameSettings s = topView(f, ShadingMode::BaselineLambert, 90.0 - 22.5 * (k + offset), 30);
+        s.obscurance.enabled = false;
+        const float lambert = red(renderer.render(scene, s, true), 32, 32);
+        s.mode = ShadingMode::Horizon;
+        for (const int laid : kHorizonRotations) {
+          scene.relayHorizons(device(), laid);
+          const float lit = red(renderer.render(scene, s, true), 32, 32);
+          const int used = scene.horizonRotation();
+          EXPECT_TRUE(horizonRotationServes(16, sunAzimuthRad(s.lighting.sunDirection), used));
+          readWith[used / 2] = true;
+          const std::string what = std::to_string(bits) + "-bit codes, direction " +
+                                   std::to_string(k) + " " + std::to_string(offset) +
+                                   ", laid with rotation " + std::to_string(laid) +
+                                   ", drawn with " + std::to_string(used);
+          if (high(k)) {
+            EXPECT_LT(lit, 0.5f * lambert) << what << ": hidden";
+          } else {
+            EXPECT_GT(lit, 0.8f * lambert) << what << ": seen";
+          }
+        }
       }
+      EXPECT_TRUE(readWith[0] && readWith[1]) << bits << "-bit codes, direction " << k;
     }
   }
+}
+
+// Re-laying the horizons for another sun (TerrainScene::relayHorizons, from
+// TerrainRenderer::record) leaves the scene as a fresh one laid out for that
+// sun: the ridge's horizons of 8 directions, a sun in the west-north-west
+// (between directions 3 and 4: layers 0 and 1 of rotation 0, so rotation 2),
+// then in the north-north-east (between 1 and 2: rotation 0), and back; the
+// last picture equals, byte for byte, one from a scene given the horizons
+// for that sun, and one from a scene laid out for the other rotation first.
+TEST_F(Render, ReLaidHorizonsDrawAsAFreshScene) {
+  const Heightfield f = ridge();
+  BakeOptions o;
+  o.azimuths = 64;
+  o.horizons = true;
+  const BakeResult baked = bakeApertures(f, o);
+  ASSERT_EQ(baked.horizons.directions, 8);
+  const auto shared = std::make_shared<const HorizonMap>(baked.horizons);
+  TerrainRenderer renderer(device(), 128, 128);
+  // Compass 292.5 degrees: 157.5 counter-clockwise from east, direction 3.5.
+  FrameSettings west = topView(f, ShadingMode::Horizon, 292.5, 26);
+  FrameSettings north = topView(f, ShadingMode::Horizon, 22.5, 26);
+  west.obscurance.enabled = north.obscurance.enabled = false;
+  const float westAzimuth = sunAzimuthRad(west.lighting.sunDirection);
+  ASSERT_FALSE(horizonRotationServes(8, westAzimuth, 0));
+  ASSERT_EQ(horizonRotationFor(8, westAzimuth, 0), 2);
+  ASSERT_EQ(horizonRotationFor(8, sunAzimuthRad(north.lighting.sunDirection), 2), 0);
+
+  TerrainScene moving(device(), f, baked.aperture, nullptr, 100000);
+  moving.setHorizons(device(), shared);
+  EXPECT_EQ(moving.horizonRotation(), 0);
+  renderer.render(moving, west, false);
+  EXPECT_EQ(moving.horizonRotation(), 2);
+  renderer.render(moving, west, false);  // the same sun: no re-lay
+  EXPECT_EQ(moving.horizonRelays(), 1u);
+  renderer.render(moving, north, false);
+  EXPECT_EQ(moving.horizonRotation(), 0);
+  const FrameResult last = renderer.render(moving, west, false);
+  EXPECT_EQ(moving.horizonRotation(), 2);
+  EXPECT_EQ(moving.horizonRelays(), 3u);
+
+  TerrainScene fresh(device(), f, baked.aperture, nullptr, 100000);
+  fresh.setHorizons(device(), shared, 2);
+  const FrameResult reference = renderer.render(fresh, west, false);
+  EXPECT_EQ(fresh.horizonRelays(), 0u);
+  EXPECT_EQ(last.display, reference.display) << "re-laid against laid for the sun";
+
+  // The horizons matter in this picture: the plain east of the ridge is in
+  // its shadow, which approx's cap lets the sun through.
+  FrameSettings approx = west;
+  approx.mode = ShadingMode::Approx;
+  const FrameResult approxFrame = renderer.render(fresh, approx, false);
+  size_t differing = 0;
+  for (size_t i = 0; i < reference.display.size(); ++i) {
+    differing += std::abs(int(reference.display[i]) - int(approxFrame.display[i])) > 8;
+  }
+  EXPECT_GT(differing, reference.display.size() / 40) << "horizon against approx";
 }
 
 TEST_F(Render, ShadowsSoftenAsTheSunGrows) {

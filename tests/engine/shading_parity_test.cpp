@@ -264,21 +264,25 @@ TEST_F(ShadingParity, HorizonInterpolationMatchesCpp) {
   std::printf("horizon interpolation parity over %u inputs: worst %.3g rad\n", count, worst);
 }
 
-// The terrain shader's horizon: horizonFromLayers of shaders/horizon.glsl with
-// the per-frame weights of horizonLayerWeights (terrain/io/horizon_map.h),
-// against horizonAtAzimuth: random 8-bit and 4-bit codes, 4 to 16
-// directions, azimuths all round (and beyond a turn both ways), every stored
-// direction and every midpoint between two.
+// The terrain shader's horizon: horizonFromLayer of shaders/horizon.glsl
+// with the per-frame weights of horizonLayerWeights (terrain/io/horizon_map.h)
+// from the device's layers rotated by 0 and by 2 (layer l holding directions
+// 4l + r .. 4l + r + 3 mod n), against horizonAtAzimuth: random 8-bit and
+// 4-bit codes, 4 to 16 directions, azimuths all round (and beyond a turn
+// both ways), every stored direction and every midpoint between two; each
+// with the rotation horizonRotationFor picks, and with the other one where
+// that serves too.
 TEST_F(ShadingParity, HorizonLayerWeightsMatchCpp) {
-  struct LayersQuery {
-    glm::vec4 codes[4], weights0, weights1, layers;
+  struct LayerQuery {
+    glm::vec4 codes[4], weights, layer;
   };
   std::mt19937 rng(1818);
   std::uniform_real_distribution<float> azimuth(-7.0f, 14.0f);
-  std::vector<LayersQuery> queries;
+  std::vector<LayerQuery> queries;
   std::vector<std::array<uint8_t, kMaxHorizonDirections>> codes;
-  std::vector<int> directions, bits;
+  std::vector<int> directions, bits, rotations;
   std::vector<float> azimuths;
+  int perRotation[2] = {0, 0};
   for (int i = 0; i < 8000; ++i) {
     const int b = i < 4000 ? 8 : 4;
     const int maxCode = (1 << b) - 1;
@@ -289,31 +293,45 @@ TEST_F(ShadingParity, HorizonLayerWeightsMatchCpp) {
     // Every stored direction and midpoint, then anywhere.
     const float a =
         i % 4000 < 512 ? float(i % 4000 / 4) * float(std::numbers::pi / n) : azimuth(rng);
-    const HorizonLayerWeights w = horizonLayerWeights(n, a, b);
-    LayersQuery q;
-    for (int l = 0; l < 4; ++l) {
-      q.codes[l] = glm::vec4(c[4 * l], c[4 * l + 1], c[4 * l + 2], c[4 * l + 3]) / float(maxCode);
+    const int chosen = horizonRotationFor(n, a, -1);
+    for (const int rotation : {chosen, 2 - chosen}) {
+      if (rotation != chosen && !horizonRotationServes(n, a, rotation)) continue;
+      const HorizonLayerWeights w = horizonLayerWeights(n, a, b, rotation);
+      LayerQuery q;
+      for (int l = 0; l < 4; ++l) {
+        for (int channel = 0; channel < 4; ++channel) {
+          // Layers beyond n / 4 are never read: any codes.
+          q.codes[l][channel] = float(c[size_t((4 * l + rotation + channel) % n)]) / float(maxCode);
+        }
+      }
+      q.weights = glm::vec4(w.weights[0], w.weights[1], w.weights[2], w.weights[3]);
+      q.layer = glm::vec4(float(w.layer), float(b), 0, 0);
+      queries.push_back(q);
+      codes.push_back(c);
+      directions.push_back(n);
+      bits.push_back(b);
+      rotations.push_back(rotation);
+      azimuths.push_back(a);
+      ++perRotation[rotation / 2];
     }
-    q.weights0 = glm::vec4(w.weights0[0], w.weights0[1], w.weights0[2], w.weights0[3]);
-    q.weights1 = glm::vec4(w.weights1[0], w.weights1[1], w.weights1[2], w.weights1[3]);
-    q.layers = glm::vec4(float(w.layer0), float(w.layer1), float(b), 0);
-    queries.push_back(q);
-    codes.push_back(c);
-    directions.push_back(n);
-    bits.push_back(b);
-    azimuths.push_back(a);
   }
+  // Both rotations, each many times (rotation 2 is chosen where 0 does not
+  // serve: a quarter of the azimuths with 8 or more directions).
+  EXPECT_GT(perRotation[0], 6000);
+  EXPECT_GT(perRotation[1], 2000);
   const uint32_t count = static_cast<uint32_t>(queries.size());
   const std::vector<float> answers = floatsOnDevice("horizon_layers_parity.comp", queries);
   double worst = 0;
   for (uint32_t i = 0; i < count; ++i) {
     const float expected = horizonAtAzimuth(codes[i].data(), directions[i], azimuths[i], bits[i]);
     // Float rounding of the weights and sums (the neighbours are the CPU's own).
-    EXPECT_NEAR(answers[i], expected, 1e-5f)
-        << "query " << i << " azimuth " << azimuths[i] << " bits " << bits[i];
+    EXPECT_NEAR(answers[i], expected, 1e-5f) << "query " << i << " azimuth " << azimuths[i]
+                                             << " bits " << bits[i] << " rotation " << rotations[i];
     worst = std::max(worst, double(std::abs(answers[i] - expected)));
   }
-  std::printf("horizon layer weights parity over %u inputs: worst %.3g rad\n", count, worst);
+  std::printf(
+      "horizon layer weights parity over %u inputs (%d rotated by 0, %d by 2): worst %.3g rad\n",
+      count, perRotation[0], perRotation[1], worst);
 }
 
 }  // namespace

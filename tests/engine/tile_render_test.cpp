@@ -449,19 +449,30 @@ TEST_F(TileRender, HorizonModeTiledAsOneImage) {
         double(single.horizonBytes()) / (kWidth * kHeight),
         static_cast<unsigned long long>(tiled.horizonBytes()),
         double(tiled.horizonBytes()) / (kWidth * kHeight));
-    for (const bool top : {true, false}) {
-      FrameSettings s = top ? topView(ShadingMode::Horizon) : obliqueView(ShadingMode::Horizon);
-      setSunAndSky(s.lighting, 230, 9, 2.5);
-      const FrameResult reference = renderer.render(single, s, false);
-      const Difference d = compare(renderer.render(tiled, s, false), reference, top);
-      const std::string what = std::to_string(directions) + " directions of " +
-                               std::to_string(bits) + " bits" + (top ? ", top" : ", oblique");
-      expectTiledAsOneImage(d, what);
-      // The horizons matter in this view: approx lights much that they hide.
-      FrameSettings approx = s;
-      approx.mode = ShadingMode::Approx;
-      const Difference fromApprox = compare(renderer.render(single, approx, false), reference, top);
-      EXPECT_GT(fromApprox.pixelsBeyondOne, size_t(kWidth * kHeight / 50)) << what;
+    // Suns at 230 degrees (the directions beside them in one layer of
+    // rotation 0) and 281.25 (in two: both scenes re-lay every tile's layers
+    // for rotation 2).
+    for (const double sunAzimuth : {230.0, 281.25}) {
+      for (const bool top : {true, false}) {
+        FrameSettings s = top ? topView(ShadingMode::Horizon) : obliqueView(ShadingMode::Horizon);
+        setSunAndSky(s.lighting, sunAzimuth, 9, 2.5);
+        const FrameResult reference = renderer.render(single, s, false);
+        const Difference d = compare(renderer.render(tiled, s, false), reference, top);
+        char azimuth[16];
+        std::snprintf(azimuth, sizeof azimuth, "%g", sunAzimuth);
+        const std::string what = std::to_string(directions) + " directions of " +
+                                 std::to_string(bits) + " bits, sun at " + azimuth +
+                                 (top ? ", top" : ", oblique");
+        EXPECT_EQ(tiled.horizonRotation(), sunAzimuth == 230.0 ? 0 : 2) << what;
+        EXPECT_EQ(single.horizonRotation(), tiled.horizonRotation()) << what;
+        expectTiledAsOneImage(d, what);
+        // The horizons matter in this view: approx lights much that they hide.
+        FrameSettings approx = s;
+        approx.mode = ShadingMode::Approx;
+        const Difference fromApprox =
+            compare(renderer.render(single, approx, false), reference, top);
+        EXPECT_GT(fromApprox.pixelsBeyondOne, size_t(kWidth * kHeight / 50)) << what;
+      }
     }
   }
 }

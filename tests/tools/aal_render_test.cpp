@@ -506,6 +506,45 @@ TEST(AalRender, TimeRangeWritesANumberedSequence) {
   EXPECT_NE(first, middle);
 }
 
+// A --time-range sequence in the horizon mode: the horizons are laid out for
+// the first frame's sun (Jacksboro, 2024-06-21 12:00 UTC: azimuth 73.6
+// degrees, one layer of rotation 0 holds the directions beside it) and
+// re-laid when a later sun needs it (00:00 UTC: 292.0 degrees, between
+// stored directions 3 and 4 of 8, rotation 2); each frame equals the single
+// render at its time, which lays them out for its own sun. Under validation,
+// without a message.
+TEST(AalRender, HorizonSequenceReLaysTheHorizonsForTheMovingSun) {
+  TempDir dir;
+  const fs::path map = dir.path() / "a.exr", horizons = dir.path() / "a.horizons";
+  ASSERT_EQ(runTool("aal-bake",
+                    quoted(kDem) + " -o " + quoted(map) + " --horizons " + quoted(horizons) + " -q")
+                .exitCode,
+            0);
+  const std::string common = "--aperture " + quoted(map) + " --horizons " + quoted(horizons) +
+                             " --mode horizon --size 64x36 --no-obscurance -q ";
+  const auto run = [&](const std::string& args) {
+    return runTool("aal-render", quoted(kDem) + " " + common + args,
+                   "AAL_VALIDATION=1 AAL_FFMPEG= AAL_CACHE_DIR=" + quoted(dir.path() / "cache"));
+  };
+  const fs::path out = dir.path() / "day.png";
+  const auto r = run("-o " + quoted(out) + " --time-range 2024-06-21T12:00Z 2024-06-22T00:00Z " +
+                     "--frames 3");
+  ASSERT_EQ(r.exitCode, 0) << r.out;
+  EXPECT_EQ(r.out.find("validation"), std::string::npos) << r.out;
+  for (const auto& [frame, time] :
+       {std::pair{1, "2024-06-21T12:00:00Z"}, std::pair{2, "2024-06-21T18:00:00Z"},
+        std::pair{3, "2024-06-22T00:00:00Z"}}) {
+    const fs::path one = dir.path() / "one.png";
+    const auto single = run("-o " + quoted(one) + " --time " + time);
+    ASSERT_EQ(single.exitCode, 0) << single.out;
+    EXPECT_EQ(single.out.find("validation"), std::string::npos) << single.out;
+    const std::vector<uint8_t> pixels =
+        pixelsOf(dir.path() / ("day-000" + std::to_string(frame) + ".png"));
+    ASSERT_EQ(pixels.size(), 64u * 36 * 4);
+    EXPECT_EQ(pixels, pixelsOf(one)) << "frame " << frame << " at " << time;
+  }
+}
+
 // A --camera-path sequence (aal-view's format) frames its keyframes: with
 // two keyframes and --frames 2 the images are the renders from each
 // keyframe's --camera, --look-at and --fov.

@@ -471,19 +471,74 @@ TEST(AalView, HorizonModeWithTheBakesHorizonsAlsoSwitchedMidFlight) {
   EXPECT_NE(help.out.find("--mode-after"), std::string::npos) << help.out;
 }
 
+// The horizon mode with a sun that moves across a layer seam mid-flight
+// (--sun-azimuth-after, as the panel's direct sun): at 250 degrees the two
+// stored directions beside the sun (8 of them) lie in one layer as laid out
+// at the start (rotation 0), at 292 in two, so the renderer re-lays the
+// horizons (rotation 2) between frames, under validation without a
+// message; the last picture is that of a run started with the sun at 292
+// (laid out for it from the start: no re-lay), within 1 LSB.
+TEST(AalView, HorizonModeReLaysTheHorizonsWhenTheSunCrossesASeam) {
+  TempDir dir;
+  const fs::path map = dir.path() / "a.exr", horizons = dir.path() / "a.horizons";
+  ASSERT_EQ(runTool("aal-bake",
+                    quoted(kDem) + " -o " + quoted(map) + " --horizons " + quoted(horizons) + " -q")
+                .exitCode,
+            0);
+  const std::string common = quoted(kDem) + " --aperture " + quoted(map) + " --horizons " +
+                             quoted(horizons) +
+                             " --mode horizon --sun-elevation 12 --size 160x120 --frames 4"
+                             " --timeout 60 --stats --screenshot ";
+  const fs::path movedShot = dir.path() / "moved.png", stillShot = dir.path() / "still.png";
+  const auto moved =
+      view(dir, common + quoted(movedShot) + " --sun-azimuth 250 --sun-azimuth-after 2:292");
+  ASSERT_EQ(moved.exitCode, 0) << moved.out;  // 1 on any validation message
+  EXPECT_NE(moved.out.find("validation on, 0 messages"), std::string::npos) << moved.out;
+  EXPECT_NE(moved.out.find("moved the sun to azimuth 292 degrees"), std::string::npos) << moved.out;
+  EXPECT_NE(moved.out.find("horizons   re-laid 1 times for the sun (rotation 2 now)"),
+            std::string::npos)
+      << moved.out;
+  EXPECT_NE(moved.out.find("frames     4"), std::string::npos) << moved.out;
+  const auto still = view(dir, common + quoted(stillShot) + " --sun-azimuth 292");
+  ASSERT_EQ(still.exitCode, 0) << still.out;
+  EXPECT_NE(still.out.find("horizons   re-laid 0 times for the sun (rotation 2 now)"),
+            std::string::npos)
+      << still.out;
+
+  // And the picture the sun left: the move shows.
+  const fs::path beforeShot = dir.path() / "before.png";
+  ASSERT_EQ(view(dir, common + quoted(beforeShot) + " --sun-azimuth 250").exitCode, 0);
+
+  const Picture m = readPng(movedShot), s = readPng(stillShot), b = readPng(beforeShot);
+  ASSERT_EQ(m.width, 160);
+  ASSERT_EQ(m.rgba.size(), s.rgba.size());
+  ASSERT_EQ(m.rgba.size(), b.rgba.size());
+  int worst = 0;
+  size_t moves = 0;  // green channels more than 2 LSB from the picture at 250 degrees
+  for (size_t i = 0; i < m.rgba.size(); ++i) {
+    worst = std::max(worst, std::abs(int(m.rgba[i]) - int(s.rgba[i])));
+    if (i % 4 == 1 && std::abs(int(m.rgba[i]) - int(b.rgba[i])) > 2) ++moves;
+  }
+  EXPECT_LE(worst, 1) << "the moved sun's picture against a run started there";
+  EXPECT_GT(moves, m.rgba.size() / 4 / 10) << "the sun's move does not show";
+}
+
 TEST(AalView, WindowHooksAreInTheHelpAndMalformedOnesExitWithTwo) {
   const std::string dem = quoted(kDem);
   for (const std::string& args :
        {dem + " --resize-after 2", dem + " --resize-after 2:0x10", dem + " --resize-after x:10x10",
         dem + " --resize-after 0:10x10", dem + " --frames 3 --resize-after 3:10x10",
         dem + " --minimise-after -1", dem + " --minimise-after 1:2",
-        dem + " --toggle-vsync-after ''", dem + " --frames 2 --toggle-vsync-after 5"}) {
+        dem + " --toggle-vsync-after ''", dem + " --frames 2 --toggle-vsync-after 5",
+        dem + " --sun-azimuth-after 2", dem + " --sun-azimuth-after 2:east",
+        dem + " --sun-azimuth-after 2:800", dem + " --frames 2 --sun-azimuth-after 3:90"}) {
     const auto r = runTool("aal-view", args, "-u DISPLAY -u WAYLAND_DISPLAY");
     EXPECT_EQ(r.exitCode, 2) << args << "\n" << r.out;
     EXPECT_NE(r.out.find("-after"), std::string::npos) << args << "\n" << r.out;
   }
   const auto help = runTool("aal-view", "--help");
-  for (const char* text : {"--resize-after", "--minimise-after", "--toggle-vsync-after"}) {
+  for (const char* text :
+       {"--resize-after", "--minimise-after", "--toggle-vsync-after", "--sun-azimuth-after"}) {
     EXPECT_NE(help.out.find(text), std::string::npos) << text;
   }
 }

@@ -255,7 +255,13 @@ void Viewer::attachHorizons() {
   Terrain& t = *terrain_;
   if (!t.horizons) return;
   try {
-    t.scene->setHorizons(device_, *t.horizons);
+    // Laid out for the sun of the moment (the first frame need not re-lay);
+    // the renderer re-lays them when the sun moves across a layer seam.
+    FrameSettings s;
+    applyViewLighting(lighting_, *t.field, s);
+    t.scene->setHorizons(
+        device_, t.horizons,
+        horizonRotationFor(t.horizons->directions, sunAzimuthRad(s.lighting.sunDirection), -1));
   } catch (const std::exception& e) {
     t.horizons.reset();
     setMessage(std::string("no horizon mode: ") + e.what());
@@ -584,6 +590,15 @@ void Viewer::runWindowScript() {
       setMessage("switched the shading mode");
     }
   }
+  if (scriptedFrame_ == s.sunAzimuthAfterFrame) {
+    // As the panel's direct sun: the elevation the sun has now.
+    lighting_.sunElevationDeg = viewSun(lighting_).elevationDeg;
+    lighting_.fromTime = false;
+    lighting_.sunAzimuthDeg = s.sunAzimuthAfterDeg;
+    char text[64];
+    std::snprintf(text, sizeof text, "moved the sun to azimuth %g degrees", s.sunAzimuthAfterDeg);
+    setMessage(text);
+  }
   if (scriptedFrame_ == s.minimiseAfterFrame) {
     setMessage("minimising the window");
     window_.iconify();
@@ -619,6 +634,12 @@ void Viewer::printStats() const {
   std::printf("size       %ux%u\n", extent.width, extent.height);
   std::printf("present    %s\n", presentModeName(swapchain_.presentMode()));
   std::printf("triangles  %zu (last frame)\n", renderer_->lodSelection().triangles);
+  if (terrain_->scene->horizons()) {
+    // Each a hitch: the horizons uploaded again (docs/viewer.md).
+    std::printf("horizons   re-laid %llu times for the sun (rotation %d now)\n",
+                static_cast<unsigned long long>(terrain_->scene->horizonRelays()),
+                terrain_->scene->horizonRotation());
+  }
   std::printf("frames     %d\n", t.counted);
   std::printf("baking     %d frames drawn while the aperture map was baked\n", t.whileBaking);
   std::printf("drawn      %d frames, %d idle iterations (nothing changed, nothing drawn)\n",

@@ -39,6 +39,10 @@ struct WindowScript {
   int toggleVsyncAfterFrame = 0;          // as the panel's vsync checkbox
   int modeAfterFrame = 0;                 // as the panel's shading list: switch to modeAfter
   ShadingMode modeAfter = ShadingMode::Approx;
+  // As the panel's direct sun: azimuth sunAzimuthAfterDeg (compass degrees),
+  // the elevation kept.
+  int sunAzimuthAfterFrame = 0;
+  double sunAzimuthAfterDeg = 0;
 };
 
 struct ViewerOptions {

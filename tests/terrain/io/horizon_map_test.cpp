@@ -7,6 +7,7 @@
 #include <fstream>
 #include <numbers>
 #include <random>
+#include <stdexcept>
 #include <string>
 
 #include <unistd.h>
@@ -97,39 +98,135 @@ TEST(HorizonMap, AzimuthsBetweenStoredDirectionsInterpolateLinearly) {
               0.5f * (decodeHorizon(27) + decodeHorizon(36)), 1e-6f);
 }
 
-// The per-frame weights the renderer hands the shader (horizonLayerWeights)
-// give horizonAtAzimuth's horizon, evaluated as the shader does (power of
-// each channel's code times its weight), in double precision here; the
-// second layer carries weight only where the two directions lie in different
-// layers.
-TEST(HorizonMap, LayerWeightsGiveTheHorizonAtEveryAzimuth) {
-  std::mt19937 rng(18);
-  std::uniform_real_distribution<float> azimuth(-7.0f, 14.0f);
-  for (const int bits : {8, 4}) {
-    for (const int directions : {4, 8, 12, 16}) {
-      std::uniform_int_distribution<int> code(0, (1 << bits) - 1);
-      for (int i = 0; i < 500; ++i) {
-        uint8_t codes[kMaxHorizonDirections];
-        for (uint8_t& c : codes) c = uint8_t(code(rng));
-        const float a = i < 2 * directions ? float(i) * float(kPi / directions) : azimuth(rng);
-        const HorizonLayerWeights w = horizonLayerWeights(directions, a, bits);
-        ASSERT_GE(w.layer0, 0);
-        ASSERT_LT(w.layer1, directions / 4);
-        double h = kHorizonMinRad;
-        for (int c = 0; c < 4; ++c) {
-          const double u0 = double(codes[4 * w.layer0 + c]) / ((1 << bits) - 1);
-          const double u1 = double(codes[4 * w.layer1 + c]) / ((1 << bits) - 1);
-          const double p0 = bits == 4 ? u0 * std::sqrt(u0) : u0 * u0;
-          const double p1 = bits == 4 ? u1 * std::sqrt(u1) : u1 * u1;
-          h += p0 * double(w.weights0[size_t(c)]) + p1 * double(w.weights1[size_t(c)]);
-          if (w.layer1 == w.layer0) {
-            EXPECT_EQ(w.weights1[size_t(c)], 0.0f);
-          }
+// The horizon at azimuth a from the device layers rotated by `rotation`, as
+// the shader reads it with the per-frame weights (horizonLayerWeights): the
+// power of each channel's code times its weight, in double precision here.
+double horizonFromRotatedLayer(const uint8_t* codes, int directions, float a, int bits,
+                               int rotation) {
+  const HorizonLayerWeights w = horizonLayerWeights(directions, a, bits, rotation);
+  EXPECT_GE(w.layer, 0);
+  EXPECT_LT(w.layer, directions / 4);
+  double h = kHorizonMinRad;
+  for (int c = 0; c < 4; ++c) {
+    // Layer l channel c holds direction (4l + rotation + c) mod n.
+    const int k = (4 * w.layer + rotation + c) % directions;
+    const double u = double(codes[k]) / ((1 << bits) - 1);
+    h += (bits == 4 ? u * std::sqrt(u) : u * u) * double(w.weights[size_t(c)]);
+  }
+  return h;
+}
+
+// Rotation 0 alone (directions 4l..4l+3 in layer l) leaves the two
+// directions beside a quarter of the azimuths in two layers (with 8 or more
+// directions), where the weights of one layer cannot give the horizon.
+TEST(HorizonMap, OneRotationLeavesAQuarterOfTheAzimuthsInTwoLayers) {
+  for (const int directions : {4, 8, 12, 16}) {
+    const float step = float(2 * kPi / directions);
+    int twoLayers = 0;
+    constexpr int kSamples = 4000;
+    for (int i = 0; i < kSamples; ++i) {
+      const float a = float(i) * float(2 * kPi / kSamples);
+      for (const int rotation : kHorizonRotations) {
+        if (!horizonRotationServes(directions, a, rotation)) {
+          if (rotation == 0) ++twoLayers;
+          EXPECT_THROW(horizonLayerWeights(directions, a, 8, rotation), std::invalid_argument);
         }
-        EXPECT_NEAR(h, horizonAtAzimuth(codes, directions, a, bits), 2e-6)
-            << bits << " bits, " << directions << " directions, azimuth " << a;
       }
     }
+    EXPECT_NEAR(double(twoLayers) / kSamples, directions == 4 ? 0.0 : 0.25, 0.002) << directions;
+    // Between directions 3 and 4 (layers 0 and 1) rotation 2 serves: its
+    // layer 0 holds directions 2..5.
+    if (directions > 4) {
+      EXPECT_FALSE(horizonRotationServes(directions, 3.5f * step, 0));
+      EXPECT_TRUE(horizonRotationServes(directions, 3.5f * step, 2));
+      EXPECT_FALSE(horizonRotationServes(directions, 1.5f * step, 2));
+      EXPECT_TRUE(horizonRotationServes(directions, 1.5f * step, 0));
+    }
+  }
+  EXPECT_THROW(horizonLayerWeights(8, 0.1f, 8, 1), std::invalid_argument);
+}
+
+// For every azimuth of a dense sweep (a sun moving round, and a sun appearing
+// there with either rotation laid or none), horizonRotationFor picks a
+// rotation that serves it, and that rotation's one-layer weights give
+// horizonAtAzimuth's horizon to float rounding: one fetch for every sun.
+TEST(HorizonMap, ChosenRotationServesEveryAzimuthWithOneLayer) {
+  std::mt19937 rng(18);
+  for (const int bits : {8, 4}) {
+    for (const int directions : {8, 12, 16, 4}) {
+      std::uniform_int_distribution<int> code(0, (1 << bits) - 1);
+      uint8_t codes[kMaxHorizonDirections];
+      for (uint8_t& c : codes) c = uint8_t(code(rng));
+      int moving = -1, checked = 0;
+      // Two turns and a half, from below zero (azimuths wrap).
+      constexpr int kSamples = 50000;
+      for (int i = 0; i <= kSamples; ++i) {
+        const float a = float(-kPi + 5 * kPi * i / kSamples);
+        moving = horizonRotationFor(directions, a, moving);
+        for (const int rotation :
+             {moving, horizonRotationFor(directions, a, -1), horizonRotationFor(directions, a, 0),
+              horizonRotationFor(directions, a, 2)}) {
+          ASSERT_TRUE(validHorizonRotation(rotation));
+          ASSERT_TRUE(horizonRotationServes(directions, a, rotation))
+              << directions << " directions, azimuth " << a << ", rotation " << rotation;
+          ASSERT_NEAR(horizonFromRotatedLayer(codes, directions, a, bits, rotation),
+                      horizonAtAzimuth(codes, directions, a, bits), 2e-6)
+              << bits << " bits, " << directions << " directions, azimuth " << a << ", rotation "
+              << rotation;
+          ++checked;
+        }
+      }
+      EXPECT_EQ(checked, 4 * (kSamples + 1));
+    }
+  }
+}
+
+// Hysteresis: a sun resting on a layer seam, or jittering about it, keeps its
+// rotation; a sun going round changes it once per two direction steps (each
+// rotation's seams are four steps apart, the other's halfway between), never
+// back and forth.
+TEST(HorizonMap, RotationHoldsAtASeam) {
+  for (const int directions : {8, 12, 16}) {
+    const double step = 2 * kPi / directions;
+    for (int k = 0; k < directions; ++k) {
+      // Direction k itself, the seam of layers where k % 4 == rotation, and the
+      // points where horizonRotationFor switches (a margin before a seam).
+      for (const double at : {double(k), k - double(kHorizonRotationMargin)}) {
+        for (const int start : kHorizonRotations) {
+          int rotation = start, changes = 0;
+          for (int i = 0; i < 200; ++i) {
+            const double jitter = (i % 2 ? 1 : -1) * 1e-4 * (1 + i % 7);
+            const int next = horizonRotationFor(directions, float((at + jitter) * step), rotation);
+            changes += next != rotation;
+            rotation = next;
+          }
+          EXPECT_LE(changes, 1) << directions << " directions, position " << at << ", from "
+                                << start;
+        }
+      }
+    }
+    for (const int direction : {1, -1}) {
+      int rotation = horizonRotationFor(directions, 0.0f, -1), changes = 0;
+      constexpr int kSamples = 100000;
+      for (int i = 1; i <= kSamples; ++i) {
+        const int next =
+            horizonRotationFor(directions, float(direction * 2 * kPi * i / kSamples), rotation);
+        changes += next != rotation;
+        rotation = next;
+      }
+      EXPECT_EQ(changes, directions / 2) << directions << " directions, one turn";
+    }
+  }
+  // The switch comes a margin before the seam (between directions 3 and 4 for
+  // rotation 0), so the rotation in use never serves a sun at its very edge.
+  const float step8 = float(2 * kPi / 8);
+  EXPECT_EQ(horizonRotationFor(8, (3 - 1.5f * kHorizonRotationMargin) * step8, 0), 0);
+  EXPECT_EQ(horizonRotationFor(8, (3 - 0.5f * kHorizonRotationMargin) * step8, 0), 2);
+  EXPECT_EQ(horizonRotationFor(8, (2 + 1.5f * kHorizonRotationMargin) * step8, 2), 2);
+  EXPECT_EQ(horizonRotationFor(8, (2 + 0.5f * kHorizonRotationMargin) * step8, 2), 0);
+  // Four directions: one layer whatever the rotation; the laid one stays.
+  for (const int rotation : kHorizonRotations) {
+    EXPECT_EQ(horizonRotationFor(4, 1.0f, rotation), rotation);
   }
 }
 

@@ -1,0 +1,84 @@
+// The horizon mode's re-lay (TerrainScene::relayHorizons): the directional
+// horizons uploaded again in the other rotation's order when the sun crosses
+// a layer seam (docs/rendering.md, the horizon mode), which the viewer pays
+// as a hitch in one frame. Synthetic DEMs of 1024^2 and 4096^2 texels with
+// an open sky for apertures (neither the heights nor the codes change the
+// upload's time; random codes), horizons of 8 directions of 8 bits (RGBA8
+// layers) and 16 of 4 bits (BGRA4), both 8 B per texel. Each iteration
+// re-lays once, alternating the rotations. Wall time: the upload waits for
+// the device (lavapipe: copies on the CPU).
+//   bench_horizon_relay --benchmark_repetitions=5
+#include <benchmark/benchmark.h>
+
+#include <map>
+#include <memory>
+#include <random>
+#include <tuple>
+#include <utility>
+
+#include "device.h"
+#include "horizon_map.h"
+#include "instance.h"
+#include "synthetic.h"
+#include "terrain_scene.h"
+
+namespace {
+
+struct RelayFixture {
+  aal::Heightfield field;
+  std::unique_ptr<aal::TerrainScene> scene;
+};
+
+aal::Device& device() {
+  static aal::Instance instance;
+  static aal::Device d(instance);
+  return d;
+}
+
+// One fixture at a time (a 4096^2 scene with 16 B per texel of horizons'
+// host codes is about 1 GB).
+RelayFixture& relayFixture(int size, int directions, int bits) {
+  static std::map<std::tuple<int, int, int>, RelayFixture> fixtures;
+  const auto key = std::make_tuple(size, directions, bits);
+  auto it = fixtures.find(key);
+  if (it != fixtures.end()) return it->second;
+  fixtures.clear();
+  RelayFixture& f = fixtures[key];
+  aal::SyntheticTerrainOptions o;
+  o.width = o.height = size;
+  f.field = aal::makeSyntheticTerrain(o);
+  f.scene = std::make_unique<aal::TerrainScene>(device(), f.field, nullptr, 2'000'000);
+  auto map = std::make_shared<aal::HorizonMap>();
+  map->width = map->height = size;
+  map->directions = directions;
+  map->bits = bits;
+  map->codes.resize(size_t(size) * size_t(size) * size_t(directions));
+  std::mt19937 rng(18);
+  std::uniform_int_distribution<int> code(0, (1 << bits) - 1);
+  for (uint8_t& c : map->codes) c = uint8_t(code(rng));
+  f.scene->setHorizons(device(), std::shared_ptr<const aal::HorizonMap>(std::move(map)), 0);
+  return f;
+}
+
+// Arguments: DEM size, directions, bits.
+void BM_RelayHorizons(benchmark::State& state) {
+  const int size = static_cast<int>(state.range(0));
+  RelayFixture& f =
+      relayFixture(size, static_cast<int>(state.range(1)), static_cast<int>(state.range(2)));
+  for (auto _ : state) {
+    f.scene->relayHorizons(device(), 2 - f.scene->horizonRotation());
+  }
+  state.counters["device_MiB"] = double(f.scene->horizonBytes()) / double(1 << 20);
+  state.counters["MiB_per_s"] = benchmark::Counter(
+      double(f.scene->horizonBytes()) * double(state.iterations()) / double(1 << 20),
+      benchmark::Counter::kIsRate);
+}
+BENCHMARK(BM_RelayHorizons)
+    ->ArgsProduct({{1024, 4096}, {8}, {8}})
+    ->ArgsProduct({{1024, 4096}, {16}, {4}})
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime();
+
+}  // namespace
+
+BENCHMARK_MAIN();
