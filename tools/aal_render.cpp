@@ -82,7 +82,7 @@ struct Options {
   std::optional<int> frames;
   double fps = 30;
   int referenceSunRays = 16, referenceSkyRays = 64;
-  int referenceSubpixels = 2;  // per axis
+  int referenceSubpixels = 4;  // per axis
 };
 
 // The CPU ray tracer's name on --mode (not a GPU shading mode).
