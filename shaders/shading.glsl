@@ -55,24 +55,29 @@ ShadingTerms shadingTerms(ShadingInputs s, int mode) {
     t.ambient = diffuse * t.skyIrradiance;
     return t;
   }
-  // atan2 of sine and cosine: GPU acos approximations are too coarse at the
-  // sun's scale (lavapipe's was off by ~1e-3 rad here).
-  float d = atan(length(cross(s.bentNormal, s.sunDirection)), dot(s.bentNormal, s.sunDirection));
   float sunArea = capArea(s.sunRadiusRad);
-  float isect = mode == AAL_MODE_EXACT
-                    ? capIntersectionTable(capTable, s.apertureRad, s.sunRadiusRad, d)
-                    : capIntersectionApprox(s.apertureRad, s.sunRadiusRad, d);
-  t.sunFraction = sunArea > 0.0 ? clamp(isect / sunArea, 0.0, 1.0) : 0.0;
-  vec3 toCentroid =
-      visibleLightCentroid(s.bentNormal, s.sunDirection, d, s.sunRadiusRad, t.sunFraction);
-  t.direct = diffuse * s.sunIrradiance * t.sunFraction * max(0.0, dot(s.normal, toCentroid));
+  float sunSeen;  // the solid angle of the sun's disk in view, left out of the sky fill
   if (mode == AAL_MODE_HORIZON) {
+    // Visible part from the horizon, no cap intersection (twin of shading.cpp).
     float elevation = atan(s.sunDirection.z, length(s.sunDirection.xy));
     t.sunFraction = horizonSunFraction(elevation, s.sunHorizonRad, s.sunRadiusRad);
     t.direct = diffuse * s.sunIrradiance * t.sunFraction * nDotL;
+    sunSeen = t.sunFraction * sunArea;
+  } else {
+    // atan2 of sine and cosine: GPU acos approximations are too coarse at the
+    // sun's scale (lavapipe's was off by ~1e-3 rad here).
+    float d =
+        atan(length(cross(s.bentNormal, s.sunDirection)), dot(s.bentNormal, s.sunDirection));
+    sunSeen = mode == AAL_MODE_EXACT
+                  ? capIntersectionTable(capTable, s.apertureRad, s.sunRadiusRad, d)
+                  : capIntersectionApprox(s.apertureRad, s.sunRadiusRad, d);
+    t.sunFraction = sunArea > 0.0 ? clamp(sunSeen / sunArea, 0.0, 1.0) : 0.0;
+    vec3 toCentroid =
+        visibleLightCentroid(s.bentNormal, s.sunDirection, d, s.sunRadiusRad, t.sunFraction);
+    t.direct = diffuse * s.sunIrradiance * t.sunFraction * max(0.0, dot(s.normal, toCentroid));
   }
   float apertureArea = capArea(s.apertureRad);
-  float skyShare = apertureArea > 0.0 ? 1.0 - min(1.0, isect / apertureArea) : 0.0;
+  float skyShare = apertureArea > 0.0 ? 1.0 - min(1.0, sunSeen / apertureArea) : 0.0;
   float sinR = sin(s.apertureRad);
   t.skyIrradiance = s.skyRadiance * pi * sinR * sinR * max(0.0, dot(s.normal, s.bentNormal)) *
                     skyShare;

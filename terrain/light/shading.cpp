@@ -52,38 +52,43 @@ ShadingTerms shadingTerms(const ShadingInputs& in, ShadingMode mode,
     t.ambient = diffuse * t.skyIrradiance;
     return t;
   }
-  // Sun: the fraction of its disk seen through the aperture, with the
-  // Lambert term at the centroid of the visible part (caps.h).
-  // Angle between the cap centres as atan2(|B x L|, B.L): acos loses
-  // precision at the sun's scale (and GPU acos approximations more so).
-  const float d = std::atan2(glm::length(glm::cross(in.bentNormal, in.sunDirection)),
-                             glm::dot(in.bentNormal, in.sunDirection));
   const float sunArea = static_cast<float>(capArea(in.sunRadiusRad));
-  float isect;
-  if (mode != ShadingMode::Exact) {  // Approx, and Horizon's sky fill
-    isect = capIntersectionApprox(in.apertureRad, in.sunRadiusRad, d);
-  } else if (exactTable) {
-    isect = capIntersectionFromTable(*exactTable, in.apertureRad, d);
-  } else {
-    isect = static_cast<float>(capIntersectionExact(in.apertureRad, in.sunRadiusRad, d));
-  }
-  t.sunFraction = sunArea > 0 ? std::clamp(isect / sunArea, 0.0f, 1.0f) : 0.0f;
-  const glm::vec3 centroid =
-      visibleLightCentroid(in.bentNormal, in.sunDirection, d, in.sunRadiusRad, t.sunFraction);
-  t.direct =
-      diffuse * in.sunIrradiance * t.sunFraction * std::max(0.0f, glm::dot(in.normal, centroid));
+  float sunSeen;  // the solid angle of the sun's disk in view, left out of the sky fill
   if (mode == ShadingMode::Horizon) {
     // The sun against the horizon in its azimuth; elevation as atan2 (asin
-    // loses precision near the zenith, GPU versions more so).
+    // loses precision near the zenith, GPU versions more so). Its visible
+    // part is the horizon's too, so no cap intersection is needed: the
+    // mode's extra fetch is paid for by the atan2 and Oat's intersection it
+    // leaves out (docs/rendering.md, "horizon").
     const float elevation =
         std::atan2(in.sunDirection.z, glm::length(glm::vec2(in.sunDirection.x, in.sunDirection.y)));
     t.sunFraction = horizonSunFraction(elevation, in.sunHorizonRad, in.sunRadiusRad);
     t.direct = diffuse * in.sunIrradiance * t.sunFraction * nDotL;
+    sunSeen = t.sunFraction * sunArea;
+  } else {
+    // Sun: the fraction of its disk seen through the aperture, with the
+    // Lambert term at the centroid of the visible part (caps.h).
+    // Angle between the cap centres as atan2(|B x L|, B.L): acos loses
+    // precision at the sun's scale (and GPU acos approximations more so).
+    const float d = std::atan2(glm::length(glm::cross(in.bentNormal, in.sunDirection)),
+                               glm::dot(in.bentNormal, in.sunDirection));
+    if (mode != ShadingMode::Exact) {
+      sunSeen = capIntersectionApprox(in.apertureRad, in.sunRadiusRad, d);
+    } else if (exactTable) {
+      sunSeen = capIntersectionFromTable(*exactTable, in.apertureRad, d);
+    } else {
+      sunSeen = static_cast<float>(capIntersectionExact(in.apertureRad, in.sunRadiusRad, d));
+    }
+    t.sunFraction = sunArea > 0 ? std::clamp(sunSeen / sunArea, 0.0f, 1.0f) : 0.0f;
+    const glm::vec3 centroid =
+        visibleLightCentroid(in.bentNormal, in.sunDirection, d, in.sunRadiusRad, t.sunFraction);
+    t.direct =
+        diffuse * in.sunIrradiance * t.sunFraction * std::max(0.0f, glm::dot(in.normal, centroid));
   }
   // Sky: a uniform cap of radius r_a centred beta from N gives pi sin^2(r_a)
   // cos(beta); the sun's share of the aperture is left out.
   const float apertureArea = static_cast<float>(capArea(in.apertureRad));
-  const float skyShare = apertureArea > 0 ? 1.0f - std::min(1.0f, isect / apertureArea) : 0.0f;
+  const float skyShare = apertureArea > 0 ? 1.0f - std::min(1.0f, sunSeen / apertureArea) : 0.0f;
   const float sinR = std::sin(in.apertureRad);
   t.skyIrradiance = in.skyRadiance * kPi * sinR * sinR *
                     std::max(0.0f, glm::dot(in.normal, in.bentNormal)) * skyShare;

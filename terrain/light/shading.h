@@ -31,7 +31,8 @@ enum class ShadingMode : int {
   DebugTransfer = AAL_MODE_DEBUG_TRANSFER,
   // The sun's visible fraction from the directional horizon at its azimuth
   // (ShadingInputs::sunHorizonRad, terrain/io/horizon_map.h), the sky fill from
-  // the aperture as in Approx.
+  // the aperture as in Approx, less the part of the sun the horizon leaves in
+  // view (Approx: the sun's cap within the aperture's); no cap intersection.
   Horizon = AAL_MODE_HORIZON,
 };
 
