@@ -328,10 +328,7 @@ TEST(AalRender, RefusesHorizonsBakedFromOtherHeights) {
   TempDir dir;
   const fs::path map = dir.path() / "a.exr", horizons = dir.path() / "a.horizons",
                  steep = dir.path() / "steep.horizons";
-  ASSERT_EQ(runTool("aal-bake",
-                    quoted(kDem) + " -o " + quoted(map) + " --horizons " + quoted(horizons) + " -q")
-                .exitCode,
-            0);
+  ASSERT_EQ(test::bakeWithHorizons(kDem, map, horizons), 0);
   ASSERT_EQ(
       runTool("aal-bake", quoted(kDem) + " --z-scale 2 -o " + quoted(dir.path() / "steep.exr") +
                               " --horizons " + quoted(steep) + " -q")
@@ -516,10 +513,7 @@ TEST(AalRender, TimeRangeWritesANumberedSequence) {
 TEST(AalRender, HorizonSequenceReLaysTheHorizonsForTheMovingSun) {
   TempDir dir;
   const fs::path map = dir.path() / "a.exr", horizons = dir.path() / "a.horizons";
-  ASSERT_EQ(runTool("aal-bake",
-                    quoted(kDem) + " -o " + quoted(map) + " --horizons " + quoted(horizons) + " -q")
-                .exitCode,
-            0);
+  ASSERT_EQ(test::bakeWithHorizons(kDem, map, horizons), 0);
   const std::string common = "--aperture " + quoted(map) + " --horizons " + quoted(horizons) +
                              " --mode horizon --size 64x36 --no-obscurance -q ";
   const auto run = [&](const std::string& args) {
@@ -726,10 +720,7 @@ TEST(AalRender, CompareWritesEveryModeItsErrorMapAndATable) {
 TEST(AalRender, HorizonModeTakesTheBakesDirectionalHorizons) {
   TempDir dir;
   const fs::path map = dir.path() / "a.exr", horizons = dir.path() / "a.horizons";
-  ASSERT_EQ(runTool("aal-bake",
-                    quoted(kDem) + " -o " + quoted(map) + " --horizons " + quoted(horizons) + " -q")
-                .exitCode,
-            0);
+  ASSERT_EQ(test::bakeWithHorizons(kDem, map, horizons), 0);
   const std::string common = "--aperture " + quoted(map) + " --size 64x36 ";
   const auto r = render(dir, common + "--horizons " + quoted(horizons) + " --mode horizon -o " +
                                  quoted(dir.path() / "h.png"));

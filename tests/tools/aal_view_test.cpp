@@ -390,10 +390,7 @@ TEST(AalView, MinimisingUnderXvfbLeavesTheWindowDrawing) {
 TEST(AalView, HorizonModeWithTheBakesHorizonsAlsoSwitchedMidFlight) {
   TempDir dir;
   const fs::path map = dir.path() / "a.exr", horizons = dir.path() / "a.horizons";
-  ASSERT_EQ(runTool("aal-bake",
-                    quoted(kDem) + " -o " + quoted(map) + " --horizons " + quoted(horizons) + " -q")
-                .exitCode,
-            0);
+  ASSERT_EQ(test::bakeWithHorizons(kDem, map, horizons), 0);
   const std::string common = quoted(kDem) + " --aperture " + quoted(map) +
                              " --sun-azimuth 250 --sun-elevation 12 --size 160x120 --frames 4"
                              " --timeout 60 --stats --screenshot ";
@@ -481,10 +478,7 @@ TEST(AalView, HorizonModeWithTheBakesHorizonsAlsoSwitchedMidFlight) {
 TEST(AalView, HorizonModeReLaysTheHorizonsWhenTheSunCrossesASeam) {
   TempDir dir;
   const fs::path map = dir.path() / "a.exr", horizons = dir.path() / "a.horizons";
-  ASSERT_EQ(runTool("aal-bake",
-                    quoted(kDem) + " -o " + quoted(map) + " --horizons " + quoted(horizons) + " -q")
-                .exitCode,
-            0);
+  ASSERT_EQ(test::bakeWithHorizons(kDem, map, horizons), 0);
   const std::string common = quoted(kDem) + " --aperture " + quoted(map) + " --horizons " +
                              quoted(horizons) +
                              " --mode horizon --sun-elevation 12 --size 160x120 --frames 4"

@@ -60,6 +60,15 @@ inline ToolResult runTool(const std::string& tool, const std::string& arguments,
                   (binDir() / tool).string() + " " + arguments);
 }
 
+// Bakes `dem` into the aperture map `map` with its directional horizons in
+// `horizons` (aal-bake --horizons, default settings, quiet): the exit code.
+inline int bakeWithHorizons(const std::filesystem::path& dem, const std::filesystem::path& map,
+                            const std::filesystem::path& horizons) {
+  return runTool("aal-bake",
+                 quoted(dem) + " -o " + quoted(map) + " --horizons " + quoted(horizons) + " -q")
+      .exitCode;
+}
+
 // aal-view in a private X server (xvfb-run; aal-view needs a display). The
 // server number is searched from one derived from the pid, so tests run in
 // parallel do not race for the same display. `environment` ("NAME=value

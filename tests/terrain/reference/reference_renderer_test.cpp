@@ -187,8 +187,9 @@ double waves(double x, double y) {
   return 20 * std::sin(x / 150) * std::cos(y / 170);
 }
 
-TEST(ReferenceFootprint, IsTheMeanOfPointSamplesOverThePixel) {
-  const Heightfield f = field(65, 10, waves);
+// A deterministic view of the waves: a point sun, no sky and no bounce, so
+// that a pixel's value depends on where its rays meet the terrain alone.
+ReferenceSettings pointSunView() {
   ReferenceSettings s = lighting(60);
   s.lighting.sunRadiusRad = 1e-6f;
   s.lighting.skyRadiance = glm::vec3(0.0f);
@@ -196,6 +197,12 @@ TEST(ReferenceFootprint, IsTheMeanOfPointSamplesOverThePixel) {
   s.camera.position = {0, -200, 500};
   s.camera.lookAt = {0, 0, 0};
   s.camera.verticalFovDeg = 30;
+  return s;
+}
+
+TEST(ReferenceFootprint, IsTheMeanOfPointSamplesOverThePixel) {
+  const Heightfield f = field(65, 10, waves);
+  ReferenceSettings s = pointSunView();
   s.width = 12;
   s.height = 8;
   s.subpixels = 2;
@@ -231,13 +238,7 @@ TEST(ReferenceFootprint, OneSubpixelIsThePointThroughThePixelCentre) {
   // 3 x 3 image's middle pixel look along the same ray (in the deterministic
   // scene of the test above, so that seeds do not matter).
   const Heightfield f = field(65, 10, waves);
-  ReferenceSettings s = lighting(60);
-  s.lighting.sunRadiusRad = 1e-6f;
-  s.lighting.skyRadiance = glm::vec3(0.0f);
-  s.interreflection = false;
-  s.camera.position = {0, -200, 500};
-  s.camera.lookAt = {0, 0, 0};
-  s.camera.verticalFovDeg = 30;
+  ReferenceSettings s = pointSunView();
   s.width = s.height = 1;
   const ReferenceImage one = renderReference(f, s);
   s.width = s.height = 3;
