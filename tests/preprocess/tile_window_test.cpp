@@ -74,13 +74,16 @@ Heightfield cutWindow(const Heightfield& field, const TexelWindow& window) {
   return part;
 }
 
+// Bit for bit (NaN payloads and signed zeros too). Empty vectors are equal
+// without memcmp, whose null pointers would be undefined behaviour.
+bool sameBits(const std::vector<float>& a, const std::vector<float>& b) {
+  return a.size() == b.size() &&
+         (a.empty() || std::memcmp(a.data(), b.data(), a.size() * sizeof(float)) == 0);
+}
+
 bool sameBits(const BakeResult& a, const BakeResult& b) {
-  return a.aperture.texels.size() == b.aperture.texels.size() &&
-         std::memcmp(a.aperture.texels.data(), b.aperture.texels.data(),
-                     a.aperture.texels.size() * sizeof(float)) == 0 &&
-         a.skyViewFactor.size() == b.skyViewFactor.size() &&
-         std::memcmp(a.skyViewFactor.data(), b.skyViewFactor.data(),
-                     a.skyViewFactor.size() * sizeof(float)) == 0;
+  return sameBits(a.aperture.texels, b.aperture.texels) &&
+         sameBits(a.skyViewFactor, b.skyViewFactor);
 }
 
 // A bake of `field`'s tiles: the options, and the far field when there is
