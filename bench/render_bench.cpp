@@ -64,8 +64,12 @@ struct Fixture {
     // and 16 directions; at 285 in two (the renderer before the rotated
     // layout fetched two layers there; now it re-lays them for rotation 2 in
     // the first frame, docs/rendering.md; docs/performance.md).
+    // AAL_BENCH_SUN_ELEVATION (degrees, default 25): a low sun turns more of
+    // the terrain away from it (the horizon mode fetches no horizon there).
     const char* sunAzimuth = std::getenv("AAL_BENCH_SUN_AZIMUTH");
-    aal::setSunAndSky(settings.lighting, sunAzimuth ? std::atof(sunAzimuth) : 250.0, 25, 2.5);
+    const char* sunElevation = std::getenv("AAL_BENCH_SUN_ELEVATION");
+    aal::setSunAndSky(settings.lighting, sunAzimuth ? std::atof(sunAzimuth) : 250.0,
+                      sunElevation ? std::atof(sunElevation) : 25.0, 2.5);
     settings.lighting.exposure = 0.07f;
   }
 };

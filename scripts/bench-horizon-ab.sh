@@ -23,6 +23,7 @@
 # puts both directions beside it in one layer of rotation 0, 285 in two (a
 # renderer with the rotated layout re-lays the horizons once for it, before
 # the measured frames; one without fetches two layers).
+# AAL_BENCH_SUN_ELEVATION (default 25) sets the sun's elevation.
 set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
 rounds=${1:-4}
