@@ -64,8 +64,7 @@ struct Fixture {
     // and 16 directions; at 285 in two (the renderer before the rotated
     // layout fetched two layers there; now it re-lays them for rotation 2 in
     // the first frame, docs/rendering.md; docs/performance.md).
-    // AAL_BENCH_SUN_ELEVATION (degrees, default 25): a low sun turns more of
-    // the terrain away from it (the horizon mode fetches no horizon there).
+    // AAL_BENCH_SUN_ELEVATION (degrees, default 25): the low suns.
     const char* sunAzimuth = std::getenv("AAL_BENCH_SUN_AZIMUTH");
     const char* sunElevation = std::getenv("AAL_BENCH_SUN_ELEVATION");
     aal::setSunAndSky(settings.lighting, sunAzimuth ? std::atof(sunAzimuth) : 250.0,

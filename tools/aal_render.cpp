@@ -81,8 +81,9 @@ struct Options {
   std::vector<std::string> timeRange;
   std::optional<int> frames;
   double fps = 30;
-  int referenceSunRays = 16, referenceSkyRays = 64;
-  int referenceSubpixels = 4;  // per axis
+  int referenceSunRays = aal::ComparisonOptions{}.sunRays;
+  int referenceSkyRays = aal::ComparisonOptions{}.skyRays;
+  int referenceSubpixels = aal::ComparisonOptions{}.subpixels;  // per axis
 };
 
 // The CPU ray tracer's name on --mode (not a GPU shading mode).

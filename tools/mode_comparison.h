@@ -35,7 +35,8 @@ std::vector<ComparedMode> defaultComparedModes(const FrameSettings& settings);
 struct ComparisonOptions {
   int sunRays = 16;
   int skyRays = 64;
-  int subpixels = 1;  // per axis (ReferenceSettings::subpixels)
+  // Per axis (ReferenceSettings::subpixels): 4 has converged, docs/comparison.md.
+  int subpixels = 4;
   // Ground albedo of both renderers (the GPU gets it as FrameSettings::
   // albedoValue): the reference knows only a constant.
   glm::vec3 albedo{0.2f};

@@ -57,9 +57,8 @@ ShadingTerms shadingTerms(const ShadingInputs& in, ShadingMode mode,
   if (mode == ShadingMode::Horizon) {
     // The sun against the horizon in its azimuth; elevation as atan2 (asin
     // loses precision near the zenith, GPU versions more so). Its visible
-    // part is the horizon's too, so no cap intersection is needed: the
-    // mode's extra fetch is paid for by the atan2 and Oat's intersection it
-    // leaves out (docs/rendering.md, "horizon").
+    // part is the horizon's too, so the sky fill needs no cap intersection
+    // (docs/rendering.md, "The horizon mode").
     const float elevation =
         std::atan2(in.sunDirection.z, glm::length(glm::vec2(in.sunDirection.x, in.sunDirection.y)));
     t.sunFraction = horizonSunFraction(elevation, in.sunHorizonRad, in.sunRadiusRad);

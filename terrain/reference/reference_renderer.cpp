@@ -133,7 +133,7 @@ ReferenceImage renderReference(const Heightfield& field, const ReferenceSettings
   }
   const TerrainSurface surface(field);
 
-  // Primary rays from the GPU's own matrices, through pixel centres.
+  // Primary rays from the GPU's own matrices, through subpixel centres.
   const double aspect = double(s.width) / double(s.height);
   const DepthRange range = depthRangeFor(s.camera, field);
   const glm::dmat4 invViewProj =
@@ -157,6 +157,9 @@ ReferenceImage renderReference(const Heightfield& field, const ReferenceSettings
   tbb::parallel_for(uint32_t(0), s.height, [&](uint32_t y) {
     for (uint32_t x = 0; x < s.width; ++x) {
       const size_t pixel = size_t(y) * s.width + x;
+      // One generator per pixel for all its subpixels (seeded as before
+      // subpixels, so one subpixel gives the same image).
+      std::mt19937 rng(s.seed * 2654435761u + static_cast<uint32_t>(pixel));
       glm::dvec3 sum(0.0);
       bool allTerrain = true;
       for (int j = 0; j < subpixelCount; ++j) {
@@ -176,8 +179,6 @@ ReferenceImage renderReference(const Heightfield& field, const ReferenceSettings
           }
           continue;
         }
-        std::mt19937 rng(s.seed * 2654435761u +
-                         static_cast<uint32_t>(pixel * size_t(subpixelCount) + size_t(j)));
         glm::dvec3 radiance = subpixelShader.shade(eye + sHit * dir, rng);
         const double transmittance = std::exp(-double(s.lighting.hazeDensityPerM) * sHit);
         sum += radiance * transmittance + glm::dvec3(s.lighting.skyRadiance) * (1 - transmittance);
