@@ -65,15 +65,15 @@ struct FrameUniforms {
   int32_t heightLayersPerPage = 0;
   int32_t apertureLayersPerPage = 0;
   int32_t albedoLayersPerPage = 0;
-  int32_t horizonBits = 8;  // of the scene's directional horizons (horizon mode)
-  int32_t unused = 0;
+  int32_t unused0 = 0;
+  int32_t unused1 = 0;
 
   PreethamSky sky;
 
-  // The horizon mode's lookup for the frame's sun (horizonLayerWeights,
-  // terrain/io/horizon_map.h): the same for every fragment, so made once here.
-  glm::vec4 horizonWeights{0.0f};
-  float horizonLayer = 0;  // within a tile's layers, as the scene laid them out (its rotation)
+  // The horizon mode's weights of the two horizons in the slope texture's B
+  // and A (horizonPairWeights, terrain/io/horizon_map.h): the same for every
+  // fragment, so made once here.
+  glm::vec2 horizonWeights{0.0f};
 };
 
 // The std140 offsets of shaders/frame.glsl.
@@ -103,11 +103,9 @@ static_assert(offsetof(FrameUniforms, tileCoreSize) == 368 &&
               offsetof(FrameUniforms, tileImageSize) == 384);
 static_assert(offsetof(FrameUniforms, tileBorder) == 392 &&
               offsetof(FrameUniforms, albedoLayersPerPage) == 404);
-static_assert(offsetof(FrameUniforms, horizonBits) == 408);
 static_assert(offsetof(FrameUniforms, sky) == 416, "std140 aligns the sky to 16 bytes");
 static_assert(offsetof(FrameUniforms, horizonWeights) == 416 + sizeof(PreethamSky) &&
               offsetof(FrameUniforms, horizonWeights) == 528);
-static_assert(offsetof(FrameUniforms, horizonLayer) == 544);
-static_assert(sizeof(FrameUniforms) == 548);
+static_assert(sizeof(FrameUniforms) == 536);
 
 }  // namespace aal

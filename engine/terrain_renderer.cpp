@@ -1,6 +1,7 @@
 #include "terrain_renderer.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <map>
 #include <stdexcept>
@@ -145,14 +146,6 @@ const char* terrainFragmentShader(TexturePaging paging, bool gbuffer) {
     case TexturePaging::All: break;
   }
   return gbuffer ? "terrain_gbuffer_paged.frag" : "terrain_paged.frag";
-}
-
-// Which of a tile's horizon layers the horizon mode reads for this sun, and
-// its weights, as the scene's layers lie now (one that serves the sun:
-// record() re-lays them first): the same for every fragment of the frame.
-HorizonLayerWeights sunHorizonWeights(const TerrainScene& scene, const glm::vec3& sun) {
-  return horizonLayerWeights(scene.horizonDirections(), sunAzimuthRad(sun), scene.horizonBits(),
-                             scene.horizonRotation());
 }
 
 // The constants of shaders/variant.glsl, in AAL_SPEC_* order.
@@ -365,9 +358,6 @@ TerrainRenderer::TerrainRenderer(const Device& device, uint32_t width, uint32_t 
                          VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT}),
       capTableStaging_(device, size_t{AAL_CAP_TABLE_WIDTH} * AAL_CAP_TABLE_HEIGHT * sizeof(float),
                        VK_BUFFER_USAGE_TRANSFER_SRC_BIT, MemoryIntent::Upload),
-      noHorizons_(device, {1, 1, VK_FORMAT_R8G8B8A8_UNORM,
-                           VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT,
-                           VK_IMAGE_ASPECT_COLOR_BIT, 2, true}),
       uniforms_(device, sizeof(FrameUniforms), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT,
                 MemoryIntent::Upload),
       samples_(device, sizeof(ObscuranceSampleBlock), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT,
@@ -524,11 +514,11 @@ bool TerrainRenderer::writeUniforms(const TerrainScene& scene, const FrameSettin
   u.heightLayersPerPage = int32_t(tiles.layersPerPage[0]);
   u.apertureLayersPerPage = int32_t(tiles.layersPerPage[1]);
   u.albedoLayersPerPage = int32_t(tiles.layersPerPage[2]);
-  u.horizonBits = scene.horizonBits();
-  if (s.mode == ShadingMode::Horizon && scene.horizons()) {
-    const HorizonLayerWeights w = sunHorizonWeights(scene, u.sunDirection);
-    u.horizonWeights = glm::vec4(w.weights[0], w.weights[1], w.weights[2], w.weights[3]);
-    u.horizonLayer = float(w.layer);
+  if (s.mode == ShadingMode::Horizon && scene.hasHorizons()) {
+    // The pair on the device serves this sun (record() re-laid it first).
+    const std::array<float, 2> w = horizonPairWeights(
+        scene.horizonDirections(), sunAzimuthRad(u.sunDirection), scene.horizonFirst());
+    u.horizonWeights = glm::vec2(w[0], w[1]);
   }
   uniforms_.write(&u, sizeof u);
   return obscurance;
@@ -579,18 +569,19 @@ void TerrainRenderer::record(VkCommandBuffer cmd, const TerrainScene& scene, con
   }
   extent_ = {std::max(1u, static_cast<uint32_t>(std::lround(width_ * scale))),
              std::max(1u, static_cast<uint32_t>(std::lround(height_ * scale)))};
-  if (s.mode == ShadingMode::Horizon && scene.horizons()) {
-    // One layer must hold both directions beside the sun: lay the horizons
-    // out for its azimuth when it left the current rotation's (with the
-    // hysteresis of horizonRotationFor, so a sun on a seam does not re-lay
-    // every frame). Safe here: the previous frame's submission has finished
-    // (as writeUniforms below requires; aal-view keeps one frame in flight,
-    // engine/vk/frame_sync.h, so no frame still reads the image), and the
-    // upload waits for itself before this frame's commands are submitted.
-    // With more frames in flight this would need the device idle first.
-    scene.relayHorizons(device_, horizonRotationFor(scene.horizonDirections(),
-                                                    sunAzimuthRad(s.lighting.sunDirection),
-                                                    scene.horizonRotation()));
+  if (s.mode == ShadingMode::Horizon && scene.hasHorizons()) {
+    // The slope texture must hold the horizons of the two directions beside
+    // the sun: lay that pair when the sun left the current one (with the
+    // hysteresis of horizonPairFor, so a sun on a stored direction does not
+    // re-lay every frame). Safe here: the previous frame's submission has
+    // finished (as writeUniforms below requires; aal-view keeps one frame in
+    // flight, engine/vk/frame_sync.h, so no frame still reads the slopes),
+    // and the re-lay waits for itself before this frame's commands are
+    // submitted. With more frames in flight this would need the device idle
+    // first.
+    scene.relayHorizons(device_, horizonPairFor(scene.horizonDirections(),
+                                                sunAzimuthRad(s.lighting.sunDirection),
+                                                scene.horizonFirst()));
   }
   const bool obscurance = writeUniforms(scene, s);
   selectPatches(scene, s);
@@ -606,27 +597,12 @@ void TerrainRenderer::record(VkCommandBuffer cmd, const TerrainScene& scene, con
   // Without linear output or the obscurance pass the terrain and the sky
   // write display values at once: no HDR target, no tone-map pass.
   const bool direct = !linear && !obscurance;
-  if (s.mode == ShadingMode::Horizon && !scene.horizons()) {
+  if (s.mode == ShadingMode::Horizon && !scene.hasHorizons()) {
     throw std::invalid_argument(
         "the horizon mode needs the DEM's directional horizons (aal-bake --horizons)");
   }
   timer_.reset(cmd);
   updateCapTable(cmd, s);
-  if (!noHorizonsReady_) {
-    transitionImage(cmd, noHorizons_, VK_IMAGE_LAYOUT_UNDEFINED,
-                    VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL);
-    const VkClearColorValue zero{};
-    const VkImageSubresourceRange all{.aspectMask = VK_IMAGE_ASPECT_COLOR_BIT,
-                                      .baseMipLevel = 0,
-                                      .levelCount = 1,
-                                      .baseArrayLayer = 0,
-                                      .layerCount = 2};
-    vkCmdClearColorImage(cmd, noHorizons_.handle(), VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, &zero, 1,
-                         &all);
-    transitionImage(cmd, noHorizons_, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL,
-                    VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL);
-    noHorizonsReady_ = true;
-  }
 
   // The sky table for this frame's sun (sky_lut.glsl).
   transitionImage(cmd, skyTable_, VK_IMAGE_LAYOUT_UNDEFINED,
@@ -685,10 +661,7 @@ void TerrainRenderer::record(VkCommandBuffer cmd, const TerrainScene& scene, con
       .bind(cmd,
             terrainWrites(uniforms_, scene, passes_->terrainSampler.handle())
                 .buffer(kAfterTerrainTextures, patches_)
-                .image(kAfterTerrainTextures + 1, capTable_.view(), passes_->linear.handle())
-                .image(kAfterTerrainTextures + 2,
-                       (scene.horizons() ? *scene.horizons() : noHorizons_).view(),
-                       passes_->linear.handle()),
+                .image(kAfterTerrainTextures + 1, capTable_.view(), passes_->linear.handle()),
             nullptr);
   vkCmdBindIndexBuffer(cmd, scene.indices().handle(), 0, VK_INDEX_TYPE_UINT32);
   drawPatches(cmd);

@@ -107,8 +107,8 @@ class TerrainRenderer {
   // result; see FrameOutput for where it goes). Writes the frame's uniforms
   // at once, so the previous frame's submission must have finished. In the
   // horizon mode it first re-lays the scene's horizons when the frame's sun
-  // needs the other rotation (TerrainScene::relayHorizons: an upload, waited
-  // for; docs/rendering.md). With `output.linear` hdrImage() then holds the
+  // left their pair of directions (TerrainScene::relayHorizons: an upload and
+  // a compute pass, waited for; docs/rendering.md). With `output.linear` hdrImage() then holds the
   // linear radiance, in VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL.
   void record(VkCommandBuffer cmd, const TerrainScene& scene, const FrameSettings& settings,
               const FrameOutput& output = {});
@@ -161,10 +161,6 @@ class TerrainRenderer {
   Image capTable_;
   Buffer capTableStaging_;
   float capTableRadius_ = 0.0f;
-  // Bound in place of a scene's directional horizons when it has none (one
-  // texel, two layers, cleared on first use).
-  Image noHorizons_;
-  bool noHorizonsReady_ = false;
   // Obscurance reuse (ObscuranceSettings::History): the means and points the
   // previous frame wrote (index historyRead_) and this one writes (the
   // other); made on first use.

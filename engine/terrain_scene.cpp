@@ -112,6 +112,31 @@ void reduceAlbedo(const unsigned char* upper, const unsigned char* lower, unsign
                             });
 }
 
+// The slope pages (in the heights' pages and layers, every mip level): RG16F
+// slopes, or RGBA16F with the horizon pair in B and A.
+std::vector<Image> makeSlopePages(const Device& device, const TerrainTileLayout& tiles,
+                              bool horizons) {
+  std::vector<Image> pages;
+  for (uint32_t page = 0; page < tiles.pagesOf(TerrainTexture::Height); ++page) {
+    pages.emplace_back(
+        device,
+        ImageDesc{tiles.imageWidth(), tiles.imageHeight(),
+                  horizons ? VK_FORMAT_R16G16B16A16_SFLOAT : VK_FORMAT_R16G16_SFLOAT,
+                  kTextureUsage | VK_IMAGE_USAGE_STORAGE_BIT, VK_IMAGE_ASPECT_COLOR_BIT,
+                  tiles.layersIn(TerrainTexture::Height, page), true, kTerrainMipLevels});
+  }
+  return pages;
+}
+
+// Their bytes at level 0 (as textureBytes counts).
+uint64_t slopeBytes(const TerrainTileLayout& tiles, bool horizons) {
+  uint64_t layers = 0;
+  for (uint32_t page = 0; page < tiles.pagesOf(TerrainTexture::Height); ++page) {
+    layers += tiles.layersIn(TerrainTexture::Height, page);
+  }
+  return tiles.layerTexels() * layers * (horizons ? 8 : 4);
+}
+
 }  // namespace
 
 namespace {
@@ -143,33 +168,90 @@ class LevelView {
 
 }  // namespace
 
-void TerrainScene::computeSlopes(const Device& device, const Heightfield& field) {
+namespace {
+
+// The codes of the pair of directions first, first + 1 mod n as R and G of
+// R8G8_UINT images in the heights' tiles and pages (borders included, level
+// 0 only): what slopes_horizons.comp decodes into the slope texture.
+std::vector<Image> horizonPairPages(const Device& device, const TerrainTileLayout& tiles,
+                                    const HorizonMap& map, int first) {
+  const size_t firstChannel = size_t(first), secondChannel = size_t((first + 1) % map.directions);
+  const DemRows pairRows = [&](uint32_t firstRow, uint32_t endRow, void* destination) {
+    // Rows in parallel: every texel's codes are n bytes in a row, so this
+    // reads the whole map (memory bound; a re-lay in aal-view is a hitch,
+    // docs/performance.md).
+    const size_t width = size_t(map.width), n = size_t(map.directions);
+    tbb::parallel_for(tbb::blocked_range<uint32_t>(firstRow, endRow, 8), [&](const auto& rows) {
+      for (uint32_t row = rows.begin(); row < rows.end(); ++row) {
+        const uint8_t* codes = map.texel(0, int(row));
+        auto* out = static_cast<uint8_t*>(destination) + (row - firstRow) * width * 2;
+        for (size_t col = 0; col < width; ++col, codes += n) {
+          out[2 * col] = codes[firstChannel];
+          out[2 * col + 1] = codes[secondChannel];
+        }
+      }
+    });
+  };
+  std::vector<Image> pages;
+  for (uint32_t page = 0; page < tiles.pagesOf(TerrainTexture::Height); ++page) {
+    pages.emplace_back(device, ImageDesc{tiles.imageWidth(), tiles.imageHeight(),
+                                         VK_FORMAT_R8G8_UINT,
+                                         VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT,
+                                         VK_IMAGE_ASPECT_COLOR_BIT,
+                                         tiles.layersIn(TerrainTexture::Height, page), true});
+  }
+  UploadBatch upload(device);
+  std::vector<unsigned char> scratch;  // one band of DEM rows while a tile is filled
+  const uint32_t perPage = tiles.layersPerPageOf(TerrainTexture::Height);
+  for (uint32_t tile = 0; tile < tiles.tileCount(); ++tile) {
+    upload.addImage(pages[tile / perPage], 2,
+                    tileRows(tiles, tile % tiles.tilesX, tile / tiles.tilesX, 2, pairRows, scratch),
+                    tile % perPage);
+  }
+  upload.submit();
+  return pages;
+}
+
+}  // namespace
+
+void TerrainScene::computeSlopes(const Device& device, int first) const {
   struct Push {
     int32_t level;
     float cellSizeXM, cellSizeYM;
+    int32_t horizonBits;
   };
-  const ComputePipeline pipeline(device, "slopes.comp", sizeof(Push));
+  const bool horizons = horizonMap_ != nullptr;
+  const ComputePipeline pipeline(device, horizons ? "slopes_horizons.comp" : "slopes.comp",
+                                 sizeof(Push));
   const Sampler nearest(device, VK_FILTER_NEAREST, true);
-  std::vector<std::unique_ptr<LevelView>> views;
-  for (const Image& page : slopes_) {
-    for (uint32_t level = 0; level < page.desc().mipLevels; ++level) {
-      views.push_back(std::make_unique<LevelView>(device, page, level));
+  const Sampler codeSampler(device, VK_FILTER_NEAREST, false);  // integer texels: no filter
+  const std::vector<Image> pairs =
+      horizons ? horizonPairPages(device, tiles_, *horizonMap_, first) : std::vector<Image>{};
+  std::vector<std::vector<std::unique_ptr<LevelView>>> views(slopes_.size());
+  for (size_t p = 0; p < slopes_.size(); ++p) {
+    for (uint32_t level = 0; level < slopes_[p].desc().mipLevels; ++level) {
+      views[p].push_back(std::make_unique<LevelView>(device, slopes_[p], level));
     }
   }
   submitAndWait(device, [&](VkCommandBuffer cmd) {
-    size_t view = 0;
     for (size_t p = 0; p < slopes_.size(); ++p) {
       const Image& page = slopes_[p];
+      const uint32_t levels = page.desc().mipLevels;
       transitionImage(cmd, page, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_GENERAL);
-      for (uint32_t level = 0; level < page.desc().mipLevels; ++level) {
-        const Push push{static_cast<int32_t>(level), static_cast<float>(field.cellSizeXM),
-                        static_cast<float>(field.cellSizeYM)};
+      for (uint32_t level = 0; level < levels; ++level) {
+        const Push push{static_cast<int32_t>(level), demInfo_.z, demInfo_.w, horizonBits_};
         const uint32_t w = page.desc().width >> level, h = page.desc().height >> level;
-        pipeline.record(cmd,
-                        DescriptorWrites()
-                            .image(0, heights_[p].view(), nearest.handle())
-                            .image(1, views[view++]->handle()),
-                        &push, (w + 7) / 8, (h + 7) / 8, page.desc().layers);
+        DescriptorWrites writes;
+        writes.image(0, heights_[p].view(), nearest.handle()).image(1, views[p][level]->handle());
+        if (horizons) {
+          // Level 0 decodes the pair's codes; each level above is the mean
+          // of the one below (bound at level 0 too, unread: any other level).
+          writes.image(2, pairs[p].view(), codeSampler.handle())
+              .image(3, views[p][level > 0 ? level - 1 : std::min(1u, levels - 1)]->handle());
+        }
+        pipeline.record(cmd, writes, &push, (w + 7) / 8, (h + 7) / 8, page.desc().layers);
+        // The next level reads this one's horizons.
+        if (horizons) transitionImage(cmd, page, VK_IMAGE_LAYOUT_GENERAL, VK_IMAGE_LAYOUT_GENERAL);
       }
       transitionImage(cmd, page, VK_IMAGE_LAYOUT_GENERAL, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL);
     }
@@ -294,15 +376,8 @@ void TerrainScene::build(const Device& device, const Heightfield& field,
         textureBytes_ += tiles_.layerTexels() * layers * kind.texelBytes();
       }
     }
-    // Slopes: 4 bytes a texel, in the heights' pages and layers.
-    for (uint32_t page = 0; page < tiles_.pagesOf(TerrainTexture::Height); ++page) {
-      const uint32_t layers = tiles_.layersIn(TerrainTexture::Height, page);
-      slopes_.emplace_back(
-          device, ImageDesc{tiles_.imageWidth(), tiles_.imageHeight(), VK_FORMAT_R16G16_SFLOAT,
-                            kTextureUsage | VK_IMAGE_USAGE_STORAGE_BIT, VK_IMAGE_ASPECT_COLOR_BIT,
-                            layers, true, kTerrainMipLevels});
-      textureBytes_ += tiles_.layerTexels() * layers * 4;
-    }
+    slopes_ = makeSlopePages(device, tiles_, false);
+    textureBytes_ += slopeBytes(tiles_, false);
   } catch (const VulkanError& e) {
     throw VulkanError("the DEM's textures (" + describeTerrainTiles(tiles_) + ", " +
                       std::to_string(tiles_.texelsPerKind() * (hasAlbedo_ ? 20 : 16) >> 20) +
@@ -335,21 +410,21 @@ void TerrainScene::build(const Device& device, const Heightfield& field,
   }
   upload.addBuffer(indices_, patchIndices.data(), patchIndices.size() * sizeof(uint32_t));
   upload.submit();
-  computeSlopes(device, field);
-
   demInfo_ = {static_cast<float>(field.width), static_cast<float>(field.height),
               static_cast<float>(field.cellSizeXM), static_cast<float>(field.cellSizeYM)};
+  computeSlopes(device, 0);
+
   const auto [lo, hi] = std::minmax_element(field.z.begin(), field.z.end());
   minHeight_ = *lo;
   maxHeight_ = *hi;
 }
 
-void TerrainScene::setHorizons(const Device& device, const HorizonMap& map, int rotation) {
-  setHorizons(device, std::make_shared<const HorizonMap>(map), rotation);
+void TerrainScene::setHorizons(const Device& device, const HorizonMap& map, int first) {
+  setHorizons(device, std::make_shared<const HorizonMap>(map), first);
 }
 
 void TerrainScene::setHorizons(const Device& device, std::shared_ptr<const HorizonMap> shared,
-                               int rotation) {
+                               int first) {
   if (!shared) throw std::invalid_argument("setHorizons: no horizon map");
   const HorizonMap& map = *shared;
   const glm::vec4 dem = demInfo_;
@@ -360,105 +435,49 @@ void TerrainScene::setHorizons(const Device& device, std::shared_ptr<const Horiz
                                 std::to_string(map.height) + ", the DEM " +
                                 std::to_string(int(dem.x)) + "x" + std::to_string(int(dem.y)));
   }
-  if (!validHorizonRotation(rotation)) {
-    throw std::invalid_argument("setHorizons: rotation " + std::to_string(rotation) + " (0 or 2)");
+  if (!validHorizonPair(map.directions, first)) {
+    throw std::invalid_argument("setHorizons: direction " + std::to_string(first) + " of " +
+                                std::to_string(map.directions));
   }
-  // Four directions per layer, as R, G, B, A: RGBA8, or for 4-bit codes
-  // BGRA4 (whose linear filtering every Vulkan device supports), R in bits
-  // 4..7 of each 16-bit texel, G in 8..11, B in 12..15, A in 0..3. Laid out
-  // in the other textures' tiles (borders included, no mip levels), so the
-  // shader finds them with the same lookup: tile t's layer l is layer
-  // t * layersPerTile + l of one image.
-  const bool fourBits = map.bits == 4;
-  const uint32_t layersPerTile = uint32_t(map.directions / 4), texelBytes = fourBits ? 2 : 4;
-  const uint32_t layers = layersPerTile * tiles_.tileCount();
-  const uint64_t bytes = uint64_t{tiles_.imageWidth()} * tiles_.imageHeight() * layers * texelBytes;
+  // RGBA16F slopes: R and G the slopes, B and A the pair's horizons, in the
+  // heights' pages, which were planned for 4 bytes a texel: each page's 8
+  // must fit an allocation too.
   const TerrainTileLimits limits = deviceTileLimits(device, tiling_);
-  if (layers > limits.maxArrayLayers || bytes > limits.maxAllocationBytes / 16 * 15) {
-    throw std::runtime_error("the directional horizons of " + describeTerrainTiles(tiles_) + " (" +
-                             std::to_string(layers) + " layers, " + std::to_string(bytes >> 20) +
-                             " MiB) do not fit one image of the device (" +
-                             std::to_string(limits.maxArrayLayers) + " layers, " +
-                             std::to_string(limits.maxAllocationBytes >> 20) +
-                             " MiB an allocation); the renderer binds one");
+  const uint64_t pageBytes =
+      tiles_.layerTexels() * tiles_.layersPerPageOf(TerrainTexture::Height) * 8;
+  if (pageBytes > limits.maxAllocationBytes / 16 * 15) {
+    throw std::runtime_error("the directional horizons of " + describeTerrainTiles(tiles_) +
+                             " (" + std::to_string(pageBytes >> 20) +
+                             " MiB a page of slopes with horizons) do not fit one image of the "
+                             "device (" + std::to_string(limits.maxAllocationBytes >> 20) +
+                             " MiB an allocation)");
   }
-  auto image = std::make_unique<Image>(
-      device, ImageDesc{tiles_.imageWidth(), tiles_.imageHeight(),
-                        fourBits ? VK_FORMAT_B4G4R4A4_UNORM_PACK16 : VK_FORMAT_R8G8B8A8_UNORM,
-                        VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT,
-                        VK_IMAGE_ASPECT_COLOR_BIT, layers, true});
-  uploadHorizons(device, *image, map, rotation);
-  // A second map replaces the first.
-  textureBytes_ -= horizonBytes_;
+  // Made before anything changes, so a device too small keeps the scene as
+  // it was.
+  std::vector<Image> slopes = makeSlopePages(device, tiles_, true);
+  const uint64_t bytes = slopeBytes(tiles_, true) - slopeBytes(tiles_, false);
+  slopes_ = std::move(slopes);
+  textureBytes_ += bytes - horizonBytes_;  // a second map replaces the first
   horizonBytes_ = bytes;
-  textureBytes_ += horizonBytes_;
-  horizons_ = std::move(image);
   horizonMap_ = std::move(shared);
   horizonBits_ = map.bits;
   horizonDirections_ = map.directions;
-  horizonRotation_ = rotation;
+  horizonFirst_ = first;
+  computeSlopes(device, first);
 }
 
-void TerrainScene::relayHorizons(const Device& device, int rotation) const {
-  if (!validHorizonRotation(rotation)) {
-    throw std::invalid_argument("relayHorizons: rotation " + std::to_string(rotation) +
-                                " (0 or 2)");
+void TerrainScene::relayHorizons(const Device& device, int first) const {
+  if (!horizonMap_) return;
+  if (!validHorizonPair(horizonDirections_, first)) {
+    throw std::invalid_argument("relayHorizons: direction " + std::to_string(first) + " of " +
+                                std::to_string(horizonDirections_));
   }
-  if (!horizons_ || rotation == horizonRotation_) return;
-  // The same image: its size and format do not change, and the previous
-  // frame has finished reading it (the caller's promise).
-  uploadHorizons(device, *horizons_, *horizonMap_, rotation);
-  horizonRotation_ = rotation;
+  if (first == horizonFirst_) return;
+  // The same images: the previous frame has finished reading them (the
+  // caller's promise).
+  computeSlopes(device, first);
+  horizonFirst_ = first;
   ++horizonRelays_;
-}
-
-void TerrainScene::uploadHorizons(const Device& device, const Image& image, const HorizonMap& map,
-                                  int rotation) const {
-  const bool fourBits = map.bits == 4;
-  const uint32_t layersPerTile = uint32_t(map.directions / 4), texelBytes = fourBits ? 2 : 4;
-  // Whole DEM rows of layer l's texels (directions 4l + rotation + c mod n
-  // in channel c), cut into tiles by tileRows.
-  std::vector<DemRows> layerRows;
-  layerRows.reserve(layersPerTile);  // tileRows keeps references to them
-  for (uint32_t layer = 0; layer < layersPerTile; ++layer) {
-    std::array<int, 4> direction{};
-    for (int c = 0; c < 4; ++c)
-      direction[size_t(c)] = (int(4 * layer) + rotation + c) % map.directions;
-    layerRows.emplace_back([&map, direction, fourBits, texelBytes](
-                               uint32_t firstRow, uint32_t endRow, void* destination) {
-      // Rows in parallel: each layer reads the whole map (memory bound; a
-      // re-lay in aal-view is a hitch, docs/performance.md).
-      const size_t width = size_t(map.width), n = size_t(map.directions);
-      tbb::parallel_for(tbb::blocked_range<uint32_t>(firstRow, endRow, 8), [&](const auto& rows) {
-        for (uint32_t row = rows.begin(); row < rows.end(); ++row) {
-          const uint8_t* codes = map.texel(0, int(row));
-          auto* out = static_cast<uint8_t*>(destination) + (row - firstRow) * width * texelBytes;
-          for (size_t col = 0; col < width; ++col, codes += n) {
-            const uint8_t r = codes[direction[0]], g = codes[direction[1]], b = codes[direction[2]],
-                          a = codes[direction[3]];
-            if (fourBits) {
-              const uint16_t texel = uint16_t(r << 4 | g << 8 | b << 12 | a);
-              std::memcpy(out + 2 * col, &texel, 2);
-            } else {
-              const uint8_t texel[4] = {r, g, b, a};
-              std::memcpy(out + 4 * col, texel, 4);
-            }
-          }
-        }
-      });
-    });
-  }
-  UploadBatch upload(device);
-  std::vector<unsigned char> scratch;  // one band of DEM rows while a tile is filled
-  for (uint32_t tile = 0; tile < tiles_.tileCount(); ++tile) {
-    for (uint32_t layer = 0; layer < layersPerTile; ++layer) {
-      upload.addImage(image, texelBytes,
-                      tileRows(tiles_, tile % tiles_.tilesX, tile / tiles_.tilesX, texelBytes,
-                               layerRows[layer], scratch),
-                      tile * layersPerTile + layer);
-    }
-  }
-  upload.submit();
 }
 
 }  // namespace aal

@@ -33,7 +33,7 @@ TerrainTileLimits deviceTileLimits(const Device& device, const TerrainTiling& ti
 // The azimuth of a sun direction (DEM frame: x east, y north, z up) in the
 // directional horizons' convention: rad counter-clockwise from east; 0 at
 // the zenith, where any azimuth serves. What the renderer picks the
-// horizons' rotation and weights with (horizonRotationFor).
+// horizons' pair and weights with (horizonPairFor, horizonPairWeights).
 float sunAzimuthRad(const glm::vec3& sunDirection);
 
 class TerrainScene {
@@ -66,38 +66,37 @@ class TerrainScene {
   const std::vector<Image>& heightPages() const { return heights_; }
   const std::vector<Image>& aperturePages() const { return aperture_; }
   const std::vector<Image>& albedoPages() const { return albedo_; }
-  // Slopes of the heights (RG16F: dz/dx east, dz/dy north per mip level,
-  // shaders/slopes.comp), in the heights' tiles and pages: the terrain's
-  // normals in one fetch.
+  // Slopes of the heights (dz/dx east, dz/dy north per mip level,
+  // shaders/slopes.glsl), in the heights' tiles and pages: the terrain's
+  // normals in one fetch. RG16F; RGBA16F with directional horizons, whose
+  // B and A hold the horizons (rad) of the pair of stored directions beside
+  // the sun (setHorizons), each level's the mean of the level below's.
   const std::vector<Image>& slopePages() const { return slopes_; }
-  // Device memory of the textures (bytes).
+  // Device memory of the textures (bytes, level 0).
   uint64_t textureBytes() const { return textureBytes_; }
   bool hasAlbedo() const { return hasAlbedo_; }
-  // Directional horizons for the horizon mode (terrain/io/horizon_map.h): a 2D
-  // array image in the layout of the other textures' tiles (tiles(): the
-  // same image size, borders included; no mip levels), tile t's layer l in
-  // layer t * directions / 4 + l, holding directions (4l + r) .. (4l + r + 3)
-  // mod directions as RGBA for the rotation r (0 or 2, horizonRotationFor;
-  // RGBA8 for 8-bit codes, 1 B per direction and texel; BGRA4 for 4-bit
-  // ones, half a byte). The scene keeps `map` (shared, not copied) to lay the
-  // layers out again for another rotation. Throws std::invalid_argument for
-  // a map of another size or an invalid rotation, std::runtime_error when the
-  // layers do not fit one image of the device, or one page of the scene's
-  // TerrainTiling (the shaders bind one).
-  void setHorizons(const Device& device, std::shared_ptr<const HorizonMap> map, int rotation = 0);
+  // Directional horizons for the horizon mode (terrain/io/horizon_map.h).
+  // The device holds two of the map's directions at a time, `first` and
+  // first + 1 mod n (horizonPairFor), decoded and prefiltered into the slope
+  // texture's B and A channels (which makes it RGBA16F: 4 B more per texel);
+  // the scene keeps `map` (shared, not copied) to lay another pair. Replaces
+  // the slope images: the device must not be reading the scene. Throws
+  // std::invalid_argument for a map of another size or an invalid pair.
+  void setHorizons(const Device& device, std::shared_ptr<const HorizonMap> map, int first = 0);
   // The same with a copy of `map` (tests; the tools share theirs).
-  void setHorizons(const Device& device, const HorizonMap& map, int rotation = 0);
-  // Uploads the horizons' layers again in the order of `rotation` (into the
-  // same image; nothing when it is the current one). The device must not be
-  // reading the image: TerrainRenderer::record calls it for a frame's sun,
-  // when the previous frame has finished. Const: the horizons stay what they
-  // are, only their order on the device changes.
-  void relayHorizons(const Device& device, int rotation) const;
-  const Image* horizons() const { return horizons_.get(); }  // null: none
-  uint64_t horizonBytes() const { return horizonBytes_; }    // of textureBytes()
+  void setHorizons(const Device& device, const HorizonMap& map, int first = 0);
+  // Writes the horizons of another pair into the slope texture (nothing when
+  // it is the current one): an upload of the pair's codes and a compute
+  // pass, waited for. The device must not be reading the slopes:
+  // TerrainRenderer::record calls it for a frame's sun, when the previous
+  // frame has finished. Const: the horizons stay what they are, only the
+  // pair on the device changes.
+  void relayHorizons(const Device& device, int first) const;
+  bool hasHorizons() const { return horizonMap_ != nullptr; }
+  uint64_t horizonBytes() const { return horizonBytes_; }  // of textureBytes()
   int horizonBits() const { return horizonBits_; }
   int horizonDirections() const { return horizonDirections_; }  // 0: none
-  int horizonRotation() const { return horizonRotation_; }      // of the layers on the device
+  int horizonFirst() const { return horizonFirst_; }            // of the pair on the device
   // Re-lays so far (TerrainRenderer's, tests).
   uint64_t horizonRelays() const { return horizonRelays_; }
   // The LOD patch's index buffer (makeLodPatchIndices).
@@ -115,27 +114,24 @@ class TerrainScene {
   float maxHeight() const { return maxHeight_; }
 
  private:
-  // Fills slopes_ from heights_ on the device (after their upload).
-  void computeSlopes(const Device& device, const Heightfield& field);
+  // Fills slopes_ from heights_ on the device (after their upload), and
+  // with horizons their B and A from the pair `first`, first + 1.
+  void computeSlopes(const Device& device, int first) const;
   // `apertureRows` writes whole DEM rows of RGBA16F bent normal + arc length.
   void build(const Device& device, const Heightfield& field,
              const std::function<void(uint32_t firstRow, uint32_t endRow, void* destination)>&
                  apertureRows,
              const AlbedoImage* albedo, size_t triangleBudget, const TerrainTiling& tiling);
-  // Uploads `map`'s layers into `image` in the order of `rotation`.
-  void uploadHorizons(const Device& device, const Image& image, const HorizonMap& map,
-                      int rotation) const;
 
   TerrainTiling tiling_;  // what the caller asked for beyond the device's limits
   TerrainTileLayout tiles_;
   std::vector<Image> heights_, aperture_, albedo_, slopes_;
-  std::unique_ptr<Image> horizons_;
-  std::shared_ptr<const HorizonMap> horizonMap_;  // the host copy (for re-laying)
+  std::shared_ptr<const HorizonMap> horizonMap_;  // the host copy (for re-laying); null: none
   int horizonBits_ = kHorizonBits;
   int horizonDirections_ = 0;
-  // How the layers lie on the device now: the device's state, not the scene's
-  // content (relayHorizons is const).
-  mutable int horizonRotation_ = 0;
+  // The pair on the device now: the device's state, not the scene's content
+  // (relayHorizons is const).
+  mutable int horizonFirst_ = 0;
   mutable uint64_t horizonRelays_ = 0;
   uint64_t horizonBytes_ = 0;
   uint64_t textureBytes_ = 0;

@@ -59,14 +59,15 @@ layout(set = 0, binding = 0, std140) uniform Frame {
   int heightLayersPerPage;     // 396 tiles (layers) per texture page of each kind
   int apertureLayersPerPage;   // 400
   int albedoLayersPerPage;     // 404
-  int horizonBits;             // 408 bits of the directional horizons' codes (horizon.glsl)
+  int unused0;                 // 408
   int unused1;                 // 412 (the sky starts on 16 bytes)
 
   PreethamSky sky;  // 416 .. 528
 
-  // The horizon mode's lookup for the frame's sun (horizon.glsl horizonFromLayer).
-  vec4 horizonWeights;  // 528
-  float horizonLayer;   // 544 the layer, within a tile's, of both directions beside the sun
+  // The horizon mode's weights of the horizons of the two directions beside
+  // the frame's sun (horizonPairWeights, terrain/io/horizon_map.h), which
+  // the slope texture holds in B and A (terrain_shading.glsl).
+  vec2 horizonWeights;  // 528
 }
 frame;
 

@@ -59,7 +59,6 @@ void main() {
   put(frame.heightLayersPerPage);
   put(frame.apertureLayersPerPage);
   put(frame.albedoLayersPerPage);
-  put(frame.horizonBits);
   put(frame.sky.perezA);
   put(frame.sky.perezB);
   put(frame.sky.perezC);
@@ -68,5 +67,4 @@ void main() {
   put(frame.sky.zenith);
   put(frame.sky.sunDirection);
   put(frame.horizonWeights);
-  put(frame.horizonLayer);
 }

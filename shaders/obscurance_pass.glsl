@@ -64,7 +64,7 @@ vec3 obscuranceAlbedo(vec2 texel, float heightM, vec3 normal) {
 
 // Level 0 of the slope texture holds the same central differences.
 vec2 obscuranceSlope(vec2 texel, vec2 cellSizeM) {
-  return terrainSlopeLod(texel, 0.0);
+  return terrainSlopeLod(texel, 0.0).xy;
 }
 
 vec3 obscuranceSampleOffset(int set, int i) {

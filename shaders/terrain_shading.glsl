@@ -9,21 +9,14 @@
 
 #include "config.h"
 // After the terrain textures and the LOD patches (patch_vertex.glsl): the
-// exact mode's cap table, the horizon mode's directional horizons.
+// exact mode's cap table.
 #define AAL_CAP_TABLE_BINDING (AAL_TERRAIN_TEXTURES_END + 1)
-#define AAL_HORIZON_BINDING (AAL_TERRAIN_TEXTURES_END + 2)
 #include "frame.glsl"
-#include "horizon.glsl"
 #include "palette.glsl"
 #include "shading.glsl"
 #include "terrain_textures.glsl"
 #include "tone_map.glsl"
 #include "variant.glsl"
-
-// In the tiles of the other textures, one image: tile t's directions
-// 4l..4l+3 in layer t * (directions / 4) + l (engine/terrain_scene.h
-// setHorizons; a 1-texel stand-in without them).
-layout(set = 0, binding = AAL_HORIZON_BINDING) uniform sampler2DArray terrainHorizons;
 
 layout(location = 0) in vec3 worldPosition;
 layout(location = 1) in vec2 texelPosition;
@@ -46,10 +39,21 @@ float terrainFragmentLod(vec2 texel) {
   return max(0.0, 0.5 * log2(max(dot(dx, dx), dot(dy, dy))));
 }
 
-// Normal from the slope texture at level of detail `lod`: central
-// differences of the heights one of its texels (2^lod of the DEM's) apart.
-vec3 surfaceNormal(vec2 texel, float lod) {
-  vec2 slope = terrainSlopeLod(texel, lod);
+// The horizon mode's slope fetch: the footprint's shorter axis, but at most
+// one level finer than terrainFragmentLod (an anisotropy of 2 at most, so
+// the far field aliases little more). The horizons in the slopes are
+// prefiltered, and at the longer axis' level their means blur the shadows'
+// edges (the error against the ray tracer rose 5-10 % over level 0's on the
+// fBm and jacksboro, docs/comparison.md); the normals come sharper with
+// them. Call in uniform control flow.
+float horizonFragmentLod(vec2 texel, float lod) {
+  vec2 dx = dFdx(texel), dy = dFdy(texel);
+  return max(lod - 1.0, max(0.0, 0.5 * log2(min(dot(dx, dx), dot(dy, dy)))));
+}
+
+// Normal from slopes (terrainSlopeLod): central differences of the heights
+// one of the fetch's level's texels (2^lod of the DEM's) apart.
+vec3 surfaceNormal(vec2 slope) {
   return normalize(vec3(-slope, 1.0));
 }
 
@@ -64,8 +68,13 @@ void main() {
   // fetches few and local (and the far field free of aliasing).
   float lod = terrainFragmentLod(texelPosition);
   vec4 aperture = terrainApertureLod(texelPosition, lod);
+  // Slopes, and in the horizon mode the horizons of the two stored
+  // directions beside the sun (engine/terrain_scene.h setHorizons).
+  vec4 slope = terrainSlopeLod(
+      texelPosition,
+      kShadingMode == AAL_MODE_HORIZON ? horizonFragmentLod(texelPosition, lod) : lod);
   ShadingInputs s;
-  s.normal = surfaceNormal(texelPosition, lod);
+  s.normal = surfaceNormal(slope.xy);
   s.bentNormal = normalize(aperture.xyz);
   s.apertureRad = aperture.w;
   s.albedo = albedoAt(texelPosition, lod, worldPosition.z, s.normal);
@@ -76,19 +85,12 @@ void main() {
   s.transfer = vec3(1.0);
   s.sunHorizonRad = -0.5 * float(AAL_PI);
   if (kShadingMode == AAL_MODE_HORIZON) {
-    // The horizon in the sun's azimuth, bilinear between texel centres, from
-    // the texel's tile (layersPerPage beyond any index: the layer is the
-    // tile's). Which of the tile's layers and channels to read, and their
-    // weights, come with the frame (horizonLayerWeights,
-    // terrain/io/horizon_map.h; the sun is the frame's): one fetch, the
-    // renderer having laid the layers out so that one holds both directions
-    // beside the sun (horizonRotationFor; docs/rendering.md).
-    TerrainTileTexel tile = terrainTexel(texelPosition, 1 << 30);
-    int layersPerTile =
-        max(1, textureSize(terrainHorizons, 0).z / (frame.tileCount.x * frame.tileCount.y));
-    float first = float(tile.layer * layersPerTile);
-    vec4 layer = textureLod(terrainHorizons, vec3(tile.uv, first + frame.horizonLayer), 0.0);
-    s.sunHorizonRad = horizonFromLayer(layer, frame.horizonWeights, frame.horizonBits);
+    // The horizon in the sun's azimuth: linear between the pair's, with the
+    // frame's weights (horizonPairWeights, terrain/io/horizon_map.h; the sun
+    // is the frame's), prefiltered at the fragment's level of detail as the
+    // normal is. No fetch of its own: a fetch is what costs on lavapipe
+    // (docs/performance.md).
+    s.sunHorizonRad = dot(slope.zw, frame.horizonWeights);
   }
   // Aerial perspective: radiance (direct + ambient W) T + L_sky (1 - T).
   float distance = length(worldPosition - frame.cameraPos);

@@ -108,12 +108,14 @@ vec3 terrainAlbedo(vec2 texel) {
   return terrainAlbedoLod(texel, 0.0);
 }
 
-// Slope of the heights (dz/dx east, dz/dy north; m/m) at level of detail
-// `lod`: the central differences of each level's heights one level texel
-// apart (slopes.comp), laid out in tiles and pages as the heights.
-vec2 terrainSlopeLod(vec2 texel, float lod) {
+// Slope of the heights (xy: dz/dx east, dz/dy north; m/m) at level of
+// detail `lod`: the central differences of each level's heights one level
+// texel apart (slopes.glsl), laid out in tiles and pages as the heights. zw:
+// with directional horizons, the horizons (rad) of the pair of directions
+// beside the sun (engine/terrain_scene.h setHorizons); else 0, 1.
+vec4 terrainSlopeLod(vec2 texel, float lod) {
   TerrainTileTexel t = terrainTexel(texel, frame.heightLayersPerPage);
-  return AAL_TERRAIN_FETCH_HEIGHT(terrainSlope, t, lod).rg;
+  return AAL_TERRAIN_FETCH_HEIGHT(terrainSlope, t, lod);
 }
 
 #endif

@@ -221,11 +221,11 @@ int runComparison(const Options& o, const aal::Heightfield& field, aal::TerrainS
     }
     aal::ComparedMode m{name, aal::ShadingMode::Horizon, settings.obscurance.enabled};
     if (horizons.size() > 1) {
-      // Laid out for the one sun (horizonRotationFor): no re-lay in the frame.
-      const int rotation = aal::horizonRotationFor(
+      // Laid for the one sun (horizonPairFor): no re-lay in the frame.
+      const int first = aal::horizonPairFor(
           horizons[i]->directions, aal::sunAzimuthRad(settings.lighting.sunDirection), -1);
-      m.prepare = [&scene, &device, &horizons, i, rotation] {
-        scene.setHorizons(device, horizons[i], rotation);
+      m.prepare = [&scene, &device, &horizons, i, first] {
+        scene.setHorizons(device, horizons[i], first);
       };
     }
     modes.push_back(std::move(m));
@@ -457,9 +457,9 @@ int run(const Options& o) {
   }
   inMemory = {};
   albedo.reset();
-  // The horizons' layers laid out for the first frame's sun (one layer
-  // holds both directions beside it, horizonRotationFor): no re-lay before
-  // it. A sequence's later suns re-lay when they need it.
+  // The horizons of the two directions beside the first frame's sun on the
+  // device (horizonPairFor): no re-lay before it. A sequence's later suns
+  // re-lay when they leave that pair.
   aal::FrameSettings first = settings;
   if (sequence) setSequenceFrame(o, *sequence, field, 0, first);
   const float firstAzimuth = aal::sunAzimuthRad(first.lighting.sunDirection);
@@ -468,7 +468,7 @@ int run(const Options& o) {
     auto horizons = std::make_shared<const aal::HorizonMap>(aal::readHorizonsOfDem(path, field));
     try {
       scene->setHorizons(device, horizons,
-                         aal::horizonRotationFor(horizons->directions, firstAzimuth, -1));
+                         aal::horizonPairFor(horizons->directions, firstAzimuth, -1));
     } catch (const std::invalid_argument& e) {
       throw aal::InputError(std::string("--horizons: ") + e.what());
     }
@@ -489,8 +489,9 @@ int run(const Options& o) {
     std::printf("triangles  %zu\n", frame.triangles);
     std::printf("textures   %s, %.1f MiB\n", aal::describeTerrainTiles(scene->tiles()).c_str(),
                 double(scene->textureBytes()) / (1 << 20));
-    if (scene->horizons()) {
-      std::printf("horizons   %.1f MiB of them\n", double(scene->horizonBytes()) / (1 << 20));
+    if (scene->hasHorizons()) {
+      std::printf("horizons   %.1f MiB of them (two directions in the slopes)\n",
+                  double(scene->horizonBytes()) / (1 << 20));
     }
     std::printf("sun        azimuth %.2f deg, elevation %.2f deg\n", sun.azimuthDeg,
                 sun.elevationDeg);

@@ -93,24 +93,12 @@ HorizonNeighbours horizonNeighbours(int directions, float azimuthRad) {
   return neighboursAt(directions, directionPosition(directions, azimuthRad));
 }
 
-// Direction k's layer and channel on the device, layers rotated by `rotation`.
-int rotatedSlot(int directions, int k, int rotation) {
-  return ((k - rotation) % directions + directions) % directions;
-}
-
-bool servesNeighbours(int directions, const HorizonNeighbours& h, int rotation) {
-  return rotatedSlot(directions, h.k0, rotation) / 4 == rotatedSlot(directions, h.k1, rotation) / 4;
-}
-
-// Whether `rotation` serves every position within the margin of x (x in [0, n)).
-bool servesWithMargin(int directions, float x, int rotation) {
+// x - first in direction steps, wrapped into [-n/2, n/2).
+float stepsPast(int directions, float x, int first) {
   const float n = float(directions);
-  for (float y : {x - kHorizonRotationMargin, x, x + kHorizonRotationMargin}) {
-    if (y < 0.0f) y += n;
-    if (y >= n) y -= n;
-    if (!servesNeighbours(directions, neighboursAt(directions, y), rotation)) return false;
-  }
-  return true;
+  float d = x - float(first);
+  d -= n * std::floor(d / n + 0.5f);
+  return d;
 }
 
 }  // namespace
@@ -120,44 +108,27 @@ float horizonAtAzimuth(const uint8_t* codes, int directions, float azimuthRad, i
   return (1.0f - h.f) * decodeHorizon(codes[h.k0], bits) + h.f * decodeHorizon(codes[h.k1], bits);
 }
 
-bool validHorizonRotation(int rotation) {
-  return rotation == 0 || rotation == 2;
+bool validHorizonPair(int directions, int first) {
+  return validHorizonDirections(directions) && first >= 0 && first < directions;
 }
 
-bool horizonRotationServes(int directions, float azimuthRad, int rotation) {
-  return servesNeighbours(directions, horizonNeighbours(directions, azimuthRad), rotation);
-}
-
-int horizonRotationFor(int directions, float azimuthRad, int currentRotation) {
+int horizonPairFor(int directions, float azimuthRad, int currentFirst) {
   const float x = directionPosition(directions, azimuthRad);
-  if (validHorizonRotation(currentRotation) && servesWithMargin(directions, x, currentRotation)) {
-    return currentRotation;
+  if (validHorizonPair(directions, currentFirst)) {
+    const float d = stepsPast(directions, x, currentFirst);
+    if (d >= -kHorizonPairMargin && d <= 1.0f + kHorizonPairMargin) return currentFirst;
   }
-  // The seams of one rotation lie two steps from the other's, so one of them
-  // serves with the margin (with 4 directions both do: one layer).
-  for (const int rotation : kHorizonRotations) {
-    if (rotation != currentRotation && servesWithMargin(directions, x, rotation)) return rotation;
-  }
-  return validHorizonRotation(currentRotation) ? currentRotation : 0;  // not reached
+  return neighboursAt(directions, x).k0;
 }
 
-HorizonLayerWeights horizonLayerWeights(int directions, float azimuthRad, int bits, int rotation) {
-  const HorizonNeighbours h = horizonNeighbours(directions, azimuthRad);
-  if (!validHorizonRotation(rotation) || !servesNeighbours(directions, h, rotation)) {
-    throw std::invalid_argument(
-        "horizonLayerWeights: the directions beside the azimuth lie in "
-        "two layers of rotation " +
-        std::to_string(rotation));
+std::array<float, 2> horizonPairWeights(int directions, float azimuthRad, int first) {
+  if (!validHorizonPair(directions, first)) {
+    throw std::invalid_argument("horizonPairWeights: direction " + std::to_string(first) +
+                                " of " + std::to_string(directions));
   }
-  // decodeHorizonUnorm: kHorizonMinRad + p(u) * range.
-  const float range = (bits == 4 ? kHorizon4BitMaxRad : kHorizonMaxRad) - kHorizonMinRad;
-  const int slot0 = rotatedSlot(directions, h.k0, rotation),
-            slot1 = rotatedSlot(directions, h.k1, rotation);
-  HorizonLayerWeights w;
-  w.layer = slot0 / 4;
-  w.weights[size_t(slot0 % 4)] = (1.0f - h.f) * range;
-  w.weights[size_t(slot1 % 4)] = h.f * range;
-  return w;
+  const float f = std::clamp(
+      stepsPast(directions, directionPosition(directions, azimuthRad), first), 0.0f, 1.0f);
+  return {1.0f - f, f};
 }
 
 void writeHorizonMap(const std::filesystem::path& path, const HorizonMap& map) {

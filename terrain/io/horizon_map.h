@@ -66,45 +66,30 @@ struct HorizonMap {
 float horizonAtAzimuth(const uint8_t* codes, int directions, float azimuthRad,
                        int bits = kHorizonBits);
 
-// The device lays the directions out four to an RGBA layer (engine/
-// terrain_scene.h), rotated by r = 0 or 2: layer l holds directions
-// (4l + r) .. (4l + r + 3) mod n as R, G, B, A. The two stored directions
-// beside an azimuth lie in one layer for at least one of the two rotations
-// (the layers' seams of one lie mid-layer of the other), so the horizon
-// mode fetches one layer per fragment whatever the sun, the renderer
-// re-laying the layers when the sun crosses a seam (docs/rendering.md, the
-// horizon mode).
-constexpr int kHorizonRotations[] = {0, 2};
-bool validHorizonRotation(int rotation);  // 0 or 2
-// Whether both stored directions beside azimuthRad lie in one layer when
-// the layers are rotated by `rotation`.
-bool horizonRotationServes(int directions, float azimuthRad, int rotation);
-// The rotation to draw a sun at azimuthRad with: `currentRotation` while it
-// serves the azimuth and the sun is more than kHorizonRotationMargin of a
-// direction step from its seams (hysteresis: a sun resting on a seam, or
-// jittering about it, does not re-lay every frame), else the other one
-// (which then serves with that margin). `currentRotation` outside 0 and 2
-// (none laid yet): whichever serves with the margin, 0 when both do.
-// Always a rotation that serves azimuthRad.
-constexpr float kHorizonRotationMargin = 0.125f;
-int horizonRotationFor(int directions, float azimuthRad, int currentRotation);
-
-// What a shader needs to read the horizon at one azimuth from the device's
-// layers rotated by `rotation`: the layer of the two stored directions
-// beside the azimuth and, per channel, the weight of the code's power p(u)
-// (u = code / (2^bits - 1); p(u) = u^2 for 8-bit codes, u^1.5 for 4-bit
-// ones), the interpolation's weight and the decode's scale in one, so that
-//   horizon = kHorizonMinRad + dot(p(layer), weights)
-// equals horizonAtAzimuth (up to float rounding): one fetch. The sun is the
-// frame's, so the renderer computes this once per frame instead of every
-// fragment (docs/rendering.md, the horizon mode). Throws
-// std::invalid_argument where `rotation` does not serve the azimuth
-// (horizonRotationFor picks one that does).
-struct HorizonLayerWeights {
-  int layer = 0;
-  std::array<float, 4> weights{};
-};
-HorizonLayerWeights horizonLayerWeights(int directions, float azimuthRad, int bits, int rotation);
+// The device holds, per texel, the horizons of two adjacent stored
+// directions, `first` and first + 1 mod n, decoded to radians in the slope
+// texture's spare channels (engine/terrain_scene.h setHorizons): the pair
+// beside the frame's sun, so the horizon mode reads the sun's horizon in
+// the same fetch as the normal. The renderer lays the pair again when the
+// sun leaves it (docs/rendering.md, the horizon mode).
+//
+// The pair to draw a sun at azimuthRad with: `currentFirst` while the sun
+// lies within that pair's span widened by kHorizonPairMargin direction
+// steps on either side (hysteresis: a sun resting on a stored direction, or
+// jittering about it, does not re-lay every frame), else the pair whose span
+// holds the sun. `currentFirst` outside [0, directions) (none laid yet): the
+// pair whose span holds the sun.
+constexpr float kHorizonPairMargin = 0.0625f;
+bool validHorizonPair(int directions, int first);  // 0 <= first < directions
+int horizonPairFor(int directions, float azimuthRad, int currentFirst);
+// The weights of the pair's two horizons for a sun at azimuthRad, so that
+//   horizon = weights[0] h(first) + weights[1] h(first + 1)
+// equals horizonAtAzimuth (up to float rounding) wherever the sun lies in
+// the pair's span; within the margin outside it the nearer direction's
+// horizon (weights 1, 0 or 0, 1). The sun is the frame's, so the renderer
+// computes them once per frame, not per fragment. Throws
+// std::invalid_argument for an invalid pair.
+std::array<float, 2> horizonPairWeights(int directions, float azimuthRad, int first);
 
 // Writes / reads the file format of docs/baking.md ("aperture-horizons 3"
 // header line with the code bits and the DEM's checksum, then the codes;

@@ -4,6 +4,7 @@
 #include <OpenImageIO/imagebuf.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
@@ -136,17 +137,17 @@ TEST_F(Render, HorizonModeShadowsThePlainBehindTheRidge) {
   EXPECT_THROW(scene.setHorizons(device(), small), std::invalid_argument);
 }
 
-// The device image holds every stored direction where the shader looks for
-// it: RGBA8 layers for 8-bit codes, BGRA4 layers (bits packed by
-// TerrainScene::setHorizons) for 4-bit ones, laid out with either rotation
-// (layer l holding directions 4l + r .. 4l + r + 3). Flat ground whose
+// The horizon mode reads the right stored direction, through either place in
+// the slope texture: the pair's first direction in B, its second in A
+// (TerrainScene::setHorizons; 8- and 4-bit codes). Flat ground whose
 // horizons are made up: every direction's horizon is 45 degrees or -2, in a
-// pattern that no swap of two channels or two layers keeps; a sun 30 degrees
-// up in each stored direction, and a fifth of a step to either side of it,
-// must be hidden exactly where its direction's horizon is high. Each sun is
-// drawn with the scene's layers laid out with rotation 0 and with 2 before
-// the frame: the renderer keeps the one that serves the sun, or re-lays; so
-// every direction is read through both layouts.
+// pattern that no swap of two directions keeps; a sun 30 degrees up in each
+// stored direction, and a fifth of a step to either side of it, must be
+// hidden exactly where its direction's horizon is high. Each sun is drawn
+// with the scene's pair laid as the sun's own, as the pair before it and as
+// one far off first: the renderer keeps a pair that serves the sun (a sun on
+// direction k is served by k-1, k and k, k+1), or re-lays; so every
+// direction is read from B and from A.
 TEST_F(Render, HorizonModeReadsEveryStoredDirection) {
   Heightfield f;
   f.width = f.height = 33;
@@ -160,12 +161,9 @@ TEST_F(Render, HorizonModeReadsEveryStoredDirection) {
     map.height = f.height;
     map.directions = 16;
     map.bits = bits;
-    // Per layer of rotation 0 (R, G, B, A): 1000, 0100, 0010, 1101 — the
-    // layers differ, and for every two channels some layer holds different
-    // values in them; of rotation 2: 0001, 0000, 1010, 1110.
     const auto high = [](int k) {
       constexpr bool kHigh[16] = {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 1, 1, 0, 1};
-      return kHigh[k];
+      return kHigh[(k + 16) % 16];
     };
     for (size_t texel = 0; texel < f.texelCount(); ++texel) {
       for (int k = 0; k < map.directions; ++k) {
@@ -174,7 +172,7 @@ TEST_F(Render, HorizonModeReadsEveryStoredDirection) {
     }
     scene.setHorizons(device(), map);
     for (int k = 0; k < map.directions; ++k) {
-      bool readWith[2] = {false, false};
+      bool readFrom[2] = {false, false};  // B (first of the pair), A (second)
       for (const double offset : {0.0, -0.2, 0.2}) {
         // Direction k is k * 22.5 degrees counter-clockwise from east: compass
         // 90 - that. A fifth of a step away the horizon is still high (above
@@ -183,16 +181,20 @@ TEST_F(Render, HorizonModeReadsEveryStoredDirection) {
         s.obscurance.enabled = false;
         const float lambert = red(renderer.render(scene, s, true), 32, 32);
         s.mode = ShadingMode::Horizon;
-        for (const int laid : kHorizonRotations) {
+        for (const int laid : {k, (k + 15) % 16, (k + 8) % 16}) {
           scene.relayHorizons(device(), laid);
           const float lit = red(renderer.render(scene, s, true), 32, 32);
-          const int used = scene.horizonRotation();
-          EXPECT_TRUE(horizonRotationServes(16, sunAzimuthRad(s.lighting.sunDirection), used));
-          readWith[used / 2] = true;
+          const int used = scene.horizonFirst();
+          const std::array<float, 2> w =
+              horizonPairWeights(16, sunAzimuthRad(s.lighting.sunDirection), used);
+          // The pair drawn with holds direction k and weighs it most.
+          ASSERT_TRUE(used == k || (used + 1) % 16 == k) << k << " drawn with " << used;
+          EXPECT_GE(w[used == k ? 0 : 1], 0.8f - 1e-5f) << k << " drawn with " << used;
+          readFrom[used == k ? 0 : 1] = true;
           const std::string what = std::to_string(bits) + "-bit codes, direction " +
                                    std::to_string(k) + " " + std::to_string(offset) +
-                                   ", laid with rotation " + std::to_string(laid) +
-                                   ", drawn with " + std::to_string(used);
+                                   ", laid " + std::to_string(laid) + ", drawn with " +
+                                   std::to_string(used);
           if (high(k)) {
             EXPECT_LT(lit, 0.5f * lambert) << what << ": hidden";
           } else {
@@ -200,18 +202,17 @@ TEST_F(Render, HorizonModeReadsEveryStoredDirection) {
           }
         }
       }
-      EXPECT_TRUE(readWith[0] && readWith[1]) << bits << "-bit codes, direction " << k;
+      EXPECT_TRUE(readFrom[0] && readFrom[1]) << bits << "-bit codes, direction " << k;
     }
   }
 }
 
 // Re-laying the horizons for another sun (TerrainScene::relayHorizons, from
-// TerrainRenderer::record) leaves the scene as a fresh one laid out for that
+// TerrainRenderer::record) leaves the scene as a fresh one laid for that
 // sun: the ridge's horizons of 8 directions, a sun in the west-north-west
-// (between directions 3 and 4: layers 0 and 1 of rotation 0, so rotation 2),
-// then in the north-north-east (between 1 and 2: rotation 0), and back; the
-// last picture equals, byte for byte, one from a scene given the horizons
-// for that sun, and one from a scene laid out for the other rotation first.
+// (between directions 3 and 4), then in the north-north-east (between 1 and
+// 2), and back; the last picture equals, byte for byte, one from a scene
+// given the horizons for that sun.
 TEST_F(Render, ReLaidHorizonsDrawAsAFreshScene) {
   const Heightfield f = ridge();
   BakeOptions o;
@@ -225,26 +226,24 @@ TEST_F(Render, ReLaidHorizonsDrawAsAFreshScene) {
   FrameSettings west = topView(f, ShadingMode::Horizon, 292.5, 26);
   FrameSettings north = topView(f, ShadingMode::Horizon, 22.5, 26);
   west.obscurance.enabled = north.obscurance.enabled = false;
-  const float westAzimuth = sunAzimuthRad(west.lighting.sunDirection);
-  ASSERT_FALSE(horizonRotationServes(8, westAzimuth, 0));
-  ASSERT_EQ(horizonRotationFor(8, westAzimuth, 0), 2);
-  ASSERT_EQ(horizonRotationFor(8, sunAzimuthRad(north.lighting.sunDirection), 2), 0);
+  ASSERT_EQ(horizonPairFor(8, sunAzimuthRad(west.lighting.sunDirection), -1), 3);
+  ASSERT_EQ(horizonPairFor(8, sunAzimuthRad(north.lighting.sunDirection), 3), 1);
 
   TerrainScene moving(device(), f, baked.aperture, nullptr, 100000);
   moving.setHorizons(device(), shared);
-  EXPECT_EQ(moving.horizonRotation(), 0);
+  EXPECT_EQ(moving.horizonFirst(), 0);
   renderer.render(moving, west, false);
-  EXPECT_EQ(moving.horizonRotation(), 2);
+  EXPECT_EQ(moving.horizonFirst(), 3);
   renderer.render(moving, west, false);  // the same sun: no re-lay
   EXPECT_EQ(moving.horizonRelays(), 1u);
   renderer.render(moving, north, false);
-  EXPECT_EQ(moving.horizonRotation(), 0);
+  EXPECT_EQ(moving.horizonFirst(), 1);
   const FrameResult last = renderer.render(moving, west, false);
-  EXPECT_EQ(moving.horizonRotation(), 2);
+  EXPECT_EQ(moving.horizonFirst(), 3);
   EXPECT_EQ(moving.horizonRelays(), 3u);
 
   TerrainScene fresh(device(), f, baked.aperture, nullptr, 100000);
-  fresh.setHorizons(device(), shared, 2);
+  fresh.setHorizons(device(), shared, 3);
   const FrameResult reference = renderer.render(fresh, west, false);
   EXPECT_EQ(fresh.horizonRelays(), 0u);
   EXPECT_EQ(last.display, reference.display) << "re-laid against laid for the sun";

@@ -231,12 +231,13 @@ constexpr VkShaderStageFlags kBoth = kVertex | kFragment;
 // Checked by hand against shaders/terrain_textures.glsl, terrain_shading.glsl,
 // patch_vertex.glsl and config.h: the frame (0), four pages of heights,
 // apertures, albedo and slopes (1-16), the patches (17, read by the vertex
-// shader), the cap table and the horizons (18, 19).
+// shader), the cap table (18; the horizon mode's horizons come with the
+// slopes).
 TEST(SpirvReflection, TheTerrainPipelineMergesItsTwoStages) {
   const ShaderInterface merged =
       mergeShaderInterfaces({reflected("terrain.vert"), reflected("terrain.frag")});
   EXPECT_EQ(merged.stages, kBoth);
-  ASSERT_EQ(merged.bindings.size(), 20u);
+  ASSERT_EQ(merged.bindings.size(), 19u);
   EXPECT_EQ(merged.bindings[0], (DescriptorBinding{.set = 0,
                                                    .binding = 0,
                                                    .type = VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER,
@@ -252,17 +253,14 @@ TEST(SpirvReflection, TheTerrainPipelineMergesItsTwoStages) {
                                                     .type = VK_DESCRIPTOR_TYPE_STORAGE_BUFFER,
                                                     .count = 1,
                                                     .stages = kVertex}));
-  for (uint32_t b : {18u, 19u}) {
-    EXPECT_EQ(merged.bindings[b],
-              (DescriptorBinding{.set = 0,
-                                 .binding = b,
-                                 .type = VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER,
-                                 .count = 1,
-                                 .stages = kFragment}));
-  }
+  EXPECT_EQ(merged.bindings[18], (DescriptorBinding{.set = 0,
+                                                    .binding = 18,
+                                                    .type = VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER,
+                                                    .count = 1,
+                                                    .stages = kFragment}));
 }
 
-// shaders/slopes.comp: the heights sampled, a slope level written.
+// shaders/slopes.glsl: the heights sampled, a slope level written.
 TEST(SpirvReflection, TheSlopeShaderReadsASampledAndWritesAStorageImage) {
   const ShaderInterface slopes = reflected("slopes.comp");
   EXPECT_EQ(slopes.stages, VkShaderStageFlags(VK_SHADER_STAGE_COMPUTE_BIT));
@@ -270,6 +268,14 @@ TEST(SpirvReflection, TheSlopeShaderReadsASampledAndWritesAStorageImage) {
   EXPECT_EQ(slopes.bindings[0].type, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER);
   EXPECT_EQ(slopes.bindings[1].type, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE);
   EXPECT_EQ(slopes.bindings[1].binding, 1u);
+  // With the horizon pair (slopes_horizons.comp): also its codes, sampled,
+  // and the level below, a storage image.
+  const ShaderInterface horizons = reflected("slopes_horizons.comp");
+  ASSERT_EQ(horizons.bindings.size(), 4u);
+  EXPECT_EQ(horizons.bindings[0].type, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER);
+  EXPECT_EQ(horizons.bindings[1].type, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE);
+  EXPECT_EQ(horizons.bindings[2].type, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER);
+  EXPECT_EQ(horizons.bindings[3].type, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE);
 }
 
 // shaders/frame_layout_parity.comp: the frame's uniforms in, words out.

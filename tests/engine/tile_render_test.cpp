@@ -14,17 +14,20 @@
 #include <cstdio>
 #include <cstring>
 #include <numbers>
+#include <random>
 #include <stdexcept>
 #include <string>
 #include <utility>
 
 #include <Imath/half.h>
 #include <glm/vec3.hpp>
+#include <glm/vec4.hpp>
 
 #include "albedo_image.h"
 #include "bake.h"
 #include "buffer.h"
 #include "commands.h"
+#include "horizon_map.h"
 #include "sky_lighting.h"
 #include "synthetic.h"
 #include "terrain_renderer.h"
@@ -279,21 +282,26 @@ TEST_F(TileRender, EveryTilesMipLevelsAreTheWholeDemsLevels) {
   }
 }
 
-// RG16F slopes (dz/dx east, dz/dy north) of mip level `level` of a slope page.
-std::vector<glm::vec2> readSlopes(const Device& device, const Image& page, uint32_t layer,
+// Slopes (xy: dz/dx east, dz/dy north) of mip level `level` of a slope
+// page: RG16F (zw 0), or RGBA16F with the horizon pair in zw.
+std::vector<glm::vec4> readSlopes(const Device& device, const Image& page, uint32_t layer,
                                   uint32_t level) {
-  const std::vector<unsigned char> bytes = readLevelBytes(device, page, layer, level, 4);
-  std::vector<glm::vec2> slopes(bytes.size() / 4);
+  const size_t channels = page.desc().format == VK_FORMAT_R16G16B16A16_SFLOAT ? 4 : 2;
+  const std::vector<unsigned char> bytes =
+      readLevelBytes(device, page, layer, level, 2 * channels);
+  std::vector<glm::vec4> slopes(bytes.size() / (2 * channels), glm::vec4(0.0f));
   for (size_t i = 0; i < slopes.size(); ++i) {
-    Imath::half x, y;
-    x.setBits(static_cast<uint16_t>(bytes[4 * i] | bytes[4 * i + 1] << 8));
-    y.setBits(static_cast<uint16_t>(bytes[4 * i + 2] | bytes[4 * i + 3] << 8));
-    slopes[i] = {float(x), float(y)};
+    for (size_t k = 0; k < channels; ++k) {
+      const unsigned char* b = &bytes[2 * (channels * i + k)];
+      Imath::half v;
+      v.setBits(static_cast<uint16_t>(b[0] | b[1] << 8));
+      slopes[i][int(k)] = float(v);
+    }
   }
   return slopes;
 }
 
-// The slope texture (shaders/slopes.comp) holds, at every level of every
+// The slope texture (shaders/slopes.glsl) holds, at every level of every
 // tile, the central differences of that level's heights one texel apart
 // (recomputed here in double from the heights read back; the image's edge
 // takes its own texel for the missing neighbour), to half-float rounding;
@@ -308,14 +316,14 @@ TEST_F(TileRender, SlopesAreEachLevelsCentralDifferencesInEveryTile) {
   ASSERT_EQ(tiled.slopePages().size(), tiled.heightPages().size());
   for (uint32_t level = 0; level < kTerrainMipLevels; ++level) {
     const double span = 2.0 * double(1 << level);
-    const std::vector<glm::vec2> reference = readSlopes(device(), single.slopePages()[0], 0, level);
+    const std::vector<glm::vec4> reference = readSlopes(device(), single.slopePages()[0], 0, level);
     const uint32_t referenceWidth = whole.imageWidth() >> level;
     const uint32_t referenceHeight = whole.imageHeight() >> level;
     double worst = 0;
     size_t compared = 0, different = 0;
     for (uint32_t tile = 0; tile < t.tileCount(); ++tile) {
       const std::vector<float> heights = readLevel(device(), tiled.heightPages()[0], tile, level);
-      const std::vector<glm::vec2> slopes =
+      const std::vector<glm::vec4> slopes =
           readSlopes(device(), tiled.slopePages()[0], tile, level);
       const uint32_t w = t.imageWidth() >> level, h = t.imageHeight() >> level;
       const auto height = [&](int64_t c, int64_t r) {
@@ -326,7 +334,7 @@ TEST_F(TileRender, SlopesAreEachLevelsCentralDifferencesInEveryTile) {
       const uint32_t offsetY = (tile / t.tilesX) * t.coreHeight >> level;
       for (uint32_t r = 0; r < h; ++r) {
         for (uint32_t c = 0; c < w; ++c) {
-          const glm::vec2 got = slopes[size_t{r} * w + c];
+          const glm::vec4 got = slopes[size_t{r} * w + c];
           const int64_t x = c, y = r;
           const double east = (height(x + 1, y) - height(x - 1, y)) / (span * kCellM);
           const double north = (height(x, y - 1) - height(x, y + 1)) / (span * kCellM);
@@ -398,11 +406,116 @@ TEST_F(TileRender, TiledTexturesRenderAsOneImageInEveryMode) {
   }
 }
 
-// The horizon mode (issue 18) in a tiled scene: the directional horizons
-// lie in the other textures' tiles (engine/terrain_scene.h setHorizons) and
-// the shader finds them with the same lookup. 8-bit codes of 8 directions
-// and 4-bit codes of 16, a sun 9 degrees up (the horizons hide it where the
-// aperture's cap does not), from above and obliquely: the tolerance of
+// With directional horizons the slope texture's B and A hold the horizons
+// (rad) of the pair of directions on the device (engine/terrain_scene.h
+// setHorizons): at level 0 of every tile the decoded codes of the DEM texel
+// it covers (clamped at the DEM's edge, as every kind's border), to
+// half-float rounding (shaders/slopes.glsl decodes as decodeHorizon does);
+// at each level above the mean of the 2 x 2 texels below, to half-float
+// rounding; in every tile the single image's values over the tile's window,
+// bit for bit; the slopes in R and G as without horizons. A re-lay writes
+// another pair (here the one across direction 0) and leaves the slopes as
+// they were. Random codes, 16 directions of 4 bits and 8 of 8.
+TEST_F(TileRender, SlopesHoldTheHorizonPairInEveryTile) {
+  const Heightfield field = fbm();
+  std::mt19937 rng(18);
+  for (const auto& [directions, bits] : {std::pair{16, 4}, std::pair{8, 8}}) {
+    HorizonMap map;
+    map.width = kWidth;
+    map.height = kHeight;
+    map.directions = directions;
+    map.bits = bits;
+    std::uniform_int_distribution<int> code(0, (1 << bits) - 1);
+    map.codes.resize(size_t(kWidth) * kHeight * size_t(directions));
+    for (uint8_t& c : map.codes) c = uint8_t(code(rng));
+    TerrainScene single(device(), field, nullptr, 400000);
+    TerrainScene tiled(device(), field, nullptr, 400000, {kTile, 0});
+    const std::vector<glm::vec4> slopesBefore = readSlopes(device(), tiled.slopePages()[0], 7, 0);
+    single.setHorizons(device(), map, 5);
+    tiled.setHorizons(device(), map, 5);
+    EXPECT_EQ(tiled.slopePages()[0].desc().format, VK_FORMAT_R16G16B16A16_SFLOAT);
+    EXPECT_EQ(tiled.horizonBytes(), tiled.tiles().layerTexels() * 20 * 4);
+    for (const int first : {5, directions - 1}) {
+      const std::string what = std::to_string(directions) + " directions of " +
+                               std::to_string(bits) + " bits, pair " + std::to_string(first);
+      if (first != 5) {
+        single.relayHorizons(device(), first);
+        tiled.relayHorizons(device(), first);
+        EXPECT_EQ(tiled.horizonRelays(), 1u) << what;
+      }
+      ASSERT_EQ(tiled.horizonFirst(), first) << what;
+      const int second = (first + 1) % directions;
+      const TerrainTileLayout& t = tiled.tiles();
+      const uint32_t referenceWidth = single.tiles().imageWidth();
+      const uint32_t referenceHeight = single.tiles().imageHeight();
+      double worst = 0, worstMean = 0;
+      size_t compared = 0, different = 0;
+      for (uint32_t level = 0; level < kTerrainMipLevels; ++level) {
+        const std::vector<glm::vec4> reference =
+            readSlopes(device(), single.slopePages()[0], 0, level);
+        for (uint32_t tile = 0; tile < t.tileCount(); ++tile) {
+          const std::vector<glm::vec4> slopes =
+              readSlopes(device(), tiled.slopePages()[0], tile, level);
+          const uint32_t w = t.imageWidth() >> level, h = t.imageHeight() >> level;
+          const uint32_t offsetX = (tile % t.tilesX) * t.coreWidth >> level;
+          const uint32_t offsetY = (tile / t.tilesX) * t.coreHeight >> level;
+          std::vector<glm::vec4> below;
+          if (level > 0) below = readSlopes(device(), tiled.slopePages()[0], tile, level - 1);
+          for (uint32_t r = 0; r < h; ++r) {
+            for (uint32_t c = 0; c < w; ++c) {
+              const glm::vec4 got = slopes[size_t{r} * w + c];
+              if (level == 0) {
+                const int col = std::clamp(int(offsetX + c) - int(t.border), 0, kWidth - 1);
+                const int row = std::clamp(int(offsetY + r) - int(t.border), 0, kHeight - 1);
+                const uint8_t* codes = map.texel(col, row);
+                for (const auto& [got1, k] : {std::pair{got.z, first}, std::pair{got.w, second}}) {
+                  const double expected = decodeHorizon(codes[k], bits);
+                  worst = std::max(worst, std::abs(got1 - expected));
+                  ASSERT_NEAR(got1, expected, 1e-3 * std::max(1.0, std::abs(expected)))
+                      << what << ", tile " << tile << " texel " << c << ", " << r;
+                }
+              } else {
+                const uint32_t wb = w * 2;
+                const auto at = [&](uint32_t dc, uint32_t dr) {
+                  return glm::dvec2(below[size_t{2 * r + dr} * wb + 2 * c + dc].z,
+                                    below[size_t{2 * r + dr} * wb + 2 * c + dc].w);
+                };
+                const glm::dvec2 mean = (at(0, 0) + at(1, 0) + at(0, 1) + at(1, 1)) * 0.25;
+                worstMean = std::max({worstMean, std::abs(got.z - mean.x), std::abs(got.w - mean.y)});
+                ASSERT_NEAR(got.z, mean.x, 1e-3) << what << ", level " << level;
+                ASSERT_NEAR(got.w, mean.y, 1e-3) << what << ", level " << level;
+              }
+              const uint32_t refW = referenceWidth >> level, refH = referenceHeight >> level;
+              if (offsetX + c >= refW || offsetY + r >= refH) continue;
+              ++compared;
+              const glm::vec4 one = reference[size_t{offsetY + r} * refW + offsetX + c];
+              if (got.z != one.z || got.w != one.w) ++different;
+            }
+          }
+        }
+      }
+      EXPECT_GT(compared, 0u) << what;
+      EXPECT_EQ(different, 0u) << what << ": " << different << " of " << compared;
+      std::printf("%s: level 0 against decodeHorizon worst %.2g rad, levels above against the "
+                  "mean below worst %.2g rad\n",
+                  what.c_str(), worst, worstMean);
+    }
+    // The slopes themselves are what they were without horizons.
+    const std::vector<glm::vec4> slopesAfter = readSlopes(device(), tiled.slopePages()[0], 7, 0);
+    ASSERT_EQ(slopesAfter.size(), slopesBefore.size());
+    for (size_t i = 0; i < slopesAfter.size(); ++i) {
+      ASSERT_EQ(slopesAfter[i].x, slopesBefore[i].x) << i;
+      ASSERT_EQ(slopesAfter[i].y, slopesBefore[i].y) << i;
+    }
+  }
+}
+
+// The horizon mode (issue 18) in a tiled scene: the horizons of the pair
+// of directions beside the sun lie in the slope texture (engine/
+// terrain_scene.h setHorizons), in the heights' tiles, read with the
+// normal's fetch. 8-bit codes of 8 directions and 4-bit codes of 16, a sun
+// 9 degrees up (the horizons hide it where the aperture's cap does not),
+// from above and obliquely: the tolerance of
 // TiledTexturesRenderAsOneImageInEveryMode.
 TEST_F(TileRender, HorizonModeTiledAsOneImage) {
   const Heightfield field = fbm();
@@ -421,27 +534,26 @@ TEST_F(TileRender, HorizonModeTiledAsOneImage) {
     const uint64_t singleBytes = single.textureBytes(), tiledBytes = tiled.textureBytes();
     single.setHorizons(device(), baked.horizons);
     tiled.setHorizons(device(), baked.horizons);
-    ASSERT_EQ(tiled.horizons()->desc().layers, 20u * uint32_t(directions) / 4);
-    ASSERT_EQ(tiled.horizons()->desc().width, tiled.tiles().imageWidth());
-    // Device bytes: a tile image's texels (core, border, alignment) per layer.
-    const uint64_t texelBytes = bits == 4 ? 2 : 4;
-    EXPECT_EQ(tiled.horizonBytes(), uint64_t{tiled.tiles().imageWidth()} *
-                                        tiled.tiles().imageHeight() * 20 * (directions / 4) *
-                                        texelBytes);
+    ASSERT_TRUE(tiled.hasHorizons());
+    // Device bytes: 4 more per texel of a tile image (core, border,
+    // alignment) whatever the layout: B and A of the slopes.
+    EXPECT_EQ(tiled.horizonBytes(), tiled.tiles().layerTexels() * 20 * 4);
     EXPECT_EQ(tiled.textureBytes(), tiledBytes + tiled.horizonBytes());
     EXPECT_EQ(single.textureBytes(), singleBytes + single.horizonBytes());
-    // The shader binds the horizons as one image: pages smaller than all
-    // their layers (here the heights' pages of ten layers) refuse them.
+    // The slopes with horizons take 8 bytes a texel in the heights' pages,
+    // planned for 4: pages that hold ten heights' layers and no more refuse
+    // them, and the scene stays as it was.
     const uint64_t pageBytes = 10 * tiled.tiles().layerTexels() * 4 * 16 / 15;
-    ASSERT_LT(pageBytes, tiled.horizonBytes());
     TerrainScene smallPages(device(), field, baked.aperture, &colours, 400000, {kTile, pageBytes});
+    ASSERT_EQ(smallPages.tiles().layersPerPageOf(TerrainTexture::Height), 10u);
     try {
       smallPages.setHorizons(device(), baked.horizons);
-      ADD_FAILURE() << "horizons of " << tiled.horizonBytes() << " B in pages of " << pageBytes;
+      ADD_FAILURE() << "horizons in pages of " << pageBytes << " B";
     } catch (const std::runtime_error& e) {
       EXPECT_NE(std::string(e.what()).find("do not fit one image"), std::string::npos) << e.what();
     }
-    EXPECT_EQ(smallPages.horizons(), nullptr);
+    EXPECT_FALSE(smallPages.hasHorizons());
+    EXPECT_EQ(smallPages.slopePages()[0].desc().format, VK_FORMAT_R16G16_SFLOAT);
     std::printf(
         "%d directions of %d bits: horizons %llu B one tile (%.2f B per DEM texel), "
         "%llu B in 20 tiles (%.2f B per DEM texel)\n",
@@ -449,9 +561,8 @@ TEST_F(TileRender, HorizonModeTiledAsOneImage) {
         double(single.horizonBytes()) / (kWidth * kHeight),
         static_cast<unsigned long long>(tiled.horizonBytes()),
         double(tiled.horizonBytes()) / (kWidth * kHeight));
-    // Suns at 230 degrees (the directions beside them in one layer of
-    // rotation 0) and 281.25 (in two: both scenes re-lay every tile's layers
-    // for rotation 2).
+    // Suns at 230 degrees and 281.25: both scenes lay every tile's pair for
+    // each (set for directions 0 and 1).
     for (const double sunAzimuth : {230.0, 281.25}) {
       for (const bool top : {true, false}) {
         FrameSettings s = top ? topView(ShadingMode::Horizon) : obliqueView(ShadingMode::Horizon);
@@ -463,8 +574,11 @@ TEST_F(TileRender, HorizonModeTiledAsOneImage) {
         const std::string what = std::to_string(directions) + " directions of " +
                                  std::to_string(bits) + " bits, sun at " + azimuth +
                                  (top ? ", top" : ", oblique");
-        EXPECT_EQ(tiled.horizonRotation(), sunAzimuth == 230.0 ? 0 : 2) << what;
-        EXPECT_EQ(single.horizonRotation(), tiled.horizonRotation()) << what;
+        EXPECT_EQ(tiled.horizonFirst(),
+                  horizonPairFor(directions, sunAzimuthRad(s.lighting.sunDirection), -1))
+            << what;
+        EXPECT_NE(tiled.horizonFirst(), 0) << what;
+        EXPECT_EQ(single.horizonFirst(), tiled.horizonFirst()) << what;
         expectTiledAsOneImage(d, what);
         // The horizons matter in this view: approx lights much that they hide.
         FrameSettings approx = s;

@@ -468,14 +468,14 @@ TEST(AalView, HorizonModeWithTheBakesHorizonsAlsoSwitchedMidFlight) {
   EXPECT_NE(help.out.find("--mode-after"), std::string::npos) << help.out;
 }
 
-// The horizon mode with a sun that moves across a layer seam mid-flight
+// The horizon mode with a sun that moves past a stored direction mid-flight
 // (--sun-azimuth-after, as the panel's direct sun): at 250 degrees the two
-// stored directions beside the sun (8 of them) lie in one layer as laid out
-// at the start (rotation 0), at 292 in two, so the renderer re-lays the
-// horizons (rotation 2) between frames, under validation without a
-// message; the last picture is that of a run started with the sun at 292
-// (laid out for it from the start: no re-lay), within 1 LSB.
-TEST(AalView, HorizonModeReLaysTheHorizonsWhenTheSunCrossesASeam) {
+// stored directions beside the sun (8 of them) are 4 and 5 as laid at the
+// start, at 292 they are 3 and 4, so the renderer re-lays the horizons
+// between frames, under validation without a message; the last picture is
+// that of a run started with the sun at 292 (laid for it from the start: no
+// re-lay), within 1 LSB.
+TEST(AalView, HorizonModeReLaysTheHorizonsWhenTheSunPassesADirection) {
   TempDir dir;
   const fs::path map = dir.path() / "a.exr", horizons = dir.path() / "a.horizons";
   ASSERT_EQ(test::bakeWithHorizons(kDem, map, horizons), 0);
@@ -489,13 +489,13 @@ TEST(AalView, HorizonModeReLaysTheHorizonsWhenTheSunCrossesASeam) {
   ASSERT_EQ(moved.exitCode, 0) << moved.out;  // 1 on any validation message
   EXPECT_NE(moved.out.find("validation on, 0 messages"), std::string::npos) << moved.out;
   EXPECT_NE(moved.out.find("moved the sun to azimuth 292 degrees"), std::string::npos) << moved.out;
-  EXPECT_NE(moved.out.find("horizons   re-laid 1 times for the sun (rotation 2 now)"),
+  EXPECT_NE(moved.out.find("horizons   re-laid 1 times for the sun (directions 3 and 4 now)"),
             std::string::npos)
       << moved.out;
   EXPECT_NE(moved.out.find("frames     4"), std::string::npos) << moved.out;
   const auto still = view(dir, common + quoted(stillShot) + " --sun-azimuth 292");
   ASSERT_EQ(still.exitCode, 0) << still.out;
-  EXPECT_NE(still.out.find("horizons   re-laid 0 times for the sun (rotation 2 now)"),
+  EXPECT_NE(still.out.find("horizons   re-laid 0 times for the sun (directions 3 and 4 now)"),
             std::string::npos)
       << still.out;
 

@@ -255,13 +255,13 @@ void Viewer::attachHorizons() {
   Terrain& t = *terrain_;
   if (!t.horizons) return;
   try {
-    // Laid out for the sun of the moment (the first frame need not re-lay);
-    // the renderer re-lays them when the sun moves across a layer seam.
+    // The pair of directions beside the sun of the moment (the first frame
+    // need not re-lay); the renderer re-lays when the sun leaves the pair.
     FrameSettings s;
     applyViewLighting(lighting_, *t.field, s);
     t.scene->setHorizons(
         device_, t.horizons,
-        horizonRotationFor(t.horizons->directions, sunAzimuthRad(s.lighting.sunDirection), -1));
+        horizonPairFor(t.horizons->directions, sunAzimuthRad(s.lighting.sunDirection), -1));
   } catch (const std::exception& e) {
     t.horizons.reset();
     setMessage(std::string("no horizon mode: ") + e.what());
@@ -273,7 +273,7 @@ void Viewer::openDroppedDem(const std::string& path) {
     std::shared_ptr<const Heightfield> field = loadViewerDem(path, options_.exaggeration);
     const GeoPlace place = defaultSunPlace(*field);
     showTerrain(field, path, "");  // without --horizons: they were the first DEM's
-    if (mode_ == ShadingMode::Horizon && !terrain_->scene->horizons() && !terrain_->bake) {
+    if (mode_ == ShadingMode::Horizon && !terrain_->scene->hasHorizons() && !terrain_->bake) {
       mode_ = ShadingMode::Approx;
     }
     // The same local solar time at the new place.
@@ -378,7 +378,7 @@ void Viewer::drawUi() {
   ui_.beginFrame();
   const Heightfield& field = *terrain_->field;
   ViewPanelModel model{lighting_, mode_, obscurance_, vsync_};
-  if (!terrain_->scene->horizons()) {
+  if (!terrain_->scene->hasHorizons()) {
     model.horizonsMissing = terrain_->bake && viewerBakeOptions(options_.bakeAzimuths).horizons
                                 ? "after the bake"
                                 : "needs --horizons FILE";
@@ -418,7 +418,7 @@ FrameSettings Viewer::frameSettings() const {
   // The placeholder aperture is an open sky: only the baselines are honest.
   s.mode = terrain_->bake ? ShadingMode::BaselineLambert : mode_;
   // The panel offers the horizon mode only with horizons; a stale choice draws approx.
-  if (s.mode == ShadingMode::Horizon && !terrain_->scene->horizons()) s.mode = ShadingMode::Approx;
+  if (s.mode == ShadingMode::Horizon && !terrain_->scene->hasHorizons()) s.mode = ShadingMode::Approx;
   applyViewLighting(lighting_, *terrain_->field, s);
   s.obscurance = obscurance_;
   s.lod.maxErrorPixels = options_.lodErrorPixels;
@@ -583,7 +583,7 @@ void Viewer::runWindowScript() {
   }
   if (scriptedFrame_ == s.modeAfterFrame) {
     // As the panel: the horizon mode only where it is offered.
-    if (s.modeAfter == ShadingMode::Horizon && !terrain_->scene->horizons()) {
+    if (s.modeAfter == ShadingMode::Horizon && !terrain_->scene->hasHorizons()) {
       setMessage("the horizon mode is not offered: no directional horizons");
     } else {
       mode_ = s.modeAfter;
@@ -634,11 +634,12 @@ void Viewer::printStats() const {
   std::printf("size       %ux%u\n", extent.width, extent.height);
   std::printf("present    %s\n", presentModeName(swapchain_.presentMode()));
   std::printf("triangles  %zu (last frame)\n", renderer_->lodSelection().triangles);
-  if (terrain_->scene->horizons()) {
+  if (terrain_->scene->hasHorizons()) {
     // Each a hitch: the horizons uploaded again (docs/viewer.md).
-    std::printf("horizons   re-laid %llu times for the sun (rotation %d now)\n",
+    std::printf("horizons   re-laid %llu times for the sun (directions %d and %d now)\n",
                 static_cast<unsigned long long>(terrain_->scene->horizonRelays()),
-                terrain_->scene->horizonRotation());
+                terrain_->scene->horizonFirst(),
+                (terrain_->scene->horizonFirst() + 1) % terrain_->scene->horizonDirections());
   }
   std::printf("frames     %d\n", t.counted);
   std::printf("baking     %d frames drawn while the aperture map was baked\n", t.whileBaking);

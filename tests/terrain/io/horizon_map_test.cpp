@@ -2,6 +2,8 @@
 // sun term (terrain/light/shading.h).
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <array>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -99,136 +101,130 @@ TEST(HorizonMap, AzimuthsBetweenStoredDirectionsInterpolateLinearly) {
               0.5f * (decodeHorizon(27) + decodeHorizon(36)), 1e-6f);
 }
 
-// The horizon at azimuth a from the device layers rotated by `rotation`, as
-// the shader reads it with the per-frame weights (horizonLayerWeights): the
-// power of each channel's code times its weight, in double precision here.
-double horizonFromRotatedLayer(const uint8_t* codes, int directions, float a, int bits,
-                               int rotation) {
-  const HorizonLayerWeights w = horizonLayerWeights(directions, a, bits, rotation);
-  EXPECT_GE(w.layer, 0);
-  EXPECT_LT(w.layer, directions / 4);
-  double h = kHorizonMinRad;
-  for (int c = 0; c < 4; ++c) {
-    // Layer l channel c holds direction (4l + rotation + c) mod n.
-    const int k = (4 * w.layer + rotation + c) % directions;
-    const double u = double(codes[k]) / ((1 << bits) - 1);
-    h += (bits == 4 ? u * std::sqrt(u) : u * u) * double(w.weights[size_t(c)]);
-  }
-  return h;
-}
-
-// Rotation 0 alone (directions 4l..4l+3 in layer l) leaves the two
-// directions beside a quarter of the azimuths in two layers (with 8 or more
-// directions), where the weights of one layer cannot give the horizon.
-TEST(HorizonMap, OneRotationLeavesAQuarterOfTheAzimuthsInTwoLayers) {
-  for (const int directions : {4, 8, 12, 16}) {
-    const float step = float(2 * kPi / directions);
-    int twoLayers = 0;
-    constexpr int kSamples = 4000;
-    for (int i = 0; i < kSamples; ++i) {
-      const float a = float(i) * float(2 * kPi / kSamples);
-      for (const int rotation : kHorizonRotations) {
-        if (!horizonRotationServes(directions, a, rotation)) {
-          if (rotation == 0) ++twoLayers;
-          EXPECT_THROW(horizonLayerWeights(directions, a, 8, rotation), std::invalid_argument);
-        }
-      }
-    }
-    EXPECT_NEAR(double(twoLayers) / kSamples, directions == 4 ? 0.0 : 0.25, 0.002) << directions;
-    // Between directions 3 and 4 (layers 0 and 1) rotation 2 serves: its
-    // layer 0 holds directions 2..5.
-    if (directions > 4) {
-      EXPECT_FALSE(horizonRotationServes(directions, 3.5f * step, 0));
-      EXPECT_TRUE(horizonRotationServes(directions, 3.5f * step, 2));
-      EXPECT_FALSE(horizonRotationServes(directions, 1.5f * step, 2));
-      EXPECT_TRUE(horizonRotationServes(directions, 1.5f * step, 0));
-    }
-  }
-  EXPECT_THROW(horizonLayerWeights(8, 0.1f, 8, 1), std::invalid_argument);
+// The horizon at azimuth a from the pair (first, first + 1) on the device, as
+// the shader reads it with the per-frame weights (horizonPairWeights): the
+// pair's decoded horizons times their weights, in double precision here.
+double horizonFromPair(const uint8_t* codes, int directions, float a, int bits, int first) {
+  const std::array<float, 2> w = horizonPairWeights(directions, a, first);
+  EXPECT_GE(w[0], 0.0f);
+  EXPECT_GE(w[1], 0.0f);
+  EXPECT_FLOAT_EQ(w[0] + w[1], 1.0f);
+  return double(w[0]) * decodeHorizon(codes[first], bits) +
+         double(w[1]) * decodeHorizon(codes[(first + 1) % directions], bits);
 }
 
 // For every azimuth of a dense sweep (a sun moving round, and a sun appearing
-// there with either rotation laid or none), horizonRotationFor picks a
-// rotation that serves it, and that rotation's one-layer weights give
-// horizonAtAzimuth's horizon to float rounding: one fetch for every sun.
-TEST(HorizonMap, ChosenRotationServesEveryAzimuthWithOneLayer) {
+// there with no pair laid, or any other pair), horizonPairFor picks a pair
+// whose weights give horizonAtAzimuth's horizon to float rounding where the
+// sun lies within the pair's span, and the nearer direction's horizon
+// within the margin outside it (a sun that stayed, hysteresis): never more
+// than the margin's worth of interpolation away.
+TEST(HorizonMap, ChosenPairGivesTheHorizonAtEveryAzimuth) {
   std::mt19937 rng(18);
   for (const int bits : {8, 4}) {
     for (const int directions : {8, 12, 16, 4}) {
       std::uniform_int_distribution<int> code(0, (1 << bits) - 1);
       uint8_t codes[kMaxHorizonDirections];
       for (uint8_t& c : codes) c = uint8_t(code(rng));
-      int moving = -1, checked = 0;
+      const double step = 2 * kPi / directions;
+      // The most the horizon changes over the margin: the largest
+      // difference of neighbours times the margin.
+      double steepest = 0;
+      for (int k = 0; k < directions; ++k) {
+        steepest = std::max(steepest, std::abs(double(decodeHorizon(codes[k], bits)) -
+                                               decodeHorizon(codes[(k + 1) % directions], bits)));
+      }
+      int moving = -1, checked = 0, outside = 0;
       // Two turns and a half, from below zero (azimuths wrap).
       constexpr int kSamples = 50000;
       for (int i = 0; i <= kSamples; ++i) {
         const float a = float(-kPi + 5 * kPi * i / kSamples);
-        moving = horizonRotationFor(directions, a, moving);
-        for (const int rotation :
-             {moving, horizonRotationFor(directions, a, -1), horizonRotationFor(directions, a, 0),
-              horizonRotationFor(directions, a, 2)}) {
-          ASSERT_TRUE(validHorizonRotation(rotation));
-          ASSERT_TRUE(horizonRotationServes(directions, a, rotation))
-              << directions << " directions, azimuth " << a << ", rotation " << rotation;
-          ASSERT_NEAR(horizonFromRotatedLayer(codes, directions, a, bits, rotation),
-                      horizonAtAzimuth(codes, directions, a, bits), 2e-6)
-              << bits << " bits, " << directions << " directions, azimuth " << a << ", rotation "
-              << rotation;
+        moving = horizonPairFor(directions, a, moving);
+        const int fresh = horizonPairFor(directions, a, -1);
+        const int other = horizonPairFor(directions, a, (i * 7) % directions);
+        double x = a / step;
+        x -= directions * std::floor(x / directions);
+        const auto stepsPast = [&](int first) {
+          double past = x - first;
+          return past - directions * std::floor(past / directions + 0.5);
+        };
+        // A fresh pick is the pair whose span holds the sun (to float rounding).
+        ASSERT_GE(stepsPast(fresh), -1e-4) << directions << " at " << a;
+        ASSERT_LE(stepsPast(fresh), 1 + 1e-4) << directions << " at " << a;
+        for (const int first : {moving, fresh, other}) {
+          ASSERT_TRUE(validHorizonPair(directions, first));
+          const double past = stepsPast(first);
+          ASSERT_GE(past, -kHorizonPairMargin - 1e-4) << directions << " at " << a;
+          ASSERT_LE(past, 1 + kHorizonPairMargin + 1e-4) << directions << " at " << a;
+          const double expected = horizonAtAzimuth(codes, directions, a, bits);
+          const double got = horizonFromPair(codes, directions, a, bits, first);
+          if (past >= 1e-4 && past <= 1 - 1e-4) {
+            ASSERT_NEAR(got, expected, 2e-6)
+                << bits << " bits, " << directions << " directions, azimuth " << a << ", pair "
+                << first;
+          } else {
+            ++outside;
+            ASSERT_NEAR(got, expected, kHorizonPairMargin * steepest + 2e-6)
+                << bits << " bits, " << directions << " directions, azimuth " << a << ", pair "
+                << first;
+          }
           ++checked;
         }
       }
-      EXPECT_EQ(checked, 4 * (kSamples + 1));
+      EXPECT_EQ(checked, 3 * (kSamples + 1));
+      EXPECT_GT(outside, 0) << "the hysteresis was exercised";
     }
   }
+  EXPECT_THROW(horizonPairWeights(8, 0.1f, 8), std::invalid_argument);
+  EXPECT_THROW(horizonPairWeights(8, 0.1f, -1), std::invalid_argument);
+  EXPECT_FALSE(validHorizonPair(6, 0));
 }
 
-// Hysteresis: a sun resting on a layer seam, or jittering about it, keeps its
-// rotation; a sun going round changes it once per two direction steps (each
-// rotation's seams are four steps apart, the other's halfway between), never
-// back and forth.
-TEST(HorizonMap, RotationHoldsAtASeam) {
-  for (const int directions : {8, 12, 16}) {
+// Hysteresis: a sun resting on a stored direction, or jittering about it,
+// keeps its pair; a sun going round changes it once per direction step,
+// never back and forth.
+TEST(HorizonMap, PairHoldsAtAStoredDirection) {
+  for (const int directions : {4, 8, 12, 16}) {
     const double step = 2 * kPi / directions;
     for (int k = 0; k < directions; ++k) {
-      // Direction k itself, the seam of layers where k % 4 == rotation, and the
-      // points where horizonRotationFor switches (a margin before a seam).
-      for (const double at : {double(k), k - double(kHorizonRotationMargin)}) {
-        for (const int start : kHorizonRotations) {
-          int rotation = start, changes = 0;
+      // Direction k itself, and the points where horizonPairFor switches.
+      for (const double at : {double(k), k + 1 + double(kHorizonPairMargin),
+                              k - double(kHorizonPairMargin)}) {
+        for (const int start : {-1, (k + directions - 1) % directions, k}) {
+          int first = start, changes = 0;
           for (int i = 0; i < 200; ++i) {
             const double jitter = (i % 2 ? 1 : -1) * 1e-4 * (1 + i % 7);
-            const int next = horizonRotationFor(directions, float((at + jitter) * step), rotation);
-            changes += next != rotation;
-            rotation = next;
+            const int next = horizonPairFor(directions, float((at + jitter) * step), first);
+            changes += i > 0 && next != first;
+            first = next;
           }
           EXPECT_LE(changes, 1) << directions << " directions, position " << at << ", from "
                                 << start;
         }
       }
     }
-    for (const int direction : {1, -1}) {
-      int rotation = horizonRotationFor(directions, 0.0f, -1), changes = 0;
+    // One turn from mid-pair back to it: a pair per step and the first again.
+    for (const int turn : {1, -1}) {
+      int first = horizonPairFor(directions, float(0.5 * step), -1), changes = 0;
       constexpr int kSamples = 100000;
       for (int i = 1; i <= kSamples; ++i) {
-        const int next =
-            horizonRotationFor(directions, float(direction * 2 * kPi * i / kSamples), rotation);
-        changes += next != rotation;
-        rotation = next;
+        const int next = horizonPairFor(
+            directions, float(0.5 * step + turn * 2 * kPi * i / kSamples), first);
+        changes += next != first;
+        first = next;
       }
-      EXPECT_EQ(changes, directions / 2) << directions << " directions, one turn";
+      EXPECT_EQ(changes, directions) << directions << " directions, one turn";
     }
   }
-  // The switch comes a margin before the seam (between directions 3 and 4 for
-  // rotation 0), so the rotation in use never serves a sun at its very edge.
+  // The switch comes a margin past the pair's span (directions 3 and 4 of 8).
   const float step8 = float(2 * kPi / 8);
-  EXPECT_EQ(horizonRotationFor(8, (3 - 1.5f * kHorizonRotationMargin) * step8, 0), 0);
-  EXPECT_EQ(horizonRotationFor(8, (3 - 0.5f * kHorizonRotationMargin) * step8, 0), 2);
-  EXPECT_EQ(horizonRotationFor(8, (2 + 1.5f * kHorizonRotationMargin) * step8, 2), 2);
-  EXPECT_EQ(horizonRotationFor(8, (2 + 0.5f * kHorizonRotationMargin) * step8, 2), 0);
-  // Four directions: one layer whatever the rotation; the laid one stays.
-  for (const int rotation : kHorizonRotations) {
-    EXPECT_EQ(horizonRotationFor(4, 1.0f, rotation), rotation);
-  }
+  EXPECT_EQ(horizonPairFor(8, (4 + 0.5f * kHorizonPairMargin) * step8, 3), 3);
+  EXPECT_EQ(horizonPairFor(8, (4 + 1.5f * kHorizonPairMargin) * step8, 3), 4);
+  EXPECT_EQ(horizonPairFor(8, (3 - 0.5f * kHorizonPairMargin) * step8, 3), 3);
+  EXPECT_EQ(horizonPairFor(8, (3 - 1.5f * kHorizonPairMargin) * step8, 3), 2);
+  // Across zero: the pair 7, 0 holds a sun just past east.
+  EXPECT_EQ(horizonPairFor(8, 0.5f * kHorizonPairMargin * step8, 7), 7);
+  EXPECT_EQ(horizonPairFor(8, -0.5f * step8, -1), 7);
 }
 
 TEST(HorizonMap, FilesRoundTripAndForeignOrTruncatedFilesAreRefused) {

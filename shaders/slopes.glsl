@@ -1,0 +1,73 @@
+// The slope texture of one page of heights at one mip level: per texel the
+// central differences of the level's heights one texel apart (dz/dx east,
+// dz/dy north, m/m), clamped at the image's edge. Sampled with the same
+// filter as the heights, these equal the differences of filtered heights
+// that the terrain's normals used to take with four fetches (a bilinear fetch
+// is linear in the texels, and a shift by one texel keeps its weights), for
+// one fetch (docs/rendering.md). Each tile is computed from its own image,
+// whose levels hold the whole DEM's bit for bit, so slopes match across
+// tiles too (the image's outermost texel, which no fetch reaches, aside).
+//
+// slopes_horizons.comp (AAL_SLOPES_HORIZONS) also writes B and A: the
+// horizons (rad) of the pair of stored directions beside the sun
+// (engine/terrain_scene.h setHorizons), decoded from their codes at level 0
+// and at each level above the mean of the 2 x 2 texels of the level below
+// (summed in the order of the heights' levels, so a level is the same in
+// every tile that holds it); the horizon mode reads them in the normal's
+// fetch. Called level by level, each after the one below has been written.
+#ifndef AAL_SLOPES_GLSL
+#define AAL_SLOPES_GLSL
+
+#include "config.h"
+#include "horizon.glsl"
+
+layout(local_size_x = 8, local_size_y = 8, local_size_z = 1) in;
+
+layout(set = 0, binding = 0) uniform sampler2DArray heights;  // the page, every level
+#ifdef AAL_SLOPES_HORIZONS
+layout(set = 0, binding = 1, rgba16f) uniform writeonly image2DArray slopes;  // the page's level
+// The pair's codes (R: the first direction, G: the second), level 0.
+layout(set = 0, binding = 2) uniform usampler2DArray horizonCodes;
+// The page's level below (finer; read above level 0).
+layout(set = 0, binding = 3, rgba16f) uniform readonly image2DArray finer;
+#else
+layout(set = 0, binding = 1, rg16f) uniform writeonly image2DArray slopes;
+#endif
+
+layout(push_constant) uniform Level {
+  int level;
+  float cellSizeXM, cellSizeYM;
+  int horizonBits;  // of the codes (8 or 4)
+}
+p;
+
+void main() {
+  ivec3 t = ivec3(gl_GlobalInvocationID);
+  ivec3 size = imageSize(slopes);
+  if (any(greaterThanEqual(t, size))) return;
+  ivec2 last = size.xy - 1;
+  float east = texelFetch(heights, ivec3(min(t.x + 1, last.x), t.y, t.z), p.level).r;
+  float west = texelFetch(heights, ivec3(max(t.x - 1, 0), t.y, t.z), p.level).r;
+  float north = texelFetch(heights, ivec3(t.x, max(t.y - 1, 0), t.z), p.level).r;  // row - 1
+  float south = texelFetch(heights, ivec3(t.x, min(t.y + 1, last.y), t.z), p.level).r;
+  float span = 2.0 * exp2(float(p.level));
+  vec2 slope = vec2((east - west) / (span * p.cellSizeXM), (north - south) / (span * p.cellSizeYM));
+  vec2 horizons = vec2(0.0);
+#ifdef AAL_SLOPES_HORIZONS
+  if (p.level == 0) {
+    float maxCode = float((1 << p.horizonBits) - 1);
+    uvec2 codes = texelFetch(horizonCodes, t, 0).rg;
+    horizons = vec2(decodeHorizon(float(codes.x) / maxCode, p.horizonBits),
+                    decodeHorizon(float(codes.y) / maxCode, p.horizonBits));
+  } else {
+    ivec3 f = ivec3(2 * t.xy, t.z);
+    vec2 upperLeft = imageLoad(finer, f).ba, upperRight = imageLoad(finer, f + ivec3(1, 0, 0)).ba;
+    vec2 lowerLeft = imageLoad(finer, f + ivec3(0, 1, 0)).ba;
+    vec2 lowerRight = imageLoad(finer, f + ivec3(1, 1, 0)).ba;
+    horizons = ((upperLeft + upperRight) + (lowerLeft + lowerRight)) * 0.25;
+  }
+#endif
+  imageStore(slopes, t, vec4(slope, horizons));
+}
+
+#endif
