@@ -214,15 +214,23 @@ std::vector<Image> horizonPairPages(const Device& device, const TerrainTileLayou
 
 }  // namespace
 
-void TerrainScene::computeSlopes(const Device& device, int first) const {
-  struct Push {
-    int32_t level;
-    float cellSizeXM, cellSizeYM;
-    int32_t horizonBits;
-  };
+namespace {
+
+// shaders/slopes.glsl's push constants.
+struct SlopePush {
+  int32_t level;
+  float cellSizeXM, cellSizeYM;
+  int32_t horizonBits;
+  int32_t keepSlopes;
+};
+
+}  // namespace
+
+void TerrainScene::computeSlopes(const Device& device, int first, bool keepSlopes) const {
   const bool horizons = horizonMap_ != nullptr;
-  const ComputePipeline pipeline(device, horizons ? "slopes_horizons.comp" : "slopes.comp",
-                                 sizeof(Push));
+  std::unique_ptr<ComputePipeline> plain;
+  if (!horizons) plain = std::make_unique<ComputePipeline>(device, "slopes.comp", sizeof(SlopePush));
+  const ComputePipeline& pipeline = horizons ? *horizonSlopes_ : *plain;
   const Sampler nearest(device, VK_FILTER_NEAREST, true);
   const Sampler codeSampler(device, VK_FILTER_NEAREST, false);  // integer texels: no filter
   const std::vector<Image> pairs =
@@ -237,9 +245,13 @@ void TerrainScene::computeSlopes(const Device& device, int first) const {
     for (size_t p = 0; p < slopes_.size(); ++p) {
       const Image& page = slopes_[p];
       const uint32_t levels = page.desc().mipLevels;
-      transitionImage(cmd, page, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_GENERAL);
+      transitionImage(cmd, page,
+                      keepSlopes ? VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL
+                                 : VK_IMAGE_LAYOUT_UNDEFINED,
+                      VK_IMAGE_LAYOUT_GENERAL);
       for (uint32_t level = 0; level < levels; ++level) {
-        const Push push{static_cast<int32_t>(level), demInfo_.z, demInfo_.w, horizonBits_};
+        const SlopePush push{static_cast<int32_t>(level), demInfo_.z, demInfo_.w, horizonBits_,
+                             keepSlopes ? 1 : 0};
         const uint32_t w = page.desc().width >> level, h = page.desc().height >> level;
         DescriptorWrites writes;
         writes.image(0, heights_[p].view(), nearest.handle()).image(1, views[p][level]->handle());
@@ -412,7 +424,7 @@ void TerrainScene::build(const Device& device, const Heightfield& field,
   upload.submit();
   demInfo_ = {static_cast<float>(field.width), static_cast<float>(field.height),
               static_cast<float>(field.cellSizeXM), static_cast<float>(field.cellSizeYM)};
-  computeSlopes(device, 0);
+  computeSlopes(device, 0, false);
 
   const auto [lo, hi] = std::minmax_element(field.z.begin(), field.z.end());
   minHeight_ = *lo;
@@ -455,6 +467,10 @@ void TerrainScene::setHorizons(const Device& device, std::shared_ptr<const Horiz
   // Made before anything changes, so a device too small keeps the scene as
   // it was.
   std::vector<Image> slopes = makeSlopePages(device, tiles_, true);
+  if (!horizonSlopes_) {
+    horizonSlopes_ =
+        std::make_unique<ComputePipeline>(device, "slopes_horizons.comp", sizeof(SlopePush));
+  }
   const uint64_t bytes = slopeBytes(tiles_, true) - slopeBytes(tiles_, false);
   slopes_ = std::move(slopes);
   textureBytes_ += bytes - horizonBytes_;  // a second map replaces the first
@@ -463,7 +479,7 @@ void TerrainScene::setHorizons(const Device& device, std::shared_ptr<const Horiz
   horizonBits_ = map.bits;
   horizonDirections_ = map.directions;
   horizonFirst_ = first;
-  computeSlopes(device, first);
+  computeSlopes(device, first, false);
 }
 
 void TerrainScene::relayHorizons(const Device& device, int first) const {
@@ -475,7 +491,7 @@ void TerrainScene::relayHorizons(const Device& device, int first) const {
   if (first == horizonFirst_) return;
   // The same images: the previous frame has finished reading them (the
   // caller's promise).
-  computeSlopes(device, first);
+  computeSlopes(device, first, true);
   horizonFirst_ = first;
   ++horizonRelays_;
 }

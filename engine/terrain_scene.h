@@ -16,6 +16,7 @@
 #include "albedo_image.h"
 #include "aperture_map.h"
 #include "buffer.h"
+#include "compute.h"
 #include "heightfield.h"
 #include "horizon_map.h"
 #include "image.h"
@@ -115,8 +116,9 @@ class TerrainScene {
 
  private:
   // Fills slopes_ from heights_ on the device (after their upload), and
-  // with horizons their B and A from the pair `first`, first + 1.
-  void computeSlopes(const Device& device, int first) const;
+  // with horizons their B and A from the pair `first`, first + 1;
+  // `keepSlopes`: R and G are there already (a re-lay), only B and A change.
+  void computeSlopes(const Device& device, int first, bool keepSlopes) const;
   // `apertureRows` writes whole DEM rows of RGBA16F bent normal + arc length.
   void build(const Device& device, const Heightfield& field,
              const std::function<void(uint32_t firstRow, uint32_t endRow, void* destination)>&
@@ -127,6 +129,9 @@ class TerrainScene {
   TerrainTileLayout tiles_;
   std::vector<Image> heights_, aperture_, albedo_, slopes_;
   std::shared_ptr<const HorizonMap> horizonMap_;  // the host copy (for re-laying); null: none
+  // slopes_horizons.comp, made once (a pipeline is compiled on lavapipe:
+  // tens of ms a re-lay otherwise).
+  std::unique_ptr<ComputePipeline> horizonSlopes_;
   int horizonBits_ = kHorizonBits;
   int horizonDirections_ = 0;
   // The pair on the device now: the device's state, not the scene's content

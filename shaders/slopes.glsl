@@ -25,7 +25,8 @@ layout(local_size_x = 8, local_size_y = 8, local_size_z = 1) in;
 
 layout(set = 0, binding = 0) uniform sampler2DArray heights;  // the page, every level
 #ifdef AAL_SLOPES_HORIZONS
-layout(set = 0, binding = 1, rgba16f) uniform writeonly image2DArray slopes;  // the page's level
+// The page's level (read too: a re-lay keeps the slopes, keepSlopes).
+layout(set = 0, binding = 1, rgba16f) uniform image2DArray slopes;
 // The pair's codes (R: the first direction, G: the second), level 0.
 layout(set = 0, binding = 2) uniform usampler2DArray horizonCodes;
 // The page's level below (finer; read above level 0).
@@ -38,22 +39,29 @@ layout(push_constant) uniform Level {
   int level;
   float cellSizeXM, cellSizeYM;
   int horizonBits;  // of the codes (8 or 4)
+  int keepSlopes;   // 1: R and G hold this level's slopes already (a re-lay)
 }
 p;
 
-void main() {
-  ivec3 t = ivec3(gl_GlobalInvocationID);
-  ivec3 size = imageSize(slopes);
-  if (any(greaterThanEqual(t, size))) return;
-  ivec2 last = size.xy - 1;
+// The central differences of the level's heights at texel t.
+vec2 levelSlope(ivec3 t, ivec2 last) {
   float east = texelFetch(heights, ivec3(min(t.x + 1, last.x), t.y, t.z), p.level).r;
   float west = texelFetch(heights, ivec3(max(t.x - 1, 0), t.y, t.z), p.level).r;
   float north = texelFetch(heights, ivec3(t.x, max(t.y - 1, 0), t.z), p.level).r;  // row - 1
   float south = texelFetch(heights, ivec3(t.x, min(t.y + 1, last.y), t.z), p.level).r;
   float span = 2.0 * exp2(float(p.level));
-  vec2 slope = vec2((east - west) / (span * p.cellSizeXM), (north - south) / (span * p.cellSizeYM));
+  return vec2((east - west) / (span * p.cellSizeXM), (north - south) / (span * p.cellSizeYM));
+}
+
+void main() {
+  ivec3 t = ivec3(gl_GlobalInvocationID);
+  ivec3 size = imageSize(slopes);
+  if (any(greaterThanEqual(t, size))) return;
   vec2 horizons = vec2(0.0);
-#ifdef AAL_SLOPES_HORIZONS
+#ifndef AAL_SLOPES_HORIZONS
+  vec2 slope = levelSlope(t, size.xy - 1);
+#else
+  vec2 slope = p.keepSlopes != 0 ? imageLoad(slopes, t).rg : levelSlope(t, size.xy - 1);
   if (p.level == 0) {
     float maxCode = float((1 << p.horizonBits) - 1);
     uvec2 codes = texelFetch(horizonCodes, t, 0).rg;
