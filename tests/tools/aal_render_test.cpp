@@ -286,8 +286,10 @@ TEST(AalRender, MaxTileKeepsTheHorizonModesPicture) {
       if (i % 4 == 1 && std::abs(int(x[i]) - int(z[i])) > 2) ++differs;
     }
     EXPECT_LE(worst, 1) << name;
-    // Jacksboro's gentle relief: the horizons change 3 % of the picture at
-    // 12 degrees (at 6 the sun is hidden in both modes nearly everywhere).
+    std::printf("%s: %zu of %zu pixels more than 2 LSB from approx's\n", name.c_str(), differs,
+                x.size() / 4);
+    // Jacksboro's gentle relief: the horizons change a few % of the picture
+    // at 12 degrees (at 6 the sun is hidden in both modes nearly everywhere).
     EXPECT_GT(differs, x.size() / 4 / 100) << name << ": the horizons change nothing";
   }
 }
