@@ -383,8 +383,8 @@ TEST(AalView, MinimisingUnderXvfbLeavesTheWindowDrawing) {
 }
 
 // --horizons (aal-bake --horizons): the horizon mode, chosen at the start or
-// switched to mid-flight as from the panel (a new pipeline variant and the
-// horizons' binding), renders without validation messages; under a low sun
+// switched to mid-flight as from the panel (a new pipeline variant; the
+// slopes laid with the sun's horizons), renders without validation messages; under a low sun
 // its picture is not approx's. Without horizons, or with another DEM's,
 // exit 2 before a window opens.
 TEST(AalView, HorizonModeWithTheBakesHorizonsAlsoSwitchedMidFlight) {
@@ -420,9 +420,15 @@ TEST(AalView, HorizonModeWithTheBakesHorizonsAlsoSwitchedMidFlight) {
     if (i % 4 == 1 && std::abs(int(h.rgba[i]) - int(a.rgba[i])) > 2) ++differs;
   }
   EXPECT_LE(switchedWorst, 1) << "the switched run ends on the horizon mode's picture";
-  // The sun 12 degrees up: the horizons change a few % of the picture
-  // (jacksboro's relief is gentle).
-  EXPECT_GT(differs, h.rgba.size() / 4 / 100) << "the horizon mode looks like approx";
+  // The sun 12 degrees up: the horizons change some of the picture, 0.7 %
+  // of its pixels (jacksboro's relief is gentle, and in this distant view
+  // most fragments read prefiltered horizons, whose levels take the lower
+  // two of each 2 x 2 and so light partly lit footprints as the ray tracer
+  // does, docs/rendering.md; with plain means it was 1-3 %). A horizon mode
+  // that drew approx's picture would change none.
+  std::printf("horizon against approx: %zu of %zu pixels differ by more than 2 LSB\n", differs,
+              h.rgba.size() / 4);
+  EXPECT_GT(differs, h.rgba.size() / 4 / 200) << "the horizon mode looks like approx";
 
   // Without --aperture the viewer's own bake keeps the horizons (and caches
   // them beside the map): the mode is offered once baked, and again from the
