@@ -10,9 +10,9 @@
 #include <string>
 #include <vector>
 
-#include "aperture_map.h"
-#include "bake.h"
-#include "synthetic.h"
+#include "aperture/preprocess/bake.h"
+#include "aperture/terrain/io/aperture_map.h"
+#include "aperture/terrain/synthetic.h"
 
 namespace {
 

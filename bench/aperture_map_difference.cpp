@@ -11,7 +11,7 @@
 #include <numbers>
 #include <vector>
 
-#include "aperture_map.h"
+#include "aperture/terrain/io/aperture_map.h"
 
 namespace {
 

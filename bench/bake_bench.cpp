@@ -3,8 +3,8 @@
 // texel-azimuths/s). Larger sizes: scripts/bench-bake.sh.
 #include <benchmark/benchmark.h>
 
-#include "bake.h"
-#include "synthetic.h"
+#include "aperture/preprocess/bake.h"
+#include "aperture/terrain/synthetic.h"
 
 namespace {
 

@@ -4,7 +4,7 @@
 #include <random>
 #include <vector>
 
-#include "caps.h"
+#include "aperture/terrain/light/caps.h"
 
 namespace {
 

@@ -13,7 +13,7 @@ set -u
 bundle=$(cd "${1:?bundle folder}" && pwd)
 out=${2:?output folder}
 mkdir -p "$out"
-export LD_LIBRARY_PATH=$bundle/lib AAL_SHADER_DIR=$bundle/shaders
+export LD_LIBRARY_PATH=$bundle/lib
 export PROJ_DATA=$bundle/share/proj GDAL_DATA=$bundle/share/gdal
 if [ -z "${VK_DRIVER_FILES:-}" ]; then
   for f in /usr/local/nvidia/share/vulkan/icd.d/nvidia_icd.json /usr/share/vulkan/icd.d/nvidia_icd.json \

@@ -10,8 +10,8 @@
 #include <cstdint>
 #include <thread>
 
-#include "heightfield_checksum.h"
-#include "synthetic.h"
+#include "aperture/terrain/io/heightfield_checksum.h"
+#include "aperture/terrain/synthetic.h"
 
 namespace {
 

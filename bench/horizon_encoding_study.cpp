@@ -19,14 +19,14 @@
 #include <string>
 #include <vector>
 
-#include "bake.h"
-#include "bake_terrain.h"
-#include "caps.h"
-#include "dem_loader.h"
-#include "horizon_map.h"
-#include "horizon_sweep.h"
-#include "shading.h"
-#include "synthetic.h"
+#include "aperture/preprocess/bake.h"
+#include "aperture/preprocess/bake_terrain.h"
+#include "aperture/preprocess/horizon_sweep.h"
+#include "aperture/terrain/io/dem_loader.h"
+#include "aperture/terrain/io/horizon_map.h"
+#include "aperture/terrain/light/caps.h"
+#include "aperture/terrain/light/shading.h"
+#include "aperture/terrain/synthetic.h"
 
 namespace {
 

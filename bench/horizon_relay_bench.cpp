@@ -18,11 +18,11 @@
 #include <tuple>
 #include <utility>
 
-#include "device.h"
-#include "horizon_map.h"
-#include "instance.h"
-#include "synthetic.h"
-#include "terrain_scene.h"
+#include "aperture/engine/terrain_scene.h"
+#include "aperture/engine/vk/device.h"
+#include "aperture/engine/vk/instance.h"
+#include "aperture/terrain/io/horizon_map.h"
+#include "aperture/terrain/synthetic.h"
 
 namespace {
 

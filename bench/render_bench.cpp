@@ -11,17 +11,17 @@
 #include <optional>
 #include <utility>
 
-#include "albedo_image.h"
-#include "bake.h"
-#include "camera.h"
-#include "config.h"
-#include "dem_loader.h"
-#include "device.h"
-#include "instance.h"
-#include "sky_lighting.h"
-#include "synthetic.h"
-#include "terrain_renderer.h"
-#include "terrain_scene.h"
+#include "aperture/engine/terrain_renderer.h"
+#include "aperture/engine/terrain_scene.h"
+#include "aperture/engine/vk/device.h"
+#include "aperture/engine/vk/instance.h"
+#include "aperture/preprocess/bake.h"
+#include "aperture/shaders/config.h"
+#include "aperture/terrain/io/albedo_image.h"
+#include "aperture/terrain/io/dem_loader.h"
+#include "aperture/terrain/light/sky_lighting.h"
+#include "aperture/terrain/synthetic.h"
+#include "aperture/terrain/view/camera.h"
 
 #ifndef AAL_SOURCE_DIR
 #define AAL_SOURCE_DIR "."

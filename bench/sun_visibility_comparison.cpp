@@ -30,16 +30,16 @@
 #include <tbb/parallel_for.h>
 #include <glm/geometric.hpp>
 
-#include "bake.h"
-#include "bake_terrain.h"
-#include "caps.h"
-#include "dem_loader.h"
-#include "errors.h"
-#include "horizon_map.h"
-#include "ray_bake.h"
-#include "sector_apertures.h"
-#include "shading.h"
-#include "synthetic.h"
+#include "aperture/preprocess/bake.h"
+#include "aperture/preprocess/bake_terrain.h"
+#include "aperture/preprocess/ray_bake.h"
+#include "aperture/preprocess/sector_apertures.h"
+#include "aperture/terrain/errors.h"
+#include "aperture/terrain/io/dem_loader.h"
+#include "aperture/terrain/io/horizon_map.h"
+#include "aperture/terrain/light/caps.h"
+#include "aperture/terrain/light/shading.h"
+#include "aperture/terrain/synthetic.h"
 
 namespace {
 

@@ -69,6 +69,24 @@ endif()
 if(AAL_BUILD_BENCH)
   aal_find_package(benchmark libbenchmark-dev CONFIG)
 endif()
+# The Python module (python/): pybind11 and numpy from Debian's packages, for
+# Debian's own python3 (a python3 earlier on PATH, a pyenv one say, has not
+# got them); -DPython3_EXECUTABLE picks another. Built whenever both are
+# there; scripts/install-deps.sh installs them.
+set(AAL_PYTHON_FOUND OFF)
+if(AAL_PYTHON)
+  if(NOT DEFINED Python3_EXECUTABLE AND EXISTS /usr/bin/python3)
+    set(Python3_EXECUTABLE /usr/bin/python3)
+  endif()
+  find_package(Python3 COMPONENTS Interpreter Development.Module NumPy QUIET)
+  find_package(pybind11 CONFIG QUIET)
+  if(Python3_FOUND AND Python3_NumPy_FOUND AND pybind11_FOUND)
+    set(AAL_PYTHON_FOUND ON)
+  else()
+    message(STATUS "aperture: the Python module is not built (install python3-dev "
+                   "python3-numpy pybind11-dev, or run scripts/install-deps.sh)")
+  endif()
+endif()
 # The tiled bake across MPI ranks (aal-bake-mpi); mpiexec runs its tests.
 if(AAL_MPI)
   find_package(MPI COMPONENTS CXX QUIET)

@@ -46,4 +46,20 @@ function(aal_add_shaders)
     list(APPEND outputs ${out})
   endforeach()
   add_custom_target(${ARG_TARGET} ALL DEPENDS ${outputs})
+  set_property(GLOBAL APPEND PROPERTY AAL_SPIRV_FILES ${outputs})
+endfunction()
+
+# aal_embed_shaders(OUTPUT file.cpp): every shader compiled by aal_add_shaders
+# so far as arrays of SPIR-V words in one C++ source (cmake/EmbedShaders.cmake;
+# engine/vk/embedded_shaders.h), regenerated when any of them changes.
+function(aal_embed_shaders output)
+  get_property(spirv GLOBAL PROPERTY AAL_SPIRV_FILES)
+  string(REPLACE ";" "|" joined "${spirv}")
+  add_custom_command(
+    OUTPUT ${output}
+    COMMAND ${CMAKE_COMMAND} -DOUTPUT=${output} -DSPIRV=${joined}
+            -P ${CMAKE_SOURCE_DIR}/cmake/EmbedShaders.cmake
+    DEPENDS ${spirv} ${CMAKE_SOURCE_DIR}/cmake/EmbedShaders.cmake
+    COMMENT "SPIR-V -> ${output}"
+    VERBATIM)
 endfunction()

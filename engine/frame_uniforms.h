@@ -13,7 +13,7 @@
 #include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
 
-#include "sky_model.h"
+#include "aperture/terrain/light/sky_model.h"
 
 namespace aal {
 

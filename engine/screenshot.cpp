@@ -1,13 +1,13 @@
-#include "screenshot.h"
+#include "aperture/engine/screenshot.h"
 
 #include <algorithm>
 #include <cctype>
 #include <filesystem>
 #include <stdexcept>
 
-#include "atomic_file.h"
-#include "image_files.h"
-#include "terrain_renderer.h"
+#include "aperture/engine/terrain_renderer.h"
+#include "aperture/terrain/io/atomic_file.h"
+#include "aperture/terrain/io/image_files.h"
 
 namespace aal {
 

@@ -1,4 +1,4 @@
-#include "terrain_renderer.h"
+#include "aperture/engine/terrain_renderer.h"
 
 #include <algorithm>
 #include <array>
@@ -11,15 +11,15 @@
 
 #include <glm/matrix.hpp>
 
-#include "cap_table.h"
-#include "commands.h"
-#include "descriptors.h"
-#include "device.h"
-#include "frame_uniforms.h"
-#include "horizon_map.h"
-#include "obscurance_samples.h"
-#include "terrain_scene.h"
-#include "vk_check.h"
+#include "aperture/engine/frame_uniforms.h"
+#include "aperture/engine/terrain_scene.h"
+#include "aperture/engine/vk/commands.h"
+#include "aperture/engine/vk/descriptors.h"
+#include "aperture/engine/vk/device.h"
+#include "aperture/engine/vk/vk_check.h"
+#include "aperture/terrain/io/horizon_map.h"
+#include "aperture/terrain/light/cap_table.h"
+#include "aperture/terrain/light/obscurance_samples.h"
 
 namespace aal {
 
@@ -579,9 +579,9 @@ void TerrainRenderer::record(VkCommandBuffer cmd, const TerrainScene& scene, con
     // and the re-lay waits for itself before this frame's commands are
     // submitted. With more frames in flight this would need the device idle
     // first.
-    scene.relayHorizons(device_, horizonPairFor(scene.horizonDirections(),
-                                                sunAzimuthRad(s.lighting.sunDirection),
-                                                scene.horizonFirst()));
+    scene.relayHorizons(
+        device_, horizonPairFor(scene.horizonDirections(), sunAzimuthRad(s.lighting.sunDirection),
+                                scene.horizonFirst()));
   }
   const bool obscurance = writeUniforms(scene, s);
   selectPatches(scene, s);

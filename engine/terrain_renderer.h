@@ -13,15 +13,15 @@
 
 #include <glm/vec3.hpp>
 
-#include "buffer.h"
-#include "camera.h"
-#include "gpu_timer.h"
-#include "graphics_pipeline.h"
-#include "image.h"
-#include "lighting.h"
-#include "obscurance.h"
-#include "quadtree_lod.h"
-#include "shading.h"
+#include "aperture/engine/vk/buffer.h"
+#include "aperture/engine/vk/gpu_timer.h"
+#include "aperture/engine/vk/graphics_pipeline.h"
+#include "aperture/engine/vk/image.h"
+#include "aperture/terrain/light/lighting.h"
+#include "aperture/terrain/light/obscurance.h"
+#include "aperture/terrain/light/shading.h"
+#include "aperture/terrain/view/camera.h"
+#include "aperture/terrain/view/quadtree_lod.h"
 
 namespace aal {
 

@@ -1,4 +1,4 @@
-#include "terrain_scene.h"
+#include "aperture/engine/terrain_scene.h"
 
 #include <algorithm>
 #include <array>
@@ -12,12 +12,12 @@
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 
-#include "commands.h"
-#include "compute.h"
-#include "descriptors.h"
-#include "device.h"
-#include "upload.h"
-#include "vk_check.h"
+#include "aperture/engine/vk/commands.h"
+#include "aperture/engine/vk/compute.h"
+#include "aperture/engine/vk/descriptors.h"
+#include "aperture/engine/vk/device.h"
+#include "aperture/engine/vk/upload.h"
+#include "aperture/engine/vk/vk_check.h"
 
 namespace aal {
 
@@ -115,15 +115,14 @@ void reduceAlbedo(const unsigned char* upper, const unsigned char* lower, unsign
 // The slope pages (in the heights' pages and layers, every mip level): RG16F
 // slopes, or RGBA16F with the horizon pair in B and A.
 std::vector<Image> makeSlopePages(const Device& device, const TerrainTileLayout& tiles,
-                              bool horizons) {
+                                  bool horizons) {
   std::vector<Image> pages;
   for (uint32_t page = 0; page < tiles.pagesOf(TerrainTexture::Height); ++page) {
     pages.emplace_back(
-        device,
-        ImageDesc{tiles.imageWidth(), tiles.imageHeight(),
-                  horizons ? VK_FORMAT_R16G16B16A16_SFLOAT : VK_FORMAT_R16G16_SFLOAT,
-                  kTextureUsage | VK_IMAGE_USAGE_STORAGE_BIT, VK_IMAGE_ASPECT_COLOR_BIT,
-                  tiles.layersIn(TerrainTexture::Height, page), true, kTerrainMipLevels});
+        device, ImageDesc{tiles.imageWidth(), tiles.imageHeight(),
+                          horizons ? VK_FORMAT_R16G16B16A16_SFLOAT : VK_FORMAT_R16G16_SFLOAT,
+                          kTextureUsage | VK_IMAGE_USAGE_STORAGE_BIT, VK_IMAGE_ASPECT_COLOR_BIT,
+                          tiles.layersIn(TerrainTexture::Height, page), true, kTerrainMipLevels});
   }
   return pages;
 }
@@ -194,11 +193,11 @@ std::vector<Image> horizonPairPages(const Device& device, const TerrainTileLayou
   };
   std::vector<Image> pages;
   for (uint32_t page = 0; page < tiles.pagesOf(TerrainTexture::Height); ++page) {
-    pages.emplace_back(device, ImageDesc{tiles.imageWidth(), tiles.imageHeight(),
-                                         VK_FORMAT_R8G8_UINT,
-                                         VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT,
-                                         VK_IMAGE_ASPECT_COLOR_BIT,
-                                         tiles.layersIn(TerrainTexture::Height, page), true});
+    pages.emplace_back(
+        device,
+        ImageDesc{tiles.imageWidth(), tiles.imageHeight(), VK_FORMAT_R8G8_UINT,
+                  VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT,
+                  VK_IMAGE_ASPECT_COLOR_BIT, tiles.layersIn(TerrainTexture::Height, page), true});
   }
   UploadBatch upload(device);
   std::vector<unsigned char> scratch;  // one band of DEM rows while a tile is filled
@@ -229,7 +228,8 @@ struct SlopePush {
 void TerrainScene::computeSlopes(const Device& device, int first, bool keepSlopes) const {
   const bool horizons = horizonMap_ != nullptr;
   std::unique_ptr<ComputePipeline> plain;
-  if (!horizons) plain = std::make_unique<ComputePipeline>(device, "slopes.comp", sizeof(SlopePush));
+  if (!horizons)
+    plain = std::make_unique<ComputePipeline>(device, "slopes.comp", sizeof(SlopePush));
   const ComputePipeline& pipeline = horizons ? *horizonSlopes_ : *plain;
   const Sampler nearest(device, VK_FILTER_NEAREST, true);
   const Sampler codeSampler(device, VK_FILTER_NEAREST, false);  // integer texels: no filter
@@ -245,10 +245,10 @@ void TerrainScene::computeSlopes(const Device& device, int first, bool keepSlope
     for (size_t p = 0; p < slopes_.size(); ++p) {
       const Image& page = slopes_[p];
       const uint32_t levels = page.desc().mipLevels;
-      transitionImage(cmd, page,
-                      keepSlopes ? VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL
-                                 : VK_IMAGE_LAYOUT_UNDEFINED,
-                      VK_IMAGE_LAYOUT_GENERAL);
+      transitionImage(
+          cmd, page,
+          keepSlopes ? VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL : VK_IMAGE_LAYOUT_UNDEFINED,
+          VK_IMAGE_LAYOUT_GENERAL);
       for (uint32_t level = 0; level < levels; ++level) {
         const SlopePush push{static_cast<int32_t>(level), demInfo_.z, demInfo_.w, horizonBits_,
                              keepSlopes ? 1 : 0};
@@ -458,10 +458,11 @@ void TerrainScene::setHorizons(const Device& device, std::shared_ptr<const Horiz
   const uint64_t pageBytes =
       tiles_.layerTexels() * tiles_.layersPerPageOf(TerrainTexture::Height) * 8;
   if (pageBytes > limits.maxAllocationBytes / 16 * 15) {
-    throw std::runtime_error("the directional horizons of " + describeTerrainTiles(tiles_) +
-                             " (" + std::to_string(pageBytes >> 20) +
+    throw std::runtime_error("the directional horizons of " + describeTerrainTiles(tiles_) + " (" +
+                             std::to_string(pageBytes >> 20) +
                              " MiB a page of slopes with horizons) do not fit one image of the "
-                             "device (" + std::to_string(limits.maxAllocationBytes >> 20) +
+                             "device (" +
+                             std::to_string(limits.maxAllocationBytes >> 20) +
                              " MiB an allocation)");
   }
   // Made before anything changes, so a device too small keeps the scene as

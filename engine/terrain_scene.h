@@ -13,15 +13,15 @@
 #include <glm/vec3.hpp>
 #include <glm/vec4.hpp>
 
-#include "albedo_image.h"
-#include "aperture_map.h"
-#include "buffer.h"
-#include "compute.h"
-#include "heightfield.h"
-#include "horizon_map.h"
-#include "image.h"
-#include "quadtree_lod.h"
-#include "terrain_tiles.h"
+#include "aperture/engine/terrain_tiles.h"
+#include "aperture/engine/vk/buffer.h"
+#include "aperture/engine/vk/compute.h"
+#include "aperture/engine/vk/image.h"
+#include "aperture/terrain/heightfield.h"
+#include "aperture/terrain/io/albedo_image.h"
+#include "aperture/terrain/io/aperture_map.h"
+#include "aperture/terrain/io/horizon_map.h"
+#include "aperture/terrain/view/quadtree_lod.h"
 
 namespace aal {
 

@@ -1,4 +1,4 @@
-#include "terrain_tiles.h"
+#include "aperture/engine/terrain_tiles.h"
 
 #include <algorithm>
 #include <cmath>

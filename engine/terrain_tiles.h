@@ -23,7 +23,7 @@
 
 #include <glm/vec2.hpp>
 
-#include "config.h"
+#include "aperture/shaders/config.h"
 
 namespace aal {
 

@@ -13,8 +13,8 @@
 #include <cpl_vsi.h>
 #include <gdal_priv.h>
 
-#include "dem_options.h"
-#include "gdal_session.h"
+#include "aperture/terrain/io/dem_options.h"
+#include "aperture/terrain/io/gdal_session.h"
 
 namespace aal::fuzz {
 

@@ -5,9 +5,9 @@
 #include <cstdlib>
 #include <string>
 
-#include "dem_loader.h"
-#include "errors.h"
-#include "fuzz_common.h"
+#include "aperture/fuzz/fuzz_common.h"
+#include "aperture/terrain/errors.h"
+#include "aperture/terrain/io/dem_loader.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   if (size < 1) return 0;

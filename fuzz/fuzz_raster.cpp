@@ -13,10 +13,10 @@
 #include <fuzzer/FuzzedDataProvider.h>
 #include <ogr_spatialref.h>
 
-#include "dem_loader.h"
-#include "dem_source.h"
-#include "errors.h"
-#include "fuzz_common.h"
+#include "aperture/fuzz/fuzz_common.h"
+#include "aperture/terrain/errors.h"
+#include "aperture/terrain/io/dem_loader.h"
+#include "aperture/terrain/io/dem_source.h"
 
 namespace {
 

@@ -8,8 +8,8 @@
 #include <string>
 #include <vector>
 
-#include "gdal_raster.h"
-#include "hostile_files.h"
+#include "aperture/tests/terrain/io/gdal_raster.h"
+#include "aperture/tests/terrain/io/hostile_files.h"
 
 namespace fs = std::filesystem;
 

@@ -1,4 +1,4 @@
-#include "aperture_cache.h"
+#include "aperture/preprocess/aperture_cache.h"
 
 #include <cstdio>
 #include <cstdlib>
@@ -6,8 +6,8 @@
 #include <string>
 #include <system_error>
 
-#include "errors.h"
-#include "progress.h"
+#include "aperture/preprocess/progress.h"
+#include "aperture/terrain/errors.h"
 
 namespace aal {
 

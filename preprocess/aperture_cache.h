@@ -7,10 +7,10 @@
 #include <filesystem>
 #include <string>
 
-#include "aperture_map.h"
-#include "bake.h"
-#include "heightfield.h"
-#include "horizon_map.h"
+#include "aperture/preprocess/bake.h"
+#include "aperture/terrain/heightfield.h"
+#include "aperture/terrain/io/aperture_map.h"
+#include "aperture/terrain/io/horizon_map.h"
 
 namespace aal {
 

@@ -1,4 +1,4 @@
-#include "background_bake.h"
+#include "aperture/preprocess/background_bake.h"
 
 #include <stdexcept>
 #include <utility>

@@ -8,9 +8,9 @@
 #include <string>
 #include <thread>
 
-#include "aperture_cache.h"
-#include "bake.h"
-#include "heightfield.h"
+#include "aperture/preprocess/aperture_cache.h"
+#include "aperture/preprocess/bake.h"
+#include "aperture/terrain/heightfield.h"
 
 namespace aal {
 

@@ -1,4 +1,4 @@
-#include "bake.h"
+#include "aperture/preprocess/bake.h"
 
 #include <algorithm>
 #include <cmath>
@@ -9,13 +9,13 @@
 #include <tbb/parallel_for.h>
 #include <tbb/task_group.h>
 
-#include "bake_terrain.h"
-#include "far_horizon.h"
-#include "horizon_blocks.h"
-#include "horizon_sweep.h"
-#include "huge_pages.h"
-#include "ray_bake.h"
-#include "slice_accumulator.h"
+#include "aperture/preprocess/bake_terrain.h"
+#include "aperture/preprocess/far_horizon.h"
+#include "aperture/preprocess/horizon_blocks.h"
+#include "aperture/preprocess/horizon_sweep.h"
+#include "aperture/preprocess/ray_bake.h"
+#include "aperture/preprocess/slice_accumulator.h"
+#include "aperture/terrain/huge_pages.h"
 
 namespace aal {
 

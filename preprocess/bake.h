@@ -8,10 +8,10 @@
 #include <string>
 #include <vector>
 
-#include "aperture_map.h"
-#include "bake_terrain.h"
-#include "heightfield.h"
-#include "horizon_map.h"
+#include "aperture/preprocess/bake_terrain.h"
+#include "aperture/terrain/heightfield.h"
+#include "aperture/terrain/io/aperture_map.h"
+#include "aperture/terrain/io/horizon_map.h"
 
 namespace aal {
 

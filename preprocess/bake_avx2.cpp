@@ -12,10 +12,10 @@
 #include <cstddef>
 #include <iterator>
 
-#include "block_line_walker.h"
-#include "horizon_blocks.h"
-#include "sky_slice.h"
-#include "slice_accumulator.h"
+#include "aperture/preprocess/block_line_walker.h"
+#include "aperture/preprocess/horizon_blocks.h"
+#include "aperture/preprocess/sky_slice.h"
+#include "aperture/preprocess/slice_accumulator.h"
 
 #if AAL_HORIZON_AVX2
 #include <immintrin.h>

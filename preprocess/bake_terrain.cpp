@@ -1,4 +1,4 @@
-#include "bake_terrain.h"
+#include "aperture/preprocess/bake_terrain.h"
 
 #include <stdexcept>
 

@@ -5,7 +5,7 @@
 
 #include <vector>
 
-#include "heightfield.h"
+#include "aperture/terrain/heightfield.h"
 
 namespace aal {
 

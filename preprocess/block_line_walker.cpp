@@ -1,6 +1,6 @@
 // The block sweep's line walker: set-up, the choice of walk, and the
 // scalar walk (the AVX2 walk: bake_avx2.cpp).
-#include "block_line_walker.h"
+#include "aperture/preprocess/block_line_walker.h"
 
 #include <algorithm>
 #include <cmath>

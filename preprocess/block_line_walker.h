@@ -8,9 +8,9 @@
 #include <cmath>
 #include <cstddef>
 
-#include "bake_terrain.h"
-#include "horizon_blocks.h"
-#include "horizon_sweep.h"
+#include "aperture/preprocess/bake_terrain.h"
+#include "aperture/preprocess/horizon_blocks.h"
+#include "aperture/preprocess/horizon_sweep.h"
 
 namespace aal::detail {
 

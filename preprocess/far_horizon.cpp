@@ -1,4 +1,4 @@
-#include "far_horizon.h"
+#include "aperture/preprocess/far_horizon.h"
 
 #include <algorithm>
 #include <cmath>
@@ -8,7 +8,7 @@
 
 #include <tbb/parallel_for.h>
 
-#include "horizon_sweep.h"
+#include "aperture/preprocess/horizon_sweep.h"
 
 namespace aal {
 

@@ -9,8 +9,8 @@
 #include <string>
 #include <vector>
 
-#include "bake_terrain.h"
-#include "height_pyramid.h"
+#include "aperture/preprocess/bake_terrain.h"
+#include "aperture/preprocess/height_pyramid.h"
 
 namespace aal {
 

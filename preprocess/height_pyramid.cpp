@@ -1,4 +1,4 @@
-#include "height_pyramid.h"
+#include "aperture/preprocess/height_pyramid.h"
 
 #include <algorithm>
 #include <cmath>

@@ -8,7 +8,7 @@
 #include <cstddef>
 #include <vector>
 
-#include "heightfield.h"
+#include "aperture/terrain/heightfield.h"
 
 namespace aal {
 

@@ -1,7 +1,7 @@
 // The block sweeps of horizon_blocks.h: the lines of an azimuth in groups,
 // one task per group, each group walked by a BlockLineWalker
 // (block_line_walker.h).
-#include "horizon_blocks.h"
+#include "aperture/preprocess/horizon_blocks.h"
 
 #include <algorithm>
 #include <atomic>
@@ -14,7 +14,7 @@
 #include <tbb/enumerable_thread_specific.h>
 #include <tbb/parallel_for.h>
 
-#include "block_line_walker.h"
+#include "aperture/preprocess/block_line_walker.h"
 
 namespace aal {
 

@@ -22,8 +22,8 @@
 #include <memory>
 #include <type_traits>
 
-#include "bake_terrain.h"
-#include "horizon_sweep.h"
+#include "aperture/preprocess/bake_terrain.h"
+#include "aperture/preprocess/horizon_sweep.h"
 
 // The AVX2 kernels (bake_avx2.cpp) exist on x86-64 with GCC or clang.
 #if defined(__x86_64__) && defined(__GNUC__)

@@ -37,7 +37,7 @@
 #include <tbb/enumerable_thread_specific.h>
 #include <tbb/parallel_for.h>
 
-#include "bake_terrain.h"
+#include "aperture/preprocess/bake_terrain.h"
 
 namespace aal {
 

@@ -1,4 +1,4 @@
-#include "mpi_tiled_bake.h"
+#include "aperture/preprocess/mpi_tiled_bake.h"
 
 #include <algorithm>
 #include <chrono>
@@ -15,12 +15,12 @@
 #include <utility>
 #include <vector>
 
-#include "atomic_file.h"
-#include "dem_source.h"
-#include "errors.h"
-#include "heightfield_checksum.h"
-#include "sky_view_factor_tiles.h"
-#include "tile_window_reader.h"
+#include "aperture/preprocess/sky_view_factor_tiles.h"
+#include "aperture/preprocess/tile_window_reader.h"
+#include "aperture/terrain/errors.h"
+#include "aperture/terrain/io/atomic_file.h"
+#include "aperture/terrain/io/dem_source.h"
+#include "aperture/terrain/io/heightfield_checksum.h"
 
 namespace aal {
 

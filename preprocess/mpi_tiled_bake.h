@@ -29,7 +29,7 @@
 #include <string>
 #include <vector>
 
-#include "tiled_bake.h"
+#include "aperture/preprocess/tiled_bake.h"
 
 namespace aal {
 

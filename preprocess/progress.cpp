@@ -1,4 +1,4 @@
-#include "progress.h"
+#include "aperture/preprocess/progress.h"
 
 #include <unistd.h>
 

@@ -1,4 +1,4 @@
-#include "ray_bake.h"
+#include "aperture/preprocess/ray_bake.h"
 
 #include <algorithm>
 #include <cmath>

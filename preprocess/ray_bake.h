@@ -7,8 +7,8 @@
 
 #include <vector>
 
-#include "bake.h"
-#include "bake_terrain.h"
+#include "aperture/preprocess/bake.h"
+#include "aperture/preprocess/bake_terrain.h"
 
 namespace aal {
 

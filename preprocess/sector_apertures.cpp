@@ -1,4 +1,4 @@
-#include "sector_apertures.h"
+#include "aperture/preprocess/sector_apertures.h"
 
 #include <algorithm>
 #include <array>
@@ -9,11 +9,11 @@
 
 #include <glm/geometric.hpp>
 
-#include "bake_terrain.h"
-#include "caps.h"
-#include "horizon_blocks.h"
-#include "horizon_sweep.h"
-#include "sky_slice.h"
+#include "aperture/preprocess/bake_terrain.h"
+#include "aperture/preprocess/horizon_blocks.h"
+#include "aperture/preprocess/horizon_sweep.h"
+#include "aperture/preprocess/sky_slice.h"
+#include "aperture/terrain/light/caps.h"
 
 namespace aal {
 

@@ -24,8 +24,8 @@
 
 #include <glm/vec3.hpp>
 
-#include "bake.h"
-#include "heightfield.h"
+#include "aperture/preprocess/bake.h"
+#include "aperture/terrain/heightfield.h"
 
 namespace aal {
 

@@ -1,4 +1,4 @@
-#include "sky_view_factor_tiles.h"
+#include "aperture/preprocess/sky_view_factor_tiles.h"
 
 #include <cmath>
 #include <cstdio>
@@ -7,9 +7,9 @@
 #include <optional>
 #include <utility>
 
-#include "errors.h"
-#include "geotiff_writer.h"
-#include "raster_mosaic.h"
+#include "aperture/terrain/errors.h"
+#include "aperture/terrain/io/geotiff_writer.h"
+#include "aperture/terrain/io/raster_mosaic.h"
 
 namespace aal {
 

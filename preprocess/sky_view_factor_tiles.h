@@ -8,9 +8,9 @@
 #include <string>
 #include <vector>
 
-#include "aperture_map.h"
-#include "bake_terrain.h"
-#include "heightfield.h"
+#include "aperture/preprocess/bake_terrain.h"
+#include "aperture/terrain/heightfield.h"
+#include "aperture/terrain/io/aperture_map.h"
 
 namespace aal {
 

@@ -1,10 +1,10 @@
-#include "slice_accumulator.h"
+#include "aperture/preprocess/slice_accumulator.h"
 
 #include <algorithm>
 #include <atomic>
 #include <cmath>
 
-#include "sky_slice.h"
+#include "aperture/preprocess/sky_slice.h"
 
 namespace aal {
 

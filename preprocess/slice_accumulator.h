@@ -9,9 +9,9 @@
 #include <cstdint>
 #include <vector>
 
-#include "bake.h"
-#include "bake_terrain.h"
-#include "horizon_blocks.h"
+#include "aperture/preprocess/bake.h"
+#include "aperture/preprocess/bake_terrain.h"
+#include "aperture/preprocess/horizon_blocks.h"
 
 namespace aal {
 

@@ -1,12 +1,12 @@
-#include "tile_window_reader.h"
+#include "aperture/preprocess/tile_window_reader.h"
 
 #include <algorithm>
 #include <cstring>
 #include <utility>
 #include <vector>
 
-#include "dem_loader.h"
-#include "dem_source.h"
+#include "aperture/terrain/io/dem_loader.h"
+#include "aperture/terrain/io/dem_source.h"
 
 namespace aal {
 

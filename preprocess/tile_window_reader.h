@@ -8,8 +8,8 @@
 #include <cstdint>
 #include <vector>
 
-#include "bake_terrain.h"
-#include "heightfield.h"
+#include "aperture/preprocess/bake_terrain.h"
+#include "aperture/terrain/heightfield.h"
 
 namespace aal {
 

@@ -1,4 +1,4 @@
-#include "tiled_bake.h"
+#include "aperture/preprocess/tiled_bake.h"
 
 #include <fcntl.h>
 #include <sys/file.h>
@@ -22,16 +22,16 @@
 #include <tbb/parallel_for.h>
 #include <tbb/parallel_invoke.h>
 
-#include "atomic_file.h"
-#include "bake_terrain.h"
-#include "dem_loader.h"
-#include "dem_source.h"
-#include "errors.h"
-#include "height_pyramid.h"
-#include "heightfield_checksum.h"
-#include "horizon_sweep.h"
-#include "sky_view_factor_tiles.h"
-#include "tile_window_reader.h"
+#include "aperture/preprocess/bake_terrain.h"
+#include "aperture/preprocess/height_pyramid.h"
+#include "aperture/preprocess/horizon_sweep.h"
+#include "aperture/preprocess/sky_view_factor_tiles.h"
+#include "aperture/preprocess/tile_window_reader.h"
+#include "aperture/terrain/errors.h"
+#include "aperture/terrain/io/atomic_file.h"
+#include "aperture/terrain/io/dem_loader.h"
+#include "aperture/terrain/io/dem_source.h"
+#include "aperture/terrain/io/heightfield_checksum.h"
 
 namespace aal {
 

@@ -13,9 +13,9 @@
 #include <stdexcept>
 #include <string>
 
-#include "bake.h"
-#include "far_horizon.h"
-#include "height_pyramid.h"
+#include "aperture/preprocess/bake.h"
+#include "aperture/preprocess/far_horizon.h"
+#include "aperture/preprocess/height_pyramid.h"
 
 namespace aal {
 

@@ -27,6 +27,10 @@ packages=(
   # aal-bake-mpi, the tiled bake across MPI ranks (-DAAL_MPI=ON, which
   # scripts/build.sh turns on)
   libopenmpi-dev openmpi-bin
+  # the Python module (python/) and its tests
+  python3-dev python3-numpy pybind11-dev python3-pytest python3-rasterio
+  # the .deb (cpack -G DEB: Depends from dpkg-shlibdeps) and its check
+  dpkg-dev lintian
   # fuzzing the DEM parsers (scripts/fuzz.sh): clang with libFuzzer
   clang libclang-rt-14-dev
 )

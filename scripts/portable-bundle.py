@@ -6,9 +6,9 @@ packages (docs/performance.md, "On a GPU").
 Usage: scripts/portable-bundle.py OUT_DIR BINARY...
 
 Copies the binaries, the image plugin beside them (aal_oiio_images.so, which
-the tools open to read and write images: terrain/io/image_files.h), the compiled
-shaders and every library they load into OUT_DIR (binaries, the plugin and
-shaders/ at the top, libraries in lib/), except the C runtime (libc, libm,
+the tools open to read and write images: terrain/io/image_files.h) and every
+library they load into OUT_DIR (binaries and the plugin at the top, libraries
+in lib/; the shaders are built into the binaries), except the C runtime (libc, libm,
 libstdc++, libgcc_s, the loader: the target's newer ones serve, and its GPU
 driver needs them). OpenImageIO links many codec libraries
 that our tools never call (video, DICOM, OpenVDB, camera raw, HEIF, OpenCV);
@@ -17,9 +17,8 @@ that defines the symbols the kept libraries import (functions that return a
 pointer to zeros: version strings read as empty). PROJ is kept: GDAL places
 every DEM with it (docs/dem-input.md), and its database (proj.db) and GDAL's
 data files are copied to OUT_DIR/share/proj and OUT_DIR/share/gdal.
-Run on the target with LD_LIBRARY_PATH=OUT_DIR/lib,
-AAL_SHADER_DIR=OUT_DIR/shaders, PROJ_DATA=OUT_DIR/share/proj and
-GDAL_DATA=OUT_DIR/share/gdal.
+Run on the target with LD_LIBRARY_PATH=OUT_DIR/lib, PROJ_DATA=OUT_DIR/share/proj
+and GDAL_DATA=OUT_DIR/share/gdal.
 """
 import os
 import re
@@ -127,9 +126,6 @@ def main():
         binaries.append(plugin)
     for binary in binaries:
         shutil.copy(binary, out_dir)
-    shader_dir = os.path.join(os.path.dirname(os.path.abspath(binaries[0])), "..", "shaders")
-    shutil.copytree(shader_dir, os.path.join(out_dir, "shaders"), dirs_exist_ok=True,
-                    ignore=shutil.ignore_patterns("CMakeFiles", "*.cmake"))
     for name, source in DATA_DIRS.items():
         shutil.copytree(source, os.path.join(out_dir, "share", name), dirs_exist_ok=True)
     kept = kept_libraries(binaries)

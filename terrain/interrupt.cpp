@@ -1,4 +1,4 @@
-#include "interrupt.h"
+#include "aperture/terrain/interrupt.h"
 
 #include <csignal>
 

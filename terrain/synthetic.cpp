@@ -1,4 +1,4 @@
-#include "synthetic.h"
+#include "aperture/terrain/synthetic.h"
 
 #include <algorithm>
 #include <cmath>

@@ -4,7 +4,7 @@
 
 #include <cstdint>
 
-#include "heightfield.h"
+#include "aperture/terrain/heightfield.h"
 
 namespace aal {
 

@@ -15,21 +15,21 @@
 #include <tbb/global_control.h>
 #include <CLI/CLI.hpp>
 
-#include "aperture_map.h"
-#include "atomic_file.h"
-#include "bake.h"
-#include "bake_command_line.h"
-#include "dem_loader.h"
-#include "dem_source.h"
-#include "geotiff_writer.h"
-#include "interrupt.h"
-#include "memory_budget.h"
-#include "progress.h"
-#include "sky_view_factor_tiles.h"
-#include "tiled_bake.h"
-#include "tool_main.h"
-#include "tool_options.h"
-#include "tool_paths.h"
+#include "aperture/preprocess/bake.h"
+#include "aperture/preprocess/progress.h"
+#include "aperture/preprocess/sky_view_factor_tiles.h"
+#include "aperture/preprocess/tiled_bake.h"
+#include "aperture/terrain/interrupt.h"
+#include "aperture/terrain/io/aperture_map.h"
+#include "aperture/terrain/io/atomic_file.h"
+#include "aperture/terrain/io/dem_loader.h"
+#include "aperture/terrain/io/dem_source.h"
+#include "aperture/terrain/io/geotiff_writer.h"
+#include "aperture/terrain/io/memory_budget.h"
+#include "aperture/tools/bake_command_line.h"
+#include "aperture/tools/tool_main.h"
+#include "aperture/tools/tool_options.h"
+#include "aperture/tools/tool_paths.h"
 
 namespace {
 

@@ -18,16 +18,16 @@
 #include <tbb/global_control.h>
 #include <CLI/CLI.hpp>
 
-#include "bake_command_line.h"
-#include "dem_loader.h"
-#include "dem_source.h"
-#include "errors.h"
-#include "interrupt.h"
-#include "mpi_tiled_bake.h"
-#include "sky_view_factor_tiles.h"
-#include "tool_main.h"
-#include "tool_options.h"
-#include "tool_paths.h"
+#include "aperture/preprocess/mpi_tiled_bake.h"
+#include "aperture/preprocess/sky_view_factor_tiles.h"
+#include "aperture/terrain/errors.h"
+#include "aperture/terrain/interrupt.h"
+#include "aperture/terrain/io/dem_loader.h"
+#include "aperture/terrain/io/dem_source.h"
+#include "aperture/tools/bake_command_line.h"
+#include "aperture/tools/tool_main.h"
+#include "aperture/tools/tool_options.h"
+#include "aperture/tools/tool_paths.h"
 
 namespace {
 

@@ -14,12 +14,12 @@
 
 #include <CLI/CLI.hpp>
 
-#include "atomic_file.h"
-#include "cap_error.h"
-#include "cap_error_plot.h"
-#include "tool_main.h"
-#include "tool_options.h"
-#include "tool_paths.h"
+#include "aperture/terrain/io/atomic_file.h"
+#include "aperture/terrain/light/cap_error.h"
+#include "aperture/tools/cap_error_plot.h"
+#include "aperture/tools/tool_main.h"
+#include "aperture/tools/tool_options.h"
+#include "aperture/tools/tool_paths.h"
 
 namespace {
 

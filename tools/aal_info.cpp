@@ -7,10 +7,10 @@
 
 #include <CLI/CLI.hpp>
 
-#include "dem_loader.h"
-#include "dem_source.h"
-#include "dem_summary.h"
-#include "tool_main.h"
+#include "aperture/terrain/io/dem_loader.h"
+#include "aperture/terrain/io/dem_source.h"
+#include "aperture/terrain/io/dem_summary.h"
+#include "aperture/tools/tool_main.h"
 
 namespace {
 

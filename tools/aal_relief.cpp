@@ -13,22 +13,22 @@
 
 #include <CLI/CLI.hpp>
 
-#include "aperture_cache.h"
-#include "aperture_map.h"
-#include "atmosphere.h"
-#include "camera.h"
-#include "color_ramp.h"
-#include "dem_loader.h"
-#include "dem_options.h"
-#include "geotiff_writer.h"
-#include "interrupt.h"
-#include "lighting_defaults.h"
-#include "progress.h"
-#include "relief.h"
-#include "solar_position.h"
-#include "tool_main.h"
-#include "tool_options.h"
-#include "tool_paths.h"
+#include "aperture/preprocess/aperture_cache.h"
+#include "aperture/preprocess/progress.h"
+#include "aperture/terrain/interrupt.h"
+#include "aperture/terrain/io/aperture_map.h"
+#include "aperture/terrain/io/dem_loader.h"
+#include "aperture/terrain/io/dem_options.h"
+#include "aperture/terrain/io/geotiff_writer.h"
+#include "aperture/terrain/light/atmosphere.h"
+#include "aperture/terrain/light/lighting_defaults.h"
+#include "aperture/terrain/light/solar_position.h"
+#include "aperture/terrain/reference/color_ramp.h"
+#include "aperture/terrain/reference/relief.h"
+#include "aperture/terrain/view/camera.h"
+#include "aperture/tools/tool_main.h"
+#include "aperture/tools/tool_options.h"
+#include "aperture/tools/tool_paths.h"
 
 namespace {
 

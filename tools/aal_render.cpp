@@ -13,32 +13,32 @@
 
 #include <CLI/CLI.hpp>
 
-#include "albedo_image.h"
-#include "aperture_cache.h"
-#include "aperture_map.h"
-#include "atmosphere.h"
-#include "atomic_file.h"
-#include "camera.h"
-#include "camera_path.h"
-#include "dem_loader.h"
-#include "device.h"
-#include "horizon_option.h"
-#include "instance.h"
-#include "interrupt.h"
-#include "lighting_defaults.h"
-#include "mode_comparison.h"
-#include "progress.h"
-#include "reference_renderer.h"
-#include "render_sequence.h"
-#include "screenshot.h"
-#include "sky_lighting.h"
-#include "solar_position.h"
-#include "terrain_renderer.h"
-#include "terrain_scene.h"
-#include "tone_map.h"
-#include "tool_main.h"
-#include "tool_options.h"
-#include "tool_paths.h"
+#include "aperture/engine/screenshot.h"
+#include "aperture/engine/terrain_renderer.h"
+#include "aperture/engine/terrain_scene.h"
+#include "aperture/engine/vk/device.h"
+#include "aperture/engine/vk/instance.h"
+#include "aperture/preprocess/aperture_cache.h"
+#include "aperture/preprocess/progress.h"
+#include "aperture/terrain/interrupt.h"
+#include "aperture/terrain/io/albedo_image.h"
+#include "aperture/terrain/io/aperture_map.h"
+#include "aperture/terrain/io/atomic_file.h"
+#include "aperture/terrain/io/dem_loader.h"
+#include "aperture/terrain/light/atmosphere.h"
+#include "aperture/terrain/light/lighting_defaults.h"
+#include "aperture/terrain/light/sky_lighting.h"
+#include "aperture/terrain/light/solar_position.h"
+#include "aperture/terrain/light/tone_map.h"
+#include "aperture/terrain/reference/reference_renderer.h"
+#include "aperture/terrain/view/camera.h"
+#include "aperture/terrain/view/camera_path.h"
+#include "aperture/tools/horizon_option.h"
+#include "aperture/tools/mode_comparison.h"
+#include "aperture/tools/render_sequence.h"
+#include "aperture/tools/tool_main.h"
+#include "aperture/tools/tool_options.h"
+#include "aperture/tools/tool_paths.h"
 
 namespace {
 
@@ -222,8 +222,8 @@ int runComparison(const Options& o, const aal::Heightfield& field, aal::TerrainS
     aal::ComparedMode m{name, aal::ShadingMode::Horizon, settings.obscurance.enabled};
     if (horizons.size() > 1) {
       // Laid for the one sun (horizonPairFor): no re-lay in the frame.
-      const int first = aal::horizonPairFor(
-          horizons[i]->directions, aal::sunAzimuthRad(settings.lighting.sunDirection), -1);
+      const int first = aal::horizonPairFor(horizons[i]->directions,
+                                            aal::sunAzimuthRad(settings.lighting.sunDirection), -1);
       m.prepare = [&scene, &device, &horizons, i, first] {
         scene.setHorizons(device, horizons[i], first);
       };

@@ -8,11 +8,11 @@
 
 #include <CLI/CLI.hpp>
 
-#include "atomic_file.h"
-#include "geotiff_writer.h"
-#include "synthetic.h"
-#include "tool_main.h"
-#include "tool_options.h"
+#include "aperture/terrain/io/atomic_file.h"
+#include "aperture/terrain/io/geotiff_writer.h"
+#include "aperture/terrain/synthetic.h"
+#include "aperture/tools/tool_main.h"
+#include "aperture/tools/tool_options.h"
 
 int main(int argc, char** argv) {
   CLI::App app(

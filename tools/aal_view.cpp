@@ -6,14 +6,14 @@
 
 #include <CLI/CLI.hpp>
 
-#include "aperture_map.h"
-#include "atomic_file.h"
-#include "horizon_option.h"
-#include "screenshot.h"
-#include "tool_main.h"
-#include "tool_options.h"
-#include "tool_paths.h"
-#include "viewer/viewer.h"
+#include "aperture/engine/screenshot.h"
+#include "aperture/terrain/io/aperture_map.h"
+#include "aperture/terrain/io/atomic_file.h"
+#include "aperture/tools/horizon_option.h"
+#include "aperture/tools/tool_main.h"
+#include "aperture/tools/tool_options.h"
+#include "aperture/tools/tool_paths.h"
+#include "aperture/tools/viewer/viewer.h"
 
 namespace {
 

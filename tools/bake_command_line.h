@@ -8,11 +8,11 @@
 
 #include <CLI/CLI.hpp>
 
-#include "bake.h"
-#include "dem_loader.h"
-#include "errors.h"
-#include "map_compression.h"
-#include "tool_main.h"
+#include "aperture/preprocess/bake.h"
+#include "aperture/terrain/errors.h"
+#include "aperture/terrain/io/dem_loader.h"
+#include "aperture/terrain/io/map_compression.h"
+#include "aperture/tools/tool_main.h"
 
 namespace aal {
 

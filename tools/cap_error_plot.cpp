@@ -1,4 +1,4 @@
-#include "cap_error_plot.h"
+#include "aperture/tools/cap_error_plot.h"
 
 #include <algorithm>
 #include <array>
@@ -9,9 +9,9 @@
 #include <stdexcept>
 #include <vector>
 
-#include "atomic_file.h"
-#include "caps.h"
-#include "image_files.h"
+#include "aperture/terrain/io/atomic_file.h"
+#include "aperture/terrain/io/image_files.h"
+#include "aperture/terrain/light/caps.h"
 
 namespace aal {
 

@@ -7,11 +7,11 @@
 #include <map>
 #include <string>
 
-#include "errors.h"
-#include "heightfield.h"
-#include "heightfield_checksum.h"
-#include "horizon_map.h"
-#include "shading.h"
+#include "aperture/terrain/errors.h"
+#include "aperture/terrain/heightfield.h"
+#include "aperture/terrain/io/heightfield_checksum.h"
+#include "aperture/terrain/io/horizon_map.h"
+#include "aperture/terrain/light/shading.h"
 
 namespace aal {
 

@@ -1,4 +1,4 @@
-#include "mode_comparison.h"
+#include "aperture/tools/mode_comparison.h"
 
 #include <algorithm>
 #include <cerrno>
@@ -9,10 +9,10 @@
 #include <fstream>
 #include <stdexcept>
 
-#include "atmosphere.h"
-#include "atomic_file.h"
-#include "screenshot.h"
-#include "tone_map.h"
+#include "aperture/engine/screenshot.h"
+#include "aperture/terrain/io/atomic_file.h"
+#include "aperture/terrain/light/atmosphere.h"
+#include "aperture/terrain/light/tone_map.h"
 
 namespace aal {
 

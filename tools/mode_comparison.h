@@ -10,8 +10,8 @@
 
 #include <glm/vec3.hpp>
 
-#include "reference_renderer.h"
-#include "terrain_renderer.h"
+#include "aperture/engine/terrain_renderer.h"
+#include "aperture/terrain/reference/reference_renderer.h"
 
 namespace aal {
 

@@ -14,8 +14,8 @@
 #include <string>
 #include <vector>
 
-#include "errors.h"
-#include "solar_position.h"
+#include "aperture/terrain/errors.h"
+#include "aperture/terrain/light/solar_position.h"
 
 extern char** environ;
 

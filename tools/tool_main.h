@@ -13,7 +13,8 @@
 
 #include <CLI/CLI.hpp>
 
-#include "errors.h"
+#include "aperture/terrain/errors.h"
+#include "aperture/terrain/version.h"
 
 namespace aal {
 
@@ -76,7 +77,10 @@ inline const CLI::Validator kPositive = aboveZero(false, "POSITIVE");
 inline const CLI::Validator kNonNegative = aboveZero(true, "NONNEGATIVE");
 
 // Parses the command line with `app` and runs `body`; returns the exit code.
+// `--version` prints "aal-bake 0.2.0 (abc1234)" (terrain/version.h) and exits 0.
 inline int runToolBody(CLI::App& app, int argc, char** argv, const std::function<int()>& body) {
+  app.set_version_flag("--version", versionLine(app.get_name()),
+                       "Print the tool's version and git revision, and exit");
   try {
     checkFiniteArguments(app, argc, argv);
   } catch (const InputError& e) {

@@ -12,13 +12,13 @@
 #include <glm/geometric.hpp>
 #include <glm/vec3.hpp>
 
-#include "atomic_file.h"
-#include "camera.h"
-#include "errors.h"
-#include "heightfield.h"
-#include "lighting_defaults.h"
-#include "obscurance.h"
-#include "solar_position.h"
+#include "aperture/terrain/errors.h"
+#include "aperture/terrain/heightfield.h"
+#include "aperture/terrain/io/atomic_file.h"
+#include "aperture/terrain/light/lighting_defaults.h"
+#include "aperture/terrain/light/obscurance.h"
+#include "aperture/terrain/light/solar_position.h"
+#include "aperture/terrain/view/camera.h"
 
 namespace aal {
 

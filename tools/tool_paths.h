@@ -9,7 +9,7 @@
 #include <utility>
 #include <vector>
 
-#include "errors.h"
+#include "aperture/terrain/errors.h"
 
 namespace aal {
 

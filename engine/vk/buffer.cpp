@@ -1,11 +1,11 @@
-#include "buffer.h"
+#include "aperture/engine/vk/buffer.h"
 
 #include <cstring>
 #include <stdexcept>
 #include <utility>
 
-#include "device.h"
-#include "vk_check.h"
+#include "aperture/engine/vk/device.h"
+#include "aperture/engine/vk/vk_check.h"
 
 namespace aal {
 

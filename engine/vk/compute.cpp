@@ -1,11 +1,11 @@
-#include "compute.h"
+#include "aperture/engine/vk/compute.h"
 
 #include <stdexcept>
 
-#include "buffer.h"
-#include "device.h"
-#include "shader.h"
-#include "vk_check.h"
+#include "aperture/engine/vk/buffer.h"
+#include "aperture/engine/vk/device.h"
+#include "aperture/engine/vk/shader.h"
+#include "aperture/engine/vk/vk_check.h"
 
 namespace aal {
 

@@ -1,12 +1,12 @@
-#include "descriptors.h"
+#include "aperture/engine/vk/descriptors.h"
 
 #include <algorithm>
 #include <stdexcept>
 #include <string>
 
-#include "buffer.h"
-#include "device.h"
-#include "vk_check.h"
+#include "aperture/engine/vk/buffer.h"
+#include "aperture/engine/vk/device.h"
+#include "aperture/engine/vk/vk_check.h"
 
 namespace aal {
 

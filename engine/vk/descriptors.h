@@ -6,7 +6,7 @@
 
 #include <vulkan/vulkan.h>
 
-#include "spirv_reflection.h"
+#include "aperture/engine/vk/spirv_reflection.h"
 
 namespace aal {
 

@@ -1,10 +1,10 @@
-#include "device.h"
+#include "aperture/engine/vk/device.h"
 
 #include <cstring>
 
-#include "errors.h"
-#include "instance.h"
-#include "vk_check.h"
+#include "aperture/engine/vk/instance.h"
+#include "aperture/engine/vk/vk_check.h"
+#include "aperture/terrain/errors.h"
 
 namespace aal {
 

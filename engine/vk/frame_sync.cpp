@@ -1,7 +1,7 @@
-#include "frame_sync.h"
+#include "aperture/engine/vk/frame_sync.h"
 
-#include "device.h"
-#include "vk_check.h"
+#include "aperture/engine/vk/device.h"
+#include "aperture/engine/vk/vk_check.h"
 
 namespace aal {
 

@@ -1,7 +1,7 @@
-#include "gpu_timer.h"
+#include "aperture/engine/vk/gpu_timer.h"
 
-#include "device.h"
-#include "vk_check.h"
+#include "aperture/engine/vk/device.h"
+#include "aperture/engine/vk/vk_check.h"
 
 namespace aal {
 

@@ -1,10 +1,10 @@
-#include "graphics_pipeline.h"
+#include "aperture/engine/vk/graphics_pipeline.h"
 
 #include <stdexcept>
 
-#include "device.h"
-#include "shader.h"
-#include "vk_check.h"
+#include "aperture/engine/vk/device.h"
+#include "aperture/engine/vk/shader.h"
+#include "aperture/engine/vk/vk_check.h"
 
 namespace aal {
 

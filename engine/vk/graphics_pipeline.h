@@ -7,7 +7,7 @@
 
 #include <vulkan/vulkan.h>
 
-#include "descriptors.h"
+#include "aperture/engine/vk/descriptors.h"
 
 namespace aal {
 

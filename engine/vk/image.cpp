@@ -1,11 +1,11 @@
-#include "image.h"
+#include "aperture/engine/vk/image.h"
 
 #include <string>
 #include <utility>
 
-#include "buffer.h"
-#include "device.h"
-#include "vk_check.h"
+#include "aperture/engine/vk/buffer.h"
+#include "aperture/engine/vk/device.h"
+#include "aperture/engine/vk/vk_check.h"
 
 namespace aal {
 

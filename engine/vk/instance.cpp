@@ -1,10 +1,10 @@
-#include "instance.h"
+#include "aperture/engine/vk/instance.h"
 
 #include <cstdlib>
 #include <cstring>
 #include <iostream>
 
-#include "vk_check.h"
+#include "aperture/engine/vk/vk_check.h"
 
 namespace aal {
 

@@ -1,16 +1,11 @@
-#include "shader.h"
+#include "aperture/engine/vk/shader.h"
 
-#include <cstdlib>
-#include <fstream>
+#include <algorithm>
 #include <stdexcept>
-#include <system_error>
 
-#include "device.h"
-#include "vk_check.h"
-
-#ifndef AAL_BUILD_SHADER_DIR
-#define AAL_BUILD_SHADER_DIR ""
-#endif
+#include "aperture/engine/vk/device.h"
+#include "aperture/engine/vk/embedded_shaders.h"
+#include "aperture/engine/vk/vk_check.h"
 
 namespace aal {
 
@@ -18,36 +13,19 @@ namespace {
 
 constexpr uint32_t kSpirvMagic = 0x07230203;
 
-std::filesystem::path executableDirectory() {
-  std::error_code error;
-  const auto exe = std::filesystem::read_symlink("/proc/self/exe", error);
-  return error ? std::filesystem::path() : exe.parent_path();
-}
-
 }  // namespace
 
-std::filesystem::path shaderDirectory() {
-  if (const char* env = std::getenv("AAL_SHADER_DIR"); env && *env) return env;
-  const std::filesystem::path built = AAL_BUILD_SHADER_DIR;
-  if (!built.empty() && std::filesystem::is_directory(built)) return built;
-  return executableDirectory() / ".." / "shaders";
-}
-
 std::vector<uint32_t> loadSpirv(const std::string& name) {
-  const std::filesystem::path path = shaderDirectory() / (name + ".spv");
-  std::ifstream file(path, std::ios::binary | std::ios::ate);
-  if (!file) throw std::runtime_error("cannot open shader " + path.string());
-  const std::streamsize bytes = file.tellg();
-  if (bytes <= 0 || bytes % 4 != 0) {
-    throw std::runtime_error("shader " + path.string() + " is not valid SPIR-V (size)");
+  const std::span<const EmbeddedShader> shaders = embeddedShaders();
+  const auto found = std::find_if(shaders.begin(), shaders.end(),
+                                  [&](const EmbeddedShader& s) { return name == s.name; });
+  if (found == shaders.end()) {
+    throw std::runtime_error("no shader named " + name + " is built into aperture");
   }
-  std::vector<uint32_t> words(static_cast<size_t>(bytes) / 4);
-  file.seekg(0);
-  file.read(reinterpret_cast<char*>(words.data()), bytes);
-  if (!file || words[0] != kSpirvMagic) {
-    throw std::runtime_error("shader " + path.string() + " is not valid SPIR-V");
+  if (found->wordCount < 5 || found->words[0] != kSpirvMagic) {
+    throw std::runtime_error("shader " + name + " is not valid SPIR-V");
   }
-  return words;
+  return {found->words, found->words + found->wordCount};
 }
 
 ShaderModule::ShaderModule(const Device& device, const std::string& name)

@@ -1,25 +1,21 @@
-// SPIR-V modules compiled at build time (cmake/Shaders.cmake).
+// SPIR-V modules compiled at build time (cmake/Shaders.cmake) and built into
+// the library (embedded_shaders.h).
 #pragma once
 
 #include <cstdint>
-#include <filesystem>
 #include <string>
 #include <vector>
 
 #include <vulkan/vulkan.h>
 
-#include "spirv_reflection.h"
+#include "aperture/engine/vk/spirv_reflection.h"
 
 namespace aal {
 
 class Device;
 
-// Folder holding the compiled shaders: $AAL_SHADER_DIR when set, else the
-// build tree's shaders/ folder, else `<executable>/../shaders`.
-std::filesystem::path shaderDirectory();
-
-// Reads `<shaderDirectory()>/<name>.spv`, e.g. name "caps_parity.comp".
-// Throws std::runtime_error naming the path if it is missing or malformed.
+// The SPIR-V of the shader built from `name`, e.g. "caps_parity.comp".
+// Throws std::runtime_error naming it if no such shader is built in.
 std::vector<uint32_t> loadSpirv(const std::string& name);
 
 // A module and the descriptor bindings it declares (read from its SPIR-V).

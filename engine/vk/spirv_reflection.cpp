@@ -1,4 +1,4 @@
-#include "spirv_reflection.h"
+#include "aperture/engine/vk/spirv_reflection.h"
 
 #include <algorithm>
 #include <optional>

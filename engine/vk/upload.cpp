@@ -1,13 +1,13 @@
-#include "upload.h"
+#include "aperture/engine/vk/upload.h"
 
 #include <algorithm>
 #include <cstring>
 #include <stdexcept>
 
-#include "buffer.h"
-#include "commands.h"
-#include "device.h"
-#include "image.h"
+#include "aperture/engine/vk/buffer.h"
+#include "aperture/engine/vk/commands.h"
+#include "aperture/engine/vk/device.h"
+#include "aperture/engine/vk/image.h"
 
 namespace aal {
 

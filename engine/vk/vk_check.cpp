@@ -1,4 +1,4 @@
-#include "vk_check.h"
+#include "aperture/engine/vk/vk_check.h"
 
 namespace aal {
 

@@ -1,9 +1,9 @@
-#include "swapchain.h"
+#include "aperture/engine/window/swapchain.h"
 
 #include <algorithm>
 
-#include "device.h"
-#include "vk_check.h"
+#include "aperture/engine/vk/device.h"
+#include "aperture/engine/vk/vk_check.h"
 
 namespace aal {
 

@@ -1,15 +1,15 @@
-#include "ui_overlay.h"
+#include "aperture/engine/window/ui_overlay.h"
 
 #include <backends/imgui_impl_glfw.h>
 #include <backends/imgui_impl_vulkan.h>
 #include <imgui.h>
 
-#include "commands.h"
-#include "device.h"
-#include "instance.h"
-#include "swapchain.h"
-#include "vk_check.h"
-#include "window.h"
+#include "aperture/engine/vk/commands.h"
+#include "aperture/engine/vk/device.h"
+#include "aperture/engine/vk/instance.h"
+#include "aperture/engine/vk/vk_check.h"
+#include "aperture/engine/window/swapchain.h"
+#include "aperture/engine/window/window.h"
 
 namespace aal {
 

@@ -1,4 +1,4 @@
-#include "window.h"
+#include "aperture/engine/window/window.h"
 
 #define GLFW_INCLUDE_VULKAN
 #include <GLFW/glfw3.h>
@@ -6,7 +6,7 @@
 #include <algorithm>
 #include <utility>
 
-#include "vk_check.h"
+#include "aperture/engine/vk/vk_check.h"
 
 namespace aal {
 

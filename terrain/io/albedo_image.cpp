@@ -1,11 +1,11 @@
-#include "albedo_image.h"
+#include "aperture/terrain/io/albedo_image.h"
 
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
 
-#include "errors.h"
-#include "image_files.h"
+#include "aperture/terrain/errors.h"
+#include "aperture/terrain/io/image_files.h"
 
 namespace aal {
 

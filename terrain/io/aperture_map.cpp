@@ -1,4 +1,4 @@
-#include "aperture_map.h"
+#include "aperture/terrain/io/aperture_map.h"
 
 #include <algorithm>
 #include <cerrno>
@@ -33,13 +33,14 @@
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 
-#include "atomic_file.h"
-#include "errors.h"
-#include "exr_scanline_writer.h"
-#include "half_floats.h"
-#include "heightfield_checksum.h"
-#include "interrupt.h"
-#include "pixel_checksum.h"
+#include "aperture/terrain/errors.h"
+#include "aperture/terrain/interrupt.h"
+#include "aperture/terrain/io/atomic_file.h"
+#include "aperture/terrain/io/exr_scanline_writer.h"
+#include "aperture/terrain/io/half_floats.h"
+#include "aperture/terrain/io/heightfield_checksum.h"
+#include "aperture/terrain/io/pixel_checksum.h"
+#include "aperture/terrain/version.h"
 
 namespace aal {
 
@@ -164,6 +165,7 @@ void writeApertureMap(const std::string& path, const ApertureMap& map, bool half
           {"aal:tileOrigin", std::to_string(i.originCol) + "," + std::to_string(i.originRow)});
     }
     attributes.push_back({"capDate", captureDate()});
+    attributes.push_back({"aal:software", softwareName()});
     attributes.push_back({"aal:pixelChecksum", checksumHex(storedPixelChecksum(map, halfFloat))});
     ExrScanlineWriter file(temporary, map.width, map.height,
                            {kChannels[0], kChannels[1], kChannels[2], kChannels[3]}, halfFloat,
@@ -263,6 +265,7 @@ OpenMap openApertureMap(const std::string& path, ApertureMapHeader& header) {
   i.zScale = floatAttribute(exr, "aal:zScale", 1);
   i.source = stringAttribute(exr, "aal:source");
   i.sourceChecksum = stringAttribute(exr, "aal:sourceChecksum");
+  i.software = stringAttribute(exr, "aal:software");
   i.edge = stringAttribute(exr, "aal:edge", "open");
   i.curvature = intAttribute(exr, "aal:curvature", 0) != 0;
   i.refraction = floatAttribute(exr, "aal:refraction", 0);
@@ -458,6 +461,7 @@ void writeApertureTileIndex(const std::string& folder, const ApertureTileIndex& 
        << "refraction " << i.refraction << "\n"
        << "max-distance " << i.maxDistanceM << "\n"
        << "sky-view-factor " << (index.skyViewFactor ? 1 : 0) << "\n"
+       << "software " << softwareName() << "\n"
        << "source " << i.source << "\n";
   std::ofstream out(output.temporaryPath());
   out << text.str();
@@ -525,6 +529,9 @@ ApertureTileIndex readApertureTileIndex(const std::string& folder, const std::st
   i.refraction = number("refraction");
   i.maxDistanceM = number("max-distance");
   i.source = text("source");
+  if (const auto software = values.find("software"); software != values.end()) {
+    i.software = software->second;
+  }
   index.skyViewFactor = values.count("sky-view-factor") && integer("sky-view-factor", 0) != 0;
   i.sourceWidth = index.map.width;
   i.sourceHeight = index.map.height;

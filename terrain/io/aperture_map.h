@@ -19,9 +19,9 @@
 #include <string>
 #include <vector>
 
-#include "heightfield.h"
-#include "heightfield_checksum.h"
-#include "map_compression.h"
+#include "aperture/terrain/heightfield.h"
+#include "aperture/terrain/io/heightfield_checksum.h"
+#include "aperture/terrain/io/map_compression.h"
 
 namespace aal {
 
@@ -40,6 +40,10 @@ struct ApertureMapInfo {
   // Where this map's texel (0, 0) lies in the source: 0, 0 but for the
   // tiles of a tiled bake (aal:tileOrigin, written when the map is a part).
   int originCol = 0, originRow = 0;
+  // What wrote the file, softwareName() (terrain/version.h) as read back
+  // (aal:software; a folder's index "software"); "" in files older than it.
+  // A writer records its own softwareName(), whatever this says.
+  std::string software;
 };
 
 struct ApertureMap {

@@ -1,4 +1,4 @@
-#include "atomic_file.h"
+#include "aperture/terrain/io/atomic_file.h"
 
 #include <signal.h>
 #include <unistd.h>

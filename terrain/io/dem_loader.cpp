@@ -1,13 +1,13 @@
-#include "dem_loader.h"
+#include "aperture/terrain/io/dem_loader.h"
 
 #include <cmath>
 #include <cstdio>
 #include <iostream>
 
-#include "dem_source.h"
-#include "errors.h"
-#include "georeference.h"
-#include "void_fill.h"
+#include "aperture/terrain/errors.h"
+#include "aperture/terrain/io/dem_source.h"
+#include "aperture/terrain/io/georeference.h"
+#include "aperture/terrain/io/void_fill.h"
 
 namespace aal {
 

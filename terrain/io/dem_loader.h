@@ -4,9 +4,9 @@
 
 #include <string>
 
-#include "dem_options.h"
-#include "heightfield.h"
-#include "raw_dem.h"
+#include "aperture/terrain/heightfield.h"
+#include "aperture/terrain/io/dem_options.h"
+#include "aperture/terrain/io/raw_dem.h"
 
 namespace aal {
 

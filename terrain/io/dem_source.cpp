@@ -1,4 +1,4 @@
-#include "dem_source.h"
+#include "aperture/terrain/io/dem_source.h"
 
 #include <algorithm>
 #include <cctype>
@@ -23,10 +23,10 @@
 #include <ogr_spatialref.h>
 #include <tbb/parallel_for.h>
 
-#include "errors.h"
-#include "gdal_session.h"
-#include "georeference.h"
-#include "memory_budget.h"
+#include "aperture/terrain/errors.h"
+#include "aperture/terrain/io/gdal_session.h"
+#include "aperture/terrain/io/georeference.h"
+#include "aperture/terrain/io/memory_budget.h"
 
 namespace aal {
 

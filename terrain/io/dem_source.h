@@ -8,8 +8,8 @@
 #include <optional>
 #include <string>
 
-#include "dem_options.h"
-#include "raw_dem.h"
+#include "aperture/terrain/io/dem_options.h"
+#include "aperture/terrain/io/raw_dem.h"
 
 namespace aal {
 

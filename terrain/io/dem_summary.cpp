@@ -1,12 +1,12 @@
-#include "dem_summary.h"
+#include "aperture/terrain/io/dem_summary.h"
 
 #include <algorithm>
 #include <limits>
 
-#include "dem_loader.h"
-#include "dem_source.h"
-#include "errors.h"
-#include "memory_budget.h"
+#include "aperture/terrain/errors.h"
+#include "aperture/terrain/io/dem_loader.h"
+#include "aperture/terrain/io/dem_source.h"
+#include "aperture/terrain/io/memory_budget.h"
 
 namespace aal {
 

@@ -4,7 +4,7 @@
 
 #include <cstddef>
 
-#include "heightfield.h"
+#include "aperture/terrain/heightfield.h"
 
 namespace aal {
 

@@ -1,4 +1,4 @@
-#include "exr_rle.h"
+#include "aperture/terrain/io/exr_rle.h"
 
 #include <algorithm>
 #include <cstring>

@@ -1,4 +1,4 @@
-#include "exr_scanline_writer.h"
+#include "aperture/terrain/io/exr_scanline_writer.h"
 
 #include <fcntl.h>
 #include <unistd.h>
@@ -14,8 +14,8 @@
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 
-#include "exr_rle.h"
-#include "half_floats.h"
+#include "aperture/terrain/io/exr_rle.h"
+#include "aperture/terrain/io/half_floats.h"
 
 namespace aal {
 

@@ -13,7 +13,7 @@
 #include <variant>
 #include <vector>
 
-#include "map_compression.h"
+#include "aperture/terrain/io/map_compression.h"
 
 namespace aal {
 

@@ -1,4 +1,4 @@
-#include "gdal_session.h"
+#include "aperture/terrain/io/gdal_session.h"
 
 #include <mutex>
 

@@ -8,7 +8,7 @@
 
 #include <gdal_priv.h>
 
-#include "heightfield.h"
+#include "aperture/terrain/heightfield.h"
 
 class OGRSpatialReference;
 

@@ -1,4 +1,4 @@
-#include "georeference.h"
+#include "aperture/terrain/io/georeference.h"
 
 #include <algorithm>
 #include <cmath>
@@ -14,8 +14,8 @@
 #include <GeographicLib/Geodesic.hpp>
 #include <GeographicLib/Math.hpp>
 
-#include "errors.h"
-#include "gdal_session.h"
+#include "aperture/terrain/errors.h"
+#include "aperture/terrain/io/gdal_session.h"
 
 namespace aal {
 

@@ -9,7 +9,7 @@
 #include <string>
 #include <vector>
 
-#include "heightfield.h"
+#include "aperture/terrain/heightfield.h"
 
 namespace aal {
 

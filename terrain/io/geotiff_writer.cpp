@@ -1,4 +1,4 @@
-#include "geotiff_writer.h"
+#include "aperture/terrain/io/geotiff_writer.h"
 
 #include <algorithm>
 #include <cmath>
@@ -8,10 +8,11 @@
 #include <gdal_priv.h>
 #include <ogr_spatialref.h>
 
-#include "atomic_file.h"
-#include "dem_options.h"
-#include "gdal_session.h"
-#include "interrupt.h"
+#include "aperture/terrain/interrupt.h"
+#include "aperture/terrain/io/atomic_file.h"
+#include "aperture/terrain/version.h"
+#include "aperture/terrain/io/dem_options.h"
+#include "aperture/terrain/io/gdal_session.h"
 
 namespace aal {
 
@@ -95,6 +96,8 @@ void writeGeoTiff(const std::string& path, const RasterImage& image, const GeoRe
                                                 options.cog ? nullptr : creation.List()));
     if (!dataset) fail("cannot create it");
     place(*dataset, geo);
+    // The TIFF Software tag: what wrote the file (a COG copies it).
+    dataset->SetMetadataItem("TIFFTAG_SOFTWARE", softwareName().c_str());
     for (int b = 1; b <= image.bands; ++b) {
       GDALRasterBand& band = *dataset->GetRasterBand(b);
       if (options.nodata && band.SetNoDataValue(*options.nodata) != CE_None) {

@@ -6,7 +6,7 @@
 #include <optional>
 #include <string>
 
-#include "heightfield.h"
+#include "aperture/terrain/heightfield.h"
 
 namespace aal {
 

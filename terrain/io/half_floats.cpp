@@ -1,4 +1,4 @@
-#include "half_floats.h"
+#include "aperture/terrain/io/half_floats.h"
 
 #include <immintrin.h>
 

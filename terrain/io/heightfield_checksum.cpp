@@ -1,4 +1,4 @@
-#include "heightfield_checksum.h"
+#include "aperture/terrain/io/heightfield_checksum.h"
 
 #include <cctype>
 #include <cstdio>
@@ -8,7 +8,7 @@
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 
-#include "pixel_checksum.h"
+#include "aperture/terrain/io/pixel_checksum.h"
 
 namespace aal {
 

@@ -15,7 +15,7 @@
 #include <cstdint>
 #include <string>
 
-#include "heightfield.h"
+#include "aperture/terrain/heightfield.h"
 
 namespace aal {
 

@@ -1,4 +1,4 @@
-#include "horizon_map.h"
+#include "aperture/terrain/io/horizon_map.h"
 
 #include <algorithm>
 #include <cmath>
@@ -10,7 +10,7 @@
 #include <string>
 #include <system_error>
 
-#include "atomic_file.h"
+#include "aperture/terrain/io/atomic_file.h"
 
 namespace aal {
 
@@ -123,8 +123,8 @@ int horizonPairFor(int directions, float azimuthRad, int currentFirst) {
 
 std::array<float, 2> horizonPairWeights(int directions, float azimuthRad, int first) {
   if (!validHorizonPair(directions, first)) {
-    throw std::invalid_argument("horizonPairWeights: direction " + std::to_string(first) +
-                                " of " + std::to_string(directions));
+    throw std::invalid_argument("horizonPairWeights: direction " + std::to_string(first) + " of " +
+                                std::to_string(directions));
   }
   const float f = std::clamp(
       stepsPast(directions, directionPosition(directions, azimuthRad), first), 0.0f, 1.0f);

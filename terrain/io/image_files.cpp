@@ -1,30 +1,44 @@
-#include "image_files.h"
+#include "aperture/terrain/io/image_files.h"
 
 #include <dlfcn.h>
 
 #include <cstdlib>
 #include <filesystem>
 #include <system_error>
+#include <vector>
 
-#include "image_plugin.h"
+#include "aperture/terrain/io/image_plugin.h"
 
 namespace aal {
 
-std::string imagePluginPath() {
-  if (const char* path = std::getenv("AAL_IMAGE_PLUGIN"); path && *path) return path;
+std::vector<std::string> imagePluginCandidates() {
+  std::vector<std::string> places;
   std::error_code error;
   const std::filesystem::path executable = std::filesystem::read_symlink("/proc/self/exe", error);
-  if (error) {
-    throw std::runtime_error("cannot find the image plugin: /proc/self/exe: " + error.message() +
-                             " (set AAL_IMAGE_PLUGIN to the path of " AAL_IMAGE_PLUGIN_FILE ")");
+  if (!error) {
+    const std::filesystem::path folder = executable.parent_path();
+    places.push_back((folder / AAL_IMAGE_PLUGIN_FILE).string());
+    places.push_back(
+        (folder / AAL_IMAGE_PLUGIN_FROM_BIN / AAL_IMAGE_PLUGIN_FILE).lexically_normal().string());
   }
-  return (executable.parent_path() / AAL_IMAGE_PLUGIN_FILE).string();
+  places.push_back(AAL_IMAGE_PLUGIN_INSTALLED "/" AAL_IMAGE_PLUGIN_FILE);
+  return places;
+}
+
+std::string imagePluginPath() {
+  if (const char* path = std::getenv("AAL_IMAGE_PLUGIN"); path && *path) return path;
+  const std::vector<std::string> places = imagePluginCandidates();
+  for (const std::string& place : places) {
+    std::error_code error;
+    if (std::filesystem::is_regular_file(place, error)) return place;
+  }
+  return places.front();  // missing: the error names where a build puts it
 }
 
 const ImagePlugin& openImagePlugin(const std::string& path) {
   const std::string cannot = "cannot load the image plugin " + path + ": ";
-  const std::string how = " (it is built with the tools as " AAL_IMAGE_PLUGIN_FILE
-                          ", next to them; AAL_IMAGE_PLUGIN names another path)";
+  const std::string how = " (" AAL_IMAGE_PLUGIN_FILE " is built next to the tools and installed in "
+                          AAL_IMAGE_PLUGIN_INSTALLED "; AAL_IMAGE_PLUGIN names another path)";
   // dlerror() starts with the path: say it once.
   auto why = [&path] {
     const char* error = dlerror();

@@ -6,8 +6,9 @@
 #pragma once
 
 #include <string>
+#include <vector>
 
-#include "image_files.h"
+#include "aperture/terrain/io/image_files.h"
 
 namespace aal {
 
@@ -36,8 +37,15 @@ using ImagePluginEntry = const ImagePlugin* (*)();
 // why when it cannot be loaded, lacks the entry or is of another version.
 const ImagePlugin& openImagePlugin(const std::string& path);
 
-// Where image_files.cpp looks: $AAL_IMAGE_PLUGIN, else aal_oiio_images.so in
-// the folder of the running executable.
+// Where image_files.cpp looks when AAL_IMAGE_PLUGIN is not set, in order:
+// aal_oiio_images.so in the running executable's folder (the build tree),
+// in <libdir>/aperture relative to it (installed tools, any prefix), and in
+// the configured install prefix's <libdir>/aperture (programs that link the
+// installed library).
+std::vector<std::string> imagePluginCandidates();
+
+// $AAL_IMAGE_PLUGIN, else the first of imagePluginCandidates() that exists,
+// else the first of them (so that the error names where a build puts it).
 std::string imagePluginPath();
 
 }  // namespace aal

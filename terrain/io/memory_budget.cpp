@@ -1,11 +1,11 @@
-#include "memory_budget.h"
+#include "aperture/terrain/io/memory_budget.h"
 
 #include <cerrno>
 #include <cstdio>
 #include <cstdlib>
 #include <fstream>
 
-#include "errors.h"
+#include "aperture/terrain/errors.h"
 
 namespace aal {
 

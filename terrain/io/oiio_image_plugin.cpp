@@ -16,7 +16,7 @@
 #include <string>
 #include <vector>
 
-#include "image_plugin.h"
+#include "aperture/terrain/io/image_plugin.h"
 
 namespace aal {
 namespace {

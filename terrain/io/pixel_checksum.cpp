@@ -1,4 +1,4 @@
-#include "pixel_checksum.h"
+#include "aperture/terrain/io/pixel_checksum.h"
 
 #include <xxhash.h>
 

@@ -1,4 +1,4 @@
-#include "raster_mosaic.h"
+#include "aperture/terrain/io/raster_mosaic.h"
 
 #include <filesystem>
 #include <stdexcept>
@@ -7,8 +7,8 @@
 #include <gdal_priv.h>
 #include <gdal_utils.h>
 
-#include "atomic_file.h"
-#include "gdal_session.h"
+#include "aperture/terrain/io/atomic_file.h"
+#include "aperture/terrain/io/gdal_session.h"
 
 namespace aal {
 

@@ -1,7 +1,7 @@
-#include "raw_dem.h"
+#include "aperture/terrain/io/raw_dem.h"
 
-#include "errors.h"
-#include "huge_pages.h"
+#include "aperture/terrain/errors.h"
+#include "aperture/terrain/huge_pages.h"
 
 namespace aal {
 

@@ -10,9 +10,9 @@
 #include <string>
 #include <vector>
 
-#include "dem_options.h"
-#include "georeference.h"
-#include "heightfield.h"
+#include "aperture/terrain/heightfield.h"
+#include "aperture/terrain/io/dem_options.h"
+#include "aperture/terrain/io/georeference.h"
 
 namespace aal {
 

@@ -1,4 +1,4 @@
-#include "void_fill.h"
+#include "aperture/terrain/io/void_fill.h"
 
 #include <algorithm>
 #include <cstddef>

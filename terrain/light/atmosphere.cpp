@@ -1,4 +1,4 @@
-#include "atmosphere.h"
+#include "aperture/terrain/light/atmosphere.h"
 
 #include <algorithm>
 #include <cmath>

@@ -1,10 +1,10 @@
-#include "cap_error.h"
+#include "aperture/terrain/light/cap_error.h"
 
 #include <algorithm>
 #include <cmath>
 #include <numbers>
 
-#include "caps.h"
+#include "aperture/terrain/light/caps.h"
 
 namespace aal {
 

@@ -1,12 +1,12 @@
-#include "cap_table.h"
+#include "aperture/terrain/light/cap_table.h"
 
 #include <algorithm>
 #include <cmath>
 #include <numbers>
 #include <stdexcept>
 
-#include "caps.h"
-#include "config.h"
+#include "aperture/shaders/config.h"
+#include "aperture/terrain/light/caps.h"
 
 namespace aal {
 

@@ -1,4 +1,4 @@
-#include "lighting.h"
+#include "aperture/terrain/light/lighting.h"
 
 #include <cstring>
 

@@ -8,7 +8,7 @@
 
 #include <glm/vec3.hpp>
 
-#include "sky_model.h"
+#include "aperture/terrain/light/sky_model.h"
 
 namespace aal {
 

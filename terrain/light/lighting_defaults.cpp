@@ -1,12 +1,12 @@
-#include "lighting_defaults.h"
+#include "aperture/terrain/light/lighting_defaults.h"
 
 #include <algorithm>
 
 #include <glm/geometric.hpp>
 
-#include "camera.h"
-#include "sky_lighting.h"
-#include "tone_map.h"
+#include "aperture/terrain/light/sky_lighting.h"
+#include "aperture/terrain/light/tone_map.h"
+#include "aperture/terrain/view/camera.h"
 
 namespace aal {
 

@@ -3,8 +3,8 @@
 // by aal-render and aal-view so that both show a DEM the same way.
 #pragma once
 
-#include "heightfield.h"
-#include "lighting.h"
+#include "aperture/terrain/heightfield.h"
+#include "aperture/terrain/light/lighting.h"
 
 namespace aal {
 

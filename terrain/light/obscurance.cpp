@@ -1,4 +1,4 @@
-#include "obscurance.h"
+#include "aperture/terrain/light/obscurance.h"
 
 #include <algorithm>
 #include <cmath>
@@ -7,8 +7,8 @@
 
 #include <glm/geometric.hpp>
 
-#include "errors.h"
-#include "obscurance_samples.h"
+#include "aperture/terrain/errors.h"
+#include "aperture/terrain/light/obscurance_samples.h"
 
 namespace aal {
 

@@ -18,7 +18,7 @@
 #include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
 
-#include "heightfield.h"
+#include "aperture/terrain/heightfield.h"
 
 namespace aal {
 

@@ -1,4 +1,4 @@
-#include "obscurance_samples.h"
+#include "aperture/terrain/light/obscurance_samples.h"
 
 #include <algorithm>
 #include <cmath>

@@ -1,4 +1,4 @@
-#include "shading.h"
+#include "aperture/terrain/light/shading.h"
 
 #include <algorithm>
 #include <cmath>
@@ -7,8 +7,8 @@
 #include <glm/geometric.hpp>
 #include <glm/vec2.hpp>
 
-#include "cap_table.h"
-#include "caps.h"
+#include "aperture/terrain/light/cap_table.h"
+#include "aperture/terrain/light/caps.h"
 
 namespace aal {
 

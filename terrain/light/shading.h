@@ -11,8 +11,8 @@
 
 #include <glm/vec3.hpp>
 
-#include "config.h"
-#include "lighting.h"
+#include "aperture/shaders/config.h"
+#include "aperture/terrain/light/lighting.h"
 
 namespace aal {
 

@@ -1,9 +1,9 @@
-#include "sky_lighting.h"
+#include "aperture/terrain/light/sky_lighting.h"
 
 #include <stdexcept>
 
-#include "atmosphere.h"
-#include "solar_position.h"
+#include "aperture/terrain/light/atmosphere.h"
+#include "aperture/terrain/light/solar_position.h"
 
 namespace aal {
 

@@ -3,7 +3,7 @@
 // (docs/design.md §5, §7).
 #pragma once
 
-#include "lighting.h"
+#include "aperture/terrain/light/lighting.h"
 
 namespace aal {
 

@@ -1,4 +1,4 @@
-#include "sky_model.h"
+#include "aperture/terrain/light/sky_model.h"
 
 #include <algorithm>
 #include <cmath>

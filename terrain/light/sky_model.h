@@ -82,7 +82,7 @@
 #include <glm/vec3.hpp>
 #include <glm/vec4.hpp>
 
-#include "config.h"
+#include "aperture/shaders/config.h"
 
 namespace aal {
 

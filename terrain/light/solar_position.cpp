@@ -1,4 +1,4 @@
-#include "solar_position.h"
+#include "aperture/terrain/light/solar_position.h"
 
 #include <algorithm>
 #include <chrono>

@@ -1,11 +1,11 @@
-#include "tone_map.h"
+#include "aperture/terrain/light/tone_map.h"
 
 #include <algorithm>
 #include <cmath>
 #include <numbers>
 
-#include "atmosphere.h"
-#include "config.h"
+#include "aperture/shaders/config.h"
+#include "aperture/terrain/light/atmosphere.h"
 
 namespace aal {
 

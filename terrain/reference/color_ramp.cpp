@@ -1,4 +1,4 @@
-#include "color_ramp.h"
+#include "aperture/terrain/reference/color_ramp.h"
 
 #include <algorithm>
 #include <cctype>
@@ -9,7 +9,7 @@
 #include <numeric>
 #include <sstream>
 
-#include "errors.h"
+#include "aperture/terrain/errors.h"
 
 namespace aal {
 

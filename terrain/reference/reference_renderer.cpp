@@ -1,6 +1,6 @@
-#include "reference_renderer.h"
+#include "aperture/terrain/reference/reference_renderer.h"
 
-#include "terrain_surface.h"
+#include "aperture/terrain/reference/terrain_surface.h"
 
 #include <algorithm>
 #include <atomic>

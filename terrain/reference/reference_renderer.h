@@ -23,9 +23,9 @@
 
 #include <glm/vec3.hpp>
 
-#include "camera.h"
-#include "heightfield.h"
-#include "lighting.h"
+#include "aperture/terrain/heightfield.h"
+#include "aperture/terrain/light/lighting.h"
+#include "aperture/terrain/view/camera.h"
 
 namespace aal {
 

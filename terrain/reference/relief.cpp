@@ -1,4 +1,4 @@
-#include "relief.h"
+#include "aperture/terrain/reference/relief.h"
 
 #include <algorithm>
 #include <cmath>
@@ -13,9 +13,9 @@
 
 #include <Imath/half.h>
 
-#include "interrupt.h"
-#include "obscurance_samples.h"
-#include "solar_position.h"
+#include "aperture/terrain/interrupt.h"
+#include "aperture/terrain/light/obscurance_samples.h"
+#include "aperture/terrain/light/solar_position.h"
 
 namespace aal {
 

@@ -21,11 +21,11 @@
 #include <optional>
 #include <vector>
 
-#include "aperture_map.h"
-#include "atmosphere.h"
-#include "heightfield.h"
-#include "obscurance.h"
-#include "shading.h"
+#include "aperture/terrain/heightfield.h"
+#include "aperture/terrain/io/aperture_map.h"
+#include "aperture/terrain/light/atmosphere.h"
+#include "aperture/terrain/light/obscurance.h"
+#include "aperture/terrain/light/shading.h"
 
 namespace aal {
 

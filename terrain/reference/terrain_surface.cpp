@@ -1,4 +1,4 @@
-#include "terrain_surface.h"
+#include "aperture/terrain/reference/terrain_surface.h"
 
 #include <algorithm>
 #include <cmath>

@@ -6,7 +6,7 @@
 
 #include <glm/vec3.hpp>
 
-#include "heightfield.h"
+#include "aperture/terrain/heightfield.h"
 
 namespace aal {
 

@@ -1,4 +1,4 @@
-#include "camera.h"
+#include "aperture/terrain/view/camera.h"
 
 #include <algorithm>
 #include <array>

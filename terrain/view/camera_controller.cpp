@@ -1,4 +1,4 @@
-#include "camera_controller.h"
+#include "aperture/terrain/view/camera_controller.h"
 
 #include <algorithm>
 #include <cmath>

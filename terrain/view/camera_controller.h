@@ -11,8 +11,8 @@
 #include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
 
-#include "camera.h"
-#include "heightfield.h"
+#include "aperture/terrain/heightfield.h"
+#include "aperture/terrain/view/camera.h"
 
 namespace aal {
 

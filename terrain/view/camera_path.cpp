@@ -1,4 +1,4 @@
-#include "camera_path.h"
+#include "aperture/terrain/view/camera_path.h"
 
 #include <algorithm>
 #include <cmath>
@@ -8,7 +8,7 @@
 #include <glm/common.hpp>
 #include <glm/geometric.hpp>
 
-#include "errors.h"
+#include "aperture/terrain/errors.h"
 
 namespace aal {
 

@@ -14,7 +14,7 @@
 #include <string>
 #include <vector>
 
-#include "camera.h"
+#include "aperture/terrain/view/camera.h"
 
 namespace aal {
 

@@ -1,4 +1,4 @@
-#include "height_mips.h"
+#include "aperture/terrain/view/height_mips.h"
 
 #include <algorithm>
 #include <cmath>

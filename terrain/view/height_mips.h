@@ -10,7 +10,7 @@
 
 #include <vector>
 
-#include "heightfield.h"
+#include "aperture/terrain/heightfield.h"
 
 namespace aal {
 

@@ -1,4 +1,4 @@
-#include "lod_patch.h"
+#include "aperture/terrain/view/lod_patch.h"
 
 #include <algorithm>
 #include <cmath>

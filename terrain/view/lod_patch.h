@@ -13,7 +13,7 @@
 #include <glm/vec2.hpp>
 #include <glm/vec4.hpp>
 
-#include "config.h"
+#include "aperture/shaders/config.h"
 
 namespace aal {
 

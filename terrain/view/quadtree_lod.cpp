@@ -1,4 +1,4 @@
-#include "quadtree_lod.h"
+#include "aperture/terrain/view/quadtree_lod.h"
 
 #include <algorithm>
 #include <cmath>
@@ -10,8 +10,8 @@
 #include <glm/common.hpp>
 #include <glm/geometric.hpp>
 
-#include "config.h"
-#include "height_mips.h"
+#include "aperture/shaders/config.h"
+#include "aperture/terrain/view/height_mips.h"
 
 namespace aal {
 

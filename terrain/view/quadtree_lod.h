@@ -34,8 +34,8 @@
 #include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
 
-#include "heightfield.h"
-#include "lod_patch.h"
+#include "aperture/terrain/heightfield.h"
+#include "aperture/terrain/view/lod_patch.h"
 
 namespace aal {
 

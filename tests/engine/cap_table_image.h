@@ -2,11 +2,11 @@
 // image the parity shaders read, uploaded and ready.
 #pragma once
 
-#include "cap_table.h"
-#include "config.h"
-#include "device.h"
-#include "image.h"
-#include "upload.h"
+#include "aperture/engine/vk/device.h"
+#include "aperture/engine/vk/image.h"
+#include "aperture/engine/vk/upload.h"
+#include "aperture/shaders/config.h"
+#include "aperture/terrain/light/cap_table.h"
 
 namespace aal::test {
 

@@ -11,16 +11,16 @@
 #include <glm/vec2.hpp>
 #include <glm/vec4.hpp>
 
-#include "buffer.h"
-#include "cap_table.h"
-#include "cap_table_image.h"
-#include "caps.h"
-#include "commands.h"
-#include "compute.h"
-#include "config.h"
-#include "descriptors.h"
-#include "image.h"
-#include "vulkan_test.h"
+#include "aperture/engine/vk/buffer.h"
+#include "aperture/engine/vk/commands.h"
+#include "aperture/engine/vk/compute.h"
+#include "aperture/engine/vk/descriptors.h"
+#include "aperture/engine/vk/image.h"
+#include "aperture/shaders/config.h"
+#include "aperture/terrain/light/cap_table.h"
+#include "aperture/terrain/light/caps.h"
+#include "aperture/tests/engine/cap_table_image.h"
+#include "aperture/tests/engine/vulkan_test.h"
 
 namespace aal {
 namespace {

@@ -8,11 +8,11 @@
 #include <set>
 #include <vector>
 
-#include "buffer.h"
-#include "commands.h"
-#include "compute.h"
-#include "frame_uniforms.h"
-#include "vulkan_test.h"
+#include "aperture/engine/frame_uniforms.h"
+#include "aperture/engine/vk/buffer.h"
+#include "aperture/engine/vk/commands.h"
+#include "aperture/engine/vk/compute.h"
+#include "aperture/tests/engine/vulkan_test.h"
 
 namespace aal {
 namespace {

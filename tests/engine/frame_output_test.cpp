@@ -12,17 +12,17 @@
 
 #include <glm/matrix.hpp>
 
-#include "bake.h"
-#include "buffer.h"
-#include "camera.h"
-#include "commands.h"
-#include "image.h"
-#include "sky_lighting.h"
-#include "sky_model.h"
-#include "synthetic.h"
-#include "terrain_renderer.h"
-#include "terrain_scene.h"
-#include "vulkan_test.h"
+#include "aperture/engine/terrain_renderer.h"
+#include "aperture/engine/terrain_scene.h"
+#include "aperture/engine/vk/buffer.h"
+#include "aperture/engine/vk/commands.h"
+#include "aperture/engine/vk/image.h"
+#include "aperture/preprocess/bake.h"
+#include "aperture/terrain/light/sky_lighting.h"
+#include "aperture/terrain/light/sky_model.h"
+#include "aperture/terrain/synthetic.h"
+#include "aperture/terrain/view/camera.h"
+#include "aperture/tests/engine/vulkan_test.h"
 
 namespace aal {
 namespace {

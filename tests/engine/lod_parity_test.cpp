@@ -9,12 +9,12 @@
 #include <random>
 #include <vector>
 
-#include "buffer.h"
-#include "commands.h"
-#include "compute.h"
-#include "config.h"
-#include "lod_patch.h"
-#include "vulkan_test.h"
+#include "aperture/engine/vk/buffer.h"
+#include "aperture/engine/vk/commands.h"
+#include "aperture/engine/vk/compute.h"
+#include "aperture/shaders/config.h"
+#include "aperture/terrain/view/lod_patch.h"
+#include "aperture/tests/engine/vulkan_test.h"
 
 namespace aal {
 namespace {

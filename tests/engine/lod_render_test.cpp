@@ -10,11 +10,11 @@
 
 #include <glm/matrix.hpp>
 
-#include "camera.h"
-#include "synthetic.h"
-#include "terrain_renderer.h"
-#include "terrain_scene.h"
-#include "vulkan_test.h"
+#include "aperture/engine/terrain_renderer.h"
+#include "aperture/engine/terrain_scene.h"
+#include "aperture/terrain/synthetic.h"
+#include "aperture/terrain/view/camera.h"
+#include "aperture/tests/engine/vulkan_test.h"
 
 namespace aal {
 namespace {

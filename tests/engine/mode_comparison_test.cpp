@@ -1,18 +1,18 @@
 // The GPU's shading modes against the CPU reference (tools/mode_comparison):
 // the whole pipeline agrees where nothing is approximated, and ambient
 // aperture lighting beats the no-aperture baselines where shadows matter.
-#include "mode_comparison.h"
+#include "aperture/tools/mode_comparison.h"
 
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <map>
 
-#include "bake.h"
-#include "sky_lighting.h"
-#include "synthetic.h"
-#include "terrain_scene.h"
-#include "vulkan_test.h"
+#include "aperture/engine/terrain_scene.h"
+#include "aperture/preprocess/bake.h"
+#include "aperture/terrain/light/sky_lighting.h"
+#include "aperture/terrain/synthetic.h"
+#include "aperture/tests/engine/vulkan_test.h"
 
 namespace aal {
 namespace {

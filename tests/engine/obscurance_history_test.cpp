@@ -8,11 +8,11 @@
 #include <cmath>
 #include <cstdio>
 
-#include "bake.h"
-#include "sky_lighting.h"
-#include "terrain_renderer.h"
-#include "terrain_scene.h"
-#include "vulkan_test.h"
+#include "aperture/engine/terrain_renderer.h"
+#include "aperture/engine/terrain_scene.h"
+#include "aperture/preprocess/bake.h"
+#include "aperture/terrain/light/sky_lighting.h"
+#include "aperture/tests/engine/vulkan_test.h"
 
 namespace aal {
 namespace {

@@ -11,14 +11,14 @@
 
 #include <glm/vec4.hpp>
 
-#include "buffer.h"
-#include "commands.h"
-#include "compute.h"
-#include "config.h"
-#include "obscurance.h"
-#include "obscurance_samples.h"
-#include "synthetic.h"
-#include "vulkan_test.h"
+#include "aperture/engine/vk/buffer.h"
+#include "aperture/engine/vk/commands.h"
+#include "aperture/engine/vk/compute.h"
+#include "aperture/shaders/config.h"
+#include "aperture/terrain/light/obscurance.h"
+#include "aperture/terrain/light/obscurance_samples.h"
+#include "aperture/terrain/synthetic.h"
+#include "aperture/tests/engine/vulkan_test.h"
 
 namespace aal {
 namespace {

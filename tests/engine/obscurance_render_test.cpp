@@ -12,14 +12,14 @@
 #include <glm/geometric.hpp>
 #include <glm/matrix.hpp>
 
-#include "bake.h"
-#include "camera.h"
-#include "obscurance.h"
-#include "obscurance_samples.h"
-#include "sky_lighting.h"
-#include "terrain_renderer.h"
-#include "terrain_scene.h"
-#include "vulkan_test.h"
+#include "aperture/engine/terrain_renderer.h"
+#include "aperture/engine/terrain_scene.h"
+#include "aperture/preprocess/bake.h"
+#include "aperture/terrain/light/obscurance.h"
+#include "aperture/terrain/light/obscurance_samples.h"
+#include "aperture/terrain/light/sky_lighting.h"
+#include "aperture/terrain/view/camera.h"
+#include "aperture/tests/engine/vulkan_test.h"
 
 namespace aal {
 namespace {

@@ -16,17 +16,17 @@
 #include <tuple>
 #include <vector>
 
-#include "bake.h"
-#include "camera.h"
-#include "dem_loader.h"
-#include "horizon_map.h"
-#include "screenshot.h"
-#include "sky_lighting.h"
-#include "synthetic.h"
-#include "terrain_renderer.h"
-#include "terrain_scene.h"
-#include "tone_map.h"
-#include "vulkan_test.h"
+#include "aperture/engine/screenshot.h"
+#include "aperture/engine/terrain_renderer.h"
+#include "aperture/engine/terrain_scene.h"
+#include "aperture/preprocess/bake.h"
+#include "aperture/terrain/io/dem_loader.h"
+#include "aperture/terrain/io/horizon_map.h"
+#include "aperture/terrain/light/sky_lighting.h"
+#include "aperture/terrain/light/tone_map.h"
+#include "aperture/terrain/synthetic.h"
+#include "aperture/terrain/view/camera.h"
+#include "aperture/tests/engine/vulkan_test.h"
 
 namespace aal {
 namespace {
@@ -192,9 +192,8 @@ TEST_F(Render, HorizonModeReadsEveryStoredDirection) {
           EXPECT_GE(w[used == k ? 0 : 1], 0.8f - 1e-5f) << k << " drawn with " << used;
           readFrom[used == k ? 0 : 1] = true;
           const std::string what = std::to_string(bits) + "-bit codes, direction " +
-                                   std::to_string(k) + " " + std::to_string(offset) +
-                                   ", laid " + std::to_string(laid) + ", drawn with " +
-                                   std::to_string(used);
+                                   std::to_string(k) + " " + std::to_string(offset) + ", laid " +
+                                   std::to_string(laid) + ", drawn with " + std::to_string(used);
           if (high(k)) {
             EXPECT_LT(lit, 0.5f * lambert) << what << ": hidden";
           } else {

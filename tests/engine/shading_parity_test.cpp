@@ -11,17 +11,17 @@
 #include <glm/trigonometric.hpp>
 #include <glm/vec4.hpp>
 
-#include "buffer.h"
-#include "cap_table.h"
-#include "cap_table_image.h"
-#include "commands.h"
-#include "compute.h"
-#include "config.h"
-#include "descriptors.h"
-#include "horizon_map.h"
-#include "image.h"
-#include "shading.h"
-#include "vulkan_test.h"
+#include "aperture/engine/vk/buffer.h"
+#include "aperture/engine/vk/commands.h"
+#include "aperture/engine/vk/compute.h"
+#include "aperture/engine/vk/descriptors.h"
+#include "aperture/engine/vk/image.h"
+#include "aperture/shaders/config.h"
+#include "aperture/terrain/io/horizon_map.h"
+#include "aperture/terrain/light/cap_table.h"
+#include "aperture/terrain/light/shading.h"
+#include "aperture/tests/engine/cap_table_image.h"
+#include "aperture/tests/engine/vulkan_test.h"
 
 namespace aal {
 namespace {

@@ -12,15 +12,15 @@
 #include <glm/geometric.hpp>
 #include <glm/vec4.hpp>
 
-#include "atmosphere.h"
-#include "buffer.h"
-#include "commands.h"
-#include "compute.h"
-#include "config.h"
-#include "sky_model.h"
-#include "solar_position.h"
-#include "tone_map.h"
-#include "vulkan_test.h"
+#include "aperture/engine/vk/buffer.h"
+#include "aperture/engine/vk/commands.h"
+#include "aperture/engine/vk/compute.h"
+#include "aperture/shaders/config.h"
+#include "aperture/terrain/light/atmosphere.h"
+#include "aperture/terrain/light/sky_model.h"
+#include "aperture/terrain/light/solar_position.h"
+#include "aperture/terrain/light/tone_map.h"
+#include "aperture/tests/engine/vulkan_test.h"
 
 namespace aal {
 namespace {

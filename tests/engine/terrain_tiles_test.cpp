@@ -13,12 +13,12 @@
 
 #include <glm/vec4.hpp>
 
-#include "buffer.h"
-#include "commands.h"
-#include "compute.h"
-#include "config.h"
-#include "terrain_tiles.h"
-#include "vulkan_test.h"
+#include "aperture/engine/terrain_tiles.h"
+#include "aperture/engine/vk/buffer.h"
+#include "aperture/engine/vk/commands.h"
+#include "aperture/engine/vk/compute.h"
+#include "aperture/shaders/config.h"
+#include "aperture/tests/engine/vulkan_test.h"
 
 namespace aal {
 namespace {

@@ -24,16 +24,16 @@
 #include <glm/vec3.hpp>
 #include <glm/vec4.hpp>
 
-#include "albedo_image.h"
-#include "bake.h"
-#include "buffer.h"
-#include "commands.h"
-#include "horizon_map.h"
-#include "sky_lighting.h"
-#include "synthetic.h"
-#include "terrain_renderer.h"
-#include "terrain_scene.h"
-#include "vulkan_test.h"
+#include "aperture/engine/terrain_renderer.h"
+#include "aperture/engine/terrain_scene.h"
+#include "aperture/engine/vk/buffer.h"
+#include "aperture/engine/vk/commands.h"
+#include "aperture/preprocess/bake.h"
+#include "aperture/terrain/io/albedo_image.h"
+#include "aperture/terrain/io/horizon_map.h"
+#include "aperture/terrain/light/sky_lighting.h"
+#include "aperture/terrain/synthetic.h"
+#include "aperture/tests/engine/vulkan_test.h"
 
 namespace aal {
 namespace {
@@ -288,8 +288,7 @@ TEST_F(TileRender, EveryTilesMipLevelsAreTheWholeDemsLevels) {
 std::vector<glm::vec4> readSlopes(const Device& device, const Image& page, uint32_t layer,
                                   uint32_t level) {
   const size_t channels = page.desc().format == VK_FORMAT_R16G16B16A16_SFLOAT ? 4 : 2;
-  const std::vector<unsigned char> bytes =
-      readLevelBytes(device, page, layer, level, 2 * channels);
+  const std::vector<unsigned char> bytes = readLevelBytes(device, page, layer, level, 2 * channels);
   std::vector<glm::vec4> slopes(bytes.size() / (2 * channels), glm::vec4(0.0f));
   for (size_t i = 0; i < slopes.size(); ++i) {
     for (size_t k = 0; k < channels; ++k) {
@@ -413,10 +412,10 @@ TEST_F(TileRender, TiledTexturesRenderAsOneImageInEveryMode) {
 // it covers (clamped at the DEM's edge, as every kind's border), to
 // half-float rounding (shaders/slopes.glsl decodes as decodeHorizon does);
 // at each level above the mean of the lower two of the 2 x 2 texels below
-// (horizonMip), to half-float rounding; in every tile the single image's values over the tile's window,
-// bit for bit; the slopes in R and G as without horizons. A re-lay writes
-// another pair (here the one across direction 0) and leaves the slopes as
-// they were. Random codes, 16 directions of 4 bits and 8 of 8.
+// (horizonMip), to half-float rounding; in every tile the single image's values over the tile's
+// window, bit for bit; the slopes in R and G as without horizons. A re-lay writes another pair
+// (here the one across direction 0) and leaves the slopes as they were. Random codes, 16 directions
+// of 4 bits and 8 of 8.
 TEST_F(TileRender, SlopesHoldTheHorizonPairInEveryTile) {
   const Heightfield field = fbm();
   std::mt19937 rng(18);
@@ -487,7 +486,8 @@ TEST_F(TileRender, SlopesHoldTheHorizonPairInEveryTile) {
                   return (v[0] + v[1]) * 0.5;
                 };
                 const glm::dvec2 mean(lowerTwo(2), lowerTwo(3));
-                worstMean = std::max({worstMean, std::abs(got.z - mean.x), std::abs(got.w - mean.y)});
+                worstMean =
+                    std::max({worstMean, std::abs(got.z - mean.x), std::abs(got.w - mean.y)});
                 ASSERT_NEAR(got.z, mean.x, 1e-3) << what << ", level " << level;
                 ASSERT_NEAR(got.w, mean.y, 1e-3) << what << ", level " << level;
               }
@@ -502,9 +502,10 @@ TEST_F(TileRender, SlopesHoldTheHorizonPairInEveryTile) {
       }
       EXPECT_GT(compared, 0u) << what;
       EXPECT_EQ(different, 0u) << what << ": " << different << " of " << compared;
-      std::printf("%s: level 0 against decodeHorizon worst %.2g rad, levels above against the "
-                  "lower two below worst %.2g rad\n",
-                  what.c_str(), worst, worstMean);
+      std::printf(
+          "%s: level 0 against decodeHorizon worst %.2g rad, levels above against the "
+          "lower two below worst %.2g rad\n",
+          what.c_str(), worst, worstMean);
     }
     // The slopes themselves are what they were without horizons.
     const std::vector<glm::vec4> slopesAfter = readSlopes(device(), tiled.slopePages()[0], 7, 0);

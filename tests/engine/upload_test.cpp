@@ -4,11 +4,11 @@
 #include <numeric>
 #include <vector>
 
-#include "buffer.h"
-#include "commands.h"
-#include "image.h"
-#include "upload.h"
-#include "vulkan_test.h"
+#include "aperture/engine/vk/buffer.h"
+#include "aperture/engine/vk/commands.h"
+#include "aperture/engine/vk/image.h"
+#include "aperture/engine/vk/upload.h"
+#include "aperture/tests/engine/vulkan_test.h"
 
 namespace aal {
 namespace {

@@ -6,8 +6,8 @@
 
 #include <memory>
 
-#include "device.h"
-#include "instance.h"
+#include "aperture/engine/vk/device.h"
+#include "aperture/engine/vk/instance.h"
 
 namespace aal {
 

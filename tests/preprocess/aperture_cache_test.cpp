@@ -2,7 +2,7 @@
 // every pixel verifies; a damaged one is rebaked and replaced with one
 // warning line (issue 17, item 8: a truncated entry made every later render
 // of its DEM exit 2 until it was deleted by hand).
-#include "aperture_cache.h"
+#include "aperture/preprocess/aperture_cache.h"
 
 #include <gtest/gtest.h>
 
@@ -12,9 +12,9 @@
 #include <filesystem>
 #include <string>
 
-#include "../tools/run_tool.h"
-#include "bake_test_util.h"
-#include "map_test_util.h"
+#include "aperture/tests/preprocess/bake_test_util.h"
+#include "aperture/tests/preprocess/map_test_util.h"
+#include "aperture/tests/tools/run_tool.h"
 
 namespace aal {
 namespace {

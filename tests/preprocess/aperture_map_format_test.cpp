@@ -18,12 +18,13 @@
 #include <string>
 #include <vector>
 
-#include "../tools/run_tool.h"
-#include "aperture_map.h"
-#include "bake.h"
-#include "bake_test_util.h"
-#include "errors.h"
-#include "pixel_checksum.h"
+#include "aperture/preprocess/bake.h"
+#include "aperture/terrain/errors.h"
+#include "aperture/terrain/io/aperture_map.h"
+#include "aperture/terrain/io/pixel_checksum.h"
+#include "aperture/terrain/version.h"
+#include "aperture/tests/preprocess/bake_test_util.h"
+#include "aperture/tests/tools/run_tool.h"
 
 namespace aal {
 namespace {
@@ -71,6 +72,7 @@ void writeWithOiio(const std::string& path, const ApertureMap& map, bool halfFlo
     spec.attribute("aal:tileOrigin",
                    std::to_string(i.originCol) + "," + std::to_string(i.originRow));
   }
+  spec.attribute("aal:software", softwareName());
   if (!pixelChecksum.empty()) spec.attribute("aal:pixelChecksum", pixelChecksum);
   auto out = OIIO::ImageOutput::create(path);
   ASSERT_TRUE(out && out->open(path, spec)) << OIIO::geterror();
@@ -160,6 +162,7 @@ TEST_P(ApertureMapFormat, NewMapsReadInOiioAsTheOldOnes) {
   writeApertureMap(fresh, map, halfFloat, MapCompression::Zip);
   const std::optional<uint64_t> checksum = ApertureMapReader(fresh).header().pixelChecksum;
   ASSERT_TRUE(checksum.has_value());
+  EXPECT_EQ(ApertureMapReader(fresh).header().info.software, softwareName());
   writeWithOiio(old, map, halfFloat, checksumHex(*checksum));
   // The chunks are byte for byte OpenImageIO's (the same ZIP level, the same
   // rows per chunk); the header holds the same attributes (below), in the

@@ -1,4 +1,4 @@
-#include "aperture_map.h"
+#include "aperture/terrain/io/aperture_map.h"
 
 #include <gtest/gtest.h>
 
@@ -8,12 +8,12 @@
 #include <filesystem>
 #include <fstream>
 
-#include "../tools/run_tool.h"
-#include "bake.h"
-#include "bake_test_util.h"
-#include "errors.h"
-#include "map_test_util.h"
-#include "pixel_checksum.h"
+#include "aperture/preprocess/bake.h"
+#include "aperture/terrain/errors.h"
+#include "aperture/terrain/io/pixel_checksum.h"
+#include "aperture/tests/preprocess/bake_test_util.h"
+#include "aperture/tests/preprocess/map_test_util.h"
+#include "aperture/tests/tools/run_tool.h"
 
 namespace aal {
 namespace {

@@ -1,5 +1,5 @@
 // aal-bake's numbers on scenes with known answers, and sweep vs rays.
-#include "bake.h"
+#include "aperture/preprocess/bake.h"
 
 #include <gtest/gtest.h>
 
@@ -7,9 +7,9 @@
 #include <cstdio>
 #include <numbers>
 
-#include "bake_test_util.h"
-#include "ray_bake.h"
-#include "synthetic.h"
+#include "aperture/preprocess/ray_bake.h"
+#include "aperture/terrain/synthetic.h"
+#include "aperture/tests/preprocess/bake_test_util.h"
 
 namespace aal {
 namespace {

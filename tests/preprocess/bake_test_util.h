@@ -6,7 +6,7 @@
 #include <functional>
 #include <numbers>
 
-#include "heightfield.h"
+#include "aperture/terrain/heightfield.h"
 
 namespace aal::test {
 

@@ -14,15 +14,15 @@
 #include <utility>
 #include <vector>
 
-#include "../tools/run_tool.h"
-#include "aperture_map.h"
-#include "errors.h"
-#include "far_horizon.h"
-#include "height_pyramid.h"
-#include "horizon_blocks.h"
-#include "horizon_sweep.h"
-#include "synthetic.h"
-#include "tiled_bake.h"
+#include "aperture/preprocess/far_horizon.h"
+#include "aperture/preprocess/height_pyramid.h"
+#include "aperture/preprocess/horizon_blocks.h"
+#include "aperture/preprocess/horizon_sweep.h"
+#include "aperture/preprocess/tiled_bake.h"
+#include "aperture/terrain/errors.h"
+#include "aperture/terrain/io/aperture_map.h"
+#include "aperture/terrain/synthetic.h"
+#include "aperture/tests/tools/run_tool.h"
 
 namespace aal {
 namespace {

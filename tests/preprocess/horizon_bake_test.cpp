@@ -9,9 +9,9 @@
 #include <numbers>
 #include <stdexcept>
 
-#include "bake.h"
-#include "horizon_map.h"
-#include "synthetic.h"
+#include "aperture/preprocess/bake.h"
+#include "aperture/terrain/io/horizon_map.h"
+#include "aperture/terrain/synthetic.h"
 
 namespace aal {
 namespace {

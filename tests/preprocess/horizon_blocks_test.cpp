@@ -1,7 +1,7 @@
 // The vectorised block sweep gives the reference sweep's horizons (to single
 // precision), for every texel once, whatever the azimuth, edge mode,
 // curvature and per-row cell size.
-#include "horizon_blocks.h"
+#include "aperture/preprocess/horizon_blocks.h"
 
 #include <gtest/gtest.h>
 
@@ -14,10 +14,10 @@
 #include <utility>
 #include <vector>
 
-#include "bake.h"
-#include "bake_terrain.h"
-#include "horizon_sweep.h"
-#include "synthetic.h"
+#include "aperture/preprocess/bake.h"
+#include "aperture/preprocess/bake_terrain.h"
+#include "aperture/preprocess/horizon_sweep.h"
+#include "aperture/terrain/synthetic.h"
 
 namespace aal {
 namespace {

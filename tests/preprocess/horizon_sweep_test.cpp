@@ -1,5 +1,5 @@
 // The line sweep's horizons equal a brute-force maximum over the same lines.
-#include "horizon_sweep.h"
+#include "aperture/preprocess/horizon_sweep.h"
 
 #include <gtest/gtest.h>
 
@@ -8,9 +8,9 @@
 #include <numbers>
 #include <random>
 
-#include "bake_terrain.h"
-#include "bake_test_util.h"
-#include "synthetic.h"
+#include "aperture/preprocess/bake_terrain.h"
+#include "aperture/terrain/synthetic.h"
+#include "aperture/tests/preprocess/bake_test_util.h"
 
 namespace aal {
 namespace {

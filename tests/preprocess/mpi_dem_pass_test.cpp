@@ -15,16 +15,16 @@
 #include <utility>
 #include <vector>
 
-#include "../tools/run_tool.h"
-#include "dem_loader.h"
-#include "dem_source.h"
-#include "errors.h"
-#include "geotiff_writer.h"
-#include "height_pyramid.h"
-#include "heightfield_checksum.h"
-#include "mpi_tiled_bake.h"
-#include "synthetic.h"
-#include "synthetic_dem_file.h"
+#include "aperture/preprocess/height_pyramid.h"
+#include "aperture/preprocess/mpi_tiled_bake.h"
+#include "aperture/terrain/errors.h"
+#include "aperture/terrain/io/dem_loader.h"
+#include "aperture/terrain/io/dem_source.h"
+#include "aperture/terrain/io/geotiff_writer.h"
+#include "aperture/terrain/io/heightfield_checksum.h"
+#include "aperture/terrain/synthetic.h"
+#include "aperture/tests/tools/run_tool.h"
+#include "aperture/tests/tools/synthetic_dem_file.h"
 
 namespace aal {
 namespace {

@@ -9,12 +9,12 @@
 
 #include <glm/geometric.hpp>
 
-#include "bake.h"
-#include "bake_terrain.h"
-#include "bake_test_util.h"
-#include "ray_bake.h"
-#include "sector_apertures.h"
-#include "synthetic.h"
+#include "aperture/preprocess/bake.h"
+#include "aperture/preprocess/bake_terrain.h"
+#include "aperture/preprocess/ray_bake.h"
+#include "aperture/preprocess/sector_apertures.h"
+#include "aperture/terrain/synthetic.h"
+#include "aperture/tests/preprocess/bake_test_util.h"
 
 namespace aal {
 namespace {

@@ -1,4 +1,4 @@
-#include "sky_slice.h"
+#include "aperture/preprocess/sky_slice.h"
 
 #include <gtest/gtest.h>
 

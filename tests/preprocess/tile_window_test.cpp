@@ -2,7 +2,7 @@
 // rows and in columns): equal bit for bit to the tiles baked from the whole
 // DEM, the halo holds every read of the sweeps in both directions, and the
 // window reader slides along a tile row reading only the new columns.
-#include "tile_window_reader.h"
+#include "aperture/preprocess/tile_window_reader.h"
 
 #include <gtest/gtest.h>
 
@@ -15,16 +15,16 @@
 #include <string>
 #include <vector>
 
-#include "../tools/run_tool.h"
-#include "../tools/synthetic_dem_file.h"
-#include "bake.h"
-#include "dem_loader.h"
-#include "dem_source.h"
-#include "far_horizon.h"
-#include "geotiff_writer.h"
-#include "height_pyramid.h"
-#include "synthetic.h"
-#include "tiled_bake.h"
+#include "aperture/preprocess/bake.h"
+#include "aperture/preprocess/far_horizon.h"
+#include "aperture/preprocess/height_pyramid.h"
+#include "aperture/preprocess/tiled_bake.h"
+#include "aperture/terrain/io/dem_loader.h"
+#include "aperture/terrain/io/dem_source.h"
+#include "aperture/terrain/io/geotiff_writer.h"
+#include "aperture/terrain/synthetic.h"
+#include "aperture/tests/tools/run_tool.h"
+#include "aperture/tests/tools/synthetic_dem_file.h"
 
 namespace aal {
 namespace {

@@ -1,6 +1,6 @@
 // The tiled bake: tiles equal the in-memory bake bit for bit (seams
 // included), the tile folder reads as one map, interrupted bakes resume.
-#include "tiled_bake.h"
+#include "aperture/preprocess/tiled_bake.h"
 
 #include <gtest/gtest.h>
 
@@ -20,12 +20,12 @@
 #include <string>
 #include <vector>
 
-#include "../tools/run_tool.h"
-#include "aperture_map.h"
-#include "errors.h"
-#include "horizon_sweep.h"
-#include "sky_view_factor_tiles.h"
-#include "synthetic.h"
+#include "aperture/preprocess/horizon_sweep.h"
+#include "aperture/preprocess/sky_view_factor_tiles.h"
+#include "aperture/terrain/errors.h"
+#include "aperture/terrain/io/aperture_map.h"
+#include "aperture/terrain/synthetic.h"
+#include "aperture/tests/tools/run_tool.h"
 
 namespace aal {
 namespace {

@@ -6,9 +6,9 @@
 #include <filesystem>
 #include <string>
 
-#include "aperture_map.h"
-#include "run_tool.h"
-#include "synthetic_dem_file.h"
+#include "aperture/terrain/io/aperture_map.h"
+#include "aperture/tests/tools/run_tool.h"
+#include "aperture/tests/tools/synthetic_dem_file.h"
 
 namespace aal {
 namespace {

@@ -11,13 +11,13 @@
 #include <fstream>
 #include <thread>
 
-#include "aperture_map.h"
-#include "bake.h"
-#include "dem_loader.h"
-#include "geotiff_writer.h"
-#include "horizon_map.h"
-#include "run_tool.h"
-#include "synthetic.h"
+#include "aperture/preprocess/bake.h"
+#include "aperture/terrain/io/aperture_map.h"
+#include "aperture/terrain/io/dem_loader.h"
+#include "aperture/terrain/io/geotiff_writer.h"
+#include "aperture/terrain/io/horizon_map.h"
+#include "aperture/terrain/synthetic.h"
+#include "aperture/tests/tools/run_tool.h"
 
 namespace aal {
 namespace {

@@ -17,12 +17,12 @@
 #include <gdal_priv.h>
 #include <ogr_spatialref.h>
 
-#include "aperture_map.h"
-#include "gdal_session.h"
-#include "geotiff_writer.h"
-#include "run_tool.h"
-#include "synthetic.h"
-#include "synthetic_dem_file.h"
+#include "aperture/terrain/io/aperture_map.h"
+#include "aperture/terrain/io/gdal_session.h"
+#include "aperture/terrain/io/geotiff_writer.h"
+#include "aperture/terrain/synthetic.h"
+#include "aperture/tests/tools/run_tool.h"
+#include "aperture/tests/tools/synthetic_dem_file.h"
 
 namespace aal {
 namespace {

@@ -19,10 +19,10 @@
 #include <utility>
 #include <vector>
 
-#include "aperture_map.h"
-#include "geotiff_writer.h"
-#include "run_tool.h"
-#include "synthetic_dem_file.h"
+#include "aperture/terrain/io/aperture_map.h"
+#include "aperture/terrain/io/geotiff_writer.h"
+#include "aperture/tests/tools/run_tool.h"
+#include "aperture/tests/tools/synthetic_dem_file.h"
 
 namespace aal {
 namespace {

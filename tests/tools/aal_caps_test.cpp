@@ -8,8 +8,8 @@
 #include <numbers>
 #include <regex>
 
-#include "caps.h"
-#include "run_tool.h"
+#include "aperture/terrain/light/caps.h"
+#include "aperture/tests/tools/run_tool.h"
 
 namespace aal {
 namespace {

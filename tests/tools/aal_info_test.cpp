@@ -6,10 +6,10 @@
 #include <fstream>
 #include <sstream>
 
-#include "dem_loader.h"
-#include "geotiff_writer.h"
-#include "run_tool.h"
-#include "synthetic.h"
+#include "aperture/terrain/io/dem_loader.h"
+#include "aperture/terrain/io/geotiff_writer.h"
+#include "aperture/terrain/synthetic.h"
+#include "aperture/tests/tools/run_tool.h"
 
 namespace aal {
 namespace {

@@ -14,10 +14,10 @@
 #include <gdal_priv.h>
 #include <ogr_spatialref.h>
 
-#include "gdal_session.h"
-#include "geotiff_writer.h"
-#include "run_tool.h"
-#include "solar_position.h"
+#include "aperture/terrain/io/gdal_session.h"
+#include "aperture/terrain/io/geotiff_writer.h"
+#include "aperture/terrain/light/solar_position.h"
+#include "aperture/tests/tools/run_tool.h"
 
 namespace aal {
 namespace {

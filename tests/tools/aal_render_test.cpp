@@ -13,7 +13,7 @@
 #include <utility>
 #include <vector>
 
-#include "run_tool.h"
+#include "aperture/tests/tools/run_tool.h"
 
 namespace aal {
 namespace {

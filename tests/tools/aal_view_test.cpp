@@ -17,7 +17,7 @@
 #include <utility>
 #include <vector>
 
-#include "run_tool.h"
+#include "aperture/tests/tools/run_tool.h"
 
 namespace aal {
 namespace {

@@ -3,7 +3,7 @@
 
 #include <cmath>
 
-#include "dynamic_resolution.h"
+#include "aperture/tools/viewer/dynamic_resolution.h"
 
 namespace aal {
 namespace {

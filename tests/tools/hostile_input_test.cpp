@@ -16,8 +16,8 @@
 #include <string>
 #include <vector>
 
-#include "hostile_files.h"
-#include "run_tool.h"
+#include "aperture/tests/terrain/io/hostile_files.h"
+#include "aperture/tests/tools/run_tool.h"
 
 namespace aal {
 namespace {

@@ -6,9 +6,9 @@
 #include <filesystem>
 #include <string>
 
-#include "geotiff_writer.h"
-#include "run_tool.h"
-#include "synthetic.h"
+#include "aperture/terrain/io/geotiff_writer.h"
+#include "aperture/terrain/synthetic.h"
+#include "aperture/tests/tools/run_tool.h"
 
 namespace aal::test {
 

@@ -4,9 +4,9 @@
 #include <cmath>
 #include <numbers>
 
-#include "lighting_defaults.h"
-#include "terrain_renderer.h"
-#include "view_lighting.h"
+#include "aperture/engine/terrain_renderer.h"
+#include "aperture/terrain/light/lighting_defaults.h"
+#include "aperture/tools/viewer/view_lighting.h"
 
 namespace aal {
 namespace {

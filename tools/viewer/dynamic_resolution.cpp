@@ -1,4 +1,4 @@
-#include "dynamic_resolution.h"
+#include "aperture/tools/viewer/dynamic_resolution.h"
 
 #include <algorithm>
 #include <cmath>

@@ -1,11 +1,11 @@
-#include "view_lighting.h"
+#include "aperture/tools/viewer/view_lighting.h"
 
 #include <algorithm>
 #include <cmath>
 #include <numbers>
 
-#include "lighting_defaults.h"
-#include "terrain_renderer.h"
+#include "aperture/engine/terrain_renderer.h"
+#include "aperture/terrain/light/lighting_defaults.h"
 
 namespace aal {
 

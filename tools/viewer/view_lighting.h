@@ -6,10 +6,10 @@
 
 #include <optional>
 
-#include "atmosphere.h"
-#include "heightfield.h"
-#include "lighting.h"
-#include "solar_position.h"
+#include "aperture/terrain/heightfield.h"
+#include "aperture/terrain/light/atmosphere.h"
+#include "aperture/terrain/light/lighting.h"
+#include "aperture/terrain/light/solar_position.h"
 
 namespace aal {
 

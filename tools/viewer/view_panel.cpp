@@ -1,4 +1,4 @@
-#include "view_panel.h"
+#include "aperture/tools/viewer/view_panel.h"
 
 #include <algorithm>
 #include <cmath>
@@ -7,7 +7,7 @@
 
 #include <imgui.h>
 
-#include "horizon_option.h"
+#include "aperture/tools/horizon_option.h"
 
 namespace aal {
 

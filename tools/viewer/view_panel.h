@@ -8,10 +8,10 @@
 #include <utility>
 #include <vector>
 
-#include "camera_controller.h"
-#include "shading.h"
-#include "terrain_renderer.h"
-#include "view_lighting.h"
+#include "aperture/engine/terrain_renderer.h"
+#include "aperture/terrain/light/shading.h"
+#include "aperture/terrain/view/camera_controller.h"
+#include "aperture/tools/viewer/view_lighting.h"
 
 namespace aal {
 

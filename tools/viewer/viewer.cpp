@@ -1,4 +1,4 @@
-#include "viewer.h"
+#include "aperture/tools/viewer/viewer.h"
 
 #include <GLFW/glfw3.h>
 
@@ -10,17 +10,17 @@
 #include <memory>
 #include <utility>
 
-#include "aperture_cache.h"
-#include "buffer.h"
-#include "dem_loader.h"
-#include "errors.h"
-#include "image.h"
-#include "lighting_defaults.h"
-#include "obscurance.h"
-#include "screenshot.h"
-#include "tool_options.h"
-#include "view_panel.h"
-#include "vk_check.h"
+#include "aperture/engine/screenshot.h"
+#include "aperture/engine/vk/buffer.h"
+#include "aperture/engine/vk/image.h"
+#include "aperture/engine/vk/vk_check.h"
+#include "aperture/preprocess/aperture_cache.h"
+#include "aperture/terrain/errors.h"
+#include "aperture/terrain/io/dem_loader.h"
+#include "aperture/terrain/light/lighting_defaults.h"
+#include "aperture/terrain/light/obscurance.h"
+#include "aperture/tools/tool_options.h"
+#include "aperture/tools/viewer/view_panel.h"
 
 namespace aal {
 
@@ -418,7 +418,8 @@ FrameSettings Viewer::frameSettings() const {
   // The placeholder aperture is an open sky: only the baselines are honest.
   s.mode = terrain_->bake ? ShadingMode::BaselineLambert : mode_;
   // The panel offers the horizon mode only with horizons; a stale choice draws approx.
-  if (s.mode == ShadingMode::Horizon && !terrain_->scene->hasHorizons()) s.mode = ShadingMode::Approx;
+  if (s.mode == ShadingMode::Horizon && !terrain_->scene->hasHorizons())
+    s.mode = ShadingMode::Approx;
   applyViewLighting(lighting_, *terrain_->field, s);
   s.obscurance = obscurance_;
   s.lod.maxErrorPixels = options_.lodErrorPixels;

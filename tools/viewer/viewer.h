@@ -10,21 +10,21 @@
 #include <string>
 #include <vector>
 
-#include "background_bake.h"
-#include "buffer.h"
-#include "camera_controller.h"
-#include "camera_path.h"
-#include "device.h"
-#include "dynamic_resolution.h"
-#include "frame_sync.h"
-#include "horizon_map.h"
-#include "instance.h"
-#include "swapchain.h"
-#include "terrain_renderer.h"
-#include "terrain_scene.h"
-#include "ui_overlay.h"
-#include "view_lighting.h"
-#include "window.h"
+#include "aperture/engine/terrain_renderer.h"
+#include "aperture/engine/terrain_scene.h"
+#include "aperture/engine/vk/buffer.h"
+#include "aperture/engine/vk/device.h"
+#include "aperture/engine/vk/frame_sync.h"
+#include "aperture/engine/vk/instance.h"
+#include "aperture/engine/window/swapchain.h"
+#include "aperture/engine/window/ui_overlay.h"
+#include "aperture/engine/window/window.h"
+#include "aperture/preprocess/background_bake.h"
+#include "aperture/terrain/io/horizon_map.h"
+#include "aperture/terrain/view/camera_controller.h"
+#include "aperture/terrain/view/camera_path.h"
+#include "aperture/tools/viewer/dynamic_resolution.h"
+#include "aperture/tools/viewer/view_lighting.h"
 
 namespace aal {
 

@@ -1,5 +1,5 @@
 // Albedo images (terrain/io/albedo_image): decoding, channels, resampling, errors.
-#include "albedo_image.h"
+#include "aperture/terrain/io/albedo_image.h"
 
 #include <gtest/gtest.h>
 
@@ -10,8 +10,8 @@
 #include <string>
 #include <vector>
 
-#include "../../tools/run_tool.h"
-#include "errors.h"
+#include "aperture/terrain/errors.h"
+#include "aperture/tests/tools/run_tool.h"
 
 namespace aal {
 namespace {

@@ -10,8 +10,8 @@
 #include <fstream>
 #include <string>
 
-#include "atomic_file.h"
-#include "run_tool.h"
+#include "aperture/terrain/io/atomic_file.h"
+#include "aperture/tests/tools/run_tool.h"
 
 namespace aal {
 namespace {

@@ -8,11 +8,11 @@
 #include <cmath>
 #include <filesystem>
 
-#include "dem_loader.h"
-#include "dem_source.h"
-#include "dem_summary.h"
-#include "dem_test_util.h"
-#include "gdal_raster.h"
+#include "aperture/terrain/io/dem_loader.h"
+#include "aperture/terrain/io/dem_source.h"
+#include "aperture/terrain/io/dem_summary.h"
+#include "aperture/tests/terrain/io/dem_test_util.h"
+#include "aperture/tests/terrain/io/gdal_raster.h"
 
 namespace aal {
 namespace {

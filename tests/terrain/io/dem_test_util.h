@@ -11,10 +11,10 @@
 #include <string>
 #include <vector>
 
-#include "dem_options.h"
-#include "errors.h"
-#include "heightfield.h"
-#include "run_tool.h"
+#include "aperture/terrain/errors.h"
+#include "aperture/terrain/heightfield.h"
+#include "aperture/terrain/io/dem_options.h"
+#include "aperture/tests/tools/run_tool.h"
 
 namespace aal::test {
 

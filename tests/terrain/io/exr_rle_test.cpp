@@ -7,7 +7,7 @@
 #include <random>
 #include <vector>
 
-#include "exr_rle.h"
+#include "aperture/terrain/io/exr_rle.h"
 
 namespace aal {
 namespace {

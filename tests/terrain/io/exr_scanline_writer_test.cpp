@@ -22,8 +22,8 @@
 #include <string>
 #include <vector>
 
-#include "exr_scanline_writer.h"
-#include "run_tool.h"
+#include "aperture/terrain/io/exr_scanline_writer.h"
+#include "aperture/tests/tools/run_tool.h"
 
 namespace aal {
 namespace {

@@ -15,12 +15,12 @@
 #include <thread>
 #include <utility>
 
-#include "dem_loader.h"
-#include "dem_source.h"
-#include "dem_test_util.h"
-#include "gdal_raster.h"
-#include "georeference.h"
-#include "hostile_files.h"
+#include "aperture/terrain/io/dem_loader.h"
+#include "aperture/terrain/io/dem_source.h"
+#include "aperture/terrain/io/georeference.h"
+#include "aperture/tests/terrain/io/dem_test_util.h"
+#include "aperture/tests/terrain/io/gdal_raster.h"
+#include "aperture/tests/terrain/io/hostile_files.h"
 
 namespace aal {
 namespace {

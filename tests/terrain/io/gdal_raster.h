@@ -13,7 +13,7 @@
 #include <gdal_priv.h>
 #include <ogr_spatialref.h>
 
-#include "gdal_session.h"
+#include "aperture/terrain/io/gdal_session.h"
 
 namespace aal::test {
 

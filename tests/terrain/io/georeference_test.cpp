@@ -8,8 +8,8 @@
 #include <cmath>
 #include <numbers>
 
-#include "dem_test_util.h"
-#include "georeference.h"
+#include "aperture/terrain/io/georeference.h"
+#include "aperture/tests/terrain/io/dem_test_util.h"
 
 namespace aal {
 namespace {

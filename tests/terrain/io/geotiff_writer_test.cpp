@@ -3,10 +3,10 @@
 
 #include <filesystem>
 
-#include "dem_loader.h"
-#include "dem_test_util.h"
-#include "gdal_raster.h"
-#include "geotiff_writer.h"
+#include "aperture/terrain/io/dem_loader.h"
+#include "aperture/terrain/io/geotiff_writer.h"
+#include "aperture/tests/terrain/io/dem_test_util.h"
+#include "aperture/tests/terrain/io/gdal_raster.h"
 
 namespace aal {
 namespace {

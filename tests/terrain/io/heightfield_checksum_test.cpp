@@ -2,7 +2,7 @@
 // version against a straight loop over the rows, the same however its rows
 // are split over callers and threads; the byte-serial version of maps baked
 // before issue 20 still computed and told apart.
-#include "heightfield_checksum.h"
+#include "aperture/terrain/io/heightfield_checksum.h"
 
 #include <gtest/gtest.h>
 
@@ -16,7 +16,7 @@
 #include <utility>
 #include <vector>
 
-#include "pixel_checksum.h"
+#include "aperture/terrain/io/pixel_checksum.h"
 
 namespace aal {
 namespace {

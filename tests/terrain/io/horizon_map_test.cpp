@@ -16,9 +16,9 @@
 
 #include <glm/geometric.hpp>
 
-#include "caps.h"
-#include "horizon_map.h"
-#include "shading.h"
+#include "aperture/terrain/io/horizon_map.h"
+#include "aperture/terrain/light/caps.h"
+#include "aperture/terrain/light/shading.h"
 
 namespace aal {
 namespace {
@@ -159,9 +159,8 @@ TEST(HorizonMap, ChosenPairGivesTheHorizonAtEveryAzimuth) {
           const double expected = horizonAtAzimuth(codes, directions, a, bits);
           const double got = horizonFromPair(codes, directions, a, bits, first);
           if (past >= 1e-4 && past <= 1 - 1e-4) {
-            ASSERT_NEAR(got, expected, 2e-6)
-                << bits << " bits, " << directions << " directions, azimuth " << a << ", pair "
-                << first;
+            ASSERT_NEAR(got, expected, 2e-6) << bits << " bits, " << directions
+                                             << " directions, azimuth " << a << ", pair " << first;
           } else {
             ++outside;
             ASSERT_NEAR(got, expected, kHorizonPairMargin * steepest + 2e-6)
@@ -188,8 +187,8 @@ TEST(HorizonMap, PairHoldsAtAStoredDirection) {
     const double step = 2 * kPi / directions;
     for (int k = 0; k < directions; ++k) {
       // Direction k itself, and the points where horizonPairFor switches.
-      for (const double at : {double(k), k + 1 + double(kHorizonPairMargin),
-                              k - double(kHorizonPairMargin)}) {
+      for (const double at :
+           {double(k), k + 1 + double(kHorizonPairMargin), k - double(kHorizonPairMargin)}) {
         for (const int start : {-1, (k + directions - 1) % directions, k}) {
           int first = start, changes = 0;
           for (int i = 0; i < 200; ++i) {
@@ -208,8 +207,8 @@ TEST(HorizonMap, PairHoldsAtAStoredDirection) {
       int first = horizonPairFor(directions, float(0.5 * step), -1), changes = 0;
       constexpr int kSamples = 100000;
       for (int i = 1; i <= kSamples; ++i) {
-        const int next = horizonPairFor(
-            directions, float(0.5 * step + turn * 2 * kPi * i / kSamples), first);
+        const int next =
+            horizonPairFor(directions, float(0.5 * step + turn * 2 * kPi * i / kSamples), first);
         changes += next != first;
         first = next;
       }

@@ -2,7 +2,7 @@
 // the code that called OpenImageIO directly did, to the bit; it is found
 // next to the executable or where AAL_IMAGE_PLUGIN says, and a plugin that
 // does not load is an error naming it.
-#include "image_files.h"
+#include "aperture/terrain/io/image_files.h"
 
 #include <gtest/gtest.h>
 
@@ -11,6 +11,7 @@
 #include <OpenImageIO/imageio.h>
 
 #include <cstdlib>
+#include <algorithm>
 #include <filesystem>
 #include <fstream>
 #include <iterator>
@@ -18,8 +19,8 @@
 #include <string>
 #include <vector>
 
-#include "../../tools/run_tool.h"
-#include "image_plugin.h"
+#include "aperture/terrain/io/image_plugin.h"
+#include "aperture/tests/tools/run_tool.h"
 
 namespace aal {
 namespace {
@@ -193,18 +194,30 @@ TEST(ImagePlugin, AMissingOrForeignPluginIsAnErrorNamingIt) {
   }
 }
 
-TEST(ImagePlugin, FoundNextToTheExecutableUnlessTheEnvironmentSaysOtherwise) {
+TEST(ImagePlugin, FoundBesideOrInstalledUnlessTheEnvironmentSaysOtherwise) {
   const char* set = std::getenv("AAL_IMAGE_PLUGIN");
   ASSERT_TRUE(set) << "the tests run with AAL_IMAGE_PLUGIN (tests/CMakeLists.txt)";
   const std::string configured = set;
   EXPECT_EQ(imagePluginPath(), configured);
   EXPECT_EQ(openImagePlugin(configured).version, kImagePluginVersion);
+  const std::vector<std::string> places = imagePluginCandidates();
+  ASSERT_EQ(places.size(), 3u);
+  const std::filesystem::path folder = std::filesystem::read_symlink("/proc/self/exe").parent_path();
+  EXPECT_EQ(std::filesystem::path(places[0]).parent_path(), folder);
+  // An installed tool in <prefix>/bin finds it in <prefix>/lib.../aperture.
+  EXPECT_EQ(std::filesystem::path(places[1]).parent_path().filename(), "aperture");
+  EXPECT_EQ(std::filesystem::path(places[1]).lexically_relative(folder.parent_path()).begin()->string()
+                .rfind("lib", 0),
+            0u)
+      << places[1];
+  EXPECT_EQ(std::filesystem::path(places[2]).parent_path().filename(), "aperture");
+  for (const std::string& place : places) {
+    EXPECT_EQ(std::filesystem::path(place).filename(), std::filesystem::path(configured).filename());
+  }
   unsetenv("AAL_IMAGE_PLUGIN");
-  const std::string beside = imagePluginPath();
+  const std::string found = imagePluginPath();
   setenv("AAL_IMAGE_PLUGIN", configured.c_str(), 1);
-  EXPECT_EQ(std::filesystem::path(beside).parent_path(),
-            std::filesystem::read_symlink("/proc/self/exe").parent_path());
-  EXPECT_EQ(std::filesystem::path(beside).filename(), std::filesystem::path(configured).filename());
+  EXPECT_NE(std::find(places.begin(), places.end(), found), places.end()) << found;
 }
 
 }  // namespace

@@ -7,10 +7,10 @@
 #include <filesystem>
 #include <vector>
 
-#include "aperture_map.h"
-#include "dem_test_util.h"
-#include "geotiff_writer.h"
-#include "interrupt.h"
+#include "aperture/terrain/interrupt.h"
+#include "aperture/terrain/io/aperture_map.h"
+#include "aperture/terrain/io/geotiff_writer.h"
+#include "aperture/tests/terrain/io/dem_test_util.h"
 
 namespace aal {
 namespace {

@@ -4,9 +4,9 @@
 
 #include <filesystem>
 
-#include "dem_loader.h"
-#include "dem_test_util.h"
-#include "georeference.h"
+#include "aperture/terrain/io/dem_loader.h"
+#include "aperture/terrain/io/georeference.h"
+#include "aperture/tests/terrain/io/dem_test_util.h"
 
 namespace aal {
 namespace {

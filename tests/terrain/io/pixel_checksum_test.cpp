@@ -1,6 +1,6 @@
 // The aperture map's pixel checksum (terrain/io/pixel_checksum.h): XXH64 as
 // published, summed over rows in any order.
-#include "pixel_checksum.h"
+#include "aperture/terrain/io/pixel_checksum.h"
 
 #include <gtest/gtest.h>
 

@@ -5,7 +5,7 @@
 #include <limits>
 #include <random>
 
-#include "void_fill.h"
+#include "aperture/terrain/io/void_fill.h"
 
 namespace aal {
 namespace {

@@ -6,7 +6,7 @@
 #include <cstdio>
 #include <numbers>
 
-#include "atmosphere.h"
+#include "aperture/terrain/light/atmosphere.h"
 
 namespace aal {
 namespace {

@@ -1,11 +1,11 @@
-#include "cap_error.h"
+#include "aperture/terrain/light/cap_error.h"
 
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <numbers>
 
-#include "caps.h"
+#include "aperture/terrain/light/caps.h"
 
 namespace aal {
 namespace {

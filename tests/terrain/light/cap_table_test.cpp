@@ -11,10 +11,10 @@
 
 #include <glm/geometric.hpp>
 
-#include "cap_table.h"
-#include "caps.h"
-#include "config.h"
-#include "shading.h"
+#include "aperture/shaders/config.h"
+#include "aperture/terrain/light/cap_table.h"
+#include "aperture/terrain/light/caps.h"
+#include "aperture/terrain/light/shading.h"
 
 namespace aal {
 namespace {

@@ -1,4 +1,4 @@
-#include "caps.h"
+#include "aperture/terrain/light/caps.h"
 
 #include <gtest/gtest.h>
 

@@ -1,6 +1,6 @@
 // Containment-test obscurances and W on the CPU (terrain/light/obscurance.h) and
 // their sample set (terrain/light/obscurance_samples.h), against brute force.
-#include "obscurance.h"
+#include "aperture/terrain/light/obscurance.h"
 
 #include <gtest/gtest.h>
 
@@ -13,8 +13,8 @@
 
 #include <glm/geometric.hpp>
 
-#include "errors.h"
-#include "obscurance_samples.h"
+#include "aperture/terrain/errors.h"
+#include "aperture/terrain/light/obscurance_samples.h"
 
 namespace aal {
 namespace {

@@ -1,4 +1,4 @@
-#include "shading.h"
+#include "aperture/terrain/light/shading.h"
 
 #include <gtest/gtest.h>
 
@@ -10,7 +10,7 @@
 #include <glm/geometric.hpp>
 #include <glm/vec3.hpp>
 
-#include "caps.h"
+#include "aperture/terrain/light/caps.h"
 
 namespace aal {
 namespace {

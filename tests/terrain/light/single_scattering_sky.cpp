@@ -1,4 +1,4 @@
-#include "single_scattering_sky.h"
+#include "aperture/tests/terrain/light/single_scattering_sky.h"
 
 #include <algorithm>
 #include <cmath>

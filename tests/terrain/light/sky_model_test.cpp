@@ -10,11 +10,11 @@
 
 #include <glm/geometric.hpp>
 
-#include "atmosphere.h"
-#include "single_scattering_sky.h"
-#include "sky_model.h"
-#include "solar_position.h"
-#include "tone_map.h"
+#include "aperture/terrain/light/atmosphere.h"
+#include "aperture/terrain/light/sky_model.h"
+#include "aperture/terrain/light/solar_position.h"
+#include "aperture/terrain/light/tone_map.h"
+#include "aperture/tests/terrain/light/single_scattering_sky.h"
 
 namespace aal {
 namespace {

@@ -9,7 +9,7 @@
 
 #include <glm/geometric.hpp>
 
-#include "solar_position.h"
+#include "aperture/terrain/light/solar_position.h"
 
 namespace aal {
 namespace {

@@ -5,11 +5,11 @@
 #include <cstdio>
 #include <numbers>
 
-#include "atmosphere.h"
-#include "config.h"
-#include "sky_model.h"
-#include "solar_position.h"
-#include "tone_map.h"
+#include "aperture/shaders/config.h"
+#include "aperture/terrain/light/atmosphere.h"
+#include "aperture/terrain/light/sky_model.h"
+#include "aperture/terrain/light/solar_position.h"
+#include "aperture/terrain/light/tone_map.h"
 
 namespace aal {
 namespace {

@@ -3,8 +3,8 @@
 
 #include <sstream>
 
-#include "color_ramp.h"
-#include "errors.h"
+#include "aperture/terrain/errors.h"
+#include "aperture/terrain/reference/color_ramp.h"
 
 namespace aal {
 namespace {

@@ -1,6 +1,6 @@
 // The CPU reference renderer against closed forms: open ground, a conical
 // pit's sky and shadow, and a whole image of a flat plane.
-#include "reference_renderer.h"
+#include "aperture/terrain/reference/reference_renderer.h"
 
 #include <gtest/gtest.h>
 

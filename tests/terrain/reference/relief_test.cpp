@@ -6,8 +6,8 @@
 
 #include <glm/geometric.hpp>
 
-#include "relief.h"
-#include "solar_position.h"
+#include "aperture/terrain/light/solar_position.h"
+#include "aperture/terrain/reference/relief.h"
 
 namespace aal {
 namespace {

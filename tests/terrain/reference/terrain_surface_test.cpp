@@ -1,6 +1,6 @@
 // The reference ray tracer's ray-terrain intersection (terrain_surface.h)
 // against a brute-force march in steps of 1/512 of a cell.
-#include "terrain_surface.h"
+#include "aperture/terrain/reference/terrain_surface.h"
 
 #include <gtest/gtest.h>
 

@@ -7,7 +7,7 @@
 
 #include <glm/geometric.hpp>
 
-#include "camera_controller.h"
+#include "aperture/terrain/view/camera_controller.h"
 
 namespace aal {
 namespace {

@@ -1,8 +1,8 @@
 // Camera path files for scripted viewer runs (terrain/view/camera_path.h).
 #include <gtest/gtest.h>
 
-#include "camera_path.h"
-#include "errors.h"
+#include "aperture/terrain/errors.h"
+#include "aperture/terrain/view/camera_path.h"
 
 namespace aal {
 namespace {

@@ -8,7 +8,7 @@
 
 #include <glm/geometric.hpp>
 
-#include "camera.h"
+#include "aperture/terrain/view/camera.h"
 
 namespace aal {
 namespace {

@@ -10,9 +10,9 @@
 
 #include <glm/geometric.hpp>
 
-#include "height_mips.h"
-#include "quadtree_lod.h"
-#include "synthetic.h"
+#include "aperture/terrain/synthetic.h"
+#include "aperture/terrain/view/height_mips.h"
+#include "aperture/terrain/view/quadtree_lod.h"
 
 namespace aal {
 namespace {

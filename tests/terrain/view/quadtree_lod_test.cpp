@@ -14,10 +14,10 @@
 
 #include <glm/geometric.hpp>
 
-#include "camera.h"
-#include "lod_patch.h"
-#include "quadtree_lod.h"
-#include "synthetic.h"
+#include "aperture/terrain/synthetic.h"
+#include "aperture/terrain/view/camera.h"
+#include "aperture/terrain/view/lod_patch.h"
+#include "aperture/terrain/view/quadtree_lod.h"
 
 namespace aal {
 namespace {
