@@ -3,9 +3,11 @@
 # Depends come from dpkg-shlibdeps, which holds the tools, the image plugin,
 # the libraries with their headers and package configs, and whose tools run
 # from its unpacked tree.
-#   debian_package_test.sh BUILD_DIR
+#   debian_package_test.sh BUILD_DIR [with-python]
 set -euo pipefail
 build=$(cd "$1" && pwd)
+expected=()
+[ "${2:-}" = with-python ] && expected+=(./usr/lib/python3/dist-packages/aperture/__init__.py)
 work=$(mktemp -d /tmp/aperture-deb.XXXXXX)
 trap 'rm -rf "$work"' EXIT
 
@@ -24,7 +26,8 @@ for file in ./usr/bin/aal-bake ./usr/bin/aal-render ./usr/bin/aal-view ./usr/bin
             ./usr/lib/aperture/aal_oiio_images.so ./usr/lib/libaperture_terrain.a \
             ./usr/lib/libaperture_engine.a ./usr/include/aperture/engine/vk/buffer.h \
             ./usr/lib/cmake/aperture/apertureConfig.cmake ./usr/lib/pkgconfig/aperture.pc \
-            ./usr/share/doc/aperture/copyright ./usr/share/doc/aperture/changelog.gz; do
+            ./usr/share/doc/aperture/copyright ./usr/share/doc/aperture/changelog.gz \
+            "${expected[@]}"; do
   grep -qxF "$file" "$work/files" || { echo "the package lacks $file" >&2; exit 1; }
 done
 

@@ -4,9 +4,10 @@
 # mounted over each in a private mount namespace, as if moved aside) and no
 # AAL_* variable set, the installed aal-bake and aal-render bake and render
 # the shipped DEM (aal-render writes a PNG through the installed image
-# plugin), every tool answers --version, and tests/consumer, built with
+# plugin), every tool answers --version, tests/consumer, built with
 # find_package(aperture) against the prefix, bakes and renders a frame on
-# lavapipe with no validation message.
+# lavapipe with no validation message, and the installed Python module
+# imports and bakes (when the build has it).
 #   install_tree_test.sh BUILD_DIR SOURCE_DIR
 # Exits 77 (skipped) when no mount namespace can be made (unshare).
 set -euo pipefail
@@ -50,6 +51,11 @@ pkg=$(PKG_CONFIG_PATH=$(dirname "$prefix"/lib*/pkgconfig/aperture.pc) pkg-config
 echo "pkg-config: aperture $pkg"
 
 cp "$source/heightmaps/jacksboro_fault_dem.tif" "$work/dem.tif"
+# The Python module, when the build made it (python3 with numpy).
+python=""
+if ls "$prefix"/lib/python3/dist-packages/aperture/_aperture*.so >/dev/null 2>&1; then
+  python=/usr/bin/python3
+fi
 cat >"$work/run.sh" <<SCRIPT
 set -euo pipefail
 mount -t tmpfs none "$build"
@@ -60,6 +66,13 @@ cd "$work"
 "$prefix/bin/aal-bake" dem.tif -o map.exr --azimuths 16 --svf svf.tif -q
 "$prefix/bin/aal-render" dem.tif --aperture map.exr -o frame.png --size 96x64 --no-obscurance
 "$work/consumer/aperture_consumer"
+if [ -n "$python" ]; then
+  PYTHONPATH="$prefix/lib/python3/dist-packages" "$python" -c "
+import numpy, aperture
+svf = aperture.sky_view_factor(numpy.zeros((32, 32), numpy.float32), 30.0, azimuths=8)
+assert svf.shape == (32, 32) and (svf == 1).all(), svf
+print('python: aperture', aperture.__version__, 'from', aperture.__file__)"
+fi
 SCRIPT
 env $(env | sed -n 's/^\(AAL_[A-Z_]*\)=.*/-u \1/p') HOME="$work" "${hide[@]}" bash "$work/run.sh"
 for f in map.exr svf.tif frame.png; do

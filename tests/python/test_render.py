@@ -1,0 +1,88 @@
+"""aperture.render: headless Vulkan frames (lavapipe) under the validation layer.
+
+The validation layer is on for every render here (AAL_VALIDATION=1, set by CTest and
+below): render() raises RuntimeError on any validation message, and the layer's
+messages on stderr fail the tests too.
+"""
+
+import os
+import subprocess
+import sys
+
+import numpy as np
+import pytest
+
+import aperture
+from aperture import rio
+
+from conftest import hills, run_tool
+
+# Read by the engine when it makes its Vulkan instance, i.e. at every render.
+os.environ["AAL_VALIDATION"] = "1"
+
+
+@pytest.fixture(autouse=True)
+def no_validation_messages(capfd):
+    yield
+    assert "vulkan validation" not in capfd.readouterr().err
+
+
+def test_a_small_render_has_terrain_and_sky():
+    image = aperture.render(hills(48, 64), 20.0, size=(96, 64))
+    assert image.shape == (64, 96, 4) and image.dtype == np.uint8
+    rgb = image[..., :3].astype(np.float64)
+    assert np.all(image[..., 3] == 255)
+    assert rgb.std() > 10 and np.unique(image.reshape(-1, 4), axis=0).shape[0] > 200
+    # The default camera looks down from the south-east: terrain fills the middle, and
+    # the top row is sky (bluer than it is red).
+    assert rgb[0, :, 2].mean() > rgb[0, :, 0].mean()
+
+
+def test_transparent_background_and_modes():
+    z = hills(48, 64)
+    clear = aperture.render(z, 20.0, size=(96, 64), background="transparent",
+                            camera=(0, -3000, 1500), look_at=(0, 0, 300))
+    alpha = clear[..., 3]
+    assert (alpha == 0).any() and (alpha == 255).any()
+    shaded = aperture.render(z, 20.0, size=(96, 64), camera=(0, -3000, 1500),
+                             look_at=(0, 0, 300), mode="horizon", sun_elevation=10)
+    lambert = aperture.render(z, 20.0, size=(96, 64), camera=(0, -3000, 1500),
+                              look_at=(0, 0, 300), mode="baseline-lambert", sun_elevation=10)
+    assert not np.array_equal(shaded, lambert)
+
+
+def test_equals_aal_render_bit_for_bit(tmp_path, tool_env):
+    z = hills(40, 56)
+    from rasterio.transform import from_origin
+    placed = rio.RasterInfo(56, 40, "EPSG:32616", from_origin(500000, 4000000, 25, 25), None,
+                            None, 1.0, "float32", {})
+    rio.write(tmp_path / "dem.tif", z, like=placed)
+    tool_env["AAL_VALIDATION"] = "1"
+    run_tool("aal-render", tmp_path / "dem.tif", "-o", tmp_path / "frame.png", "--size", "96x64",
+             "--sun-azimuth", "200", "--sun-elevation", "20", "--exaggeration", "2", "-q",
+             env=tool_env)
+    import rasterio
+    import warnings
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", rasterio.errors.NotGeoreferencedWarning)
+        with rasterio.open(tmp_path / "frame.png") as png:
+            expected = np.moveaxis(png.read(), 0, 2)
+
+    dem, info = rio.read(tmp_path / "dem.tif")
+    image = aperture.render(dem, info.cell_size, size=(96, 64), sun_azimuth=200,
+                            sun_elevation=20, exaggeration=2)
+    np.testing.assert_array_equal(image, expected)
+
+
+def test_no_vulkan_device_is_a_runtime_error():
+    # A child process whose Vulkan loader finds no driver.
+    code = ("import numpy, aperture\n"
+            "try:\n"
+            "    aperture.render(numpy.zeros((8, 8)), 1.0, size=(16, 16))\n"
+            "except RuntimeError as e:\n"
+            "    print('RuntimeError:', e)\n")
+    env = dict(os.environ, VK_ICD_FILENAMES="/nonexistent/icd.json", AAL_VALIDATION="0")
+    result = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True,
+                            env=env, timeout=60)
+    assert result.returncode == 0, result.stderr
+    assert "RuntimeError: no Vulkan 1.3 driver found" in result.stdout
