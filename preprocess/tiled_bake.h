@@ -55,6 +55,10 @@ class TiledBakeLock {
 // would need ~22 GB, with the EXR writer's buffers and the system more than
 // a 24 GiB machine has.
 constexpr size_t kInMemoryBakeTexelLimit = size_t(16384) * 16384;
+// What an in-memory bake holds at its peak per texel, with a margin over
+// the 20.2 B measured at 16384^2 (docs/performance.md), before --svf,
+// --visible (4 B each) and --horizons (1 B per direction) add theirs.
+constexpr double kInMemoryBakeBytesPerTexel = 22.0;
 constexpr int kDefaultTileSize = 4096;
 constexpr int kMinTileSize = 16, kMaxTileSize = 16384;
 

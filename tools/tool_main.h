@@ -6,6 +6,8 @@
 #include <cstdio>
 #include <cstdlib>
 #include <exception>
+#include <new>
+#include <system_error>
 #include <functional>
 #include <iostream>
 #include <sstream>
@@ -14,6 +16,7 @@
 #include <CLI/CLI.hpp>
 
 #include "aperture/terrain/errors.h"
+#include "aperture/terrain/io/memory_budget.h"
 #include "aperture/terrain/version.h"
 
 namespace aal {
@@ -98,6 +101,19 @@ inline int runToolBody(CLI::App& app, int argc, char** argv, const std::function
   } catch (const InputError& e) {
     std::cerr << app.get_name() << ": " << e.what() << "\n";
     return kExitBadInput;
+  } catch (const std::bad_alloc&) {
+    // A limit (ulimit -v, a cgroup) or the machine: say memory, name the limit.
+    std::cerr << app.get_name() << ": error: " << outOfMemoryMessage("") << "\n";
+    return kExitFailure;
+  } catch (const std::system_error& e) {
+    // A thread that could not start (EAGAIN) is memory or a process limit.
+    if (e.code() != std::errc::resource_unavailable_try_again) {
+      std::cerr << app.get_name() << ": error: " << e.what() << "\n";
+    } else {
+      std::cerr << app.get_name() << ": error: cannot start a thread (" << e.what()
+                << "): " << outOfMemoryMessage("") << "\n";
+    }
+    return kExitFailure;
   } catch (const std::exception& e) {
     std::cerr << app.get_name() << ": error: " << e.what() << "\n";
     return kExitFailure;

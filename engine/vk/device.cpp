@@ -57,7 +57,16 @@ std::string describeDevices(const std::vector<PhysicalDeviceInfo>& devices) {
 
 std::vector<PhysicalDeviceInfo> listPhysicalDevices(const Instance& instance) {
   uint32_t count = 0;
-  AAL_VK_CHECK(vkEnumeratePhysicalDevices(instance.handle(), &count, nullptr));
+  const VkResult listed = vkEnumeratePhysicalDevices(instance.handle(), &count, nullptr);
+  // lavapipe fails to start its threads and memory under a tight ulimit -v.
+  if (listed == VK_ERROR_INITIALIZATION_FAILED || listed == VK_ERROR_OUT_OF_HOST_MEMORY) {
+    const std::string limit = addressSpaceLimitNote();
+    if (!limit.empty()) {
+      throw VulkanError("the Vulkan driver could not start (" + std::string(vkResultName(listed)) +
+                        "): " + limit);
+    }
+  }
+  AAL_VK_CHECK(listed);
   std::vector<VkPhysicalDevice> handles(count);
   AAL_VK_CHECK(vkEnumeratePhysicalDevices(instance.handle(), &count, handles.data()));
 

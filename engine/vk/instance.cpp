@@ -1,7 +1,11 @@
 #include "aperture/engine/vk/instance.h"
 
+#include <sys/resource.h>
+
 #include <cstdlib>
 #include <cstring>
+#include <fstream>
+#include <string>
 #include <iostream>
 
 #include "aperture/engine/vk/vk_check.h"
@@ -68,7 +72,52 @@ bool validationRequestedByEnvironment() {
   return value && std::strcmp(value, "1") == 0;
 }
 
+std::string addressSpaceLimitNote() {
+  rlimit limit{};
+  if (getrlimit(RLIMIT_AS, &limit) != 0 || limit.rlim_cur == RLIM_INFINITY) return "";
+  return "this process's address space is limited (ulimit -v " +
+         std::to_string(limit.rlim_cur >> 10) +
+         " kB), which keeps the Vulkan driver from loading: raise or remove the limit";
+}
+
+namespace {
+
+// Address space a driver needs to start: lavapipe's LLVM JIT and its
+// threads abort the process ("LLVM ERROR: Unable to allocate section
+// memory") or crash below it. Measured with aal-render, a 64x64 frame:
+// 507 MiB left crashed or aborted; 800 MiB left (ulimit -v 1300000) started.
+constexpr uint64_t kDriverAddressSpaceBytes = uint64_t{768} << 20;
+
+uint64_t mappedBytes() {
+  std::ifstream status("/proc/self/status");
+  std::string key;
+  uint64_t kilobytes = 0;
+  while (status >> key) {
+    if (key == "VmSize:" && status >> kilobytes) return kilobytes << 10;
+    status.ignore(4096, '\n');
+  }
+  return 0;
+}
+
+// Refuses before the driver loads when the address-space limit leaves it
+// too little: a clear error instead of an abort inside the driver.
+void requireDriverAddressSpace() {
+  rlimit limit{};
+  if (getrlimit(RLIMIT_AS, &limit) != 0 || limit.rlim_cur == RLIM_INFINITY) return;
+  const uint64_t mapped = mappedBytes();
+  const uint64_t left = limit.rlim_cur > mapped ? limit.rlim_cur - mapped : 0;
+  if (left >= kDriverAddressSpaceBytes) return;
+  throw VulkanError("cannot start Vulkan: the driver needs about " +
+                    std::to_string(kDriverAddressSpaceBytes >> 20) +
+                    " MiB of address space, and this process's limit (ulimit -v " +
+                    std::to_string(limit.rlim_cur >> 10) + " kB) leaves " +
+                    std::to_string(left >> 20) + " MiB: raise or remove the limit");
+}
+
+}  // namespace
+
 Instance::Instance(const InstanceOptions& options) {
+  requireDriverAddressSpace();
   const bool validation = options.validation || validationRequestedByEnvironment();
   if (validation && !layerAvailable(kValidationLayer)) {
     throw VulkanError(std::string("validation requested but ") + kValidationLayer +
@@ -98,7 +147,15 @@ Instance::Instance(const InstanceOptions& options) {
                                   .ppEnabledExtensionNames = extensions.data()};
 
   const VkResult result = vkCreateInstance(&info, nullptr, &instance_);
+  if (result == VK_ERROR_OUT_OF_HOST_MEMORY) {
+    throw VulkanError("cannot start Vulkan: out of memory (VK_ERROR_OUT_OF_HOST_MEMORY); free "
+                      "memory or raise the process's limit (ulimit -v)");
+  }
   if (result == VK_ERROR_INCOMPATIBLE_DRIVER) {
+    // Under an address-space limit the loader cannot map an installed
+    // driver and reports none: say so rather than ask for one.
+    const std::string limit = addressSpaceLimitNote();
+    if (!limit.empty()) throw VulkanError("no Vulkan 1.3 driver could be loaded: " + limit);
     throw VulkanError(
         "no Vulkan 1.3 driver found; install one (sudo apt-get install mesa-vulkan-drivers "
         "gives lavapipe, a CPU implementation)");

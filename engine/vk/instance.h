@@ -30,6 +30,11 @@ class ValidationLog {
   std::vector<std::string> messages_;
 };
 
+// "" without an address-space limit; else a sentence naming it (ulimit -v),
+// for errors where the loader or a driver failed to map its libraries:
+// such a limit, not a missing driver, is then the likely cause.
+std::string addressSpaceLimitNote();
+
 class Instance {
  public:
   explicit Instance(const InstanceOptions& options = {});

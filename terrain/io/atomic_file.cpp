@@ -5,11 +5,16 @@
 
 #include <atomic>
 #include <cctype>
+#include <chrono>
+#include <mutex>
+#include <set>
 #include <cerrno>
 #include <fstream>
 #include <stdexcept>
 #include <string>
 #include <system_error>
+
+#include "aperture/terrain/interrupt.h"
 
 namespace aal {
 
@@ -65,6 +70,36 @@ void removeDeadTemporaries(const fs::path& folder) {
 
 namespace {
 std::atomic<bool> removeOnWrite{true};
+
+// The temporaries being written, for the interrupt watchdog to remove when
+// it ends a tool that did not unwind in time (terrain/interrupt.h).
+std::timed_mutex liveMutex;
+std::set<std::string>& liveTemporaries() {
+  static std::set<std::string>* live = new std::set<std::string>;  // outlives exit
+  return *live;
+}
+
+void removeLiveTemporaries() {
+  if (!liveMutex.try_lock_for(std::chrono::milliseconds(100))) return;
+  for (const std::string& path : liveTemporaries()) ::unlink(path.c_str());
+  liveMutex.unlock();
+}
+
+void addLiveTemporary(const fs::path& path) {
+  std::error_code error;
+  const std::string absolute = fs::absolute(path, error).string();
+  std::lock_guard lock(liveMutex);
+  liveTemporaries().insert(absolute.empty() ? path.string() : absolute);
+  setInterruptCleanup(removeLiveTemporaries);
+}
+
+void dropLiveTemporary(const fs::path& path) {
+  std::error_code error;
+  const std::string absolute = fs::absolute(path, error).string();
+  std::lock_guard lock(liveMutex);
+  liveTemporaries().erase(absolute.empty() ? path.string() : absolute);
+}
+
 }  // namespace
 
 void setRemoveDeadTemporariesOnWrite(bool remove) {
@@ -85,6 +120,7 @@ AtomicOutput::AtomicOutput(fs::path path) : final_(std::move(path)) {
   name += unique;
   name += final_.extension().string();
   temporary_ = final_.parent_path() / name;
+  addLiveTemporary(temporary_);
 }
 
 AtomicOutput::~AtomicOutput() {
@@ -92,6 +128,7 @@ AtomicOutput::~AtomicOutput() {
     std::error_code ignored;
     fs::remove(temporary_, ignored);
   }
+  dropLiveTemporary(temporary_);
 }
 
 void AtomicOutput::commit() {

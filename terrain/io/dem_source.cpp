@@ -24,6 +24,7 @@
 #include <tbb/parallel_for.h>
 
 #include "aperture/terrain/errors.h"
+#include "aperture/terrain/interrupt.h"
 #include "aperture/terrain/io/gdal_session.h"
 #include "aperture/terrain/io/georeference.h"
 #include "aperture/terrain/io/memory_budget.h"
@@ -566,9 +567,9 @@ RawDem DemSource::read(int column, int row, int w, int h) const {
 
   GDALRasterBand& band = *impl_->band;
   const int fileRow = impl_->southUp ? whole.height - row - h : row;
-  const auto failed = [&] {
-    refuse(path_, "cannot read its samples (truncated or corrupt?): " + gdalLastError());
-  };
+  const auto failed = [&] { throwReadFailure(path_); };
+  // Stops at the next block once Ctrl-C or SIGTERM came (terrain/interrupt.h).
+  GDALRasterIOExtraArg extra = interruptibleRead();
   const bool direct = exactInFloat(impl_->type) && !impl_->signedBytes && impl_->scale == 1.0 &&
                       impl_->offset == 0.0;
   const size_t texels = dem.texelCount();
@@ -577,9 +578,18 @@ RawDem DemSource::read(int column, int row, int w, int h) const {
   const float nodataFloat = hasNodata ? static_cast<float>(*whole.nodata) : 0.0f;
   CPLErrorReset();
   if (direct) {
-    if (band.RasterIO(GF_Read, column, fileRow, w, h, dem.z.data(), w, h, GDT_Float32, 0, 0,
-                      nullptr) != CE_None) {
-      failed();
+    // Bands of rows as well: a driver that reports no progress inside one
+    // call (a VRT of one source) still hears Ctrl-C between bands.
+    const int bandRows =
+        std::max(1, std::min(h, static_cast<int>((size_t{16} << 20) / (sizeof(float) * w))));
+    for (int r = 0; r < h; r += bandRows) {
+      const int rows = std::min(bandRows, h - r);
+      if (band.RasterIO(GF_Read, column, fileRow + r, w, rows,
+                        dem.z.data() + static_cast<size_t>(r) * w, w, rows, GDT_Float32, 0, 0,
+                        &extra) != CE_None) {
+        failed();
+      }
+      throwIfInterrupted();
     }
   } else {
     // float64 through a band of rows: integers past 2^24 and scale/offset
@@ -591,9 +601,10 @@ RawDem DemSource::read(int column, int row, int w, int h) const {
     for (int r = 0; r < h; r += bandRows) {
       const int rows = std::min(bandRows, h - r);
       if (band.RasterIO(GF_Read, column, fileRow + r, w, rows, samples.data(), w, rows, GDT_Float64,
-                        0, 0, nullptr) != CE_None) {
+                        0, 0, &extra) != CE_None) {
         failed();
       }
+      throwIfInterrupted();
       float* out = dem.z.data() + static_cast<size_t>(r) * w;
       const size_t count = static_cast<size_t>(rows) * w;
       tbb::parallel_for(size_t{0}, count, size_t{1} << 16, [&](size_t i) {
@@ -615,7 +626,7 @@ RawDem DemSource::read(int column, int row, int w, int h) const {
                          : impl_->readMask    ? band.GetMaskBand()
                                               : nullptr;
   if (mask != nullptr && mask->RasterIO(GF_Read, column, fileRow, w, h, dem.voidMask.data(), w, h,
-                                        GDT_Byte, 0, 0, nullptr) != CE_None) {
+                                        GDT_Byte, 0, 0, &extra) != CE_None) {
     failed();
   }
   const bool maskRead = mask != nullptr, compareNodata = direct && hasNodata;

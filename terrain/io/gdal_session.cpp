@@ -8,6 +8,10 @@
 #include <gdal_frmts.h>
 #include <ogr_spatialref.h>
 
+#include "aperture/terrain/errors.h"
+#include "aperture/terrain/interrupt.h"
+#include "aperture/terrain/io/memory_budget.h"
+
 namespace aal {
 
 namespace {
@@ -52,6 +56,24 @@ std::unique_ptr<OGRSpatialReference> spatialReferenceOf(const GeoReference& geo)
   }
   srs->SetAxisMappingStrategy(OAMS_TRADITIONAL_GIS_ORDER);
   return srs;
+}
+
+GDALRasterIOExtraArg interruptibleRead() {
+  GDALRasterIOExtraArg extra;
+  INIT_RASTERIO_EXTRA_ARG(extra);
+  extra.pfnProgress = [](double, const char*, void*) -> int {
+    return interruptFlag().load(std::memory_order_relaxed) ? FALSE : TRUE;
+  };
+  return extra;
+}
+
+void throwReadFailure(const std::string& path) {
+  throwIfInterrupted();
+  if (CPLGetLastErrorNo() == CPLE_OutOfMemory) {
+    throw std::runtime_error(path + ": " + outOfMemoryMessage("reading its samples") + " (" +
+                             gdalLastError() + ")");
+  }
+  throw InputError(path + ": cannot read its samples (truncated or corrupt?): " + gdalLastError());
 }
 
 std::string gdalLastError(const std::string& fallback) {

@@ -31,6 +31,17 @@ GDALDatasetUniquePtr openGeoTiff(const std::string& path);
 // or OGR cannot read it. Axes in the traditional GIS order (x east, y north).
 std::unique_ptr<OGRSpatialReference> spatialReferenceOf(const GeoReference& geo);
 
+// RasterIO's extra argument whose progress callback stops the read (CE_Failure)
+// once the interrupt flag is up (terrain/interrupt.h): GDAL calls it block by
+// block, so a large read answers Ctrl-C within a block, not at its end.
+GDALRasterIOExtraArg interruptibleRead();
+
+// Throws the error of a failed read: Interrupted when the interrupt stopped
+// it; when GDAL ran out of memory, a runtime_error that says memory (and the
+// limit, memory_budget.h); else InputError "PATH: cannot read its samples
+// (truncated or corrupt?): GDAL's message".
+[[noreturn]] void throwReadFailure(const std::string& path);
+
 // GDAL's last error message on this thread, or `fallback` when it has none.
 std::string gdalLastError(const std::string& fallback = "no details from GDAL");
 

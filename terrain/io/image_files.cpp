@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "aperture/terrain/io/image_plugin.h"
+#include "aperture/terrain/io/memory_budget.h"
 
 namespace aal {
 
@@ -48,7 +49,15 @@ const ImagePlugin& openImagePlugin(const std::string& path) {
   };
   // Never closed: OpenImageIO keeps threads and caches until the process ends.
   void* library = dlopen(path.c_str(), RTLD_NOW | RTLD_LOCAL);
-  if (!library) throw std::runtime_error(cannot + why() + how);
+  if (!library) {
+    std::string reason = why();
+    // OpenImageIO's ~260 libraries do not map under a tight ulimit -v.
+    if (reason.find("failed to map") != std::string::npos ||
+        reason.find("annot allocate memory") != std::string::npos) {
+      reason += "; " + outOfMemoryMessage("loading it");
+    }
+    throw std::runtime_error(cannot + reason + how);
+  }
   void* entry = dlsym(library, kImagePluginEntry);
   if (!entry) throw std::runtime_error(cannot + "not an image plugin: " + why());
   const ImagePlugin* plugin = reinterpret_cast<ImagePluginEntry>(entry)();

@@ -286,6 +286,50 @@ TEST(AalBake, InterruptLeavesNoFile) {
   EXPECT_EQ(filesIn(dir.path()), 1u);  // only the DEM: no temporary left behind
 }
 
+// A DEM read is interrupted too: GDAL's progress callback answers the flag
+// block by block (terrain/io/gdal_session.h interruptibleRead), and the
+// watchdog ends whatever does not unwind within a second. A VRT that blows
+// a 64 x 64 GeoTIFF up to 8000 x 8000 takes seconds to read.
+TEST(AalBake, InterruptStopsTheDemReadWithinASecond) {
+  TempDir dir;
+  const fs::path source = writeDem(dir, 64, "small.tif");
+  const fs::path vrt = dir.path() / "big.vrt";
+  {
+    std::ofstream out(vrt);
+    out << "<VRTDataset rasterXSize=\"8000\" rasterYSize=\"8000\">\n"
+        << "  <SRS>EPSG:32616</SRS>\n"
+        << "  <GeoTransform>500000, 0.25, 0, 4000000, 0, -0.25</GeoTransform>\n"
+        << "  <VRTRasterBand dataType=\"Float32\" band=\"1\">\n"
+        << "    <SimpleSource><SourceFilename relativeToVRT=\"1\">small.tif</SourceFilename>\n"
+        << "      <SourceBand>1</SourceBand>\n"
+        << "      <SrcRect xOff=\"0\" yOff=\"0\" xSize=\"64\" ySize=\"64\"/>\n"
+        << "      <DstRect xOff=\"0\" yOff=\"0\" xSize=\"8000\" ySize=\"8000\"/>\n"
+        << "    </SimpleSource>\n  </VRTRasterBand>\n</VRTDataset>\n";
+  }
+  const fs::path out = dir.path() / "a.exr";
+  const std::string bake = (test::binDir() / "aal-bake").string();
+  const std::string demArg = vrt.string(), outArg = out.string();
+  const char* argv[] = {bake.c_str(), demArg.c_str(), "-o", outArg.c_str(), "-q", nullptr};
+  pid_t pid = 0;
+  ASSERT_EQ(posix_spawn(&pid, bake.c_str(), nullptr, nullptr, const_cast<char**>(argv), environ),
+            0);
+  for (int i = 0; i < 200 && !catchesSignal(pid, SIGINT); ++i) {
+    std::this_thread::sleep_for(std::chrono::milliseconds(20));
+  }
+  std::this_thread::sleep_for(std::chrono::milliseconds(300));  // reading by now
+  const auto signalled = std::chrono::steady_clock::now();
+  kill(pid, SIGINT);
+  int status = 0;
+  ASSERT_EQ(waitpid(pid, &status, 0), pid);
+  const double seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - signalled).count();
+  ASSERT_TRUE(WIFEXITED(status));
+  EXPECT_NE(WEXITSTATUS(status), 0);
+  EXPECT_LT(seconds, 1.0 + 0.5);  // 1 s, and a margin for a loaded machine
+  EXPECT_FALSE(fs::exists(out));
+  EXPECT_EQ(filesIn(dir.path()), 2u);  // the GeoTIFF and the VRT: no temporary
+}
+
 // Issue 17, item 11: the ray baker polled SIGTERM once per 1 % of rows,
 // minutes apart at 2^20 rays per texel (a 64^2 DEM: a row is ~30 s here).
 // The bound below is for a loaded machine; it answers in ~0.1 s.

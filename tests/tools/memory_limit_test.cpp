@@ -1,0 +1,110 @@
+// Memory limits refuse cleanly: the budget (terrain/io/memory_budget.h)
+// honours AAL_MEMORY_LIMIT and ulimit -v, an in-memory bake is refused before
+// it allocates, a Vulkan driver that cannot start under an address-space
+// limit is said to be limited, not missing, and an allocation that fails
+// anyway ends the tool with exit 1 and a message that says memory.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <new>
+#include <string>
+#include <system_error>
+
+#include "aperture/terrain/io/memory_budget.h"
+#include "aperture/tests/tools/run_tool.h"
+#include "aperture/tests/tools/synthetic_dem_file.h"
+#include "aperture/tools/tool_main.h"
+
+namespace aal {
+namespace {
+
+namespace fs = std::filesystem;
+using test::quoted;
+using test::runShell;
+using test::runTool;
+using test::TempDir;
+
+#if defined(__SANITIZE_ADDRESS__)
+// AddressSanitizer reserves terabytes of address space: no ulimit -v fits.
+constexpr bool kAddressSpaceLimitsWork = false;
+#else
+constexpr bool kAddressSpaceLimitsWork = true;
+#endif
+
+TEST(MemoryLimit, AnInMemoryBakeIsRefusedBeforeItAllocates) {
+  TempDir dir;
+  const fs::path dem = test::writeSyntheticDem(dir, 512, 512);
+  const auto r = runTool("aal-bake", quoted(dem) + " -o " + quoted(dir.path() / "a.exr") + " -q",
+                         "AAL_MEMORY_LIMIT=3M");
+  EXPECT_EQ(r.exitCode, 2) << r.out;
+  EXPECT_NE(r.out.find("holding its bake in memory (22 bytes per texel) needs 5.8 MB"),
+            std::string::npos)
+      << r.out;
+  EXPECT_NE(r.out.find("(AAL_MEMORY_LIMIT)"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("--tile-size"), std::string::npos) << r.out;
+  EXPECT_FALSE(fs::exists(dir.path() / "a.exr"));
+}
+
+TEST(MemoryLimit, AnAddressSpaceLimitIsTheBudget) {
+  if (!kAddressSpaceLimitsWork) GTEST_SKIP() << "AddressSanitizer build";
+  TempDir dir;
+  const fs::path dem = test::writeSyntheticDem(dir, 3000, 3000);
+  const auto r = runShell("ulimit -v 350000; " + (test::binDir() / "aal-bake").string() + " " +
+                          quoted(dem) + " -o " + quoted(dir.path() / "a.exr") + " -q");
+  EXPECT_EQ(r.exitCode, 2) << r.out;
+  EXPECT_NE(r.out.find("of memory is available (ulimit -v)"), std::string::npos) << r.out;
+  EXPECT_FALSE(fs::exists(dir.path() / "a.exr"));
+}
+
+TEST(MemoryLimit, AVulkanDriverUnderATightLimitIsSaidToBeLimitedNotMissing) {
+  if (!kAddressSpaceLimitsWork) GTEST_SKIP() << "AddressSanitizer build";
+  TempDir dir;
+  const fs::path dem = fs::path(AAL_TEST_SOURCE_DIR) / "heightmaps" / "jacksboro_fault_dem.tif";
+  const auto r = runShell("ulimit -v 1000000; " + (test::binDir() / "aal-render").string() + " " +
+                          quoted(dem) + " -o " + quoted(dir.path() / "r.png") + " --size 64x64");
+  EXPECT_EQ(r.exitCode, 1) << r.out;  // not a signal (a crash is 128 + n)
+  EXPECT_NE(r.out.find("ulimit -v 1000000 kB"), std::string::npos) << r.out;
+  EXPECT_EQ(r.out.find("install one"), std::string::npos) << r.out;
+  EXPECT_TRUE(fs::is_empty(dir.path()));
+}
+
+int runThrowing(const std::function<int()>& body, std::string& printed) {
+  CLI::App app("test", "aal-test");
+  char name[] = "aal-test";
+  char* argv[] = {name, nullptr};
+  testing::internal::CaptureStderr();
+  const int code = runToolBody(app, 1, argv, body);
+  printed = testing::internal::GetCapturedStderr();
+  return code;
+}
+
+TEST(ToolMain, AFailedAllocationIsExitOneWithAMessageThatSaysMemory) {
+  std::string printed;
+  EXPECT_EQ(runThrowing([]() -> int { throw std::bad_alloc(); }, printed), kExitFailure);
+  EXPECT_EQ(printed.rfind("aal-test: error: out of memory", 0), 0u) << printed;
+  EXPECT_EQ(runThrowing(
+                []() -> int {
+                  throw std::system_error(
+                      std::make_error_code(std::errc::resource_unavailable_try_again), "thread");
+                },
+                printed),
+            kExitFailure);
+  EXPECT_NE(printed.find("cannot start a thread"), std::string::npos) << printed;
+  EXPECT_NE(printed.find("out of memory"), std::string::npos) << printed;
+}
+
+TEST(MemoryBudget, NamesTheTightestLimit) {
+  setenv("AAL_MEMORY_LIMIT", "5M", 1);
+  const std::optional<MemoryLimit> limit = memoryLimit();
+  unsetenv("AAL_MEMORY_LIMIT");
+  ASSERT_TRUE(limit.has_value());
+  EXPECT_EQ(limit->bytes, 5u << 20);
+  EXPECT_EQ(limit->source, "AAL_MEMORY_LIMIT");
+  const std::optional<MemoryLimit> system = memoryLimit();
+  ASSERT_TRUE(system.has_value());  // /proc/meminfo at least
+  EXPECT_GT(system->bytes, 0u);
+  EXPECT_NE(outOfMemoryMessage("reading").find("out of memory while reading"), std::string::npos);
+}
+
+}  // namespace
+}  // namespace aal
