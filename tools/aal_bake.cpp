@@ -177,10 +177,11 @@ int run(const Options& o) {
     const double perTexel = aal::kInMemoryBakeBytesPerTexel + (o.svf ? 4 : 0) +
                             (o.visiblePath.empty() ? 0 : 4) +
                             (o.horizonsPath.empty() ? 0 : o.horizonDirections);
-    aal::requireMemory(o.dem, texels * perTexel,
-                       "its bake in memory (" + std::to_string(std::lround(perTexel)) + " bytes per texel)",
-                       "bake it in tiles (--tile-size 4096; with --low-memory the DEM is read a "
-                       "window at a time)");
+    aal::requireMemory(
+        o.dem, texels * perTexel,
+        "its bake in memory (" + std::to_string(std::lround(perTexel)) + " bytes per texel)",
+        "bake it in tiles (--tile-size 4096; with --low-memory the DEM is read a "
+        "window at a time)");
   }
   // A tiled bake of a DEM that does not fit in memory reads it in windows.
   const bool inBands = tiled && (o.lowMemory || !fitsInMemory(dem));

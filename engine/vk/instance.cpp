@@ -5,8 +5,8 @@
 #include <cstdlib>
 #include <cstring>
 #include <fstream>
-#include <string>
 #include <iostream>
+#include <string>
 
 #include "aperture/engine/vk/vk_check.h"
 
@@ -148,8 +148,9 @@ Instance::Instance(const InstanceOptions& options) {
 
   const VkResult result = vkCreateInstance(&info, nullptr, &instance_);
   if (result == VK_ERROR_OUT_OF_HOST_MEMORY) {
-    throw VulkanError("cannot start Vulkan: out of memory (VK_ERROR_OUT_OF_HOST_MEMORY); free "
-                      "memory or raise the process's limit (ulimit -v)");
+    throw VulkanError(
+        "cannot start Vulkan: out of memory (VK_ERROR_OUT_OF_HOST_MEMORY); free "
+        "memory or raise the process's limit (ulimit -v)");
   }
   if (result == VK_ERROR_INCOMPATIBLE_DRIVER) {
     // Under an address-space limit the loader cannot map an installed

@@ -5,11 +5,11 @@
 
 #include <atomic>
 #include <cctype>
+#include <cerrno>
 #include <chrono>
+#include <fstream>
 #include <mutex>
 #include <set>
-#include <cerrno>
-#include <fstream>
 #include <stdexcept>
 #include <string>
 #include <system_error>

@@ -38,8 +38,9 @@ std::string imagePluginPath() {
 
 const ImagePlugin& openImagePlugin(const std::string& path) {
   const std::string cannot = "cannot load the image plugin " + path + ": ";
-  const std::string how = " (" AAL_IMAGE_PLUGIN_FILE " is built next to the tools and installed in "
-                          AAL_IMAGE_PLUGIN_INSTALLED "; AAL_IMAGE_PLUGIN names another path)";
+  const std::string how = " (" AAL_IMAGE_PLUGIN_FILE
+                          " is built next to the tools and installed in " AAL_IMAGE_PLUGIN_INSTALLED
+                          "; AAL_IMAGE_PLUGIN names another path)";
   // dlerror() starts with the path: say it once.
   auto why = [&path] {
     const char* error = dlerror();

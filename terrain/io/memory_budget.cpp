@@ -117,8 +117,8 @@ void requireMemory(const std::string& path, double bytes, const std::string& wha
   const std::optional<MemoryLimit> limit = memoryLimit();
   if (!limit || bytes <= static_cast<double>(limit->bytes)) return;
   throw InputError(path + ": holding " + what + " needs " + formatBytes(bytes) + ", but only " +
-                   formatBytes(static_cast<double>(limit->bytes)) +
-                   " of memory is available (" + limit->source + "); " + hint);
+                   formatBytes(static_cast<double>(limit->bytes)) + " of memory is available (" +
+                   limit->source + "); " + hint);
 }
 
 std::string outOfMemoryMessage(const std::string& doing) {
