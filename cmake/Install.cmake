@@ -9,6 +9,7 @@
 #   include/aperture/...        their headers, as the sources include them
 #   lib/python3/dist-packages/  the Python module (python/CMakeLists.txt)
 #   share/doc/aperture/         copyright and changelog
+#   share/man/man1/             a manual page per tool (cmake/ManPages.cmake)
 # The shaders are inside the libraries (engine/vk/embedded_shaders.h).
 include(CMakePackageConfigHelpers)
 
@@ -72,3 +73,5 @@ add_custom_command(OUTPUT ${CMAKE_BINARY_DIR}/debian/changelog.gz
 add_custom_target(aal_changelog ALL DEPENDS ${CMAKE_BINARY_DIR}/debian/changelog.gz)
 install(FILES cmake/debian/copyright ${CMAKE_BINARY_DIR}/debian/changelog.gz
         DESTINATION ${CMAKE_INSTALL_DOCDIR})
+
+include(ManPages)

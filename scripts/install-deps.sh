@@ -29,8 +29,9 @@ packages=(
   libopenmpi-dev openmpi-bin
   # the Python module (python/) and its tests
   python3-dev python3-numpy pybind11-dev python3-pytest python3-rasterio
-  # the .deb (cpack -G DEB: Depends from dpkg-shlibdeps) and its check
-  dpkg-dev lintian
+  # the .deb (cpack -G DEB: Depends from dpkg-shlibdeps) and its check;
+  # the tools' manual pages (help2man)
+  dpkg-dev lintian help2man
   # fuzzing the DEM parsers (scripts/fuzz.sh): clang with libFuzzer
   clang libclang-rt-14-dev
 )

@@ -3,11 +3,13 @@
 # Depends come from dpkg-shlibdeps, which holds the tools, the image plugin,
 # the libraries with their headers and package configs, and whose tools run
 # from its unpacked tree.
-#   debian_package_test.sh BUILD_DIR [with-python]
+#   debian_package_test.sh BUILD_DIR [FILE...]
+# FILEs: more paths the package must hold (what this build makes: the Python
+# module, the manual pages), as ./usr/...
 set -euo pipefail
 build=$(cd "$1" && pwd)
-expected=()
-[ "${2:-}" = with-python ] && expected+=(./usr/lib/python3/dist-packages/aperture/__init__.py)
+shift
+expected=("$@")
 work=$(mktemp -d /tmp/aperture-deb.XXXXXX)
 trap 'rm -rf "$work"' EXIT
 
