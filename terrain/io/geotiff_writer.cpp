@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <filesystem>
 #include <stdexcept>
 
 #include <cpl_string.h>
@@ -10,9 +11,9 @@
 
 #include "aperture/terrain/interrupt.h"
 #include "aperture/terrain/io/atomic_file.h"
-#include "aperture/terrain/version.h"
 #include "aperture/terrain/io/dem_options.h"
 #include "aperture/terrain/io/gdal_session.h"
+#include "aperture/terrain/version.h"
 
 namespace aal {
 
@@ -72,7 +73,9 @@ void writeGeoTiff(const std::string& path, const RasterImage& image, const GeoRe
   const size_t pixelBytes = sampleBytes * static_cast<size_t>(image.bands);
   ensureGdal();
   AtomicOutput output(path);
-  const std::string temporary = output.temporaryPath().string();
+  // Absolute: GDAL takes a relative name that starts like a connection
+  // string (MEM:::, NUMPY:::) for one (terrain/io/input_file.h).
+  const std::string temporary = std::filesystem::absolute(output.temporaryPath()).string();
   try {
     CPLErrorReset();
     CPLStringList creation;

@@ -11,6 +11,7 @@
 #include <system_error>
 
 #include "aperture/terrain/io/atomic_file.h"
+#include "aperture/terrain/io/input_file.h"
 
 namespace aal {
 
@@ -153,6 +154,10 @@ void writeHorizonMap(const std::filesystem::path& path, const HorizonMap& map) {
 }
 
 HorizonMap readHorizonMap(const std::filesystem::path& path) {
+  // Looked at before it is opened: a FIFO would block the open forever.
+  if (requireFileOrFolder(path.string(), "horizon map " + path.string()) == InputKind::Folder) {
+    throw std::runtime_error("horizon map " + path.string() + " is a folder, not a file");
+  }
   std::ifstream in(path, std::ios::binary);
   if (!in) throw std::runtime_error("cannot open horizons " + path.string());
   std::string header;

@@ -96,7 +96,8 @@ std::array<float, 2> horizonPairWeights(int directions, float azimuthRad, int fi
 // version 2 files have no checksum, version 1 files neither the bits: they
 // hold 8-bit codes). Writing needs the checksum. Reading throws
 // std::runtime_error naming the file for anything that is not such a file or
-// is truncated.
+// is truncated, and InputError naming it when it is not a regular file or
+// folder (a FIFO, a device: not opened).
 void writeHorizonMap(const std::filesystem::path& path, const HorizonMap& map);
 HorizonMap readHorizonMap(const std::filesystem::path& path);
 

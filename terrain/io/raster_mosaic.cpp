@@ -9,14 +9,26 @@
 
 #include "aperture/terrain/io/atomic_file.h"
 #include "aperture/terrain/io/gdal_session.h"
+#include "aperture/terrain/io/input_file.h"
 
 namespace aal {
 
-std::optional<RasterShape> readRasterShape(const std::string& path) {
+namespace {
+
+// The raster at `path`, a regular file, opened by GDAL as that file
+// (gdalFileName); null otherwise.
+GDALDatasetUniquePtr openRasterFile(const std::string& path) {
+  if (inputStatus(path).kind != InputKind::File) return nullptr;
   ensureGdal();
   CPLErrorReset();
-  GDALDatasetUniquePtr dataset(GDALDataset::Open(path.c_str(), GDAL_OF_RASTER | GDAL_OF_READONLY,
-                                                 nullptr, nullptr, nullptr));
+  return GDALDatasetUniquePtr(GDALDataset::Open(
+      gdalFileName(path).c_str(), GDAL_OF_RASTER | GDAL_OF_READONLY, nullptr, nullptr, nullptr));
+}
+
+}  // namespace
+
+std::optional<RasterShape> readRasterShape(const std::string& path) {
+  GDALDatasetUniquePtr dataset = openRasterFile(path);
   if (!dataset || dataset->GetRasterCount() < 1) return std::nullopt;
   RasterShape shape;
   shape.width = dataset->GetRasterXSize();

@@ -16,8 +16,9 @@ struct RasterShape {
   bool float32 = false;
 };
 
-// The shape of the raster at `path` as GDAL opens it; nothing when GDAL
-// cannot open it (missing, truncated, not a raster).
+// The shape of the raster at `path` as GDAL opens it; nothing when it is
+// not a regular file (a FIFO would block GDAL's open) or GDAL cannot open
+// it (missing, truncated, not a raster).
 std::optional<RasterShape> readRasterShape(const std::string& path);
 
 // Writes a VRT at `path` (GDALBuildVRT) that places every file of `tiles`

@@ -12,13 +12,16 @@
 #include <stdexcept>
 #include <string>
 
+#include <sys/stat.h>
 #include <unistd.h>
 
 #include <glm/geometric.hpp>
 
+#include "aperture/terrain/errors.h"
 #include "aperture/terrain/io/horizon_map.h"
 #include "aperture/terrain/light/caps.h"
 #include "aperture/terrain/light/shading.h"
+#include "aperture/tests/tools/run_tool.h"
 
 namespace aal {
 namespace {
@@ -307,6 +310,28 @@ TEST(HorizonMap, FilesRoundTripAndForeignOrTruncatedFilesAreRefused) {
   EXPECT_THROW(readHorizonMap(dir / "text.bin"), std::runtime_error);
   EXPECT_THROW(readHorizonMap(dir / "missing.bin"), std::runtime_error);
   std::filesystem::remove_all(dir);
+}
+
+// A horizons file that is not a file (a FIFO: its open blocked for ever; a
+// device; a folder) is refused for what it is, unopened. SIGALRM ends the
+// test should a read block.
+TEST(HorizonMap, FilesThatAreNotFilesAreRefusedUnopened) {
+  test::TempDir dir;
+  const std::filesystem::path fifo = dir.path() / "fifo.horizons";
+  ASSERT_EQ(::mkfifo(fifo.c_str(), 0644), 0);
+  ::alarm(10);
+  for (const auto& [path, says] :
+       {std::pair{fifo.string(), " is a FIFO, not a file"},
+        std::pair{std::string("/dev/zero"), " is a character device, not a file"},
+        std::pair{dir.path().string(), " is a folder, not a file"}}) {
+    try {
+      readHorizonMap(path);
+      ADD_FAILURE() << path << " was read";
+    } catch (const std::runtime_error& e) {
+      EXPECT_EQ(std::string(e.what()), "horizon map " + path + says);
+    }
+  }
+  ::alarm(0);
 }
 
 // The sun's part above a straight horizon against counting points of its
