@@ -32,6 +32,15 @@ std::string nonFileKind(mode_t mode) {
   return "not a regular file";
 }
 
+// "16 MiB (16777216 bytes)", "1000 bytes": the cap in a message.
+std::string capText(uint64_t bytes) {
+  const uint64_t mib = uint64_t{1} << 20;
+  if (bytes >= mib && bytes % mib == 0) {
+    return std::to_string(bytes / mib) + " MiB (" + std::to_string(bytes) + " bytes)";
+  }
+  return std::to_string(bytes) + " bytes";
+}
+
 }  // namespace
 
 InputStatus inputStatus(const std::string& path) {
@@ -61,6 +70,47 @@ InputKind requireFileOrFolder(const std::string& path, const std::string& subjec
   const InputStatus status = inputStatus(path);
   if (status.kind == InputKind::Other) throw InputError(subject + " is " + status.what);
   return status.kind;
+}
+
+std::string readTextInput(const std::string& path, const std::string& kind, uint64_t maxBytes) {
+  const std::string subject = kind + " " + path;
+  switch (requireFileOrFolder(path, subject)) {
+    case InputKind::Missing: throw InputError(subject + " does not exist");
+    case InputKind::Folder: throw InputError(subject + " is a folder, not a file");
+    default: break;
+  }
+  const std::string tooBig = subject + " holds more than the " + capText(maxBytes) + " a " + kind +
+                             " may hold: is it the right file?";
+  // Opened without blocking and looked at again through the descriptor: a
+  // FIFO put in the file's place since would otherwise block the open.
+  const int fd = ::open(path.c_str(), O_RDONLY | O_NONBLOCK | O_CLOEXEC);
+  if (fd < 0) throw InputError("cannot read " + subject + ": " + std::strerror(errno));
+  struct Closer {
+    int fd;
+    ~Closer() { ::close(fd); }
+  } closer{fd};
+  struct stat status {};
+  if (::fstat(fd, &status) != 0) {
+    throw InputError("cannot read " + subject + ": " + std::strerror(errno));
+  }
+  if (!S_ISREG(status.st_mode)) throw InputError(subject + " is " + nonFileKind(status.st_mode));
+  if (static_cast<uint64_t>(status.st_size) > maxBytes) {
+    throw InputError(tooBig + " (it holds " + std::to_string(status.st_size) + " bytes)");
+  }
+  ::fcntl(fd, F_SETFL, ::fcntl(fd, F_GETFL) & ~O_NONBLOCK);
+  std::string text;
+  char buffer[1 << 16];
+  for (;;) {
+    const ssize_t n = ::read(fd, buffer, sizeof buffer);
+    if (n < 0 && errno == EINTR) continue;
+    if (n < 0) throw InputError("cannot read " + subject + ": " + std::strerror(errno));
+    if (n == 0) break;
+    // A file that grew since its size was read is held to the cap too.
+    if (text.size() + static_cast<size_t>(n) > maxBytes) throw InputError(tooBig);
+    text.append(buffer, static_cast<size_t>(n));
+  }
+  if (startsWith(text, "\xEF\xBB\xBF")) text.erase(0, 3);  // UTF-8 byte order mark
+  return text;
 }
 
 namespace {

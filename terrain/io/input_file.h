@@ -2,7 +2,7 @@
 // file"): every path a user names is looked at before it is opened, so that
 // a FIFO (whose open blocks until a writer comes, for ever), a device
 // (/dev/zero reads without end), a socket or a symbolic link loop is refused
-// with a message that says what it is; and
+// with a message that says what it is; text inputs are read with a cap; and
 // GDAL is given files, never a connection string (`MEM:::DATAPOINTER=...`
 // made GDAL read memory at any address the user wrote).
 #pragma once
@@ -41,6 +41,20 @@ InputStatus inputStatus(const std::string& path);
 // `subject` starts the message: "colour ramp /tmp/x", or "/tmp/x:" for the
 // DEM messages that start with the path.
 InputKind requireFileOrFolder(const std::string& path, const std::string& subject);
+
+// The most a text input (a colour ramp, a camera path) may hold: 16 MiB,
+// thousands of times any real one, so that a mistaken path (a disk image, a
+// log) is refused at once instead of being read whole into memory.
+constexpr uint64_t kMaxTextInputBytes = uint64_t{16} << 20;
+
+// The text of the file at `path`, with a UTF-8 byte order mark at its start
+// dropped (editors on Windows write one). Throws InputError naming the file
+// as `kind PATH` (e.g. "colour ramp x.txt") when it is missing, a folder,
+// not a regular file (requireFileOrFolder), cannot be read, or holds more
+// than `maxBytes` (checked from its size before reading, and again while
+// reading, should it grow).
+std::string readTextInput(const std::string& path, const std::string& kind,
+                          uint64_t maxBytes = kMaxTextInputBytes);
 
 // The name to give GDAL for the raster a user named `path`, which must be a
 // file (a folder too, which some GDAL drivers read: an Arc/Info binary

@@ -192,8 +192,8 @@ TEST(HostileInput, GdalConnectionStringsExitWithTwoInEveryTool) {
 
 // What is not a file is refused for what it is, never opened: a FIFO (whose
 // open blocked for ever), a device (/dev/zero read without end), a symbolic
-// link loop (said to be "no such file"), as a DEM, a water mask or an
-// aperture map (horizons:
+// link loop (said to be "no such file"), as a DEM, a water mask, an
+// aperture map, a colour ramp or a camera path (horizons:
 // HorizonMap.FilesThatAreNotFilesAreRefusedUnopened).
 TEST(HostileInput, InputsThatAreNotFilesExitWithTwoAndNeverBlock) {
   TempDir dir;
@@ -210,18 +210,23 @@ TEST(HostileInput, InputsThatAreNotFilesExitWithTwoAndNeverBlock) {
       {"aal-relief", "{value} -o " + out + ".tif"},
       {"aal-relief", dem + " -o " + out + ".tif --water-mask {value}"},
       {"aal-relief", dem + " -o " + out + ".tif --aperture {value}"},
+      {"aal-relief", dem + " -o " + out + ".tif --color-relief {value}"},
       {"aal-render", dem + " --aperture {value}" + png},
+      {"aal-render", dem + " --camera-path {value} --frames 2" + png},
   };
   struct Value {
     fs::path path;
     std::string says;
   };
   for (const ToolCase& c : cases) {
-    // A FIFO everywhere; a device and a loop as a DEM.
+    // A FIFO everywhere; a device and a loop as a DEM and as a ramp.
     for (const Value& v : {Value{fifo, "is a FIFO, not a file"},
                            Value{"/dev/zero", "is a character device, not a file"},
                            Value{loop, "is a symbolic link loop"}}) {
-      if (v.path != fifo && c.tool != "aal-info") continue;
+      if (v.path != fifo && c.tool != "aal-info" &&
+          c.arguments.find("--color-relief") == std::string::npos) {
+        continue;
+      }
       const std::string arguments = withValue(c.arguments, quoted(v.path));
       const auto r = runWithin10s(c.tool, arguments);
       EXPECT_EQ(r.exitCode, 2) << c.tool << " " << arguments << "\n" << r.out;

@@ -77,6 +77,47 @@ TEST(InputFile, SaysWhatAPathIsWithoutOpeningIt) {
   ::close(fd);
 }
 
+TEST(InputFile, TextInputsAreCappedNamedAndMayStartWithAByteOrderMark) {
+  NoHang guard;
+  test::TempDir dir;
+  const fs::path bom = dir.path() / "bom.txt";
+  std::ofstream(bom, std::ios::binary) << "\xEF\xBB\xBF"
+                                       << "0 1 2 3\n";
+  EXPECT_EQ(readTextInput(bom.string(), "ramp"), "0 1 2 3\n");
+  // Only at the start.
+  const fs::path inside = dir.path() / "inside.txt";
+  std::ofstream(inside, std::ios::binary) << "a\xEF\xBB\xBF";
+  EXPECT_EQ(readTextInput(inside.string(), "ramp"), "a\xEF\xBB\xBF");
+
+  // A sparse file one byte over the cap: refused from its size, unread.
+  const fs::path big = dir.path() / "big.txt";
+  std::ofstream(big).close();
+  fs::resize_file(big, kMaxTextInputBytes + 1);
+  const auto start = std::chrono::steady_clock::now();
+  expectMessage(
+      inputErrorOf([&] { readTextInput(big.string(), "colour ramp"); }),
+      {"colour ramp " + big.string(),
+       "holds more than the 16 MiB (16777216 bytes) a colour ramp may hold", "16777217 bytes"});
+  EXPECT_LT(std::chrono::steady_clock::now() - start, std::chrono::seconds(2));
+  // At the cap it reads.
+  fs::resize_file(big, kMaxTextInputBytes);
+  EXPECT_EQ(readTextInput(big.string(), "colour ramp").size(), kMaxTextInputBytes);
+  // Another cap, stated as given.
+  expectMessage(inputErrorOf([&] { readTextInput(bom.string(), "path", 4); }),
+                {"more than the 4 bytes a path may hold"});
+
+  const fs::path fifo = dir.path() / "fifo";
+  ASSERT_EQ(::mkfifo(fifo.c_str(), 0644), 0);
+  EXPECT_EQ(inputErrorOf([&] { readTextInput(fifo.string(), "camera path"); }),
+            "camera path " + fifo.string() + " is a FIFO, not a file");
+  EXPECT_EQ(inputErrorOf([&] { readTextInput("/dev/zero", "colour ramp"); }),
+            "colour ramp /dev/zero is a character device, not a file");
+  EXPECT_EQ(inputErrorOf([&] { readTextInput(dir.path().string(), "colour ramp"); }),
+            "colour ramp " + dir.path().string() + " is a folder, not a file");
+  EXPECT_EQ(inputErrorOf([&] { readTextInput((dir.path() / "none").string(), "colour ramp"); }),
+            "colour ramp " + (dir.path() / "none").string() + " does not exist");
+}
+
 // Runs `f` with the working folder set to `folder`.
 template <typename F>
 void inFolder(const fs::path& folder, F&& f) {
