@@ -144,11 +144,26 @@ TEST(HostileInput, ATinyFileClaimingAHugeDemIsRefusedAtOnceByEveryTool) {
 
 // `tool` with `arguments` (shell syntax), ended after 10 s: a run that
 // blocks (on a FIFO) exits 124 and fails the test instead of hanging it.
+// `environment` ("NAME=value ...") is set for the run.
 test::ToolResult runWithin10s(const std::string& tool, const std::string& arguments,
-                              const fs::path& folder = {}) {
+                              const fs::path& folder = {}, const std::string& environment = "") {
   return test::runShell((folder.empty() ? "" : "cd " + quoted(folder) + " && ") + "timeout 10 " +
+                        (environment.empty() ? "" : "env " + environment + " ") +
                         quoted(test::binDir() / tool) + " " + arguments);
 }
+
+// A small DEM for aal-render's GPU path, whose aperture map is baked (in
+// milliseconds) into a cache beside it: albedo images are read there only,
+// after the map (the reference renderer takes a constant albedo).
+struct SmallRender {
+  TempDir work;
+  fs::path dem = work.path() / "small.tif";
+  std::string environment = "AAL_CACHE_DIR=" + quoted(work.path() / "cache");
+  SmallRender() {
+    const auto r = runTool("aal-synth", "-o " + quoted(dem) + " --size 32");
+    EXPECT_EQ(r.exitCode, 0) << r.out;
+  }
+};
 
 // Paths reach GDAL as files: a connection string (MEM:::DATAPOINTER=...
 // made GDAL read memory at the address given: SIGSEGV), another driver's
@@ -193,7 +208,7 @@ TEST(HostileInput, GdalConnectionStringsExitWithTwoInEveryTool) {
 // What is not a file is refused for what it is, never opened: a FIFO (whose
 // open blocked for ever), a device (/dev/zero read without end), a symbolic
 // link loop (said to be "no such file"), as a DEM, a water mask, an
-// aperture map, a colour ramp or a camera path (horizons:
+// aperture map, an albedo image, a colour ramp or a camera path (horizons:
 // HorizonMap.FilesThatAreNotFilesAreRefusedUnopened).
 TEST(HostileInput, InputsThatAreNotFilesExitWithTwoAndNeverBlock) {
   TempDir dir;
@@ -203,6 +218,7 @@ TEST(HostileInput, InputsThatAreNotFilesExitWithTwoAndNeverBlock) {
   fs::create_symlink(loop, dir.path() / "loop2");
   const std::string dem = quoted(kDem), out = quoted(dir.path() / "out");
   const std::string png = " --size 32x18 -o " + out + ".png";
+  const SmallRender small;
   const std::vector<ToolCase> cases = {
       {"aal-info", "{value}"},
       {"aal-bake", "{value} -o " + out + ".exr"},
@@ -212,6 +228,7 @@ TEST(HostileInput, InputsThatAreNotFilesExitWithTwoAndNeverBlock) {
       {"aal-relief", dem + " -o " + out + ".tif --aperture {value}"},
       {"aal-relief", dem + " -o " + out + ".tif --color-relief {value}"},
       {"aal-render", dem + " --aperture {value}" + png},
+      {"aal-render", quoted(small.dem) + " --albedo {value}" + png},
       {"aal-render", dem + " --camera-path {value} --frames 2" + png},
   };
   struct Value {
@@ -228,7 +245,7 @@ TEST(HostileInput, InputsThatAreNotFilesExitWithTwoAndNeverBlock) {
         continue;
       }
       const std::string arguments = withValue(c.arguments, quoted(v.path));
-      const auto r = runWithin10s(c.tool, arguments);
+      const auto r = runWithin10s(c.tool, arguments, {}, small.environment);
       EXPECT_EQ(r.exitCode, 2) << c.tool << " " << arguments << "\n" << r.out;
       EXPECT_NE(r.out.find(v.path.string()), std::string::npos)
           << c.tool << " " << arguments << "\n"
@@ -238,6 +255,25 @@ TEST(HostileInput, InputsThatAreNotFilesExitWithTwoAndNeverBlock) {
     }
   }
   EXPECT_EQ(entriesOf(dir.path()), (std::vector<std::string>{"fifo", "loop", "loop2"}));
+}
+
+// An albedo image whose header claims 20000 x 20000 pixels over a few bytes
+// is refused from its header, before any pixel is decoded, exit 2.
+TEST(HostileInput, AnAlbedoImageClaimingAHugeSizeIsRefusedFromItsHeader) {
+  TempDir dir;
+  const fs::path albedo = dir.path() / "claims.png";
+  std::ofstream(albedo, std::ios::binary) << test::rgbPngClaiming(20000, 20000);
+  const SmallRender small;
+  const auto r = runWithin10s("aal-render",
+                              quoted(small.dem) + " --albedo " + quoted(albedo) +
+                                  " --size 32x18 -o " + quoted(dir.path() / "out.png"),
+                              {}, small.environment);
+  EXPECT_EQ(r.exitCode, 2) << r.out;
+  EXPECT_NE(r.out.find("claims.png is truncated or corrupt: its header declares 20000 x 20000 "
+                       "pixels"),
+            std::string::npos)
+      << r.out;
+  EXPECT_EQ(entriesOf(dir.path()), std::vector<std::string>{"claims.png"});
 }
 
 // Runs `tool` with writes limited to `kilobytes` per file (ulimit -f, with
