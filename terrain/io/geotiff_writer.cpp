@@ -101,6 +101,9 @@ void writeGeoTiff(const std::string& path, const RasterImage& image, const GeoRe
     place(*dataset, geo);
     // The TIFF Software tag: what wrote the file (a COG copies it).
     dataset->SetMetadataItem("TIFFTAG_SOFTWARE", softwareName().c_str());
+    for (const auto& [name, value] : options.metadata) {
+      dataset->SetMetadataItem(name.c_str(), value.c_str());
+    }
     for (int b = 1; b <= image.bands; ++b) {
       GDALRasterBand& band = *dataset->GetRasterBand(b);
       if (options.nodata && band.SetNoDataValue(*options.nodata) != CE_None) {
