@@ -25,6 +25,7 @@ inline DemLoadOptions options() {
   DemLoadOptions o;
   o.warn = nullptr;  // warnings are expected; only crashes matter
   o.maxTexels = kFuzzMaxTexels;
+  o.inMemoryFiles = true;  // the inputs are /vsimem/ files
   return o;
 }
 

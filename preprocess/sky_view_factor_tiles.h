@@ -4,8 +4,10 @@
 // that GIS tools open as one raster placed like the DEM.
 #pragma once
 
+#include <cstdint>
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "aperture/preprocess/bake_terrain.h"
@@ -34,17 +36,47 @@ void checkSkyViewFactorTiles(const Heightfield& geometry, bool skyViewFactor);
 std::optional<float> markVoidsAsNodata(std::vector<float>& values, const Heightfield& field,
                                        const TexelWindow& window);
 
-// Writes `values` (the window's texels, row-major) as a float32 GeoTIFF
-// placed like `window` of the DEM: `field` (the DEM, or a band of its rows
-// holding the window) gives the georeferencing, offset by the window's
-// origin, and the voids, which are nodata as in aal-bake's whole-DEM --svf
-// (the DEM's nodata value when float holds it, else NaN). Temporary file,
-// renamed.
-void writeSkyViewFactorTile(const std::string& path, std::vector<float> values,
-                            const Heightfield& field, const TexelWindow& window);
+// GDAL metadata items of a tile's GeoTIFF that tie it to its place and its
+// bake, as aal:tileOrigin, aal:sourceChecksum and aal:pixelChecksum tie an
+// aperture tile (terrain/io/aperture_map.h); gdalinfo lists them.
+constexpr const char* kSvfTileItem = "AAL_TILE";                       // "ROW COLUMN"
+constexpr const char* kSvfTileOriginItem = "AAL_TILE_ORIGIN";          // "COLUMN,ROW" in texels
+constexpr const char* kSvfSourceSizeItem = "AAL_SOURCE_SIZE";          // "WIDTHxHEIGHT"
+constexpr const char* kSvfSourceChecksumItem = "AAL_SOURCE_CHECKSUM";  // the heights checksum
+constexpr const char* kSvfBakeItem = "AAL_BAKE";                       // the options, in words
+constexpr const char* kSvfPixelChecksumItem = "AAL_PIXEL_CHECKSUM";    // 16 hex digits
 
-// Whether tile (row, column)'s GeoTIFF is in the folder and GDAL reads it
-// as one float32 band of the tile's size.
+// The items of tile (row, column) of `index`'s bake but the pixel checksum.
+std::vector<std::pair<std::string, std::string>> skyViewFactorTileItems(
+    const ApertureTileIndex& index, int row, int column);
+
+// The pixel checksum of a tile's values as stored (AAL_PIXEL_CHECKSUM): the
+// aperture map's (terrain/io/pixel_checksum.h) over the rows of float32s,
+// nodata included, each row the bytes of its floats in memory
+// (little-endian on every machine aperture builds for).
+uint64_t skyViewFactorPixelChecksum(const std::vector<float>& values, int width, int height);
+
+// Writes `values` (the window's texels, row-major) of tile (row, column) of
+// `index` as a float32 GeoTIFF FOLDER/svf_ROW_COL.tif placed like `window`
+// of the DEM: `field` (the DEM, or a band of its rows holding the window)
+// gives the georeferencing, offset by the window's origin, and the voids,
+// which are nodata as in aal-bake's whole-DEM --svf (the DEM's nodata value
+// when float holds it, else NaN). It carries skyViewFactorTileItems and the
+// pixel checksum of the values as written. Temporary file, renamed.
+void writeSkyViewFactorTile(const std::string& folder, const ApertureTileIndex& index, int row,
+                            int column, std::vector<float> values, const Heightfield& field,
+                            const TexelWindow& window);
+
+// Whether tile (row, column)'s GeoTIFF is in the folder as this bake wrote
+// it: GDAL reads it as one float32 band of the tile's size, it carries this
+// tile's items (skyViewFactorTileItems) and its samples match its
+// AAL_PIXEL_CHECKSUM. False (the tile is baked again, as an aperture tile
+// that does not verify) when it is missing, not a regular file, unreadable,
+// of another shape, without the items (written before tiles carried them)
+// or with other pixels. Throws InputError naming the file when its items
+// say it is another tile, or of another DEM or options (a file moved or
+// copied from its place, as an aperture tile of another place is refused:
+// preprocess/tiled_bake.h, tileFinished).
 bool skyViewFactorTileFinished(const ApertureTileIndex& index, const std::string& folder, int row,
                                int column);
 

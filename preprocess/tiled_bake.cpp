@@ -188,17 +188,27 @@ bool tileFinished(const ApertureTileIndex& index, const std::string& folder, int
   } catch (const InputError&) {
     return false;  // unreadable: bake it again
   }
+  // A tile of another place, DEM or options is refused, not baked over: the
+  // folder holds files someone moved or mixed, which are theirs to sort out.
+  const auto refuse = [](const InputError& e) {
+    return InputError(std::string(e.what()) + ": remove the folder or write to another one");
+  };
   try {
     checkApertureTile(index, row, column, reader->header(), path);
   } catch (const InputError& e) {
-    throw InputError(std::string(e.what()) + ": remove the folder or write to another one");
+    throw refuse(e);
   }
   try {
     reader->verify();
   } catch (const InputError&) {
     return false;
   }
-  return !index.skyViewFactor || skyViewFactorTileFinished(index, folder, row, column);
+  if (!index.skyViewFactor) return true;
+  try {
+    return skyViewFactorTileFinished(index, folder, row, column);
+  } catch (const InputError& e) {
+    throw refuse(e);
+  }
 }
 
 void createTileFolder(const std::string& folder) {
@@ -259,8 +269,8 @@ void bakeTileInto(const Heightfield& field, const FarField* far, const ApertureT
   info.originCol = window.col;
   info.originRow = window.row;
   if (bake.skyViewFactor) {
-    writeSkyViewFactorTile((fs::path(folder) / skyViewFactorTileName(row, column)).string(),
-                           std::move(result.skyViewFactor), field, window);
+    writeSkyViewFactorTile(folder, index, row, column, std::move(result.skyViewFactor), field,
+                           window);
   }
   writeApertureMap((fs::path(folder) / apertureTileName(row, column)).string(), result.aperture,
                    tiled.halfFloat, tiled.compression);

@@ -189,9 +189,10 @@ void createTileFolder(const std::string& folder);
 void openTileFolder(const std::string& folder, const ApertureTileIndex& index);
 // Whether tile (row, column) is already in the folder, finished and
 // verified: its EXR and, when the bake writes the SVF, its SVF GeoTIFF
-// (read back by GDAL at the tile's size). A tile of another bake is an
-// InputError; an unreadable one, or one whose pixels do not match their
-// checksum, or one without its SVF, is to be baked again.
+// (skyViewFactorTileFinished: this tile's items and pixel checksum). A tile
+// (EXR or SVF) of another place, DEM or options is an InputError; an
+// unreadable one, or one whose pixels do not match their checksum, or one
+// without its SVF, is to be baked again.
 bool tileFinished(const ApertureTileIndex& index, const std::string& folder, int row, int column);
 // The texels of tile (row, column).
 TexelWindow tileWindow(const ApertureTileIndex& index, int row, int column);

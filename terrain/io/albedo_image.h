@@ -18,7 +18,11 @@ struct AlbedoImage {
 // sRGB-encoded and linearized; float images as linear. Grey images are
 // replicated to RGB; a fourth channel is ignored. When the image's size
 // differs from width x height it is resampled (bilinear) and `note` is told
-// so. Throws InputError naming the file when it cannot be read.
+// so. Throws InputError naming the file when it cannot be read, is not a
+// regular file (a FIFO, a device: not opened), or its header claims more
+// pixels than the memory available holds (memory_budget.h) or, for a PNG,
+// than its bytes can hold at zlib's best ratio: checked from the header
+// alone, before any pixel is decoded.
 AlbedoImage loadAlbedoImage(const std::string& path, int width, int height,
                             const std::function<void(const std::string&)>& note);
 

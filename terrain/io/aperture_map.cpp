@@ -39,6 +39,7 @@
 #include "aperture/terrain/io/exr_scanline_writer.h"
 #include "aperture/terrain/io/half_floats.h"
 #include "aperture/terrain/io/heightfield_checksum.h"
+#include "aperture/terrain/io/input_file.h"
 #include "aperture/terrain/io/pixel_checksum.h"
 #include "aperture/terrain/version.h"
 
@@ -225,7 +226,10 @@ struct OpenMap {
 };
 
 OpenMap openApertureMap(const std::string& path, ApertureMapHeader& header) {
-  if (!std::filesystem::exists(path)) throw InputError("aperture map " + path + " does not exist");
+  // Looked at before OpenEXR opens it: a FIFO would block the open forever.
+  if (requireFileOrFolder(path, "aperture map " + path) == InputKind::Missing) {
+    throw InputError("aperture map " + path + " does not exist");
+  }
   useEveryCoreForExr();
   OpenMap map;
   map.path = path;
@@ -472,6 +476,7 @@ void writeApertureTileIndex(const std::string& folder, const ApertureTileIndex& 
 
 ApertureTileIndex readApertureTileIndex(const std::string& folder, const std::string& name) {
   const std::filesystem::path path = std::filesystem::path(folder) / name;
+  requireFileOrFolder(path.string(), path.string());  // a FIFO would block the read
   std::ifstream in(path);
   if (!in) {
     throw InputError("aperture map folder " + folder + " has no " + name +

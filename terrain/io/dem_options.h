@@ -45,6 +45,11 @@ struct DemLoadOptions {
   // Texel-count limit (<= kMaxDemTexels makes sense). Fuzzers lower it so
   // that hostile headers cannot ask for gigabytes.
   size_t maxTexels = kMaxDemTexels;
+  // Whether GDAL's in-memory files (/vsimem/) may be read: programs that
+  // make rasters in memory (the fuzzers) set it; no user's path names one,
+  // and every other /vsi path but /vsicurl/, /vsizip/ and /vsigzip/ is
+  // refused (terrain/io/input_file.h, gdalFileName).
+  bool inMemoryFiles = false;
 };
 
 }  // namespace aal

@@ -27,6 +27,7 @@
 #include "aperture/terrain/interrupt.h"
 #include "aperture/terrain/io/gdal_session.h"
 #include "aperture/terrain/io/georeference.h"
+#include "aperture/terrain/io/input_file.h"
 #include "aperture/terrain/io/memory_budget.h"
 
 namespace aal {
@@ -221,20 +222,21 @@ std::string subdatasetList(GDALDataset& dataset) {
   return text;
 }
 
-GDALDatasetUniquePtr openDataset(const std::string& path) {
+// `gdalName`: gdalFileName(path), what GDAL is given.
+GDALDatasetUniquePtr openDataset(const std::string& path, const std::string& gdalName) {
   namespace fs = std::filesystem;
-  std::error_code error;
-  const bool gdalPath = path.rfind("/vsi", 0) == 0 || path.find(':') != std::string::npos;
-  if (!gdalPath && !fs::exists(path, error)) refuse(path, "no such file");
   CPLErrorReset();
-  if (GDALDatasetUniquePtr geoTiff = openGeoTiff(path)) return geoTiff;
+  if (GDALDatasetUniquePtr geoTiff = openGeoTiff(gdalName)) return geoTiff;
   ensureGdal();
   CPLErrorReset();
-  GDALDatasetUniquePtr dataset(GDALDataset::Open(path.c_str(), GDAL_OF_RASTER | GDAL_OF_READONLY));
+  GDALDatasetUniquePtr dataset(
+      GDALDataset::Open(gdalName.c_str(), GDAL_OF_RASTER | GDAL_OF_READONLY));
   if (dataset) return dataset;
   const std::string details = gdalLastError("unrecognised format");
-  if (!gdalPath) {
-    if (fs::is_directory(path, error)) refuse(path, "is a folder, not a DEM file");
+  const InputKind kind = inputStatus(path).kind;
+  if (kind == InputKind::Folder) refuse(path, "is a folder, not a DEM file");
+  if (kind == InputKind::File) {
+    std::error_code error;
     std::ifstream probe(path, std::ios::binary);
     if (!probe) refuse(path, std::string("cannot be read: ") + std::strerror(errno));
     if (fs::file_size(path, error) == 0) refuse(path, "is empty");
@@ -364,16 +366,18 @@ struct CrsPart {
   bool found = false;  // false: the file could not be opened twice
 };
 
-CrsPart findCrs(const std::string& path, const std::string& driver, RawDem placed) {
+// `gdalName`: what GDAL opened for `path` (gdalFileName).
+CrsPart findCrs(const std::string& path, const std::string& gdalName, const std::string& driver,
+                RawDem placed) {
   CrsPart part;
   DemLoadOptions collect;
   collect.warn = [&part](const std::string& message) { part.warnings.push_back(message); };
   // GDAL datasets are not shared between threads: this one is its own.
   const char* const drivers[] = {driver.c_str(), nullptr};
   GDALDatasetUniquePtr own(
-      GDALDataset::FromHandle(GDALOpenEx(path.c_str(), GDAL_OF_RASTER | GDAL_OF_READONLY,
+      GDALDataset::FromHandle(GDALOpenEx(gdalName.c_str(), GDAL_OF_RASTER | GDAL_OF_READONLY,
                                          driver.empty() ? nullptr : drivers, nullptr, nullptr)));
-  if (!own) {  // a stream (/vsistdin/): the caller's thread reads the CRS
+  if (!own) {  // it cannot be opened twice: the caller's thread reads the CRS
     part.placed = std::move(placed);
     return part;
   }
@@ -434,6 +438,7 @@ struct DemSource::Impl {
   double scale = 1.0, offset = 0.0;
   size_t maxTexels = kMaxDemTexels;
   std::string bandUnit;  // GDAL's unit type of band 1; empty when silent
+  std::string gdalName;  // what GDAL opens for the path (gdalFileName)
   // The CRS, found while the caller reads (findCrs), then merged into the
   // description once (settle); warnings are given then, on the caller's thread.
   std::future<CrsPart> crs;
@@ -445,7 +450,10 @@ struct DemSource::Impl {
 
 DemSource::DemSource(const std::string& path, const DemLoadOptions& options)
     : path_(path), impl_(std::make_unique<Impl>()) {
-  impl_->dataset = openDataset(path);
+  // Files only, looked at before GDAL opens them: a FIFO would block the
+  // open forever, a connection string (MEM:::DATAPOINTER=...) read memory.
+  impl_->gdalName = gdalFileName(path, options.inMemoryFiles);
+  impl_->dataset = openDataset(path, impl_->gdalName);
   GDALDataset& dataset = *impl_->dataset;
   impl_->maxTexels = options.maxTexels;
   const int bands = dataset.GetRasterCount();
@@ -507,7 +515,7 @@ DemSource::DemSource(const std::string& path, const DemLoadOptions& options)
   impl_->bandUnit = unitType != nullptr ? unitType : "";
   impl_->warn = options.warn;
   if (describeTransform(path, dataset, d, impl_->southUp)) {
-    impl_->crs = std::async(std::launch::async, findCrs, path, d.driver, d);
+    impl_->crs = std::async(std::launch::async, findCrs, path, impl_->gdalName, d.driver, d);
   }
 }
 

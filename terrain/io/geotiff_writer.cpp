@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <filesystem>
 #include <stdexcept>
 
 #include <cpl_string.h>
@@ -10,9 +11,9 @@
 
 #include "aperture/terrain/interrupt.h"
 #include "aperture/terrain/io/atomic_file.h"
-#include "aperture/terrain/version.h"
 #include "aperture/terrain/io/dem_options.h"
 #include "aperture/terrain/io/gdal_session.h"
+#include "aperture/terrain/version.h"
 
 namespace aal {
 
@@ -72,7 +73,9 @@ void writeGeoTiff(const std::string& path, const RasterImage& image, const GeoRe
   const size_t pixelBytes = sampleBytes * static_cast<size_t>(image.bands);
   ensureGdal();
   AtomicOutput output(path);
-  const std::string temporary = output.temporaryPath().string();
+  // Absolute: GDAL takes a relative name that starts like a connection
+  // string (MEM:::, NUMPY:::) for one (terrain/io/input_file.h).
+  const std::string temporary = std::filesystem::absolute(output.temporaryPath()).string();
   try {
     CPLErrorReset();
     CPLStringList creation;
@@ -98,6 +101,9 @@ void writeGeoTiff(const std::string& path, const RasterImage& image, const GeoRe
     place(*dataset, geo);
     // The TIFF Software tag: what wrote the file (a COG copies it).
     dataset->SetMetadataItem("TIFFTAG_SOFTWARE", softwareName().c_str());
+    for (const auto& [name, value] : options.metadata) {
+      dataset->SetMetadataItem(name.c_str(), value.c_str());
+    }
     for (int b = 1; b <= image.bands; ++b) {
       GDALRasterBand& band = *dataset->GetRasterBand(b);
       if (options.nodata && band.SetNoDataValue(*options.nodata) != CE_None) {

@@ -5,6 +5,8 @@
 
 #include <optional>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include "aperture/terrain/heightfield.h"
 
@@ -16,6 +18,11 @@ struct RasterWriteOptions {
   bool cog = false;
   // The band's nodata value: texels holding it are voids for GIS tools.
   std::optional<double> nodata;
+  // GDAL metadata items (NAME, VALUE) of the dataset, in its default domain
+  // (the GeoTIFF's GDAL_METADATA tag; gdalinfo lists them): what ties a tiled
+  // bake's sky-view factor tile to its place and bake
+  // (preprocess/sky_view_factor_tiles.h).
+  std::vector<std::pair<std::string, std::string>> metadata;
 };
 
 enum class RasterSampleType { Float32, Byte };

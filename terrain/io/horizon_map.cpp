@@ -5,12 +5,16 @@
 #include <cstdio>
 #include <fstream>
 #include <numbers>
+#include <optional>
 #include <sstream>
 #include <stdexcept>
 #include <string>
 #include <system_error>
 
+#include "aperture/terrain/errors.h"
 #include "aperture/terrain/io/atomic_file.h"
+#include "aperture/terrain/io/input_file.h"
+#include "aperture/terrain/io/pixel_checksum.h"
 
 namespace aal {
 
@@ -18,7 +22,21 @@ namespace {
 
 constexpr float kTwoPi = 2.0f * std::numbers::pi_v<float>;
 constexpr const char* kMagic = "aperture-horizons";
-constexpr int kVersion = 3;  // 2: no checksum; 1: 8-bit codes, no bits field
+// 4: the codes' checksum; 3: none of the codes; 2: no heights checksum
+// either; 1: 8-bit codes, no bits field.
+constexpr int kVersion = 4;
+
+// The checksum of the codes (docs/baking.md, "Directional horizons"): the
+// aperture map's pixel checksum (pixel_checksum.h) over the rows of texels,
+// each row the width x directions codes as stored.
+uint64_t codesChecksum(const HorizonMap& map) {
+  PixelChecksum sum(map.height);
+  const size_t rowBytes = size_t(map.width) * size_t(map.directions);
+  for (int row = 0; row < map.height; ++row) {
+    sum.addRow(row, map.codes.data() + size_t(row) * rowBytes, rowBytes);
+  }
+  return sum.value();
+}
 
 // A checksum as the header carries it: one word, printable.
 bool validChecksumWord(const std::string& checksum) {
@@ -143,7 +161,8 @@ void writeHorizonMap(const std::filesystem::path& path, const HorizonMap& map) {
   {
     std::ofstream out(output.temporaryPath(), std::ios::binary);
     out << kMagic << ' ' << kVersion << ' ' << map.width << ' ' << map.height << ' '
-        << map.directions << ' ' << map.bits << ' ' << map.sourceChecksum << '\n';
+        << map.directions << ' ' << map.bits << ' ' << map.sourceChecksum << ' '
+        << checksumHex(codesChecksum(map)) << '\n';
     out.write(reinterpret_cast<const char*>(map.codes.data()),
               static_cast<std::streamsize>(map.codes.size()));
     out.flush();
@@ -153,26 +172,32 @@ void writeHorizonMap(const std::filesystem::path& path, const HorizonMap& map) {
 }
 
 HorizonMap readHorizonMap(const std::filesystem::path& path) {
+  // Looked at before it is opened: a FIFO would block the open forever.
+  if (requireFileOrFolder(path.string(), "horizon map " + path.string()) == InputKind::Folder) {
+    throw std::runtime_error("horizon map " + path.string() + " is a folder, not a file");
+  }
   std::ifstream in(path, std::ios::binary);
   if (!in) throw std::runtime_error("cannot open horizons " + path.string());
   std::string header;
   std::getline(in, header);
   std::istringstream fields(header);
-  std::string magic;
+  std::string magic, codes;
   int version = 0;
   HorizonMap map;
   fields >> magic >> version >> map.width >> map.height >> map.directions;
   map.bits = kHorizonBits;
   if (version >= 2) fields >> map.bits;
   if (version >= 3) fields >> map.sourceChecksum;
+  if (version >= 4) fields >> codes;
+  const std::optional<uint64_t> expected = parseChecksumHex(codes);
   if (!fields || magic != kMagic || version < 1 || version > kVersion ||
-      (version >= 3 && !validChecksumWord(map.sourceChecksum)) ||
+      (version >= 3 && !validChecksumWord(map.sourceChecksum)) || (version >= 4 && !expected) ||
       !validHorizonDirections(map.directions) || !validHorizonBits(map.bits) || map.width < 1 ||
       map.height < 1 || map.width > (1 << 20) || map.height > (1 << 20)) {
     throw std::runtime_error(path.string() + " is not a horizon map (\"" + kMagic + " " +
                              std::to_string(kVersion) +
-                             " WIDTH HEIGHT DIRECTIONS BITS CHECKSUM\" with 4, 8, 12 or 16 "
-                             "directions of 8 or 4 bits)");
+                             " WIDTH HEIGHT DIRECTIONS BITS CHECKSUM CODES-CHECKSUM\" with 4, 8, "
+                             "12 or 16 directions of 8 or 4 bits)");
   }
   // The header's size against the file's before allocating: a damaged
   // header must not ask for terabytes.
@@ -187,6 +212,14 @@ HorizonMap readHorizonMap(const std::filesystem::path& path) {
           static_cast<std::streamsize>(map.codes.size()));
   if (in.gcount() != static_cast<std::streamsize>(map.codes.size())) {
     throw std::runtime_error("horizon map " + path.string() + " is truncated");
+  }
+  if (expected) {
+    if (const uint64_t actual = codesChecksum(map); actual != *expected) {
+      throw InputError("horizon map " + path.string() +
+                       " is corrupt: its codes do not match the checksum in its header (" +
+                       checksumHex(*expected) + ", codes " + checksumHex(actual) +
+                       "); bake it again (aal-bake DEM --horizons FILE)");
+    }
   }
   const int maxCode = (1 << map.bits) - 1;
   if (std::any_of(map.codes.begin(), map.codes.end(), [&](uint8_t c) { return c > maxCode; })) {

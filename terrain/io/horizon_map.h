@@ -91,12 +91,15 @@ int horizonPairFor(int directions, float azimuthRad, int currentFirst);
 // std::invalid_argument for an invalid pair.
 std::array<float, 2> horizonPairWeights(int directions, float azimuthRad, int first);
 
-// Writes / reads the file format of docs/baking.md ("aperture-horizons 3"
-// header line with the code bits and the DEM's checksum, then the codes;
-// version 2 files have no checksum, version 1 files neither the bits: they
-// hold 8-bit codes). Writing needs the checksum. Reading throws
-// std::runtime_error naming the file for anything that is not such a file or
-// is truncated.
+// Writes / reads the file format of docs/baking.md ("aperture-horizons 4"
+// header line with the code bits, the DEM's checksum and the checksum of
+// the codes, then the codes; version 3 files have no checksum of the codes,
+// version 2 files neither the DEM's, version 1 files neither the bits: they
+// hold 8-bit codes). Writing needs the DEM's checksum. Reading throws
+// std::runtime_error naming the file for anything that is not such a file
+// or is truncated, and InputError naming it when it is not a regular file
+// or folder (a FIFO, a device: not opened) or, from version 4 on, when its
+// codes do not match their checksum (damaged: bake it again).
 void writeHorizonMap(const std::filesystem::path& path, const HorizonMap& map);
 HorizonMap readHorizonMap(const std::filesystem::path& path);
 

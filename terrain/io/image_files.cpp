@@ -90,6 +90,12 @@ ImagePixels readImageFile(const std::string& path) {
   return image;
 }
 
+ImageHeader readImageHeader(const std::string& path) {
+  ImageHeader header;
+  check(plugin().readHeader(path, header));
+  return header;
+}
+
 ImagePixels resizeImage(const ImagePixels& image, int width, int height) {
   ImagePixels resized;
   check(plugin().resize(image, width, height, resized));

@@ -33,6 +33,19 @@ struct ImagePixels {
 // The first image in any file OpenImageIO reads (PNG, JPEG, TIFF, EXR, ...).
 ImagePixels readImageFile(const std::string& path);
 
+// What the header of an image file says, read without its pixels: so that
+// a file whose header claims more than memory (or the file) holds is refused
+// before it is decoded.
+struct ImageHeader {
+  int width = 0, height = 0, channels = 0;
+  int bitsPerSample = 0;  // of the file's samples (8, 16, 32, ...)
+  std::string format;     // OpenImageIO's name of the format: "png", "jpeg", "openexr", ...
+};
+
+// The header of the first image in the file (ImageFileError when
+// OpenImageIO cannot read it).
+ImageHeader readImageHeader(const std::string& path);
+
 // `image` resampled to width x height with a triangle (bilinear) filter.
 ImagePixels resizeImage(const ImagePixels& image, int width, int height);
 

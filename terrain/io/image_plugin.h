@@ -12,7 +12,7 @@
 
 namespace aal {
 
-constexpr int kImagePluginVersion = 1;
+constexpr int kImagePluginVersion = 2;
 constexpr const char* kImagePluginEntry = "aal_image_plugin";
 
 struct ImagePlugin {
@@ -28,6 +28,8 @@ struct ImagePlugin {
   std::string (*drawText)(float* rgb, int width, int height, int x, int y, const std::string& text,
                           int size, const std::string& fontPath, const float* colour,
                           TextAlign align);
+  // The header alone (since version 2).
+  std::string (*readHeader)(const std::string& path, ImageHeader& header);
 };
 
 using ImagePluginEntry = const ImagePlugin* (*)();

@@ -51,6 +51,25 @@ std::string read(const std::string& path, ImagePixels& image) {
   });
 }
 
+std::string readHeader(const std::string& path, ImageHeader& header) {
+  return guarded([&]() -> std::string {
+    // open() reads the header (for PNG, the chunks before the pixels) only.
+    auto input = OIIO::ImageInput::open(path);
+    if (!input) return OIIO::geterror();
+    const OIIO::ImageSpec& spec = input->spec();
+    header.width = spec.width;
+    header.height = spec.height;
+    header.channels = spec.nchannels;
+    header.bitsPerSample = static_cast<int>(8 * spec.format.size());
+    if (const int bits = spec.get_int_attribute("oiio:BitsPerSample", 0); bits > 0) {
+      header.bitsPerSample = bits;
+    }
+    header.format = input->format_name();
+    input->close();
+    return "";
+  });
+}
+
 // An ImageBuf over the caller's floats (no copy).
 OIIO::ImageBuf wrap(float* values, int width, int height, int channels) {
   return OIIO::ImageBuf(OIIO::ImageSpec(width, height, channels, OIIO::TypeDesc::FLOAT), values);
@@ -131,7 +150,7 @@ std::string drawText(float* rgb, int width, int height, int x, int y, const std:
   });
 }
 
-const ImagePlugin kPlugin{kImagePluginVersion, read, resize, write, drawText};
+const ImagePlugin kPlugin{kImagePluginVersion, read, resize, write, drawText, readHeader};
 
 }  // namespace
 }  // namespace aal

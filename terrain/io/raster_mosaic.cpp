@@ -1,7 +1,9 @@
 #include "aperture/terrain/io/raster_mosaic.h"
 
+#include <algorithm>
 #include <filesystem>
 #include <stdexcept>
+#include <vector>
 
 #include <cpl_string.h>
 #include <gdal_priv.h>
@@ -9,21 +11,63 @@
 
 #include "aperture/terrain/io/atomic_file.h"
 #include "aperture/terrain/io/gdal_session.h"
+#include "aperture/terrain/io/input_file.h"
+#include "aperture/terrain/io/pixel_checksum.h"
 
 namespace aal {
 
-std::optional<RasterShape> readRasterShape(const std::string& path) {
+namespace {
+
+// The raster at `path`, a regular file, opened by GDAL as that file
+// (gdalFileName); null otherwise.
+GDALDatasetUniquePtr openRasterFile(const std::string& path) {
+  if (inputStatus(path).kind != InputKind::File) return nullptr;
   ensureGdal();
   CPLErrorReset();
-  GDALDatasetUniquePtr dataset(GDALDataset::Open(path.c_str(), GDAL_OF_RASTER | GDAL_OF_READONLY,
-                                                 nullptr, nullptr, nullptr));
+  return GDALDatasetUniquePtr(GDALDataset::Open(
+      gdalFileName(path).c_str(), GDAL_OF_RASTER | GDAL_OF_READONLY, nullptr, nullptr, nullptr));
+}
+
+}  // namespace
+
+std::optional<RasterShape> readRasterShape(const std::string& path) {
+  GDALDatasetUniquePtr dataset = openRasterFile(path);
   if (!dataset || dataset->GetRasterCount() < 1) return std::nullopt;
   RasterShape shape;
   shape.width = dataset->GetRasterXSize();
   shape.height = dataset->GetRasterYSize();
   shape.bands = dataset->GetRasterCount();
   shape.float32 = dataset->GetRasterBand(1)->GetRasterDataType() == GDT_Float32;
+  for (CSLConstList item = dataset->GetMetadata(); item != nullptr && *item != nullptr; ++item) {
+    char* name = nullptr;
+    const char* value = CPLParseNameValue(*item, &name);
+    if (name != nullptr && value != nullptr) shape.metadata[name] = value;
+    CPLFree(name);
+  }
   return shape;
+}
+
+std::optional<uint64_t> floatRasterChecksum(const std::string& path) {
+  GDALDatasetUniquePtr dataset = openRasterFile(path);
+  if (!dataset || dataset->GetRasterCount() < 1) return std::nullopt;
+  const int width = dataset->GetRasterXSize(), height = dataset->GetRasterYSize();
+  GDALRasterBand& band = *dataset->GetRasterBand(1);
+  PixelChecksum sum(height);
+  // Bands of rows of at most 16 MB: a tile of the largest size is not held whole.
+  const int bandRows = std::max(1, static_cast<int>((size_t{16} << 20) / (4 * size_t(width))));
+  std::vector<float> rows;
+  for (int row = 0; row < height; row += bandRows) {
+    const int count = std::min(bandRows, height - row);
+    rows.resize(static_cast<size_t>(count) * width);
+    if (band.RasterIO(GF_Read, 0, row, width, count, rows.data(), width, count, GDT_Float32, 0, 0,
+                      nullptr) != CE_None) {
+      return std::nullopt;
+    }
+    for (int i = 0; i < count; ++i) {
+      sum.addRow(row + i, rows.data() + static_cast<size_t>(i) * width, sizeof(float) * width);
+    }
+  }
+  return sum.value();
 }
 
 void writeVrtMosaic(const std::string& path, const std::vector<std::string>& tiles) {

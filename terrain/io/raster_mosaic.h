@@ -3,6 +3,8 @@
 // tile reads back.
 #pragma once
 
+#include <cstdint>
+#include <map>
 #include <optional>
 #include <string>
 #include <vector>
@@ -14,11 +16,20 @@ namespace aal {
 struct RasterShape {
   int width = 0, height = 0, bands = 0;
   bool float32 = false;
+  // The dataset's GDAL metadata items (default domain): NAME -> VALUE.
+  std::map<std::string, std::string> metadata;
 };
 
-// The shape of the raster at `path` as GDAL opens it; nothing when GDAL
-// cannot open it (missing, truncated, not a raster).
+// The shape of the raster at `path` as GDAL opens it; nothing when it is
+// not a regular file (a FIFO would block GDAL's open) or GDAL cannot open
+// it (missing, truncated, not a raster).
 std::optional<RasterShape> readRasterShape(const std::string& path);
+
+// The pixel checksum (pixel_checksum.h) of band 1 of the raster at `path`,
+// its samples read as float32 rows (the bytes of each row's floats in
+// memory, row 0 first); nothing when it is not a regular file or GDAL
+// cannot open it or read every sample.
+std::optional<uint64_t> floatRasterChecksum(const std::string& path);
 
 // Writes a VRT at `path` (GDALBuildVRT) that places every file of `tiles`
 // (georeferenced GeoTIFFs of one CRS, resolution and band layout) by its

@@ -4,12 +4,12 @@
 #include <cctype>
 #include <cmath>
 #include <cstdlib>
-#include <fstream>
 #include <map>
 #include <numeric>
 #include <sstream>
 
 #include "aperture/terrain/errors.h"
+#include "aperture/terrain/io/input_file.h"
 
 namespace aal {
 
@@ -87,8 +87,8 @@ ColorRamp parseColorRamp(std::istream& in, const std::string& name) {
 }
 
 ColorRamp readColorRamp(const std::string& path) {
-  std::ifstream in(path);
-  if (!in) throw InputError("cannot open the colour ramp " + path);
+  // Capped, and only a regular file: `--color-relief /dev/zero` read without end.
+  std::istringstream in(readTextInput(path, "colour ramp"));
   return parseColorRamp(in, path);
 }
 

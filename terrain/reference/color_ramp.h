@@ -33,7 +33,11 @@ struct ColorRamp {
 // Throws InputError "NAME:LINE: why" for a malformed line, and "NAME: ..."
 // for a ramp without entries. `name` is the file's name for messages.
 ColorRamp parseColorRamp(std::istream& in, const std::string& name);
-// Reads a ramp file; throws InputError when it cannot be opened or parsed.
+// Reads a ramp file (terrain/io/input_file.h, readTextInput: a regular file
+// of at most 16 MiB; a UTF-8 byte order mark at its start is skipped);
+// throws InputError naming the file when it is missing, a folder, not a
+// regular file (a FIFO, /dev/zero), over the cap, or cannot be read or
+// parsed.
 ColorRamp readColorRamp(const std::string& path);
 
 // The built-in palettes by name ("hypsometric", "earth"), in percent of the

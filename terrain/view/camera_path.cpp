@@ -2,13 +2,13 @@
 
 #include <algorithm>
 #include <cmath>
-#include <fstream>
 #include <sstream>
 
 #include <glm/common.hpp>
 #include <glm/geometric.hpp>
 
 #include "aperture/terrain/errors.h"
+#include "aperture/terrain/io/input_file.h"
 
 namespace aal {
 
@@ -73,11 +73,8 @@ CameraPath CameraPath::parse(const std::string& text, const std::string& name) {
 }
 
 CameraPath CameraPath::load(const std::string& path) {
-  std::ifstream file(path, std::ios::binary);
-  if (!file) throw InputError("cannot read camera path " + path);
-  std::ostringstream text;
-  text << file.rdbuf();
-  return parse(text.str(), path);
+  // Capped, and only a regular file: a device or a FIFO would read forever.
+  return parse(readTextInput(path, "camera path"), path);
 }
 
 Camera CameraPath::at(double timeS) const {

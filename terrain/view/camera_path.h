@@ -30,7 +30,10 @@ class CameraPath {
   // count, non-numbers, non-finite values, times not increasing, a position
   // equal to its look-at point, a field of view outside (0, 180).
   static CameraPath parse(const std::string& text, const std::string& name);
-  // Reads and parses a file; throws InputError when it cannot be read.
+  // Reads and parses a file (terrain/io/input_file.h, readTextInput: a
+  // regular file of at most 16 MiB; a UTF-8 byte order mark at its start is
+  // skipped); throws InputError naming the file when it is missing, a
+  // folder, not a regular file, over the cap, or cannot be read or parsed.
   static CameraPath load(const std::string& path);
 
   const std::vector<CameraKeyframe>& keyframes() const { return keyframes_; }

@@ -6,6 +6,9 @@
 
 #include <gtest/gtest.h>
 
+#include <sys/stat.h>
+#include <unistd.h>
+
 #include <algorithm>
 #include <cmath>
 #include <cstdlib>
@@ -123,6 +126,29 @@ TEST_F(ApertureCache, AnEntryWithoutAPixelChecksumIsRebaked) {
   // Readable, but not verified.
   EXPECT_NO_THROW(readApertureMap(path.string()));
   expectRebaked(path, "no pixel checksum");
+}
+
+// An entry that is a FIFO (or any file that is not a regular one) is not
+// opened, which would block for ever, but reported as what it is and
+// replaced by a fresh bake; a FIFO where the horizons beside it go is no
+// horizons, and replaced too. SIGALRM ends the test should a read block.
+TEST_F(ApertureCache, AnEntryThatIsAFifoIsRebakedWithoutOpeningIt) {
+  const fs::path path = bakedEntry();
+  fs::remove(path);
+  ASSERT_EQ(::mkfifo(path.c_str(), 0644), 0);
+  ::alarm(10);
+  std::string why;
+  EXPECT_TRUE(findCachedAperture(field_, "wavy.tif", options_, &why).empty());
+  EXPECT_NE(why.find(path.string() + " is a FIFO, not a file"), std::string::npos) << why;
+  expectRebaked(path, "is a FIFO, not a file");
+  EXPECT_TRUE(fs::is_regular_file(path));
+
+  BakeOptions withHorizons = options_;
+  withHorizons.horizons = true;
+  const fs::path beside = cachedHorizonsPath(field_, withHorizons);
+  ASSERT_EQ(::mkfifo(beside.c_str(), 0644), 0);
+  EXPECT_EQ(findCachedHorizons(field_, withHorizons).width, 0);
+  ::alarm(0);
 }
 
 // A cache filled before issue 20 names its entries by the older checksum

@@ -255,6 +255,89 @@ TEST(AalBakeTiledSvf, ResumeBakesTilesWithoutTheirSvfAndTheSvfIsPartOfTheBake) {
   EXPECT_TRUE(bakeFiles(plain) == before);
 }
 
+// Each SVF tile carries its place, its bake and the checksum of its pixels
+// (GDAL metadata items). A tile's file swapped with its neighbour's (same
+// size: only the items tell them apart) is refused naming it, exit 2, as an
+// aperture tile of another place is, in a finished folder and in one whose
+// bake was cut short, and the mosaic is not written over it; a tile whose
+// pixels were changed behind its items is baked again. Put back, the folder
+// resumes to the clean bake's bytes, and so does its mosaic.
+TEST(AalBakeTiledSvf, SwappedOrAlteredSvfTilesAreCaughtAndNeverMosaicked) {
+  TempDir dir;
+  const fs::path dem = writeDem(dir, "dem.tif", 90, 70, false);
+  const fs::path folder = dir.path() / "t";
+  const std::string fixedDate = "SOURCE_DATE_EPOCH=1700000000";
+  const std::string bake = quoted(dem) + " -o " + quoted(folder) +
+                           " --tile-size 32 --azimuths 16 --max-distance 200 --svf";
+  auto r = runTool("aal-bake", bake, fixedDate);
+  ASSERT_EQ(r.exitCode, 0) << r.out;
+  const test::FolderContents clean = bakeFiles(folder);
+  const Raster cleanMosaic = readRaster(folder / "sky_view_factor.vrt");
+  {
+    GDALDatasetUniquePtr tile(GDALDataset::Open((folder / "svf_0001_0002.tif").c_str(),
+                                                GDAL_OF_RASTER | GDAL_OF_READONLY));
+    ASSERT_TRUE(tile);
+    EXPECT_STREQ(tile->GetMetadataItem("AAL_TILE"), "1 2");
+    EXPECT_STREQ(tile->GetMetadataItem("AAL_TILE_ORIGIN"), "64,32");
+    EXPECT_STREQ(tile->GetMetadataItem("AAL_SOURCE_SIZE"), "90x70");
+    ASSERT_NE(tile->GetMetadataItem("AAL_PIXEL_CHECKSUM"), nullptr);
+    EXPECT_EQ(std::strlen(tile->GetMetadataItem("AAL_PIXEL_CHECKSUM")), 16u);
+  }
+
+  const fs::path a = folder / "svf_0000_0000.tif", b = folder / "svf_0000_0001.tif";
+  const auto swapTiles = [&] {
+    fs::rename(a, folder / "swap.tif");
+    fs::rename(b, a);
+    fs::rename(folder / "swap.tif", b);
+  };
+  swapTiles();
+  const test::FolderContents swapped = bakeFiles(folder);
+  r = runTool("aal-bake", bake, fixedDate);
+  EXPECT_EQ(r.exitCode, 2) << r.out;
+  EXPECT_NE(
+      r.out.find("svf_0000_0000.tif does not belong to this tiled bake: its place in the DEM"),
+      std::string::npos)
+      << r.out;
+  EXPECT_NE(r.out.find("remove the folder or write to another one"), std::string::npos) << r.out;
+  EXPECT_TRUE(bakeFiles(folder) == swapped);
+
+  // Cut short: no index, no mosaic. Still refused, and no mosaic of the
+  // swapped tiles is written.
+  fs::remove(folder / "index.txt");
+  fs::remove(folder / "sky_view_factor.vrt");
+  const test::FolderContents partial = bakeFiles(folder);
+  r = runTool("aal-bake", bake, fixedDate);
+  EXPECT_EQ(r.exitCode, 2) << r.out;
+  EXPECT_NE(r.out.find("svf_0000_0000.tif does not belong to this tiled bake"), std::string::npos)
+      << r.out;
+  EXPECT_TRUE(bakeFiles(folder) == partial);
+  EXPECT_FALSE(fs::exists(folder / "sky_view_factor.vrt"));
+
+  // Put back, with other pixels under one tile's items: that tile is
+  // baked again, the others resumed.
+  swapTiles();
+  {
+    GDALDatasetUniquePtr tile(
+        GDALDataset::Open((folder / "svf_0001_0001.tif").c_str(), GDAL_OF_RASTER | GDAL_OF_UPDATE));
+    ASSERT_TRUE(tile);
+    std::vector<float> values(32 * 32);
+    ASSERT_EQ(tile->GetRasterBand(1)->RasterIO(GF_Read, 0, 0, 32, 32, values.data(), 32, 32,
+                                               GDT_Float32, 0, 0, nullptr),
+              CE_None);
+    values[5 * 32 + 7] = values[5 * 32 + 7] > 0.5f ? 0.25f : 0.75f;
+    ASSERT_EQ(tile->GetRasterBand(1)->RasterIO(GF_Write, 0, 0, 32, 32, values.data(), 32, 32,
+                                               GDT_Float32, 0, 0, nullptr),
+              CE_None);
+  }
+  ASSERT_FALSE(bakeFiles(folder).at("svf_0001_0001.tif") == clean.at("svf_0001_0001.tif"));
+  r = runTool("aal-bake", bake, fixedDate);
+  ASSERT_EQ(r.exitCode, 0) << r.out;
+  EXPECT_NE(r.out.find("(1 baked, 8 resumed)"), std::string::npos) << r.out;
+  EXPECT_TRUE(bakeFiles(folder) == clean)
+      << ::testing::PrintToString(test::changedFiles(clean, bakeFiles(folder)));
+  EXPECT_TRUE(sameBits(readRaster(folder / "sky_view_factor.vrt").values, cleanMosaic.values));
+}
+
 // --svf takes a path for a bake into one file and none for a tiled bake,
 // whose DEM must be georeferenced to place the tiles; each misuse is said
 // before any work and leaves no folder.

@@ -325,7 +325,9 @@ TEST(AalRender, RefusesAnApertureMapOfAnotherDem) {
 // Directional horizons carry the heights' checksum (format version 3): of
 // the same size but baked from other heights (here the DEM at twice its z
 // scale), they are refused before anything is drawn; a file from before the
-// checksum (version 2) is checked by its size alone, with a note.
+// checksum (version 2) is checked by its size alone, with a note. Since
+// version 4 they carry the checksum of their codes too: other codes under
+// the file's own header are refused.
 TEST(AalRender, RefusesHorizonsBakedFromOtherHeights) {
   TempDir dir;
   const fs::path map = dir.path() / "a.exr", horizons = dir.path() / "a.horizons",
@@ -350,12 +352,23 @@ TEST(AalRender, RefusesHorizonsBakedFromOtherHeights) {
   std::string header;
   std::getline(in, header);
   const std::string codes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-  ASSERT_EQ(header.rfind("aperture-horizons 3 403 344 8 8 r2-", 0), 0u) << header;
+  ASSERT_EQ(header.rfind("aperture-horizons 4 403 344 8 8 r2-", 0), 0u) << header;
   const fs::path old = dir.path() / "old.horizons";
   std::ofstream(old, std::ios::binary) << "aperture-horizons 2 403 344 8 8\n" << codes;
   const auto legacy = render(dir, common + quoted(old));
   EXPECT_EQ(legacy.exitCode, 0) << legacy.out;
   EXPECT_NE(legacy.out.find("predates the heights checksum"), std::string::npos) << legacy.out;
+  // A valid header over other codes (one byte flipped): refused, not drawn.
+  std::string flipped = codes;
+  flipped[flipped.size() / 2] ^= 0x10;
+  const fs::path damaged = dir.path() / "damaged.horizons";
+  std::ofstream(damaged, std::ios::binary) << header << "\n" << flipped;
+  const auto refused = render(dir, common + quoted(damaged));
+  EXPECT_EQ(refused.exitCode, 2) << refused.out;
+  EXPECT_NE(refused.out.find("damaged.horizons is corrupt: its codes do not match the checksum"),
+            std::string::npos)
+      << refused.out;
+  EXPECT_NE(refused.out.find("bake it again"), std::string::npos) << refused.out;
 }
 
 TEST(AalRender, RefusesAnApertureMapBakedForAnotherCellSize) {

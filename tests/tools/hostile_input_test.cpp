@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 
 #include <sys/mount.h>
+#include <sys/stat.h>
 
 #include <algorithm>
 #include <cerrno>
@@ -139,6 +140,140 @@ TEST(HostileInput, ATinyFileClaimingAHugeDemIsRefusedAtOnceByEveryTool) {
         << r.out;
   }
   EXPECT_EQ(entriesOf(dir.path()), std::vector<std::string>{"claims.tif"});
+}
+
+// `tool` with `arguments` (shell syntax), ended after 10 s: a run that
+// blocks (on a FIFO) exits 124 and fails the test instead of hanging it.
+// `environment` ("NAME=value ...") is set for the run.
+test::ToolResult runWithin10s(const std::string& tool, const std::string& arguments,
+                              const fs::path& folder = {}, const std::string& environment = "") {
+  return test::runShell((folder.empty() ? "" : "cd " + quoted(folder) + " && ") + "timeout 10 " +
+                        (environment.empty() ? "" : "env " + environment + " ") +
+                        quoted(test::binDir() / tool) + " " + arguments);
+}
+
+// A small DEM for aal-render's GPU path, whose aperture map is baked (in
+// milliseconds) into a cache beside it: albedo images are read there only,
+// after the map (the reference renderer takes a constant albedo).
+struct SmallRender {
+  TempDir work;
+  fs::path dem = work.path() / "small.tif";
+  std::string environment = "AAL_CACHE_DIR=" + quoted(work.path() / "cache");
+  SmallRender() {
+    const auto r = runTool("aal-synth", "-o " + quoted(dem) + " --size 32");
+    EXPECT_EQ(r.exitCode, 0) << r.out;
+  }
+};
+
+// Paths reach GDAL as files: a connection string (MEM:::DATAPOINTER=...
+// made GDAL read memory at the address given: SIGSEGV), another driver's
+// prefix or a /vsi path but /vsicurl/, /vsizip/ and /vsigzip/ is refused
+// with exit 2 by every tool that reads a DEM, and for --water-mask; a file
+// that has such a name is read as the file.
+TEST(HostileInput, GdalConnectionStringsExitWithTwoInEveryTool) {
+  TempDir dir;
+  const std::string out = quoted(dir.path() / "out");
+  const std::string mem = "'MEM:::DATAPOINTER=0x1,PIXELS=10,LINES=10'";
+  const std::vector<ToolCase> cases = {
+      {"aal-info", "{value}"},
+      {"aal-bake", "{value} -o " + out + ".exr"},
+      {"aal-render", "{value} --mode reference --size 32x18 -o " + out + ".png"},
+      {"aal-relief", "{value} -o " + out + ".tif"},
+      {"aal-relief", quoted(kDem) + " -o " + out + ".tif --water-mask {value}"},
+  };
+  for (const ToolCase& c : cases) {
+    // Every tool with MEM:::, aal-info with the others too.
+    for (const std::string& value :
+         {mem, std::string("NUMPY:::0x1"), std::string("/vsimem/dem.tif")}) {
+      if (value != mem && c.tool != "aal-info") continue;
+      const std::string arguments = withValue(c.arguments, value);
+      const auto r = runWithin10s(c.tool, arguments);
+      EXPECT_EQ(r.exitCode, 2) << c.tool << " " << arguments << "\n" << r.out;
+      EXPECT_NE(r.out.find(value == mem ? "MEM:::DATAPOINTER=0x1,PIXELS=10,LINES=10: is a GDAL "
+                                          "connection string (MEM:...), not a file"
+                                        : "not a file: aperture opens files"),
+                std::string::npos)
+          << c.tool << " " << arguments << "\n"
+          << r.out;
+    }
+  }
+  EXPECT_TRUE(entriesOf(dir.path()).empty());
+  // The DEM under a name GDAL would take for a connection string.
+  fs::copy_file(kDem, dir.path() / "MEM:::DATAPOINTER=0x1,PIXELS=10,LINES=10");
+  const auto r = runWithin10s("aal-info", mem, dir.path());
+  EXPECT_EQ(r.exitCode, 0) << r.out;
+  EXPECT_NE(r.out.find("GTiff"), std::string::npos) << r.out;
+}
+
+// What is not a file is refused for what it is, never opened: a FIFO (whose
+// open blocked for ever), a device (/dev/zero read without end), a symbolic
+// link loop (said to be "no such file"), as a DEM, a water mask, an
+// aperture map, an albedo image, a colour ramp or a camera path (horizons:
+// HorizonMap.FilesThatAreNotFilesAreRefusedUnopened).
+TEST(HostileInput, InputsThatAreNotFilesExitWithTwoAndNeverBlock) {
+  TempDir dir;
+  const fs::path fifo = dir.path() / "fifo", loop = dir.path() / "loop";
+  ASSERT_EQ(::mkfifo(fifo.c_str(), 0644), 0);
+  fs::create_symlink(dir.path() / "loop2", loop);
+  fs::create_symlink(loop, dir.path() / "loop2");
+  const std::string dem = quoted(kDem), out = quoted(dir.path() / "out");
+  const std::string png = " --size 32x18 -o " + out + ".png";
+  const SmallRender small;
+  const std::vector<ToolCase> cases = {
+      {"aal-info", "{value}"},
+      {"aal-bake", "{value} -o " + out + ".exr"},
+      {"aal-render", "{value} --mode reference" + png},
+      {"aal-relief", "{value} -o " + out + ".tif"},
+      {"aal-relief", dem + " -o " + out + ".tif --water-mask {value}"},
+      {"aal-relief", dem + " -o " + out + ".tif --aperture {value}"},
+      {"aal-relief", dem + " -o " + out + ".tif --color-relief {value}"},
+      {"aal-render", dem + " --aperture {value}" + png},
+      {"aal-render", quoted(small.dem) + " --albedo {value}" + png},
+      {"aal-render", dem + " --camera-path {value} --frames 2" + png},
+  };
+  struct Value {
+    fs::path path;
+    std::string says;
+  };
+  for (const ToolCase& c : cases) {
+    // A FIFO everywhere; a device and a loop as a DEM and as a ramp.
+    for (const Value& v : {Value{fifo, "is a FIFO, not a file"},
+                           Value{"/dev/zero", "is a character device, not a file"},
+                           Value{loop, "is a symbolic link loop"}}) {
+      if (v.path != fifo && c.tool != "aal-info" &&
+          c.arguments.find("--color-relief") == std::string::npos) {
+        continue;
+      }
+      const std::string arguments = withValue(c.arguments, quoted(v.path));
+      const auto r = runWithin10s(c.tool, arguments, {}, small.environment);
+      EXPECT_EQ(r.exitCode, 2) << c.tool << " " << arguments << "\n" << r.out;
+      EXPECT_NE(r.out.find(v.path.string()), std::string::npos)
+          << c.tool << " " << arguments << "\n"
+          << r.out;
+      EXPECT_NE(r.out.find(v.says), std::string::npos) << c.tool << " " << arguments << "\n"
+                                                       << r.out;
+    }
+  }
+  EXPECT_EQ(entriesOf(dir.path()), (std::vector<std::string>{"fifo", "loop", "loop2"}));
+}
+
+// An albedo image whose header claims 20000 x 20000 pixels over a few bytes
+// is refused from its header, before any pixel is decoded, exit 2.
+TEST(HostileInput, AnAlbedoImageClaimingAHugeSizeIsRefusedFromItsHeader) {
+  TempDir dir;
+  const fs::path albedo = dir.path() / "claims.png";
+  std::ofstream(albedo, std::ios::binary) << test::rgbPngClaiming(20000, 20000);
+  const SmallRender small;
+  const auto r = runWithin10s("aal-render",
+                              quoted(small.dem) + " --albedo " + quoted(albedo) +
+                                  " --size 32x18 -o " + quoted(dir.path() / "out.png"),
+                              {}, small.environment);
+  EXPECT_EQ(r.exitCode, 2) << r.out;
+  EXPECT_NE(r.out.find("claims.png is truncated or corrupt: its header declares 20000 x 20000 "
+                       "pixels"),
+            std::string::npos)
+      << r.out;
+  EXPECT_EQ(entriesOf(dir.path()), std::vector<std::string>{"claims.png"});
 }
 
 // Runs `tool` with writes limited to `kilobytes` per file (ulimit -f, with

@@ -5,12 +5,18 @@
 
 #include <OpenImageIO/imageio.h>
 
+#include <sys/stat.h>
+#include <unistd.h>
+
 #include <cmath>
+#include <cstdlib>
+#include <filesystem>
 #include <fstream>
 #include <string>
 #include <vector>
 
 #include "aperture/terrain/errors.h"
+#include "aperture/tests/terrain/io/hostile_files.h"
 #include "aperture/tests/tools/run_tool.h"
 
 namespace aal {
@@ -94,6 +100,67 @@ TEST(AlbedoImage, BadFilesAreInputErrorsNamingThem) {
       EXPECT_NE(std::string(e.what()).find(path), std::string::npos) << e.what();
     }
   }
+}
+
+// What an image's header claims is checked before a pixel is decoded: a
+// PNG of a few bytes claiming 20000 x 20000 pixels is refused by what its
+// bytes can hold at zlib's best ratio; any image beyond the memory
+// available (AAL_MEMORY_LIMIT here) with both numbers; a FIFO or a folder
+// for what it is, unopened.
+TEST(AlbedoImage, HeadersClaimingMoreThanFitsAreRefusedBeforeDecoding) {
+  test::TempDir dir;
+  for (const auto& [name, bytes] : {std::pair{"grey.png", test::pngClaiming(20000, 20000)},
+                                    std::pair{"rgb.png", test::rgbPngClaiming(20000, 20000)}}) {
+    const std::string path = (dir.path() / name).string();
+    std::ofstream(path, std::ios::binary) << bytes;
+    try {
+      loadAlbedoImage(path, 4, 4, nullptr);
+      ADD_FAILURE() << path << " was read";
+    } catch (const InputError& e) {
+      const std::string what = e.what();
+      EXPECT_NE(what.find("albedo image " + path +
+                          " is truncated or corrupt: its header declares "
+                          "20000 x 20000 pixels"),
+                std::string::npos)
+          << what;
+      EXPECT_NE(what.find("zlib's best ratio"), std::string::npos) << what;
+    }
+  }
+
+  // A whole image, 600 x 400 RGB, beyond a limit of 4 MB.
+  const std::string real = (dir.path() / "real.png").string();
+  writeImage<uint8_t>(real, 600, 400, 3, OIIO::TypeDesc::UINT8,
+                      std::vector<uint8_t>(600 * 400 * 3, 90));
+  ASSERT_EQ(::setenv("AAL_MEMORY_LIMIT", "4M", 1), 0);
+  try {
+    loadAlbedoImage(real, 4, 4, nullptr);
+    ADD_FAILURE() << "read within 4 MB";
+  } catch (const InputError& e) {
+    const std::string what = e.what();
+    EXPECT_NE(what.find("albedo image " + real + ": holding its 600 x 400 pixels of 3 channels"),
+              std::string::npos)
+        << what;
+    EXPECT_NE(what.find("needs 5.8 MB, but only 4.2 MB of memory is available"), std::string::npos)
+        << what;
+  }
+  ASSERT_EQ(::unsetenv("AAL_MEMORY_LIMIT"), 0);
+  EXPECT_EQ(loadAlbedoImage(real, 4, 4, nullptr).rgb.size(), 48u);
+
+  const std::string fifo = (dir.path() / "fifo.png").string();
+  ASSERT_EQ(::mkfifo(fifo.c_str(), 0644), 0);
+  ::alarm(10);  // a read that blocks ends the test
+  for (const auto& [path, says] :
+       {std::pair{fifo, " is a FIFO, not a file"},
+        std::pair{dir.path().string(), " is a folder, not an image file"}}) {
+    try {
+      loadAlbedoImage(path, 4, 4, nullptr);
+      ADD_FAILURE() << path << " was read";
+    } catch (const InputError& e) {
+      EXPECT_NE(std::string(e.what()).find("albedo image " + path + says), std::string::npos)
+          << e.what();
+    }
+  }
+  ::alarm(0);
 }
 
 }  // namespace

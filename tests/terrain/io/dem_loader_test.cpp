@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
+#include <string>
 
 #include "aperture/terrain/io/dem_loader.h"
 #include "aperture/terrain/io/dem_source.h"
@@ -44,6 +45,43 @@ TEST_F(DemLoader, MissingFileIsRefused) {
 TEST_F(DemLoader, FolderIsRefused) {
   test::expectMessage(test::inputErrorOf([&] { loadDem(dir_.path().string()); }),
                       {"is a folder, not a DEM file"});
+}
+
+// What is not a file is said to be what it is, before GDAL opens it: a
+// FIFO's open blocked for ever, a symbolic link loop was "no such file",
+// and a MEM::: connection string made GDAL read memory at the address it
+// gave (SIGSEGV). SIGALRM ends the test should anything block.
+TEST_F(DemLoader, PathsThatAreNotFilesAreRefusedForWhatTheyAre) {
+  ::alarm(10);
+  ASSERT_EQ(::mkfifo(path("fifo.tif").c_str(), 0644), 0);
+  std::filesystem::create_symlink(path("loop2.tif"), path("loop.tif"));
+  std::filesystem::create_symlink(path("loop.tif"), path("loop2.tif"));
+  EXPECT_EQ(test::inputErrorOf([&] { loadDem(path("fifo.tif")); }),
+            path("fifo.tif") + ": is a FIFO, not a file");
+  EXPECT_EQ(test::inputErrorOf([&] { loadDem("/dev/zero"); }),
+            "/dev/zero: is a character device, not a file");
+  EXPECT_EQ(test::inputErrorOf([&] { loadDem(path("loop.tif")); }),
+            path("loop.tif") + ": is a symbolic link loop (too many levels of symbolic links)");
+  ::alarm(0);
+  for (const std::string connection :
+       {"MEM:::DATAPOINTER=0x1,PIXELS=10,LINES=10", "NUMPY:::0x1", "GTiff:x.tif"}) {
+    test::expectMessage(test::inputErrorOf([&] { loadDem(connection); }),
+                        {connection + ": is a GDAL connection string", "aperture opens files"});
+  }
+  test::expectMessage(test::inputErrorOf([&] { loadDem("/vsimem/dem.tif"); }),
+                      {"/vsimem/dem.tif: is a path of GDAL's virtual file system /vsimem/"});
+  // A file whose name GDAL would take for a connection string is a file:
+  // an ASCII grid (not a GeoTIFF, so that every driver is asked, MEM first)
+  // in the working folder.
+  test::writeBytes(path("MEM:::DATAPOINTER=0x1,PIXELS=10,LINES=10"), kAsc);
+  const std::filesystem::path before = std::filesystem::current_path();
+  std::filesystem::current_path(dir_.path());
+  Heightfield field;
+  EXPECT_NO_THROW(field = loadDem("MEM:::DATAPOINTER=0x1,PIXELS=10,LINES=10", warnings_.options()));
+  std::filesystem::current_path(before);
+  EXPECT_EQ(field.driver, "AAIGrid");
+  EXPECT_EQ(field.width, 2);
+  EXPECT_EQ(field.z[3], 4.0f);
 }
 
 TEST_F(DemLoader, EmptyFileIsRefused) {

@@ -7,18 +7,23 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <functional>
+#include <iterator>
 #include <numbers>
 #include <random>
 #include <stdexcept>
 #include <string>
 
+#include <sys/stat.h>
 #include <unistd.h>
 
 #include <glm/geometric.hpp>
 
+#include "aperture/terrain/errors.h"
 #include "aperture/terrain/io/horizon_map.h"
 #include "aperture/terrain/light/caps.h"
 #include "aperture/terrain/light/shading.h"
+#include "aperture/tests/tools/run_tool.h"
 
 namespace aal {
 namespace {
@@ -246,7 +251,8 @@ TEST(HorizonMap, FilesRoundTripAndForeignOrTruncatedFilesAreRefused) {
   EXPECT_EQ(read.sourceChecksum, map.sourceChecksum);
   EXPECT_EQ(
       std::filesystem::file_size(dir / "h.bin"),
-      std::string("aperture-horizons 3 5 3 8 8 r2-0123456789abcdef\n").size() + map.codes.size());
+      std::string("aperture-horizons 4 5 3 8 8 r2-0123456789abcdef 0123456789abcdef\n").size() +
+          map.codes.size());
   // Without the DEM's checksum there is nothing to check it against later.
   HorizonMap unchecked = map;
   unchecked.sourceChecksum.clear();
@@ -254,9 +260,12 @@ TEST(HorizonMap, FilesRoundTripAndForeignOrTruncatedFilesAreRefused) {
   unchecked.sourceChecksum = "two words";
   EXPECT_THROW(writeHorizonMap(dir / "unchecked.bin", unchecked), std::invalid_argument);
   EXPECT_FALSE(std::filesystem::exists(dir / "unchecked.bin"));
-  // Version 3 without its checksum is damaged.
+  // Version 3 without its checksum is damaged, and so is version 4 without
+  // the checksum of its codes.
   std::ofstream(dir / "nosum.bin") << "aperture-horizons 3 5 3 8 8\n";
   EXPECT_THROW(readHorizonMap(dir / "nosum.bin"), std::runtime_error);
+  std::ofstream(dir / "nocodesum.bin") << "aperture-horizons 4 5 3 8 8 r2-0123456789abcdef\n";
+  EXPECT_THROW(readHorizonMap(dir / "nocodesum.bin"), std::runtime_error);
   // Version 2 (before the checksum): read, the checksum unknown.
   {
     std::ofstream v2(dir / "v2.bin", std::ios::binary);
@@ -301,12 +310,99 @@ TEST(HorizonMap, FilesRoundTripAndForeignOrTruncatedFilesAreRefused) {
   std::ofstream(dir / "other.bin") << "aperture-horizons 1 5 3 6\n";
   EXPECT_THROW(readHorizonMap(dir / "other.bin"), std::runtime_error);
   // A header asking for 16 TB is a damaged file, not an allocation.
-  std::ofstream(dir / "huge.bin") << "aperture-horizons 3 1048576 1048576 16 8 r2-0\n";
+  std::ofstream(dir / "huge.bin")
+      << "aperture-horizons 4 1048576 1048576 16 8 r2-0 0123456789abcdef\n";
   EXPECT_THROW(readHorizonMap(dir / "huge.bin"), std::runtime_error);
   std::ofstream(dir / "text.bin") << "hello\n";
   EXPECT_THROW(readHorizonMap(dir / "text.bin"), std::runtime_error);
   EXPECT_THROW(readHorizonMap(dir / "missing.bin"), std::runtime_error);
   std::filesystem::remove_all(dir);
+}
+
+std::string fileBytes(const std::filesystem::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  return std::string(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+}
+
+// Version 4 carries the checksum of its codes: a file whose header is
+// intact but whose codes are not (a flipped byte, codes of the same range
+// written over them, two rows swapped) is refused as an InputError naming
+// it and saying to bake it again; the untouched file reads. Version 3 files
+// (before the checksum of the codes) still read, their codes unchecked.
+TEST(HorizonMap, CodesThatDoNotMatchTheirChecksumAreRefused) {
+  test::TempDir dir;
+  HorizonMap map;
+  map.width = 6;
+  map.height = 4;
+  map.sourceChecksum = "r2-0123456789abcdef";
+  for (int i = 0; i < map.width * map.height * kHorizonDirections; ++i) {
+    map.codes.push_back(uint8_t(i * 13 % 256));
+  }
+  const std::filesystem::path good = dir.path() / "good.horizons";
+  writeHorizonMap(good, map);
+  EXPECT_EQ(readHorizonMap(good).codes, map.codes);
+  const std::string bytes = fileBytes(good);
+  const size_t codesStart = bytes.size() - map.codes.size();
+  const auto damaged = [&](const std::string& name,
+                           const std::function<void(std::string&)>& change) {
+    std::string changed = bytes;
+    change(changed);
+    const std::filesystem::path path = dir.path() / name;
+    std::ofstream(path, std::ios::binary) << changed;
+    return path;
+  };
+  const std::filesystem::path cases[] = {
+      damaged("flipped.horizons", [&](std::string& b) { b[codesStart + 77] ^= 0x01; }),
+      damaged("random.horizons",
+              [&](std::string& b) {
+                for (size_t i = codesStart; i < b.size(); ++i) b[i] = char((i * 2654435761u) >> 7);
+              }),
+      damaged("swapped.horizons",
+              [&](std::string& b) {
+                const size_t row = size_t(map.width) * kHorizonDirections;
+                std::swap_ranges(b.begin() + codesStart, b.begin() + codesStart + row,
+                                 b.begin() + codesStart + row);
+              }),
+  };
+  for (const std::filesystem::path& path : cases) {
+    try {
+      readHorizonMap(path);
+      ADD_FAILURE() << path << " was read";
+    } catch (const InputError& e) {
+      EXPECT_NE(std::string(e.what()).find(path.string()), std::string::npos) << e.what();
+      EXPECT_NE(std::string(e.what()).find("do not match the checksum"), std::string::npos)
+          << e.what();
+      EXPECT_NE(std::string(e.what()).find("bake it again"), std::string::npos) << e.what();
+    }
+  }
+  // The same codes under a version 3 header: read, as before the checksum.
+  const std::filesystem::path v3 = dir.path() / "v3.horizons";
+  std::ofstream(v3, std::ios::binary) << "aperture-horizons 3 6 4 8 8 r2-0123456789abcdef\n"
+                                      << bytes.substr(codesStart);
+  EXPECT_EQ(readHorizonMap(v3).codes, map.codes);
+  EXPECT_EQ(readHorizonMap(v3).sourceChecksum, map.sourceChecksum);
+}
+
+// A horizons file that is not a file (a FIFO: its open blocked for ever; a
+// device; a folder) is refused for what it is, unopened. SIGALRM ends the
+// test should a read block.
+TEST(HorizonMap, FilesThatAreNotFilesAreRefusedUnopened) {
+  test::TempDir dir;
+  const std::filesystem::path fifo = dir.path() / "fifo.horizons";
+  ASSERT_EQ(::mkfifo(fifo.c_str(), 0644), 0);
+  ::alarm(10);
+  for (const auto& [path, says] :
+       {std::pair{fifo.string(), " is a FIFO, not a file"},
+        std::pair{std::string("/dev/zero"), " is a character device, not a file"},
+        std::pair{dir.path().string(), " is a folder, not a file"}}) {
+    try {
+      readHorizonMap(path);
+      ADD_FAILURE() << path << " was read";
+    } catch (const std::runtime_error& e) {
+      EXPECT_EQ(std::string(e.what()), "horizon map " + path + says);
+    }
+  }
+  ::alarm(0);
 }
 
 // The sun's part above a straight horizon against counting points of its

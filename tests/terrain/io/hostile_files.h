@@ -57,9 +57,11 @@ inline uint32_t crc32(const std::string& bytes) {
   return ~crc;
 }
 
-// A 16-bit grey PNG header claiming width x height samples, with 200 bytes
-// of IDAT: far less than zlib could expand into them.
-inline std::string pngClaiming(uint32_t width, uint32_t height) {
+// A PNG whose header (IHDR, CRC correct) claims width x height pixels of
+// `bitDepth` bits in `colourType` (0 grey, 2 RGB, ...), with `idat` as its
+// only IDAT chunk.
+inline std::string pngWithHeader(uint32_t width, uint32_t height, char bitDepth, char colourType,
+                                 const std::string& idat) {
   std::string png = "\x89PNG\r\n\x1a\n";
   const auto be32 = [](uint32_t v) {
     return std::string{static_cast<char>(v >> 24), static_cast<char>(v >> 16),
@@ -68,10 +70,22 @@ inline std::string pngClaiming(uint32_t width, uint32_t height) {
   const auto chunk = [&](const std::string& type, const std::string& data) {
     png += be32(static_cast<uint32_t>(data.size())) + type + data + be32(crc32(type + data));
   };
-  chunk("IHDR", be32(width) + be32(height) + std::string("\x10\0\0\0\0", 5));
-  chunk("IDAT", std::string(200, 'x'));
+  chunk("IHDR", be32(width) + be32(height) + std::string{bitDepth, colourType, 0, 0, 0});
+  chunk("IDAT", idat);
   chunk("IEND", "");
   return png;
+}
+
+// A 16-bit grey PNG header claiming width x height samples, with 200 bytes
+// of IDAT: far less than zlib could expand into them.
+inline std::string pngClaiming(uint32_t width, uint32_t height) {
+  return pngWithHeader(width, height, 16, 0, std::string(200, 'x'));
+}
+
+// An 8-bit RGB PNG header claiming width x height pixels over a tiny, valid
+// zlib stream (of nothing).
+inline std::string rgbPngClaiming(uint32_t width, uint32_t height) {
+  return pngWithHeader(width, height, 8, 2, std::string("\x78\x9c\x03\x00\x00\x00\x00\x01", 8));
 }
 
 }  // namespace aal::test

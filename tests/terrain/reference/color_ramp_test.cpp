@@ -1,10 +1,18 @@
 // gdaldem color-relief ramp files and the built-in palettes (terrain/reference/color_ramp.h).
 #include <gtest/gtest.h>
 
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include <chrono>
+#include <filesystem>
+#include <fstream>
 #include <sstream>
 
 #include "aperture/terrain/errors.h"
+#include "aperture/terrain/io/input_file.h"
 #include "aperture/terrain/reference/color_ramp.h"
+#include "aperture/tests/tools/run_tool.h"
 
 namespace aal {
 namespace {
@@ -62,6 +70,48 @@ TEST(ColorRamp, BadLinesAreRefusedWithTheirLineNumber) {
   EXPECT_NE(errorOf("nan 1 2 3\n").find("ramp.txt:1:"), std::string::npos);
   EXPECT_NE(errorOf("# nothing\nnv 0 0 0\n").find("at least one"), std::string::npos);
   EXPECT_EQ(errorOf("0 1 2 3\n"), "no error");
+}
+
+// Ramp files are text inputs (terrain/io/input_file.h): a UTF-8 byte order
+// mark at the start is skipped (editors on Windows write one); a folder, a
+// device (/dev/zero read without end), a FIFO or a file over the 16 MiB cap
+// (a sparse one: refused by its size, unread) is refused naming the file.
+TEST(ColorRamp, RampFilesAreTextFilesOfAtMost16MiBAndMayStartWithAByteOrderMark) {
+  test::TempDir dir;
+  const std::filesystem::path bom = dir.path() / "bom.txt";
+  std::ofstream(bom, std::ios::binary) << "\xEF\xBB\xBF"
+                                       << "0 10 20 30\n100 40 50 60\n";
+  const ColorRamp ramp = readColorRamp(bom.string());
+  ASSERT_EQ(ramp.entries.size(), 2u);
+  EXPECT_EQ(ramp.entries[0].value, 0);
+  EXPECT_EQ(ramp.entries[0].rgba[0], 10);
+
+  const std::filesystem::path big = dir.path() / "big.txt", fifo = dir.path() / "fifo.txt";
+  std::ofstream(big).close();
+  std::filesystem::resize_file(big, kMaxTextInputBytes + 1);
+  ASSERT_EQ(::mkfifo(fifo.c_str(), 0644), 0);
+  ::alarm(10);  // a read that blocks ends the test
+  const auto start = std::chrono::steady_clock::now();
+  struct Case {
+    std::string path, says;
+  };
+  for (const Case& c :
+       {Case{"/dev/zero", "colour ramp /dev/zero is a character device, not a file"},
+        Case{fifo.string(), "colour ramp " + fifo.string() + " is a FIFO, not a file"},
+        Case{dir.path().string(),
+             "colour ramp " + dir.path().string() + " is a folder, not a file"},
+        Case{big.string(), "colour ramp " + big.string() +
+                               " holds more than the 16 MiB (16777216 bytes) a colour ramp may "
+                               "hold"}}) {
+    try {
+      readColorRamp(c.path);
+      ADD_FAILURE() << c.path << " was read";
+    } catch (const InputError& e) {
+      EXPECT_NE(std::string(e.what()).find(c.says), std::string::npos) << e.what();
+    }
+  }
+  ::alarm(0);
+  EXPECT_LT(std::chrono::steady_clock::now() - start, std::chrono::seconds(2));
 }
 
 TEST(ColorRamp, BuiltinPalettes) {

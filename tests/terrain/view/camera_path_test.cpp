@@ -1,8 +1,16 @@
 // Camera path files for scripted viewer runs (terrain/view/camera_path.h).
 #include <gtest/gtest.h>
 
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include <filesystem>
+#include <fstream>
+#include <string>
+
 #include "aperture/terrain/errors.h"
 #include "aperture/terrain/view/camera_path.h"
+#include "aperture/tests/tools/run_tool.h"
 
 namespace aal {
 namespace {
@@ -67,6 +75,38 @@ TEST(CameraPath, RejectsMalformedFilesNamingTheLine) {
 
 TEST(CameraPath, MissingFileIsAnInputError) {
   EXPECT_THROW(CameraPath::load("/nonexistent/path.txt"), InputError);
+}
+
+// Path files are text inputs (terrain/io/input_file.h): a UTF-8 byte order
+// mark at the start is skipped; a folder, a FIFO, a device or a file over
+// the 16 MiB cap is refused naming the file.
+TEST(CameraPath, PathFilesAreTextFilesOfAtMost16MiBAndMayStartWithAByteOrderMark) {
+  test::TempDir dir;
+  const std::filesystem::path bom = dir.path() / "bom.txt";
+  std::ofstream(bom, std::ios::binary) << "\xEF\xBB\xBF"
+                                       << "0 -100 0 50 0 0 0\n2 100 0 50 0 0 0\n";
+  EXPECT_EQ(CameraPath::load(bom.string()).keyframes().size(), 2u);
+
+  const std::filesystem::path big = dir.path() / "big.txt", fifo = dir.path() / "fifo.txt";
+  std::ofstream(big).close();
+  std::filesystem::resize_file(big, (uint64_t{16} << 20) + 1);
+  ASSERT_EQ(::mkfifo(fifo.c_str(), 0644), 0);
+  ::alarm(10);  // a read that blocks ends the test
+  for (const auto& [path, says] : {
+           std::pair{fifo.string(), " is a FIFO, not a file"},
+           std::pair{std::string("/dev/zero"), " is a character device, not a file"},
+           std::pair{dir.path().string(), " is a folder, not a file"},
+           std::pair{big.string(), " holds more than the 16 MiB (16777216 bytes)"},
+       }) {
+    try {
+      CameraPath::load(path);
+      ADD_FAILURE() << path << " was read";
+    } catch (const InputError& e) {
+      EXPECT_NE(std::string(e.what()).find("camera path " + path + says), std::string::npos)
+          << e.what();
+    }
+  }
+  ::alarm(0);
 }
 
 }  // namespace
