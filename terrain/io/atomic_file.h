@@ -10,7 +10,11 @@
 namespace aal {
 
 // Throws std::runtime_error when `path` cannot be created or replaced (missing
-// folder, no permission, is a folder). Call it before long work starts.
+// folder, no permission, is a folder), and when it is not a file to write:
+// an existing path that is not a regular file (a device, a FIFO, a socket;
+// symbolic links followed) or any path in /dev, /proc or /sys. The rename
+// onto such a path would replace the node itself with a regular file
+// (docs/dem-input.md, "Outputs"). Call it before long work starts.
 void checkOutputWritable(const std::filesystem::path& path);
 
 // Removes the temporary files (".NAME.tmp-PID-N.EXT") in `folder` whose

@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 
 #include <sys/mount.h>
+#include <sys/stat.h>
 
 #include <algorithm>
 #include <cerrno>
@@ -229,6 +230,62 @@ TEST(HostileInput, MistakesOfUseExitWithTwo) {
     EXPECT_NE(r.out.find(c.message), std::string::npos) << r.out;
   }
   EXPECT_EQ(entriesOf(dir.path()), std::vector<std::string>{"one.asc"});
+}
+
+// Writes go to regular files only: `-o /dev/null` (as root) replaced the
+// device node with a regular file, and so would a link to it or a FIFO.
+// Here through links and a FIFO in a temporary folder, which a tool that
+// got it wrong could only replace there; /dev itself is checked without
+// writing (AtomicOutput.DevicesFifosAndSystemFoldersAreNoOutputs).
+TEST(HostileInput, OutputsThatAreNotFilesAreRefusedInEveryTool) {
+  TempDir dir;
+  for (const char* extension : {".png", ".exr", ".tif", ".csv"}) {
+    fs::create_symlink("/dev/null", dir.path() / (std::string("null") + extension));
+  }
+  fs::create_symlink("/dev/stdout", dir.path() / "stdout.csv");
+  for (const char* name : {"pipe.png", "pipe.tif"}) {
+    ASSERT_EQ(::mkfifo((dir.path() / name).c_str(), 0644), 0);
+  }
+  const fs::path folder = dir.path() / "tiles";
+  fs::create_directory(folder);
+  ASSERT_EQ(::mkfifo((folder / "index.txt").c_str(), 0644), 0);
+  const std::vector<std::string> before = entriesOf(dir.path());
+  const auto at = [&](const std::string& name) { return quoted(dir.path() / name); };
+  const std::string device = "(a link to /dev/null) is a character device, not a file";
+  const std::string fifo = "is a FIFO (a pipe), not a file";
+  struct Case {
+    std::string tool, arguments, message;
+  };
+  for (const Case& c : std::vector<Case>{
+           {"aal-render", quoted(kDem) + " --size 32x18 -o " + at("null.png"), device},
+           {"aal-render", quoted(kDem) + " --size 32x18 -o " + at("pipe.png"), fifo},
+           {"aal-bake", quoted(kDem) + " -o " + at("null.exr"), device},
+           {"aal-bake", quoted(kDem) + " -o " + at("m.exr") + " --svf " + at("pipe.tif"), fifo},
+           {"aal-bake", quoted(kDem) + " --tile-size 16 -o " + quoted(folder), fifo},
+           {"aal-relief", quoted(kDem) + " -o " + at("null.tif"), device},
+           {"aal-synth", "--size 8 -o " + at("pipe.tif"), fifo},
+           {"aal-caps", "--table " + at("null.csv"), device},
+           // A pipe or a terminal, as the test runs: never a file.
+           {"aal-caps", "--table " + at("stdout.csv"), ", not a file"},
+           {"aal-caps", "--table " + at("t.csv") + " --plot " + at("pipe.png"), fifo},
+           {"aal-view", quoted(kDem) + " --frames 1 --screenshot " + at("null.png"), device},
+       }) {
+    const auto r = runTool(c.tool, c.arguments);
+    EXPECT_EQ(r.exitCode, 2) << c.tool << " " << c.arguments << "\n" << r.out;
+    EXPECT_NE(r.out.find(c.message), std::string::npos) << c.tool << " " << c.arguments << "\n"
+                                                        << r.out;
+    EXPECT_NE(r.out.find("give the path of a file"), std::string::npos) << r.out;
+  }
+  EXPECT_EQ(entriesOf(dir.path()), before);
+  EXPECT_EQ(entriesOf(folder), std::vector<std::string>{"index.txt"});
+  for (const char* extension : {".png", ".exr", ".tif", ".csv"}) {
+    EXPECT_TRUE(fs::is_symlink(dir.path() / (std::string("null") + extension))) << extension;
+  }
+  EXPECT_TRUE(fs::is_symlink(dir.path() / "stdout.csv"));
+  EXPECT_TRUE(fs::is_fifo(dir.path() / "pipe.png"));
+  EXPECT_TRUE(fs::is_fifo(dir.path() / "pipe.tif"));
+  EXPECT_TRUE(fs::is_fifo(folder / "index.txt"));
+  EXPECT_TRUE(fs::is_character_file("/dev/null"));
 }
 
 }  // namespace
