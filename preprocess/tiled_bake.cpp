@@ -135,6 +135,16 @@ std::optional<std::pair<int, int>> tileOfName(const std::string& name) {
   return std::pair{row, column};
 }
 
+// (row, column) of a file named as skyViewFactorTileName names SVF tiles.
+std::optional<std::pair<int, int>> skyViewFactorTileOfName(const std::string& name) {
+  int row = -1, column = -1;
+  if (std::sscanf(name.c_str(), "svf_%4d_%4d.tif", &row, &column) != 2 || row < 0 || column < 0 ||
+      skyViewFactorTileName(row, column) != name) {
+    return std::nullopt;
+  }
+  return std::pair{row, column};
+}
+
 // Throws InputError, having touched nothing, unless the folder is empty of
 // bakes or holds this bake's: its index.txt (finished) and manifest.txt
 // (started) must describe this bake; a folder with neither (a bake
@@ -178,6 +188,11 @@ void checkFolderHoldsThisBake(const std::string& folder, const ApertureTileIndex
 }
 
 }  // namespace
+
+bool isTiledBakeFileName(const std::string& name) {
+  return name == "index.txt" || name == kTiledBakeManifestName || name == kTiledBakeLockName ||
+         name == kSkyViewFactorMosaicName || tileOfName(name) || skyViewFactorTileOfName(name);
+}
 
 bool tileFinished(const ApertureTileIndex& index, const std::string& folder, int row, int column) {
   const std::string path = (fs::path(folder) / apertureTileName(row, column)).string();

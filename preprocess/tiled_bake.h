@@ -27,6 +27,17 @@ constexpr const char* kTiledBakeLockName = ".aal-bake.lock";
 // bake the folder holds while it has no index.txt yet.
 constexpr const char* kTiledBakeManifestName = "manifest.txt";
 
+// Whether a tiled bake (aal-bake --tile-size, aal-bake-mpi) writes a file
+// of this name into its folder: a tile (apertureTileName), an SVF tile
+// (skyViewFactorTileName), the SVF mosaic, index.txt, the manifest or the
+// lock. An input of such a name in the folder would be overwritten
+// (tools/tool_paths.h checks for it before any work).
+bool isTiledBakeFileName(const std::string& name);
+// Those names in words, for messages.
+constexpr const char* kTiledBakeFileNames =
+    "tile_ROW_COL.exr, svf_ROW_COL.tif, sky_view_factor.vrt, index.txt, manifest.txt, "
+    ".aal-bake.lock";
+
 // Another process holds the folder's lock: a runtime condition (exit 1), not
 // bad input; the same command succeeds once that bake has finished.
 class TiledBakeBusy : public std::runtime_error {

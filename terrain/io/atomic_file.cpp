@@ -112,6 +112,10 @@ pid_t temporaryOwner(const std::string& name) {
 
 }  // namespace
 
+bool isTemporaryName(const std::string& name) {
+  return temporaryOwner(name) > 0;
+}
+
 void removeDeadTemporaries(const fs::path& folder) {
   std::error_code error;
   for (const fs::directory_entry& entry : fs::directory_iterator(folder, error)) {

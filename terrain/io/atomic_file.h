@@ -22,6 +22,10 @@ void checkOutputWritable(const std::filesystem::path& path);
 // other files and sub-folders are kept; errors are ignored (a hint of
 // tidiness, not a guarantee). AtomicOutput calls it on its folder.
 void removeDeadTemporaries(const std::filesystem::path& folder);
+// Whether `name` (a file name, no folder) has the form of those temporaries,
+// ".NAME.tmp-PID-N[.EXT]": a file of that name in an output's folder is
+// removed by a write there once process PID is gone.
+bool isTemporaryName(const std::string& name);
 // Whether AtomicOutput calls it (on unless turned off). The ranks of an MPI
 // bake turn it off: their folder is written from other hosts at the same
 // time, and a PID names a process only on its own host, so a live rank's

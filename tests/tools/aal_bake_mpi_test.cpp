@@ -171,5 +171,30 @@ TEST(AalBakeMpi, BadInputIsSaidOnceAndExitsWithTwo) {
   EXPECT_TRUE(folderContents(folder) == before);
 }
 
+// As aal-bake: a DEM in the folder under a name the bake writes
+// (svf_0000_0000.tif) would be overwritten; refused once, before any work,
+// the folder as it was.
+TEST(AalBakeMpi, AnInputNamedLikeTheFoldersFilesIsRefusedBeforeAnyWork) {
+  TempDir dir;
+  const fs::path folder = dir.path() / "tiles";
+  fs::create_directory(folder);
+  fs::copy_file(writeDem(dir, 40, 40), folder / "svf_0000_0000.tif");
+  const test::FolderContents before = folderContents(folder);
+  const auto inside = runMpi(
+      2, quoted(folder / "svf_0000_0000.tif") + " -o " + quoted(folder) + " --tile-size 16 --svf");
+  EXPECT_EQ(inside.exitCode, 2) << inside.out;
+  EXPECT_NE(inside.out.find("-o " + folder.string() +
+                            " writes the tiled bake's files (tile_ROW_COL.exr, svf_ROW_COL.tif"),
+            std::string::npos)
+      << inside.out;
+  EXPECT_NE(inside.out.find("and the input DEM (" + (folder / "svf_0000_0000.tif").string() +
+                            ") is one of them"),
+            std::string::npos)
+      << inside.out;
+  EXPECT_EQ(inside.out.find("aal-bake-mpi", inside.out.find("aal-bake-mpi") + 1), std::string::npos)
+      << inside.out;
+  EXPECT_TRUE(folderContents(folder) == before);
+}
+
 }  // namespace
 }  // namespace aal
