@@ -19,9 +19,8 @@
 
 namespace aal {
 
-// The file in a tile folder whose flock a bake holds while it runs. It is
-// left in place: removing it would let a third bake lock a new file while a
-// second still holds the old one.
+// The file in a tile folder whose flock a bake holds while it runs. The bake
+// removes it when it ends (TiledBakeLock); only a killed one leaves it.
 constexpr const char* kTiledBakeLockName = ".aal-bake.lock";
 // Written into the folder before any tile, in index.txt's format: whose
 // bake the folder holds while it has no index.txt yet.
@@ -49,7 +48,9 @@ class TiledBakeBusy : public std::runtime_error {
 // object lives (the kernel drops it when the process dies). The folder must
 // exist. Throws TiledBakeBusy, naming the folder, when another process (or
 // another open of the file) holds it, std::runtime_error when the file
-// cannot be opened.
+// cannot be opened. The file is removed when the lock is released: a bake
+// refused, interrupted or finished leaves no lock file behind (a killed one
+// does, and the next bake in the folder removes it).
 class TiledBakeLock {
  public:
   explicit TiledBakeLock(const std::string& folder);
@@ -58,6 +59,7 @@ class TiledBakeLock {
   TiledBakeLock& operator=(const TiledBakeLock&) = delete;
 
  private:
+  std::string path_;
   int fd_ = -1;
 };
 

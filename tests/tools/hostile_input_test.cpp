@@ -533,5 +533,43 @@ TEST(HostileInput, AnInputNamedLikeATemporaryIsNotSweptAway) {
   EXPECT_EQ(entriesOf(dir.path()), std::vector<std::string>{dem.filename().string()});
 }
 
+// A bake refused after it took the folder's lock (here for --method rays,
+// which a tiled bake cannot take) left .aal-bake.lock in the user's folder.
+// A bake leaves no lock file, refused or finished.
+TEST(HostileInput, ABakeLeavesNoLockFileBehind) {
+  TempDir dir;
+  const fs::path tiles = dir.path() / "tiles", dem = dir.path() / "d.tif";
+  fs::create_directory(tiles);
+  writeDemAt(dem, 40, 40);
+  for (const std::string& options : std::vector<std::string>{
+           " --tile-size 16 --method rays", " --tile-size 16 --svf " + quoted(dir.path() / "s.tif"),
+           " --tile-size 16 --max-distance 100 --near-reach 4000"}) {
+    const auto r = runTool("aal-bake", quoted(dem) + " -q -o " + quoted(tiles) + options);
+    EXPECT_EQ(r.exitCode, 2) << options << "\n" << r.out;
+    EXPECT_TRUE(entriesOf(tiles).empty())
+        << options << " left " << ::testing::PrintToString(entriesOf(tiles));
+  }
+  // Finished, then refused as a bake of another DEM (under the lock).
+  ASSERT_EQ(runTool("aal-bake", quoted(dem) + " -q --azimuths 4 --tile-size 16 -o " + quoted(tiles))
+                .exitCode,
+            0);
+  EXPECT_FALSE(fs::exists(tiles / ".aal-bake.lock"));
+  const FolderContents baked = test::folderContents(tiles);
+  const fs::path otherDem = dir.path() / "e.tif";
+  writeDemAt(otherDem, 40, 40, 30, 2);
+  const auto other =
+      runTool("aal-bake", quoted(otherDem) + " -q --azimuths 4 --tile-size 16 -o " + quoted(tiles));
+  EXPECT_EQ(other.exitCode, 2) << other.out;
+  EXPECT_NE(other.out.find("holds the tiled bake of another DEM"), std::string::npos) << other.out;
+  EXPECT_TRUE(test::changedFiles(baked, test::folderContents(tiles)).empty())
+      << ::testing::PrintToString(test::changedFiles(baked, test::folderContents(tiles)));
+  // A killed bake's lock file goes with the next bake that takes the lock.
+  std::ofstream(tiles / ".aal-bake.lock");
+  const auto again =
+      runTool("aal-bake", quoted(otherDem) + " -q --azimuths 4 --tile-size 16 -o " + quoted(tiles));
+  EXPECT_EQ(again.exitCode, 2) << again.out;
+  EXPECT_TRUE(test::changedFiles(baked, test::folderContents(tiles)).empty());
+}
+
 }  // namespace
 }  // namespace aal
