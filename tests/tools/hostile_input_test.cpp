@@ -571,5 +571,30 @@ TEST(HostileInput, ABakeLeavesNoLockFileBehind) {
   EXPECT_TRUE(test::changedFiles(baked, test::folderContents(tiles)).empty());
 }
 
+// aal-synth wrote a GeoTIFF named x.png, and ignored AAL_MEMORY_LIMIT.
+TEST(HostileInput, AalSynthWritesGeoTiffsOnlyAndWithinTheMemoryLimit) {
+  TempDir dir;
+  for (const char* name : {"x.png", "x.asc", "x"}) {
+    const auto r = runTool("aal-synth", "--size 8 -o " + quoted(dir.path() / name));
+    EXPECT_EQ(r.exitCode, 2) << name << "\n" << r.out;
+    EXPECT_NE(r.out.find("aal-synth writes a GeoTIFF; give a name ending in .tif or .tiff"),
+              std::string::npos)
+        << r.out;
+  }
+  const auto r =
+      runTool("aal-synth", "--size 1024 -o " + quoted(dir.path() / "x.tif"), "AAL_MEMORY_LIMIT=1M");
+  EXPECT_EQ(r.exitCode, 2) << r.out;
+  EXPECT_NE(r.out.find("holding its 1024 x 1024 heights needs 4.2 MB, but only 1.0 MB of memory is "
+                       "available (AAL_MEMORY_LIMIT); give a smaller --size, or a larger "
+                       "AAL_MEMORY_LIMIT"),
+            std::string::npos)
+      << r.out;
+  EXPECT_TRUE(entriesOf(dir.path()).empty());
+  EXPECT_EQ(
+      runTool("aal-synth", "--size 8 -o " + quoted(dir.path() / "x.TIFF"), "AAL_MEMORY_LIMIT=1M")
+          .exitCode,
+      0);
+}
+
 }  // namespace
 }  // namespace aal
