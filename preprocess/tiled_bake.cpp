@@ -2,6 +2,7 @@
 
 #include <fcntl.h>
 #include <sys/file.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
 #include <algorithm>
@@ -37,30 +38,47 @@ namespace aal {
 
 namespace fs = std::filesystem;
 
-TiledBakeLock::TiledBakeLock(const std::string& folder) {
-  const fs::path path = fs::path(folder) / kTiledBakeLockName;
-  fd_ = ::open(path.c_str(), O_RDWR | O_CREAT | O_CLOEXEC, 0644);
-  if (fd_ < 0) {
-    throw std::runtime_error("cannot open the lock file " + path.string() + ": " +
-                             std::strerror(errno));
-  }
-  // The file stays empty: a refused bake changes nothing in the folder.
-  if (::flock(fd_, LOCK_EX | LOCK_NB) != 0) {
-    const int error = errno;
-    ::close(fd_);
-    fd_ = -1;
-    if (error == EWOULDBLOCK) {
-      throw TiledBakeBusy("another aal-bake is baking into " + folder + " (it holds " +
-                          path.string() +
-                          "): wait for it to finish and run this command again, or bake into "
-                          "another folder");
+TiledBakeLock::TiledBakeLock(const std::string& folder)
+    : path_((fs::path(folder) / kTiledBakeLockName).string()) {
+  // A bake removes the lock file when it ends, so that a refused or finished
+  // bake leaves no file of its own in the user's folder. Another bake may
+  // have opened that file before it went: it then holds a lock on a file no
+  // longer in the folder, which a third could not see. So a lock counts only
+  // while the path still names the locked file; else it is taken again.
+  for (int attempt = 0;; ++attempt) {
+    fd_ = ::open(path_.c_str(), O_RDWR | O_CREAT | O_CLOEXEC, 0644);
+    if (fd_ < 0) {
+      throw std::runtime_error("cannot open the lock file " + path_ + ": " + std::strerror(errno));
     }
-    throw std::runtime_error("cannot lock " + path.string() + ": " + std::strerror(error));
+    // The file stays empty: a refused bake changes nothing in the folder.
+    if (::flock(fd_, LOCK_EX | LOCK_NB) != 0) {
+      const int error = errno;
+      ::close(fd_);
+      fd_ = -1;
+      if (error == EWOULDBLOCK) {
+        throw TiledBakeBusy("another aal-bake is baking into " + folder + " (it holds " + path_ +
+                            "): wait for it to finish and run this command again, or bake into "
+                            "another folder");
+      }
+      throw std::runtime_error("cannot lock " + path_ + ": " + std::strerror(error));
+    }
+    struct stat held {};
+    struct stat named {};
+    if (::fstat(fd_, &held) == 0 && ::stat(path_.c_str(), &named) == 0 &&
+        held.st_dev == named.st_dev && held.st_ino == named.st_ino) {
+      return;
+    }
+    ::close(fd_);  // the file was removed after it was opened: lock the one there now
+    fd_ = -1;
+    if (attempt >= 100) throw std::runtime_error("cannot lock " + path_ + ": it keeps changing");
   }
 }
 
 TiledBakeLock::~TiledBakeLock() {
-  if (fd_ >= 0) ::close(fd_);
+  if (fd_ < 0) return;
+  // Removed while still locked: see the constructor.
+  ::unlink(path_.c_str());
+  ::close(fd_);
 }
 
 void checkTiledBakeOptions(const BakeOptions& bake, const TiledBakeOptions& tiled) {
@@ -135,6 +153,16 @@ std::optional<std::pair<int, int>> tileOfName(const std::string& name) {
   return std::pair{row, column};
 }
 
+// (row, column) of a file named as skyViewFactorTileName names SVF tiles.
+std::optional<std::pair<int, int>> skyViewFactorTileOfName(const std::string& name) {
+  int row = -1, column = -1;
+  if (std::sscanf(name.c_str(), "svf_%4d_%4d.tif", &row, &column) != 2 || row < 0 || column < 0 ||
+      skyViewFactorTileName(row, column) != name) {
+    return std::nullopt;
+  }
+  return std::pair{row, column};
+}
+
 // Throws InputError, having touched nothing, unless the folder is empty of
 // bakes or holds this bake's: its index.txt (finished) and manifest.txt
 // (started) must describe this bake; a folder with neither (a bake
@@ -178,6 +206,11 @@ void checkFolderHoldsThisBake(const std::string& folder, const ApertureTileIndex
 }
 
 }  // namespace
+
+bool isTiledBakeFileName(const std::string& name) {
+  return name == "index.txt" || name == kTiledBakeManifestName || name == kTiledBakeLockName ||
+         name == kSkyViewFactorMosaicName || tileOfName(name) || skyViewFactorTileOfName(name);
+}
 
 bool tileFinished(const ApertureTileIndex& index, const std::string& folder, int row, int column) {
   const std::string path = (fs::path(folder) / apertureTileName(row, column)).string();

@@ -19,13 +19,23 @@
 
 namespace aal {
 
-// The file in a tile folder whose flock a bake holds while it runs. It is
-// left in place: removing it would let a third bake lock a new file while a
-// second still holds the old one.
+// The file in a tile folder whose flock a bake holds while it runs. The bake
+// removes it when it ends (TiledBakeLock); only a killed one leaves it.
 constexpr const char* kTiledBakeLockName = ".aal-bake.lock";
 // Written into the folder before any tile, in index.txt's format: whose
 // bake the folder holds while it has no index.txt yet.
 constexpr const char* kTiledBakeManifestName = "manifest.txt";
+
+// Whether a tiled bake (aal-bake --tile-size, aal-bake-mpi) writes a file
+// of this name into its folder: a tile (apertureTileName), an SVF tile
+// (skyViewFactorTileName), the SVF mosaic, index.txt, the manifest or the
+// lock. An input of such a name in the folder would be overwritten
+// (tools/tool_paths.h checks for it before any work).
+bool isTiledBakeFileName(const std::string& name);
+// Those names in words, for messages.
+constexpr const char* kTiledBakeFileNames =
+    "tile_ROW_COL.exr, svf_ROW_COL.tif, sky_view_factor.vrt, index.txt, manifest.txt, "
+    ".aal-bake.lock";
 
 // Another process holds the folder's lock: a runtime condition (exit 1), not
 // bad input; the same command succeeds once that bake has finished.
@@ -38,7 +48,9 @@ class TiledBakeBusy : public std::runtime_error {
 // object lives (the kernel drops it when the process dies). The folder must
 // exist. Throws TiledBakeBusy, naming the folder, when another process (or
 // another open of the file) holds it, std::runtime_error when the file
-// cannot be opened.
+// cannot be opened. The file is removed when the lock is released: a bake
+// refused, interrupted or finished leaves no lock file behind (a killed one
+// does, and the next bake in the folder removes it).
 class TiledBakeLock {
  public:
   explicit TiledBakeLock(const std::string& folder);
@@ -47,6 +59,7 @@ class TiledBakeLock {
   TiledBakeLock& operator=(const TiledBakeLock&) = delete;
 
  private:
+  std::string path_;
   int fd_ = -1;
 };
 

@@ -73,25 +73,18 @@ struct Options : aal::SweepCommandLine {
   int tileSize = 0;  // 0: tiled only above the in-memory limit
 };
 
-// A tiled bake's output folder: an existing writable folder, or a new one
-// in an existing writable folder.
-void requireWritableFolder(const std::string& path) {
-  namespace fs = std::filesystem;
-  std::error_code error;
-  if (fs::exists(path, error) && !fs::is_directory(path, error)) {
-    throw aal::InputError("a tiled bake writes a folder: " + path + " is a file");
-  }
-  if (fs::is_directory(path, error)) {
-    aal::requireWritableOutput((fs::path(path) / "index.txt").string());
-  } else {
-    aal::requireWritableOutput(path);  // its parent folder exists and is writable
-  }
-}
-
 void checkOutputs(const Options& o, bool tiled) {
+  // Every output against the DEM's files (a VRT's sources too) and each
+  // other; a tiled bake's files by their names in its folder.
+  const aal::NamedPaths dem = aal::inputFiles("DEM", o.dem, /*raster=*/true);
+  const aal::NamedPaths others = {
+      {"--svf", o.svfPath}, {"--visible", o.visiblePath}, {"--horizons", o.horizonsPath}};
   if (tiled) {
-    requireWritableFolder(o.output);
+    aal::checkTiledBakeOutput(dem, o.output, others);
   } else {
+    aal::NamedPaths outputs = {{"-o", o.output}};
+    aal::append(outputs, others);
+    aal::checkDistinctFiles(dem, outputs);
     // Checked before the bake, not by the EXR writer after it.
     std::string extension = std::filesystem::path(o.output).extension().string();
     for (char& c : extension) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
@@ -148,10 +141,6 @@ int run(const Options& o) {
   // Outputs are checked before minutes of work, not after (again once the
   // DEM's size has decided the tiling).
   const bool askedTiled = o.tileSize > 0 || std::filesystem::is_directory(o.output);
-  aal::checkDistinctFiles({{"DEM", o.dem}}, {{"-o", o.output},
-                                             {"--svf", o.svfPath},
-                                             {"--visible", o.visiblePath},
-                                             {"--horizons", o.horizonsPath}});
   checkOutputs(o, askedTiled);
   // A folder another bake is writing is refused before the DEM is read
   // (exit 1, TiledBakeBusy); the lock is held to the end of the bake.

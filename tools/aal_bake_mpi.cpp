@@ -73,16 +73,8 @@ int checkOnRankZero(int rank, const Options& o) {
   int status = 0;
   if (rank == 0) {
     try {
-      aal::checkDistinctFiles({{"DEM", o.dem}}, {{"-o", o.output}});
+      aal::checkTiledBakeOutput(aal::inputFiles("DEM", o.dem, /*raster=*/true), o.output);
       aal::checkSweepOptions(o);
-      namespace fs = std::filesystem;
-      std::error_code error;
-      if (fs::exists(o.output, error) && !fs::is_directory(o.output, error)) {
-        throw aal::InputError("a tiled bake writes a folder: " + o.output + " is a file");
-      }
-      aal::requireWritableOutput(fs::is_directory(o.output, error)
-                                     ? (fs::path(o.output) / "index.txt").string()
-                                     : o.output);
       const aal::DemLoadOptions load = aal::demLoadOptions(o);
       const aal::DemSource dem(o.dem, load);
       aal::demGeometry(dem, load);  // its warnings, once

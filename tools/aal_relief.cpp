@@ -116,11 +116,13 @@ std::pair<double, double> parseStretch(const std::string& text) {
 }
 
 void checkOptions(const Options& o) {
-  aal::checkDistinctFiles({{"DEM", o.dem},
-                           {"--aperture", o.aperture},
-                           {"--color-relief", o.colorRelief},
-                           {"--water-mask", o.waterMask}},
-                          {{"-o", o.output}});
+  // Against every file read: the rasters' (a VRT's sources too), a tiled
+  // aperture map's.
+  aal::NamedPaths inputs = aal::inputFiles("DEM", o.dem, /*raster=*/true);
+  aal::append(inputs, aal::inputFiles("--aperture", o.aperture));
+  aal::append(inputs, aal::inputFiles("--water-mask", o.waterMask, /*raster=*/true));
+  inputs.push_back({"--color-relief", o.colorRelief});
+  aal::checkDistinctFiles(inputs, {{"-o", o.output}});
   if (!endsWith(o.output, ".tif") && !endsWith(o.output, ".tiff")) {
     throw aal::InputError("output " + o.output + " must end in .tif or .tiff (a GeoTIFF)");
   }

@@ -1,4 +1,5 @@
 // aal-render: headless ambient aperture lighting of a DEM into an image.
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -116,7 +117,8 @@ aal::SolarPosition sunFor(const Options& o, const aal::Heightfield& field) {
   return sun;
 }
 
-// A sequence's checks and its time range, before any work.
+// A sequence's checks and its time range, before any work; its camera path
+// is read once the paths are checked (run).
 struct Sequence {
   std::optional<aal::CameraPath> path;
   std::optional<aal::UtcTime> start, end;
@@ -145,7 +147,6 @@ std::optional<Sequence> sequenceOf(const Options& o, bool reference) {
     if (!o.camera.empty() || !o.lookAt.empty()) {
       throw aal::InputError("--camera-path sets the camera: leave out --camera and --look-at");
     }
-    s.path = aal::CameraPath::load(o.cameraPath);
   }
   if (!o.timeRange.empty()) {
     if (!o.time.empty() || o.sunAzimuth) {
@@ -202,6 +203,37 @@ int renderReferenceImage(const Options& o, const aal::Heightfield& field,
   return aal::kExitOk;
 }
 
+// The horizon modes --compare adds, one per --horizons file: "horizon", or
+// with several "horizon-STEM" (numbered when a name is taken, so that no
+// output is lost).
+std::vector<std::string> horizonModeNames(const std::vector<std::string>& horizonPaths,
+                                          const std::vector<aal::ComparedMode>& defaultModes) {
+  std::vector<std::string> taken, names;
+  for (const aal::ComparedMode& m : defaultModes) taken.push_back(m.name);
+  for (size_t i = 0; i < horizonPaths.size(); ++i) {
+    std::string name = horizonPaths.size() == 1
+                           ? std::string("horizon")
+                           : "horizon-" + std::filesystem::path(horizonPaths[i]).stem().string();
+    for (const std::string& other : taken) {
+      if (other == name) name.append("-").append(std::to_string(i + 1));
+    }
+    taken.push_back(name);
+    names.push_back(name);
+  }
+  return names;
+}
+
+// The modes --compare renders, by name: comparisonFileNames gives its files.
+std::vector<std::string> comparedModeNames(const Options& o) {
+  aal::FrameSettings settings;
+  settings.obscurance.enabled = !o.noObscurance;
+  std::vector<std::string> names;
+  const std::vector<aal::ComparedMode> modes = aal::defaultComparedModes(settings);
+  for (const aal::ComparedMode& m : modes) names.push_back(m.name);
+  for (const std::string& name : horizonModeNames(o.horizons, modes)) names.push_back(name);
+  return names;
+}
+
 // --compare FOLDER: every mode against the reference, a table on stdout.
 // With several horizon maps, one horizon mode for each ("horizon-STEM"), the
 // scene given each map before its rendering: one reference for all.
@@ -211,15 +243,9 @@ int runComparison(const Options& o, const aal::Heightfield& field, aal::TerrainS
                   const std::vector<std::shared_ptr<const aal::HorizonMap>>& horizons) {
   aal::ProgressBar bar("ray tracing the reference", !o.quiet);
   std::vector<aal::ComparedMode> modes = aal::defaultComparedModes(settings);
+  const std::vector<std::string> names = horizonModeNames(o.horizons, modes);
   for (size_t i = 0; i < horizons.size(); ++i) {
-    std::string name = horizons.size() == 1
-                           ? std::string("horizon")
-                           : "horizon-" + std::filesystem::path(o.horizons[i]).stem().string();
-    // Files of the same name in other folders: numbered, so no output is lost.
-    for (const aal::ComparedMode& other : modes) {
-      if (other.name == name) name.append("-").append(std::to_string(i + 1));
-    }
-    aal::ComparedMode m{name, aal::ShadingMode::Horizon, settings.obscurance.enabled};
+    aal::ComparedMode m{names[i], aal::ShadingMode::Horizon, settings.obscurance.enabled};
     if (horizons.size() > 1) {
       // Laid for the one sun (horizonPairFor): no re-lay in the frame.
       const int first = aal::horizonPairFor(horizons[i]->directions,
@@ -262,6 +288,13 @@ void setSequenceFrame(const Options& o, const Sequence& seq, const aal::Heightfi
   }
 }
 
+// The MP4 a sequence of PNG frames makes with ffmpeg: OUT.mp4 (none for
+// EXR frames).
+std::string moviePath(const Options& o) {
+  if (aal::wantsLinearOutput(o.output)) return {};
+  return std::filesystem::path(o.output).replace_extension(".mp4").string();
+}
+
 // --camera-path / --time-range: frames OUT-0001.ext ... and, for PNG frames
 // with ffmpeg installed, OUT.mp4 (docs/rendering.md). The renderer re-lays
 // the horizons when a frame's sun needs it (TerrainRenderer::record).
@@ -289,7 +322,7 @@ int renderSequence(const Options& o, const Sequence& seq, const aal::Heightfield
   }
   if (aal::wantsLinearOutput(o.output)) return aal::kExitOk;  // EXR frames: no movie
   const std::optional<std::string> ffmpeg = aal::findFfmpeg();
-  const std::string mp4 = (std::filesystem::path(o.output).replace_extension(".mp4")).string();
+  const std::string mp4 = moviePath(o);
   if (!ffmpeg) {
     if (!o.quiet) {
       std::fprintf(stderr, "aal-render: ffmpeg not found (Debian: apt-get install ffmpeg): no %s\n",
@@ -300,6 +333,81 @@ int renderSequence(const Options& o, const Sequence& seq, const aal::Heightfield
   aal::encodeMp4(*ffmpeg, aal::sequencePattern(o.output, seq.frames), o.fps, mp4);
   if (!o.quiet) std::fprintf(stderr, "aal-render: wrote %s\n", mp4.c_str());
   return aal::kExitOk;
+}
+
+// The frames of a sequence of `count`, OUT-0001.png ..., by name in -o's
+// folder.
+aal::OutputFamily frameFiles(const std::string& output, int count) {
+  const std::string folder = std::filesystem::path(output).parent_path().string();
+  const auto name = [&](int i) {
+    return std::filesystem::path(aal::sequenceFramePath(output, i, count)).filename().string();
+  };
+  return {"-o", output, folder.empty() ? "." : folder,
+          "the frames " + name(0) + (count > 1 ? " .. " + name(count - 1) : ""),
+          [output, count](const std::string& file) {
+            return aal::isSequenceFrameName(output, count, file);
+          }};
+}
+
+// requireWritableOutput for a file in `folder`, which writeComparison
+// creates with its parents when missing: the nearest folder that exists
+// must take it.
+void requireWritableComparison(const std::string& folder, const std::string& file) {
+  namespace fs = std::filesystem;
+  std::error_code error;
+  if (fs::exists(folder, error) && !fs::is_directory(folder, error)) {
+    throw aal::InputError("--compare " + folder +
+                          " is a file: --compare names a folder for its images; give a folder");
+  }
+  fs::path missing = fs::absolute(folder, error) / file;
+  while (missing.has_parent_path() && missing.parent_path() != missing.root_path() &&
+         !fs::exists(missing.parent_path(), error)) {
+    missing = missing.parent_path();
+  }
+  aal::requireWritableOutput(missing.string());
+}
+
+// Every path the run writes against every file it reads, before any work:
+// -o, or a sequence's frames and its movie, or the files of --compare; the
+// DEM with the files GDAL reads for it (a VRT's sources), a tiled aperture
+// map's files (docs/dem-input.md, "Outputs").
+void checkPaths(const Options& o, const std::optional<Sequence>& sequence) {
+  aal::NamedPaths inputs = aal::inputFiles("DEM", o.dem, /*raster=*/true);
+  aal::append(inputs, aal::inputFiles("--aperture", o.aperture));
+  inputs.push_back({"--albedo", o.albedo});
+  inputs.push_back({"--camera-path", o.cameraPath});
+  for (const std::string& path : o.horizons) inputs.push_back({"--horizons", path});
+  aal::NamedPaths outputs;
+  std::vector<aal::OutputFamily> families;
+  if (!o.compare.empty()) {
+    for (const std::string& name : aal::comparisonFileNames(comparedModeNames(o))) {
+      outputs.push_back({"--compare", (std::filesystem::path(o.compare) / name).string(),
+                         "written by --compare " + o.compare});
+    }
+  } else {
+    outputs.push_back({"-o", o.output});
+    if (sequence) {
+      families.push_back(frameFiles(o.output, sequence->frames));
+      // ffmpeg writes it only when installed (renderSequence).
+      if (const std::string mp4 = moviePath(o); !mp4.empty() && aal::findFfmpeg()) {
+        outputs.push_back({"-o", mp4, "the movie of the frames"});
+      }
+    }
+  }
+  aal::checkDistinctFiles(inputs, outputs, families);
+  for (const aal::RunPath& out : outputs) {
+    if (out.option == "--compare") {
+      requireWritableComparison(o.compare, std::filesystem::path(out.path).filename().string());
+    } else {
+      aal::requireWritableOutput(out.path);
+    }
+  }
+  for (const aal::OutputFamily& frames : families) {
+    aal::requireWritableFamily(
+        frames, std::filesystem::path(aal::sequenceFramePath(o.output, 0, sequence->frames))
+                    .filename()
+                    .string());
+  }
 }
 
 int run(const Options& o) {
@@ -316,17 +424,9 @@ int run(const Options& o) {
   if (reference && !o.compare.empty()) {
     throw aal::InputError("--compare renders the reference itself: leave out --mode reference");
   }
-  aal::checkDistinctFiles({{"DEM", o.dem},
-                           {"--aperture", o.aperture},
-                           {"--albedo", o.albedo},
-                           {"--horizons", o.horizons.empty() ? "" : o.horizons.front()}},
-                          {{"-o", o.output}});
-  for (size_t i = 1; i < o.horizons.size(); ++i) {
-    if (o.compare.empty()) {
-      throw aal::InputError("--horizons given " + std::to_string(o.horizons.size()) +
-                            " times: only --compare takes several");
-    }
-    aal::checkDistinctFiles({{"--horizons", o.horizons[i]}}, {{"-o", o.output}});
+  if (o.horizons.size() > 1 && o.compare.empty()) {
+    throw aal::InputError("--horizons given " + std::to_string(o.horizons.size()) +
+                          " times: only --compare takes several");
   }
   if (mode == aal::ShadingMode::Horizon && o.horizons.empty()) {
     throw aal::InputError("--mode horizon needs --horizons FILE (aal-bake --horizons)");
@@ -349,14 +449,10 @@ int run(const Options& o) {
   if (o.sunAzimuth.has_value() != o.sunElevation.has_value()) {
     throw aal::InputError("give --sun-azimuth and --sun-elevation together");
   }
-  const std::optional<Sequence> sequence = sequenceOf(o, reference);
-  if (sequence) {
-    aal::checkDistinctFiles({{"DEM", o.dem},
-                             {"--aperture", o.aperture},
-                             {"--albedo", o.albedo},
-                             {"--camera-path", o.cameraPath}},
-                            {{"-o", o.output}});
-  }
+  std::optional<Sequence> sequence = sequenceOf(o, reference);
+  checkPaths(o, sequence);
+  // Read once the paths are known to be apart.
+  if (sequence && !o.cameraPath.empty()) sequence->path = aal::CameraPath::load(o.cameraPath);
 
   if (!o.albedo.empty() && !o.albedoValue.empty()) {
     throw aal::InputError("give --albedo or --albedo-value, not both");

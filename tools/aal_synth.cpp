@@ -3,13 +3,17 @@
 // south-west corner), so that large test DEMs are made on demand instead of
 // being committed.
 #include <algorithm>
+#include <cctype>
 #include <cstdio>
+#include <cstdlib>
+#include <filesystem>
 #include <string>
 
 #include <CLI/CLI.hpp>
 
 #include "aperture/terrain/io/atomic_file.h"
 #include "aperture/terrain/io/geotiff_writer.h"
+#include "aperture/terrain/io/memory_budget.h"
 #include "aperture/terrain/synthetic.h"
 #include "aperture/tools/tool_main.h"
 #include "aperture/tools/tool_options.h"
@@ -39,7 +43,23 @@ int main(int argc, char** argv) {
 
   return aal::runTool(app, argc, argv, [&] {
     s.width = s.height = size;
+    // The writer makes a GeoTIFF whatever the name says: a name that says
+    // otherwise (x.png) would mislead every program that trusts it.
+    std::string extension = std::filesystem::path(output).extension().string();
+    for (char& c : extension) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+    if (extension != ".tif" && extension != ".tiff") {
+      throw aal::InputError("-o " + output +
+                            ": aal-synth writes a GeoTIFF; give a name ending in .tif or .tiff");
+    }
     aal::requireWritableOutput(output);
+    // The heights are held whole (4 bytes per texel) while GDAL writes them:
+    // refused with the numbers when they do not fit, as the other tools
+    // refuse a DEM (terrain/io/memory_budget.h, AAL_MEMORY_LIMIT).
+    aal::requireMemory(output, 4.0 * size * size,
+                       "its " + std::to_string(size) + " x " + std::to_string(size) + " heights",
+                       std::getenv("AAL_MEMORY_LIMIT")
+                           ? "give a smaller --size, or a larger AAL_MEMORY_LIMIT"
+                           : "give a smaller --size");
     const aal::Heightfield field = aal::makeSyntheticTerrain(s);
     aal::GeoReference geo;
     geo.crs = aal::CrsKind::Projected;

@@ -53,11 +53,14 @@ void checkScript(const Options& o) {
   if (o.frames && *o.frames < 1) {
     throw aal::InputError("--frames must be at least 1, got " + std::to_string(*o.frames));
   }
-  aal::checkDistinctFiles({{"DEM", o.dem},
-                           {"--aperture", o.aperture},
-                           {"--horizons", o.horizons},
-                           {"--camera-path", o.cameraPath}},
-                          {{"--screenshot", o.screenshot}});
+  // The screenshot against every file read: the DEMs' (a VRT's sources too),
+  // a tiled aperture map's.
+  aal::NamedPaths inputs = aal::inputFiles("DEM", o.dem, /*raster=*/true);
+  aal::append(inputs, aal::inputFiles("--aperture", o.aperture));
+  aal::append(inputs, aal::inputFiles("--drop", o.drop, /*raster=*/true));
+  inputs.push_back({"--horizons", o.horizons});
+  inputs.push_back({"--camera-path", o.cameraPath});
+  aal::checkDistinctFiles(inputs, {{"--screenshot", o.screenshot}});
   if (!o.screenshot.empty()) {
     if (!o.frames) throw aal::InputError("--screenshot needs --frames N (saved after frame N)");
     if (!aal::isSupportedImageOutput(o.screenshot) || aal::wantsLinearOutput(o.screenshot)) {

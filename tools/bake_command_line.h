@@ -3,16 +3,22 @@
 // --help and defaults cannot drift apart (docs/baking.md).
 #pragma once
 
+#include <filesystem>
 #include <optional>
 #include <string>
+#include <system_error>
+#include <vector>
 
 #include <CLI/CLI.hpp>
 
 #include "aperture/preprocess/bake.h"
+#include "aperture/preprocess/tiled_bake.h"
 #include "aperture/terrain/errors.h"
 #include "aperture/terrain/io/dem_loader.h"
 #include "aperture/terrain/io/map_compression.h"
 #include "aperture/tools/tool_main.h"
+#include "aperture/tools/tool_options.h"
+#include "aperture/tools/tool_paths.h"
 
 namespace aal {
 
@@ -77,6 +83,35 @@ inline void addMapStorageOptions(CLI::App& app, SweepCommandLine& o) {
 inline void checkSweepOptions(const SweepCommandLine& o) {
   if (o.nearReach > 0 && o.maxDistance > 0) {
     throw InputError("--near-reach is the far field's, which --max-distance leaves out");
+  }
+}
+
+// The files a tiled bake writes into its folder, by name (docs/baking.md,
+// "The tile folder").
+inline OutputFamily tileFolderFiles(const std::string& folder) {
+  return {"-o", folder, folder, std::string("the tiled bake's files (") + kTiledBakeFileNames + ")",
+          isTiledBakeFileName};
+}
+
+// InputError unless `folder` can be a tiled bake's output (-o): an existing
+// writable folder, or a new one in an existing writable folder, whose files
+// of the bake's names are writable files, none of them one of `inputs` (a
+// DEM named svf_0000_0000.tif in it, or a VRT's source there), and the
+// folder none of `otherOutputs`.
+inline void checkTiledBakeOutput(const NamedPaths& inputs, const std::string& folder,
+                                 const NamedPaths& otherOutputs = {}) {
+  namespace fs = std::filesystem;
+  NamedPaths outputs = {{"-o", folder}};
+  append(outputs, otherOutputs);
+  checkDistinctFiles(inputs, outputs, {tileFolderFiles(folder)});
+  std::error_code error;
+  if (fs::exists(folder, error) && !fs::is_directory(folder, error)) {
+    throw InputError("a tiled bake writes a folder: " + folder + " is a file");
+  }
+  if (fs::is_directory(folder, error)) {
+    requireWritableFamily(tileFolderFiles(folder), "index.txt");
+  } else {
+    requireWritableOutput(folder);  // its parent folder exists and is writable
   }
 }
 

@@ -121,6 +121,24 @@ Comparison compareModes(TerrainRenderer& renderer, const TerrainScene& scene,
   return c;
 }
 
+std::string comparisonImageName(const std::string& mode) {
+  return mode + ".png";
+}
+
+std::string comparisonErrorImageName(const std::string& mode) {
+  return mode + "-error.png";
+}
+
+std::vector<std::string> comparisonFileNames(const std::vector<std::string>& modeNames) {
+  std::vector<std::string> names = {kComparisonReferenceLinearName, kComparisonReferenceImageName};
+  for (const std::string& mode : modeNames) {
+    names.push_back(comparisonImageName(mode));
+    names.push_back(comparisonErrorImageName(mode));
+  }
+  names.push_back(kComparisonTableName);
+  return names;
+}
+
 void writeComparison(const std::string& folder, const Comparison& c, float exposure) {
   std::filesystem::create_directories(folder);
   const auto path = [&](const std::string& name) {
@@ -129,12 +147,12 @@ void writeComparison(const std::string& folder, const Comparison& c, float expos
   const uint32_t w = c.reference.width, h = c.reference.height;
 
   const FrameResult reference = referenceFrame(c.reference, exposure);
-  writeFrame(path("reference.exr"), reference);
-  writeFrame(path("reference.png"), reference);
+  writeFrame(path(kComparisonReferenceLinearName), reference);
+  writeFrame(path(kComparisonReferenceImageName), reference);
 
   std::string csv = "mode,relative_rmse,mean_relative_error\n";
   for (const ModeError& e : c.modes) {
-    writeFrame(path(e.mode + ".png"), e.frame);
+    writeFrame(path(comparisonImageName(e.mode)), e.frame);
     FrameResult error = imageFrame(w, h);
     for (size_t i = 0; i < c.reference.radiance.size(); ++i) {
       uint8_t* px = &error.display[4 * i];
@@ -150,11 +168,11 @@ void writeComparison(const std::string& folder, const Comparison& c, float expos
       const auto v = static_cast<uint8_t>(std::lround(255.0f * std::min(1.0f, relative / 0.5f)));
       px[0] = px[1] = px[2] = v;
     }
-    writeFrame(path(e.mode + "-error.png"), error);
+    writeFrame(path(comparisonErrorImageName(e.mode)), error);
     csv += e.mode + "," + std::to_string(e.relativeRmse) + "," +
            std::to_string(e.meanRelativeError) + "\n";
   }
-  AtomicOutput out(path("errors.csv"));
+  AtomicOutput out(path(kComparisonTableName));
   {
     std::ofstream file(out.temporaryPath());
     file << csv;

@@ -78,11 +78,22 @@ Comparison compareModes(TerrainRenderer& renderer, const TerrainScene& scene,
                         const std::vector<ComparedMode>& modes, const ComparisonOptions& options,
                         const std::function<void(double)>& progress = {});
 
+// The names of the files writeComparison writes into its folder, one
+// definition for the writer and for aal-render's check of its paths before
+// any work (tools/tool_paths.h): the reference's, each mode's and the table.
+constexpr const char* kComparisonReferenceLinearName = "reference.exr";
+constexpr const char* kComparisonReferenceImageName = "reference.png";
+constexpr const char* kComparisonTableName = "errors.csv";
+std::string comparisonImageName(const std::string& mode);       // NAME.png
+std::string comparisonErrorImageName(const std::string& mode);  // NAME-error.png
+// Every file for modes named `modeNames`, in the order they are written.
+std::vector<std::string> comparisonFileNames(const std::vector<std::string>& modeNames);
+
 // Writes into `folder` (created if missing): reference.exr (linear) and
 // reference.png (tone-mapped with `exposure`), NAME.png and NAME-error.png
 // (per-pixel |Y_gpu - Y_ref| / Y_ref, black 0 to white >= 50 %, sky blue) for
-// each mode, and errors.csv (name, relative RMSE, mean relative error).
-// Files go through temporary files renamed into place.
+// each mode, and errors.csv (name, relative RMSE, mean relative error):
+// comparisonFileNames. Files go through temporary files renamed into place.
 void writeComparison(const std::string& folder, const Comparison& comparison, float exposure);
 
 }  // namespace aal

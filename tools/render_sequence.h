@@ -15,6 +15,7 @@
 #include <vector>
 
 #include "aperture/terrain/errors.h"
+#include "aperture/terrain/io/atomic_file.h"
 #include "aperture/terrain/light/solar_position.h"
 
 extern char** environ;
@@ -34,6 +35,24 @@ inline std::string sequenceFramePath(const std::string& output, int index, int c
   number = "-" + std::string(size_t(std::max(0, sequenceDigits(count) - int(number.size()))), '0') +
            number;
   return (p.parent_path() / (p.stem().string() + number + p.extension().string())).string();
+}
+// Whether `name` (a file name, no folder) is one of the `count` frames
+// sequenceFramePath gives for `output`: what a sequence writes into the
+// output's folder, checked against the inputs before any work.
+inline bool isSequenceFrameName(const std::string& output, int count, const std::string& name) {
+  const std::filesystem::path p(output);
+  const std::string stem = p.stem().string() + "-", extension = p.extension().string();
+  const size_t digits = static_cast<size_t>(sequenceDigits(count));
+  if (name.size() != stem.size() + digits + extension.size() || name.rfind(stem, 0) != 0 ||
+      name.compare(name.size() - extension.size(), extension.size(), extension) != 0) {
+    return false;
+  }
+  long index = 0;
+  for (size_t i = stem.size(); i < stem.size() + digits; ++i) {
+    if (name[i] < '0' || name[i] > '9') return false;
+    index = index * 10 + (name[i] - '0');
+  }
+  return index >= 1 && index <= count;
 }
 // ffmpeg's input pattern for those frames (OUT-%04d.ext).
 inline std::string sequencePattern(const std::string& output, int count) {
@@ -71,16 +90,20 @@ inline std::optional<std::string> findFfmpeg() {
 }
 
 // Encodes the PNG frames `pattern` at `fps` into `mp4` (H.264, yuv420p,
-// dimensions padded to even numbers as the codec needs) with `ffmpeg`; throws
-// std::runtime_error when ffmpeg fails (its messages went to stderr).
+// dimensions padded to even numbers as the codec needs) with `ffmpeg`,
+// through a temporary file renamed into place (AtomicOutput): a failed
+// encoding leaves an earlier `mp4` as it was. Throws std::runtime_error when
+// ffmpeg fails (its messages went to stderr).
 inline void encodeMp4(const std::string& ffmpeg, const std::string& pattern, double fps,
                       const std::string& mp4) {
+  AtomicOutput output(mp4);  // checkOutputWritable: a file, not a device
   const std::string rate = std::to_string(fps);
+  const std::string temporary = output.temporaryPath().string();
   std::vector<std::string> args = {
       ffmpeg,       "-y",      "-loglevel", "error",   "-framerate",
       rate,         "-i",      pattern,     "-vf",     "pad=ceil(iw/2)*2:ceil(ih/2)*2",
       "-c:v",       "libx264", "-pix_fmt",  "yuv420p", "-movflags",
-      "+faststart", mp4};
+      "+faststart", temporary};
   std::vector<char*> argv;
   for (std::string& a : args) argv.push_back(a.data());
   argv.push_back(nullptr);
@@ -90,10 +113,9 @@ inline void encodeMp4(const std::string& ffmpeg, const std::string& pattern, dou
   }
   int status = 0;
   if (waitpid(pid, &status, 0) != pid || !WIFEXITED(status) || WEXITSTATUS(status) != 0) {
-    std::error_code ignored;
-    std::filesystem::remove(mp4, ignored);
     throw std::runtime_error(ffmpeg + " failed to encode " + pattern + " into " + mp4);
   }
+  output.commit();
 }
 
 }  // namespace aal

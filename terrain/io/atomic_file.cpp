@@ -20,11 +20,69 @@ namespace aal {
 
 namespace fs = std::filesystem;
 
+namespace {
+
+// What a path that is not a regular file is, in words.
+std::string kindOf(fs::file_type type) {
+  switch (type) {
+    case fs::file_type::character: return "a character device";
+    case fs::file_type::block: return "a block device";
+    case fs::file_type::fifo: return "a FIFO (a pipe)";
+    case fs::file_type::socket: return "a socket";
+    default: return "not a regular file";
+  }
+}
+
+// The folder of the kernel's devices and interfaces (/dev, /proc, /sys) that
+// `path` lies in, by its own name or where its links lead; empty when none.
+// Entries there are device nodes and kernel files: a write renamed onto one
+// replaces the node with a regular file (as root, /dev/null itself).
+std::string systemFolderOf(const fs::path& path) {
+  std::error_code error;
+  const fs::path absolute = fs::absolute(path, error).lexically_normal();
+  const fs::path canonical = fs::weakly_canonical(absolute, error);
+  // A link that leads nowhere yet (weakly_canonical keeps it as it is) would
+  // create its target.
+  fs::path target = absolute;
+  for (int hops = 0; hops < 40 && fs::is_symlink(fs::symlink_status(target, error)); ++hops) {
+    const fs::path next = fs::read_symlink(target, error);
+    if (error) break;
+    target = next.is_absolute() ? next : target.parent_path() / next;
+  }
+  target = fs::weakly_canonical(target, error);
+  for (const fs::path& p : {absolute, canonical, target}) {
+    auto part = p.begin();
+    if (part == p.end() || *part != "/" || ++part == p.end()) continue;
+    for (const char* folder : {"dev", "proc", "sys"}) {
+      if (*part == folder) return std::string("/") + folder;
+    }
+  }
+  return {};
+}
+
+}  // namespace
+
 void checkOutputWritable(const fs::path& path) {
   if (path.empty()) throw std::runtime_error("output path is empty");
   std::error_code error;
-  if (fs::is_directory(path, error)) {
+  // Followed through symbolic links: what a write would reach.
+  const fs::file_status status = fs::status(path, error);
+  if (fs::is_directory(status)) {
     throw std::runtime_error("output " + path.string() + " is a folder, not a file");
+  }
+  if (fs::exists(status) && !fs::is_regular_file(status)) {
+    std::string link;
+    if (fs::is_symlink(fs::symlink_status(path, error))) {
+      link = " (a link to " + fs::read_symlink(path, error).string() + ")";
+    }
+    throw std::runtime_error("output " + path.string() + link + " is " + kindOf(status.type()) +
+                             ", not a file: outputs are written to regular files only; "
+                             "give the path of a file");
+  }
+  if (const std::string system = systemFolderOf(path); !system.empty()) {
+    throw std::runtime_error("output " + path.string() + " is in " + system +
+                             ", which holds devices and kernel files, not files to write: "
+                             "give the path of a file elsewhere");
   }
   const fs::path folder = path.has_parent_path() ? path.parent_path() : fs::path(".");
   if (!fs::is_directory(folder, error)) {
@@ -58,6 +116,10 @@ pid_t temporaryOwner(const std::string& name) {
 }
 
 }  // namespace
+
+bool isTemporaryName(const std::string& name) {
+  return temporaryOwner(name) > 0;
+}
 
 void removeDeadTemporaries(const fs::path& folder) {
   std::error_code error;

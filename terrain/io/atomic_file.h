@@ -10,7 +10,11 @@
 namespace aal {
 
 // Throws std::runtime_error when `path` cannot be created or replaced (missing
-// folder, no permission, is a folder). Call it before long work starts.
+// folder, no permission, is a folder), and when it is not a file to write:
+// an existing path that is not a regular file (a device, a FIFO, a socket;
+// symbolic links followed) or any path in /dev, /proc or /sys. The rename
+// onto such a path would replace the node itself with a regular file
+// (docs/dem-input.md, "Outputs"). Call it before long work starts.
 void checkOutputWritable(const std::filesystem::path& path);
 
 // Removes the temporary files (".NAME.tmp-PID-N.EXT") in `folder` whose
@@ -18,6 +22,10 @@ void checkOutputWritable(const std::filesystem::path& path);
 // other files and sub-folders are kept; errors are ignored (a hint of
 // tidiness, not a guarantee). AtomicOutput calls it on its folder.
 void removeDeadTemporaries(const std::filesystem::path& folder);
+// Whether `name` (a file name, no folder) has the form of those temporaries,
+// ".NAME.tmp-PID-N[.EXT]": a file of that name in an output's folder is
+// removed by a write there once process PID is gone.
+bool isTemporaryName(const std::string& name);
 // Whether AtomicOutput calls it (on unless turned off). The ranks of an MPI
 // bake turn it off: their folder is written from other hosts at the same
 // time, and a PID names a process only on its own host, so a live rank's

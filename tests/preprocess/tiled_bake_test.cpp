@@ -452,10 +452,13 @@ TEST(TiledBake, ASecondBakeIntoALockedFolderIsRefusedTouchingNothing) {
   const Heightfield field = fbmField(100, 70);
   const std::string folder = (dir.path() / "tiles").string();
   interruptedBake(field, folder);
-  const auto before = test::folderContents(folder);
+  // The interrupted bake took its lock file with it.
+  const auto interrupted = test::folderContents(folder);
+  EXPECT_EQ(interrupted.count(kTiledBakeLockName), 0u);
   {
     // As a running bake holds it: the same file, another open of it.
     const TiledBakeLock running(folder);
+    const auto before = test::folderContents(folder);
     TiledBakeOptions t;
     t.tileSize = 32;
     t.sourceName = "first.tif";
@@ -469,18 +472,23 @@ TEST(TiledBake, ASecondBakeIntoALockedFolderIsRefusedTouchingNothing) {
     EXPECT_EQ(test::changedFiles(before, test::folderContents(folder)), std::vector<std::string>{});
     EXPECT_THROW(TiledBakeLock{folder}, TiledBakeBusy);
   }
+  // Released by the bake that held it, the lock file goes too.
+  EXPECT_EQ(test::changedFiles(interrupted, test::folderContents(folder)),
+            std::vector<std::string>{});
   {
     // A lock held with flock by hand (another program) counts too.
-    const int fd = ::open((fs::path(folder) / kTiledBakeLockName).c_str(), O_RDWR);
+    const int fd =
+        ::open((fs::path(folder) / kTiledBakeLockName).c_str(), O_RDWR | O_CREAT | O_CLOEXEC, 0644);
     ASSERT_GE(fd, 0);
     ASSERT_EQ(::flock(fd, LOCK_EX | LOCK_NB), 0);
+    const auto before = test::folderContents(folder);
     TiledBakeOptions t;
     t.tileSize = 32;
     t.sourceName = "first.tif";
     EXPECT_THROW(bakeTiled(field, distanceLimited(100), t, folder), TiledBakeBusy);
+    EXPECT_EQ(test::changedFiles(before, test::folderContents(folder)), std::vector<std::string>{});
     ::close(fd);
   }
-  EXPECT_EQ(test::changedFiles(before, test::folderContents(folder)), std::vector<std::string>{});
   // Released, the same bake resumes (and sweeps the killed run's temporary).
   TiledBakeOptions t;
   t.tileSize = 32;
@@ -491,6 +499,8 @@ TEST(TiledBake, ASecondBakeIntoALockedFolderIsRefusedTouchingNothing) {
   for (const auto& [name, bytes] : test::folderContents(folder)) {
     EXPECT_EQ(name.find(".tmp-"), std::string::npos) << name;
   }
+  // The lock file the other program left is removed by the bake that took it over.
+  EXPECT_FALSE(fs::exists(fs::path(folder) / kTiledBakeLockName));
 }
 
 // A bake of another DEM into a folder holding a bake (interrupted or

@@ -82,9 +82,11 @@ TEST(AalBakeMpi, ThreeRanksWriteTheSingleProcessFolderByteForByte) {
     ASSERT_EQ(m.exitCode, 0) << m.out;
     EXPECT_NE(m.out.find("on 3 ranks (20 baked"), std::string::npos) << m.out;
     const test::FolderContents want = folderContents(single), have = folderContents(mpi);
-    // 20 tiles, index, manifest, lock; with --svf 20 GeoTIFFs and the VRT.
+    // 20 tiles, index, manifest (the lock goes with the bake); with --svf 20
+    // GeoTIFFs and the VRT.
     const bool svf = options.find("--svf") != std::string::npos;
-    EXPECT_EQ(have.size(), svf ? 44u : 23u);
+    EXPECT_EQ(have.size(), svf ? 43u : 22u);
+    EXPECT_FALSE(have.count(".aal-bake.lock"));
     EXPECT_TRUE(have.count("index.txt"));
     EXPECT_EQ(have.count("sky_view_factor.vrt"), svf ? 1u : 0u);
     if (options.find("--near-reach") != std::string::npos) {
@@ -168,6 +170,31 @@ TEST(AalBakeMpi, BadInputIsSaidOnceAndExitsWithTwo) {
       runMpi(2, quoted(dem) + " -o " + quoted(folder) + " --tile-size 16 --azimuths 8");
   EXPECT_EQ(other.exitCode, 2) << other.out;
   EXPECT_NE(other.out.find("in tiles of 32, not 16"), std::string::npos) << other.out;
+  EXPECT_TRUE(folderContents(folder) == before);
+}
+
+// As aal-bake: a DEM in the folder under a name the bake writes
+// (svf_0000_0000.tif) would be overwritten; refused once, before any work,
+// the folder as it was.
+TEST(AalBakeMpi, AnInputNamedLikeTheFoldersFilesIsRefusedBeforeAnyWork) {
+  TempDir dir;
+  const fs::path folder = dir.path() / "tiles";
+  fs::create_directory(folder);
+  fs::copy_file(writeDem(dir, 40, 40), folder / "svf_0000_0000.tif");
+  const test::FolderContents before = folderContents(folder);
+  const auto inside = runMpi(
+      2, quoted(folder / "svf_0000_0000.tif") + " -o " + quoted(folder) + " --tile-size 16 --svf");
+  EXPECT_EQ(inside.exitCode, 2) << inside.out;
+  EXPECT_NE(inside.out.find("-o " + folder.string() +
+                            " writes the tiled bake's files (tile_ROW_COL.exr, svf_ROW_COL.tif"),
+            std::string::npos)
+      << inside.out;
+  EXPECT_NE(inside.out.find("and the input DEM (" + (folder / "svf_0000_0000.tif").string() +
+                            ") is one of them"),
+            std::string::npos)
+      << inside.out;
+  EXPECT_EQ(inside.out.find("aal-bake-mpi", inside.out.find("aal-bake-mpi") + 1), std::string::npos)
+      << inside.out;
   EXPECT_TRUE(folderContents(folder) == before);
 }
 

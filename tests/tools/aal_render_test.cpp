@@ -603,6 +603,41 @@ TEST(AalRender, SequenceBecomesAnMp4WhenFfmpegIsInstalled) {
   EXPECT_NE(probe.out.find("h264,48,10/1,5"), std::string::npos) << probe.out;
 }
 
+// The movie goes through a temporary file renamed into place (here with a
+// stand-in for ffmpeg that writes its last argument, the output): ffmpeg -y
+// wrote OUT.mp4 itself, and a failing run removed an OUT.mp4 it had not
+// made.
+TEST(AalRender, TheMovieIsWrittenThroughATemporaryAndAFailedOneKeepsTheOld) {
+  TempDir dir;
+  const fs::path out = dir.path() / "lapse.png", mp4 = dir.path() / "lapse.mp4";
+  const fs::path works = dir.path() / "works", fails = dir.path() / "fails";
+  std::ofstream(works) << "#!/bin/sh\nfor a; do last=$a; done\necho movie > \"$last\"\n";
+  std::ofstream(fails) << "#!/bin/sh\nfor a; do last=$a; done\necho half > \"$last\"\nexit 1\n";
+  for (const fs::path& script : {works, fails}) fs::permissions(script, fs::perms::owner_all);
+  const std::string args = "-o " + quoted(out) +
+                           " --size 16x9 -q --time-range 2024-06-21T12:00Z 2024-06-21T14:00Z "
+                           "--frames 2";
+  const auto made =
+      runTool("aal-render", quoted(kDem) + " " + args,
+              "AAL_FFMPEG=" + quoted(works) + " AAL_CACHE_DIR=" + quoted(dir.path() / "cache"));
+  ASSERT_EQ(made.exitCode, 0) << made.out;
+  std::ifstream in(mp4);
+  EXPECT_EQ(std::string(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()),
+            "movie\n");
+  std::ofstream(mp4) << "the old movie";
+  const auto failed =
+      runTool("aal-render", quoted(kDem) + " " + args,
+              "AAL_FFMPEG=" + quoted(fails) + " AAL_CACHE_DIR=" + quoted(dir.path() / "cache"));
+  EXPECT_EQ(failed.exitCode, 1) << failed.out;
+  EXPECT_NE(failed.out.find("failed to encode"), std::string::npos) << failed.out;
+  std::ifstream old(mp4);
+  EXPECT_EQ(std::string(std::istreambuf_iterator<char>(old), std::istreambuf_iterator<char>()),
+            "the old movie");
+  for (const auto& entry : fs::directory_iterator(dir.path())) {
+    EXPECT_EQ(entry.path().filename().string().find(".tmp-"), std::string::npos) << entry.path();
+  }
+}
+
 TEST(AalRender, BadSequenceOptionsExitWithTwoAndSayWhich) {
   TempDir dir;
   const fs::path path = dir.path() / "flight.txt";

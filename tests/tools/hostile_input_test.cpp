@@ -14,19 +14,57 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <string>
 #include <vector>
 
+#include "aperture/terrain/io/geotiff_writer.h"
+#include "aperture/terrain/synthetic.h"
 #include "aperture/tests/terrain/io/hostile_files.h"
 #include "aperture/tests/tools/run_tool.h"
+#include "aperture/tests/tools/synthetic_dem_file.h"
 
 namespace aal {
 namespace {
 
 namespace fs = std::filesystem;
+using test::FolderContents;
 using test::quoted;
 using test::runTool;
 using test::TempDir;
+
+// The bytes of a file ("" when it is missing): what a refused run must
+// leave as it was.
+std::string bytesOf(const fs::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  return std::string(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+}
+
+// A width x height fBm DEM (a float GeoTIFF, whatever the name says: GDAL
+// reads it by its content) of `cellM` cells at `path`.
+void writeDemAt(const fs::path& path, int width, int height, double cellM = 30, uint64_t seed = 1) {
+  SyntheticTerrainOptions s;
+  s.seed = seed;
+  s.width = width;
+  s.height = height;
+  s.cellSizeM = cellM;
+  s.featureSizeTexels = 12;
+  const Heightfield field = makeSyntheticTerrain(s);
+  GeoReference geo = test::testGeoReference(false);
+  geo.stepX = geo.stepY = cellM;
+  writeFloatGeoTiff(path.string(), width, height, field.z.data(), geo);
+}
+
+// A VRT of one raster, `source` (a path relative to the VRT's folder), of
+// width x height.
+void writeVrt(const fs::path& path, const std::string& source, int width, int height) {
+  std::ofstream(path) << "<VRTDataset rasterXSize=\"" << width << "\" rasterYSize=\"" << height
+                      << "\">\n  <GeoTransform>500000, 30, 0, 4000000, 0, -30</GeoTransform>\n"
+                      << "  <VRTRasterBand dataType=\"Float32\" band=\"1\">\n    <SimpleSource>\n"
+                      << "      <SourceFilename relativeToVRT=\"1\">" << source
+                      << "</SourceFilename>\n      <SourceBand>1</SourceBand>\n"
+                      << "    </SimpleSource>\n  </VRTRasterBand>\n</VRTDataset>\n";
+}
 
 const fs::path kDem = fs::path(AAL_TEST_SOURCE_DIR) / "heightmaps" / "jacksboro_fault_dem.tif";
 
@@ -364,6 +402,332 @@ TEST(HostileInput, MistakesOfUseExitWithTwo) {
     EXPECT_NE(r.out.find(c.message), std::string::npos) << r.out;
   }
   EXPECT_EQ(entriesOf(dir.path()), std::vector<std::string>{"one.asc"});
+}
+
+// Writes go to regular files only: `-o /dev/null` (as root) replaced the
+// device node with a regular file, and so would a link to it or a FIFO.
+// Here through links and a FIFO in a temporary folder, which a tool that
+// got it wrong could only replace there; /dev itself is checked without
+// writing (AtomicOutput.DevicesFifosAndSystemFoldersAreNoOutputs).
+TEST(HostileInput, OutputsThatAreNotFilesAreRefusedInEveryTool) {
+  TempDir dir;
+  for (const char* extension : {".png", ".exr", ".tif", ".csv"}) {
+    fs::create_symlink("/dev/null", dir.path() / (std::string("null") + extension));
+  }
+  fs::create_symlink("/dev/stdout", dir.path() / "stdout.csv");
+  for (const char* name : {"pipe.png", "pipe.tif"}) {
+    ASSERT_EQ(::mkfifo((dir.path() / name).c_str(), 0644), 0);
+  }
+  const fs::path folder = dir.path() / "tiles";
+  fs::create_directory(folder);
+  ASSERT_EQ(::mkfifo((folder / "index.txt").c_str(), 0644), 0);
+  const std::vector<std::string> before = entriesOf(dir.path());
+  const auto at = [&](const std::string& name) { return quoted(dir.path() / name); };
+  const std::string device = "(a link to /dev/null) is a character device, not a file";
+  const std::string fifo = "is a FIFO (a pipe), not a file";
+  struct Case {
+    std::string tool, arguments, message;
+  };
+  for (const Case& c : std::vector<Case>{
+           {"aal-render", quoted(kDem) + " --size 32x18 -o " + at("null.png"), device},
+           {"aal-render", quoted(kDem) + " --size 32x18 -o " + at("pipe.png"), fifo},
+           {"aal-bake", quoted(kDem) + " -o " + at("null.exr"), device},
+           {"aal-bake", quoted(kDem) + " -o " + at("m.exr") + " --svf " + at("pipe.tif"), fifo},
+           {"aal-bake", quoted(kDem) + " --tile-size 16 -o " + quoted(folder), fifo},
+           {"aal-relief", quoted(kDem) + " -o " + at("null.tif"), device},
+           {"aal-synth", "--size 8 -o " + at("pipe.tif"), fifo},
+           {"aal-caps", "--table " + at("null.csv"), device},
+           // A pipe or a terminal, as the test runs: never a file.
+           {"aal-caps", "--table " + at("stdout.csv"), ", not a file"},
+           {"aal-caps", "--table " + at("t.csv") + " --plot " + at("pipe.png"), fifo},
+           {"aal-view", quoted(kDem) + " --frames 1 --screenshot " + at("null.png"), device},
+       }) {
+    const auto r = runTool(c.tool, c.arguments);
+    EXPECT_EQ(r.exitCode, 2) << c.tool << " " << c.arguments << "\n" << r.out;
+    EXPECT_NE(r.out.find(c.message), std::string::npos) << c.tool << " " << c.arguments << "\n"
+                                                        << r.out;
+    EXPECT_NE(r.out.find("give the path of a file"), std::string::npos) << r.out;
+  }
+  EXPECT_EQ(entriesOf(dir.path()), before);
+  EXPECT_EQ(entriesOf(folder), std::vector<std::string>{"index.txt"});
+  for (const char* extension : {".png", ".exr", ".tif", ".csv"}) {
+    EXPECT_TRUE(fs::is_symlink(dir.path() / (std::string("null") + extension))) << extension;
+  }
+  EXPECT_TRUE(fs::is_symlink(dir.path() / "stdout.csv"));
+  EXPECT_TRUE(fs::is_fifo(dir.path() / "pipe.png"));
+  EXPECT_TRUE(fs::is_fifo(dir.path() / "pipe.tif"));
+  EXPECT_TRUE(fs::is_fifo(folder / "index.txt"));
+  EXPECT_TRUE(fs::is_character_file("/dev/null"));
+}
+
+// aal-render's sequences write OUT-0001.png ... and OUT.mp4: a DEM, camera
+// path, albedo, aperture map or horizons file of such a name was
+// overwritten. Refused before any work (the bake cache stays empty), the
+// input intact.
+TEST(HostileInput, SequenceFramesAndTheirMovieNeverOverwriteAnInput) {
+  TempDir dir;
+  const fs::path cache = dir.path() / "cache";
+  const std::string environment = "AAL_CACHE_DIR=" + quoted(cache);
+  const std::string out = " -o " + quoted(dir.path() / "out.png") + " --size 32x18 -q ";
+  const std::string range = " --time-range 2024-06-21T12:00Z 2024-06-21T14:00Z --frames 3";
+  const std::string frames = "-o " + (dir.path() / "out.png").string() +
+                             " writes the frames out-0001.png .. out-0003.png into " +
+                             dir.path().string() + ", and";
+  // A DEM named like a frame; a camera path, an albedo, an aperture map and
+  // horizons (their contents never read: the paths are refused first).
+  writeDemAt(dir.path() / "out-0002.png", 24, 24);
+  std::ofstream(dir.path() / "out-0001.png")
+      << "0 -2000 -2000 900 0 0 300\n1 2000 -2000 900 0 0 300\n";
+  for (const char* name : {"out-0003.png", "out.mp4"}) std::ofstream(dir.path() / name) << name;
+  const auto at = [&](const std::string& name) { return quoted(dir.path() / name); };
+  // ffmpeg, as far as the run can tell (AAL_FFMPEG): the movie is written.
+  const fs::path ffmpeg = dir.path() / "ffmpeg";
+  std::ofstream(ffmpeg) << "#!/bin/sh\nexit 0\n";
+  fs::permissions(ffmpeg, fs::perms::owner_all);
+  struct Case {
+    std::string arguments, environment, message;
+  };
+  for (const Case& c : std::vector<Case>{
+           {at("out-0002.png") + out + range, "", frames + " the input DEM ("},
+           {quoted(kDem) + out + "--camera-path " + at("out-0001.png") + " --frames 3", "",
+            frames + " the input --camera-path ("},
+           {quoted(kDem) + out + "--albedo " + at("out-0003.png") + range, "",
+            frames + " the input --albedo ("},
+           {quoted(kDem) + out + "--aperture " + at("out-0001.png") + range, "",
+            frames + " the input --aperture ("},
+           {quoted(kDem) + out + "--horizons " + at("out-0003.png") + range, "",
+            frames + " the input --horizons ("},
+           {quoted(kDem) + out + "--camera-path " + at("out.mp4") + " --frames 2",
+            "AAL_FFMPEG=" + quoted(ffmpeg),
+            "out.mp4 (the movie of the frames) is the input --camera-path"},
+       }) {
+    const auto r = runTool("aal-render", c.arguments, environment + " " + c.environment);
+    EXPECT_EQ(r.exitCode, 2) << c.arguments << "\n" << r.out;
+    EXPECT_NE(r.out.find(c.message), std::string::npos) << c.arguments << "\n" << r.out;
+  }
+  // Five digits: out-00002.png would be frame 2 of 10000.
+  fs::copy_file(dir.path() / "out-0002.png", dir.path() / "out-00002.png");
+  const auto many = runTool("aal-render",
+                            at("out-00002.png") + out +
+                                " --time-range 2024-06-21T12:00Z 2024-06-22T12:00Z --frames 10000",
+                            environment);
+  EXPECT_EQ(many.exitCode, 2) << many.out;
+  EXPECT_NE(many.out.find("the frames out-00001.png .. out-10000.png into " + dir.path().string() +
+                          ", and the input DEM"),
+            std::string::npos)
+      << many.out;
+  // A frame's name taken by a folder failed after the frames before it.
+  fs::create_directory(dir.path() / "seq-0002.png");
+  const auto folder =
+      runTool("aal-render", quoted(kDem) + " -o " + at("seq.png") + " --size 32x18 -q" + range,
+              environment);
+  EXPECT_EQ(folder.exitCode, 2) << folder.out;
+  EXPECT_NE(folder.out.find("seq-0002.png is a folder, not a file"), std::string::npos)
+      << folder.out;
+  EXPECT_FALSE(fs::exists(dir.path() / "seq-0001.png"));
+  EXPECT_FALSE(fs::exists(cache)) << "refused only after baking";
+  EXPECT_EQ(bytesOf(dir.path() / "out-0001.png"),
+            "0 -2000 -2000 900 0 0 300\n1 2000 -2000 900 0 0 300\n");
+  EXPECT_EQ(bytesOf(dir.path() / "out-0003.png"), "out-0003.png");
+  EXPECT_EQ(bytesOf(dir.path() / "out.mp4"), "out.mp4");
+  EXPECT_EQ(bytesOf(dir.path() / "out-0002.png"), bytesOf(dir.path() / "out-00002.png"));
+  EXPECT_EQ(entriesOf(dir.path()),
+            (std::vector<std::string>{"ffmpeg", "out-00002.png", "out-0001.png", "out-0002.png",
+                                      "out-0003.png", "out.mp4", "seq-0002.png"}));
+}
+
+// --compare DIR writes DIR/reference.png, reference.exr, errors.csv and
+// MODE.png, MODE-error.png for every mode: an input of such a name there was
+// overwritten. The names come from the writer's own list.
+TEST(HostileInput, ComparisonFilesNeverOverwriteAnInput) {
+  TempDir dir;
+  const fs::path cmp = dir.path() / "cmp";
+  fs::create_directory(cmp);
+  for (const char* name : {"approx.png", "reference.exr", "baseline-ao-error.png",
+                           "approx-without-w.png", "horizon-b.png"}) {
+    writeDemAt(cmp / name, 24, 24);
+  }
+  for (const char* name : {"errors.csv", "exact.png", "a.horizons", "b.horizons"}) {
+    std::ofstream(cmp / name) << name;
+  }
+  const FolderContents before = test::folderContents(cmp);
+  const std::string compare = " --size 32x18 -q --compare " + quoted(cmp);
+  const auto at = [&](const std::string& name) { return quoted(cmp / name); };
+  for (const auto& [arguments, message] : std::vector<std::pair<std::string, std::string>>{
+           {at("approx.png") + compare, "approx.png (written by --compare"},
+           {at("reference.exr") + compare, "reference.exr (written by --compare"},
+           {at("baseline-ao-error.png") + compare, "baseline-ao-error.png (written by --compare"},
+           {at("approx-without-w.png") + compare, "approx-without-w.png (written by --compare"},
+           {quoted(kDem) + compare + " --horizons " + at("errors.csv"),
+            "errors.csv (written by --compare " + cmp.string() + ") is the input --horizons"},
+           {quoted(kDem) + compare + " --aperture " + at("exact.png"), "is the input --aperture"},
+           // Several horizon maps: one horizon-STEM mode for each.
+           {at("horizon-b.png") + compare + " --horizons " + at("a.horizons") + " --horizons " +
+                at("b.horizons"),
+            "horizon-b.png (written by --compare"},
+       }) {
+    const auto r = runTool("aal-render", arguments, "AAL_CACHE_DIR=" + quoted(dir.path() / "c"));
+    EXPECT_EQ(r.exitCode, 2) << arguments << "\n" << r.out;
+    EXPECT_NE(r.out.find(message), std::string::npos) << arguments << "\n" << r.out;
+  }
+  // A file where the folder should be failed after the whole comparison.
+  const auto file =
+      runTool("aal-render", quoted(kDem) + " --size 32x18 -q --compare " + at("errors.csv"));
+  EXPECT_EQ(file.exitCode, 2) << file.out;
+  EXPECT_NE(file.out.find("is a file: --compare names a folder"), std::string::npos) << file.out;
+  EXPECT_TRUE(test::changedFiles(before, test::folderContents(cmp)).empty())
+      << ::testing::PrintToString(test::changedFiles(before, test::folderContents(cmp)));
+  EXPECT_FALSE(fs::exists(dir.path() / "c"));
+}
+
+// A tiled bake writes tile_ROW_COL.exr, svf_ROW_COL.tif, sky_view_factor.vrt,
+// index.txt, manifest.txt and its lock into its folder: a DEM of such a
+// name there (or a VRT's source) was overwritten, and the refused run left
+// the lock behind. Now refused before any work, the folder as it was.
+TEST(HostileInput, ATiledBakeNeverOverwritesAnInputInItsFolder) {
+  TempDir dir;
+  const fs::path tiles = dir.path() / "tiles";
+  fs::create_directory(tiles);
+  for (const char* name :
+       {"svf_0000_0000.tif", "tile_0001_0000.exr", "index.txt", "sky_view_factor.vrt"}) {
+    writeDemAt(tiles / name, 40, 40);
+  }
+  writeVrt(dir.path() / "d.vrt", "tiles/svf_0000_0000.tif", 40, 40);
+  const FolderContents before = test::folderContents(tiles);
+  const std::string out = " --tile-size 16 --azimuths 4 --svf -q -o " + quoted(tiles);
+  for (const auto& [dem, message] : std::vector<std::pair<fs::path, std::string>>{
+           {tiles / "svf_0000_0000.tif", "and the input DEM (" + (tiles / "svf").string()},
+           {tiles / "tile_0001_0000.exr", "and the input DEM (" + (tiles / "tile_").string()},
+           {tiles / "index.txt", "and the input DEM (" + (tiles / "index.txt").string()},
+           {tiles / "sky_view_factor.vrt", "and the input DEM (" + (tiles / "sky_").string()},
+           {dir.path() / "d.vrt", "a file GDAL reads for " + (dir.path() / "d.vrt").string()},
+       }) {
+    const auto r = runTool("aal-bake", quoted(dem) + out);
+    EXPECT_EQ(r.exitCode, 2) << dem << "\n" << r.out;
+    EXPECT_NE(r.out.find("-o " + tiles.string() +
+                         " writes the tiled bake's files (tile_ROW_COL.exr, svf_ROW_COL.tif, "
+                         "sky_view_factor.vrt, index.txt, manifest.txt, .aal-bake.lock) into it"),
+              std::string::npos)
+        << r.out;
+    EXPECT_NE(r.out.find(message), std::string::npos) << r.out;
+    EXPECT_NE(r.out.find("move the input or choose another output"), std::string::npos) << r.out;
+  }
+  EXPECT_TRUE(test::changedFiles(before, test::folderContents(tiles)).empty())
+      << ::testing::PrintToString(test::changedFiles(before, test::folderContents(tiles)));
+}
+
+// Writing a GeoTIFF that a DEM's VRT reads replaced the DEM's data: the
+// inputs are every file GDAL reads for a raster (a VRT's sources, nested
+// VRTs' too), in every tool that writes.
+TEST(HostileInput, AnOutputOverAVrtSourceIsRefused) {
+  TempDir dir;
+  writeDemAt(dir.path() / "src.tif", 24, 24);
+  writeDemAt(dir.path() / "pic.png", 24, 24);
+  writeVrt(dir.path() / "d.vrt", "src.tif", 24, 24);
+  writeVrt(dir.path() / "outer.vrt", "d.vrt", 24, 24);
+  writeVrt(dir.path() / "p.vrt", "pic.png", 24, 24);
+  const FolderContents before = test::folderContents(dir.path());
+  const auto at = [&](const std::string& name) { return quoted(dir.path() / name); };
+  const std::string source = "is the input DEM (" + (dir.path() / "src.tif").string() +
+                             ", a file GDAL reads for " + (dir.path() / "d.vrt").string() + ")";
+  for (const ToolCase& c : std::vector<ToolCase>{
+           {"aal-relief", at("d.vrt") + " -o " + at("src.tif")},
+           {"aal-relief", at("outer.vrt") + " -o " + at("src.tif")},
+           {"aal-relief", quoted(kDem) + " --water-mask " + at("d.vrt") + " -o " + at("src.tif")},
+           {"aal-bake", at("d.vrt") + " -o " + at("m.exr") + " --svf " + at("src.tif")},
+           {"aal-render", at("p.vrt") + " --size 32x18 -o " + at("pic.png")},
+           {"aal-view", at("p.vrt") + " --frames 1 --screenshot " + at("pic.png")},
+           {"aal-view",
+            quoted(kDem) + " --drop " + at("p.vrt") + " --frames 1 --screenshot " + at("pic.png")},
+       }) {
+    const auto r = runTool(c.tool, c.arguments);
+    EXPECT_EQ(r.exitCode, 2) << c.tool << " " << c.arguments << "\n" << r.out;
+    EXPECT_NE(r.out.find("a file GDAL reads for"), std::string::npos) << r.out;
+    EXPECT_NE(r.out.find("writing it would destroy it; choose another output"), std::string::npos)
+        << r.out;
+  }
+  EXPECT_NE(runTool("aal-relief", at("d.vrt") + " -o " + at("src.tif")).out.find(source),
+            std::string::npos);
+  EXPECT_TRUE(test::changedFiles(before, test::folderContents(dir.path())).empty())
+      << ::testing::PrintToString(test::changedFiles(before, test::folderContents(dir.path())));
+}
+
+// Every write sweeps its folder of the temporaries of dead processes
+// (.NAME.tmp-PID-N.EXT): an input of such a name there went with them.
+TEST(HostileInput, AnInputNamedLikeATemporaryIsNotSweptAway) {
+  TempDir dir;
+  const fs::path dem = dir.path() / (".dem.tmp-" + std::to_string(test::deadPid()) + "-0.tif");
+  writeDemAt(dem, 24, 24);
+  const std::string bytes = bytesOf(dem);
+  const auto r = runTool("aal-relief", quoted(dem) + " -q -o " + quoted(dir.path() / "r.tif"));
+  EXPECT_EQ(r.exitCode, 2) << r.out;
+  EXPECT_NE(r.out.find("is named like a temporary file"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("rename the input"), std::string::npos) << r.out;
+  EXPECT_EQ(bytesOf(dem), bytes);
+  EXPECT_EQ(entriesOf(dir.path()), std::vector<std::string>{dem.filename().string()});
+}
+
+// A bake refused after it took the folder's lock (here for --method rays,
+// which a tiled bake cannot take) left .aal-bake.lock in the user's folder.
+// A bake leaves no lock file, refused or finished.
+TEST(HostileInput, ABakeLeavesNoLockFileBehind) {
+  TempDir dir;
+  const fs::path tiles = dir.path() / "tiles", dem = dir.path() / "d.tif";
+  fs::create_directory(tiles);
+  writeDemAt(dem, 40, 40);
+  for (const std::string& options : std::vector<std::string>{
+           " --tile-size 16 --method rays", " --tile-size 16 --svf " + quoted(dir.path() / "s.tif"),
+           " --tile-size 16 --max-distance 100 --near-reach 4000"}) {
+    const auto r = runTool("aal-bake", quoted(dem) + " -q -o " + quoted(tiles) + options);
+    EXPECT_EQ(r.exitCode, 2) << options << "\n" << r.out;
+    EXPECT_TRUE(entriesOf(tiles).empty())
+        << options << " left " << ::testing::PrintToString(entriesOf(tiles));
+  }
+  // Finished, then refused as a bake of another DEM (under the lock).
+  ASSERT_EQ(runTool("aal-bake", quoted(dem) + " -q --azimuths 4 --tile-size 16 -o " + quoted(tiles))
+                .exitCode,
+            0);
+  EXPECT_FALSE(fs::exists(tiles / ".aal-bake.lock"));
+  const FolderContents baked = test::folderContents(tiles);
+  const fs::path otherDem = dir.path() / "e.tif";
+  writeDemAt(otherDem, 40, 40, 30, 2);
+  const auto other =
+      runTool("aal-bake", quoted(otherDem) + " -q --azimuths 4 --tile-size 16 -o " + quoted(tiles));
+  EXPECT_EQ(other.exitCode, 2) << other.out;
+  EXPECT_NE(other.out.find("holds the tiled bake of another DEM"), std::string::npos) << other.out;
+  EXPECT_TRUE(test::changedFiles(baked, test::folderContents(tiles)).empty())
+      << ::testing::PrintToString(test::changedFiles(baked, test::folderContents(tiles)));
+  // A killed bake's lock file goes with the next bake that takes the lock.
+  std::ofstream(tiles / ".aal-bake.lock");
+  const auto again =
+      runTool("aal-bake", quoted(otherDem) + " -q --azimuths 4 --tile-size 16 -o " + quoted(tiles));
+  EXPECT_EQ(again.exitCode, 2) << again.out;
+  EXPECT_TRUE(test::changedFiles(baked, test::folderContents(tiles)).empty());
+}
+
+// aal-synth wrote a GeoTIFF named x.png, and ignored AAL_MEMORY_LIMIT.
+TEST(HostileInput, AalSynthWritesGeoTiffsOnlyAndWithinTheMemoryLimit) {
+  TempDir dir;
+  for (const char* name : {"x.png", "x.asc", "x"}) {
+    const auto r = runTool("aal-synth", "--size 8 -o " + quoted(dir.path() / name));
+    EXPECT_EQ(r.exitCode, 2) << name << "\n" << r.out;
+    EXPECT_NE(r.out.find("aal-synth writes a GeoTIFF; give a name ending in .tif or .tiff"),
+              std::string::npos)
+        << r.out;
+  }
+  const auto r =
+      runTool("aal-synth", "--size 1024 -o " + quoted(dir.path() / "x.tif"), "AAL_MEMORY_LIMIT=1M");
+  EXPECT_EQ(r.exitCode, 2) << r.out;
+  EXPECT_NE(r.out.find("holding its 1024 x 1024 heights needs 4.2 MB, but only 1.0 MB of memory is "
+                       "available (AAL_MEMORY_LIMIT); give a smaller --size, or a larger "
+                       "AAL_MEMORY_LIMIT"),
+            std::string::npos)
+      << r.out;
+  EXPECT_TRUE(entriesOf(dir.path()).empty());
+  EXPECT_EQ(
+      runTool("aal-synth", "--size 8 -o " + quoted(dir.path() / "x.TIFF"), "AAL_MEMORY_LIMIT=1M")
+          .exitCode,
+      0);
 }
 
 }  // namespace

@@ -8,6 +8,8 @@
 #include <filesystem>
 #include <map>
 #include <memory>
+#include <string>
+#include <system_error>
 #include <utility>
 
 #include "aperture/engine/screenshot.h"
@@ -117,13 +119,19 @@ void readBackSwapchainImage(VkCommandBuffer cmd, VkImage image, VkExtent2D exten
                    VK_ACCESS_2_COLOR_ATTACHMENT_READ_BIT | VK_ACCESS_2_COLOR_ATTACHMENT_WRITE_BIT);
 }
 
-// aal-view-YYYYMMDD-HHMMSS.png in the current folder, never overwriting.
+// aal-view-YYYYMMDD-HHMMSS.png in the current folder, never overwriting: not
+// a file, nor a link (even one that leads nowhere), nor anything else of
+// that name (writeFrame refuses devices and /dev itself).
 std::string nextScreenshotName() {
   const std::time_t now = std::time(nullptr);
   char stamp[32];
   std::strftime(stamp, sizeof stamp, "%Y%m%d-%H%M%S", std::localtime(&now));
   std::string name = std::string("aal-view-") + stamp + ".png";
-  for (int i = 2; fs::exists(name); ++i) {
+  const auto taken = [](const std::string& path) {
+    std::error_code error;
+    return fs::symlink_status(path, error).type() != fs::file_type::not_found;
+  };
+  for (int i = 2; taken(name); ++i) {
     name = std::string("aal-view-") + stamp + "-" + std::to_string(i) + ".png";
   }
   return name;

@@ -3,11 +3,14 @@
 // 9: a killed render's 11.8 MB cache temporary stayed forever).
 #include <gtest/gtest.h>
 
+#include <sys/stat.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
 #include <filesystem>
 #include <fstream>
+#include <iterator>
+#include <stdexcept>
 #include <string>
 
 #include "aperture/terrain/io/atomic_file.h"
@@ -86,6 +89,56 @@ TEST(AtomicOutput, FailuresNameTheOutputNotItsTemporary) {
   EXPECT_EQ(message.find(".tmp-"), std::string::npos);
   // Room on the disk: nothing about space is added.
   EXPECT_EQ(std::string(output.failure("GDAL failed").what()).find("no space"), std::string::npos);
+}
+
+// Writes go to regular files only: renamed onto /dev/null (as root) the
+// temporary replaced the device node with a regular file, and /dev/stdout's
+// link with one. Only the check runs here: nothing is ever written there,
+// whatever it says.
+TEST(AtomicOutput, DevicesFifosAndSystemFoldersAreNoOutputs) {
+  test::TempDir dir;
+  const auto refusal = [](const fs::path& path) {
+    try {
+      checkOutputWritable(path);
+    } catch (const std::runtime_error& e) {
+      return std::string(e.what());
+    }
+    return std::string("accepted");
+  };
+  EXPECT_NE(refusal("/dev/null").find("output /dev/null is a character device, not a file"),
+            std::string::npos)
+      << refusal("/dev/null");
+  // A pipe or a terminal, as the test runs; never accepted.
+  EXPECT_NE(refusal("/dev/stdout").find(", not a file"), std::string::npos)
+      << refusal("/dev/stdout");
+  for (const char* path : {"/dev/aal-test-no-such.png", "/dev/shm/aal-test-no-such.png",
+                           "/proc/self/aal-test.csv", "/sys/aal-test.tif"}) {
+    const std::string folder =
+        fs::path(path).begin()->string() + std::next(fs::path(path).begin())->string();
+    EXPECT_NE(refusal(path).find("is in " + folder + ", which holds devices and kernel files"),
+              std::string::npos)
+        << path << ": " << refusal(path);
+  }
+  const fs::path fifo = dir.path() / "pipe.png", link = dir.path() / "null.png";
+  ASSERT_EQ(::mkfifo(fifo.c_str(), 0644), 0);
+  fs::create_symlink("/dev/null", link);
+  EXPECT_NE(refusal(fifo).find("is a FIFO (a pipe), not a file"), std::string::npos)
+      << refusal(fifo);
+  EXPECT_NE(refusal(link).find("null.png (a link to /dev/null) is a character device, not a file"),
+            std::string::npos)
+      << refusal(link);
+  // A link into /dev that leads nowhere yet would create a file there.
+  fs::create_symlink("/dev/aal-test-no-such.png", dir.path() / "dangling.png");
+  EXPECT_NE(refusal(dir.path() / "dangling.png").find("is in /dev"), std::string::npos);
+  // AtomicOutput checks the same, so every writer refuses them.
+  EXPECT_THROW(AtomicOutput{link}, std::runtime_error);
+  EXPECT_TRUE(fs::is_fifo(fifo));
+  EXPECT_TRUE(fs::is_symlink(link));
+  EXPECT_TRUE(fs::is_character_file("/dev/null"));
+  // Ordinary files, new or existing, still are.
+  touch(dir.path() / "old.png");
+  EXPECT_EQ(refusal(dir.path() / "old.png"), "accepted");
+  EXPECT_EQ(refusal(dir.path() / "new.png"), "accepted");
 }
 
 }  // namespace
