@@ -148,6 +148,18 @@ CachedAperture cachedOrBakedAperture(const Heightfield& field, const std::string
     }
     return {{}, std::move(result.aperture), std::move(result.horizons)};
   }
+  // An entry that is not a regular file (a FIFO, a device, a link) is damage
+  // in the cache's own folder: removed, so that the fresh entry, which is
+  // written only over regular files (atomic_file.h), takes its place.
+  const auto clearDamaged = [](const fs::path& entry) {
+    std::error_code ignored;
+    const fs::file_status status = fs::symlink_status(entry, ignored);
+    if (fs::exists(status) && !fs::is_regular_file(status) && !fs::is_directory(status)) {
+      fs::remove(entry, ignored);
+    }
+  };
+  clearDamaged(path);
+  if (options.horizons) clearDamaged(cachedHorizonsPath(field, options));
   try {
     // The horizons first: a map found in the cache has its horizons beside it.
     if (options.horizons) writeHorizonMap(cachedHorizonsPath(field, options), result.horizons);
