@@ -596,5 +596,56 @@ TEST(HostileInput, AalSynthWritesGeoTiffsOnlyAndWithinTheMemoryLimit) {
       0);
 }
 
+// Cameras are checked alike wherever they come from: a camera path's field
+// of view as --fov's [1, 170] (1e-300 rendered flat grey with exit 0), and
+// every point within cameraReachM of the DEM (1e300 m too), before the bake.
+TEST(HostileInput, CamerasOutsideTheirRangesAreRefusedBeforeTheBake) {
+  TempDir dir;
+  const fs::path dem = dir.path() / "d.tif", cache = dir.path() / "cache";
+  writeDemAt(dem, 32, 32);
+  const auto path = [&](const std::string& name, const std::string& text) {
+    std::ofstream(dir.path() / name) << text;
+    return quoted(dir.path() / name);
+  };
+  const std::string narrow = path("narrow.txt", "0 -900 -900 500 0 0 0 1e-300\n");
+  const std::string wide = path("wide.txt", "0 -900 -900 500 0 0 0 40\n1 0 0 500 0 0 0 171\n");
+  const std::string far = path("far.txt", "0 -900 -900 500 0 0 0\n# far\n2 1e300 0 500 0 0 0\n");
+  const std::string away = path("away.txt", "0 -900 -900 500 0 0 -2e7\n");
+  const std::string out = quoted(dem) + " --size 32x18 -q -o " + quoted(dir.path() / "x.png");
+  const std::string beyond =
+      "m from the DEM's centre, beyond the 1e+07 m a camera and the point it looks at may be "
+      "from it";
+  for (const ToolCase& c : std::vector<ToolCase>{
+           {"aal-render", out + " --camera-path " + narrow + " --frames 2"},
+           {"aal-render", out + " --camera-path " + wide + " --frames 2"},
+           {"aal-render", out + " --camera-path " + far + " --frames 2"},
+           {"aal-render", out + " --camera-path " + away + " --frames 2"},
+           {"aal-render", out + " --camera 1e300,0,0"},
+           {"aal-render", out + " --camera 0,0,2e7"},
+           {"aal-render", out + " --look-at 0,-1e8,0"},
+           {"aal-view", quoted(dem) + " --frames 1 --camera-path " + narrow},
+           {"aal-view", quoted(dem) + " --frames 1 --camera-path " + far},
+       }) {
+    const auto r = runTool(c.tool, c.arguments, "AAL_CACHE_DIR=" + quoted(cache));
+    EXPECT_EQ(r.exitCode, 2) << c.arguments << "\n" << r.out;
+    const bool fov = c.arguments.find("narrow") != std::string::npos ||
+                     c.arguments.find("wide") != std::string::npos;
+    EXPECT_NE(r.out.find(fov ? "degrees is outside [1, 170] (the range of --fov)" : beyond),
+              std::string::npos)
+        << c.arguments << "\n"
+        << r.out;
+  }
+  const auto line = runTool("aal-render", out + " --camera-path " + narrow + " --frames 2");
+  EXPECT_NE(line.out.find("narrow.txt line 1: field of view 1e-300 degrees"), std::string::npos)
+      << line.out;
+  const auto farLine = runTool("aal-render", out + " --camera-path " + far + " --frames 2",
+                               "AAL_CACHE_DIR=" + quoted(cache));
+  EXPECT_NE(farLine.out.find("far.txt line 3: the camera lies 1e+300 m from the DEM's centre"),
+            std::string::npos)
+      << farLine.out;
+  EXPECT_FALSE(fs::exists(cache)) << "refused only after baking";
+  EXPECT_FALSE(fs::exists(dir.path() / "x.png"));
+}
+
 }  // namespace
 }  // namespace aal
