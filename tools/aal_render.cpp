@@ -449,6 +449,11 @@ int run(const Options& o) {
   if (o.sunAzimuth.has_value() != o.sunElevation.has_value()) {
     throw aal::InputError("give --sun-azimuth and --sun-elevation together");
   }
+  // As aal-relief: a place without a time would be ignored.
+  if (o.time.empty() && o.timeRange.empty() && (o.lat || o.lon)) {
+    throw aal::InputError(
+        "--lat and --lon place the sun for --time (or --time-range); give --time too");
+  }
   std::optional<Sequence> sequence = sequenceOf(o, reference);
   checkPaths(o, sequence);
   // Read once the paths are known to be apart.
@@ -693,10 +698,12 @@ int main(int argc, char** argv) {
                  "(default 45)")
       ->check(CLI::Range(-90.0, 90.0));
   app.add_option("--time", o.time, "UTC date and time (ISO 8601) for the sun position");
-  app.add_option("--lat", o.lat, "latitude for --time (default: the DEM's centre, else 45)")
+  app.add_option("--lat", o.lat,
+                 "latitude for --time or --time-range (default: the DEM's centre, else 45)")
       ->check(CLI::Range(-90.0, 90.0));
   app.add_option("--lon", o.lon,
-                 "longitude for --time, east positive (default: the DEM's centre, else 0)")
+                 "longitude for --time or --time-range, east positive (default: the DEM's "
+                 "centre, else 0)")
       ->check(CLI::Range(-180.0, 180.0));
   app.add_option("--sun-radius", o.sunRadiusDeg,
                  "sun angular radius in degrees (larger: softer shadows)")

@@ -647,5 +647,24 @@ TEST(HostileInput, CamerasOutsideTheirRangesAreRefusedBeforeTheBake) {
   EXPECT_FALSE(fs::exists(dir.path() / "x.png"));
 }
 
+// aal-render ignored --lat and --lon without --time; aal-relief refused
+// them. Both refuse them alike now.
+TEST(HostileInput, APlaceWithoutATimeIsRefusedByEveryTool) {
+  TempDir dir;
+  for (const ToolCase& c : std::vector<ToolCase>{
+           {"aal-render",
+            quoted(kDem) + " --size 32x18 -o " + quoted(dir.path() / "x.png") + " --lat 40"},
+           {"aal-render", quoted(kDem) + " --size 32x18 -o " + quoted(dir.path() / "x.png") +
+                              " --lon 10 --sun-azimuth 90 --sun-elevation 30"},
+           {"aal-relief", quoted(kDem) + " -o " + quoted(dir.path() / "x.tif") + " --lat 40"},
+       }) {
+    const auto r = runTool(c.tool, c.arguments);
+    EXPECT_EQ(r.exitCode, 2) << c.arguments << "\n" << r.out;
+    EXPECT_NE(r.out.find("--lat and --lon place the sun for --time"), std::string::npos) << r.out;
+    EXPECT_NE(r.out.find("give --time too"), std::string::npos) << r.out;
+  }
+  EXPECT_TRUE(entriesOf(dir.path()).empty());
+}
+
 }  // namespace
 }  // namespace aal
