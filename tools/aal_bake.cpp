@@ -153,6 +153,13 @@ int run(const Options& o) {
   if (!tiled && o.nearReach > 0) {
     throw aal::InputError("--near-reach is for tiled bakes without --max-distance (--tile-size)");
   }
+  if (tiled && o.nearReach > 0) {
+    aal::DemLoadOptions quiet = load;
+    quiet.warn = nullptr;  // said once, below
+    aal::TiledBakeOptions reach;
+    reach.farField.nearReachM = o.nearReach;
+    aal::checkNearReach(aal::demGeometry(dem, quiet), reach);
+  }
   if (!tiled && o.svf && o.svfPath.empty()) {
     throw aal::InputError(
         "--svf needs a path (a GeoTIFF) for a bake into one file; only a tiled bake "

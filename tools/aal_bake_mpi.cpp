@@ -77,7 +77,10 @@ int checkOnRankZero(int rank, const Options& o) {
       aal::checkSweepOptions(o);
       const aal::DemLoadOptions load = aal::demLoadOptions(o);
       const aal::DemSource dem(o.dem, load);
-      aal::demGeometry(dem, load);  // its warnings, once
+      const aal::Heightfield geometry = aal::demGeometry(dem, load);  // its warnings, once
+      aal::TiledBakeOptions reach;
+      reach.farField.nearReachM = o.nearReach;
+      aal::checkNearReach(geometry, reach);
     } catch (const aal::InputError& e) {
       std::fprintf(stderr, "aal-bake-mpi: %s\n", e.what());
       status = aal::kExitBadInput;
