@@ -694,5 +694,39 @@ TEST(HostileInput, APlaceWithoutATimeIsRefusedByEveryTool) {
   EXPECT_TRUE(entriesOf(dir.path()).empty());
 }
 
+// A 64 x 5 DEM of 0.3 m cells was refused for an --obscurance-radius no one
+// had given ("at most the DEM's shorter side (1.200000 m), got 1.200000"),
+// even with --no-obscurance: the default, the shorter side in single
+// precision, lay above it in double. Only a radius typed is checked now.
+TEST(HostileInput, ADerivedObscuranceRadiusIsNeverRefused) {
+  TempDir dir;
+  const fs::path dem = dir.path() / "narrow.tif";
+  writeDemAt(dem, 64, 5, 0.3);
+  const std::string cache = "AAL_CACHE_DIR=" + quoted(dir.path() / "cache");
+  for (const ToolCase& c : std::vector<ToolCase>{
+           {"aal-relief", quoted(dem) + " -q -o " + quoted(dir.path() / "r.tif")},
+           {"aal-relief", quoted(dem) + " -q --no-obscurance -o " + quoted(dir.path() / "r.tif")},
+           {"aal-render", quoted(dem) +
+                              " --mode reference --reference-sun-rays 1 "
+                              "--reference-sky-rays 1 --reference-subpixels 1 --size "
+                              "16x9 -q -o " +
+                              quoted(dir.path() / "r.png")},
+           {"aal-render",
+            quoted(dem) + " --size 16x9 -q --no-obscurance -o " + quoted(dir.path() / "r.png")},
+       }) {
+    const auto r = runTool(c.tool, c.arguments, cache);
+    EXPECT_EQ(r.exitCode, 0) << c.arguments << "\n" << r.out;
+  }
+  const auto typed = runTool(
+      "aal-relief", quoted(dem) + " -q --obscurance-radius 5 -o " + quoted(dir.path() / "t.tif"));
+  EXPECT_EQ(typed.exitCode, 2) << typed.out;
+  EXPECT_NE(typed.out.find("--obscurance-radius 5 m: the radius must be more than 0 and at most "
+                           "the DEM's shorter side, 1.2 m; give one in that range, or leave the "
+                           "option out"),
+            std::string::npos)
+      << typed.out;
+  EXPECT_FALSE(fs::exists(dir.path() / "t.tif"));
+}
+
 }  // namespace
 }  // namespace aal
