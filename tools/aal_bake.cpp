@@ -146,7 +146,7 @@ int run(const Options& o) {
   // (exit 1, TiledBakeBusy); the lock is held to the end of the bake.
   std::optional<aal::TiledBakeLock> lock;
   if (askedTiled && std::filesystem::is_directory(o.output)) lock.emplace(o.output);
-  const aal::DemLoadOptions load = aal::demLoadOptions(o);
+  const aal::DemLoadOptions load = aal::demLoadOptions(o, askedTiled || o.lowMemory);
   const auto readStart = std::chrono::steady_clock::now();
   const aal::DemSource dem(o.dem, load);
   const bool tiled = checkTiling(o, dem);

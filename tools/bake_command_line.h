@@ -116,8 +116,17 @@ inline void checkTiledBakeOutput(const NamedPaths& inputs, const std::string& fo
   }
 }
 
-inline DemLoadOptions demLoadOptions(const SweepCommandLine& o) {
+// `windowed`: the bake reads the DEM in windows (a tiled bake that may, or
+// --low-memory): a read that does not fit says what helps then, not to use
+// --low-memory again.
+inline DemLoadOptions demLoadOptions(const SweepCommandLine& o, bool windowed) {
   DemLoadOptions load;
+  if (windowed) {
+    load.memoryHint =
+        "a tiled bake reads the DEM in windows already (a tile and its halo, and rows of up to "
+        "64 MB for its checksum): give a smaller --tile-size (or a shorter --max-distance), or "
+        "allow more memory (AAL_MEMORY_LIMIT)";
+  }
   load.cellSizeM = o.cellSize;
   load.zScale = o.zScale;
   return load;

@@ -45,6 +45,11 @@ struct DemLoadOptions {
   // Texel-count limit (<= kMaxDemTexels makes sense). Fuzzers lower it so
   // that hostile headers cannot ask for gigabytes.
   size_t maxTexels = kMaxDemTexels;
+  // What to do when a read does not fit in the memory available: the end of
+  // requireMemory's message. Empty: cut or coarsen the DEM, or bake it with
+  // aal-bake --tile-size --low-memory. A caller that reads in windows
+  // already says what helps it (aal-bake's tiled bakes).
+  std::string memoryHint;
 };
 
 }  // namespace aal

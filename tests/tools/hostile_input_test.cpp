@@ -728,5 +728,23 @@ TEST(HostileInput, ADerivedObscuranceRadiusIsNeverRefused) {
   EXPECT_FALSE(fs::exists(dir.path() / "t.tif"));
 }
 
+// A bake that reads the DEM in windows (--low-memory) and still does not fit
+// under AAL_MEMORY_LIMIT was told to use --low-memory.
+TEST(HostileInput, ALowMemoryBakeBeyondTheLimitIsToldWhatHelps) {
+  TempDir dir;
+  const fs::path dem = dir.path() / "d.tif", tiles = dir.path() / "tiles";
+  writeDemAt(dem, 256, 256);
+  const auto r =
+      runTool("aal-bake", quoted(dem) + " --tile-size 64 --low-memory -q -o " + quoted(tiles),
+              "AAL_MEMORY_LIMIT=100K");
+  EXPECT_EQ(r.exitCode, 2) << r.out;
+  EXPECT_NE(r.out.find("of memory is available (AAL_MEMORY_LIMIT)"), std::string::npos) << r.out;
+  EXPECT_EQ(r.out.find("(--low-memory)"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("a tiled bake reads the DEM in windows already"), std::string::npos)
+      << r.out;
+  EXPECT_NE(r.out.find("give a smaller --tile-size"), std::string::npos) << r.out;
+  EXPECT_FALSE(fs::exists(tiles / ".aal-bake.lock"));
+}
+
 }  // namespace
 }  // namespace aal
