@@ -13,6 +13,7 @@
 #include <filesystem>
 #include <functional>
 #include <optional>
+#include <sstream>
 #include <stdexcept>
 #include <string>
 #include <system_error>
@@ -380,6 +381,23 @@ std::pair<double, double> cellRange(const Heightfield& field) {
 int tiledBakePyramidShift(const Heightfield& geometry, const TiledBakeOptions& tiled) {
   const auto [smallest, largest] = cellRange(geometry);
   return farFieldBaseShift(resolvedFarField(geometry, tiled), smallest, largest);
+}
+
+double minimumNearReachM(const Heightfield& geometry, const FarFieldOptions& far) {
+  return kMinFarFieldReachSpacings * far.spacing * cellRange(geometry).first;
+}
+
+void checkNearReach(const Heightfield& geometry, const TiledBakeOptions& tiled) {
+  const double reach = tiled.farField.nearReachM;
+  const double minimum = minimumNearReachM(geometry, tiled.farField);
+  if (!(reach > 0.0) || reach >= minimum * (1.0 - 1e-9)) return;
+  std::ostringstream message;
+  message << "--near-reach " << reach << " m is shorter than the far field allows: at least "
+          << minimum << " m (" << kMinFarFieldReachSpacings << " lattice spacings of "
+          << tiled.farField.spacing << " cells of " << cellRange(geometry).first
+          << " m, docs/baking.md, \"Far field\"); give at least " << minimum
+          << ", or leave the option out (the default is that minimum)";
+  throw InputError(message.str());
 }
 
 FarFieldOptions resolvedFarField(const Heightfield& geometry, const TiledBakeOptions& tiled) {

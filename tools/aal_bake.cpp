@@ -146,12 +146,19 @@ int run(const Options& o) {
   // (exit 1, TiledBakeBusy); the lock is held to the end of the bake.
   std::optional<aal::TiledBakeLock> lock;
   if (askedTiled && std::filesystem::is_directory(o.output)) lock.emplace(o.output);
-  const aal::DemLoadOptions load = aal::demLoadOptions(o);
+  const aal::DemLoadOptions load = aal::demLoadOptions(o, askedTiled || o.lowMemory);
   const auto readStart = std::chrono::steady_clock::now();
   const aal::DemSource dem(o.dem, load);
   const bool tiled = checkTiling(o, dem);
   if (!tiled && o.nearReach > 0) {
     throw aal::InputError("--near-reach is for tiled bakes without --max-distance (--tile-size)");
+  }
+  if (tiled && o.nearReach > 0) {
+    aal::DemLoadOptions quiet = load;
+    quiet.warn = nullptr;  // said once, below
+    aal::TiledBakeOptions reach;
+    reach.farField.nearReachM = o.nearReach;
+    aal::checkNearReach(aal::demGeometry(dem, quiet), reach);
   }
   if (!tiled && o.svf && o.svfPath.empty()) {
     throw aal::InputError(

@@ -75,9 +75,12 @@ int checkOnRankZero(int rank, const Options& o) {
     try {
       aal::checkTiledBakeOutput(aal::inputFiles("DEM", o.dem, /*raster=*/true), o.output);
       aal::checkSweepOptions(o);
-      const aal::DemLoadOptions load = aal::demLoadOptions(o);
+      const aal::DemLoadOptions load = aal::demLoadOptions(o, /*windowed=*/true);
       const aal::DemSource dem(o.dem, load);
-      aal::demGeometry(dem, load);  // its warnings, once
+      const aal::Heightfield geometry = aal::demGeometry(dem, load);  // its warnings, once
+      aal::TiledBakeOptions reach;
+      reach.farField.nearReachM = o.nearReach;
+      aal::checkNearReach(geometry, reach);
     } catch (const aal::InputError& e) {
       std::fprintf(stderr, "aal-bake-mpi: %s\n", e.what());
       status = aal::kExitBadInput;
@@ -97,7 +100,7 @@ int run(const Options& o) {
   if (const int status = checkOnRankZero(rank, o); status != 0) return status;
 
   // Every rank opens the DEM (a rank on another host may not reach it).
-  aal::DemLoadOptions load = aal::demLoadOptions(o);
+  aal::DemLoadOptions load = aal::demLoadOptions(o, /*windowed=*/true);
   load.warn = nullptr;  // rank 0 has given them
   std::optional<aal::DemSource> dem;
   aal::Heightfield geometry;

@@ -449,6 +449,11 @@ int run(const Options& o) {
   if (o.sunAzimuth.has_value() != o.sunElevation.has_value()) {
     throw aal::InputError("give --sun-azimuth and --sun-elevation together");
   }
+  // As aal-relief: a place without a time would be ignored.
+  if (o.time.empty() && o.timeRange.empty() && (o.lat || o.lon)) {
+    throw aal::InputError(
+        "--lat and --lon place the sun for --time (or --time-range); give --time too");
+  }
   std::optional<Sequence> sequence = sequenceOf(o, reference);
   checkPaths(o, sequence);
   // Read once the paths are known to be apart.
@@ -468,6 +473,19 @@ int run(const Options& o) {
   aal::requireRenderableDem(field);
   const aal::ObscuranceSettings obscurance = aal::obscuranceFromOptions(
       !o.noObscurance, o.obscuranceSamples, o.obscuranceSteps, o.obscuranceRadiusM, field);
+  // The camera's points against the DEM's extent, before the bake.
+  std::optional<glm::dvec3> camera, lookAt;
+  if (!o.camera.empty()) {
+    camera = aal::parseTriple("--camera", o.camera);
+    aal::requireWithinCameraReach("--camera " + o.camera, *camera, field);
+  }
+  if (!o.lookAt.empty()) {
+    lookAt = aal::parseTriple("--look-at", o.lookAt);
+    aal::requireWithinCameraReach("--look-at " + o.lookAt, *lookAt, field);
+  }
+  if (sequence && sequence->path) {
+    aal::requireCameraPathWithinReach(*sequence->path, o.cameraPath, field);
+  }
   // The aperture map is streamed from its file into the GPU when the scene
   // is built, so it never sits in host memory as floats.
   std::string aperturePath = o.aperture;
@@ -501,8 +519,8 @@ int run(const Options& o) {
   // Framed for the field of view asked for (docs/rendering.md, "Default camera").
   const double baseDepthM = o.baseDepthM.value_or(0.0) * o.exaggeration;
   settings.camera = aal::defaultCamera(field, aspect, o.fovDeg, baseDepthM);
-  if (!o.camera.empty()) settings.camera.position = aal::parseTriple("--camera", o.camera);
-  if (!o.lookAt.empty()) settings.camera.lookAt = aal::parseTriple("--look-at", o.lookAt);
+  if (camera) settings.camera.position = *camera;
+  if (lookAt) settings.camera.lookAt = *lookAt;
   aal::requireCameraDirection(settings.camera.position, settings.camera.lookAt);
   settings.camera.verticalFovDeg = o.fovDeg;
   settings.lod.maxErrorPixels = o.lodErrorPixels;
@@ -664,10 +682,12 @@ int main(int argc, char** argv) {
   app.add_option("--size", o.size, "image size WIDTHxHEIGHT")->capture_default_str();
   app.add_option("--camera", o.camera,
                  "camera position X,Y,Z in metres (DEM frame: x east, y north, "
-                 "z up, origin at the DEM centre); default: from the south-east");
-  app.add_option("--look-at", o.lookAt, "point the camera looks at, X,Y,Z in metres");
+                 "z up, origin at the DEM centre), within 10,000 km of the centre (100 DEM "
+                 "diagonals for larger DEMs); default: from the south-east");
+  app.add_option("--look-at", o.lookAt,
+                 "point the camera looks at, X,Y,Z in metres (within --camera's reach)");
   app.add_option("--fov", o.fovDeg, "vertical field of view in degrees")
-      ->check(CLI::Range(1.0, 170.0))
+      ->check(CLI::Range(aal::kMinFovDeg, aal::kMaxFovDeg))
       ->capture_default_str();
   app.add_option("--sun-azimuth", o.sunAzimuth,
                  "sun azimuth, degrees clockwise from north "
@@ -678,10 +698,12 @@ int main(int argc, char** argv) {
                  "(default 45)")
       ->check(CLI::Range(-90.0, 90.0));
   app.add_option("--time", o.time, "UTC date and time (ISO 8601) for the sun position");
-  app.add_option("--lat", o.lat, "latitude for --time (default: the DEM's centre, else 45)")
+  app.add_option("--lat", o.lat,
+                 "latitude for --time or --time-range (default: the DEM's centre, else 45)")
       ->check(CLI::Range(-90.0, 90.0));
   app.add_option("--lon", o.lon,
-                 "longitude for --time, east positive (default: the DEM's centre, else 0)")
+                 "longitude for --time or --time-range, east positive (default: the DEM's "
+                 "centre, else 0)")
       ->check(CLI::Range(-180.0, 180.0));
   app.add_option("--sun-radius", o.sunRadiusDeg,
                  "sun angular radius in degrees (larger: softer shadows)")
@@ -746,8 +768,9 @@ int main(int argc, char** argv) {
       ->check(CLI::Range(aal::kTerrainMipAlignment, uint32_t(1) << 20));
   app.add_option("--camera-path", o.cameraPath,
                  "render an image sequence along this camera path (aal-view's format: lines of "
-                 "TIME_S X Y Z LOOK_X LOOK_Y LOOK_Z [FOV_DEG]), --frames images spread from its "
-                 "first keyframe to its last, into OUT-0001.png ... (and OUT.mp4 with ffmpeg)");
+                 "TIME_S X Y Z LOOK_X LOOK_Y LOOK_Z [FOV_DEG], points within --camera's reach, "
+                 "FOV_DEG in --fov's range), --frames images spread from its first keyframe to "
+                 "its last, into OUT-0001.png ... (and OUT.mp4 with ffmpeg)");
   app.add_option("--time-range", o.timeRange,
                  "render an image sequence with the sun from START to END (UTC, ISO 8601), "
                  "--frames images, both ends included (a time-lapse)")

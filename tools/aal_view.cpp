@@ -199,6 +199,7 @@ int run(const Options& o) {
   v.stats = o.stats;
   // Bad input fails here, before a window opens.
   std::shared_ptr<const aal::Heightfield> field = aal::loadViewerDem(o.dem, o.exaggeration);
+  if (v.cameraPath) aal::requireCameraPathWithinReach(*v.cameraPath, o.cameraPath, *field);
   if (!o.aperture.empty()) {
     const aal::ApertureMapReader map(o.aperture);
     aal::checkApertureMatchesDem(map.header(), o.aperture, *field, o.dem);
@@ -258,7 +259,8 @@ int main(int argc, char** argv) {
                  "scripted run: render N frames (after the aperture map is ready), then exit");
   app.add_option("--camera-path", o.cameraPath,
                  "keyframes 'TIME_S X Y Z LOOK_X LOOK_Y LOOK_Z [FOV_DEG]' per line (DEM frame, "
-                 "metres); with --frames spread over the N frames, else played in real time");
+                 "metres, within 10,000 km of its centre or 100 DEM diagonals; FOV_DEG in [1, "
+                 "170]); with --frames spread over the N frames, else played in real time");
   app.add_option("--screenshot", o.screenshot, "save the last scripted frame as this PNG");
   app.add_option("--timeout", o.timeoutS, "close the window after this many seconds")
       ->check(aal::kPositive);

@@ -64,8 +64,9 @@ inline void addSweepOptions(CLI::App& app, SweepCommandLine& o) {
 inline void addNearReachOption(CLI::App& app, SweepCommandLine& o) {
   app.add_option("--near-reach", o.nearReach,
                  "tiled, without --max-distance: metres the near sweep covers before the far "
-                 "field's pyramid takes over (default 128 cells; each doubling divides the "
-                 "pyramid's memory by 4 and adds that many steps to every tile's lines)")
+                 "field's pyramid takes over (default and minimum 128 cells of the DEM's "
+                 "smallest cell, 8 spacings of the far field's lattice; each doubling divides "
+                 "the pyramid's memory by 4 and adds that many steps to every tile's lines)")
       ->check(kPositive);
 }
 
@@ -115,8 +116,17 @@ inline void checkTiledBakeOutput(const NamedPaths& inputs, const std::string& fo
   }
 }
 
-inline DemLoadOptions demLoadOptions(const SweepCommandLine& o) {
+// `windowed`: the bake reads the DEM in windows (a tiled bake that may, or
+// --low-memory): a read that does not fit says what helps then, not to use
+// --low-memory again.
+inline DemLoadOptions demLoadOptions(const SweepCommandLine& o, bool windowed) {
   DemLoadOptions load;
+  if (windowed) {
+    load.memoryHint =
+        "a tiled bake reads the DEM in windows already (a tile and its halo, and rows of up to "
+        "64 MB for its checksum): give a smaller --tile-size (or a shorter --max-distance), or "
+        "allow more memory (AAL_MEMORY_LIMIT)";
+  }
   load.cellSizeM = o.cellSize;
   load.zScale = o.zScale;
   return load;

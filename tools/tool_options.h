@@ -19,6 +19,7 @@
 #include "aperture/terrain/light/obscurance.h"
 #include "aperture/terrain/light/solar_position.h"
 #include "aperture/terrain/view/camera.h"
+#include "aperture/terrain/view/camera_path.h"
 
 namespace aal {
 
@@ -95,6 +96,33 @@ inline void requireRenderableDem(const Heightfield& field) {
                    std::to_string(field.height) +
                    " texels have no surface to render; rendering needs at least 2 x 2 "
                    "(aal-bake and aal-info take any size)");
+}
+
+// Throws InputError when `point` (what: "--camera 1,2,3", "camera path P
+// line 4: the camera") lies beyond cameraReachM of the DEM's centre.
+inline void requireWithinCameraReach(const std::string& what, const glm::dvec3& point,
+                                     const Heightfield& field) {
+  // hypot: the length of (1e300, 0, 0) overflows as a sum of squares.
+  const double distance = std::hypot(point.x, std::hypot(point.y, point.z));
+  const double reach = cameraReachM(field);
+  if (distance <= reach) return;
+  std::ostringstream message;
+  message << what << " lies " << distance << " m from the DEM's centre, beyond the " << reach
+          << " m a camera and the point it looks at may be from it (10,000 km, or "
+          << kCameraReachDiagonals
+          << " DEM diagonals when more): give a point closer to the DEM (metres in the DEM "
+             "frame, origin at its centre)";
+  throw InputError(message.str());
+}
+
+// requireWithinCameraReach for every keyframe of a camera path (`file`).
+inline void requireCameraPathWithinReach(const CameraPath& path, const std::string& file,
+                                         const Heightfield& field) {
+  for (const CameraKeyframe& key : path.keyframes()) {
+    const std::string where = "camera path " + file + " line " + std::to_string(key.line) + ": ";
+    requireWithinCameraReach(where + "the camera", key.camera.position, field);
+    requireWithinCameraReach(where + "the look-at point", key.camera.lookAt, field);
+  }
 }
 
 // Throws InputError when the camera has no direction: --camera at --look-at.

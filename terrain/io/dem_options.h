@@ -50,6 +50,11 @@ struct DemLoadOptions {
   // and every other /vsi path but /vsicurl/, /vsizip/ and /vsigzip/ is
   // refused (terrain/io/input_file.h, gdalFileName).
   bool inMemoryFiles = false;
+  // What to do when a read does not fit in the memory available: the end of
+  // requireMemory's message. Empty: cut or coarsen the DEM, or bake it with
+  // aal-bake --tile-size --low-memory. A caller that reads in windows
+  // already says what helps it (aal-bake's tiled bakes).
+  std::string memoryHint;
 };
 
 }  // namespace aal

@@ -437,8 +437,9 @@ struct DemSource::Impl {
   int alphaBand = 0;
   double scale = 1.0, offset = 0.0;
   size_t maxTexels = kMaxDemTexels;
-  std::string bandUnit;  // GDAL's unit type of band 1; empty when silent
-  std::string gdalName;  // what GDAL opens for the path (gdalFileName)
+  std::string memoryHint;  // DemLoadOptions::memoryHint
+  std::string bandUnit;    // GDAL's unit type of band 1; empty when silent
+  std::string gdalName;    // what GDAL opens for the path (gdalFileName)
   // The CRS, found while the caller reads (findCrs), then merged into the
   // description once (settle); warnings are given then, on the caller's thread.
   std::future<CrsPart> crs;
@@ -456,6 +457,7 @@ DemSource::DemSource(const std::string& path, const DemLoadOptions& options)
   impl_->dataset = openDataset(path, impl_->gdalName);
   GDALDataset& dataset = *impl_->dataset;
   impl_->maxTexels = options.maxTexels;
+  impl_->memoryHint = options.memoryHint;
   const int bands = dataset.GetRasterCount();
   if (bands == 0) {
     const std::string subdatasets = subdatasetList(dataset);
@@ -567,8 +569,11 @@ RawDem DemSource::read(int column, int row, int w, int h) const {
   requireMemory(path_, static_cast<double>(w) * h * (sizeof(float) + sizeof(uint8_t)),
                 (wholeRaster ? "its " : "a window of ") + std::to_string(w) + " x " +
                     std::to_string(h) + " heights and void mask",
-                "aal-bake bakes it a band at a time (--low-memory); for the other tools cut it "
-                "(`gdal_translate -srcwin`) or coarsen it (`gdal_translate -outsize 50% 50%`)");
+                !impl_->memoryHint.empty()
+                    ? impl_->memoryHint
+                    : "aal-bake bakes it a tile at a time (--tile-size N --low-memory); for the "
+                      "other tools cut it (`gdal_translate -srcwin`) or coarsen it "
+                      "(`gdal_translate -outsize 50% 50%`)");
   RawDem dem;  // the samples; the description joins them at the end
   dem.allocate(w, h);
   texelsRead_ += static_cast<uint64_t>(w) * static_cast<uint64_t>(h);

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <numbers>
+#include <sstream>
 #include <string>
 
 #include <glm/geometric.hpp>
@@ -28,11 +29,18 @@ void checkObscuranceSettings(const ObscuranceSettings& s, glm::dvec2 demExtentM)
   if (s.steps != 1 && s.steps != 2) {
     throw InputError("--obscurance-steps must be 1 or 2, got " + std::to_string(s.steps));
   }
-  const double limit = std::min(demExtentM.x, demExtentM.y);
+  // Compared in the radius's own precision: the default, the shorter side
+  // itself on a narrow DEM, is that side rounded to a float, which may lie a
+  // hair above the double (a 64 x 5 DEM of 0.3 m cells was refused for the
+  // radius it had not been given, "at most 1.200000 m, got 1.200000").
+  const float limit = static_cast<float>(std::min(demExtentM.x, demExtentM.y));
   if (!(s.radiusM > 0) || !std::isfinite(s.radiusM) || s.radiusM > limit) {
-    throw InputError(
-        "--obscurance-radius must be more than 0 and at most the DEM's shorter side (" +
-        std::to_string(limit) + " m), got " + std::to_string(s.radiusM));
+    std::ostringstream message;
+    message << "--obscurance-radius " << s.radiusM
+            << " m: the radius must be more than 0 and at most the DEM's shorter side, " << limit
+            << " m; give one in that range, or leave the option out for the default ("
+            << kDefaultObscuranceRadiusCells << " cells, at most that side)";
+    throw InputError(message.str());
   }
 }
 

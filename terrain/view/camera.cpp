@@ -26,6 +26,10 @@ glm::dvec2 demExtentM(const Heightfield& field) {
   return {(field.width - 1) * field.cellSizeXM, (field.height - 1) * field.cellSizeYM};
 }
 
+double cameraReachM(const Heightfield& field) {
+  return std::max(kMinCameraReachM, kCameraReachDiagonals * glm::length(demExtentM(field)));
+}
+
 DepthRange depthRangeFor(const Camera& camera, const Heightfield& field) {
   const auto [zMin, zMax] = heightRange(field);
   return depthRangeFor(camera, demExtentM(field), zMin, zMax);

@@ -16,6 +16,20 @@ struct Camera {
   double verticalFovDeg = 45.0;
 };
 
+// The vertical field of view the tools take, in degrees: --fov and every
+// keyframe of a camera path (below 1 degree the view is a flat patch of one
+// colour, towards 180 the projection diverges).
+constexpr double kMinFovDeg = 1.0, kMaxFovDeg = 170.0;
+
+// How far from the DEM's centre a camera, or the point it looks at, may be:
+// 10,000 km, or kCameraReachDiagonals of the DEM's diagonal for a DEM wider
+// than 100 km. Beyond that the terrain is far below a pixel and the single
+// precision of the device's matrices breaks the projection (a camera 1e300 m
+// away drew flat grey and exited 0).
+constexpr double kMinCameraReachM = 1e7;
+constexpr double kCameraReachDiagonals = 100.0;
+double cameraReachM(const Heightfield& field);
+
 // Near and far planes that keep the whole DEM in view from `camera`.
 struct DepthRange {
   double nearM = 1, farM = 1e5;

@@ -43,8 +43,12 @@ CameraKeyframe parseLine(const std::string& line, const std::string& where) {
   if (glm::length(key.camera.lookAt - key.camera.position) < 1e-6) {
     throw InputError(where + ": the camera position equals its look-at point");
   }
-  if (!(key.camera.verticalFovDeg > 0 && key.camera.verticalFovDeg < 180)) {
-    throw InputError(where + ": field of view must be in (0, 180) degrees");
+  if (!(key.camera.verticalFovDeg >= kMinFovDeg && key.camera.verticalFovDeg <= kMaxFovDeg)) {
+    std::ostringstream fov;
+    fov << key.camera.verticalFovDeg;
+    throw InputError(where + ": field of view " + fov.str() + " degrees is outside [" +
+                     std::to_string(int(kMinFovDeg)) + ", " + std::to_string(int(kMaxFovDeg)) +
+                     "] (the range of --fov); give one in that range, or none for 40");
   }
   return key;
 }
@@ -60,6 +64,7 @@ CameraPath CameraPath::parse(const std::string& text, const std::string& name) {
     if (line.find_first_not_of(" \t\r") == std::string::npos) continue;
     const std::string where = "camera path " + name + " line " + std::to_string(number);
     CameraKeyframe key = parseLine(line, where);
+    key.line = number;
     if (!path.keyframes_.empty() && !(key.timeS > path.keyframes_.back().timeS)) {
       throw InputError(where + ": times must increase from line to line");
     }

@@ -6,7 +6,8 @@
 // with the time in seconds (strictly increasing from line to line), the camera
 // position and the point it looks at in metres in the DEM frame of
 // docs/design.md §1 (as aal-render --camera/--look-at), and an optional
-// vertical field of view in degrees (default 40). Fields are separated by
+// vertical field of view in degrees (default 40, in [1, 170] as aal-render's
+// --fov). Fields are separated by
 // spaces or tabs; '#' starts a comment; blank lines are ignored. At least one
 // keyframe.
 #pragma once
@@ -21,6 +22,7 @@ namespace aal {
 struct CameraKeyframe {
   double timeS = 0;
   Camera camera;
+  int line = 0;  // in the file, for messages
 };
 
 class CameraPath {
@@ -28,7 +30,8 @@ class CameraPath {
   // Parses the text of a path file; `name` (the file) goes into messages.
   // Throws InputError naming the line for anything malformed: wrong field
   // count, non-numbers, non-finite values, times not increasing, a position
-  // equal to its look-at point, a field of view outside (0, 180).
+  // equal to its look-at point, a field of view outside [kMinFovDeg,
+  // kMaxFovDeg] (--fov's range).
   static CameraPath parse(const std::string& text, const std::string& name);
   // Reads and parses a file (terrain/io/input_file.h, readTextInput: a
   // regular file of at most 16 MiB; a UTF-8 byte order mark at its start is

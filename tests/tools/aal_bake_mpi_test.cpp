@@ -63,13 +63,14 @@ bool hasTemporaries(const fs::path& folder) {
 TEST(AalBakeMpi, ThreeRanksWriteTheSingleProcessFolderByteForByte) {
   TempDir dir;
   const fs::path dem = writeDem(dir, 150, 120);
-  // The far field (no max distance; its default reach and a shorter one, with
-  // which each rank's windows hold a part of the rows and of the columns),
-  // and a distance-limited bake with the clamped edge, curvature and full
-  // floats (partial windows too); two with the sky-view factor (its GeoTIFFs
-  // and VRT too).
+  // The far field (no max distance; its default reach and a longer one: the
+  // shortest the far field takes, 128 cells, already covers this DEM, so the
+  // library's tests hold the windows that are part of the rows and columns
+  // under the far field), and a distance-limited bake with the clamped edge,
+  // curvature and full floats (partial windows); two with the sky-view
+  // factor (its GeoTIFFs and VRT too).
   for (const std::string options :
-       {" --tile-size 32 --azimuths 16 --svf", " --tile-size 32 --azimuths 8 --near-reach 300",
+       {" --tile-size 32 --azimuths 16 --svf", " --tile-size 32 --azimuths 8 --near-reach 3900",
         " --tile-size 32 --azimuths 8 --max-distance 300 --edge clamp --curvature --float "
         "--svf"}) {
     SCOPED_TRACE(options);
@@ -90,7 +91,7 @@ TEST(AalBakeMpi, ThreeRanksWriteTheSingleProcessFolderByteForByte) {
     EXPECT_TRUE(have.count("index.txt"));
     EXPECT_EQ(have.count("sky_view_factor.vrt"), svf ? 1u : 0u);
     if (options.find("--near-reach") != std::string::npos) {
-      EXPECT_NE(have.at("index.txt").find("reach 300 m"), std::string::npos);
+      EXPECT_NE(have.at("index.txt").find("reach 3900 m"), std::string::npos);
     }
     for (const auto& [name, bytes] : want) {
       ASSERT_TRUE(have.count(name)) << name;
@@ -196,6 +197,23 @@ TEST(AalBakeMpi, AnInputNamedLikeTheFoldersFilesIsRefusedBeforeAnyWork) {
   EXPECT_EQ(inside.out.find("aal-bake-mpi", inside.out.find("aal-bake-mpi") + 1), std::string::npos)
       << inside.out;
   EXPECT_TRUE(folderContents(folder) == before);
+}
+
+// As aal-bake: a near reach below the far field's minimum is refused, said
+// once, before any work.
+TEST(AalBakeMpi, ANearReachBelowTheFarFieldsMinimumIsRefusedOnce) {
+  TempDir dir;
+  const fs::path dem = writeDem(dir, 40, 40), folder = dir.path() / "tiles";
+  const auto reach =
+      runMpi(2, quoted(dem) + " -o " + quoted(folder) + " --tile-size 16 --near-reach 1");
+  EXPECT_EQ(reach.exitCode, 2) << reach.out;
+  EXPECT_NE(reach.out.find("--near-reach 1 m is shorter than the far field allows: at least "
+                           "3840 m"),
+            std::string::npos)
+      << reach.out;
+  EXPECT_EQ(reach.out.find("aal-bake-mpi", reach.out.find("aal-bake-mpi") + 1), std::string::npos)
+      << reach.out;
+  EXPECT_FALSE(fs::exists(folder));
 }
 
 }  // namespace

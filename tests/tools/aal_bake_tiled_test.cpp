@@ -101,11 +101,15 @@ TEST(AalBakeTiled, WindowsOfTheDemEqualTheSingleFileBake) {
 }
 
 // A DEM several tiles wide and tall read in windows (--low-memory): each
-// tile's window holds the tile and its halo, a part of the rows and of the
-// columns, yet the folder is the in-memory tiled bake's byte for byte (the
-// SVF GeoTIFFs and the VRT too), with a max distance and with the far field,
-// on a projected and on a geographic grid; 200 x 130 in tiles of 32 leaves
-// tiles of 8 columns and of 2 rows at the edges.
+// tile's window holds the tile and its halo (with the max distance a part
+// of the rows and of the columns; the far field's shortest reach, 128
+// cells, 5952 m of the geographic grid's smallest cell, covers this DEM:
+// tests/preprocess/tile_window_test.cpp holds partial windows under the
+// far field), yet the folder is the in-memory
+// tiled bake's byte for byte (the SVF GeoTIFFs and the VRT too), with a
+// max distance and with the far field, on a projected and on a geographic
+// grid; 200 x 130 in tiles of 32 leaves tiles of 8 columns and of 2 rows at
+// the edges.
 TEST(AalBakeTiled, WindowsOfAWideDemEqualTheInMemoryFolder) {
   TempDir dir;
   const std::string fixedDate = "SOURCE_DATE_EPOCH=1700000000";
@@ -122,7 +126,7 @@ TEST(AalBakeTiled, WindowsOfAWideDemEqualTheInMemoryFolder) {
                       test::testGeoReference(geographic));
     for (const std::string options :
          {" --tile-size 32 --azimuths 12 --max-distance 200 --svf",
-          " --tile-size 32 --azimuths 12 --near-reach 400 --edge clamp --curvature --svf"}) {
+          " --tile-size 32 --azimuths 12 --near-reach 6000 --edge clamp --curvature --svf"}) {
       SCOPED_TRACE(std::string(geographic ? "geographic" : "projected") + options);
       const fs::path memory = dir.path() / "memory", windows = dir.path() / "windows";
       fs::remove_all(memory);

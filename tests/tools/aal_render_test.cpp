@@ -143,11 +143,21 @@ TEST(AalRender, AnOutputThatIsAnInputExitsWithTwo) {
   EXPECT_EQ(fs::file_size(map), 16u);
 }
 
+// A camera far beyond the DEM, within the reach the tools take (10,000 km
+// here), does not crash the reference; 1e300 m away is refused before any
+// work (it rendered nothing, with exit 0).
 TEST(AalRender, ACameraFarBeyondTheDemDoesNotCrashTheReference) {
   TempDir dir;
   const auto r = render(dir, "-o " + quoted(dir.path() / "far.exr") +
-                                 " --size 32x18 --mode reference --camera 1e300,0,0");
+                                 " --size 32x18 --mode reference --camera 9.9e6,0,0");
   EXPECT_EQ(r.exitCode, 0) << r.out;
+  const auto absurd = render(dir, "-o " + quoted(dir.path() / "absurd.exr") +
+                                      " --size 32x18 --mode reference --camera 1e300,0,0");
+  EXPECT_EQ(absurd.exitCode, 2) << absurd.out;
+  EXPECT_NE(absurd.out.find("--camera 1e300,0,0 lies 1e+300 m from the DEM's centre"),
+            std::string::npos)
+      << absurd.out;
+  EXPECT_FALSE(fs::exists(dir.path() / "absurd.exr"));
 }
 
 TEST(AalRender, BadObscuranceOptionsExitWithTwoAndSayWhy) {

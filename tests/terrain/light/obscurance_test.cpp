@@ -404,6 +404,29 @@ TEST(Obscurance, SettingsOutsideTheSupportedRangeAreInputErrors) {
   EXPECT_FLOAT_EQ(defaultObscuranceRadiusM({500, 500}, extent), 3000.0f);
 }
 
+// On a narrow DEM the default radius is the shorter side itself, rounded to
+// a float, which can lie above that side in double (64 x 5 texels of
+// 0.3 m: 1.2000000477 > 1.2000000000000002): it was refused, unasked,
+// "at most ... (1.200000 m), got 1.200000". The check compares in the
+// radius's own precision and prints numbers that differ where they do.
+TEST(Obscurance, TheDefaultRadiusOfANarrowDemPassesItsOwnCheck) {
+  const glm::dvec2 cells(0.3, 0.3), extent(63 * 0.3, 4 * 0.3);
+  ObscuranceSettings s;
+  s.radiusM = defaultObscuranceRadiusM(cells, extent);
+  EXPECT_GT(static_cast<double>(s.radiusM), extent.y);  // the trap
+  EXPECT_NO_THROW(checkObscuranceSettings(s, extent));
+  s.radiusM = 1.25f;
+  try {
+    checkObscuranceSettings(s, extent);
+    ADD_FAILURE() << "a radius beyond the shorter side passed";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("--obscurance-radius 1.25 m: the radius must be more "
+                                         "than 0 and at most the DEM's shorter side, 1.2 m"),
+              std::string::npos)
+        << e.what();
+  }
+}
+
 // Issue 17, item 4: a NaN position passed std::clamp and became an index.
 TEST(Heightfield, BilinearHeightAtNanIsTheFirstTexelsNotACrash) {
   Heightfield f;
