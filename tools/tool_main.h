@@ -6,12 +6,12 @@
 #include <cstdio>
 #include <cstdlib>
 #include <exception>
-#include <new>
-#include <system_error>
 #include <functional>
 #include <iostream>
+#include <new>
 #include <sstream>
 #include <string>
+#include <system_error>
 
 #include <CLI/CLI.hpp>
 

@@ -10,8 +10,8 @@
 #include <OpenImageIO/imagebufalgo.h>
 #include <OpenImageIO/imageio.h>
 
-#include <cstdlib>
 #include <algorithm>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <iterator>
@@ -202,17 +202,22 @@ TEST(ImagePlugin, FoundBesideOrInstalledUnlessTheEnvironmentSaysOtherwise) {
   EXPECT_EQ(openImagePlugin(configured).version, kImagePluginVersion);
   const std::vector<std::string> places = imagePluginCandidates();
   ASSERT_EQ(places.size(), 3u);
-  const std::filesystem::path folder = std::filesystem::read_symlink("/proc/self/exe").parent_path();
+  const std::filesystem::path folder =
+      std::filesystem::read_symlink("/proc/self/exe").parent_path();
   EXPECT_EQ(std::filesystem::path(places[0]).parent_path(), folder);
   // An installed tool in <prefix>/bin finds it in <prefix>/lib.../aperture.
   EXPECT_EQ(std::filesystem::path(places[1]).parent_path().filename(), "aperture");
-  EXPECT_EQ(std::filesystem::path(places[1]).lexically_relative(folder.parent_path()).begin()->string()
+  EXPECT_EQ(std::filesystem::path(places[1])
+                .lexically_relative(folder.parent_path())
+                .begin()
+                ->string()
                 .rfind("lib", 0),
             0u)
       << places[1];
   EXPECT_EQ(std::filesystem::path(places[2]).parent_path().filename(), "aperture");
   for (const std::string& place : places) {
-    EXPECT_EQ(std::filesystem::path(place).filename(), std::filesystem::path(configured).filename());
+    EXPECT_EQ(std::filesystem::path(place).filename(),
+              std::filesystem::path(configured).filename());
   }
   unsetenv("AAL_IMAGE_PLUGIN");
   const std::string found = imagePluginPath();
