@@ -189,17 +189,9 @@ def relief(dem, cell_size, *, sun_azimuth=None, sun_elevation=None, time=None, l
     handle = _inputs.make_dem(dem, cell_size, nodata, z_scale)
     return _aperture._relief(
         handle, lighting=lighting,
-        sun_azimuth=_inputs.check_range("sun_azimuth", _default(sun_azimuth, _DEFAULT_SUN_AZIMUTH),
-                                        -360, 720, " degrees"),
-        sun_elevation=_inputs.check_range(
-            "sun_elevation", _default(sun_elevation, _DEFAULT_SUN_ELEVATION), -90, 90, " degrees"),
-        time=_inputs.iso_time(time), lat=_inputs.check_range("lat", lat, -90, 90, " degrees"),
-        lon=_inputs.check_range("lon", lon, -180, 180, " degrees"),
-        sun_radius=_inputs.check_range("sun_radius", sun_radius, 0.01, 20, " degrees"),
+        **_sun_arguments(sun_azimuth, sun_elevation, time, lat, lon, sun_radius),
         sky=_inputs.check_range("sky", sky, 0, 1), mode=str(mode), obscurance=bool(obscurance),
-        obscurance_radius=_optional_float("obscurance_radius", obscurance_radius),
-        obscurance_samples=int(_integer("obscurance_samples", obscurance_samples)),
-        obscurance_steps=int(_integer("obscurance_steps", obscurance_steps)),
+        **_obscurance_arguments(obscurance_radius, obscurance_samples, obscurance_steps),
         water_level=_optional_float("water_level", water_level), float_format=format == "float",
         stretch_low=low, stretch_high=high, threads=_inputs.threads_value(threads),
         progress=_inputs.progress_value(progress))
@@ -268,21 +260,13 @@ def render(dem, cell_size, *, size=(1280, 720), camera=None, look_at=None, fov=4
     return _aperture._render(
         handle, width=width, height=height, camera=camera, look_at=look_at,
         fov=_inputs.check_range("fov", fov, 1, 170, " degrees"),
-        sun_azimuth=_inputs.check_range("sun_azimuth", _default(sun_azimuth, _DEFAULT_SUN_AZIMUTH),
-                                        -360, 720, " degrees"),
-        sun_elevation=_inputs.check_range(
-            "sun_elevation", _default(sun_elevation, _DEFAULT_SUN_ELEVATION), -90, 90, " degrees"),
-        time=_inputs.iso_time(time), lat=_inputs.check_range("lat", lat, -90, 90, " degrees"),
-        lon=_inputs.check_range("lon", lon, -180, 180, " degrees"),
-        sun_radius=_inputs.check_range("sun_radius", sun_radius, 0.01, 20, " degrees"),
+        **_sun_arguments(sun_azimuth, sun_elevation, time, lat, lon, sun_radius),
         turbidity=_inputs.check_range("turbidity", turbidity, 2, 10),
         ev=_optional_float("ev", ev),
         visibility=_inputs.check_range("visibility", visibility, 0.1, 1e6, " km"),
         mode=str(mode), transparent=background == "transparent", albedo=albedo,
         obscurance=bool(obscurance),
-        obscurance_radius=_optional_float("obscurance_radius", obscurance_radius),
-        obscurance_samples=int(_integer("obscurance_samples", obscurance_samples)),
-        obscurance_steps=int(_integer("obscurance_steps", obscurance_steps)),
+        **_obscurance_arguments(obscurance_radius, obscurance_samples, obscurance_steps),
         water_level=_optional_float("water_level", water_level),
         device=-1 if device is None else int(_integer("device", device)),
         threads=_inputs.threads_value(threads), progress=_inputs.progress_value(progress))
@@ -320,6 +304,25 @@ def metric_cell_size(crs, transform, width, height):
         raise ValueError(f"transform must be a GDAL geotransform of 6 numbers, got {transform!r}")
     s = _aperture._grid_spacing(wkt, tuple(float(v) for v in gt), int(width), int(height))
     return CellSize(s["x"], s["y"], s["rows"], None if s["center"] is None else tuple(s["center"]))
+
+
+def _sun_arguments(sun_azimuth, sun_elevation, time, lat, lon, sun_radius):
+    """The sun and place options relief() and render() share, checked as the tools check them."""
+    return dict(
+        sun_azimuth=_inputs.check_range("sun_azimuth", _default(sun_azimuth, _DEFAULT_SUN_AZIMUTH),
+                                        -360, 720, " degrees"),
+        sun_elevation=_inputs.check_range(
+            "sun_elevation", _default(sun_elevation, _DEFAULT_SUN_ELEVATION), -90, 90, " degrees"),
+        time=_inputs.iso_time(time), lat=_inputs.check_range("lat", lat, -90, 90, " degrees"),
+        lon=_inputs.check_range("lon", lon, -180, 180, " degrees"),
+        sun_radius=_inputs.check_range("sun_radius", sun_radius, 0.01, 20, " degrees"))
+
+
+def _obscurance_arguments(radius, samples, steps):
+    """The obscurance options relief() and render() share."""
+    return dict(obscurance_radius=_optional_float("obscurance_radius", radius),
+                obscurance_samples=int(_integer("obscurance_samples", samples)),
+                obscurance_steps=int(_integer("obscurance_steps", steps)))
 
 
 def _default(value, default):
