@@ -6,6 +6,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <exception>
+#include <filesystem>
 #include <functional>
 #include <iostream>
 #include <new>
@@ -79,6 +80,22 @@ inline CLI::Validator aboveZero(bool inclusive, const char* name) {
 inline const CLI::Validator kPositive = aboveZero(false, "POSITIVE");
 inline const CLI::Validator kNonNegative = aboveZero(true, "NONNEGATIVE");
 
+// After a parse error: a file whose name starts with '-' ("-x.tif") is read
+// as an unknown option, and the error then says "dem is required". Names
+// each such argument that is an existing file, and how to give it.
+inline void hintDashedFileNames(const CLI::App& app, int argc, char** argv) {
+  for (int i = 1; i < argc; ++i) {
+    const std::string text = argv[i];
+    if (text == "--") break;  // what follows is positional already
+    if (text.size() < 2 || text[0] != '-') continue;
+    if (app.get_option_no_throw(text.substr(0, text.find('='))) != nullptr) continue;
+    std::error_code error;
+    if (!std::filesystem::exists(std::filesystem::symlink_status(text, error))) continue;
+    std::cerr << "note: '" << text << "' is a file but was read as an option; give it as ./" << text
+              << " or after -- (" << app.get_name() << " [OPTIONS] -- " << text << ")\n";
+  }
+}
+
 // Parses the command line with `app` and runs `body`; returns the exit code.
 // `--version` prints "aal-bake 0.2.0 (abc1234)" (terrain/version.h) and exits 0.
 inline int runToolBody(CLI::App& app, int argc, char** argv, const std::function<int()>& body) {
@@ -94,6 +111,7 @@ inline int runToolBody(CLI::App& app, int argc, char** argv, const std::function
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
     const int code = app.exit(e);  // prints help or the parse error
+    if (code != 0) hintDashedFileNames(app, argc, argv);
     return code == 0 ? kExitOk : kExitBadInput;
   }
   try {

@@ -40,6 +40,12 @@ constexpr double kRadToDeg = 180.0 / std::numbers::pi;
   throw InputError(path + ": " + why);
 }
 
+std::string formatNumber(double value) {
+  char text[64];
+  std::snprintf(text, sizeof text, "%.10g", value);
+  return text;
+}
+
 // Bytes of the file GDAL opened (its first file), or nothing when unknown.
 std::optional<uint64_t> mainFileBytes(GDALDataset& dataset) {
   char** files = dataset.GetFileList();
@@ -233,6 +239,21 @@ GDALDatasetUniquePtr openDataset(const std::string& path, const std::string& gda
       GDALDataset::Open(gdalName.c_str(), GDAL_OF_RASTER | GDAL_OF_READONLY));
   if (dataset) return dataset;
   const std::string details = gdalLastError("unrecognised format");
+  if (gdalName.starts_with("/vsi")) {
+    // GDAL's /vsicurl/ says nothing when the server cannot be reached or
+    // has no such file: stat it to tell that from a file that is no raster.
+    VSIStatBufL stat{};
+    CPLErrorReset();
+    if (VSIStatExL(gdalName.c_str(), &stat, VSI_STAT_EXISTS_FLAG) != 0) {
+      const bool remote = gdalName.starts_with("/vsicurl/");
+      const std::string reason = gdalLastError("");
+      refuse(path, remote ? "cannot be fetched: the server cannot be reached or has no such file" +
+                                (reason.empty() ? std::string() : " (" + reason + ")") +
+                                "; check the URL and the network (GDAL_HTTP_* and proxy settings)"
+                          : "not found: the archive or the file in it does not exist" +
+                                (reason.empty() ? std::string() : " (" + reason + ")"));
+    }
+  }
   const InputKind kind = inputStatus(path).kind;
   if (kind == InputKind::Folder) refuse(path, "is a folder, not a DEM file");
   if (kind == InputKind::File) {
@@ -311,6 +332,15 @@ void describeCrs(const std::string& path, const OGRSpatialReference& srs,
 bool describeTransform(const std::string& path, GDALDataset& dataset, RawDem& dem, bool& southUp) {
   double gt[6];
   if (dataset.GetGeoTransform(gt) != CE_None) {
+    // A GeoTIFF whose pixel scale is zero or missing keeps only its tie
+    // point, which GDAL hands over as a single ground control point: one
+    // point cannot place a grid, so this is a missing pixel size.
+    if (dataset.GetGCPCount() == 1) {
+      refuse(path,
+             "has a tie point but no pixel size (zero or missing in the file); give it one: "
+             "`gdal_edit.py -a_ullr ULX ULY LRX LRY " +
+                 path + "`");
+    }
     if (dataset.GetGCPCount() > 0) {
       refuse(path,
              "is placed by ground control points only; warp it onto a grid first: "
@@ -318,6 +348,12 @@ bool describeTransform(const std::string& path, GDALDataset& dataset, RawDem& de
                  path + " dem.tif`");
     }
     return false;
+  }
+  if (gt[1] == 0.0 || gt[5] == 0.0 || !std::isfinite(gt[1]) || !std::isfinite(gt[5])) {
+    refuse(path, "has a pixel size of " + formatNumber(gt[1]) + " x " + formatNumber(-gt[5]) +
+                     ", which places no grid; give it one: `gdal_edit.py -a_ullr ULX ULY LRX "
+                     "LRY " +
+                     path + "`");
   }
   if (gt[2] != 0.0 || gt[4] != 0.0) {
     refuse(path,
@@ -508,8 +544,24 @@ DemSource::DemSource(const std::string& path, const DemLoadOptions& options)
   d.nodata = nodataOf(band, impl_->type);
   int hasScale = 0, hasOffset = 0;
   const double scale = band.GetScale(&hasScale), offset = band.GetOffset(&hasOffset);
-  if (hasScale && std::isfinite(scale) && scale != 0.0) impl_->scale = scale;
-  if (hasOffset && std::isfinite(offset)) impl_->offset = offset;
+  if ((hasScale && !std::isfinite(scale)) || (hasOffset && !std::isfinite(offset))) {
+    refuse(path,
+           "has a band scale of " + formatNumber(scale) + " and offset of " + formatNumber(offset) +
+               ", which give no heights; fix them: `gdal_edit.py -scale 1 -offset 0 " + path + "`");
+  }
+  if (hasScale && scale == 0.0) {
+    // Some writers store 0 for "no scale"; taken at its word it would make
+    // every height equal to the offset.
+    if (options.warn) {
+      options.warn(path +
+                   " has a band scale of 0, which would flatten every height: taken as 1 (no "
+                   "scale); if that is wrong, set the right one with `gdal_edit.py -scale S " +
+                   path + "`");
+    }
+  } else if (hasScale) {
+    impl_->scale = scale;
+  }
+  if (hasOffset) impl_->offset = offset;
   const int maskFlags = band.GetMaskFlags();
   impl_->readMask =
       impl_->alphaBand == 0 && (maskFlags & GMF_ALL_VALID) == 0 && maskFlags != GMF_NODATA;

@@ -39,6 +39,13 @@ std::string number(double value) {
   return text;
 }
 
+// A longitude in [-180, 180), as docs/dem-input.md states: AngNormalize
+// keeps +180 (its range is (-180, 180]), the antimeridian's centre.
+double longitudeInRange(double degrees) {
+  const double normalized = GeographicLib::Math::AngNormalize(degrees);
+  return normalized >= 180.0 ? normalized - 360.0 : normalized;
+}
+
 [[noreturn]] void inconsistent(const std::string& path, const std::string& problem) {
   throw InputError(path + ": inconsistent georeferencing: " + problem);
 }
@@ -85,8 +92,8 @@ MetricSpacing geographicSpacing(const std::string& path, const GeoReference& geo
   checkCellSize(path, "x", s.cellSizeXM);
   s.hasCenter = true;
   s.centerLatDeg = centerLatDeg;
-  s.centerLonDeg = GeographicLib::Math::AngNormalize(
-      (geo.originX + 0.5 * (width - 1) * geo.stepX) * unit + geo.primeMeridianDeg);
+  s.centerLonDeg =
+      longitudeInRange((geo.originX + 0.5 * (width - 1) * geo.stepX) * unit + geo.primeMeridianDeg);
   return s;
 }
 
@@ -153,7 +160,7 @@ MetricSpacing projectedSpacing(const std::string& path, const GeoReference& geo,
   const auto centre = toWgs84(x, y);
   if (!centre) return s;
   s.hasCenter = true;
-  s.centerLonDeg = GeographicLib::Math::AngNormalize(centre->first);
+  s.centerLonDeg = longitudeInRange(centre->first);
   s.centerLatDeg = centre->second;
   // Ground spacing at the centre: conformal projections far from their
   // standard lines (Web Mercator above all) stretch the grid's nominal

@@ -1,4 +1,4 @@
-// The standard hostile cases, run against every tool they apply to (issue 17):
+// The standard hostile cases, run against every tool they apply to:
 // numbers that are not finite, outputs that alias inputs or each other, a
 // tiny file whose header claims gigabytes, and writes that fail half way
 // (a file-size limit, a full disk). Each ends with a clear message, the
@@ -878,6 +878,113 @@ TEST(HostileInput, ALowMemoryBakeBeyondTheLimitIsToldWhatHelps) {
       << r.out;
   EXPECT_NE(r.out.find("give a smaller --tile-size"), std::string::npos) << r.out;
   EXPECT_FALSE(fs::exists(tiles / ".aal-bake.lock"));
+}
+
+}  // namespace
+}  // namespace aal
+
+namespace aal {
+namespace {
+
+// A VRT over `source` whose placement (`placement`: a <GeoTransform> or
+// <GCPList> element) and band (`band`: <Scale>, <Offset>) are as given.
+void writeVrtPlaced(const fs::path& path, const std::string& source, const std::string& placement,
+                    const std::string& band = "") {
+  std::ofstream(path) << "<VRTDataset rasterXSize=\"64\" rasterYSize=\"64\">\n  " << placement
+                      << "\n  <VRTRasterBand dataType=\"Float32\" band=\"1\">\n    " << band
+                      << "\n    <SimpleSource>\n      <SourceFilename relativeToVRT=\"1\">"
+                      << source << "</SourceFilename>\n      <SourceBand>1</SourceBand>\n"
+                      << "    </SimpleSource>\n  </VRTRasterBand>\n</VRTDataset>\n";
+}
+
+// Georeferencing and band metadata that cannot be used are named for what
+// they are, with the command that fixes them: a zero pixel size (a GeoTIFF
+// with a zero scale keeps only its tie point, which GDAL hands over as one
+// ground control point), a band scale of 0 (taken as 1, with a warning) or
+// NaN (refused).
+TEST(HostileInput, GeoreferencingThatPlacesNoGridIsNamed) {
+  TempDir dir;
+  writeDemAt(dir.path() / "src.tif", 64, 64);
+  struct Case {
+    std::string name, placement, band;
+    int exitCode;
+    std::string says;
+  };
+  const std::vector<Case> cases = {
+      {"tiepoint.vrt",
+       "<GCPList><GCP Id=\"1\" Pixel=\"0\" Line=\"0\" X=\"500000\" Y=\"4000000\"/></GCPList>", "",
+       2, "has a tie point but no pixel size (zero or missing in the file)"},
+      {"zero.vrt", "<GeoTransform>500000, 0, 0, 4000000, 0, -30</GeoTransform>", "", 2,
+       "has a pixel size of 0 x 30, which places no grid; give it one: `gdal_edit.py -a_ullr"},
+      {"scale0.vrt", "<GeoTransform>500000, 30, 0, 4000000, 0, -30</GeoTransform>",
+       "<Scale>0</Scale>", 0,
+       "has a band scale of 0, which would flatten every height: taken as 1 (no scale)"},
+      {"scalenan.vrt", "<GeoTransform>500000, 30, 0, 4000000, 0, -30</GeoTransform>",
+       "<Scale>nan</Scale>", 2, "has a band scale of nan and offset of 0, which give no heights"},
+  };
+  for (const Case& c : cases) {
+    writeVrtPlaced(dir.path() / c.name, "src.tif", c.placement, c.band);
+    const auto r = runWithin10s("aal-info", quoted(dir.path() / c.name));
+    EXPECT_EQ(r.exitCode, c.exitCode) << c.name << "\n" << r.out;
+    EXPECT_NE(r.out.find(c.says), std::string::npos) << c.name << "\n" << r.out;
+    EXPECT_EQ(r.out.find("ground control points"), std::string::npos) << c.name << "\n" << r.out;
+  }
+  // Scale 0 taken as 1: the heights are the source's.
+  const auto plain = runWithin10s("aal-info", quoted(dir.path() / "src.tif"));
+  const auto scaled = runWithin10s("aal-info", quoted(dir.path() / "scale0.vrt"));
+  const auto heights = [](const std::string& text) {
+    const size_t at = text.find("heights");
+    return at == std::string::npos ? std::string() : text.substr(at, text.find('\n', at) - at);
+  };
+  EXPECT_FALSE(heights(plain.out).empty()) << plain.out;
+  EXPECT_EQ(heights(plain.out), heights(scaled.out)) << scaled.out;
+}
+
+// A DEM whose name starts with '-' is read as an option by every command
+// line; the error says so and how to give it, and `--` or ./ open it.
+TEST(HostileInput, AFileNamedLikeAnOptionIsExplained) {
+  TempDir dir;
+  fs::copy_file(kDem, dir.path() / "-x.tif");
+  for (const std::string tool : {"aal-info", "aal-bake", "aal-render", "aal-relief"}) {
+    const std::string output = tool == "aal-info" ? "" : " -o out.tif";
+    const auto r = runWithin10s(tool, "-x.tif" + output, dir.path());
+    EXPECT_EQ(r.exitCode, 2) << tool << "\n" << r.out;
+    EXPECT_NE(r.out.find("note: '-x.tif' is a file but was read as an option; give it as "
+                         "./-x.tif or after --"),
+              std::string::npos)
+        << tool << "\n"
+        << r.out;
+  }
+  EXPECT_EQ(runWithin10s("aal-info", "-- -x.tif", dir.path()).exitCode, 0);
+  EXPECT_EQ(runWithin10s("aal-info", "./-x.tif", dir.path()).exitCode, 0);
+  // An unknown option that is no file gets no note.
+  const auto r = runWithin10s("aal-info", "--no-such-option " + quoted(kDem));
+  EXPECT_EQ(r.exitCode, 2);
+  EXPECT_EQ(r.out.find("note:"), std::string::npos) << r.out;
+}
+
+// A remote DEM that cannot be fetched (here: a closed port on this machine)
+// is said to be unreachable, not "not a raster"; a missing archive is said
+// to be missing.
+TEST(HostileInput, AnUnreachableOrMissingVirtualFileIsSaidToBeSo) {
+  TempDir dir;
+  const auto r = runWithin10s("aal-info", "/vsicurl/http://127.0.0.1:9/dem.tif", {},
+                              "GDAL_HTTP_TIMEOUT=5 GDAL_HTTP_MAX_RETRY=0");
+  EXPECT_EQ(r.exitCode, 2) << r.out;
+  EXPECT_NE(r.out.find("/vsicurl/http://127.0.0.1:9/dem.tif: cannot be fetched: the server "
+                       "cannot be reached or has no such file"),
+            std::string::npos)
+      << r.out;
+  EXPECT_EQ(r.out.find("unrecognised format"), std::string::npos) << r.out;
+  writeDemAt(dir.path() / "dem.tif", 32, 32);
+  ASSERT_EQ(test::runShell("cd " + quoted(dir.path()) + " && gzip -k dem.tif").exitCode, 0);
+  const auto missing = runWithin10s("aal-info", "/vsigzip/other.tif.gz", dir.path());
+  EXPECT_EQ(missing.exitCode, 2) << missing.out;
+  EXPECT_NE(missing.out.find("/vsigzip/other.tif.gz: not found: the archive or the file in it "
+                             "does not exist"),
+            std::string::npos)
+      << missing.out;
+  EXPECT_EQ(runWithin10s("aal-info", "/vsigzip/dem.tif.gz", dir.path()).exitCode, 0);
 }
 
 }  // namespace

@@ -44,6 +44,23 @@ TEST(Georeference, ThreeArcSecondsOfLongitudeAt36Point6North) {
   EXPECT_NEAR(m, 74.5, 0.15);
 }
 
+// docs/dem-input.md: longitudes in [-180, 180). A grid from 170 E to 190 E
+// (170 W) is centred on the antimeridian, which is -180, not +180.
+TEST(Georeference, AntimeridianCentreIsMinus180) {
+  GeoReference geo;
+  geo.crs = CrsKind::Geographic;
+  geo.originX = 170.0;
+  geo.originY = 10.0;
+  geo.stepX = geo.stepY = 0.1;
+  const MetricSpacing s = metricSpacing("g", geo, 201, 11);
+  ASSERT_TRUE(s.hasCenter);
+  EXPECT_DOUBLE_EQ(s.centerLonDeg, -180.0);
+  geo.originX = -190.0;  // the same place a turn to the west
+  EXPECT_DOUBLE_EQ(metricSpacing("g", geo, 201, 11).centerLonDeg, -180.0);
+  geo.originX = 169.9;  // just west of it stays east
+  EXPECT_NEAR(metricSpacing("g", geo, 201, 11).centerLonDeg, 179.9, 1e-9);
+}
+
 TEST(Georeference, GeographicGridHasPerRowSpacingAndCentre) {
   GeoReference geo;
   geo.crs = CrsKind::Geographic;
