@@ -34,6 +34,7 @@
 #include "aperture/terrain/io/dem_loader.h"
 #include "aperture/terrain/io/dem_source.h"
 #include "aperture/terrain/io/heightfield_checksum.h"
+#include "aperture/terrain/io/memory_budget.h"
 
 namespace aal {
 
@@ -512,11 +513,38 @@ std::string tiledBakeChecksum(const std::string& folder, const std::string& chec
   return checksum;
 }
 
+double tiledBakeInBandsPeakBytes(const Heightfield& geometry, const BakeOptions& bake,
+                                 const TiledBakeOptions& tiled) {
+  const double width = geometry.width, height = geometry.height;
+  double pyramid = 0.0;
+  if (bake.maxDistanceM <= 0.0) {
+    // Max and mean floats per block of the finest level, a third more for
+    // the coarser ones.
+    const double block = std::ldexp(1.0, tiledBakePyramidShift(geometry, tiled));
+    pyramid = 8.0 * std::ceil(width / block) * std::ceil(height / block) * 4.0 / 3.0;
+  }
+  const double rowHashes = sizeof(uint64_t) * height;
+  // A chunk is read as samples and void mask, then held as heights.
+  const double chunkRows = demPassChunkRows(geometry, nullptr);
+  const double chunk = chunkRows * width * (2 * sizeof(float) + 1);
+  const double side =
+      std::min(width, double(tiled.tileSize) + 2.0 * tileHalo(geometry, bake, tiled));
+  const double window =
+      side * std::min(height, side) * (sizeof(float) + 1 + kInMemoryBakeBytesPerTexel);
+  return rowHashes + pyramid + std::max(chunk, window);
+}
+
 TiledBakeSummary bakeTiledInBands(const DemSource& source, const Heightfield& geometry,
                                   const BakeOptions& bake, const TiledBakeOptions& tiled,
                                   const std::string& folder) {
   checkTiledBakeOptions(bake, tiled);
   checkSkyViewFactorTiles(geometry, bake.skyViewFactor);
+  // Refused with the numbers before the checksum pass allocates anything.
+  requireMemory(source.path(), tiledBakeInBandsPeakBytes(geometry, bake, tiled),
+                "a tiled bake read in windows (" + std::to_string(tiled.tileSize) +
+                    "-texel tiles, each with the texels its sweeps read around it)",
+                "give a smaller --tile-size (or a shorter --max-distance), or allow more memory "
+                "(AAL_MEMORY_LIMIT)");
   // An existing folder is locked before the checksum pass, so that a busy
   // one fails at once (bakeTiles creates and locks a new one).
   std::optional<TiledBakeLock> ownLock;

@@ -156,6 +156,14 @@ TiledBakeSummary bakeTiledInBands(const DemSource& source, const Heightfield& ge
                                   const BakeOptions& bake, const TiledBakeOptions& tiled,
                                   const std::string& folder);
 
+// What bakeTiledInBands holds at its peak, in bytes: the checksum pass's
+// row hashes and far-field pyramid, then the larger of a pass's chunk of
+// rows and one tile's window with its bake (kInMemoryBakeBytesPerTexel per
+// window texel). bakeTiledInBands refuses (InputError) before the pass when
+// it exceeds the memory available.
+double tiledBakeInBandsPeakBytes(const Heightfield& geometry, const BakeOptions& bake,
+                                 const TiledBakeOptions& tiled);
+
 // Texels around a tile, in rows and in columns, that its sweeps read: the
 // tile size plus the steps of the max distance or, without one, of the far
 // field's near reach (+ 3).

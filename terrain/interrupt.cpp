@@ -67,6 +67,10 @@ void setInterruptCleanup(void (*cleanup)()) {
   gCleanup.store(cleanup);
 }
 
+void runInterruptCleanup() {
+  if (void (*cleanup)() = gCleanup.load()) cleanup();
+}
+
 const std::atomic<bool>& interruptFlag() {
   return gInterrupted;
 }

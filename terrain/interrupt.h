@@ -39,6 +39,10 @@ void clearInterrupt();
 // interrupted thread may hold for long.
 void setInterruptCleanup(void (*cleanup)());
 
+// Runs that function now, for a path that must end the process at once
+// without unwinding (a library's fatal error): no temporary is left behind.
+void runInterruptCleanup();
+
 // Throws Interrupted once a signal came; a relaxed load: poll it freely.
 inline void throwIfInterrupted() {
   if (interruptFlag().load(std::memory_order_relaxed)) throw Interrupted();

@@ -20,6 +20,7 @@
 #include "aperture/terrain/io/dem_loader.h"
 #include "aperture/terrain/io/dem_options.h"
 #include "aperture/terrain/io/geotiff_writer.h"
+#include "aperture/terrain/io/memory_budget.h"
 #include "aperture/terrain/light/atmosphere.h"
 #include "aperture/terrain/light/lighting_defaults.h"
 #include "aperture/terrain/light/solar_position.h"
@@ -186,6 +187,10 @@ int run(const Options& o) {
   aal::DemLoadOptions load;
   load.cellSizeM = o.cellSize;
   load.zScale = o.zScale;
+  load.peakBytesPerTexel = aal::kReliefBytesPerTexel;
+  load.workName = "a relief";
+  load.memoryHint =
+      "cut the DEM (`gdal_translate -srcwin`) or coarsen it (`gdal_translate -outsize 50% 50%`)";
   const aal::Heightfield field = aal::loadDem(o.dem, load);
   aal::requireRenderableDem(field);
   const auto [outWidth, outHeight] = outputSize(o.resolution, field);

@@ -26,6 +26,7 @@
 #include "aperture/terrain/io/aperture_map.h"
 #include "aperture/terrain/io/atomic_file.h"
 #include "aperture/terrain/io/dem_loader.h"
+#include "aperture/terrain/io/memory_budget.h"
 #include "aperture/terrain/light/atmosphere.h"
 #include "aperture/terrain/light/lighting_defaults.h"
 #include "aperture/terrain/light/sky_lighting.h"
@@ -469,6 +470,11 @@ int run(const Options& o) {
   load.cellSizeM = o.cellSize;
   load.zScale = o.zScale;
   load.exaggeration = o.exaggeration;
+  load.peakBytesPerTexel =
+      reference ? aal::kReferenceRenderBytesPerTexel : aal::kRenderBytesPerTexel;
+  load.workName = reference ? "a ray-traced render" : "a render";
+  load.memoryHint =
+      "cut the DEM (`gdal_translate -srcwin`) or coarsen it (`gdal_translate -outsize 50% 50%`)";
   const aal::Heightfield field = aal::loadDem(o.dem, load);
   aal::requireRenderableDem(field);
   const aal::ObscuranceSettings obscurance = aal::obscuranceFromOptions(

@@ -27,7 +27,7 @@ int main(int argc, char** argv) {
   aal::SyntheticTerrainOptions s;
   int size = 0;
   app.add_option("-o,--output", output, "output GeoTIFF (.tif)")->required();
-  app.add_option("--size", size, "width and height in texels")
+  app.add_option("--size", size, "side of the square DEM in texels")
       ->required()
       ->check(CLI::Range(1, 32768));
   app.add_option("--seed", s.seed, "noise seed (default 1)");

@@ -133,7 +133,13 @@ inline int runToolBody(CLI::App& app, int argc, char** argv, const std::function
     }
     return kExitFailure;
   } catch (const std::exception& e) {
-    std::cerr << app.get_name() << ": error: " << e.what() << "\n";
+    // oneTBB says a worker it could not start with a runtime_error.
+    if (std::string(e.what()).find("pthread_create") != std::string::npos) {
+      std::cerr << app.get_name() << ": error: cannot start a thread (" << e.what()
+                << "): " << outOfMemoryMessage("") << "\n";
+    } else {
+      std::cerr << app.get_name() << ": error: " << e.what() << "\n";
+    }
     return kExitFailure;
   }
 }

@@ -9,6 +9,7 @@
 #include <string>
 
 #include "aperture/engine/vk/vk_check.h"
+#include "aperture/terrain/io/memory_budget.h"
 
 namespace aal {
 
@@ -88,30 +89,13 @@ namespace {
 // 507 MiB left crashed or aborted; 800 MiB left (ulimit -v 1300000) started.
 constexpr uint64_t kDriverAddressSpaceBytes = uint64_t{768} << 20;
 
-uint64_t mappedBytes() {
-  std::ifstream status("/proc/self/status");
-  std::string key;
-  uint64_t kilobytes = 0;
-  while (status >> key) {
-    if (key == "VmSize:" && status >> kilobytes) return kilobytes << 10;
-    status.ignore(4096, '\n');
-  }
-  return 0;
-}
-
 // Refuses before the driver loads when the address-space limit leaves it
 // too little: a clear error instead of an abort inside the driver.
 void requireDriverAddressSpace() {
-  rlimit limit{};
-  if (getrlimit(RLIMIT_AS, &limit) != 0 || limit.rlim_cur == RLIM_INFINITY) return;
-  const uint64_t mapped = mappedBytes();
-  const uint64_t left = limit.rlim_cur > mapped ? limit.rlim_cur - mapped : 0;
-  if (left >= kDriverAddressSpaceBytes) return;
-  throw VulkanError("cannot start Vulkan: the driver needs about " +
-                    std::to_string(kDriverAddressSpaceBytes >> 20) +
-                    " MiB of address space, and this process's limit (ulimit -v " +
-                    std::to_string(limit.rlim_cur >> 10) + " kB) leaves " +
-                    std::to_string(left >> 20) + " MiB: raise or remove the limit");
+  if (const std::optional<std::string> shortfall =
+          addressSpaceShortfall(kDriverAddressSpaceBytes, "the driver")) {
+    throw VulkanError("cannot start Vulkan: " + *shortfall);
+  }
 }
 
 }  // namespace

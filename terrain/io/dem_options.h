@@ -55,6 +55,14 @@ struct DemLoadOptions {
   // aal-bake --tile-size --low-memory. A caller that reads in windows
   // already says what helps it (aal-bake's tiled bakes).
   std::string memoryHint;
+  // What the caller's work holds at its peak per DEM texel, the read's own
+  // heights and void mask included (memory_budget.h: kRenderBytesPerTexel,
+  // ...), and what that work is called ("a render"). The read of the whole
+  // DEM checks that much against the memory available, so that a DEM whose
+  // work would not fit is refused before its samples are read, not by the
+  // allocator half-way. 0: the read alone.
+  double peakBytesPerTexel = 0;
+  std::string workName;
 };
 
 }  // namespace aal

@@ -473,9 +473,11 @@ struct DemSource::Impl {
   int alphaBand = 0;
   double scale = 1.0, offset = 0.0;
   size_t maxTexels = kMaxDemTexels;
-  std::string memoryHint;  // DemLoadOptions::memoryHint
-  std::string bandUnit;    // GDAL's unit type of band 1; empty when silent
-  std::string gdalName;    // what GDAL opens for the path (gdalFileName)
+  std::string memoryHint;        // DemLoadOptions::memoryHint
+  double peakBytesPerTexel = 0;  // DemLoadOptions::peakBytesPerTexel
+  std::string workName;
+  std::string bandUnit;  // GDAL's unit type of band 1; empty when silent
+  std::string gdalName;  // what GDAL opens for the path (gdalFileName)
   // The CRS, found while the caller reads (findCrs), then merged into the
   // description once (settle); warnings are given then, on the caller's thread.
   std::future<CrsPart> crs;
@@ -494,6 +496,8 @@ DemSource::DemSource(const std::string& path, const DemLoadOptions& options)
   GDALDataset& dataset = *impl_->dataset;
   impl_->maxTexels = options.maxTexels;
   impl_->memoryHint = options.memoryHint;
+  impl_->peakBytesPerTexel = options.peakBytesPerTexel;
+  impl_->workName = options.workName;
   const int bands = dataset.GetRasterCount();
   if (bands == 0) {
     const std::string subdatasets = subdatasetList(dataset);
@@ -618,14 +622,19 @@ RawDem DemSource::read(int column, int row, int w, int h) const {
   }
   checkDemSize(path_, w, h, impl_->maxTexels);
   const bool wholeRaster = w == whole.width && h == whole.height;
-  requireMemory(path_, static_cast<double>(w) * h * (sizeof(float) + sizeof(uint8_t)),
-                (wholeRaster ? "its " : "a window of ") + std::to_string(w) + " x " +
-                    std::to_string(h) + " heights and void mask",
-                !impl_->memoryHint.empty()
-                    ? impl_->memoryHint
-                    : "aal-bake bakes it a tile at a time (--tile-size N --low-memory); for the "
-                      "other tools cut it (`gdal_translate -srcwin`) or coarsen it "
-                      "(`gdal_translate -outsize 50% 50%`)");
+  const double readBytes = sizeof(float) + sizeof(uint8_t);
+  const bool withWork = wholeRaster && impl_->peakBytesPerTexel > readBytes;
+  const std::string size = std::to_string(w) + " x " + std::to_string(h);
+  requireMemory(
+      path_, static_cast<double>(w) * h * (withWork ? impl_->peakBytesPerTexel : readBytes),
+      withWork ? impl_->workName + " of its " + size + " texels (" +
+                     formatNumber(impl_->peakBytesPerTexel) + " bytes per texel)"
+               : (wholeRaster ? "its " : "a window of ") + size + " heights and void mask",
+      !impl_->memoryHint.empty()
+          ? impl_->memoryHint
+          : "aal-bake bakes it a tile at a time (--tile-size N --low-memory); for the "
+            "other tools cut it (`gdal_translate -srcwin`) or coarsen it "
+            "(`gdal_translate -outsize 50% 50%`)");
   RawDem dem;  // the samples; the description joins them at the end
   dem.allocate(w, h);
   texelsRead_ += static_cast<uint64_t>(w) * static_cast<uint64_t>(h);

@@ -1,6 +1,12 @@
 #include "aperture/terrain/io/gdal_session.h"
 
+#include <algorithm>
+#include <cerrno>
+#include <cstdio>
+#include <cstdlib>
 #include <mutex>
+#include <string>
+#include <thread>
 
 #include <cpl_conv.h>
 #include <cpl_error.h>
@@ -16,17 +22,36 @@ namespace aal {
 
 namespace {
 
+// GDAL's messages are kept for CPLGetLastErrorMsg (our errors quote them).
+// A fatal one is an allocation that failed inside GDAL (CPLMalloc, its
+// thread-local storage), after which GDAL aborts: said as memory, with
+// the limit that applies, and exit 1 instead of SIGABRT.
+void handleGdalError(CPLErr kind, CPLErrorNum, const char* message) {
+  if (kind != CE_Fatal) return;
+  runInterruptCleanup();
+  std::fprintf(stderr, "%s: error: GDAL failed (%s): %s\n", program_invocation_short_name,
+               message != nullptr ? message : "", outOfMemoryMessage("").c_str());
+  std::fflush(stderr);
+  std::_Exit(1);
+}
+
 void configureGdal() {
   static std::once_flag once;
   std::call_once(once, [] {
-    CPLSetErrorHandler(CPLQuietErrorHandler);
+    CPLSetErrorHandler(handleGdalError);
     if (CPLGetConfigOption("GDAL_NUM_THREADS", nullptr) == nullptr) {
-      CPLSetConfigOption("GDAL_NUM_THREADS", "ALL_CPUS");
+      CPLSetConfigOption("GDAL_NUM_THREADS", gdalThreads().c_str());
     }
   });
 }
 
 }  // namespace
+
+std::string gdalThreads() {
+  const unsigned cores = std::max(1u, std::thread::hardware_concurrency());
+  const unsigned threads = threadsThatFit(cores);
+  return threads >= cores ? "ALL_CPUS" : std::to_string(threads);
+}
 
 void ensureGdal() {
   configureGdal();

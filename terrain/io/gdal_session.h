@@ -15,10 +15,17 @@ class OGRSpatialReference;
 namespace aal {
 
 // Registers GDAL's drivers once per process (thread-safe), sends GDAL's
-// error messages to CPLGetLastErrorMsg only, and sets GDAL_NUM_THREADS to
-// ALL_CPUS unless the user set it, so that compressed GeoTIFFs decode and
-// encode on every core.
+// error messages to CPLGetLastErrorMsg only (a fatal one, an allocation that
+// failed inside GDAL, ends the tool with exit 1 and a message that says
+// memory), and sets GDAL_NUM_THREADS to gdalThreads() unless the user set it, so that compressed
+// GeoTIFFs decode and encode on every core.
 void ensureGdal();
+
+// GDAL's thread count for decoding and encoding: "ALL_CPUS", or fewer under
+// a tight ulimit -v (threadsThatFit, terrain/io/memory_budget.h), because
+// GDAL 3.6's worker pool waits for ever on a job when some of its threads
+// could not start.
+std::string gdalThreads();
 
 // `path` opened read-only as a raster by GDAL's GeoTIFF driver alone, or
 // null when that driver does not take it (then open it after ensureGdal()).

@@ -81,7 +81,7 @@ void writeGeoTiff(const std::string& path, const RasterImage& image, const GeoRe
     CPLStringList creation;
     creation.SetNameValue("COMPRESS", "DEFLATE");
     creation.SetNameValue("BIGTIFF", "IF_SAFER");
-    creation.SetNameValue("NUM_THREADS", "ALL_CPUS");
+    creation.SetNameValue("NUM_THREADS", gdalThreads().c_str());
     // A COG is copied from an in-memory raster (the COG driver cannot Create).
     GDALDriver* driver = GetGDALDriverManager()->GetDriverByName(options.cog ? "MEM" : "GTiff");
     if (driver == nullptr)

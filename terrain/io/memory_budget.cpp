@@ -1,5 +1,7 @@
 #include "aperture/terrain/io/memory_budget.h"
 
+#include <algorithm>
+
 #include <cerrno>
 #include <cstdio>
 #include <cstdlib>
@@ -93,6 +95,35 @@ std::optional<MemoryLimit> memoryLimit() {
   consider(rlimitLeft(RLIMIT_DATA, "VmData:"), "ulimit -d");
   consider(cgroupLeft(), "cgroup memory.max");
   return tightest;
+}
+
+std::optional<uint64_t> addressSpaceLeft() {
+  return rlimitLeft(RLIMIT_AS, "VmSize:");
+}
+
+std::optional<std::string> addressSpaceShortfall(uint64_t bytes, const std::string& what) {
+  const std::optional<uint64_t> left = addressSpaceLeft();
+  if (!left || *left >= bytes) return std::nullopt;
+  rlimit limit{};
+  getrlimit(RLIMIT_AS, &limit);
+  return what + " needs about " + std::to_string(bytes >> 20) +
+         " MiB of address space, and this process's limit (ulimit -v " +
+         std::to_string(limit.rlim_cur >> 10) + " kB) leaves " + std::to_string(*left >> 20) +
+         " MiB: raise or remove the limit";
+}
+
+unsigned threadsThatFit(unsigned wanted) {
+  const std::optional<uint64_t> left = addressSpaceLeft();
+  if (!left) return wanted;
+  rlimit stack{};
+  constexpr uint64_t kDefaultStack = uint64_t{8} << 20;
+  const uint64_t stackBytes =
+      getrlimit(RLIMIT_STACK, &stack) == 0 && stack.rlim_cur != RLIM_INFINITY && stack.rlim_cur > 0
+          ? stack.rlim_cur
+          : kDefaultStack;
+  constexpr uint64_t kReserve = uint64_t{64} << 20;
+  const uint64_t spare = *left > kReserve ? (*left - kReserve) / 2 : 0;
+  return static_cast<unsigned>(std::clamp<uint64_t>(spare / stackBytes, 1, std::max(wanted, 1u)));
 }
 
 std::optional<uint64_t> availableMemoryBytes() {

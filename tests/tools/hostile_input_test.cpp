@@ -874,10 +874,11 @@ TEST(HostileInput, ALowMemoryBakeBeyondTheLimitIsToldWhatHelps) {
   EXPECT_EQ(r.exitCode, 2) << r.out;
   EXPECT_NE(r.out.find("of memory is available (AAL_MEMORY_LIMIT)"), std::string::npos) << r.out;
   EXPECT_EQ(r.out.find("(--low-memory)"), std::string::npos) << r.out;
-  EXPECT_NE(r.out.find("a tiled bake reads the DEM in windows already"), std::string::npos)
+  // Refused before the checksum pass, with what the whole tiled bake holds.
+  EXPECT_NE(r.out.find("holding a tiled bake read in windows (64-texel tiles"), std::string::npos)
       << r.out;
   EXPECT_NE(r.out.find("give a smaller --tile-size"), std::string::npos) << r.out;
-  EXPECT_FALSE(fs::exists(tiles / ".aal-bake.lock"));
+  EXPECT_FALSE(fs::exists(tiles));
 }
 
 }  // namespace
@@ -985,6 +986,32 @@ TEST(HostileInput, AnUnreachableOrMissingVirtualFileIsSaidToBeSo) {
             std::string::npos)
       << missing.out;
   EXPECT_EQ(runWithin10s("aal-info", "/vsigzip/dem.tif.gz", dir.path()).exitCode, 0);
+}
+
+// A DEM whose render or relief would not fit is refused before its samples
+// are read, with what the whole run needs: an 8000² VRT (over a small
+// source) reads in 320 MB, but a render holds 32 bytes per texel (2.05 GB)
+// and a relief 28 (docs/performance.md, "Memory"). It used to pass the
+// read's check and end in std::bad_alloc half-way.
+TEST(HostileInput, ARunThatWouldNotFitIsRefusedBeforeItsDemIsRead) {
+  TempDir dir;
+  writeDemAt(dir.path() / "src.tif", 64, 64);
+  writeVrt(dir.path() / "big.vrt", "src.tif", 8000, 8000);
+  const std::string dem = quoted(dir.path() / "big.vrt"), out = quoted(dir.path() / "out");
+  const std::vector<std::pair<ToolCase, std::string>> cases = {
+      {{"aal-render", dem + " --size 32x18 -o " + out + ".png"},
+       "holding a render of its 8000 x 8000 texels (32 bytes per texel) needs 2.05 GB"},
+      {{"aal-relief", dem + " -o " + out + ".tif"},
+       "holding a relief of its 8000 x 8000 texels (28 bytes per texel) needs 1.79 GB"},
+      {{"aal-view", dem}, "holding the viewer's terrain of its 8000 x 8000 texels"},
+  };
+  for (const auto& [c, says] : cases) {
+    const auto r = runWithin10s(c.tool, c.arguments, {}, "AAL_MEMORY_LIMIT=1G");
+    EXPECT_EQ(r.exitCode, 2) << c.tool << "\n" << r.out;
+    EXPECT_NE(r.out.find(says), std::string::npos) << c.tool << "\n" << r.out;
+    EXPECT_NE(r.out.find("(AAL_MEMORY_LIMIT); cut the DEM"), std::string::npos) << r.out;
+  }
+  EXPECT_EQ(entriesOf(dir.path()), (std::vector<std::string>{"big.vrt", "src.tif"}));
 }
 
 }  // namespace

@@ -9,6 +9,8 @@
 #include <new>
 #include <string>
 #include <system_error>
+#include <utility>
+#include <vector>
 
 #include "aperture/terrain/io/memory_budget.h"
 #include "aperture/tests/tools/run_tool.h"
@@ -66,6 +68,48 @@ TEST(MemoryLimit, AVulkanDriverUnderATightLimitIsSaidToBeLimitedNotMissing) {
   EXPECT_NE(r.out.find("ulimit -v 1000000 kB"), std::string::npos) << r.out;
   EXPECT_EQ(r.out.find("install one"), std::string::npos) << r.out;
   EXPECT_TRUE(fs::is_empty(dir.path()));
+}
+
+// Every address-space limit from where the tools barely load to where they
+// work: each run ends within 10 s (GDAL's worker pool used to wait for ever
+// when some of its threads could not start), never by a signal (GDAL's
+// fatal allocation errors aborted, and a static initialiser of the image
+// plugin's libraries threw std::bad_alloc through dlopen), and a failure
+// says memory. Below ~170 MB the loader itself cannot map the libraries
+// (exit 127 before main), which no tool can help.
+TEST(MemoryLimit, NoToolHangsOrAbortsUnderAnyAddressSpaceLimit) {
+  if (!kAddressSpaceLimitsWork) GTEST_SKIP() << "AddressSanitizer build";
+  TempDir dir;
+  const fs::path dem = fs::path(AAL_TEST_SOURCE_DIR) / "heightmaps" / "jacksboro_fault_dem.tif";
+  const std::string out = quoted(dir.path() / "out");
+  const std::vector<std::pair<std::string, std::string>> runs = {
+      {"aal-bake", quoted(dem) + " -q -o " + out + ".exr"},
+      {"aal-relief", quoted(dem) + " -q -o " + out + ".tif"},
+      {"aal-render", quoted(dem) + " --mode reference --size 32x18 -q -o " + out + ".png"},
+  };
+  int worked = 0;
+  for (int megabytes = 150; megabytes <= 750; megabytes += 50) {
+    for (const auto& [tool, arguments] : runs) {
+      const std::string command = "ulimit -v " + std::to_string(megabytes * 1000) +
+                                  "; timeout -s KILL 10 " + (test::binDir() / tool).string() + " " +
+                                  arguments;
+      const auto r = runShell(command);
+      if (r.exitCode == 127 &&
+          r.out.find("error while loading shared libraries") != std::string::npos) {
+        continue;  // the dynamic loader, before main
+      }
+      EXPECT_TRUE(r.exitCode == 0 || r.exitCode == 1 || r.exitCode == 2) << command << "\n"
+                                                                         << r.out;
+      if (r.exitCode == 0) ++worked;
+      if (r.exitCode == 1 || r.exitCode == 2) {
+        EXPECT_TRUE(r.out.find("memory") != std::string::npos ||
+                    r.out.find("address space") != std::string::npos)
+            << command << "\n"
+            << r.out;
+      }
+    }
+  }
+  EXPECT_GT(worked, 0) << "no run fitted under 750 MB";
 }
 
 int runThrowing(const std::function<int()>& body, std::string& printed) {

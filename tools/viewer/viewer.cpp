@@ -19,6 +19,7 @@
 #include "aperture/preprocess/aperture_cache.h"
 #include "aperture/terrain/errors.h"
 #include "aperture/terrain/io/dem_loader.h"
+#include "aperture/terrain/io/memory_budget.h"
 #include "aperture/terrain/light/lighting_defaults.h"
 #include "aperture/terrain/light/obscurance.h"
 #include "aperture/tools/tool_options.h"
@@ -190,6 +191,11 @@ std::shared_ptr<const HorizonMap> sharedHorizons(HorizonMap&& horizons) {
 std::shared_ptr<const Heightfield> loadViewerDem(const std::string& path, double exaggeration) {
   DemLoadOptions options;
   options.exaggeration = exaggeration;
+  // The viewer's textures are the render's (lavapipe keeps them in host memory).
+  options.peakBytesPerTexel = kRenderBytesPerTexel;
+  options.workName = "the viewer's terrain";
+  options.memoryHint =
+      "cut the DEM (`gdal_translate -srcwin`) or coarsen it (`gdal_translate -outsize 50% 50%`)";
   auto field = std::make_shared<const Heightfield>(loadDem(path, options));
   requireRenderableDem(*field);
   return field;
