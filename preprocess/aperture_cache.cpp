@@ -3,8 +3,10 @@
 #include <cstdio>
 #include <cstdlib>
 #include <functional>
+#include <optional>
 #include <string>
 #include <system_error>
+#include <vector>
 
 #include "aperture/preprocess/progress.h"
 #include "aperture/terrain/errors.h"
@@ -113,8 +115,23 @@ fs::path findCachedAperture(const Heightfield& field, const std::string& demPath
   return {};
 }
 
+namespace {
+
+// The input among `inputs` that `entry` is (the same file, whatever the
+// names), or nothing.
+std::optional<std::string> inputAt(const fs::path& entry, const std::vector<std::string>& inputs) {
+  for (const std::string& input : inputs) {
+    std::error_code error;
+    if (!input.empty() && fs::equivalent(entry, input, error)) return input;
+  }
+  return std::nullopt;
+}
+
+}  // namespace
+
 CachedAperture cachedOrBakedAperture(const Heightfield& field, const std::string& demPath,
-                                     BakeOptions options, bool quiet) {
+                                     BakeOptions options, bool quiet,
+                                     const std::vector<std::string>& inputs) {
   const fs::path path = cachedAperturePath(field, options);
   std::error_code error;
   std::string whyUnusable;
@@ -158,6 +175,21 @@ CachedAperture cachedOrBakedAperture(const Heightfield& field, const std::string
       fs::remove(entry, ignored);
     }
   };
+  // Never over an input of this run (outputs are checked against inputs
+  // before any work; the entry's name is known only from the heights).
+  std::vector<std::string> protectedInputs = inputs;
+  protectedInputs.push_back(demPath);
+  for (const fs::path& entry :
+       {path, options.horizons ? cachedHorizonsPath(field, options) : fs::path()}) {
+    if (entry.empty()) continue;
+    if (const std::optional<std::string> input = inputAt(entry, protectedInputs)) {
+      std::fprintf(stderr,
+                   "warning: not caching the aperture map: its cache entry %s is the input %s "
+                   "(AAL_CACHE_DIR names another folder)\n",
+                   entry.c_str(), input->c_str());
+      return {{}, std::move(result.aperture), std::move(result.horizons)};
+    }
+  }
   clearDamaged(path);
   if (options.horizons) clearDamaged(cachedHorizonsPath(field, options));
   try {

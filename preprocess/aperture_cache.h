@@ -6,6 +6,7 @@
 
 #include <filesystem>
 #include <string>
+#include <vector>
 
 #include "aperture/preprocess/bake.h"
 #include "aperture/terrain/heightfield.h"
@@ -52,8 +53,11 @@ struct CachedAperture {
 // atomically (with options.horizons, the horizons beside it); an unusable entry is replaced, with a
 // warning line on stderr naming it and why. `demPath` names the DEM in the map's aal:source.
 // options.progress, when set, is called too; options.cancel stops the bake (BakeCancelled) before
-// anything is written.
+// anything is written. An entry that would be written over the DEM or one of `inputs` (the run's
+// other input files: AAL_CACHE_DIR pointed at their folder) is not written: the map stays in
+// memory, with a warning.
 CachedAperture cachedOrBakedAperture(const Heightfield& field, const std::string& demPath,
-                                     BakeOptions options, bool quiet);
+                                     BakeOptions options, bool quiet,
+                                     const std::vector<std::string>& inputs = {});
 
 }  // namespace aal

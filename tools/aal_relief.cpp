@@ -228,8 +228,8 @@ int run(const Options& o) {
     aal::checkApertureMatchesDem(reader.header(), o.aperture, field, o.dem);
     map = aal::readHalfApertureMap(reader);
   } else {
-    aal::CachedAperture cached =
-        aal::cachedOrBakedAperture(field, o.dem, aal::BakeOptions{}, o.quiet);
+    aal::CachedAperture cached = aal::cachedOrBakedAperture(field, o.dem, aal::BakeOptions{},
+                                                            o.quiet, {o.waterMask, o.colorRelief});
     if (cached.path.empty()) {
       map = aal::toHalfApertureMap(cached.map);
     } else {

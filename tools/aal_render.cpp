@@ -502,8 +502,10 @@ int run(const Options& o) {
     const aal::ApertureMapReader check(aperturePath);
     aal::checkApertureMatchesDem(check.header(), aperturePath, field, o.dem);
   } else {
+    std::vector<std::string> inputs = {o.albedo, o.cameraPath};
+    inputs.insert(inputs.end(), o.horizons.begin(), o.horizons.end());
     aal::CachedAperture cached =
-        aal::cachedOrBakedAperture(field, o.dem, aal::BakeOptions{}, o.quiet);
+        aal::cachedOrBakedAperture(field, o.dem, aal::BakeOptions{}, o.quiet, inputs);
     aperturePath = cached.path.string();
     inMemory = std::move(cached.map);
   }

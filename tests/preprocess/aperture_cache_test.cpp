@@ -13,6 +13,8 @@
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
+#include <fstream>
+#include <iterator>
 #include <string>
 
 #include "aperture/tests/preprocess/bake_test_util.h"
@@ -151,7 +153,32 @@ TEST_F(ApertureCache, AnEntryThatIsAFifoIsRebakedWithoutOpeningIt) {
   ::alarm(0);
 }
 
-// A cache filled before issue 20 names its entries by the older checksum
+// A cache entry that is one of the run's inputs (AAL_CACHE_DIR pointed at
+// the inputs' folder, and a file there with the entry's name) is never
+// written over: the bake stays in memory, with a warning naming both.
+TEST_F(ApertureCache, AnEntryThatIsAnInputOfTheRunIsNotWrittenOver) {
+  const fs::path path = cachedAperturePath(field_, options_);
+  fs::create_directories(path.parent_path());
+  const std::string precious = "not an aperture map: the user's file";
+  for (const bool asDem : {false, true}) {
+    std::ofstream(path, std::ios::binary) << precious;
+    testing::internal::CaptureStderr();
+    const CachedAperture cached =
+        asDem ? cachedOrBakedAperture(field_, path.string(), options_, true)
+              : cachedOrBakedAperture(field_, "wavy.tif", options_, true, {"", path.string()});
+    const std::string said = testing::internal::GetCapturedStderr();
+    EXPECT_TRUE(cached.path.empty()) << asDem;
+    EXPECT_EQ(cached.map.width, field_.width) << asDem;
+    std::ifstream in(path, std::ios::binary);
+    EXPECT_EQ(std::string(std::istreambuf_iterator<char>(in), {}), precious) << asDem;
+    EXPECT_NE(said.find("warning: not caching the aperture map: its cache entry " + path.string() +
+                        " is the input " + path.string()),
+              std::string::npos)
+        << said;
+  }
+}
+
+// A cache filled before the checksum changed names its entries by the older checksum
 // (and they carry it): such an entry of this DEM is still used; one of
 // another DEM is not.
 TEST_F(ApertureCache, AnEntryNamedByTheOlderChecksumIsUsed) {
