@@ -397,7 +397,6 @@ int main(int argc, char** argv) {
   aal::addMapStorageOptions(app, o);
   app.add_flag("-q,--quiet", o.quiet, "no progress and no summary");
 
-  aal::installInterruptHandler();
   return aal::runTool(app, argc, argv, [&] {
     o.svf = svf->count() > 0;
     return run(o);

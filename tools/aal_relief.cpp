@@ -411,6 +411,5 @@ int main(int argc, char** argv) {
       ->check(aal::kPositive);
   app.add_flag("-q,--quiet", o.quiet, "no progress and no summary");
 
-  aal::installInterruptHandler();
   return aal::runTool(app, argc, argv, [&] { return run(o); });
 }

@@ -17,6 +17,7 @@
 #include <CLI/CLI.hpp>
 
 #include "aperture/terrain/errors.h"
+#include "aperture/terrain/interrupt.h"
 #include "aperture/terrain/io/memory_budget.h"
 #include "aperture/terrain/version.h"
 
@@ -107,6 +108,9 @@ inline int runToolBody(CLI::App& app, int argc, char** argv, const std::function
     std::cerr << app.get_name() << ": " << e.what() << "\n";
     return kExitBadInput;
   }
+  // Every tool: the first SIGINT, SIGTERM or SIGHUP stops it within a
+  // second, its unfinished outputs removed (terrain/interrupt.h).
+  installInterruptHandler();
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
@@ -119,6 +123,9 @@ inline int runToolBody(CLI::App& app, int argc, char** argv, const std::function
   } catch (const InputError& e) {
     std::cerr << app.get_name() << ": " << e.what() << "\n";
     return kExitBadInput;
+  } catch (const Interrupted&) {
+    std::cerr << app.get_name() << ": interrupted; unfinished outputs removed\n";
+    return kExitFailure;
   } catch (const std::bad_alloc&) {
     // A limit (ulimit -v, a cgroup) or the machine: say memory, name the limit.
     std::cerr << app.get_name() << ": error: " << outOfMemoryMessage("") << "\n";

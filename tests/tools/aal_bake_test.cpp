@@ -248,17 +248,6 @@ TEST(AalBake, ReplacesAnExistingOutput) {
   EXPECT_EQ(filesIn(dir.path()), 2u);
 }
 
-bool catchesSignal(pid_t pid, int signal) {
-  std::ifstream status("/proc/" + std::to_string(pid) + "/status");
-  std::string line;
-  while (std::getline(status, line)) {
-    if (line.rfind("SigCgt:", 0) == 0) {
-      return (std::stoull(line.substr(7), nullptr, 16) >> (signal - 1)) & 1u;
-    }
-  }
-  return false;
-}
-
 TEST(AalBake, InterruptLeavesNoFile) {
   TempDir dir;
   const fs::path dem = writeDem(dir, 512);
@@ -273,7 +262,7 @@ TEST(AalBake, InterruptLeavesNoFile) {
             0);
   // Interrupt once the tool catches SIGINT (bit 1 of SigCgt in
   // /proc/PID/status), however slowly it starts, and a little later, mid-bake.
-  for (int i = 0; i < 200 && !catchesSignal(pid, SIGINT); ++i) {
+  for (int i = 0; i < 200 && !test::catchesSignal(pid, SIGINT); ++i) {
     std::this_thread::sleep_for(std::chrono::milliseconds(20));
   }
   std::this_thread::sleep_for(std::chrono::milliseconds(500));
@@ -313,7 +302,7 @@ TEST(AalBake, InterruptStopsTheDemReadWithinASecond) {
   pid_t pid = 0;
   ASSERT_EQ(posix_spawn(&pid, bake.c_str(), nullptr, nullptr, const_cast<char**>(argv), environ),
             0);
-  for (int i = 0; i < 200 && !catchesSignal(pid, SIGINT); ++i) {
+  for (int i = 0; i < 200 && !test::catchesSignal(pid, SIGINT); ++i) {
     std::this_thread::sleep_for(std::chrono::milliseconds(20));
   }
   std::this_thread::sleep_for(std::chrono::milliseconds(300));  // reading by now
@@ -344,7 +333,7 @@ TEST(AalBake, RayBakeStopsSoonAfterSigterm) {
   pid_t pid = 0;
   ASSERT_EQ(posix_spawn(&pid, bake.c_str(), nullptr, nullptr, const_cast<char**>(argv), environ),
             0);
-  for (int i = 0; i < 200 && !catchesSignal(pid, SIGTERM); ++i) {
+  for (int i = 0; i < 200 && !test::catchesSignal(pid, SIGTERM); ++i) {
     std::this_thread::sleep_for(std::chrono::milliseconds(20));
   }
   std::this_thread::sleep_for(std::chrono::milliseconds(500));

@@ -5,17 +5,22 @@
 // right exit code and nothing left behind.
 #include <gtest/gtest.h>
 
+#include <signal.h>
+#include <spawn.h>
 #include <sys/mount.h>
 #include <sys/stat.h>
+#include <sys/wait.h>
 
 #include <algorithm>
 #include <cerrno>
+#include <chrono>
 #include <cstdint>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <iterator>
 #include <string>
+#include <thread>
 #include <vector>
 
 #include "aperture/terrain/io/geotiff_writer.h"
@@ -23,6 +28,8 @@
 #include "aperture/tests/terrain/io/hostile_files.h"
 #include "aperture/tests/tools/run_tool.h"
 #include "aperture/tests/tools/synthetic_dem_file.h"
+
+extern char** environ;
 
 namespace aal {
 namespace {
@@ -1012,6 +1019,50 @@ TEST(HostileInput, ARunThatWouldNotFitIsRefusedBeforeItsDemIsRead) {
     EXPECT_NE(r.out.find("(AAL_MEMORY_LIMIT); cut the DEM"), std::string::npos) << r.out;
   }
   EXPECT_EQ(entriesOf(dir.path()), (std::vector<std::string>{"big.vrt", "src.tif"}));
+}
+
+// Every tool installs the interrupt handler (tools/tool_main.h): the first
+// SIGINT, SIGTERM or SIGHUP stops it within a second at whatever it is
+// doing, exit status non-zero, and leaves no temporary. aal-render and
+// aal-info had none: a background run from a script (SIGINT ignored there)
+// went on to the end, and a killed run could leave a temporary behind.
+TEST(HostileInput, EveryToolStopsWithinASecondOfTheFirstSignal) {
+  TempDir dir;
+  writeDemAt(dir.path() / "src.tif", 64, 64);
+  writeVrt(dir.path() / "big.vrt", "src.tif", 12000, 12000);
+  const std::string vrt = (dir.path() / "big.vrt").string();
+  const std::string out = (dir.path() / "out").string();
+  const std::vector<std::vector<std::string>> runs = {
+      {"aal-render", vrt, "--mode", "reference", "--size", "32x18", "-q", "-o", out + ".png"},
+      {"aal-info", vrt},
+      {"aal-relief", vrt, "-q", "-o", out + ".tif"},
+      {"aal-synth", "--size", "8192", "-o", out + ".tif"},
+  };
+  for (const int signal : {SIGINT, SIGTERM, SIGHUP}) {
+    for (const std::vector<std::string>& run : runs) {
+      const std::string tool = (test::binDir() / run[0]).string();
+      std::vector<char*> argv = {const_cast<char*>(tool.c_str())};
+      for (size_t i = 1; i < run.size(); ++i) argv.push_back(const_cast<char*>(run[i].c_str()));
+      argv.push_back(nullptr);
+      pid_t pid = 0;
+      ASSERT_EQ(posix_spawn(&pid, tool.c_str(), nullptr, nullptr, argv.data(), environ), 0);
+      for (int i = 0; i < 200 && !test::catchesSignal(pid, signal); ++i) {
+        std::this_thread::sleep_for(std::chrono::milliseconds(20));
+      }
+      EXPECT_TRUE(test::catchesSignal(pid, signal)) << run[0] << " " << signal;
+      std::this_thread::sleep_for(std::chrono::milliseconds(400));  // at work by now
+      const auto signalled = std::chrono::steady_clock::now();
+      ::kill(pid, signal);
+      int status = 0;
+      ASSERT_EQ(::waitpid(pid, &status, 0), pid);
+      const double seconds =
+          std::chrono::duration<double>(std::chrono::steady_clock::now() - signalled).count();
+      EXPECT_LT(seconds, 1.0 + 0.5) << run[0] << " " << signal;  // a margin for a loaded machine
+      EXPECT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) != 0) << run[0] << " " << status;
+      EXPECT_EQ(entriesOf(dir.path()), (std::vector<std::string>{"big.vrt", "src.tif"}))
+          << run[0] << " " << signal;
+    }
+  }
 }
 
 }  // namespace

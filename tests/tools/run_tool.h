@@ -141,4 +141,17 @@ inline pid_t deadPid() {
   return child;
 }
 
+// Whether process `pid` catches `signal` (its bit in SigCgt of
+// /proc/PID/status): a tool has installed its interrupt handler.
+inline bool catchesSignal(pid_t pid, int signal) {
+  std::ifstream status("/proc/" + std::to_string(pid) + "/status");
+  std::string line;
+  while (std::getline(status, line)) {
+    if (line.rfind("SigCgt:", 0) == 0) {
+      return (std::stoull(line.substr(7), nullptr, 16) >> (signal - 1)) & 1u;
+    }
+  }
+  return false;
+}
+
 }  // namespace aal::test
