@@ -1,6 +1,7 @@
 #include "aperture/terrain/interrupt.h"
 
 #include <semaphore.h>
+#include <signal.h>
 #include <unistd.h>
 
 #include <chrono>
@@ -21,11 +22,22 @@ std::atomic<int> gSignal{0};
 std::atomic<void (*)()> gCleanup{nullptr};
 sem_t gWake;
 
+// The signals that were ignored when the process started (nohup ignores
+// SIGHUP, a shell without job control SIGINT for a background command):
+// they stay ignored, as the caller asked, and only the others are handled.
+std::atomic<unsigned> gIgnoredAtStart{0};
+
+bool ignoredAtStart(int signal) {
+  return (gIgnoredAtStart.load() >> signal) & 1u;
+}
+
 extern "C" void onInterrupt(int signal) {
   gSignal.store(signal);
   gInterrupted.store(true);
-  for (int s : kSignals) std::signal(s, SIG_DFL);  // any second signal kills
-  sem_post(&gWake);                                // async-signal-safe
+  for (int s : kSignals) {
+    if (!ignoredAtStart(s)) std::signal(s, SIG_DFL);  // any second signal kills
+  }
+  sem_post(&gWake);  // async-signal-safe
 }
 
 // Waits for a signal, gives the tool kInterruptGraceSeconds to unwind, and
@@ -53,10 +65,20 @@ void watchdog() {
 void installInterruptHandler() {
   static std::once_flag started;
   std::call_once(started, [] {
+    unsigned ignored = 0;
+    for (int s : kSignals) {
+      struct sigaction current {};
+      if (sigaction(s, nullptr, &current) == 0 && current.sa_handler == SIG_IGN) {
+        ignored |= 1u << s;
+      }
+    }
+    gIgnoredAtStart.store(ignored);
     sem_init(&gWake, 0, 0);
     std::thread(watchdog).detach();
   });
-  for (int s : kSignals) std::signal(s, onInterrupt);
+  for (int s : kSignals) {
+    if (!ignoredAtStart(s)) std::signal(s, onInterrupt);
+  }
 }
 
 void clearInterrupt() {

@@ -24,6 +24,8 @@ constexpr double kInterruptGraceSeconds = 0.8;
 
 // Sets the flag on the first SIGINT, SIGTERM or SIGHUP, restores the default
 // action of all three (the second signal kills), and starts the watchdog.
+// A signal ignored when the process started stays ignored (nohup's SIGHUP,
+// SIGINT for a background command of a non-interactive shell).
 void installInterruptHandler();
 
 // The flag the handler sets (BakeOptions::cancel may point at it).

@@ -1044,8 +1044,18 @@ TEST(HostileInput, EveryToolStopsWithinASecondOfTheFirstSignal) {
       std::vector<char*> argv = {const_cast<char*>(tool.c_str())};
       for (size_t i = 1; i < run.size(); ++i) argv.push_back(const_cast<char*>(run[i].c_str()));
       argv.push_back(nullptr);
+      // The three signals at their default actions, whatever this process's
+      // are (a tool keeps a signal ignored when it starts ignored: below).
+      posix_spawnattr_t attributes;
+      posix_spawnattr_init(&attributes);
+      sigset_t defaults;
+      sigemptyset(&defaults);
+      for (const int s : {SIGINT, SIGTERM, SIGHUP}) sigaddset(&defaults, s);
+      posix_spawnattr_setsigdefault(&attributes, &defaults);
+      posix_spawnattr_setflags(&attributes, POSIX_SPAWN_SETSIGDEF);
       pid_t pid = 0;
-      ASSERT_EQ(posix_spawn(&pid, tool.c_str(), nullptr, nullptr, argv.data(), environ), 0);
+      ASSERT_EQ(posix_spawn(&pid, tool.c_str(), nullptr, &attributes, argv.data(), environ), 0);
+      posix_spawnattr_destroy(&attributes);
       for (int i = 0; i < 200 && !test::catchesSignal(pid, signal); ++i) {
         std::this_thread::sleep_for(std::chrono::milliseconds(20));
       }
@@ -1063,6 +1073,31 @@ TEST(HostileInput, EveryToolStopsWithinASecondOfTheFirstSignal) {
           << run[0] << " " << signal;
     }
   }
+}
+
+// A signal ignored when the tool starts stays ignored: `nohup aal-bake ...`
+// must outlive the terminal's SIGHUP. The tool still stops on SIGTERM.
+TEST(HostileInput, ASignalIgnoredAtStartStaysIgnored) {
+  TempDir dir;
+  const std::string synth = (test::binDir() / "aal-synth").string();
+  const std::string command =
+      "trap '' HUP; exec " + synth + " --size 8192 -o " + quoted(dir.path() / "s.tif");
+  const char* argv[] = {"/bin/sh", "-c", command.c_str(), nullptr};
+  pid_t pid = 0;
+  ASSERT_EQ(posix_spawn(&pid, "/bin/sh", nullptr, nullptr, const_cast<char**>(argv), environ), 0);
+  for (int i = 0; i < 200 && !test::catchesSignal(pid, SIGTERM); ++i) {
+    std::this_thread::sleep_for(std::chrono::milliseconds(20));
+  }
+  ASSERT_TRUE(test::catchesSignal(pid, SIGTERM));
+  EXPECT_FALSE(test::catchesSignal(pid, SIGHUP));
+  ::kill(pid, SIGHUP);
+  std::this_thread::sleep_for(std::chrono::milliseconds(1200));  // past the watchdog's grace
+  int status = 0;
+  EXPECT_EQ(::waitpid(pid, &status, WNOHANG), 0) << "SIGHUP ended it";
+  ::kill(pid, SIGTERM);
+  ASSERT_EQ(::waitpid(pid, &status, 0), pid);
+  EXPECT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) != 0) << status;
+  EXPECT_TRUE(entriesOf(dir.path()).empty());
 }
 
 }  // namespace
