@@ -30,6 +30,8 @@
 #define AAL_SPEC_SHADING_MODE 0
 #define AAL_SPEC_ALBEDO_SOURCE 1
 #define AAL_SPEC_DISPLAY_OUTPUT 2
+#define AAL_SPEC_TEXTURE_FILTER 3
+#define AAL_SPEC_FILTER_PROBES 4
 
 // The exact cap intersection against the sun as a table (terrain/light/cap_table.h,
 // shaders/cap_table.glsl, docs/caps.md): texels across the transition band
@@ -93,6 +95,14 @@
   (AAL_TERRAIN_TEXTURE_BINDING + AAL_TERRAIN_TEXTURE_KINDS * AAL_TERRAIN_TILE_PAGES)
 // Workgroup size of the tile lookup parity compute shader.
 #define AAL_TILE_PARITY_GROUP_SIZE 64
+
+// Footprint filtering of the terrain's textures (terrain/view/texel_footprint.h,
+// shaders/texel_footprint.glsl): most probes along the footprint's longer
+// axis, and the slack with which the axes' ratio is rounded up to a count.
+#define AAL_FOOTPRINT_MAX_PROBES 4
+#define AAL_FOOTPRINT_RATIO_TOLERANCE 0.01
+// Workgroup size of the footprint parity compute shader.
+#define AAL_FOOTPRINT_PARITY_GROUP_SIZE 64
 
 // Sun and sky (terrain/light/sky_model.h, terrain/light/tone_map.h, shaders/sky.glsl,
 // shaders/tone_map.glsl).

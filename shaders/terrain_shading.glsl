@@ -31,53 +31,35 @@ layout(location = 1) out vec4 ambientOut;  // rgb ambient x transmittance, a vie
 layout(location = 2) out vec4 surfaceOut;
 #endif
 
-// The level of detail of a fragment's fetches: its footprint on the DEM
-// (texels per pixel along the longer screen axis, as a GPU's own LOD
-// selection), never finer than the DEM. Call in uniform control flow.
-float terrainFragmentLod(vec2 texel) {
-  vec2 dx = dFdx(texel), dy = dFdy(texel);
-  return max(0.0, 0.5 * log2(max(dot(dx, dx), dot(dy, dy))));
-}
-
-// The horizon mode's slope fetch: the footprint's shorter axis, but at most
-// one level finer than terrainFragmentLod (an anisotropy of 2 at most, so
-// the far field aliases little more). The horizons in the slopes are
-// prefiltered, and at the longer axis' level their means blur the shadows'
-// edges (the error against the ray tracer rose 5-10 % over level 0's on the
-// fBm and jacksboro, docs/comparison.md); the normals come sharper with
-// them. Call in uniform control flow.
-float horizonFragmentLod(vec2 texel, float lod) {
-  vec2 dx = dFdx(texel), dy = dFdy(texel);
-  return max(lod - 1.0, max(0.0, 0.5 * log2(min(dot(dx, dx), dot(dy, dy)))));
-}
-
-// Normal from slopes (terrainSlopeLod): central differences of the heights
-// one of the fetch's level's texels (2^lod of the DEM's) apart.
+// Normal from slopes (terrainSlopeProbes): central differences of the
+// heights one of the fetch's level's texels (2^lod of the DEM's) apart.
 vec3 surfaceNormal(vec2 slope) {
   return normalize(vec3(-slope, 1.0));
 }
 
-vec3 albedoAt(vec2 texel, float lod, float z, vec3 normal) {
-  if (kAlbedoSource == AAL_ALBEDO_IMAGE) return terrainAlbedoLod(texel, lod);
+vec3 albedoAt(vec2 texel, FootprintProbes probes, float z, vec3 normal) {
+  if (kAlbedoSource == AAL_ALBEDO_IMAGE) return terrainAlbedoProbes(texel, probes);
   if (kAlbedoSource == AAL_ALBEDO_CONSTANT) return frame.albedoValue;
   return paletteAlbedo(z, normal);
 }
 
 void main() {
-  // Far fragments cover many texels: prefiltered textures keep their
-  // fetches few and local (and the far field free of aliasing).
-  float lod = terrainFragmentLod(texelPosition);
-  vec4 aperture = terrainApertureLod(texelPosition, lod);
+  // Far fragments cover many texels, in an oblique view many more along one
+  // screen axis than along the other: every texture is read with a few
+  // probes along the footprint's longer axis at the level of its width
+  // (texel_footprint.glsl; docs/rendering.md, "Footprint filtering").
+  // Prefiltered levels keep the fetches few and local, and the far field
+  // free of aliasing.
+  FootprintProbes probes = footprintProbes(dFdx(texelPosition), dFdy(texelPosition));
+  vec4 aperture = terrainApertureProbes(texelPosition, probes);
   // Slopes, and in the horizon mode the horizons of the two stored
   // directions beside the sun (engine/terrain_scene.h setHorizons).
-  vec4 slope = terrainSlopeLod(
-      texelPosition,
-      kShadingMode == AAL_MODE_HORIZON ? horizonFragmentLod(texelPosition, lod) : lod);
+  vec4 slope = terrainSlopeProbes(texelPosition, probes);
   ShadingInputs s;
   s.normal = surfaceNormal(slope.xy);
   s.bentNormal = normalize(aperture.xyz);
   s.apertureRad = aperture.w;
-  s.albedo = albedoAt(texelPosition, lod, worldPosition.z, s.normal);
+  s.albedo = albedoAt(texelPosition, probes, worldPosition.z, s.normal);
   s.sunDirection = frame.sunDirection;
   s.sunRadiusRad = frame.sunRadiusRad;
   s.sunIrradiance = frame.sunIrradiance;
@@ -87,8 +69,7 @@ void main() {
   if (kShadingMode == AAL_MODE_HORIZON) {
     // The horizon in the sun's azimuth: linear between the pair's, with the
     // frame's weights (horizonPairWeights, terrain/io/horizon_map.h; the sun
-    // is the frame's), prefiltered at the fragment's level of detail as the
-    // normal is. No fetch of its own: a fetch is what costs on lavapipe
+    // is the frame's), filtered over the footprint as the normal is. No fetch of its own: a fetch is what costs on lavapipe
     // (docs/performance.md).
     s.sunHorizonRad = dot(slope.zw, frame.horizonWeights);
   }

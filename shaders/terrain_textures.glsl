@@ -13,6 +13,7 @@
 
 #include "config.h"
 #include "frame.glsl"
+#include "texel_footprint.glsl"
 #include "tile_lookup.glsl"
 
 #if AAL_TERRAIN_TILE_PAGES != 4
@@ -116,6 +117,45 @@ vec3 terrainAlbedo(vec2 texel) {
 vec4 terrainSlopeLod(vec2 texel, float lod) {
   TerrainTileTexel t = terrainTexel(texel, frame.heightLayersPerPage);
   return AAL_TERRAIN_FETCH_HEIGHT(terrainSlope, t, lod);
+}
+
+// The same, filtered over a fragment's footprint: the mean of its probes
+// (texel_footprint.glsl) around `texel`. The kind's tile is looked up once,
+// at the fragment, and every probe reads that tile's image: footprintProbes
+// keeps them within its border, which holds the neighbours' texels bit for
+// bit, so a tiled DEM reads as one image.
+vec4 terrainApertureProbes(vec2 texel, FootprintProbes p) {
+  TerrainTileTexel t = terrainTexel(texel, frame.apertureLayersPerPage);
+  vec2 step = p.step / vec2(frame.tileImageSize);
+  vec2 first = t.uv - 0.5 * float(p.count - 1) * step;
+  vec4 sum = vec4(0.0);
+  for (int i = 0; i < p.count; ++i) {
+    t.uv = first + float(i) * step;
+    sum += AAL_TERRAIN_FETCH_APERTURE(terrainAperture, t, p.lod);
+  }
+  return sum / float(p.count);
+}
+vec3 terrainAlbedoProbes(vec2 texel, FootprintProbes p) {
+  TerrainTileTexel t = terrainTexel(texel, frame.albedoLayersPerPage);
+  vec2 step = p.step / vec2(frame.tileImageSize);
+  vec2 first = t.uv - 0.5 * float(p.count - 1) * step;
+  vec3 sum = vec3(0.0);
+  for (int i = 0; i < p.count; ++i) {
+    t.uv = first + float(i) * step;
+    sum += AAL_TERRAIN_FETCH_ALBEDO(terrainAlbedo, t, p.lod).rgb;
+  }
+  return sum / float(p.count);
+}
+vec4 terrainSlopeProbes(vec2 texel, FootprintProbes p) {
+  TerrainTileTexel t = terrainTexel(texel, frame.heightLayersPerPage);
+  vec2 step = p.step / vec2(frame.tileImageSize);
+  vec2 first = t.uv - 0.5 * float(p.count - 1) * step;
+  vec4 sum = vec4(0.0);
+  for (int i = 0; i < p.count; ++i) {
+    t.uv = first + float(i) * step;
+    sum += AAL_TERRAIN_FETCH_HEIGHT(terrainSlope, t, p.lod);
+  }
+  return sum / float(p.count);
 }
 
 #endif

@@ -137,10 +137,18 @@ std::optional<Sequence> sequenceOf(const Options& o, bool reference) {
   if (*o.frames < 1 || *o.frames > 1'000'000) {
     throw aal::InputError("--frames must be in [1, 1000000], got " + std::to_string(*o.frames));
   }
-  if (reference || !o.compare.empty()) {
-    throw aal::InputError(std::string("an image sequence (--camera-path, --time-range) is for -o "
-                                      "images of the GPU renderer, not ") +
+  // --compare takes a camera path as the pan its shimmer is measured along.
+  if (reference || (!o.compare.empty() && !o.timeRange.empty())) {
+    throw aal::InputError(std::string(reference ? "an image sequence (--camera-path, --time-range)"
+                                                : "--time-range") +
+                          " is for -o images of the GPU renderer, not " +
                           (reference ? "--mode reference" : "--compare"));
+  }
+  if (!o.compare.empty() && *o.frames < 3) {
+    throw aal::InputError(
+        "--compare with --camera-path measures the shimmer along it: give "
+        "--frames 3 or more (a second difference in time needs three), got " +
+        std::to_string(*o.frames));
   }
   Sequence s;
   s.frames = *o.frames;
@@ -235,13 +243,46 @@ std::vector<std::string> comparedModeNames(const Options& o) {
   return names;
 }
 
+// The table of --compare on stdout: each mode's errors and, along a pan, its
+// shimmer (kcd/m²) and the ratio to the reference's (whose row comes last).
+void printComparison(const aal::Comparison& c) {
+  const bool pan = c.referenceShimmer.has_value();
+  std::printf("%-20s %14s %22s", "mode", "relative RMSE", "mean relative error");
+  if (pan) std::printf(" %12s %12s", "shimmer", "x reference");
+  std::printf("\n");
+  const auto shimmer = [&](double s) {
+    std::printf(" %12.5f %12.2f", s, *c.referenceShimmer > 0 ? s / *c.referenceShimmer : 0.0);
+  };
+  for (const aal::ModeError& e : c.modes) {
+    std::printf("%-20s %13.2f%% %21.2f%%", e.mode.c_str(), 100 * e.relativeRmse,
+                100 * e.meanRelativeError);
+    if (pan) shimmer(e.shimmer.value_or(0));
+    std::printf("\n");
+  }
+  if (pan) {
+    std::printf("%-20s %14s %22s", "reference", "", "");
+    shimmer(*c.referenceShimmer);
+    std::printf("\n");
+  }
+}
+
 // --compare FOLDER: every mode against the reference, a table on stdout.
 // With several horizon maps, one horizon mode for each ("horizon-STEM"), the
-// scene given each map before its rendering: one reference for all.
+// scene given each map before its rendering: one reference for all. With a
+// camera path, the still images are its first frame's, and every mode and
+// the reference are rendered along it for their shimmer.
 int runComparison(const Options& o, const aal::Heightfield& field, aal::TerrainScene& scene,
-                  aal::TerrainRenderer& renderer, const aal::FrameSettings& settings,
+                  aal::TerrainRenderer& renderer, aal::FrameSettings settings,
                   const std::optional<glm::vec3>& albedoValue, const aal::Device& device,
-                  const std::vector<std::shared_ptr<const aal::HorizonMap>>& horizons) {
+                  const std::vector<std::shared_ptr<const aal::HorizonMap>>& horizons,
+                  const std::optional<Sequence>& pan) {
+  std::vector<aal::Camera> cameras;
+  if (pan && pan->path) {
+    for (int i = 0; i < pan->frames; ++i) {
+      cameras.push_back(pan->path->at(pan->path->frameTime(i, pan->frames)));
+    }
+    settings.camera = cameras.front();
+  }
   aal::ProgressBar bar("ray tracing the reference", !o.quiet);
   std::vector<aal::ComparedMode> modes = aal::defaultComparedModes(settings);
   const std::vector<std::string> names = horizonModeNames(o.horizons, modes);
@@ -257,16 +298,20 @@ int runComparison(const Options& o, const aal::Heightfield& field, aal::TerrainS
     }
     modes.push_back(std::move(m));
   }
-  const aal::Comparison c =
+  aal::Comparison c =
       aal::compareModes(renderer, scene, field, settings, modes, comparisonOptions(o, albedoValue),
                         [&](double f) { bar.update(f); });
   bar.finish();
-  aal::writeComparison(o.compare, c, settings.lighting.exposure);
-  std::printf("%-20s %14s %22s\n", "mode", "relative RMSE", "mean relative error");
-  for (const aal::ModeError& e : c.modes) {
-    std::printf("%-20s %13.2f%% %21.2f%%\n", e.mode.c_str(), 100 * e.relativeRmse,
-                100 * e.meanRelativeError);
+  if (!cameras.empty()) {
+    aal::ProgressBar panBar("rendering the pan (" + std::to_string(cameras.size()) + " frames)",
+                            !o.quiet);
+    aal::measureShimmer(c, renderer, scene, field, settings, modes,
+                        comparisonOptions(o, albedoValue), cameras,
+                        [&](double f) { panBar.update(f); });
+    panBar.finish();
   }
+  aal::writeComparison(o.compare, c, settings.lighting.exposure);
+  printComparison(c);
   if (!o.quiet) {
     std::fprintf(stderr, "aal-render: reference in %.1f s; wrote %s/\n", c.referenceSeconds,
                  o.compare.c_str());
@@ -598,7 +643,8 @@ int run(const Options& o) {
   }
   aal::TerrainRenderer renderer(device, width, height);
   if (!o.compare.empty()) {
-    return runComparison(o, field, *scene, renderer, settings, albedoValue, device, horizonMaps);
+    return runComparison(o, field, *scene, renderer, settings, albedoValue, device, horizonMaps,
+                         sequence);
   }
   if (sequence) return renderSequence(o, *sequence, field, *scene, renderer, settings);
   const aal::FrameResult frame =
@@ -655,7 +701,12 @@ int main(int argc, char** argv) {
   app.add_option("--compare", o.compare,
                  "instead of -o: render every shading mode and the CPU reference into this "
                  "folder (images, error maps, errors.csv) and print each mode's error against "
-                 "the reference (relative RMSE of linear radiance over the terrain)");
+                 "the reference (relative RMSE of linear radiance over the terrain). With "
+                 "--camera-path and --frames N (3 or more): the images are the path's first "
+                 "frame, and every mode and the reference are also rendered along the path for "
+                 "their shimmer, the mean |Y(t+1) - 2 Y(t) + Y(t-1)| of linear luminance over "
+                 "the terrain (columns shimmer and shimmer_vs_reference, and a reference row, "
+                 "in errors.csv)");
   app.add_option("--reference-sun-rays", o.referenceSunRays,
                  "reference: shadow rays per pixel towards the sun's disk")
       ->check(CLI::Range(1, 4096))
@@ -778,7 +829,8 @@ int main(int argc, char** argv) {
                  "render an image sequence along this camera path (aal-view's format: lines of "
                  "TIME_S X Y Z LOOK_X LOOK_Y LOOK_Z [FOV_DEG], points within --camera's reach, "
                  "FOV_DEG in --fov's range), --frames images spread from its first keyframe to "
-                 "its last, into OUT-0001.png ... (and OUT.mp4 with ffmpeg)");
+                 "its last, into OUT-0001.png ... (and OUT.mp4 with ffmpeg); with --compare, "
+                 "the pan along which the shimmer is measured");
   app.add_option("--time-range", o.timeRange,
                  "render an image sequence with the sun from START to END (UTC, ISO 8601), "
                  "--frames images, both ends included (a time-lapse)")

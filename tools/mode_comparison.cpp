@@ -13,6 +13,7 @@
 #include "aperture/terrain/io/atomic_file.h"
 #include "aperture/terrain/light/atmosphere.h"
 #include "aperture/terrain/light/tone_map.h"
+#include "aperture/terrain/reference/shimmer.h"
 
 namespace aal {
 
@@ -33,6 +34,21 @@ FrameResult imageFrame(uint32_t width, uint32_t height) {
   f.display.assign(size_t(width) * height * 4, 0);
   f.linear.assign(size_t(width) * height * 4, 0.0f);
   return f;
+}
+
+// A mode's frame settings: the reference traces the DEM's own surface, so
+// the GPU draws the finest mesh the budget allows and the errors are the
+// shading's; the ground's albedo is the reference's.
+FrameSettings modeSettings(const FrameSettings& settings, const ComparedMode& m,
+                           const ComparisonOptions& options) {
+  FrameSettings s = settings;
+  s.lod.maxErrorPixels = s.lod.maxErrorPixels > 0
+                             ? std::min(s.lod.maxErrorPixels, kComparisonLodErrorPixels)
+                             : kComparisonLodErrorPixels;
+  s.mode = m.mode;
+  s.obscurance.enabled = m.obscurance;
+  s.albedoValue = options.albedo;
+  return s;
 }
 
 }  // namespace
@@ -92,19 +108,10 @@ Comparison compareModes(TerrainRenderer& renderer, const TerrainScene& scene,
   c.mask = interiorMask(c.reference.terrain, c.reference.width, c.reference.height);
 
   for (const ComparedMode& m : modes) {
-    FrameSettings s = settings;
-    // The reference traces the DEM's own surface: the GPU draws the finest
-    // mesh the budget allows, so that the errors are the shading's.
-    s.lod.maxErrorPixels = s.lod.maxErrorPixels > 0
-                               ? std::min(s.lod.maxErrorPixels, kComparisonLodErrorPixels)
-                               : kComparisonLodErrorPixels;
-    s.mode = m.mode;
-    s.obscurance.enabled = m.obscurance;
-    s.albedoValue = options.albedo;
     if (m.prepare) m.prepare();
     ModeError e;
     e.mode = m.name;
-    e.frame = renderer.render(scene, s, true);
+    e.frame = renderer.render(scene, modeSettings(settings, m, options), true);
     const std::vector<glm::vec3> gpu = linearRgb(e.frame);
     e.relativeRmse = relativeRmse(gpu, c.reference.radiance, c.mask);
     double sum = 0;
@@ -119,6 +126,41 @@ Comparison compareModes(TerrainRenderer& renderer, const TerrainScene& scene,
     c.modes.push_back(std::move(e));
   }
   return c;
+}
+
+void measureShimmer(Comparison& c, TerrainRenderer& renderer, const TerrainScene& scene,
+                    const Heightfield& field, const FrameSettings& settings,
+                    const std::vector<ComparedMode>& modes, const ComparisonOptions& options,
+                    const std::vector<Camera>& cameras,
+                    const std::function<void(double)>& progress) {
+  if (cameras.size() < 3) {
+    throw std::invalid_argument("measureShimmer: a second difference needs three frames");
+  }
+  if (modes.size() != c.modes.size()) {
+    throw std::invalid_argument("measureShimmer: the modes are not the comparison's");
+  }
+  ShimmerMeter reference;
+  std::vector<ShimmerMeter> meters(modes.size());
+  ReferenceSettings r =
+      referenceSettingsFor(settings, renderer.width(), renderer.height(), options);
+  // Frame by frame, each mode after the reference: one reference frame and
+  // two of each mode's are held at a time.
+  for (size_t f = 0; f < cameras.size(); ++f) {
+    r.camera = cameras[f];
+    const ReferenceImage image = renderReference(field, r);
+    const std::vector<uint8_t> mask = interiorMask(image.terrain, image.width, image.height);
+    reference.addFrame(image.radiance, mask);
+    for (size_t i = 0; i < modes.size(); ++i) {
+      if (modes[i].prepare) modes[i].prepare();
+      FrameSettings s = modeSettings(settings, modes[i], options);
+      s.camera = cameras[f];
+      meters[i].addFrame(linearRgb(renderer.render(scene, s, true)), mask);
+    }
+    if (progress) progress(double(f + 1) / double(cameras.size()));
+  }
+  c.referenceShimmer = reference.meanSecondDifference();
+  c.panFrames = static_cast<int>(cameras.size());
+  for (size_t i = 0; i < modes.size(); ++i) c.modes[i].shimmer = meters[i].meanSecondDifference();
 }
 
 std::string comparisonImageName(const std::string& mode) {
@@ -150,7 +192,19 @@ void writeComparison(const std::string& folder, const Comparison& c, float expos
   writeFrame(path(kComparisonReferenceLinearName), reference);
   writeFrame(path(kComparisonReferenceImageName), reference);
 
-  std::string csv = "mode,relative_rmse,mean_relative_error\n";
+  // With a pan: each row's shimmer and its ratio to the reference's, whose
+  // own row comes last (its errors against itself are 0).
+  const bool pan = c.referenceShimmer.has_value();
+  const auto shimmerColumns = [&](double shimmer) {
+    const double ratio = *c.referenceShimmer > 0 ? shimmer / *c.referenceShimmer : 0.0;
+    std::string columns = ",";  // (appended: GCC 12 misreads "," + std::string as overlapping)
+    columns += std::to_string(shimmer);
+    columns += ",";
+    columns += std::to_string(ratio);
+    return columns;
+  };
+  std::string csv = std::string("mode,relative_rmse,mean_relative_error") +
+                    (pan ? ",shimmer,shimmer_vs_reference" : "") + "\n";
   for (const ModeError& e : c.modes) {
     writeFrame(path(comparisonImageName(e.mode)), e.frame);
     FrameResult error = imageFrame(w, h);
@@ -170,8 +224,10 @@ void writeComparison(const std::string& folder, const Comparison& c, float expos
     }
     writeFrame(path(comparisonErrorImageName(e.mode)), error);
     csv += e.mode + "," + std::to_string(e.relativeRmse) + "," +
-           std::to_string(e.meanRelativeError) + "\n";
+           std::to_string(e.meanRelativeError) +
+           (pan ? shimmerColumns(e.shimmer.value_or(0)) : "") + "\n";
   }
+  if (pan) csv += "reference,0,0" + shimmerColumns(*c.referenceShimmer) + "\n";
   AtomicOutput out(path(kComparisonTableName));
   {
     std::ofstream file(out.temporaryPath());

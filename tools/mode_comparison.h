@@ -1,10 +1,12 @@
 // Every shading mode against the CPU reference (docs/comparison.md): the same
 // camera, sun and sky rendered by the GPU in each mode and by the reference ray
 // tracer, with the relative RMSE of linear radiance over the terrain and error
-// maps as images.
+// maps as images; and, along a slow camera pan, each one's shimmer
+// (terrain/reference/shimmer.h).
 #pragma once
 
 #include <functional>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -57,6 +59,9 @@ struct ModeError {
   double relativeRmse = 0;       // sqrt(sum |gpu - ref|^2 / sum |ref|^2) over the mask
   double meanRelativeError = 0;  // mean of |Y_gpu - Y_ref| / Y_ref over the mask (luminance)
   FrameResult frame;             // the GPU's frame, linear included
+  // Along a pan (measureShimmer): the mean |Y(t+1) - 2 Y(t) + Y(t-1)| of
+  // linear luminance (kcd/m²) over the reference's interior mask.
+  std::optional<double> shimmer;
 };
 
 struct Comparison {
@@ -64,6 +69,10 @@ struct Comparison {
   std::vector<uint8_t> mask;  // terrain pixels away from the silhouette
   std::vector<ModeError> modes;
   double referenceSeconds = 0;
+  // Along a pan (measureShimmer): the reference's own shimmer, and the
+  // number of frames.
+  std::optional<double> referenceShimmer;
+  int panFrames = 0;
 };
 
 // The geometric error (pixels) the GPU modes are drawn with, at most.
@@ -77,6 +86,21 @@ Comparison compareModes(TerrainRenderer& renderer, const TerrainScene& scene,
                         const Heightfield& field, const FrameSettings& settings,
                         const std::vector<ComparedMode>& modes, const ComparisonOptions& options,
                         const std::function<void(double)>& progress = {});
+
+// The shimmer of the reference and of each of `modes` (in c.modes' order,
+// as compareModes made them) along a slow pan through `cameras` (at least
+// three): each frame rendered by the reference and by every mode, with the
+// settings compareModes gives them, and the temporal second difference
+// taken over the pixels of the reference's interior mask in all three
+// frames (ShimmerMeter). Sets c.referenceShimmer, c.panFrames and each
+// mode's shimmer. `progress` (may be empty) gets the finished fraction.
+// Throws std::invalid_argument for fewer than three cameras or modes that
+// are not c's.
+void measureShimmer(Comparison& c, TerrainRenderer& renderer, const TerrainScene& scene,
+                    const Heightfield& field, const FrameSettings& settings,
+                    const std::vector<ComparedMode>& modes, const ComparisonOptions& options,
+                    const std::vector<Camera>& cameras,
+                    const std::function<void(double)>& progress = {});
 
 // The names of the files writeComparison writes into its folder, one
 // definition for the writer and for aal-render's check of its paths before
@@ -92,8 +116,10 @@ std::vector<std::string> comparisonFileNames(const std::vector<std::string>& mod
 // Writes into `folder` (created if missing): reference.exr (linear) and
 // reference.png (tone-mapped with `exposure`), NAME.png and NAME-error.png
 // (per-pixel |Y_gpu - Y_ref| / Y_ref, black 0 to white >= 50 %, sky blue) for
-// each mode, and errors.csv (name, relative RMSE, mean relative error):
-// comparisonFileNames. Files go through temporary files renamed into place.
+// each mode, and errors.csv (name, relative RMSE, mean relative error; after
+// measureShimmer also each one's shimmer and its ratio to the reference's,
+// and a row for the reference itself): comparisonFileNames. Files go
+// through temporary files renamed into place.
 void writeComparison(const std::string& folder, const Comparison& comparison, float exposure);
 
 }  // namespace aal

@@ -775,6 +775,46 @@ TEST(AalRender, CompareWritesEveryModeItsErrorMapAndATable) {
   EXPECT_NE(r.out.find("baseline-ao"), std::string::npos) << r.out;
 }
 
+// --compare with --camera-path: the still images are the path's first
+// frame, and errors.csv gains each mode's shimmer along the pan, its ratio
+// to the reference's and a row for the reference; a pan needs three frames
+// for a second difference, and a --time-range is no pan.
+TEST(AalRender, CompareAlongACameraPathAddsTheShimmer) {
+  TempDir dir;
+  const fs::path folder = dir.path() / "cmp", path = dir.path() / "pan.txt";
+  std::ofstream(path) << "0 12000 -15000 6000 0 0 500\n1 12100 -15000 6000 100 0 500\n";
+  const std::string common = "--compare " + quoted(folder) +
+                             " --size 32x18 --reference-sky-rays 4 --reference-sun-rays 1 "
+                             "--reference-subpixels 1 --camera-path " +
+                             quoted(path);
+  const auto r = render(dir, common + " --frames 3");
+  ASSERT_EQ(r.exitCode, 0) << r.out;
+  EXPECT_NE(r.out.find("shimmer"), std::string::npos) << r.out;
+  std::ifstream csv(folder / "errors.csv");
+  std::string header, line, last;
+  std::getline(csv, header);
+  EXPECT_EQ(header, "mode,relative_rmse,mean_relative_error,shimmer,shimmer_vs_reference");
+  int rows = 0;
+  while (std::getline(csv, line)) {
+    EXPECT_EQ(std::count(line.begin(), line.end(), ','), 4) << line;
+    last = line;
+    ++rows;
+  }
+  EXPECT_EQ(rows, 6);  // approx, exact, approx-without-w, two baselines, reference
+  EXPECT_EQ(last.rfind("reference,0,0,", 0), 0u) << last;
+  EXPECT_EQ(last.substr(last.rfind(',')), ",1.000000") << last;
+  for (const auto& [args, says] : std::vector<std::pair<std::string, std::string>>{
+           {common + " --frames 2", "--frames 3"},
+           {"--compare " + quoted(folder) +
+                " --time-range 2024-06-21T10:00Z 2024-06-21T12:00Z "
+                "--frames 3",
+            "--time-range"}}) {
+    const auto bad = render(dir, args);
+    EXPECT_EQ(bad.exitCode, 2) << args << "\n" << bad.out;
+    EXPECT_NE(bad.out.find(says), std::string::npos) << args << "\n" << bad.out;
+  }
+}
+
 // --horizons (aal-bake --horizons): the horizon mode renders with them,
 // --compare adds it, and without them, or with another DEM's, exit 2.
 TEST(AalRender, HorizonModeTakesTheBakesDirectionalHorizons) {
