@@ -65,7 +65,7 @@ for ((round = 1; round <= rounds; ++round)); do
     while read -r renderer directions bits; do
       bin=$build
       [ "$renderer" = old ] && bin=$baseBin
-      AAL_SHADER_DIR=$bin/shaders AAL_BENCH_HORIZON_DIRECTIONS=$directions \
+      AAL_BENCH_HORIZON_DIRECTIONS=$directions \
         AAL_BENCH_HORIZON_BITS=$bits "$bin/bin/bench_render" \
         --benchmark_filter='BM_RenderFrame/(0|10)/' \
         --benchmark_repetitions="$reps" --benchmark_enable_random_interleaving=true \
