@@ -13,6 +13,7 @@
 #include "aperture/terrain/io/dem_options.h"
 #include "aperture/terrain/io/gdal_session.h"
 #include "aperture/terrain/io/raw_dem.h"
+#include "aperture/terrain/number_text.h"
 
 namespace aal::python {
 
@@ -20,18 +21,13 @@ namespace {
 
 constexpr double kRadToDeg = 180.0 / std::numbers::pi;
 
-std::string number(double value) {
-  char text[64];
-  std::snprintf(text, sizeof text, "%.10g", value);
-  return text;
-}
-
 // The range the DEM reader accepts for a metric cell size (georeference.h),
 // checked here because a spacing handed over is not measured again.
 void checkCellSize(const char* what, double metres) {
   if (!(metres >= kMinCellSizeM && metres <= kMaxCellSizeM)) {
-    throw InputError(std::string("cell_size: ") + what + " must be in [" + number(kMinCellSizeM) +
-                     ", " + number(kMaxCellSizeM) + "] metres, got " + number(metres));
+    throw InputError(std::string("cell_size: ") + what + " must be in [" +
+                     numberText(kMinCellSizeM) + ", " + numberText(kMaxCellSizeM) +
+                     "] metres, got " + numberText(metres));
   }
 }
 
@@ -49,7 +45,7 @@ void checkSpacing(const CellSpacing& s, int height) {
     throw InputError(
         "cell_size: the centre must be a latitude in [-90, 90] and a finite "
         "longitude, got " +
-        number((*s.center)[0]) + ", " + number((*s.center)[1]));
+        numberText((*s.center)[0]) + ", " + numberText((*s.center)[1]));
   }
 }
 
@@ -63,7 +59,7 @@ Heightfield toHeightfield(DemArray dem) {
   }
   checkSpacing(dem.spacing, dem.height);
   if (!(dem.zScale > 0.0 && std::isfinite(dem.zScale))) {
-    throw InputError("z_scale must be a positive number, got " + number(dem.zScale));
+    throw InputError("z_scale must be a positive number, got " + numberText(dem.zScale));
   }
 
   RawDem raw;

@@ -29,6 +29,7 @@
 #include "aperture/terrain/io/georeference.h"
 #include "aperture/terrain/io/input_file.h"
 #include "aperture/terrain/io/memory_budget.h"
+#include "aperture/terrain/number_text.h"
 
 namespace aal {
 
@@ -38,12 +39,6 @@ constexpr double kRadToDeg = 180.0 / std::numbers::pi;
 
 [[noreturn]] void refuse(const std::string& path, const std::string& why) {
   throw InputError(path + ": " + why);
-}
-
-std::string formatNumber(double value) {
-  char text[64];
-  std::snprintf(text, sizeof text, "%.10g", value);
-  return text;
 }
 
 // Bytes of the file GDAL opened (its first file), or nothing when unknown.
@@ -350,7 +345,7 @@ bool describeTransform(const std::string& path, GDALDataset& dataset, RawDem& de
     return false;
   }
   if (gt[1] == 0.0 || gt[5] == 0.0 || !std::isfinite(gt[1]) || !std::isfinite(gt[5])) {
-    refuse(path, "has a pixel size of " + formatNumber(gt[1]) + " x " + formatNumber(-gt[5]) +
+    refuse(path, "has a pixel size of " + numberText(gt[1]) + " x " + numberText(-gt[5]) +
                      ", which places no grid; give it one: `gdal_edit.py -a_ullr ULX ULY LRX "
                      "LRY " +
                      path + "`");
@@ -550,7 +545,7 @@ DemSource::DemSource(const std::string& path, const DemLoadOptions& options)
   const double scale = band.GetScale(&hasScale), offset = band.GetOffset(&hasOffset);
   if ((hasScale && !std::isfinite(scale)) || (hasOffset && !std::isfinite(offset))) {
     refuse(path,
-           "has a band scale of " + formatNumber(scale) + " and offset of " + formatNumber(offset) +
+           "has a band scale of " + numberText(scale) + " and offset of " + numberText(offset) +
                ", which give no heights; fix them: `gdal_edit.py -scale 1 -offset 0 " + path + "`");
   }
   if (hasScale && scale == 0.0) {
@@ -628,7 +623,7 @@ RawDem DemSource::read(int column, int row, int w, int h) const {
   requireMemory(
       path_, static_cast<double>(w) * h * (withWork ? impl_->peakBytesPerTexel : readBytes),
       withWork ? impl_->workName + " of its " + size + " texels (" +
-                     formatNumber(impl_->peakBytesPerTexel) + " bytes per texel)"
+                     numberText(impl_->peakBytesPerTexel) + " bytes per texel)"
                : (wholeRaster ? "its " : "a window of ") + size + " heights and void mask",
       !impl_->memoryHint.empty()
           ? impl_->memoryHint

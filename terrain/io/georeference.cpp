@@ -16,6 +16,7 @@
 
 #include "aperture/terrain/errors.h"
 #include "aperture/terrain/io/gdal_session.h"
+#include "aperture/terrain/number_text.h"
 
 namespace aal {
 
@@ -33,12 +34,6 @@ const GeographicLib::Ellipsoid& wgs84() {
   return ellipsoid;
 }
 
-std::string number(double value) {
-  char text[64];
-  std::snprintf(text, sizeof text, "%.10g", value);
-  return text;
-}
-
 // A longitude in [-180, 180), as docs/dem-input.md states: AngNormalize
 // keeps +180 (its range is (-180, 180]), the antimeridian's centre.
 double longitudeInRange(double degrees) {
@@ -52,9 +47,9 @@ double longitudeInRange(double degrees) {
 
 void checkCellSize(const std::string& path, const char* axis, double cellM) {
   if (!(cellM >= kMinCellSizeM && cellM <= kMaxCellSizeM)) {
-    inconsistent(path, std::string("cell size in ") + axis + " is " + number(cellM) +
-                           " m, outside [" + number(kMinCellSizeM) + ", " + number(kMaxCellSizeM) +
-                           "] m");
+    inconsistent(path, std::string("cell size in ") + axis + " is " + numberText(cellM) +
+                           " m, outside [" + numberText(kMinCellSizeM) + ", " +
+                           numberText(kMaxCellSizeM) + "] m");
   }
 }
 
@@ -65,11 +60,11 @@ MetricSpacing geographicSpacing(const std::string& path, const GeoReference& geo
   const double southDeg = (geo.originY - (height - 1) * geo.stepY) * unit;
   const double stepXDeg = geo.stepX * unit, stepYDeg = geo.stepY * unit;
   if (!(southDeg >= -90.0 - kLatitudeSlackDeg && northDeg <= 90.0 + kLatitudeSlackDeg)) {
-    inconsistent(path, "rows span latitudes " + number(southDeg) + " to " + number(northDeg) +
-                           " degrees, beyond +-90");
+    inconsistent(path, "rows span latitudes " + numberText(southDeg) + " to " +
+                           numberText(northDeg) + " degrees, beyond +-90");
   }
   if ((width - 1) * stepXDeg > 360.0 + 1e-9) {
-    inconsistent(path, "columns span " + number((width - 1) * stepXDeg) +
+    inconsistent(path, "columns span " + numberText((width - 1) * stepXDeg) +
                            " degrees of longitude, more than 360");
   }
   MetricSpacing s;
@@ -131,7 +126,7 @@ std::optional<double> groundDistanceM(const ToWgs84& toWgs84, double x0, double 
 MetricSpacing projectedSpacing(const std::string& path, const GeoReference& geo, int width,
                                int height) {
   if (!(geo.linearUnitM > 0.0 && std::isfinite(geo.linearUnitM))) {
-    inconsistent(path, "linear unit of " + number(geo.linearUnitM) + " m");
+    inconsistent(path, "linear unit of " + numberText(geo.linearUnitM) + " m");
   }
   MetricSpacing s;
   s.cellSizeXM = geo.stepX * geo.linearUnitM;
@@ -147,9 +142,9 @@ MetricSpacing projectedSpacing(const std::string& path, const GeoReference& geo,
                 std::abs(geo.originY), std::abs(geo.originY - height * geo.stepY)}) *
       geo.linearUnitM;
   if (!(farthestM <= kMaxProjectedCoordinateM)) {
-    inconsistent(path, "its corners lie " + number(farthestM) +
+    inconsistent(path, "its corners lie " + numberText(farthestM) +
                            " m from the projection's origin, beyond any map of the Earth (" +
-                           number(kMaxProjectedCoordinateM) + " m)");
+                           numberText(kMaxProjectedCoordinateM) + " m)");
   }
   const std::unique_ptr<OGRSpatialReference> srs = spatialReferenceOf(geo);
   if (!srs || srs->IsLocal()) return s;
@@ -172,10 +167,10 @@ MetricSpacing projectedSpacing(const std::string& path, const GeoReference& geo,
   if (std::abs(scaleX - 1.0) > kProjectionScaleTolerance ||
       std::abs(scaleY - 1.0) > kProjectionScaleTolerance) {
     s.scaleNote = std::string("its projection (") + (srs->GetName() ? srs->GetName() : "?") +
-                  ") stretches distances by " + number(scaleX) + " x " + number(scaleY) +
-                  " at the DEM's centre: using the ground spacing there, " + number(*groundX) +
-                  " x " + number(*groundY) + " m, instead of the grid's " + number(s.cellSizeXM) +
-                  " x " + number(s.cellSizeYM) + " m";
+                  ") stretches distances by " + numberText(scaleX) + " x " + numberText(scaleY) +
+                  " at the DEM's centre: using the ground spacing there, " + numberText(*groundX) +
+                  " x " + numberText(*groundY) + " m, instead of the grid's " +
+                  numberText(s.cellSizeXM) + " x " + numberText(s.cellSizeYM) + " m";
     s.cellSizeXM = *groundX;
     s.cellSizeYM = *groundY;
     checkCellSize(path, "x", s.cellSizeXM);
@@ -201,7 +196,7 @@ MetricSpacing metricSpacing(const std::string& path, const GeoReference& geo, in
   }
   if (!(geo.stepX > 0.0 && geo.stepY > 0.0 && std::isfinite(geo.stepX) &&
         std::isfinite(geo.stepY))) {
-    inconsistent(path, "pixel size " + number(geo.stepX) + " x " + number(geo.stepY) +
+    inconsistent(path, "pixel size " + numberText(geo.stepX) + " x " + numberText(geo.stepY) +
                            " is not positive and finite");
   }
   switch (geo.crs) {
