@@ -104,6 +104,25 @@ BENCHMARK(BM_RenderFrame)
     ->MeasureProcessCPUTime()
     ->UseRealTime();
 
+// The approx frame (framed view, no obscurance) with at most N probes of
+// the footprint filtering (FrameSettings::anisotropy, 1..4): what each probe
+// costs. Compare in one run, interleaved:
+//   bench_render --benchmark_filter='RenderAnisotropy' --benchmark_repetitions=5
+//     --benchmark_enable_random_interleaving=true
+void BM_RenderAnisotropy(benchmark::State& state) {
+  Fixture& f = fixture();
+  aal::FrameSettings s = f.settings;
+  s.mode = aal::ShadingMode::Approx;
+  s.obscurance.enabled = false;
+  s.anisotropy = static_cast<int>(state.range(0));
+  for (auto _ : state) f.renderer->render(*f.scene, s, false);
+}
+BENCHMARK(BM_RenderAnisotropy)
+    ->DenseRange(1, aal::kMaxFootprintProbes)
+    ->Unit(benchmark::kMillisecond)
+    ->MeasureProcessCPUTime()
+    ->UseRealTime();
+
 // Issue 15: the frame over jacksboro from three views (0: the framed start
 // view, 1: a flight 1.2 km above the ground looking ahead, 2: a lower one
 // in the middle of the DEM) with and without the obscurance passes, at a

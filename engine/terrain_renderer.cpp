@@ -20,6 +20,7 @@
 #include "aperture/terrain/io/horizon_map.h"
 #include "aperture/terrain/light/cap_table.h"
 #include "aperture/terrain/light/obscurance_samples.h"
+#include "aperture/terrain/view/texel_footprint.h"
 
 namespace aal {
 
@@ -149,10 +150,13 @@ const char* terrainFragmentShader(TexturePaging paging, bool gbuffer) {
 }
 
 // The constants of shaders/variant.glsl, in AAL_SPEC_* order.
-std::vector<int32_t> variantConstants(ShadingMode mode, int albedoSource, bool display) {
+// `footprintProbes`: the terrain pass's most probes (FrameSettings::anisotropy);
+// the passes that filter no footprint keep the default.
+std::vector<int32_t> variantConstants(ShadingMode mode, int albedoSource, bool display,
+                                      int footprintProbes = kMaxFootprintProbes) {
   static_assert(AAL_SPEC_SHADING_MODE == 0 && AAL_SPEC_ALBEDO_SOURCE == 1 &&
-                AAL_SPEC_DISPLAY_OUTPUT == 2);
-  return {static_cast<int32_t>(mode), albedoSource, display ? 1 : 0};
+                AAL_SPEC_DISPLAY_OUTPUT == 2 && AAL_SPEC_FOOTPRINT_PROBES == 3);
+  return {static_cast<int32_t>(mode), albedoSource, display ? 1 : 0, footprintProbes};
 }
 
 }  // namespace
@@ -202,10 +206,11 @@ struct TerrainRenderer::Passes {
   // The terrain pass: forward into the display (or HDR) target, or with the
   // obscurance pass into its three targets.
   const GraphicsPipeline& terrain(TexturePaging paging, ShadingMode mode, int albedo, bool gbuffer,
-                                  bool display) {
+                                  bool display, int footprintProbes) {
     display = display && !gbuffer;
     const std::string key = "terrain/" + std::to_string(int(paging)) + "/" +
                             std::to_string(int(mode)) + "/" + std::to_string(albedo) + "/" +
+                            std::to_string(footprintProbes) + "/" +
                             (gbuffer   ? "g"
                              : display ? "d"
                                        : "h");
@@ -213,13 +218,14 @@ struct TerrainRenderer::Passes {
     // With the obscurance pass the terrain also writes the ambient term and
     // the surface point; without it the frame pays nothing for them.
     if (gbuffer) formats = {kHdrFormat, kAmbientFormat, kSurfaceFormat};
-    return cached(key, {.vertexShader = terrainVertexShader(paging),
-                        .fragmentShader = terrainFragmentShader(paging, gbuffer),
-                        .colorFormats = formats,
-                        .depthFormat = kDepthFormat,
-                        .depthTest = true,
-                        .depthWrite = true,
-                        .specialization = variantConstants(mode, albedo, display)});
+    return cached(key,
+                  {.vertexShader = terrainVertexShader(paging),
+                   .fragmentShader = terrainFragmentShader(paging, gbuffer),
+                   .colorFormats = formats,
+                   .depthFormat = kDepthFormat,
+                   .depthTest = true,
+                   .depthWrite = true,
+                   .specialization = variantConstants(mode, albedo, display, footprintProbes)});
   }
 
   // The solid base, drawn in the terrain's rendering with the terrain's
@@ -657,7 +663,9 @@ void TerrainRenderer::record(VkCommandBuffer cmd, const TerrainScene& scene, con
       .clearValue = {.depthStencil = {.depth = 1.0f, .stencil = 0}}};
   beginRendering(cmd, extent_.width, extent_.height, colors, obscurance ? 3 : 1, &depth);
   timer_.begin(cmd, "terrain");
-  passes_->terrain(paging, s.mode, albedo, obscurance, direct)
+  passes_
+      ->terrain(paging, s.mode, albedo, obscurance, direct,
+                std::clamp(s.anisotropy, 1, kMaxFootprintProbes))
       .bind(cmd,
             terrainWrites(uniforms_, scene, passes_->terrainSampler.handle())
                 .buffer(kAfterTerrainTextures, patches_)

@@ -22,6 +22,7 @@
 #include "aperture/terrain/light/shading.h"
 #include "aperture/terrain/view/camera.h"
 #include "aperture/terrain/view/quadtree_lod.h"
+#include "aperture/terrain/view/texel_footprint.h"
 
 namespace aal {
 
@@ -48,6 +49,14 @@ struct FrameSettings {
   // The terrain's quadtree LOD (terrain/view/quadtree_lod.h); the triangle budget
   // is the scene's.
   LodSettings lod;
+  // The most probes along each fragment's footprint on the DEM with which
+  // every terrain texture is read, 1..kMaxFootprintProbes
+  // (terrain/view/texel_footprint.h; aal-render --anisotropy). 1 is one
+  // trilinear fetch at the level of the footprint's longer axis (a GPU's
+  // isotropic filter): the fastest, blurred in oblique views; each probe
+  // more costs a fetch per texture (docs/rendering.md, "Footprint
+  // filtering"). Values outside are clamped.
+  int anisotropy = kMaxFootprintProbes;
   // Pixels without terrain (the sky, or the debug views' black) get alpha 0
   // in the display and linear images instead of 1; their colour is kept
   // (aal-render --background transparent).

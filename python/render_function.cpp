@@ -55,6 +55,7 @@ struct RenderArguments {
   std::optional<double> obscuranceRadiusM;
   int obscuranceSamples = ObscuranceSettings{}.samples, obscuranceSteps = 1;
   std::optional<double> waterLevelM;
+  int anisotropy = kMaxFootprintProbes;
   double exaggeration = 1.0;
   int device = -1;
   int threads = 0;
@@ -103,6 +104,7 @@ Frame renderArray(Task& task, DemArray dem, const RenderArguments& a) {
   FrameSettings settings;
   settings.mode = mode;
   settings.obscurance = obscurance;
+  settings.anisotropy = a.anisotropy;
   if (a.albedo) settings.albedoValue = glm::vec3(toVec(*a.albedo));
   const double aspect = double(a.width) / double(a.height);
   settings.camera = defaultCamera(field, aspect, a.fovDeg, 0.0);
@@ -188,7 +190,8 @@ void addRenderFunction(py::module_& m) {
          std::optional<double> ev, std::optional<double> visibilityKm, const std::string& mode,
          bool transparent, std::optional<std::array<double, 3>> albedo, bool obscurance,
          std::optional<double> obscuranceRadius, int obscuranceSamples, int obscuranceSteps,
-         std::optional<double> waterLevel, int device, int threads, const py::object& progress) {
+         std::optional<double> waterLevel, int anisotropy, int device, int threads,
+         const py::object& progress) {
         RenderArguments a;
         a.width = width;
         a.height = height;
@@ -212,6 +215,7 @@ void addRenderFunction(py::module_& m) {
         a.obscuranceSamples = obscuranceSamples;
         a.obscuranceSteps = obscuranceSteps;
         a.waterLevelM = waterLevel;
+        a.anisotropy = anisotropy;
         a.device = device;
         a.threads = threads;
         return render(dem, std::move(a), progress);
@@ -221,8 +225,9 @@ void addRenderFunction(py::module_& m) {
       py::arg("lat"), py::arg("lon"), py::arg("sun_radius"), py::arg("turbidity"), py::arg("ev"),
       py::arg("visibility"), py::arg("mode"), py::arg("transparent"), py::arg("albedo"),
       py::arg("obscurance"), py::arg("obscurance_radius"), py::arg("obscurance_samples"),
-      py::arg("obscurance_steps"), py::arg("water_level"), py::arg("device"), py::arg("threads"),
-      py::arg("progress"), "aal-render's frame of a _Dem as RGBA8 (H, W, 4). Use aperture.render.");
+      py::arg("obscurance_steps"), py::arg("water_level"), py::arg("anisotropy"), py::arg("device"),
+      py::arg("threads"), py::arg("progress"),
+      "aal-render's frame of a _Dem as RGBA8 (H, W, 4). Use aperture.render.");
 }
 
 }  // namespace aal::python

@@ -26,12 +26,11 @@
 
 // Specialisation constant IDs of the pipelines that shade (shaders/variant.glsl):
 // lavapipe runs every arm of a branch, so the frame's shading mode, albedo
-// source and output are compiled in, not branched on.
+// source, output and footprint probes are compiled in, not branched on.
 #define AAL_SPEC_SHADING_MODE 0
 #define AAL_SPEC_ALBEDO_SOURCE 1
 #define AAL_SPEC_DISPLAY_OUTPUT 2
-#define AAL_SPEC_TEXTURE_FILTER 3
-#define AAL_SPEC_FILTER_PROBES 4
+#define AAL_SPEC_FOOTPRINT_PROBES 3
 
 // The exact cap intersection against the sun as a table (terrain/light/cap_table.h,
 // shaders/cap_table.glsl, docs/caps.md): texels across the transition band

@@ -50,7 +50,8 @@ void main() {
   // (texel_footprint.glsl; docs/rendering.md, "Footprint filtering").
   // Prefiltered levels keep the fetches few and local, and the far field
   // free of aliasing.
-  FootprintProbes probes = footprintProbes(dFdx(texelPosition), dFdy(texelPosition));
+  FootprintProbes probes =
+      footprintProbes(dFdx(texelPosition), dFdy(texelPosition), kFootprintProbes);
   vec4 aperture = terrainApertureProbes(texelPosition, probes);
   // Slopes, and in the horizon mode the horizons of the two stored
   // directions beside the sun (engine/terrain_scene.h setHorizons).

@@ -15,6 +15,7 @@
 #include "frame.glsl"
 #include "texel_footprint.glsl"
 #include "tile_lookup.glsl"
+#include "variant.glsl"
 
 #if AAL_TERRAIN_TILE_PAGES != 4
 #error "terrain_textures.glsl declares four pages per kind"
@@ -123,39 +124,32 @@ vec4 terrainSlopeLod(vec2 texel, float lod) {
 // (texel_footprint.glsl) around `texel`. The kind's tile is looked up once,
 // at the fragment, and every probe reads that tile's image: footprintProbes
 // keeps them within its border, which holds the neighbours' texels bit for
-// bit, so a tiled DEM reads as one image.
-vec4 terrainApertureProbes(vec2 texel, FootprintProbes p) {
-  TerrainTileTexel t = terrainTexel(texel, frame.apertureLayersPerPage);
-  vec2 step = p.step / vec2(frame.tileImageSize);
-  vec2 first = t.uv - 0.5 * float(p.count - 1) * step;
-  vec4 sum = vec4(0.0);
-  for (int i = 0; i < p.count; ++i) {
-    t.uv = first + float(i) * step;
-    sum += AAL_TERRAIN_FETCH_APERTURE(terrainAperture, t, p.lod);
-  }
+// bit, so a tiled DEM reads as one image. The loop runs the frame's most
+// probes (kFootprintProbes, a constant: unrolled), a fragment with fewer
+// repeating its last probe at weight 0: on lavapipe a loop over a
+// per-fragment count cost more than the fetches it saved (docs/rendering.md).
+#define AAL_TERRAIN_PROBE_MEAN(Type, texel, p, layersPerPage, FETCH)     \
+  TerrainTileTexel t = terrainTexel(texel, layersPerPage);              \
+  vec2 step = p.step / vec2(frame.tileImageSize);                       \
+  vec2 first = t.uv - 0.5 * float(p.count - 1) * step;                  \
+  Type sum = Type(0.0);                                                 \
+  for (int i = 0; i < kFootprintProbes; ++i) {                          \
+    t.uv = first + float(min(i, p.count - 1)) * step;                   \
+    sum += (i < p.count ? 1.0 : 0.0) * FETCH;                           \
+  }                                                                     \
   return sum / float(p.count);
+
+vec4 terrainApertureProbes(vec2 texel, FootprintProbes p) {
+  AAL_TERRAIN_PROBE_MEAN(vec4, texel, p, frame.apertureLayersPerPage,
+                         AAL_TERRAIN_FETCH_APERTURE(terrainAperture, t, p.lod))
 }
 vec3 terrainAlbedoProbes(vec2 texel, FootprintProbes p) {
-  TerrainTileTexel t = terrainTexel(texel, frame.albedoLayersPerPage);
-  vec2 step = p.step / vec2(frame.tileImageSize);
-  vec2 first = t.uv - 0.5 * float(p.count - 1) * step;
-  vec3 sum = vec3(0.0);
-  for (int i = 0; i < p.count; ++i) {
-    t.uv = first + float(i) * step;
-    sum += AAL_TERRAIN_FETCH_ALBEDO(terrainAlbedo, t, p.lod).rgb;
-  }
-  return sum / float(p.count);
+  AAL_TERRAIN_PROBE_MEAN(vec3, texel, p, frame.albedoLayersPerPage,
+                         AAL_TERRAIN_FETCH_ALBEDO(terrainAlbedo, t, p.lod).rgb)
 }
 vec4 terrainSlopeProbes(vec2 texel, FootprintProbes p) {
-  TerrainTileTexel t = terrainTexel(texel, frame.heightLayersPerPage);
-  vec2 step = p.step / vec2(frame.tileImageSize);
-  vec2 first = t.uv - 0.5 * float(p.count - 1) * step;
-  vec4 sum = vec4(0.0);
-  for (int i = 0; i < p.count; ++i) {
-    t.uv = first + float(i) * step;
-    sum += AAL_TERRAIN_FETCH_HEIGHT(terrainSlope, t, p.lod);
-  }
-  return sum / float(p.count);
+  AAL_TERRAIN_PROBE_MEAN(vec4, texel, p, frame.heightLayersPerPage,
+                         AAL_TERRAIN_FETCH_HEIGHT(terrainSlope, t, p.lod))
 }
 
 #endif

@@ -17,7 +17,8 @@ struct FootprintProbes {
 
 // `dx`, `dy`: the texel position's change from one pixel to the next across
 // and down the screen (dFdx, dFdy of it; take them in uniform control flow).
-FootprintProbes footprintProbes(vec2 dx, vec2 dy) {
+// `maxProbes`: at most that many, 1..AAL_FOOTPRINT_MAX_PROBES.
+FootprintProbes footprintProbes(vec2 dx, vec2 dy, int maxProbes) {
   float lengthX = dot(dx, dx), lengthY = dot(dy, dy);
   vec2 major = lengthX >= lengthY ? dx : dy;
   float majorTexels = sqrt(max(lengthX, lengthY));
@@ -26,7 +27,7 @@ FootprintProbes footprintProbes(vec2 dx, vec2 dy) {
   float width = abs(dx.x * dy.y - dx.y * dy.x) / majorTexels;
   float ratio = majorTexels / max(width, 1e-30);
   p.count = int(clamp(ceil(ratio - AAL_FOOTPRINT_RATIO_TOLERANCE), 1.0,
-                      float(AAL_FOOTPRINT_MAX_PROBES)));
+                      float(clamp(maxProbes, 1, AAL_FOOTPRINT_MAX_PROBES))));
   float count = float(p.count);
   p.lod = max(0.0, log2(max(width, majorTexels / count)));
   float coarser = exp2(min(floor(p.lod) + 1.0, float(AAL_TERRAIN_MIP_LEVELS - 1)));

@@ -12,11 +12,14 @@ layout(local_size_x = AAL_FOOTPRINT_PARITY_GROUP_SIZE) in;
 layout(set = 0, binding = 0, std430) readonly buffer Queries { vec4 queries[]; };
 // x: count, y: lod, zw: step.
 layout(set = 0, binding = 1, std430) writeonly buffer Answers { vec4 answers[]; };
-layout(push_constant) uniform Push { uint count; };
+layout(push_constant) uniform Push {
+  uint count;
+  int maxProbes;
+};
 
 void main() {
   uint i = gl_GlobalInvocationID.x;
   if (i >= count) return;
-  FootprintProbes p = footprintProbes(queries[i].xy, queries[i].zw);
+  FootprintProbes p = footprintProbes(queries[i].xy, queries[i].zw, maxProbes);
   answers[i] = vec4(float(p.count), p.lod, p.step);
 }

@@ -15,6 +15,9 @@ layout(constant_id = AAL_SPEC_ALBEDO_SOURCE) const int kAlbedoSource = AAL_ALBED
 // true: the pass writes display values (tone-mapped, sRGB encoded; debug
 // modes their raw values) instead of linear radiance.
 layout(constant_id = AAL_SPEC_DISPLAY_OUTPUT) const bool kDisplayOutput = false;
+// Most probes of the footprint filtering (texel_footprint.glsl,
+// FrameSettings::anisotropy), 1..AAL_FOOTPRINT_MAX_PROBES.
+layout(constant_id = AAL_SPEC_FOOTPRINT_PROBES) const int kFootprintProbes = AAL_FOOTPRINT_MAX_PROBES;
 
 // Debug modes show raw values: no aerial perspective, no tone map.
 const bool kRawOutput =

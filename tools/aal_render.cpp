@@ -67,6 +67,7 @@ struct Options {
   int device = -1;
   size_t triangleBudget = 2'000'000;
   double lodErrorPixels = aal::LodSettings{}.maxErrorPixels;
+  int anisotropy = aal::kMaxFootprintProbes;
   uint32_t maxTileTexels = 0;
   bool stats = false;
   bool quiet = false;
@@ -577,6 +578,7 @@ int run(const Options& o) {
   aal::requireCameraDirection(settings.camera.position, settings.camera.lookAt);
   settings.camera.verticalFovDeg = o.fovDeg;
   settings.lod.maxErrorPixels = o.lodErrorPixels;
+  settings.anisotropy = o.anisotropy;
   settings.transparentBackground = o.background == "transparent";
   // The depth is in the DEM's metres, like the heights before --exaggeration.
   if (o.baseDepthM) settings.base = aal::FrameSettings::Base{float(baseDepthM), baseAlbedo};
@@ -820,6 +822,9 @@ int main(int argc, char** argv) {
                  "(smaller: more triangles; the shading's detail comes from textures). "
                  "Default: 4 at 720 lines, in proportion to the image height, at least 1")
       ->check(CLI::Range(1e-3, 1e3));
+  app.add_option("--anisotropy", o.anisotropy, aal::kAnisotropyHelp)
+      ->check(CLI::Range(1, aal::kMaxFootprintProbes))
+      ->capture_default_str();
   app.add_option("--max-tile", o.maxTileTexels,
                  "split the DEM's textures into tiles of at most N texels across, rounded down "
                  "to a multiple of 32 (tests; by default only DEMs beyond the device's largest "

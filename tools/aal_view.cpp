@@ -45,6 +45,7 @@ struct Options {
   int device = -1, azimuths = 64;
   size_t triangleBudget = 2'000'000;
   double lodErrorPixels = aal::LodSettings{}.maxErrorPixels;
+  int anisotropy = aal::kMaxFootprintProbes;
   std::optional<double> targetFps;
 };
 
@@ -177,6 +178,7 @@ int run(const Options& o) {
   v.device = o.device;
   v.triangleBudget = o.triangleBudget;
   v.lodErrorPixels = o.lodErrorPixels;
+  v.anisotropy = o.anisotropy;
   // Scripted runs measure and take screenshots: full resolution unless asked.
   v.targetFps = o.targetFps.value_or(o.frames ? 0.0 : 30.0);
   v.bakeAzimuths = o.azimuths;
@@ -295,6 +297,10 @@ int main(int argc, char** argv) {
                  "largest geometric error of the terrain mesh in pixels (default: 4 at 720 "
                  "lines, in proportion to the window's height)")
       ->check(CLI::Range(1e-3, 1e3));
+  app.add_option("--anisotropy", o.anisotropy,
+                 std::string(aal::kAnisotropyHelp) + "; the panel changes it")
+      ->check(CLI::Range(1, aal::kMaxFootprintProbes))
+      ->capture_default_str();
   app.add_option("--target-fps", o.targetFps,
                  "while the view changes, draw fewer pixels (down to half the width and height, "
                  "scaled up) to keep this frame rate; at rest every pixel. 0: off. Default 30, "

@@ -7,7 +7,7 @@
 
 namespace aal {
 
-FootprintProbes footprintProbes(glm::vec2 dx, glm::vec2 dy) {
+FootprintProbes footprintProbes(glm::vec2 dx, glm::vec2 dy, int maxProbes) {
   const float lengthX = glm::dot(dx, dx), lengthY = glm::dot(dy, dy);
   const glm::vec2 major = lengthX >= lengthY ? dx : dy;
   const float majorTexels = std::sqrt(std::max(lengthX, lengthY));
@@ -18,8 +18,8 @@ FootprintProbes footprintProbes(glm::vec2 dx, glm::vec2 dy) {
   // no width. The tolerance keeps a square footprint, whose ratio rounds to
   // a little above 1, at one probe.
   const float ratio = majorTexels / std::max(width, 1e-30f);
-  p.count = int(
-      std::clamp(std::ceil(ratio - kFootprintRatioTolerance), 1.0f, float(kMaxFootprintProbes)));
+  p.count = int(std::clamp(std::ceil(ratio - kFootprintRatioTolerance), 1.0f,
+                           float(std::clamp(maxProbes, 1, kMaxFootprintProbes))));
   const float count = float(p.count);
   p.lod = std::max(0.0f, std::log2(std::max(width, majorTexels / count)));
   // The outermost probe's reach beyond the fragment's tile core: its offset

@@ -19,7 +19,10 @@
 namespace aal {
 
 // Most probes per fetch: a footprint more anisotropic than this is read at
-// a coarser level, so that the probes still leave no gaps between them.
+// a coarser level, so that the probes still leave no gaps between them. A
+// frame may ask for fewer (FrameSettings::anisotropy: each probe is a
+// trilinear fetch per texture, and on lavapipe fetches are what a fragment
+// costs; docs/rendering.md, "Footprint filtering").
 constexpr int kMaxFootprintProbes = AAL_FOOTPRINT_MAX_PROBES;
 // count rounds |L| / W - this up.
 constexpr float kFootprintRatioTolerance = AAL_FOOTPRINT_RATIO_TOLERANCE;
@@ -34,7 +37,8 @@ struct FootprintProbes {
 // (DEM texels) from one pixel to the next across and down the screen. The
 // longer axis L is the longer of dx and dy, the width W = |dx × dy| / |L|
 // (the parallelogram's extent across L). count = ceil(|L| / W - kFootprintRatioTolerance), at most
-// kMaxFootprintProbes; lod = log2(max(W, |L| / count)), never below 0;
+// `maxProbes` (1..kMaxFootprintProbes; 1: one trilinear fetch at the level
+// of L, a GPU's isotropic filter); lod = log2(max(W, |L| / count)), never below 0;
 // step = L / count, so the probes sit at the centres of count equal parts
 // of L around the fragment (offsets (i - (count - 1) / 2) step). Where the
 // outermost probe's bilinear footprint at the coarser of its two levels
@@ -43,6 +47,6 @@ struct FootprintProbes {
 // once per fragment, and the probes read that tile's border
 // (AAL_TERRAIN_TILE_BORDER, engine/terrain_tiles.h). Zero or non-finite
 // derivatives give one probe at level 0. Single precision, as the shader.
-FootprintProbes footprintProbes(glm::vec2 dx, glm::vec2 dy);
+FootprintProbes footprintProbes(glm::vec2 dx, glm::vec2 dy, int maxProbes = kMaxFootprintProbes);
 
 }  // namespace aal

@@ -73,6 +73,20 @@ def test_equals_aal_render_bit_for_bit(tmp_path, tool_env):
                             sun_elevation=20, exaggeration=2)
     np.testing.assert_array_equal(image, expected)
 
+    # --anisotropy and anisotropy= are one setting: one trilinear fetch blurs the oblique
+    # view into another picture, the same in both.
+    run_tool("aal-render", tmp_path / "dem.tif", "-o", tmp_path / "one.png", "--size", "96x64",
+             "--sun-azimuth", "200", "--sun-elevation", "20", "--exaggeration", "2",
+             "--anisotropy", "1", "-q", env=tool_env)
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", rasterio.errors.NotGeoreferencedWarning)
+        with rasterio.open(tmp_path / "one.png") as png:
+            expected_one = np.moveaxis(png.read(), 0, 2)
+    one = aperture.render(dem, info.cell_size, size=(96, 64), sun_azimuth=200, sun_elevation=20,
+                          exaggeration=2, anisotropy=1)
+    np.testing.assert_array_equal(one, expected_one)
+    assert not np.array_equal(one, image)
+
 
 def test_no_vulkan_device_is_a_runtime_error():
     # A child process whose Vulkan loader finds no driver.

@@ -102,7 +102,8 @@ TEST(AalRender, BadInputExitsWithTwo) {
        {out + " --size 0x10", out + " --size 20000x10", out + " --size banana",
         " -o " + quoted(dir.path() / "x.jpg"), " -o " + quoted(dir.path() / "no" / "x.png"),
         out + " --time yesterday", out + " --sun-azimuth 10", out + " --mode magic",
-        out + " --camera 1,2", out + " --albedo " + quoted(dir.path() / "missing.png"),
+        out + " --camera 1,2", out + " --anisotropy 0", out + " --anisotropy 5",
+        out + " --albedo " + quoted(dir.path() / "missing.png"),
         out + " --aperture " + quoted(dir.path() / "missing.exr")}) {
     const auto r = render(dir, args);
     EXPECT_EQ(r.exitCode, 2) << args << "\n" << r.out;

@@ -19,6 +19,7 @@ namespace aal {
 struct ViewPanelModel {
   ViewLighting& lighting;
   ShadingMode& mode;
+  int& anisotropy;  // FrameSettings::anisotropy
   ObscuranceSettings& obscurance;
   bool& vsync;
   CameraMode cameraMode = CameraMode::Fly;

@@ -164,7 +164,7 @@ bool sameView(const FrameSettings& a, const FrameSettings& b) {
   return sameCamera(a.camera, b.camera) && a.mode == b.mode && a.lighting == b.lighting &&
          a.waterLevelM == b.waterLevelM && sameObscurance(a.obscurance, b.obscurance) &&
          a.albedoValue == b.albedoValue && a.lod.maxErrorPixels == b.lod.maxErrorPixels &&
-         a.lod.morph == b.lod.morph;
+         a.lod.morph == b.lod.morph && a.anisotropy == b.anisotropy;
 }
 
 // How long an idle viewer sleeps between looks at the clock (the --timeout,
@@ -212,6 +212,7 @@ Viewer::Viewer(const ViewerOptions& options, std::shared_ptr<const Heightfield> 
       ui_(instance_, device_, window_, swapchain_),
       lighting_(options.lighting.value_or(defaultViewLighting(*field))),
       mode_(options.mode),
+      anisotropy_(options.anisotropy),
       vsync_(options.vsync),
       timing_(std::make_unique<Timing>()),
       resolution_(options.targetFps) {
@@ -391,7 +392,7 @@ void Viewer::updateCamera(double dtSeconds) {
 void Viewer::drawUi() {
   ui_.beginFrame();
   const Heightfield& field = *terrain_->field;
-  ViewPanelModel model{lighting_, mode_, obscurance_, vsync_};
+  ViewPanelModel model{lighting_, mode_, anisotropy_, obscurance_, vsync_};
   if (!terrain_->scene->hasHorizons()) {
     model.horizonsMissing = terrain_->bake && viewerBakeOptions(options_.bakeAzimuths).horizons
                                 ? "after the bake"
@@ -436,6 +437,7 @@ FrameSettings Viewer::frameSettings() const {
     s.mode = ShadingMode::Approx;
   applyViewLighting(lighting_, *terrain_->field, s);
   s.obscurance = obscurance_;
+  s.anisotropy = anisotropy_;
   s.lod.maxErrorPixels = options_.lodErrorPixels;
   return s;
 }

@@ -58,6 +58,7 @@ struct ViewerOptions {
   int device = -1;
   size_t triangleBudget = 2'000'000;
   double lodErrorPixels = LodSettings{}.maxErrorPixels;
+  int anisotropy = kMaxFootprintProbes;  // FrameSettings::anisotropy at the start
   // Dynamic resolution while the view changes (DynamicResolution); 0: off.
   double targetFps = 30;
   int bakeAzimuths = 64;
@@ -138,6 +139,7 @@ class Viewer {
   std::unique_ptr<CameraController> camera_;
   ViewLighting lighting_;
   ShadingMode mode_;
+  int anisotropy_;  // FrameSettings::anisotropy (the panel changes it)
   ObscuranceSettings obscurance_;
   bool vsync_;
   bool swapchainStale_ = false;

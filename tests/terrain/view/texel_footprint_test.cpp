@@ -109,6 +109,26 @@ TEST(TexelFootprint, TheOutermostProbeStaysWithinATilesBorder) {
   EXPECT_GT(shortened, 0) << "the random footprints must reach the border";
 }
 
+TEST(TexelFootprint, FewerProbesReadACoarserLevelAndOneIsTheLongerAxisLevel) {
+  // 1 x 16 texels: four probes at level 2 (4 texels apart), two at level 3,
+  // one at level 4, the longer axis' (a GPU's isotropic trilinear fetch).
+  for (int most = 1; most <= kMaxFootprintProbes; ++most) {
+    const FootprintProbes p = footprintProbes({1.0f, 0.0f}, {0.0f, 16.0f}, most);
+    EXPECT_EQ(p.count, most);
+    EXPECT_FLOAT_EQ(p.lod, std::log2(16.0f / float(most)));
+    EXPECT_FLOAT_EQ(glm::length(p.step), 16.0f / float(most));
+  }
+  forRandomFootprints([](glm::vec2 dx, glm::vec2 dy, const FootprintProbes&) {
+    const FootprintProbes one = footprintProbes(dx, dy, 1);
+    ASSERT_EQ(one.count, 1);
+    const float major = std::max(glm::length(dx), glm::length(dy));
+    EXPECT_NEAR(one.lod, std::max(0.0f, std::log2(major)), 1e-5f);
+    // Out-of-range limits are clamped to 1..kMaxFootprintProbes.
+    EXPECT_EQ(footprintProbes(dx, dy, 0).count, 1);
+    EXPECT_EQ(footprintProbes(dx, dy, 99).count, footprintProbes(dx, dy).count);
+  });
+}
+
 TEST(TexelFootprint, DegenerateDerivativesAreOneProbeAtLevelZero) {
   const float nan = std::numeric_limits<float>::quiet_NaN();
   const float inf = std::numeric_limits<float>::infinity();
