@@ -177,6 +177,10 @@ bool sameView(const FrameSettings& a, const FrameSettings& b) {
 // How long an idle viewer sleeps between looks at the clock (the --timeout,
 // a running bake's progress bar) when no event wakes it.
 constexpr double kIdleWaitS = 0.1;
+// Level-0 texels of the horizons re-laid a frame at the least (more when the
+// sun would leave the shared direction's reach first, engine/horizon_relay.h):
+// 2^20, about a tenth of the frame on lavapipe (docs/performance.md).
+constexpr uint64_t kViewerHorizonRelayTexels = uint64_t{1} << 20;
 
 // The bake also keeps the sweep's horizons of 8 azimuths (8-bit codes) for
 // the horizon mode when the azimuths allow: no extra sweep, 8 B per texel
@@ -444,6 +448,9 @@ FrameSettings Viewer::frameSettings() const {
   applyViewLighting(lighting_, *terrain_->field, s);
   s.obscurance = obscurance_;
   s.lod.maxErrorPixels = options_.lodErrorPixels;
+  // A re-lay of the horizons spread over frames, none a stall
+  // (docs/rendering.md, "Where the horizons lie").
+  s.horizonRelayTexelsPerFrame = kViewerHorizonRelayTexels;
   return s;
 }
 
