@@ -521,9 +521,10 @@ bool TerrainRenderer::writeUniforms(const TerrainScene& scene, const FrameSettin
   u.apertureLayersPerPage = int32_t(tiles.layersPerPage[1]);
   u.albedoLayersPerPage = int32_t(tiles.layersPerPage[2]);
   if (s.mode == ShadingMode::Horizon && scene.hasHorizons()) {
-    // The pair on the device serves this sun (record() re-laid it first).
-    const std::array<float, 2> w = horizonPairWeights(
-        scene.horizonDirections(), sunAzimuthRad(u.sunDirection), scene.horizonFirst());
+    // What B and A hold serves this sun (record() re-laid first): the pair's
+    // weights, or the shared direction alone while a re-lay is under way.
+    const std::array<float, 2> w = horizonChannelWeights(
+        scene.horizonDirections(), scene.horizonChannels(), sunAzimuthRad(u.sunDirection));
     u.horizonWeights = glm::vec2(w[0], w[1]);
   }
   uniforms_.write(&u, sizeof u);
@@ -577,17 +578,26 @@ void TerrainRenderer::record(VkCommandBuffer cmd, const TerrainScene& scene, con
              std::max(1u, static_cast<uint32_t>(std::lround(height_ * scale)))};
   if (s.mode == ShadingMode::Horizon && scene.hasHorizons()) {
     // The slope texture must hold the horizons of the two directions beside
-    // the sun: lay that pair when the sun left the current one (with the
-    // hysteresis of horizonPairFor, so a sun on a stored direction does not
-    // re-lay every frame). Safe here: the previous frame's submission has
-    // finished (as writeUniforms below requires; aal-view keeps one frame in
-    // flight, engine/vk/frame_sync.h, so no frame still reads the slopes),
-    // and the re-lay waits for itself before this frame's commands are
-    // submitted. With more frames in flight this would need the device idle
-    // first.
-    scene.relayHorizons(
-        device_, horizonPairFor(scene.horizonDirections(), sunAzimuthRad(s.lighting.sunDirection),
-                                scene.horizonFirst()));
+    // the sun: re-lay when the sun leaves the pair on the device, at once or
+    // this frame's share of a spread re-lay (engine/horizon_relay.h). Safe
+    // here: the previous frame's submission has finished (as writeUniforms
+    // below requires; aal-view keeps one frame in flight,
+    // engine/vk/frame_sync.h, so no frame still reads the slopes), and the
+    // writing waits for itself before this frame's commands are submitted.
+    // With more frames in flight this would need the device idle first.
+    const int n = scene.horizonDirections();
+    const float azimuth = sunAzimuthRad(s.lighting.sunDirection);
+    const float motion =
+        horizonSunScene_ == scene.id() ? horizonMotionSteps(n, horizonSunAzimuth_, azimuth) : 0.0f;
+    HorizonRelayPolicy policy;
+    if (s.horizonRelayTexelsPerFrame > 0) {
+      policy.bandsPerFrame = uint32_t(std::clamp<uint64_t>(
+          s.horizonRelayTexelsPerFrame / scene.horizonBandTexels(), 1, scene.horizonBands()));
+    }
+    scene.writeHorizonRelay(device_, planHorizonRelay(n, scene.horizonChannels(), azimuth, motion,
+                                                      scene.horizonBands(), policy));
+    horizonSunScene_ = scene.id();
+    horizonSunAzimuth_ = azimuth;
   }
   const bool obscurance = writeUniforms(scene, s);
   selectPatches(scene, s);

@@ -69,6 +69,12 @@ struct FrameSettings {
     glm::vec3 albedo{0.3f};
   };
   std::optional<Base> base;
+  // The horizon mode's re-lays when the sun leaves the pair on the device
+  // (engine/horizon_relay.h, docs/rendering.md): 0: each done in the frame
+  // that needs it, every frame as a fresh scene would draw it (aal-render);
+  // above 0: spread over frames, at least this many level-0 texels a frame,
+  // begun ahead of a moving sun (aal-view: no frame stalls for a whole one).
+  uint64_t horizonRelayTexelsPerFrame = 0;
 };
 
 struct FrameResult {
@@ -187,6 +193,11 @@ class TerrainRenderer {
   bool historyValid_ = false;
   HistoryKey historyKey_;
   uint32_t historySubset_ = 0;
+  // The sun's azimuth in the previous horizon frame of scene
+  // horizonSunScene_ (0: none): the sun's motion, which a spread re-lay
+  // starts ahead of.
+  uint64_t horizonSunScene_ = 0;
+  float horizonSunAzimuth_ = 0.0f;
   glm::mat4 previousViewProj_{1.0f};
   VkExtent2D previousExtent_{0, 0};
   Buffer uniforms_, samples_;

@@ -169,24 +169,24 @@ class LevelView {
 
 namespace {
 
-// The codes of the pair of directions first, first + 1 mod n as R and G of
-// R8G8_UINT images in the heights' tiles and pages (borders included, level
-// 0 only): what slopes_horizons.comp decodes into the slope texture.
-std::vector<Image> horizonPairPages(const Device& device, const TerrainTileLayout& tiles,
-                                    const HorizonMap& map, int first) {
-  const size_t firstChannel = size_t(first), secondChannel = size_t((first + 1) % map.directions);
-  const DemRows pairRows = [&](uint32_t firstRow, uint32_t endRow, void* destination) {
+// The codes of one or two directions (R, G) as R8_UINT or R8G8_UINT images
+// in the heights' tiles and pages, rows [rowBegin, rowEnd) of every tile
+// image (borders included, level 0 only): what slopes_horizons.comp decodes
+// into the slope texture.
+std::vector<Image> horizonCodePages(const Device& device, const TerrainTileLayout& tiles,
+                                    const HorizonMap& map, const std::vector<int>& directions,
+                                    uint32_t rowBegin, uint32_t rowEnd) {
+  const size_t count = directions.size();
+  const DemRows codeRows = [&](uint32_t firstRow, uint32_t endRow, void* destination) {
     // Rows in parallel: every texel's codes are n bytes in a row, so this
-    // reads the whole map (memory bound; a re-lay in aal-view is a hitch,
-    // docs/performance.md).
+    // reads the whole map's rows (memory bound; docs/performance.md).
     const size_t width = size_t(map.width), n = size_t(map.directions);
     tbb::parallel_for(tbb::blocked_range<uint32_t>(firstRow, endRow, 8), [&](const auto& rows) {
       for (uint32_t row = rows.begin(); row < rows.end(); ++row) {
         const uint8_t* codes = map.texel(0, int(row));
-        auto* out = static_cast<uint8_t*>(destination) + (row - firstRow) * width * 2;
+        auto* out = static_cast<uint8_t*>(destination) + (row - firstRow) * width * count;
         for (size_t col = 0; col < width; ++col, codes += n) {
-          out[2 * col] = codes[firstChannel];
-          out[2 * col + 1] = codes[secondChannel];
+          for (size_t d = 0; d < count; ++d) out[count * col + d] = codes[directions[d]];
         }
       }
     });
@@ -195,17 +195,26 @@ std::vector<Image> horizonPairPages(const Device& device, const TerrainTileLayou
   for (uint32_t page = 0; page < tiles.pagesOf(TerrainTexture::Height); ++page) {
     pages.emplace_back(
         device,
-        ImageDesc{tiles.imageWidth(), tiles.imageHeight(), VK_FORMAT_R8G8_UINT,
+        ImageDesc{tiles.imageWidth(), rowEnd - rowBegin,
+                  count == 1 ? VK_FORMAT_R8_UINT : VK_FORMAT_R8G8_UINT,
                   VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT,
                   VK_IMAGE_ASPECT_COLOR_BIT, tiles.layersIn(TerrainTexture::Height, page), true});
   }
   UploadBatch upload(device);
   std::vector<unsigned char> scratch;  // one band of DEM rows while a tile is filled
+  std::vector<RowWriter> tileWriters;  // alive until submit()
+  tileWriters.reserve(tiles.tileCount());
   const uint32_t perPage = tiles.layersPerPageOf(TerrainTexture::Height);
   for (uint32_t tile = 0; tile < tiles.tileCount(); ++tile) {
-    upload.addImage(pages[tile / perPage], 2,
-                    tileRows(tiles, tile % tiles.tilesX, tile / tiles.tilesX, 2, pairRows, scratch),
-                    tile % perPage);
+    tileWriters.push_back(
+        tileRows(tiles, tile % tiles.tilesX, tile / tiles.tilesX, count, codeRows, scratch));
+    const RowWriter& whole = tileWriters.back();
+    upload.addImage(
+        pages[tile / perPage], count,
+        [&whole, rowBegin](uint32_t first, uint32_t end, void* destination) {
+          whole(rowBegin + first, rowBegin + end, destination);
+        },
+        tile % perPage);
   }
   upload.submit();
   return pages;
@@ -221,20 +230,35 @@ struct SlopePush {
   float cellSizeXM, cellSizeYM;
   int32_t horizonBits;
   int32_t keepSlopes;
+  int32_t channel;  // horizons written: 0 B, 1 A, 2 both
+  int32_t rowBegin, rowEnd;
 };
+
+constexpr int32_t kBothChannels = 2;
 
 }  // namespace
 
 void TerrainScene::computeSlopes(const Device& device, int first, bool keepSlopes) const {
   const bool horizons = horizonMap_ != nullptr;
+  const std::vector<Image> codes =
+      horizons ? horizonCodePages(device, tiles_, *horizonMap_,
+                                  {first, (first + 1) % horizonMap_->directions}, 0,
+                                  tiles_.imageHeight())
+               : std::vector<Image>{};
+  runSlopePass(device, horizons ? &codes : nullptr, keepSlopes, kBothChannels, 0,
+               tiles_.imageHeight());
+}
+
+void TerrainScene::runSlopePass(const Device& device, const std::vector<Image>* codes,
+                                bool keepSlopes, int channel, uint32_t rowBegin,
+                                uint32_t rowEnd) const {
+  const bool horizons = codes != nullptr;
   std::unique_ptr<ComputePipeline> plain;
   if (!horizons)
     plain = std::make_unique<ComputePipeline>(device, "slopes.comp", sizeof(SlopePush));
   const ComputePipeline& pipeline = horizons ? *horizonSlopes_ : *plain;
   const Sampler nearest(device, VK_FILTER_NEAREST, true);
   const Sampler codeSampler(device, VK_FILTER_NEAREST, false);  // integer texels: no filter
-  const std::vector<Image> pairs =
-      horizons ? horizonPairPages(device, tiles_, *horizonMap_, first) : std::vector<Image>{};
   std::vector<std::vector<std::unique_ptr<LevelView>>> views(slopes_.size());
   for (size_t p = 0; p < slopes_.size(); ++p) {
     for (uint32_t level = 0; level < slopes_[p].desc().mipLevels; ++level) {
@@ -250,18 +274,27 @@ void TerrainScene::computeSlopes(const Device& device, int first, bool keepSlope
           keepSlopes ? VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL : VK_IMAGE_LAYOUT_UNDEFINED,
           VK_IMAGE_LAYOUT_GENERAL);
       for (uint32_t level = 0; level < levels; ++level) {
-        const SlopePush push{static_cast<int32_t>(level), demInfo_.z, demInfo_.w, horizonBits_,
-                             keepSlopes ? 1 : 0};
-        const uint32_t w = page.desc().width >> level, h = page.desc().height >> level;
+        // The rows are whole multiples of the mip alignment: each level's
+        // rows come from the level below's rows of the same band.
+        const uint32_t begin = rowBegin >> level, end = rowEnd >> level;
+        const SlopePush push{static_cast<int32_t>(level),
+                             demInfo_.z,
+                             demInfo_.w,
+                             horizonBits_,
+                             keepSlopes ? 1 : 0,
+                             channel,
+                             static_cast<int32_t>(begin),
+                             static_cast<int32_t>(end)};
+        const uint32_t w = page.desc().width >> level;
         DescriptorWrites writes;
         writes.image(0, heights_[p].view(), nearest.handle()).image(1, views[p][level]->handle());
         if (horizons) {
-          // Level 0 decodes the pair's codes; each level above is the mean
-          // of the one below (bound at level 0 too, unread: any other level).
-          writes.image(2, pairs[p].view(), codeSampler.handle())
+          // Level 0 decodes the codes; each level above is the mean of the
+          // one below (bound at level 0 too, unread: any other level).
+          writes.image(2, (*codes)[p].view(), codeSampler.handle())
               .image(3, views[p][level > 0 ? level - 1 : std::min(1u, levels - 1)]->handle());
         }
-        pipeline.record(cmd, writes, &push, (w + 7) / 8, (h + 7) / 8, page.desc().layers);
+        pipeline.record(cmd, writes, &push, (w + 7) / 8, (end - begin + 7) / 8, page.desc().layers);
         // The next level reads this one's horizons.
         if (horizons) transitionImage(cmd, page, VK_IMAGE_LAYOUT_GENERAL, VK_IMAGE_LAYOUT_GENERAL);
       }
@@ -479,8 +512,22 @@ void TerrainScene::setHorizons(const Device& device, std::shared_ptr<const Horiz
   horizonMap_ = std::move(shared);
   horizonBits_ = map.bits;
   horizonDirections_ = map.directions;
-  horizonFirst_ = first;
+  horizonChannels_ = HorizonChannels{{first, (first + 1) % map.directions}};
   computeSlopes(device, first, false);
+}
+
+int TerrainScene::horizonFirst() const {
+  return horizonMap_ ? horizonChannelsPair(horizonDirections_, horizonChannels_) : 0;
+}
+
+uint32_t TerrainScene::horizonBands() const {
+  return tiles_.imageHeight() / kTerrainMipAlignment;
+}
+
+uint64_t TerrainScene::horizonBandTexels() const {
+  uint64_t layers = 0;
+  for (const Image& page : slopes_) layers += page.desc().layers;
+  return uint64_t{tiles_.imageWidth()} * kTerrainMipAlignment * layers;
 }
 
 void TerrainScene::relayHorizons(const Device& device, int first) const {
@@ -489,12 +536,54 @@ void TerrainScene::relayHorizons(const Device& device, int first) const {
     throw std::invalid_argument("relayHorizons: direction " + std::to_string(first) + " of " +
                                 std::to_string(horizonDirections_));
   }
-  if (first == horizonFirst_) return;
-  // The same images: the previous frame has finished reading them (the
-  // caller's promise).
-  computeSlopes(device, first, true);
-  horizonFirst_ = first;
-  ++horizonRelays_;
+  const int n = horizonDirections_, now = horizonFirst();
+  if (first == now && !horizonChannels_.mixing()) return;
+  HorizonRelayStep step;
+  if (!horizonChannels_.mixing() && (first == (now + 1) % n || first == (now + n - 1) % n)) {
+    // One direction in common: only the other's channel is written.
+    const bool up = first == (now + 1) % n;
+    const int replaced = up ? now : (now + 1) % n;
+    step.kind = HorizonRelayStep::Kind::WriteBands;
+    step.channel = horizonChannels_.directions[0] == replaced ? 0 : 1;
+    step.direction = up ? (now + 2) % n : first;
+    step.bandBegin = 0;
+    step.bandEnd = horizonBands();
+  } else {
+    step.kind = HorizonRelayStep::Kind::LayPair;
+    step.first = first;
+  }
+  writeHorizonRelay(device, step);
+}
+
+void TerrainScene::writeHorizonRelay(const Device& device, const HorizonRelayStep& step) const {
+  if (!horizonMap_ || step.kind == HorizonRelayStep::Kind::Keep) return;
+  const int before = horizonFirst();
+  if (step.kind == HorizonRelayStep::Kind::LayPair) {
+    if (!validHorizonPair(horizonDirections_, step.first)) {
+      throw std::invalid_argument("writeHorizonRelay: direction " + std::to_string(step.first) +
+                                  " of " + std::to_string(horizonDirections_));
+    }
+    // The same images: the previous frame has finished reading them (the
+    // caller's promise).
+    computeSlopes(device, step.first, true);
+  } else {
+    if (step.channel < 0 || step.channel > 1 ||
+        !validHorizonPair(horizonDirections_, step.direction) || step.bandBegin >= step.bandEnd ||
+        step.bandEnd > horizonBands()) {
+      throw std::invalid_argument("writeHorizonRelay: bands " + std::to_string(step.bandBegin) +
+                                  " to " + std::to_string(step.bandEnd) + " of " +
+                                  std::to_string(horizonBands()));
+    }
+    // Whole bands of kTerrainMipAlignment rows: every level's rows of the
+    // band come from the band's rows below (docs/rendering.md).
+    const uint32_t rowBegin = step.bandBegin * kTerrainMipAlignment;
+    const uint32_t rowEnd = step.bandEnd * kTerrainMipAlignment;
+    const std::vector<Image> codes = horizonCodePages(
+        device, tiles_, *horizonMap_, {step.direction, step.direction}, rowBegin, rowEnd);
+    runSlopePass(device, &codes, true, step.channel, rowBegin, rowEnd);
+  }
+  horizonChannels_ = afterHorizonRelay(horizonDirections_, horizonChannels_, step, horizonBands());
+  if (!horizonChannels_.mixing() && horizonFirst() != before) ++horizonRelays_;
 }
 
 }  // namespace aal

@@ -13,6 +13,7 @@
 #include <glm/vec3.hpp>
 #include <glm/vec4.hpp>
 
+#include "aperture/engine/horizon_relay.h"
 #include "aperture/engine/terrain_tiles.h"
 #include "aperture/engine/vk/buffer.h"
 #include "aperture/engine/vk/compute.h"
@@ -86,19 +87,32 @@ class TerrainScene {
   void setHorizons(const Device& device, std::shared_ptr<const HorizonMap> map, int first = 0);
   // The same with a copy of `map` (tests; the tools share theirs).
   void setHorizons(const Device& device, const HorizonMap& map, int first = 0);
-  // Writes the horizons of another pair into the slope texture (nothing when
-  // it is the current one): an upload of the pair's codes and a compute
-  // pass, waited for. The device must not be reading the slopes:
-  // TerrainRenderer::record calls it for a frame's sun, when the previous
-  // frame has finished. Const: the horizons stay what they are, only the
+  // Writes the horizons of another pair into the slope texture at once
+  // (nothing when it is the current one): an upload of the codes and a
+  // compute pass, waited for; of one direction when the pairs share the
+  // other (only its channel changes), else of both. The device must not be
+  // reading the slopes. Const: the horizons stay what they are, only the
   // pair on the device changes.
   void relayHorizons(const Device& device, int first) const;
+  // One frame's share of a re-lay (engine/horizon_relay.h planHorizonRelay):
+  // the bands' codes uploaded and their rows of every level computed, waited
+  // for. TerrainRenderer::record calls it for a frame's sun, when the
+  // previous frame has finished (the device must not be reading the slopes).
+  void writeHorizonRelay(const Device& device, const HorizonRelayStep& step) const;
+  // What B and A hold now, per band while a re-lay is under way.
+  const HorizonChannels& horizonChannels() const { return horizonChannels_; }
+  // Bands of kTerrainMipAlignment rows of every tile image a re-lay writes,
+  // and the level-0 texels of one (all tiles).
+  uint32_t horizonBands() const;
+  uint64_t horizonBandTexels() const;
   bool hasHorizons() const { return horizonMap_ != nullptr; }
   uint64_t horizonBytes() const { return horizonBytes_; }  // of textureBytes()
   int horizonBits() const { return horizonBits_; }
   int horizonDirections() const { return horizonDirections_; }  // 0: none
-  int horizonFirst() const { return horizonFirst_; }            // of the pair on the device
-  // Re-lays so far (TerrainRenderer's, tests).
+  // Of the pair on the device (while a re-lay is under way: the pair before).
+  int horizonFirst() const;
+  // Re-lays so far, each counted when it is complete (TerrainRenderer's,
+  // tests).
   uint64_t horizonRelays() const { return horizonRelays_; }
   // The LOD patch's index buffer (makeLodPatchIndices).
   const Buffer& indices() const { return indices_; }
@@ -119,6 +133,12 @@ class TerrainScene {
   // with horizons their B and A from the pair `first`, first + 1;
   // `keepSlopes`: R and G are there already (a re-lay), only B and A change.
   void computeSlopes(const Device& device, int first, bool keepSlopes) const;
+  // The pass of slopes.comp or (with `codes`) slopes_horizons.comp over rows
+  // [rowBegin, rowEnd) (multiples of kTerrainMipAlignment) of every tile
+  // image and level; with horizons it writes `channel` (0 B, 1 A, 2 both)
+  // from the codes, which hold those rows.
+  void runSlopePass(const Device& device, const std::vector<Image>* codes, bool keepSlopes,
+                    int channel, uint32_t rowBegin, uint32_t rowEnd) const;
   // `apertureRows` writes whole DEM rows of RGBA16F bent normal + arc length.
   void build(const Device& device, const Heightfield& field,
              const std::function<void(uint32_t firstRow, uint32_t endRow, void* destination)>&
@@ -134,9 +154,9 @@ class TerrainScene {
   std::unique_ptr<ComputePipeline> horizonSlopes_;
   int horizonBits_ = kHorizonBits;
   int horizonDirections_ = 0;
-  // The pair on the device now: the device's state, not the scene's content
+  // What B and A hold now: the device's state, not the scene's content
   // (relayHorizons is const).
-  mutable int horizonFirst_ = 0;
+  mutable HorizonChannels horizonChannels_;
   mutable uint64_t horizonRelays_ = 0;
   uint64_t horizonBytes_ = 0;
   uint64_t textureBytes_ = 0;

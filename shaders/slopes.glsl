@@ -14,7 +14,9 @@
 // and at each level above the mean of the lower two of the 2 x 2 texels of
 // the level below (horizonMip; the same in every tile that holds the level);
 // the horizon mode reads them in the normal's fetch. Called level by level,
-// each after the one below has been written.
+// each after the one below has been written. A re-lay spread over frames
+// (engine/horizon_relay.h) writes one channel of a band of rows at a time,
+// the other channel kept.
 #ifndef AAL_SLOPES_GLSL
 #define AAL_SLOPES_GLSL
 
@@ -27,7 +29,8 @@ layout(set = 0, binding = 0) uniform sampler2DArray heights;  // the page, every
 #ifdef AAL_SLOPES_HORIZONS
 // The page's level (read too: a re-lay keeps the slopes, keepSlopes).
 layout(set = 0, binding = 1, rgba16f) uniform image2DArray slopes;
-// The pair's codes (R: the first direction, G: the second), level 0.
+// The codes of rows [rowBegin, rowEnd) of level 0 (R: the first direction,
+// G: the second; with one channel written, R: that channel's direction).
 layout(set = 0, binding = 2) uniform usampler2DArray horizonCodes;
 // The page's level below (finer; read above level 0).
 layout(set = 0, binding = 3, rgba16f) uniform readonly image2DArray finer;
@@ -40,6 +43,8 @@ layout(push_constant) uniform Level {
   float cellSizeXM, cellSizeYM;
   int horizonBits;  // of the codes (8 or 4)
   int keepSlopes;   // 1: R and G hold this level's slopes already (a re-lay)
+  int channel;      // the horizons written: 0 B, 1 A, 2 both
+  int rowBegin, rowEnd;  // this level's rows written (the dispatch starts at rowBegin)
 }
 p;
 
@@ -70,17 +75,19 @@ vec2 levelSlope(ivec3 t, ivec2 last) {
 }
 
 void main() {
-  ivec3 t = ivec3(gl_GlobalInvocationID);
+  ivec3 t = ivec3(gl_GlobalInvocationID) + ivec3(0, p.rowBegin, 0);
   ivec3 size = imageSize(slopes);
-  if (any(greaterThanEqual(t, size))) return;
+  if (any(greaterThanEqual(t, size)) || t.y >= p.rowEnd) return;
   vec2 horizons = vec2(0.0);
 #ifndef AAL_SLOPES_HORIZONS
   vec2 slope = levelSlope(t, size.xy - 1);
 #else
-  vec2 slope = p.keepSlopes != 0 ? imageLoad(slopes, t).rg : levelSlope(t, size.xy - 1);
+  vec4 kept = p.keepSlopes != 0 ? imageLoad(slopes, t) : vec4(0.0);
+  vec2 slope = p.keepSlopes != 0 ? kept.rg : levelSlope(t, size.xy - 1);
   if (p.level == 0) {
     float maxCode = float((1 << p.horizonBits) - 1);
-    uvec2 codes = texelFetch(horizonCodes, t, 0).rg;
+    uvec2 codes = texelFetch(horizonCodes, t - ivec3(0, p.rowBegin, 0), 0).rg;
+    if (p.channel == 1) codes = codes.yx;  // the one direction's codes are in R
     horizons = vec2(decodeHorizon(float(codes.x) / maxCode, p.horizonBits),
                     decodeHorizon(float(codes.y) / maxCode, p.horizonBits));
   } else {
@@ -90,6 +97,8 @@ void main() {
     vec2 lowerRight = imageLoad(finer, f + ivec3(1, 1, 0)).ba;
     horizons = horizonMip(upperLeft, upperRight, lowerLeft, lowerRight);
   }
+  if (p.channel == 0) horizons.y = kept.a;
+  if (p.channel == 1) horizons.x = kept.b;
 #endif
   imageStore(slopes, t, vec4(slope, horizons));
 }

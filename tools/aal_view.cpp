@@ -43,6 +43,7 @@ struct Options {
   double timeoutS = 0;
   bool noVsync = false, stats = false, noObscurance = false;
   int device = -1, azimuths = 64;
+  double sunSweepDeg = 0;
   size_t triangleBudget = 2'000'000;
   double lodErrorPixels = aal::LodSettings{}.maxErrorPixels;
   int anisotropy = aal::kMaxFootprintProbes;
@@ -139,6 +140,7 @@ aal::WindowScript windowScript(const Options& o) {
     }
     s.sunAzimuthAfterDeg = value;
   }
+  s.sunSweepDegPerFrame = o.sunSweepDeg;
   return s;
 }
 
@@ -283,6 +285,11 @@ int main(int argc, char** argv) {
   app.add_option("--sun-azimuth-after", o.sunAzimuthAfter,
                  "FRAME:DEG: after frame FRAME set the sun's azimuth (degrees clockwise from "
                  "north, the elevation kept), as the panel's direct sun does (tests, demos)");
+  app.add_option("--sun-sweep", o.sunSweepDeg,
+                 "DEG: after every scripted frame turn the sun's azimuth by DEG degrees, the "
+                 "elevation kept, as the panel's direct sun does (benchmarks of the horizon "
+                 "mode's re-lays)")
+      ->check(CLI::Range(-90.0, 90.0));
   app.add_flag("--no-obscurance", o.noObscurance,
                "start with the obscurance pass off (the panel switches it)");
   app.add_flag("--no-vsync", o.noVsync, "present without waiting for vsync (MAILBOX/IMMEDIATE)");

@@ -130,13 +130,17 @@ bool validHorizonPair(int directions, int first) {
   return validHorizonDirections(directions) && first >= 0 && first < directions;
 }
 
-int horizonPairFor(int directions, float azimuthRad, int currentFirst) {
+int horizonPairFor(int directions, float azimuthRad, int currentFirst, float margin) {
   const float x = directionPosition(directions, azimuthRad);
   if (validHorizonPair(directions, currentFirst)) {
     const float d = stepsPast(directions, x, currentFirst);
-    if (d >= -kHorizonPairMargin && d <= 1.0f + kHorizonPairMargin) return currentFirst;
+    if (d >= -margin && d <= 1.0f + margin) return currentFirst;
   }
   return neighboursAt(directions, x).k0;
+}
+
+float horizonStepsFrom(int directions, float azimuthRad, int direction) {
+  return stepsPast(directions, directionPosition(directions, azimuthRad), direction);
 }
 
 std::array<float, 2> horizonPairWeights(int directions, float azimuthRad, int first) {

@@ -78,10 +78,15 @@ float horizonAtAzimuth(const uint8_t* codes, int directions, float azimuthRad,
 // steps on either side (hysteresis: a sun resting on a stored direction, or
 // jittering about it, does not re-lay every frame), else the pair whose span
 // holds the sun. `currentFirst` outside [0, directions) (none laid yet): the
-// pair whose span holds the sun.
+// pair whose span holds the sun. `margin` (steps): the renderer's spread
+// re-lays keep a wider one (engine/horizon_relay.h).
 constexpr float kHorizonPairMargin = 0.0625f;
 bool validHorizonPair(int directions, int first);  // 0 <= first < directions
-int horizonPairFor(int directions, float azimuthRad, int currentFirst);
+int horizonPairFor(int directions, float azimuthRad, int currentFirst,
+                   float margin = kHorizonPairMargin);
+// Direction steps (2 pi / n) from stored direction `direction` to azimuthRad,
+// wrapped into [-n/2, n/2).
+float horizonStepsFrom(int directions, float azimuthRad, int direction);
 // The weights of the pair's two horizons for a sun at azimuthRad, so that
 //   horizon = weights[0] h(first) + weights[1] h(first + 1)
 // equals horizonAtAzimuth (up to float rounding) wherever the sun lies in

@@ -206,6 +206,79 @@ TEST_F(Render, HorizonModeReadsEveryStoredDirection) {
   }
 }
 
+// A re-lay spread over frames (FrameSettings::horizonRelayTexelsPerFrame,
+// engine/horizon_relay.h): the ridge's horizons of 8 directions, a sun 26
+// degrees up turning 2 degrees a frame across direction 3 (compass 315).
+// The re-lay takes several frames; in each of them the picture is, byte for
+// byte, that of a fresh scene holding a pair with the shared direction and
+// drawn for the same sun, which reads that direction alone (the bound of
+// docs/rendering.md); once it is done, within 1 of a fresh scene laid for the
+// sun. One re-lay in all; a sun that then stays where it is re-lays no more.
+TEST_F(Render, SpreadReLayDrawsTheSharedDirectionThenTheNewPair) {
+  const Heightfield f = ridge();
+  BakeOptions o;
+  o.azimuths = 64;
+  o.horizons = true;
+  const BakeResult baked = bakeApertures(f, o);
+  const auto shared = std::make_shared<const HorizonMap>(baked.horizons);
+  TerrainRenderer renderer(device(), 96, 96);
+  const auto frameFor = [&](double compassDeg) {
+    FrameSettings s = topView(f, ShadingMode::Horizon, compassDeg, 26);
+    s.obscurance.enabled = false;
+    s.horizonRelayTexelsPerFrame = 1;  // the least: one band a frame unless the sun hurries
+    return s;
+  };
+  TerrainScene moving(device(), f, baked.aperture, nullptr, 100000);
+  moving.setHorizons(device(), shared, 2);
+  ASSERT_GE(moving.horizonBands(), 3u);
+  uint32_t mixingFrames = 0, compared = 0;
+  FrameResult last;
+  double compass = 330;
+  for (; compass >= 290; compass -= 2) {
+    const FrameSettings s = frameFor(compass);
+    last = renderer.render(moving, s, false);
+    const HorizonChannels& c = moving.horizonChannels();
+    if (!c.mixing()) continue;
+    ++mixingFrames;
+    const int sharedDirection = c.directions[1 - c.mixed];
+    EXPECT_EQ(sharedDirection, 3);
+    const float azimuth = sunAzimuthRad(s.lighting.sunDirection);
+    const float off = horizonStepsFrom(8, azimuth, sharedDirection);
+    ASSERT_LE(std::abs(off), kHorizonRelayReach + 1e-6f) << compass;
+    // A fresh scene and renderer (no motion seen): a pair that holds the
+    // shared direction at its end nearest the sun keeps it and reads it alone.
+    TerrainScene fresh(device(), f, baked.aperture, nullptr, 100000);
+    fresh.setHorizons(device(), shared, off >= 0 ? sharedDirection - 1 : sharedDirection);
+    TerrainRenderer reference(device(), 96, 96);
+    const FrameResult expected = reference.render(fresh, s, false);
+    EXPECT_EQ(fresh.horizonRelays(), 0u);
+    EXPECT_EQ(last.display, expected.display) << "compass " << compass;
+    ++compared;
+  }
+  EXPECT_GE(mixingFrames, 2u) << "spread over frames";
+  EXPECT_EQ(compared, mixingFrames);
+  EXPECT_FALSE(moving.horizonChannels().mixing());
+  EXPECT_EQ(moving.horizonFirst(), 3);
+  EXPECT_EQ(moving.horizonRelays(), 1u);
+
+  const FrameSettings end = frameFor(compass + 2);
+  TerrainScene fresh(device(), f, baked.aperture, nullptr, 100000);
+  fresh.setHorizons(device(), shared,
+                    horizonPairFor(8, sunAzimuthRad(end.lighting.sunDirection), -1));
+  const FrameResult expected = renderer.render(fresh, end, false);
+  ASSERT_EQ(last.display.size(), expected.display.size());
+  int worst = 0;
+  for (size_t i = 0; i < expected.display.size(); ++i) {
+    worst = std::max(worst, std::abs(int(last.display[i]) - int(expected.display[i])));
+  }
+  EXPECT_LE(worst, 1) << "re-laid over frames against laid for the sun";
+
+  // The sun stays: nothing more is written.
+  for (int frame = 0; frame < 3; ++frame) renderer.render(moving, end, false);
+  EXPECT_EQ(moving.horizonRelays(), 1u);
+  EXPECT_FALSE(moving.horizonChannels().mixing());
+}
+
 // Re-laying the horizons for another sun (TerrainScene::relayHorizons, from
 // TerrainRenderer::record) leaves the scene as a fresh one laid for that
 // sun: the ridge's horizons of 8 directions, a sun in the west-north-west

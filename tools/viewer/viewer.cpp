@@ -2,6 +2,7 @@
 
 #include <GLFW/glfw3.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <ctime>
@@ -11,6 +12,7 @@
 #include <string>
 #include <system_error>
 #include <utility>
+#include <vector>
 
 #include "aperture/engine/screenshot.h"
 #include "aperture/engine/vk/buffer.h"
@@ -53,6 +55,10 @@ struct Viewer::Timing {
   int whileBaking = 0;  // frames drawn with the placeholder while the map was baked
   std::map<std::string, double> passSumsMs;
   int passFrames = 0;
+  // Each counted frame's time (its loop iteration), for the median and the
+  // longest (--stats: a hitch shows as max / median).
+  std::vector<double> countedMs;
+  double lastFrameMs = 0;
 
   // Seconds since the last call (at most a quarter second: after a rest the
   // camera and the animated time must not jump).
@@ -64,6 +70,7 @@ struct Viewer::Timing {
   }
   // A drawn frame took `ms` from the start of its loop iteration.
   void frameDrawn(double ms) {
+    lastFrameMs = ms;
     smoothedFrameMs = smoothedFrameMs == 0 ? ms : 0.9 * smoothedFrameMs + 0.1 * ms;
     ++drawn;
   }
@@ -170,6 +177,10 @@ bool sameView(const FrameSettings& a, const FrameSettings& b) {
 // How long an idle viewer sleeps between looks at the clock (the --timeout,
 // a running bake's progress bar) when no event wakes it.
 constexpr double kIdleWaitS = 0.1;
+// Level-0 texels of the horizons re-laid a frame at the least (more when the
+// sun would leave the shared direction's reach first, engine/horizon_relay.h):
+// 2^20, about a tenth of the frame on lavapipe (docs/performance.md).
+constexpr uint64_t kViewerHorizonRelayTexels = uint64_t{1} << 20;
 
 // The bake also keeps the sweep's horizons of 8 azimuths (8-bit codes) for
 // the horizon mode when the azimuths allow: no extra sweep, 8 B per texel
@@ -439,6 +450,9 @@ FrameSettings Viewer::frameSettings() const {
   s.obscurance = obscurance_;
   s.anisotropy = anisotropy_;
   s.lod.maxErrorPixels = options_.lodErrorPixels;
+  // A re-lay of the horizons spread over frames, none a stall
+  // (docs/rendering.md, "Where the horizons lie").
+  s.horizonRelayTexelsPerFrame = kViewerHorizonRelayTexels;
   return s;
 }
 
@@ -578,6 +592,8 @@ void Viewer::finishScriptedFrame() {
   if (options_.frames <= 0) return;
   Timing& t = *timing_;
   if (t.counted == 0) t.firstCounted = Timing::Clock::now();
+  // The first counted frame's set-up is left out, as in the mean.
+  if (t.counted > 0) t.countedMs.push_back(t.lastFrameMs);
   ++t.counted;
   for (const auto& [pass, ms] : t.lastPassMs) t.passSumsMs[pass] += ms;
   if (!t.lastPassMs.empty()) ++t.passFrames;
@@ -615,6 +631,13 @@ void Viewer::runWindowScript() {
     char text[64];
     std::snprintf(text, sizeof text, "moved the sun to azimuth %g degrees", s.sunAzimuthAfterDeg);
     setMessage(text);
+  }
+  if (s.sunSweepDegPerFrame != 0) {
+    const SolarPosition sun = viewSun(lighting_);
+    lighting_.sunElevationDeg = sun.elevationDeg;
+    lighting_.sunAzimuthDeg = sun.azimuthDeg + s.sunSweepDegPerFrame;
+    lighting_.sunAzimuthDeg -= 360.0 * std::floor(lighting_.sunAzimuthDeg / 360.0);
+    lighting_.fromTime = false;
   }
   if (scriptedFrame_ == s.minimiseAfterFrame) {
     setMessage("minimising the window");
@@ -675,6 +698,14 @@ void Viewer::printStats() const {
         std::chrono::duration<double>(Timing::Clock::now() - t.firstCounted).count();
     const double ms = seconds * 1e3 / (t.counted - 1);
     std::printf("frame      %.2f ms (%.2f fps)\n", ms, 1e3 / ms);
+  }
+  if (!t.countedMs.empty()) {
+    std::vector<double> sorted = t.countedMs;
+    std::sort(sorted.begin(), sorted.end());
+    const size_t n = sorted.size();
+    const double median = n % 2 ? sorted[n / 2] : (sorted[n / 2 - 1] + sorted[n / 2]) / 2;
+    std::printf("frames ms  median %.2f, max %.2f (max/median %.2f) over %zu frames\n", median,
+                sorted.back(), sorted.back() / median, n);
   }
   double total = 0;
   for (const auto& [pass, sum] : t.passSumsMs) {

@@ -43,6 +43,10 @@ struct WindowScript {
   // the elevation kept.
   int sunAzimuthAfterFrame = 0;
   double sunAzimuthAfterDeg = 0;
+  // After every scripted frame turn the direct sun by this many degrees of
+  // azimuth, the elevation kept (0: not at all): the horizon mode's re-lays
+  // under a moving sun (scripts/bench-relay.sh).
+  double sunSweepDegPerFrame = 0;
 };
 
 struct ViewerOptions {

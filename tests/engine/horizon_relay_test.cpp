@@ -1,0 +1,199 @@
+// The horizon pair's re-lay spread over frames (engine/horizon_relay.h): the
+// plan of each frame and the horizon the frame reads in every band, against
+// the error bound of docs/rendering.md ("Where the horizons lie").
+#include "aperture/engine/horizon_relay.h"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+#include <random>
+#include <string>
+#include <vector>
+
+#include "aperture/terrain/io/horizon_map.h"
+
+namespace aal {
+namespace {
+
+constexpr float kPi = std::numbers::pi_v<float>;
+
+// Made-up horizons per band and direction, and the channels' state: what a
+// frame reads and what it should read.
+struct Bands {
+  int directions = 8;
+  uint32_t count = 40;
+  std::vector<std::vector<float>> horizon;  // [band][direction]
+
+  Bands(int n, uint32_t bands) : directions(n), count(bands) {
+    std::mt19937 rng(7);
+    std::uniform_real_distribution<float> h(-0.3f, 1.2f);
+    horizon.assign(bands, std::vector<float>(size_t(n)));
+    for (auto& band : horizon)
+      for (float& v : band) v = h(rng);
+  }
+  int directionIn(const HorizonChannels& c, int channel, uint32_t band) const {
+    if (c.mixing() && channel == c.mixed && band < c.split) return c.head;
+    return c.directions[channel];
+  }
+  // The horizon the frame reads in `band` (the shader's dot with the weights).
+  float read(const HorizonChannels& c, float azimuth, uint32_t band) const {
+    const std::array<float, 2> w = horizonChannelWeights(directions, c, azimuth);
+    return w[0] * horizon[band][directionIn(c, 0, band)] +
+           w[1] * horizon[band][directionIn(c, 1, band)];
+  }
+  // Linear between the stored directions beside the sun (horizonAtAzimuth).
+  float exact(float azimuth, uint32_t band) const {
+    const float x = horizonStepsFrom(directions, azimuth, 0);
+    const float position = x < 0.0f ? x + float(directions) : x;
+    const int k0 = std::min(int(position), directions - 1), k1 = (k0 + 1) % directions;
+    const float f = position - float(k0);
+    return (1.0f - f) * horizon[band][k0] + f * horizon[band][k1];
+  }
+  float largestStep(uint32_t band) const {
+    float largest = 0;
+    for (int k = 0; k < directions; ++k) {
+      largest = std::max(largest, std::abs(horizon[band][k] - horizon[band][(k + 1) % directions]));
+    }
+    return largest;
+  }
+};
+
+struct Sweep {
+  uint32_t relays = 0, mixingFrames = 0, layPairs = 0, mostBands = 0;
+  double worstOverBound = -1;  // (error - bound), worst
+};
+
+// Drives the plan frame by frame along `azimuths` (rad), checking every
+// band's horizon against the bound: kHorizonRelayReach of the largest step
+// between adjacent directions.
+Sweep sweep(const Bands& b, HorizonChannels& c, const std::vector<float>& azimuths,
+            const HorizonRelayPolicy& policy) {
+  Sweep s;
+  for (size_t i = 0; i < azimuths.size(); ++i) {
+    const float motion =
+        i == 0 ? 0.0f : horizonMotionSteps(b.directions, azimuths[i - 1], azimuths[i]);
+    const HorizonRelayStep step =
+        planHorizonRelay(b.directions, c, azimuths[i], motion, b.count, policy);
+    const int before = horizonChannelsPair(b.directions, c);
+    if (step.kind == HorizonRelayStep::Kind::LayPair) ++s.layPairs;
+    if (step.kind == HorizonRelayStep::Kind::WriteBands) {
+      EXPECT_LT(step.bandBegin, step.bandEnd);
+      s.mostBands = std::max(s.mostBands, step.bandEnd - step.bandBegin);
+    }
+    c = afterHorizonRelay(b.directions, c, step, b.count);
+    if (c.mixing()) ++s.mixingFrames;
+    if (!c.mixing() && horizonChannelsPair(b.directions, c) != before) ++s.relays;
+    for (uint32_t band = 0; band < b.count; ++band) {
+      const double error = std::abs(b.read(c, azimuths[i], band) - b.exact(azimuths[i], band));
+      s.worstOverBound =
+          std::max(s.worstOverBound, error - kHorizonRelayReach * b.largestStep(band) - 1e-5);
+    }
+  }
+  return s;
+}
+
+std::vector<float> turn(float fromDeg, float toDeg, float stepDeg) {
+  std::vector<float> azimuths;
+  const int steps = int(std::lround(std::abs(toDeg - fromDeg) / stepDeg));
+  for (int i = 0; i <= steps; ++i) {
+    azimuths.push_back((fromDeg + std::copysign(stepDeg, toDeg - fromDeg) * float(i)) * kPi /
+                       180.0f);
+  }
+  return azimuths;
+}
+
+// A sun turning a whole way round, either way, 1 degree a frame: every
+// direction passed re-lays once, band by band over several frames, never
+// all at once and never both channels; in every frame and band the horizon
+// read is within the bound.
+TEST(HorizonRelay, ASweepReLaysOncePerDirectionWithinTheBound) {
+  for (const int n : {8, 16}) {
+    for (const float way : {1.0f, -1.0f}) {
+      const Bands b(n, 132);
+      const std::vector<float> azimuths = turn(10.0f, 10.0f + way * 360.0f, 1.0f);
+      HorizonChannels c{{horizonPairFor(n, azimuths[0], -1), 0}};
+      c.directions[1] = (c.directions[0] + 1) % n;
+      const Sweep s = sweep(b, c, azimuths, HorizonRelayPolicy{8});
+      const std::string what = std::to_string(n) + " directions, way " + std::to_string(way);
+      EXPECT_EQ(s.relays, uint32_t(n)) << what;
+      EXPECT_EQ(s.layPairs, 0u) << what;
+      EXPECT_GE(s.mixingFrames, uint32_t(n) * 3) << what << ": spread over frames";
+      EXPECT_LE(s.mostBands, b.count / 4) << what << ": no frame writes a whole channel";
+      EXPECT_LE(s.worstOverBound, 0.0) << what;
+    }
+  }
+}
+
+// At once (aal-render's policy): each re-lay in the frame that needs it, so
+// every frame reads the pair's interpolation exactly (the bound with
+// horizonPairFor's margin in place of the reach).
+TEST(HorizonRelay, AtOnceEveryFrameReadsThePairOfItsSun) {
+  const Bands b(8, 20);
+  const std::vector<float> azimuths = turn(3.0f, 363.0f, 1.0f);
+  HorizonChannels c{{0, 1}};
+  c = afterHorizonRelay(8, c, HorizonRelayStep{HorizonRelayStep::Kind::LayPair, 0}, b.count);
+  for (size_t i = 0; i < azimuths.size(); ++i) {
+    const HorizonRelayStep step = planHorizonRelay(8, c, azimuths[i], 0.0f, b.count, {});
+    c = afterHorizonRelay(8, c, step, b.count);
+    ASSERT_FALSE(c.mixing()) << i;
+    for (uint32_t band = 0; band < b.count; ++band) {
+      ASSERT_LE(std::abs(b.read(c, azimuths[i], band) - b.exact(azimuths[i], band)),
+                kHorizonPairMargin * b.largestStep(band) + 1e-5)
+          << i;
+    }
+  }
+}
+
+// A sun that stays where it is never re-lays, whatever it rests near: at
+// every azimuth (a dense sweep), with the pair laid for it or with a
+// neighbouring pair it lies within the reach of.
+TEST(HorizonRelay, AStillSunNeverReLays) {
+  const int n = 8;
+  for (int i = 0; i < 3600; ++i) {
+    const float azimuth = float(i) * 0.1f * kPi / 180.0f;
+    const int own = horizonPairFor(n, azimuth, -1);
+    for (const int first : {own, (own + 1) % n, (own + n - 1) % n}) {
+      const HorizonChannels c{{first, (first + 1) % n}};
+      if (horizonPairFor(n, azimuth, first, kHorizonRelayReach) != first) continue;
+      for (int frame = 0; frame < 3; ++frame) {
+        EXPECT_EQ(planHorizonRelay(n, c, azimuth, 0.0f, 132, HorizonRelayPolicy{8}).kind,
+                  HorizonRelayStep::Kind::Keep)
+            << "azimuth " << i * 0.1 << ", pair " << first;
+      }
+    }
+  }
+}
+
+// A sun that turns back in the middle of a re-lay takes the written bands
+// back, spread as well; the bound holds throughout and the pair ends as it
+// began. A sun jumping past the next pair lays both channels at once.
+TEST(HorizonRelay, ATurningSunTakesItsReLayBackAndAJumpLaysThePair) {
+  const Bands b(8, 64);
+  // Direction 1 lies at 45 degrees: from 30 up to 46, then back to 30.
+  std::vector<float> azimuths = turn(30.0f, 46.0f, 0.5f);
+  const std::vector<float> back = turn(46.0f, 30.0f, 0.5f);
+  azimuths.insert(azimuths.end(), back.begin() + 1, back.end());
+  HorizonChannels c{{0, 1}};
+  const Sweep s = sweep(b, c, azimuths, HorizonRelayPolicy{2});
+  EXPECT_GT(s.mixingFrames, 0u);
+  EXPECT_EQ(s.layPairs, 0u);
+  EXPECT_LE(s.worstOverBound, 0.0);
+  EXPECT_FALSE(c.mixing());
+  EXPECT_EQ(horizonChannelsPair(8, c), 0);
+
+  const float far = 200.0f * kPi / 180.0f;  // direction 4.4
+  const HorizonRelayStep jump = planHorizonRelay(8, c, far, 1.0f, 64, HorizonRelayPolicy{2});
+  EXPECT_EQ(jump.kind, HorizonRelayStep::Kind::LayPair);
+  EXPECT_EQ(jump.first, 4);
+  // A step to the next pair, past the reach: its one channel at once.
+  const float next = 70.0f * kPi / 180.0f;  // direction 1.56
+  const HorizonRelayStep step = planHorizonRelay(8, c, next, 0.0f, 64, HorizonRelayPolicy{2});
+  EXPECT_EQ(step.kind, HorizonRelayStep::Kind::WriteBands);
+  EXPECT_EQ(step.bandEnd - step.bandBegin, 64u);
+  EXPECT_EQ(step.direction, 2);
+}
+
+}  // namespace
+}  // namespace aal
