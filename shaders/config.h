@@ -32,6 +32,11 @@
 #define AAL_SPEC_DISPLAY_OUTPUT 2
 #define AAL_SPEC_FOOTPRINT_PROBES 3
 
+// The most the footprint's spread may widen the sun's transition at the
+// aperture's edge (rad; terrain/light/shading.h sunEdgeFootprintDistance):
+// across a depth edge the screen derivatives mix two surfaces.
+#define AAL_SUN_EDGE_MAX_WIDENING_RAD 0.05
+
 // The exact cap intersection against the sun as a table (terrain/light/cap_table.h,
 // shaders/cap_table.glsl, docs/caps.md): texels across the transition band
 // (t = 0: nested .. 1: disjoint) and rows of aperture arc length (graded

@@ -25,6 +25,9 @@ struct ShadingInputs {
   vec3 skyRadiance;
   vec3 transfer;
   float sunHorizonRad;  // horizon mode: the horizon's elevation in the sun's azimuth
+  // approx, exact: the spread (standard deviation, rad) over the pixel's
+  // footprint of the sun's distance from the aperture's edge; 0: a point.
+  float sunEdgeSpreadRad;
 };
 
 struct ShadingTerms {
@@ -40,6 +43,17 @@ float horizonSunFraction(float sunElevationRad, float horizonRad, float sunRadiu
   if (!(sunRadiusRad > 0.0)) return sunElevationRad > horizonRad ? 1.0 : 0.0;
   float x = clamp((sunElevationRad - horizonRad) / sunRadiusRad, -1.0, 1.0);
   return 1.0 - (acos(x) - x * sqrt(1.0 - x * x)) / float(AAL_PI);
+}
+
+// Twin of sunEdgeFootprintDistance (terrain/light/shading.h): the distance
+// at which the sun's cap meets the aperture's with the transition widened by
+// the footprint's spread.
+float sunEdgeFootprintDistance(float apertureRad, float sunRadiusRad, float dRad,
+                               float spreadRad) {
+  if (!(spreadRad > 0.0) || !(apertureRad > sunRadiusRad) || !(sunRadiusRad > 0.0)) return dRad;
+  float widened = min(sqrt(sunRadiusRad * sunRadiusRad + 5.0 * spreadRad * spreadRad),
+                      sunRadiusRad + float(AAL_SUN_EDGE_MAX_WIDENING_RAD));
+  return apertureRad + (dRad - apertureRad) * (sunRadiusRad / widened);
 }
 
 ShadingTerms shadingTerms(ShadingInputs s, int mode) {
@@ -68,9 +82,10 @@ ShadingTerms shadingTerms(ShadingInputs s, int mode) {
     // sun's scale (lavapipe's was off by ~1e-3 rad here).
     float d =
         atan(length(cross(s.bentNormal, s.sunDirection)), dot(s.bentNormal, s.sunDirection));
+    float dCap = sunEdgeFootprintDistance(s.apertureRad, s.sunRadiusRad, d, s.sunEdgeSpreadRad);
     sunSeen = mode == AAL_MODE_EXACT
-                  ? capIntersectionTable(capTable, s.apertureRad, s.sunRadiusRad, d)
-                  : capIntersectionApprox(s.apertureRad, s.sunRadiusRad, d);
+                  ? capIntersectionTable(capTable, s.apertureRad, s.sunRadiusRad, dCap)
+                  : capIntersectionApprox(s.apertureRad, s.sunRadiusRad, dCap);
     t.sunFraction = sunArea > 0.0 ? clamp(sunSeen / sunArea, 0.0, 1.0) : 0.0;
     vec3 toCentroid =
         visibleLightCentroid(s.bentNormal, s.sunDirection, d, s.sunRadiusRad, t.sunFraction);

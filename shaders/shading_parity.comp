@@ -37,5 +37,6 @@ void main() {
   s.skyRadiance = q.skyRadiance.rgb;
   s.transfer = q.transfer.rgb;
   s.sunHorizonRad = q.transfer.w;
+  s.sunEdgeSpreadRad = q.normal.w;
   answers[i] = vec4(shade(s, int(q.albedoMode.w)), 0.0);
 }

@@ -67,6 +67,16 @@ void main() {
   s.skyRadiance = frame.skyRadiance;
   s.transfer = vec3(1.0);
   s.sunHorizonRad = -0.5 * float(AAL_PI);
+  // The sun's cap meets the aperture's edge in a step a fraction of a degree
+  // wide; over a footprint the edge's distance from the sun varies, and the
+  // pixel sees the step's mean there, a wider transition (docs/rendering.md,
+  // "The sun's edge over the footprint"). The spread is that of a box as
+  // wide as the pixel: its derivatives / sqrt(12).
+  float sunToEdge =
+      atan(length(cross(s.bentNormal, s.sunDirection)), dot(s.bentNormal, s.sunDirection)) -
+      s.apertureRad;
+  vec2 edgeChange = vec2(dFdx(sunToEdge), dFdy(sunToEdge));
+  s.sunEdgeSpreadRad = sqrt(dot(edgeChange, edgeChange) / 12.0);
   if (kShadingMode == AAL_MODE_HORIZON) {
     // The horizon in the sun's azimuth: linear between the pair's, with the
     // frame's weights (horizonPairWeights, terrain/io/horizon_map.h; the sun

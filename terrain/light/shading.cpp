@@ -7,6 +7,7 @@
 #include <glm/geometric.hpp>
 #include <glm/vec2.hpp>
 
+#include "aperture/shaders/config.h"
 #include "aperture/terrain/light/cap_table.h"
 #include "aperture/terrain/light/caps.h"
 
@@ -36,6 +37,14 @@ float horizonSunFraction(float sunElevationRad, float horizonRad, float sunRadiu
   if (!(sunRadiusRad > 0.0f)) return sunElevationRad > horizonRad ? 1.0f : 0.0f;
   const float x = std::clamp((sunElevationRad - horizonRad) / sunRadiusRad, -1.0f, 1.0f);
   return 1.0f - (std::acos(x) - x * std::sqrt(1.0f - x * x)) / kPi;
+}
+
+float sunEdgeFootprintDistance(float apertureRad, float sunRadiusRad, float dRad, float spreadRad) {
+  if (!(spreadRad > 0) || !(apertureRad > sunRadiusRad) || !(sunRadiusRad > 0)) return dRad;
+  const float widened =
+      std::min(std::sqrt(sunRadiusRad * sunRadiusRad + 5.0f * spreadRad * spreadRad),
+               sunRadiusRad + float(AAL_SUN_EDGE_MAX_WIDENING_RAD));
+  return apertureRad + (dRad - apertureRad) * (sunRadiusRad / widened);
 }
 
 ShadingTerms shadingTerms(const ShadingInputs& in, ShadingMode mode,
@@ -71,12 +80,14 @@ ShadingTerms shadingTerms(const ShadingInputs& in, ShadingMode mode,
     // precision at the sun's scale (and GPU acos approximations more so).
     const float d = std::atan2(glm::length(glm::cross(in.bentNormal, in.sunDirection)),
                                glm::dot(in.bentNormal, in.sunDirection));
+    const float dCap =
+        sunEdgeFootprintDistance(in.apertureRad, in.sunRadiusRad, d, in.sunEdgeSpreadRad);
     if (mode != ShadingMode::Exact) {
-      sunSeen = capIntersectionApprox(in.apertureRad, in.sunRadiusRad, d);
+      sunSeen = capIntersectionApprox(in.apertureRad, in.sunRadiusRad, dCap);
     } else if (exactTable) {
-      sunSeen = capIntersectionFromTable(*exactTable, in.apertureRad, d);
+      sunSeen = capIntersectionFromTable(*exactTable, in.apertureRad, dCap);
     } else {
-      sunSeen = static_cast<float>(capIntersectionExact(in.apertureRad, in.sunRadiusRad, d));
+      sunSeen = static_cast<float>(capIntersectionExact(in.apertureRad, in.sunRadiusRad, dCap));
     }
     t.sunFraction = sunArea > 0 ? std::clamp(sunSeen / sunArea, 0.0f, 1.0f) : 0.0f;
     const glm::vec3 centroid =

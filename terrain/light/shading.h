@@ -51,6 +51,10 @@ struct ShadingInputs {
   glm::vec3 transfer{1.0f};  // ambient transfer W (docs/design.md §6), 1 if nothing is near
   // Horizon mode: the horizon's elevation in the sun's azimuth (rad).
   float sunHorizonRad = -1.5707963f;
+  // approx, exact: the spread (standard deviation, rad) over the pixel's
+  // footprint of the sun's distance from the aperture's edge
+  // (sunEdgeFootprintDistance); 0: a point, the cap intersection as it is.
+  float sunEdgeSpreadRad = 0;
 };
 
 struct ShadingTerms {
@@ -61,6 +65,20 @@ struct ShadingTerms {
 };
 
 struct CapIntersectionTable;
+
+// The footprint's mean of the sun's visible part at the aperture's edge
+// (docs/rendering.md, "The sun's edge over the footprint"). Over a pixel's
+// footprint the distance d between the sun's and the aperture's centres
+// varies by `spreadRad` (a standard deviation) around its mean, and the
+// pixel sees the mean of the cap intersection's step across it: a step as
+// wide as the sun convolved with the spread. Modelled as the same step
+// widened to the sun radius whose transition has the step's variance plus
+// the spread's (smoothstep over +-r: variance r^2 / 5, so sqrt(r_s^2 + 5
+// spread^2)), at most AAL_SUN_EDGE_MAX_WIDENING_RAD wider, and evaluated
+// with the true sun at the distance that maps the widened transition onto
+// its own: r_a + (d - r_a) r_s / widened. Returns d unchanged for no
+// spread, or an aperture no larger than the sun.
+float sunEdgeFootprintDistance(float apertureRad, float sunRadiusRad, float dRad, float spreadRad);
 
 // The part of the sun's disk (angular radius sunRadiusRad, centre at
 // elevation sunElevationRad) above a horizon at elevation horizonRad: the

@@ -1,3 +1,12 @@
+// A sideways pan of a fifth of a cell per frame over steep terrain under
+// a low sun (docs/comparison.md, "Shimmer in motion"), against the ray
+// tracer, which averages 4 x 4 points over each pixel. With the footprint
+// filtering of the terrain's textures and the sun's edge averaged over the
+// footprint (sunEdgeFootprintDistance) every mode stays within 1.25 x its
+// temporal second difference: measured approx 0.98 x, exact 0.96 x,
+// baseline-lambert 0.79 x, baseline-ao 0.87 x (approx and exact 1.46 x
+// with the sun's edge at the footprint's mean, 1.68 x with one fetch at
+// the longer axis' level).
 // The GPU's shading modes against the CPU reference (tools/mode_comparison):
 // the whole pipeline agrees where nothing is approximated, ambient aperture
 // lighting beats the no-aperture baselines where shadows matter, a pan that
@@ -172,8 +181,8 @@ TEST_F(ModeComparison, ASlowPanShimmersLittleMoreThanTheReference) {
   ASSERT_GT(s.reference, 0.0);
   EXPECT_LE(s.modes.at("baseline-lambert"), 1.25 * s.reference);
   EXPECT_LE(s.modes.at("baseline-ao"), 1.25 * s.reference);
-  EXPECT_LE(s.modes.at("approx"), 1.5 * s.reference);
-  EXPECT_LE(s.modes.at("exact"), 1.5 * s.reference);
+  EXPECT_LE(s.modes.at("approx"), 1.25 * s.reference);
+  EXPECT_LE(s.modes.at("exact"), 1.25 * s.reference);
 }
 
 }  // namespace

@@ -93,7 +93,7 @@ class ShadingParity : public VulkanTest {
 };
 
 Query queryOf(const ShadingInputs& in, int mode) {
-  return {glm::vec4(in.albedo, float(mode)),        glm::vec4(in.normal, 0),
+  return {glm::vec4(in.albedo, float(mode)),        glm::vec4(in.normal, in.sunEdgeSpreadRad),
           glm::vec4(in.bentNormal, in.apertureRad), glm::vec4(in.sunDirection, in.sunRadiusRad),
           glm::vec4(in.sunIrradiance, 0),           glm::vec4(in.skyRadiance, 0),
           glm::vec4(in.transfer, in.sunHorizonRad)};
@@ -157,6 +157,9 @@ TEST_F(ShadingParity, GlslShadeMatchesCppForEveryMode) {
       const float elevation = std::asin(std::clamp(in.sunDirection.z, -1.0f, 1.0f));
       in.sunHorizonRad =
           i % 2 ? elevation + in.sunRadiusRad * (4.0f * unit(rng) - 2.0f) : 1.2f * unit(rng) - 0.1f;
+      // A footprint's spread of the sun's distance from the edge in every
+      // third input: none up to beyond the widening's limit.
+      if (i % 3 == 1) in.sunEdgeSpreadRad = 0.04f * unit(rng);
       add(in, mode);
     }
   }
