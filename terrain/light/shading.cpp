@@ -38,6 +38,13 @@ float horizonSunFraction(float sunElevationRad, float horizonRad, float sunRadiu
   return 1.0f - (std::acos(x) - x * std::sqrt(1.0f - x * x)) / kPi;
 }
 
+float horizonMomentSunFraction(float sunElevationRad, float horizonMeanRad,
+                               float horizonVarianceRad2, float sunRadiusRad) {
+  const float spread = std::max(0.0f, horizonVarianceRad2);
+  return horizonSunFraction(sunElevationRad, horizonMeanRad,
+                            std::sqrt(sunRadiusRad * sunRadiusRad + 4.0f * spread));
+}
+
 ShadingTerms shadingTerms(const ShadingInputs& in, ShadingMode mode,
                           const CapIntersectionTable* exactTable) {
   ShadingTerms t;
@@ -61,7 +68,8 @@ ShadingTerms shadingTerms(const ShadingInputs& in, ShadingMode mode,
     // (docs/rendering.md, "The horizon mode").
     const float elevation =
         std::atan2(in.sunDirection.z, glm::length(glm::vec2(in.sunDirection.x, in.sunDirection.y)));
-    t.sunFraction = horizonSunFraction(elevation, in.sunHorizonRad, in.sunRadiusRad);
+    t.sunFraction = horizonMomentSunFraction(elevation, in.sunHorizonRad, in.sunHorizonVarianceRad2,
+                                             in.sunRadiusRad);
     t.direct = diffuse * in.sunIrradiance * t.sunFraction * nDotL;
     sunSeen = t.sunFraction * sunArea;
   } else {
