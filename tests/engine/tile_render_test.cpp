@@ -479,13 +479,13 @@ TEST_F(TileRender, SlopesHoldTheHorizonPairInEveryTile) {
               const glm::vec4 got = slopes[size_t{r} * w + c];
               const glm::vec4 gotSecond = moments[size_t{r} * w + c];
               if (level == 0) {
-                for (const auto& [mean, second] :
+                for (const auto& [mean, secondMoment] :
                      {std::pair{got.z, gotSecond.x}, std::pair{got.w, gotSecond.y}}) {
                   const double square = double(mean) * mean;
-                  ASSERT_LE(second, square) << what << ", tile " << tile;
+                  ASSERT_LE(secondMoment, square) << what << ", tile " << tile;
                   // The hair (2^-11) and one half-float step down (lavapipe's
                   // stores truncate), or the subnormals' step (2^-24) near 0.
-                  ASSERT_GE(second, square * (1.0 - 3.0 / 2048.0) - 0x1p-24)
+                  ASSERT_GE(secondMoment, square * (1.0 - 3.0 / 2048.0) - 0x1p-24)
                       << what << ", tile " << tile;
                 }
                 const int col = std::clamp(int(offsetX + c) - int(t.border), 0, kWidth - 1);
@@ -508,15 +508,15 @@ TEST_F(TileRender, SlopesHoldTheHorizonPairInEveryTile) {
                   return sum * 0.25;
                 };
                 const glm::dvec2 mean(meanBelow(below, 2), meanBelow(below, 3));
-                const glm::dvec2 second(meanBelow(momentsBelow, 0), meanBelow(momentsBelow, 1));
+                const glm::dvec2 squares(meanBelow(momentsBelow, 0), meanBelow(momentsBelow, 1));
                 worstMean =
                     std::max({worstMean, std::abs(got.z - mean.x), std::abs(got.w - mean.y)});
-                worstSecond = std::max({worstSecond, std::abs(gotSecond.x - second.x),
-                                        std::abs(gotSecond.y - second.y)});
+                worstSecond = std::max({worstSecond, std::abs(gotSecond.x - squares.x),
+                                        std::abs(gotSecond.y - squares.y)});
                 ASSERT_NEAR(got.z, mean.x, 1e-3) << what << ", level " << level;
                 ASSERT_NEAR(got.w, mean.y, 1e-3) << what << ", level " << level;
-                ASSERT_NEAR(gotSecond.x, second.x, 2e-3) << what << ", level " << level;
-                ASSERT_NEAR(gotSecond.y, second.y, 2e-3) << what << ", level " << level;
+                ASSERT_NEAR(gotSecond.x, squares.x, 2e-3) << what << ", level " << level;
+                ASSERT_NEAR(gotSecond.y, squares.y, 2e-3) << what << ", level " << level;
               }
               const uint32_t refW = referenceWidth >> level, refH = referenceHeight >> level;
               if (offsetX + c >= refW || offsetY + r >= refH) continue;
