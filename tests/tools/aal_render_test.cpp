@@ -298,9 +298,11 @@ TEST(AalRender, MaxTileKeepsTheHorizonModesPicture) {
     EXPECT_LE(worst, 1) << name;
     std::printf("%s: %zu of %zu pixels more than 2 LSB from approx's\n", name.c_str(), differs,
                 x.size() / 4);
-    // Jacksboro's gentle relief: the horizons change a few % of the picture
-    // at 12 degrees (at 6 the sun is hidden in both modes nearly everywhere).
-    EXPECT_GT(differs, x.size() / 4 / 100) << name << ": the horizons change nothing";
+    // Jacksboro's gentle relief: the horizons change about 1 % of the
+    // picture at 12 degrees (0.7 % with 8 directions, 1.0 % with 16; 1.4 %
+    // with the lower two of each 2 x 2 in the levels; at 6 the sun is hidden
+    // in both modes nearly everywhere).
+    EXPECT_GT(differs, x.size() / 4 / 400) << name << ": the horizons change nothing";
   }
 }
 
