@@ -96,8 +96,24 @@ void beginRendering(VkCommandBuffer cmd, uint32_t width, uint32_t height,
 static_assert(AAL_TERRAIN_TILE_PAGES == kTerrainTilePages);
 constexpr uint32_t kAfterTerrainTextures = AAL_TERRAIN_TEXTURES_END;
 
-// The frame's uniforms and the scene's texture pages; pages the scene does
-// not have repeat its first (the shaders never pick them).
+// The image bound as page `page` of a kind: the scene's, its first where
+// it has fewer (the shaders never pick them). The horizons' second moments
+// (TerrainScene::horizonMomentPages) take the slope kind's pages 2 and 3:
+// the slopes are in the heights' pages, two at most (planTerrainTiles), so
+// those are never the slopes' (shaders/terrain_textures.glsl,
+// terrainHorizonMomentProbes). No binding of their own, so no pipeline's
+// layout changes.
+const Image& terrainPageImage(const std::vector<Image>& pages, const TerrainScene& scene,
+                              uint32_t page) {
+  static_assert(kTerrainTilePages == 4);
+  const std::vector<Image>& moments = scene.horizonMomentPages();
+  if (&pages == &scene.slopePages() && page >= 2 && !moments.empty()) {
+    return moments[std::min<size_t>(page - 2, moments.size() - 1)];
+  }
+  return page < pages.size() ? pages[page] : pages.front();
+}
+
+// The frame's uniforms and the scene's texture pages (terrainPageImage).
 DescriptorWrites terrainWrites(const Buffer& uniforms, const TerrainScene& scene,
                                VkSampler sampler) {
   DescriptorWrites writes;
@@ -107,8 +123,7 @@ DescriptorWrites terrainWrites(const Buffer& uniforms, const TerrainScene& scene
   for (const std::vector<Image>* pages :
        {&scene.heightPages(), &scene.aperturePages(), &scene.albedoPages(), &scene.slopePages()}) {
     for (uint32_t page = 0; page < kTerrainTilePages; ++page) {
-      const Image& image = page < pages->size() ? (*pages)[page] : pages->front();
-      writes.image(binding++, image.view(), sampler);
+      writes.image(binding++, terrainPageImage(*pages, scene, page).view(), sampler);
     }
   }
   return writes;

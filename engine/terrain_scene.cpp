@@ -127,13 +127,26 @@ std::vector<Image> makeSlopePages(const Device& device, const TerrainTileLayout&
   return pages;
 }
 
-// Their bytes at level 0 (as textureBytes counts).
+// The pages of the horizons' second moments (RG16F, as the slopes' pages).
+std::vector<Image> makeHorizonMomentPages(const Device& device, const TerrainTileLayout& tiles) {
+  std::vector<Image> pages;
+  for (uint32_t page = 0; page < tiles.pagesOf(TerrainTexture::Height); ++page) {
+    pages.emplace_back(
+        device, ImageDesc{tiles.imageWidth(), tiles.imageHeight(), VK_FORMAT_R16G16_SFLOAT,
+                          kTextureUsage | VK_IMAGE_USAGE_STORAGE_BIT, VK_IMAGE_ASPECT_COLOR_BIT,
+                          tiles.layersIn(TerrainTexture::Height, page), true, kTerrainMipLevels});
+  }
+  return pages;
+}
+
+// Their bytes at level 0 (as textureBytes counts); with horizons the
+// second moments' 4 B a texel too.
 uint64_t slopeBytes(const TerrainTileLayout& tiles, bool horizons) {
   uint64_t layers = 0;
   for (uint32_t page = 0; page < tiles.pagesOf(TerrainTexture::Height); ++page) {
     layers += tiles.layersIn(TerrainTexture::Height, page);
   }
-  return tiles.layerTexels() * layers * (horizons ? 8 : 4);
+  return tiles.layerTexels() * layers * (horizons ? 8 + 4 : 4);
 }
 
 }  // namespace
@@ -260,9 +273,13 @@ void TerrainScene::runSlopePass(const Device& device, const std::vector<Image>* 
   const Sampler nearest(device, VK_FILTER_NEAREST, true);
   const Sampler codeSampler(device, VK_FILTER_NEAREST, false);  // integer texels: no filter
   std::vector<std::vector<std::unique_ptr<LevelView>>> views(slopes_.size());
+  std::vector<std::vector<std::unique_ptr<LevelView>>> momentViews(horizonMoments_.size());
   for (size_t p = 0; p < slopes_.size(); ++p) {
     for (uint32_t level = 0; level < slopes_[p].desc().mipLevels; ++level) {
       views[p].push_back(std::make_unique<LevelView>(device, slopes_[p], level));
+      if (horizons) {
+        momentViews[p].push_back(std::make_unique<LevelView>(device, horizonMoments_[p], level));
+      }
     }
   }
   submitAndWait(device, [&](VkCommandBuffer cmd) {
@@ -273,6 +290,14 @@ void TerrainScene::runSlopePass(const Device& device, const std::vector<Image>* 
           cmd, page,
           keepSlopes ? VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL : VK_IMAGE_LAYOUT_UNDEFINED,
           VK_IMAGE_LAYOUT_GENERAL);
+      // The second moments as the horizons: a re-lay keeps the channel it
+      // does not write, and the rows outside its band.
+      if (horizons) {
+        transitionImage(
+            cmd, horizonMoments_[p],
+            keepSlopes ? VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL : VK_IMAGE_LAYOUT_UNDEFINED,
+            VK_IMAGE_LAYOUT_GENERAL);
+      }
       for (uint32_t level = 0; level < levels; ++level) {
         // The rows are whole multiples of the mip alignment: each level's
         // rows come from the level below's rows of the same band.
@@ -291,14 +316,25 @@ void TerrainScene::runSlopePass(const Device& device, const std::vector<Image>* 
         if (horizons) {
           // Level 0 decodes the codes; each level above is the mean of the
           // one below (bound at level 0 too, unread: any other level).
+          const uint32_t below = level > 0 ? level - 1 : std::min(1u, levels - 1);
           writes.image(2, (*codes)[p].view(), codeSampler.handle())
-              .image(3, views[p][level > 0 ? level - 1 : std::min(1u, levels - 1)]->handle());
+              .image(3, views[p][below]->handle())
+              .image(4, momentViews[p][level]->handle())
+              .image(5, momentViews[p][below]->handle());
         }
         pipeline.record(cmd, writes, &push, (w + 7) / 8, (end - begin + 7) / 8, page.desc().layers);
         // The next level reads this one's horizons.
-        if (horizons) transitionImage(cmd, page, VK_IMAGE_LAYOUT_GENERAL, VK_IMAGE_LAYOUT_GENERAL);
+        if (horizons) {
+          transitionImage(cmd, page, VK_IMAGE_LAYOUT_GENERAL, VK_IMAGE_LAYOUT_GENERAL);
+          transitionImage(cmd, horizonMoments_[p], VK_IMAGE_LAYOUT_GENERAL,
+                          VK_IMAGE_LAYOUT_GENERAL);
+        }
       }
       transitionImage(cmd, page, VK_IMAGE_LAYOUT_GENERAL, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL);
+      if (horizons) {
+        transitionImage(cmd, horizonMoments_[p], VK_IMAGE_LAYOUT_GENERAL,
+                        VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL);
+      }
     }
   });
 }
@@ -501,12 +537,14 @@ void TerrainScene::setHorizons(const Device& device, std::shared_ptr<const Horiz
   // Made before anything changes, so a device too small keeps the scene as
   // it was.
   std::vector<Image> slopes = makeSlopePages(device, tiles_, true);
+  std::vector<Image> moments = makeHorizonMomentPages(device, tiles_);
   if (!horizonSlopes_) {
     horizonSlopes_ =
         std::make_unique<ComputePipeline>(device, "slopes_horizons.comp", sizeof(SlopePush));
   }
   const uint64_t bytes = slopeBytes(tiles_, true) - slopeBytes(tiles_, false);
   slopes_ = std::move(slopes);
+  horizonMoments_ = std::move(moments);
   textureBytes_ += bytes - horizonBytes_;  // a second map replaces the first
   horizonBytes_ = bytes;
   horizonMap_ = std::move(shared);

@@ -71,16 +71,23 @@ class TerrainScene {
   // Slopes of the heights (dz/dx east, dz/dy north per mip level,
   // shaders/slopes.glsl), in the heights' tiles and pages: the terrain's
   // normals in one fetch. RG16F; RGBA16F with directional horizons, whose
-  // B and A hold the horizons (rad) of the pair of stored directions beside
-  // the sun (setHorizons), each level's the mean of the level below's.
+  // B and A hold the means of the horizons (rad) of the pair of stored
+  // directions beside the sun (setHorizons), each level's the mean of the
+  // level below's.
   const std::vector<Image>& slopePages() const { return slopes_; }
+  // With directional horizons: the second moments of the pair's horizons
+  // (rad^2, R and G; terrain/light/horizon_moments.h), RG16F in the slopes'
+  // tiles, pages and levels; else none.
+  const std::vector<Image>& horizonMomentPages() const { return horizonMoments_; }
   // Device memory of the textures (bytes, level 0).
   uint64_t textureBytes() const { return textureBytes_; }
   bool hasAlbedo() const { return hasAlbedo_; }
   // Directional horizons for the horizon mode (terrain/io/horizon_map.h).
   // The device holds two of the map's directions at a time, `first` and
-  // first + 1 mod n (horizonPairFor), decoded and prefiltered into the slope
-  // texture's B and A channels (which makes it RGBA16F: 4 B more per texel);
+  // first + 1 mod n (horizonPairFor), decoded and prefiltered as moments:
+  // the means in the slope texture's B and A channels (which makes it
+  // RGBA16F: 4 B more per texel), the second moments in horizonMomentPages
+  // (4 B more);
   // the scene keeps `map` (shared, not copied) to lay another pair. Replaces
   // the slope images: the device must not be reading the scene. Throws
   // std::invalid_argument for a map of another size or an invalid pair.
@@ -130,8 +137,9 @@ class TerrainScene {
 
  private:
   // Fills slopes_ from heights_ on the device (after their upload), and
-  // with horizons their B and A from the pair `first`, first + 1;
-  // `keepSlopes`: R and G are there already (a re-lay), only B and A change.
+  // with horizons their B and A and horizonMoments_ from the pair `first`,
+  // first + 1; `keepSlopes`: R and G are there already (a re-lay), only the
+  // horizons' moments change.
   void computeSlopes(const Device& device, int first, bool keepSlopes) const;
   // The pass of slopes.comp or (with `codes`) slopes_horizons.comp over rows
   // [rowBegin, rowEnd) (multiples of kTerrainMipAlignment) of every tile
@@ -148,6 +156,7 @@ class TerrainScene {
   TerrainTiling tiling_;  // what the caller asked for beyond the device's limits
   TerrainTileLayout tiles_;
   std::vector<Image> heights_, aperture_, albedo_, slopes_;
+  std::vector<Image> horizonMoments_;             // with horizons (horizonMomentPages)
   std::shared_ptr<const HorizonMap> horizonMap_;  // the host copy (for re-laying); null: none
   // slopes_horizons.comp, made once (a pipeline is compiled on lavapipe:
   // tens of ms a re-lay otherwise).

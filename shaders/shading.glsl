@@ -6,6 +6,7 @@
 #include "cap_table.glsl"
 #include "caps.glsl"
 #include "config.h"
+#include "horizon_moments.glsl"
 
 // The exact mode's cap intersection comes from a table made for the frame's
 // sun radius (cap_table.glsl); the includer says where it is bound.
@@ -25,6 +26,7 @@ struct ShadingInputs {
   vec3 skyRadiance;
   vec3 transfer;
   float sunHorizonRad;  // horizon mode: the horizon's elevation in the sun's azimuth
+  float sunHorizonVarianceRad2;  // and its variance over the footprint (rad^2)
   // approx, exact: the spread (standard deviation, rad) over the pixel's
   // footprint of the sun's distance from the aperture's edge; 0: a point.
   float sunEdgeSpreadRad;
@@ -36,14 +38,6 @@ struct ShadingTerms {
   float sunFraction;
   vec3 skyIrradiance;
 };
-
-// Twin of horizonSunFraction (terrain/light/shading.h): the part of the sun's disk
-// above a straight horizon.
-float horizonSunFraction(float sunElevationRad, float horizonRad, float sunRadiusRad) {
-  if (!(sunRadiusRad > 0.0)) return sunElevationRad > horizonRad ? 1.0 : 0.0;
-  float x = clamp((sunElevationRad - horizonRad) / sunRadiusRad, -1.0, 1.0);
-  return 1.0 - (acos(x) - x * sqrt(1.0 - x * x)) / float(AAL_PI);
-}
 
 // Twin of sunEdgeFootprintDistance (terrain/light/shading.h): the distance
 // at which the sun's cap meets the aperture's with the transition widened by
@@ -74,7 +68,8 @@ ShadingTerms shadingTerms(ShadingInputs s, int mode) {
   if (mode == AAL_MODE_HORIZON) {
     // Visible part from the horizon, no cap intersection (twin of shading.cpp).
     float elevation = atan(s.sunDirection.z, length(s.sunDirection.xy));
-    t.sunFraction = horizonSunFraction(elevation, s.sunHorizonRad, s.sunRadiusRad);
+    t.sunFraction = horizonMomentSunFraction(elevation, s.sunHorizonRad,
+                                             s.sunHorizonVarianceRad2, s.sunRadiusRad);
     t.direct = diffuse * s.sunIrradiance * t.sunFraction * nDotL;
     sunSeen = t.sunFraction * sunArea;
   } else {

@@ -10,10 +10,10 @@ layout(local_size_x = AAL_SHADING_PARITY_GROUP_SIZE) in;
 
 struct Query {
   vec4 albedoMode;        // rgb albedo, w: mode
-  vec4 normal;            // xyz
+  vec4 normal;            // xyz, w: the horizon's variance (horizon mode)
   vec4 bentAperture;      // xyz bent normal, w: aperture arc length
   vec4 sunRadius;         // xyz sun direction, w: sun radius
-  vec4 sunIrradiance;     // rgb
+  vec4 sunIrradiance;     // rgb, w: the spread of the sun's distance from the edge
   vec4 skyRadiance;       // rgb
   vec4 transfer;          // rgb, w: horizon elevation in the sun's azimuth (horizon mode)
 };
@@ -37,6 +37,7 @@ void main() {
   s.skyRadiance = q.skyRadiance.rgb;
   s.transfer = q.transfer.rgb;
   s.sunHorizonRad = q.transfer.w;
-  s.sunEdgeSpreadRad = q.normal.w;
+  s.sunHorizonVarianceRad2 = q.normal.w;
+  s.sunEdgeSpreadRad = q.sunIrradiance.w;
   answers[i] = vec4(shade(s, int(q.albedoMode.w)), 0.0);
 }

@@ -9,14 +9,16 @@
 // tiles too (the image's outermost texel, which no fetch reaches, aside).
 //
 // slopes_horizons.comp (AAL_SLOPES_HORIZONS) also writes B and A: the
-// horizons (rad) of the pair of stored directions beside the sun
-// (engine/terrain_scene.h setHorizons), decoded from their codes at level 0
-// and at each level above the mean of the lower two of the 2 x 2 texels of
-// the level below (horizonMip; the same in every tile that holds the level);
-// the horizon mode reads them in the normal's fetch. Called level by level,
-// each after the one below has been written. A re-lay spread over frames
-// (engine/horizon_relay.h) writes one channel of a band of rows at a time,
-// the other channel kept.
+// means of the horizons (rad) of the pair of stored directions beside the
+// sun (engine/terrain_scene.h setHorizons), and the means of their squares
+// into the horizon moment texture (R and G): decoded from their codes at
+// level 0, at each level above the means of the 2 x 2 texels of the level
+// below (linear, so filtered fetches give a footprint's moments;
+// terrain/light/horizon_moments.h; the same in every tile that holds the
+// level); the horizon mode reads the means in the normal's fetch. Called
+// level by level, each after the one below has been written. A re-lay
+// spread over frames (engine/horizon_relay.h) writes one channel of a band
+// of rows at a time, the other channel of both images kept.
 #ifndef AAL_SLOPES_GLSL
 #define AAL_SLOPES_GLSL
 
@@ -34,6 +36,10 @@ layout(set = 0, binding = 1, rgba16f) uniform image2DArray slopes;
 layout(set = 0, binding = 2) uniform usampler2DArray horizonCodes;
 // The page's level below (finer; read above level 0).
 layout(set = 0, binding = 3, rgba16f) uniform readonly image2DArray finer;
+// The second moments of the pair's horizons (rad^2): the level, the level below.
+// Read too: a re-lay of one channel keeps the other.
+layout(set = 0, binding = 4, rg16f) uniform image2DArray secondMoments;
+layout(set = 0, binding = 5, rg16f) uniform readonly image2DArray finerSecondMoments;
 #else
 layout(set = 0, binding = 1, rg16f) uniform writeonly image2DArray slopes;
 #endif
@@ -49,18 +55,17 @@ layout(push_constant) uniform Level {
 p;
 
 #ifdef AAL_SLOPES_HORIZONS
-// A coarser level's horizon from the 2 x 2 below: the mean of the lower two,
-// not of all four. A footprint mixing lit and shadowed texels is partly lit;
-// the lit ones (sun-facing crests) are the bright ones at a low sun, while
-// the shadowed ones mostly face away (N.L small), so a horizon too high
-// costs more than one too low: against the ray tracer the lower two beat the
-// mean of four in 52 of 56 rows of docs/comparison.md's table (jacksboro
-// 250/8 degrees 2.94 -> 2.63 %; the minimum: 2.77 %).
-vec2 horizonMip(vec2 a, vec2 b, vec2 c, vec2 d) {
-  vec2 lowAb = min(a, b), highAb = max(a, b), lowCd = min(c, d), highCd = max(c, d);
-  // The lowest, and the second lowest: the higher of the two pairs' lows,
-  // or a pair's high where that is lower still.
-  return (min(lowAb, lowCd) + min(max(lowAb, lowCd), min(highAb, highCd))) * 0.5;
+// A DEM texel's horizons as half floats (packHalf2x16's rounding), which the
+// slope image then stores exactly, whatever its own rounding.
+vec2 texelHorizons(vec2 horizons) {
+  return unpackHalf2x16(packHalf2x16(horizons));
+}
+// Their second moments: the squares a hair below (1 - 2^-11, under half a
+// half-float step), so that one texel's variance reads 0 rather than
+// +-rounding, which would widen its shadow's edge
+// (horizonMomentSunFraction).
+vec2 texelSecondMoments(vec2 storedHorizons) {
+  return storedHorizons * storedHorizons * (1.0 - 1.0 / 2048.0);
 }
 #endif
 
@@ -84,21 +89,38 @@ void main() {
 #else
   vec4 kept = p.keepSlopes != 0 ? imageLoad(slopes, t) : vec4(0.0);
   vec2 slope = p.keepSlopes != 0 ? kept.rg : levelSlope(t, size.xy - 1);
+  vec2 squares;
   if (p.level == 0) {
     float maxCode = float((1 << p.horizonBits) - 1);
     uvec2 codes = texelFetch(horizonCodes, t - ivec3(0, p.rowBegin, 0), 0).rg;
     if (p.channel == 1) codes = codes.yx;  // the one direction's codes are in R
-    horizons = vec2(decodeHorizon(float(codes.x) / maxCode, p.horizonBits),
-                    decodeHorizon(float(codes.y) / maxCode, p.horizonBits));
+    horizons = texelHorizons(vec2(decodeHorizon(float(codes.x) / maxCode, p.horizonBits),
+                                  decodeHorizon(float(codes.y) / maxCode, p.horizonBits)));
+    squares = texelSecondMoments(horizons);
   } else {
+    // The means of the 2 x 2 below, summed in one fixed order.
     ivec3 f = ivec3(2 * t.xy, t.z);
-    vec2 upperLeft = imageLoad(finer, f).ba, upperRight = imageLoad(finer, f + ivec3(1, 0, 0)).ba;
-    vec2 lowerLeft = imageLoad(finer, f + ivec3(0, 1, 0)).ba;
-    vec2 lowerRight = imageLoad(finer, f + ivec3(1, 1, 0)).ba;
-    horizons = horizonMip(upperLeft, upperRight, lowerLeft, lowerRight);
+    ivec3 right = ivec3(1, 0, 0), down = ivec3(0, 1, 0);
+    horizons = ((imageLoad(finer, f).ba + imageLoad(finer, f + right).ba) +
+                (imageLoad(finer, f + down).ba + imageLoad(finer, f + right + down).ba)) *
+               0.25;
+    squares = ((imageLoad(finerSecondMoments, f).rg +
+                imageLoad(finerSecondMoments, f + right).rg) +
+               (imageLoad(finerSecondMoments, f + down).rg +
+                imageLoad(finerSecondMoments, f + right + down).rg)) *
+              0.25;
   }
-  if (p.channel == 0) horizons.y = kept.a;
-  if (p.channel == 1) horizons.x = kept.b;
+  if (p.channel != 2) {
+    vec2 keptSquares = imageLoad(secondMoments, t).rg;
+    if (p.channel == 0) {
+      horizons.y = kept.a;
+      squares.y = keptSquares.y;
+    } else {
+      horizons.x = kept.b;
+      squares.x = keptSquares.x;
+    }
+  }
+  imageStore(secondMoments, t, vec4(squares, 0.0, 0.0));
 #endif
   imageStore(slopes, t, vec4(slope, horizons));
 }

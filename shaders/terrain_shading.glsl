@@ -77,12 +77,17 @@ void main() {
       s.apertureRad;
   vec2 edgeChange = vec2(dFdx(sunToEdge), dFdy(sunToEdge));
   s.sunEdgeSpreadRad = sqrt(dot(edgeChange, edgeChange) / 12.0);
+  s.sunHorizonVarianceRad2 = 0.0;
   if (kShadingMode == AAL_MODE_HORIZON) {
-    // The horizon in the sun's azimuth: linear between the pair's, with the
-    // frame's weights (horizonPairWeights, terrain/io/horizon_map.h; the sun
-    // is the frame's), filtered over the footprint as the normal is. No fetch of its own: a fetch is what costs on lavapipe
-    // (docs/performance.md).
-    s.sunHorizonRad = dot(slope.zw, frame.horizonWeights);
+    // The horizon in the sun's azimuth over the footprint: its mean and
+    // variance from the moments of the pair's horizons (the means in the
+    // slopes' fetch, the second moments in one more), with the frame's
+    // weights (horizonPairWeights, terrain/io/horizon_map.h; the sun is the
+    // frame's); docs/rendering.md, "Prefiltering the horizons: moments".
+    vec2 spread = horizonPairSpread(slope.zw, terrainHorizonMomentProbes(texelPosition, probes),
+                                    frame.horizonWeights);
+    s.sunHorizonRad = spread.x;
+    s.sunHorizonVarianceRad2 = spread.y;
   }
   // Aerial perspective: radiance (direct + ambient W) T + L_sky (1 - T).
   float distance = length(worldPosition - frame.cameraPos);

@@ -152,4 +152,21 @@ vec4 terrainSlopeProbes(vec2 texel, FootprintProbes p) {
                          AAL_TERRAIN_FETCH_HEIGHT(terrainSlope, t, p.lod))
 }
 
+// The second moments of the horizons of the pair of directions beside the
+// sun (rad^2; engine/terrain_scene.h horizonMomentPages), filtered over the
+// footprint as terrainSlopeProbes filters their means. They take the slope
+// kind's pages 2 and 3, which the slopes (in the heights' pages, two at
+// most) never use: no binding of their own (engine/terrain_renderer.cpp).
+#if defined(AAL_TERRAIN_PAGED)
+#define AAL_TERRAIN_FETCH_HORIZON_MOMENTS(t, lod)                            \
+  ((t).page == 0 ? AAL_TERRAIN_FETCH_FROM(terrainSlope, 2, t, lod) \
+                 : AAL_TERRAIN_FETCH_FROM(terrainSlope, 3, t, lod))
+#else
+#define AAL_TERRAIN_FETCH_HORIZON_MOMENTS(t, lod) AAL_TERRAIN_FETCH_FROM(terrainSlope, 2, t, lod)
+#endif
+vec2 terrainHorizonMomentProbes(vec2 texel, FootprintProbes p) {
+  AAL_TERRAIN_PROBE_MEAN(vec2, texel, p, frame.heightLayersPerPage,
+                         AAL_TERRAIN_FETCH_HORIZON_MOMENTS(t, p.lod).rg)
+}
+
 #endif

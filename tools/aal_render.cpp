@@ -660,7 +660,7 @@ int run(const Options& o) {
     std::printf("textures   %s, %.1f MiB\n", aal::describeTerrainTiles(scene->tiles()).c_str(),
                 double(scene->textureBytes()) / (1 << 20));
     if (scene->hasHorizons()) {
-      std::printf("horizons   %.1f MiB of them (two directions in the slopes)\n",
+      std::printf("horizons   %.1f MiB of them (moments of two directions)\n",
                   double(scene->horizonBytes()) / (1 << 20));
     }
     std::printf("sun        azimuth %.2f deg, elevation %.2f deg\n", sun.azimuthDeg,

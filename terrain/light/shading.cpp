@@ -47,6 +47,13 @@ float sunEdgeFootprintDistance(float apertureRad, float sunRadiusRad, float dRad
   return apertureRad + (dRad - apertureRad) * (sunRadiusRad / widened);
 }
 
+float horizonMomentSunFraction(float sunElevationRad, float horizonMeanRad,
+                               float horizonVarianceRad2, float sunRadiusRad) {
+  const float spread = std::max(0.0f, horizonVarianceRad2);
+  return horizonSunFraction(sunElevationRad, horizonMeanRad,
+                            std::sqrt(sunRadiusRad * sunRadiusRad + 4.0f * spread));
+}
+
 ShadingTerms shadingTerms(const ShadingInputs& in, ShadingMode mode,
                           const CapIntersectionTable* exactTable) {
   ShadingTerms t;
@@ -70,7 +77,8 @@ ShadingTerms shadingTerms(const ShadingInputs& in, ShadingMode mode,
     // (docs/rendering.md, "The horizon mode").
     const float elevation =
         std::atan2(in.sunDirection.z, glm::length(glm::vec2(in.sunDirection.x, in.sunDirection.y)));
-    t.sunFraction = horizonSunFraction(elevation, in.sunHorizonRad, in.sunRadiusRad);
+    t.sunFraction = horizonMomentSunFraction(elevation, in.sunHorizonRad, in.sunHorizonVarianceRad2,
+                                             in.sunRadiusRad);
     t.direct = diffuse * in.sunIrradiance * t.sunFraction * nDotL;
     sunSeen = t.sunFraction * sunArea;
   } else {

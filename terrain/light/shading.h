@@ -49,8 +49,11 @@ struct ShadingInputs {
   glm::vec3 sunIrradiance{0.0f};       // E_sun at normal incidence
   glm::vec3 skyRadiance{0.0f};         // average sky radiance L_sky
   glm::vec3 transfer{1.0f};  // ambient transfer W (docs/design.md §6), 1 if nothing is near
-  // Horizon mode: the horizon's elevation in the sun's azimuth (rad).
+  // Horizon mode: the horizon's elevation in the sun's azimuth (rad), its
+  // mean over the footprint, and its variance there (rad^2;
+  // terrain/light/horizon_moments.h).
   float sunHorizonRad = -1.5707963f;
+  float sunHorizonVarianceRad2 = 0.0f;
   // approx, exact: the spread (standard deviation, rad) over the pixel's
   // footprint of the sun's distance from the aperture's edge
   // (sunEdgeFootprintDistance); 0: a point, the cap intersection as it is.
@@ -85,6 +88,18 @@ float sunEdgeFootprintDistance(float apertureRad, float sunRadiusRad, float dRad
 // disk cut by a straight line (the horizon is straight at the sun's scale),
 // 1 - (acos x - x sqrt(1 - x^2)) / pi with x = (e - h) / r_s in [-1, 1].
 float horizonSunFraction(float sunElevationRad, float horizonRad, float sunRadiusRad);
+
+// The share of the sun's disk above the horizon, expected over a footprint
+// whose horizons have this mean and variance (horizon_moments.h): the disk's
+// fraction above a straight horizon, as a function of the horizon, falls
+// like the distribution of a semicircle of radius r_s (variance r_s^2 / 4);
+// averaged over horizons spread with the variance v it falls like their sum,
+// which a semicircle of radius sqrt(r_s^2 + 4 v) matches in mean and
+// variance. So: horizonSunFraction with that radius, exact where v = 0.
+// Chosen by measurement over Gaussian and Chebyshev estimators
+// (docs/rendering.md, "Prefiltering the horizons: moments").
+float horizonMomentSunFraction(float sunElevationRad, float horizonMeanRad,
+                               float horizonVarianceRad2, float sunRadiusRad);
 
 // The terms of docs/design.md §5 for the AAL modes (approx/exact) and the baselines.
 // Exact mode evaluates the closed form (capIntersectionExact, terrain/light/caps.h)

@@ -19,6 +19,7 @@
 #include "aperture/shaders/config.h"
 #include "aperture/terrain/io/horizon_map.h"
 #include "aperture/terrain/light/cap_table.h"
+#include "aperture/terrain/light/horizon_moments.h"
 #include "aperture/terrain/light/shading.h"
 #include "aperture/tests/engine/cap_table_image.h"
 #include "aperture/tests/engine/vulkan_test.h"
@@ -70,12 +71,12 @@ class ShadingParity : public VulkanTest {
 
   // One float per query from a compute shader that reads the queries at
   // binding 0 and writes its answers at binding 1 (the horizon twins).
-  template <class Q>
-  std::vector<float> floatsOnDevice(const char* shader, const std::vector<Q>& queries) {
+  template <class Q, class Answer = float>
+  std::vector<Answer> floatsOnDevice(const char* shader, const std::vector<Q>& queries) {
     const uint32_t count = static_cast<uint32_t>(queries.size());
     Buffer input(device(), count * sizeof(Q), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
                  MemoryIntent::Upload);
-    Buffer output(device(), count * sizeof(float), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
+    Buffer output(device(), count * sizeof(Answer), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
                   MemoryIntent::Readback);
     input.write(queries.data(), count * sizeof(Q));
     {
@@ -86,16 +87,19 @@ class ShadingParity : public VulkanTest {
             (count + AAL_SHADING_PARITY_GROUP_SIZE - 1) / AAL_SHADING_PARITY_GROUP_SIZE);
       });
     }
-    std::vector<float> answers(count);
-    output.read(answers.data(), count * sizeof(float));
+    std::vector<Answer> answers(count);
+    output.read(answers.data(), count * sizeof(Answer));
     return answers;
   }
 };
 
 Query queryOf(const ShadingInputs& in, int mode) {
-  return {glm::vec4(in.albedo, float(mode)),        glm::vec4(in.normal, in.sunEdgeSpreadRad),
-          glm::vec4(in.bentNormal, in.apertureRad), glm::vec4(in.sunDirection, in.sunRadiusRad),
-          glm::vec4(in.sunIrradiance, 0),           glm::vec4(in.skyRadiance, 0),
+  return {glm::vec4(in.albedo, float(mode)),
+          glm::vec4(in.normal, in.sunHorizonVarianceRad2),
+          glm::vec4(in.bentNormal, in.apertureRad),
+          glm::vec4(in.sunDirection, in.sunRadiusRad),
+          glm::vec4(in.sunIrradiance, in.sunEdgeSpreadRad),
+          glm::vec4(in.skyRadiance, 0),
           glm::vec4(in.transfer, in.sunHorizonRad)};
 }
 
@@ -160,6 +164,10 @@ TEST_F(ShadingParity, GlslShadeMatchesCppForEveryMode) {
       // A footprint's spread of the sun's distance from the edge in every
       // third input: none up to beyond the widening's limit.
       if (i % 3 == 1) in.sunEdgeSpreadRad = 0.04f * unit(rng);
+      // A footprint's spread of horizons: none (one texel) a third of the
+      // time, else up to a few sun radii.
+      const float spread = i % 3 ? 4.0f * in.sunRadiusRad * unit(rng) : 0.0f;
+      in.sunHorizonVarianceRad2 = spread * spread;
       add(in, mode);
     }
   }
@@ -265,6 +273,58 @@ TEST_F(ShadingParity, HorizonInterpolationMatchesCpp) {
     worst = std::max(worst, double(std::abs(answers[i] - expected)));
   }
   std::printf("horizon interpolation parity over %u inputs: worst %.3g rad\n", count, worst);
+}
+
+// horizonPairSpread and horizonMomentSunFraction of shaders/horizon_moments.glsl
+// against terrain/light/horizon_moments.h and shading.h: random moments of
+// two directions (a spread of none to a few degrees, second moments a hair
+// below the mean's square too, which must read as no spread), weights,
+// suns near the mean and anywhere, sun radii of the sun's to ten times it.
+TEST_F(ShadingParity, HorizonMomentsMatchCpp) {
+  struct MomentQuery {  // mirrors horizon_moments_parity.comp
+    glm::vec4 moments, sun;
+  };
+  std::mt19937 rng(19);
+  std::uniform_real_distribution<float> unit(0.0f, 1.0f);
+  std::vector<MomentQuery> queries;
+  std::vector<std::array<HorizonMoments, 2>> moments;
+  for (int i = 0; i < 20000; ++i) {
+    std::array<HorizonMoments, 2> m;
+    for (HorizonMoments& d : m) {
+      d.mean = 0.4f * unit(rng) - 0.03f;
+      const float spread = i % 4 ? 0.05f * unit(rng) * unit(rng) : 0.0f;
+      d.second = d.mean * d.mean + spread * spread;
+      if (i % 8 == 0) d.second = d.mean * d.mean * (1.0f - 1.0f / 2048.0f);
+    }
+    const float w = i % 5 ? unit(rng) : float(i % 2);
+    const float radius = 0.00465f * (1.0f + 9.0f * unit(rng) * unit(rng));
+    const float mean = (1.0f - w) * m[0].mean + w * m[1].mean;
+    const float elevation = i % 2 ? mean + 0.02f * (2.0f * unit(rng) - 1.0f) : 0.4f * unit(rng);
+    moments.push_back(m);
+    queries.push_back({glm::vec4(m[0].mean, m[1].mean, m[0].second, m[1].second),
+                       glm::vec4(1.0f - w, w, elevation, radius)});
+  }
+  const std::vector<glm::vec4> answers =
+      floatsOnDevice<MomentQuery, glm::vec4>("horizon_moments_parity.comp", queries);
+  double worstMean = 0, worstVariance = 0, worstFraction = 0;
+  for (size_t i = 0; i < queries.size(); ++i) {
+    const glm::vec4& q = queries[i].sun;
+    const HorizonSpread spread = horizonPairSpread(moments[i][0], moments[i][1], {q.x, q.y});
+    const float fraction = horizonMomentSunFraction(q.z, spread.mean, spread.variance, q.w);
+    // Single precision on both sides; the fraction's slope is at most
+    // 2 / (pi r) per rad of horizon, so a few ulps of the mean near the sun
+    // move it by ~1e-4 for the smallest sun.
+    ASSERT_NEAR(answers[i].x, spread.mean, 1e-6f) << i;
+    ASSERT_NEAR(answers[i].y, spread.variance, 1e-7f) << i;
+    ASSERT_NEAR(answers[i].z, fraction, 1e-3f) << i;
+    worstMean = std::max(worstMean, double(std::abs(answers[i].x - spread.mean)));
+    worstVariance = std::max(worstVariance, double(std::abs(answers[i].y - spread.variance)));
+    worstFraction = std::max(worstFraction, double(std::abs(answers[i].z - fraction)));
+  }
+  std::printf(
+      "horizon moments parity over %zu inputs: worst mean %.3g rad, variance %.3g rad^2, "
+      "sun fraction %.3g\n",
+      queries.size(), worstMean, worstVariance, worstFraction);
 }
 
 }  // namespace

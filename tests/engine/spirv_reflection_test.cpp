@@ -268,13 +268,17 @@ TEST(SpirvReflection, TheSlopeShaderReadsASampledAndWritesAStorageImage) {
   EXPECT_EQ(slopes.bindings[1].type, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE);
   EXPECT_EQ(slopes.bindings[1].binding, 1u);
   // With the horizon pair (slopes_horizons.comp): also its codes, sampled,
-  // and the level below, a storage image.
+  // the level below, and the second moments of the level and the level
+  // below, storage images.
   const ShaderInterface horizons = reflected("slopes_horizons.comp");
-  ASSERT_EQ(horizons.bindings.size(), 4u);
+  ASSERT_EQ(horizons.bindings.size(), 6u);
   EXPECT_EQ(horizons.bindings[0].type, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER);
   EXPECT_EQ(horizons.bindings[1].type, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE);
   EXPECT_EQ(horizons.bindings[2].type, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER);
-  EXPECT_EQ(horizons.bindings[3].type, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE);
+  for (uint32_t b = 3; b < 6; ++b) {
+    EXPECT_EQ(horizons.bindings[b].type, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE) << b;
+    EXPECT_EQ(horizons.bindings[b].binding, b);
+  }
 }
 
 // shaders/frame_layout_parity.comp: the frame's uniforms in, words out.

@@ -406,16 +406,19 @@ TEST_F(TileRender, TiledTexturesRenderAsOneImageInEveryMode) {
   }
 }
 
-// With directional horizons the slope texture's B and A hold the horizons
-// (rad) of the pair of directions on the device (engine/terrain_scene.h
-// setHorizons): at level 0 of every tile the decoded codes of the DEM texel
-// it covers (clamped at the DEM's edge, as every kind's border), to
-// half-float rounding (shaders/slopes.glsl decodes as decodeHorizon does);
-// at each level above the mean of the lower two of the 2 x 2 texels below
-// (horizonMip), to half-float rounding; in every tile the single image's values over the tile's
-// window, bit for bit; the slopes in R and G as without horizons. A re-lay writes another pair
-// (here the one across direction 0) and leaves the slopes as they were. Random codes, 16 directions
-// of 4 bits and 8 of 8.
+// With directional horizons the slope texture's B and A hold the means of
+// the horizons (rad) of the pair of directions on the device, and the
+// horizon moment texture's R and G the means of their squares
+// (engine/terrain_scene.h setHorizons, terrain/light/horizon_moments.h): at
+// level 0 of every tile the decoded codes of the DEM texel it covers
+// (clamped at the DEM's edge, as every kind's border), to half-float
+// rounding (shaders/slopes.glsl decodes as decodeHorizon does), and their
+// squares a hair below the stored mean's (so a texel's variance is 0, not
+// rounding); at each level above the means of the 2 x 2 texels below, to
+// half-float rounding; in every tile the single image's values over the
+// tile's window, bit for bit; the slopes in R and G as without horizons. A
+// re-lay writes another pair (here the one across direction 0) and leaves
+// the slopes as they were. Random codes, 16 directions of 4 bits and 8 of 8.
 TEST_F(TileRender, SlopesHoldTheHorizonPairInEveryTile) {
   const Heightfield field = fbm();
   std::mt19937 rng(18);
@@ -434,7 +437,10 @@ TEST_F(TileRender, SlopesHoldTheHorizonPairInEveryTile) {
     single.setHorizons(device(), map, 5);
     tiled.setHorizons(device(), map, 5);
     EXPECT_EQ(tiled.slopePages()[0].desc().format, VK_FORMAT_R16G16B16A16_SFLOAT);
-    EXPECT_EQ(tiled.horizonBytes(), tiled.tiles().layerTexels() * 20 * 4);
+    // 4 B of means in the slopes, 4 B of second moments, in each of 20 tiles.
+    EXPECT_EQ(tiled.horizonBytes(), tiled.tiles().layerTexels() * 20 * 8);
+    ASSERT_EQ(tiled.horizonMomentPages().size(), tiled.slopePages().size());
+    EXPECT_EQ(tiled.horizonMomentPages()[0].desc().format, VK_FORMAT_R16G16_SFLOAT);
     for (const int first : {5, directions - 1}) {
       const std::string what = std::to_string(directions) + " directions of " +
                                std::to_string(bits) + " bits, pair " + std::to_string(first);
@@ -448,23 +454,40 @@ TEST_F(TileRender, SlopesHoldTheHorizonPairInEveryTile) {
       const TerrainTileLayout& t = tiled.tiles();
       const uint32_t referenceWidth = single.tiles().imageWidth();
       const uint32_t referenceHeight = single.tiles().imageHeight();
-      double worst = 0, worstMean = 0;
+      double worst = 0, worstMean = 0, worstSecond = 0;
       size_t compared = 0, different = 0;
       for (uint32_t level = 0; level < kTerrainMipLevels; ++level) {
         const std::vector<glm::vec4> reference =
             readSlopes(device(), single.slopePages()[0], 0, level);
+        const std::vector<glm::vec4> referenceMoments =
+            readSlopes(device(), single.horizonMomentPages()[0], 0, level);
         for (uint32_t tile = 0; tile < t.tileCount(); ++tile) {
           const std::vector<glm::vec4> slopes =
               readSlopes(device(), tiled.slopePages()[0], tile, level);
+          const std::vector<glm::vec4> moments =
+              readSlopes(device(), tiled.horizonMomentPages()[0], tile, level);
           const uint32_t w = t.imageWidth() >> level, h = t.imageHeight() >> level;
           const uint32_t offsetX = (tile % t.tilesX) * t.coreWidth >> level;
           const uint32_t offsetY = (tile / t.tilesX) * t.coreHeight >> level;
-          std::vector<glm::vec4> below;
-          if (level > 0) below = readSlopes(device(), tiled.slopePages()[0], tile, level - 1);
+          std::vector<glm::vec4> below, momentsBelow;
+          if (level > 0) {
+            below = readSlopes(device(), tiled.slopePages()[0], tile, level - 1);
+            momentsBelow = readSlopes(device(), tiled.horizonMomentPages()[0], tile, level - 1);
+          }
           for (uint32_t r = 0; r < h; ++r) {
             for (uint32_t c = 0; c < w; ++c) {
               const glm::vec4 got = slopes[size_t{r} * w + c];
+              const glm::vec4 gotSecond = moments[size_t{r} * w + c];
               if (level == 0) {
+                for (const auto& [mean, secondMoment] :
+                     {std::pair{got.z, gotSecond.x}, std::pair{got.w, gotSecond.y}}) {
+                  const double square = double(mean) * mean;
+                  ASSERT_LE(secondMoment, square) << what << ", tile " << tile;
+                  // The hair (2^-11) and one half-float step down (lavapipe's
+                  // stores truncate), or the subnormals' step (2^-24) near 0.
+                  ASSERT_GE(secondMoment, square * (1.0 - 3.0 / 2048.0) - 0x1p-24)
+                      << what << ", tile " << tile;
+                }
                 const int col = std::clamp(int(offsetX + c) - int(t.border), 0, kWidth - 1);
                 const int row = std::clamp(int(offsetY + r) - int(t.border), 0, kHeight - 1);
                 const uint8_t* codes = map.texel(col, row);
@@ -476,26 +499,34 @@ TEST_F(TileRender, SlopesHoldTheHorizonPairInEveryTile) {
                 }
               } else {
                 const uint32_t wb = w * 2;
-                // Per channel: sort the four, average the lower two.
-                const auto lowerTwo = [&](int channel) {
-                  std::array<double, 4> v{};
+                // Per channel: the mean of the four below.
+                const auto meanBelow = [&](const std::vector<glm::vec4>& texels, int channel) {
+                  double sum = 0;
                   for (uint32_t i = 0; i < 4; ++i) {
-                    v[i] = below[size_t{2 * r + i / 2} * wb + 2 * c + i % 2][channel];
+                    sum += texels[size_t{2 * r + i / 2} * wb + 2 * c + i % 2][channel];
                   }
-                  std::sort(v.begin(), v.end());
-                  return (v[0] + v[1]) * 0.5;
+                  return sum * 0.25;
                 };
-                const glm::dvec2 mean(lowerTwo(2), lowerTwo(3));
+                const glm::dvec2 mean(meanBelow(below, 2), meanBelow(below, 3));
+                const glm::dvec2 squares(meanBelow(momentsBelow, 0), meanBelow(momentsBelow, 1));
                 worstMean =
                     std::max({worstMean, std::abs(got.z - mean.x), std::abs(got.w - mean.y)});
+                worstSecond = std::max({worstSecond, std::abs(gotSecond.x - squares.x),
+                                        std::abs(gotSecond.y - squares.y)});
                 ASSERT_NEAR(got.z, mean.x, 1e-3) << what << ", level " << level;
                 ASSERT_NEAR(got.w, mean.y, 1e-3) << what << ", level " << level;
+                ASSERT_NEAR(gotSecond.x, squares.x, 2e-3) << what << ", level " << level;
+                ASSERT_NEAR(gotSecond.y, squares.y, 2e-3) << what << ", level " << level;
               }
               const uint32_t refW = referenceWidth >> level, refH = referenceHeight >> level;
               if (offsetX + c >= refW || offsetY + r >= refH) continue;
               ++compared;
-              const glm::vec4 one = reference[size_t{offsetY + r} * refW + offsetX + c];
-              if (got.z != one.z || got.w != one.w) ++different;
+              const size_t at = size_t{offsetY + r} * refW + offsetX + c;
+              const glm::vec4 one = reference[at], oneSecond = referenceMoments[at];
+              if (got.z != one.z || got.w != one.w || gotSecond.x != oneSecond.x ||
+                  gotSecond.y != oneSecond.y) {
+                ++different;
+              }
             }
           }
         }
@@ -504,8 +535,8 @@ TEST_F(TileRender, SlopesHoldTheHorizonPairInEveryTile) {
       EXPECT_EQ(different, 0u) << what << ": " << different << " of " << compared;
       std::printf(
           "%s: level 0 against decodeHorizon worst %.2g rad, levels above against the "
-          "lower two below worst %.2g rad\n",
-          what.c_str(), worst, worstMean);
+          "means below worst %.2g rad, %.2g rad^2\n",
+          what.c_str(), worst, worstMean, worstSecond);
     }
     // The slopes themselves are what they were without horizons.
     const std::vector<glm::vec4> slopesAfter = readSlopes(device(), tiled.slopePages()[0], 7, 0);
@@ -544,7 +575,10 @@ TEST_F(TileRender, HorizonModeTiledAsOneImage) {
     ASSERT_TRUE(tiled.hasHorizons());
     // Device bytes: 4 more per texel of a tile image (core, border,
     // alignment) whatever the layout: B and A of the slopes.
-    EXPECT_EQ(tiled.horizonBytes(), tiled.tiles().layerTexels() * 20 * 4);
+    // 4 B of means in the slopes, 4 B of second moments, in each of 20 tiles.
+    EXPECT_EQ(tiled.horizonBytes(), tiled.tiles().layerTexels() * 20 * 8);
+    ASSERT_EQ(tiled.horizonMomentPages().size(), tiled.slopePages().size());
+    EXPECT_EQ(tiled.horizonMomentPages()[0].desc().format, VK_FORMAT_R16G16_SFLOAT);
     EXPECT_EQ(tiled.textureBytes(), tiledBytes + tiled.horizonBytes());
     EXPECT_EQ(single.textureBytes(), singleBytes + single.horizonBytes());
     // The slopes with horizons take 8 bytes a texel in the heights' pages,
