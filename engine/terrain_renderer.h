@@ -56,7 +56,7 @@ struct FrameSettings {
   // isotropic filter): the fastest, blurred in oblique views; each probe
   // more costs a fetch per texture (docs/rendering.md, "Footprint
   // filtering"). Values outside are clamped.
-  int anisotropy = kMaxFootprintProbes;
+  int anisotropy = kDefaultFootprintProbes;
   // Pixels without terrain (the sky, or the debug views' black) get alpha 0
   // in the display and linear images instead of 1; their colour is kept
   // (aal-render --background transparent).

@@ -55,7 +55,7 @@ struct RenderArguments {
   std::optional<double> obscuranceRadiusM;
   int obscuranceSamples = ObscuranceSettings{}.samples, obscuranceSteps = 1;
   std::optional<double> waterLevelM;
-  int anisotropy = kMaxFootprintProbes;
+  int anisotropy = kDefaultFootprintProbes;
   double exaggeration = 1.0;
   int device = -1;
   int threads = 0;

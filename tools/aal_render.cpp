@@ -67,7 +67,7 @@ struct Options {
   int device = -1;
   size_t triangleBudget = 2'000'000;
   double lodErrorPixels = aal::LodSettings{}.maxErrorPixels;
-  int anisotropy = aal::kMaxFootprintProbes;
+  int anisotropy = aal::kDefaultFootprintProbes;
   uint32_t maxTileTexels = 0;
   bool stats = false;
   bool quiet = false;

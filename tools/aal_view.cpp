@@ -46,7 +46,7 @@ struct Options {
   double sunSweepDeg = 0;
   size_t triangleBudget = 2'000'000;
   double lodErrorPixels = aal::LodSettings{}.maxErrorPixels;
-  int anisotropy = aal::kMaxFootprintProbes;
+  int anisotropy = aal::kDefaultFootprintProbes;
   std::optional<double> targetFps;
 };
 

@@ -28,7 +28,7 @@ namespace aal {
 inline constexpr const char* kAnisotropyHelp =
     "texture filtering along each pixel's footprint on the DEM: up to N trilinear probes along "
     "its longer axis (1: one trilinear fetch, a GPU's isotropic filter, blurred in oblique "
-    "views; each probe more costs a fetch per texture, about +10 % of a CPU frame: "
+    "views; each probe more costs a fetch per texture, about +12 % of a CPU frame: "
     "docs/rendering.md, \"Footprint filtering\")";
 
 // checkOutputWritable for a path the user gave: an output that cannot be

@@ -202,7 +202,7 @@ def render(dem, cell_size, *, size=(1280, 720), camera=None, look_at=None, fov=4
            sun_radius=_SUN_RADIUS_DEG, turbidity=_DEFAULT_TURBIDITY, ev=None, visibility=None,
            mode="approx", exaggeration=1.0, background="sky", albedo=None, obscurance=True,
            obscurance_radius=None, obscurance_samples=16, obscurance_steps=1, water_level=None,
-           anisotropy=4, z_scale=1.0, nodata=None, device=None, threads=None, progress=None):
+           anisotropy=3, z_scale=1.0, nodata=None, device=None, threads=None, progress=None):
     """Renders a DEM lit by the sun and the sky, headless on Vulkan, as aal-render does.
 
     The aperture map is baked in memory first (aal-render's options: 64 azimuths, open edge;
@@ -229,8 +229,9 @@ def render(dem, cell_size, *, size=(1280, 720), camera=None, look_at=None, fov=4
     obscurance, obscurance_radius, obscurance_samples, obscurance_steps  the near-field
                   obscurances, as aal-render's --no-obscurance, --obscurance-*.
     water_level   paint terrain at or below this height (metres) as water.
-    anisotropy    texture filtering along each pixel's footprint, 1 to 4 probes, as aal-render's
-                  --anisotropy (1: one trilinear fetch, fastest, blurred in oblique views).
+    anisotropy    texture filtering along each pixel's footprint, 1 to 4 probes (default 3), as
+                  aal-render's --anisotropy (1: one trilinear fetch, fastest, blurred in
+                  oblique views).
     device        Vulkan device index (None: the best one).
     z_scale, nodata, threads, progress  as for bake().
 

@@ -62,7 +62,7 @@ struct ViewerOptions {
   int device = -1;
   size_t triangleBudget = 2'000'000;
   double lodErrorPixels = LodSettings{}.maxErrorPixels;
-  int anisotropy = kMaxFootprintProbes;  // FrameSettings::anisotropy at the start
+  int anisotropy = kDefaultFootprintProbes;  // FrameSettings::anisotropy at the start
   // Dynamic resolution while the view changes (DynamicResolution); 0: off.
   double targetFps = 30;
   int bakeAzimuths = 64;
