@@ -25,8 +25,10 @@ cd "$work"
 for s in ${SCENES:-fbm jacksboro}; do
   [ -f "$s-16x4.hz" ] && continue
   echo "bench-horizon-accuracy: baking $s" >&2
-  "$bin/aal-bake" "$s.tif" -o "$s.exr" --horizons "$s-8x8.hz" -q
-  "$bin/aal-bake" "$s.tif" -o "$s-16.exr" --horizons "$s-16x8.hz" --horizon-directions 16 -q
+  "$bin/aal-bake" "$s.tif" -o "$s.exr" --horizons "$s-8x8.hz" --horizon-directions 8 \
+    --horizon-bits 8 -q
+  "$bin/aal-bake" "$s.tif" -o "$s-16.exr" --horizons "$s-16x8.hz" --horizon-directions 16 \
+    --horizon-bits 8 -q
   "$bin/aal-bake" "$s.tif" -o "$s-16.exr" --horizons "$s-16x4.hz" --horizon-directions 16 \
     --horizon-bits 4 -q
 done

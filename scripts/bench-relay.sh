@@ -34,7 +34,8 @@ fi
 if [ ! -f "$data/fbm-$size-relay-horizons.bin" ]; then
   echo "bench-relay: baking its aperture map and 8 horizon directions (once)" >&2
   "$bin/aal-bake" "$dem" -o "$data/fbm-$size-relay-aperture.exr" --azimuths 8 \
-    --horizons "$data/fbm-$size-relay-horizons.bin.tmp" -q
+    --horizons "$data/fbm-$size-relay-horizons.bin.tmp" --horizon-directions 8 \
+    --horizon-bits 8 -q
   mv "$data/fbm-$size-relay-horizons.bin.tmp" "$data/fbm-$size-relay-horizons.bin"
 fi
 

@@ -63,8 +63,8 @@ struct Options : aal::SweepCommandLine {
   std::string svfPath;
   bool svf = false;          // --svf given: with svfPath, or, tiled, into the folder
   std::string horizonsPath;  // directional horizons (docs/baking.md)
-  int horizonDirections = aal::kHorizonDirections;
-  int horizonBits = aal::kHorizonBits;
+  int horizonDirections = aal::kBakeToolHorizonDirections;
+  int horizonBits = aal::kBakeToolHorizonBits;
   std::string visiblePath;
   int threads = 0;
   bool quiet = false;

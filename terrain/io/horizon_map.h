@@ -20,6 +20,13 @@ namespace aal {
 // (RGBA8 layers on the device) up to kMaxHorizonDirections.
 constexpr int kHorizonDirections = 8;
 constexpr int kMaxHorizonDirections = 16;
+// What aal-bake --horizons writes unless asked: 16 directions of 4-bit codes,
+// 8 B per texel as 8 of 8 bits, with the horizon mode's error within 0.1
+// points of 16 of 8 bits and below 8 of 8 bits' (mean over 16 low suns,
+// docs/comparison.md: 3.46, 3.38 and 4.10 %). The in-memory bakes of
+// aal-view and Python keep kHorizonDirections of kHorizonBits.
+constexpr int kBakeToolHorizonDirections = 16;
+constexpr int kBakeToolHorizonBits = 4;
 bool validHorizonDirections(int directions);
 
 // The stored elevation range. 8-bit codes 0..255 map to [kHorizonMinRad,
