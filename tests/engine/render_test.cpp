@@ -48,6 +48,15 @@ Heightfield ridge() {
   return f;
 }
 
+// The apertures and directional horizons (8 directions of 8 bits) of `f`,
+// baked from 64 azimuths: the horizon mode's scenes.
+BakeResult bakeWithHorizons(const Heightfield& f) {
+  BakeOptions o;
+  o.azimuths = 64;
+  o.horizons = true;
+  return bakeApertures(f, o);
+}
+
 ApertureMap bake(const Heightfield& f) {
   BakeOptions o;
   o.azimuths = 64;
@@ -106,10 +115,7 @@ TEST_F(Render, LowWesternSunShadowsTheEastSlope) {
 // horizons do not. At 40 degrees both light it alike.
 TEST_F(Render, HorizonModeShadowsThePlainBehindTheRidge) {
   const Heightfield f = ridge();
-  BakeOptions o;
-  o.azimuths = 64;
-  o.horizons = true;
-  const BakeResult baked = bakeApertures(f, o);
+  const BakeResult baked = bakeWithHorizons(f);
   TerrainScene scene(device(), f, baked.aperture, nullptr, 100000);
   TerrainRenderer renderer(device(), 128, 128);
   EXPECT_THROW(renderer.render(scene, topView(f, ShadingMode::Horizon, 270, 28), true),
@@ -216,10 +222,7 @@ TEST_F(Render, HorizonModeReadsEveryStoredDirection) {
 // sun. One re-lay in all; a sun that then stays where it is re-lays no more.
 TEST_F(Render, SpreadReLayDrawsTheSharedDirectionThenTheNewPair) {
   const Heightfield f = ridge();
-  BakeOptions o;
-  o.azimuths = 64;
-  o.horizons = true;
-  const BakeResult baked = bakeApertures(f, o);
+  const BakeResult baked = bakeWithHorizons(f);
   const auto shared = std::make_shared<const HorizonMap>(baked.horizons);
   TerrainRenderer renderer(device(), 96, 96);
   const auto frameFor = [&](double compassDeg) {
@@ -287,10 +290,7 @@ TEST_F(Render, SpreadReLayDrawsTheSharedDirectionThenTheNewPair) {
 // given the horizons for that sun.
 TEST_F(Render, ReLaidHorizonsDrawAsAFreshScene) {
   const Heightfield f = ridge();
-  BakeOptions o;
-  o.azimuths = 64;
-  o.horizons = true;
-  const BakeResult baked = bakeApertures(f, o);
+  const BakeResult baked = bakeWithHorizons(f);
   ASSERT_EQ(baked.horizons.directions, 8);
   const auto shared = std::make_shared<const HorizonMap>(baked.horizons);
   TerrainRenderer renderer(device(), 128, 128);
