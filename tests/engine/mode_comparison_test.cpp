@@ -59,18 +59,33 @@ FrameSettings obliqueView(const Heightfield& f, double sunAzimuthDeg, double sun
   return s;
 }
 
-std::map<std::string, double> errors(const Device& device, const Heightfield& f,
-                                     const FrameSettings& settings) {
+ApertureMap aperturesOf(const Heightfield& f) {
   BakeOptions bake;
   bake.azimuths = 64;
-  const ApertureMap aperture = bakeApertures(f, bake).aperture;
-  const TerrainScene scene(device, f, aperture, nullptr, 200000);
-  TerrainRenderer renderer(device, 96, 64);
+  return bakeApertures(f, bake).aperture;
+}
+
+// A test's DEM baked and drawn at 96 x 64 by a renderer of its own, compared
+// with 16 sun rays and `skyRays` sky rays.
+struct ComparedScene {
+  ComparedScene(const Device& device, const Heightfield& f, int skyRays)
+      : aperture(aperturesOf(f)),
+        scene(device, f, aperture, nullptr, 200000),
+        renderer(device, 96, 64) {
+    options.sunRays = 16;
+    options.skyRays = skyRays;
+  }
+  ApertureMap aperture;
+  TerrainScene scene;
+  TerrainRenderer renderer;
   ComparisonOptions options;
-  options.sunRays = 16;
-  options.skyRays = 256;
+};
+
+std::map<std::string, double> errors(const Device& device, const Heightfield& f,
+                                     const FrameSettings& settings) {
+  ComparedScene t(device, f, 256);
   const Comparison c =
-      compareModes(renderer, scene, f, settings, defaultComparedModes(settings), options);
+      compareModes(t.renderer, t.scene, f, settings, defaultComparedModes(settings), t.options);
   std::map<std::string, double> byMode;
   for (const ModeError& e : c.modes) {
     byMode[e.mode] = e.relativeRmse;
@@ -127,16 +142,9 @@ struct PanShimmer {
 };
 PanShimmer panShimmer(const Device& device, const Heightfield& f, const FrameSettings& settings,
                       int frames, double stepTexels) {
-  BakeOptions bake;
-  bake.azimuths = 64;
-  const ApertureMap aperture = bakeApertures(f, bake).aperture;
-  const TerrainScene scene(device, f, aperture, nullptr, 200000);
-  TerrainRenderer renderer(device, 96, 64);
-  ComparisonOptions options;
-  options.sunRays = 16;
-  options.skyRays = 64;
+  ComparedScene t(device, f, 64);
   const std::vector<ComparedMode> modes = defaultComparedModes(settings);
-  Comparison c = compareModes(renderer, scene, f, settings, modes, options);
+  Comparison c = compareModes(t.renderer, t.scene, f, settings, modes, t.options);
   std::vector<Camera> cameras;
   for (int i = 0; i < frames; ++i) {
     Camera camera = settings.camera;
@@ -145,7 +153,7 @@ PanShimmer panShimmer(const Device& device, const Heightfield& f, const FrameSet
     camera.lookAt += shift;
     cameras.push_back(camera);
   }
-  measureShimmer(c, renderer, scene, f, settings, modes, options, cameras);
+  measureShimmer(c, t.renderer, t.scene, f, settings, modes, t.options, cameras);
   PanShimmer s;
   s.reference = c.referenceShimmer.value();
   std::printf("%-18s shimmer %.6f\n", "reference", s.reference);
