@@ -101,7 +101,7 @@ constexpr uint32_t kAfterTerrainTextures = AAL_TERRAIN_TEXTURES_END;
 // (TerrainScene::horizonMomentPages) take the slope kind's pages 2 and 3:
 // the slopes are in the heights' pages, two at most (planTerrainTiles), so
 // those are never the slopes' (shaders/terrain_textures.glsl,
-// terrainHorizonMomentProbes). No binding of their own, so no pipeline's
+// terrainHorizonMomentsLod). No binding of their own, so no pipeline's
 // layout changes.
 const Image& terrainPageImage(const std::vector<Image>& pages, const TerrainScene& scene,
                               uint32_t page) {

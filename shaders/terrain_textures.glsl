@@ -153,8 +153,8 @@ vec4 terrainSlopeProbes(vec2 texel, FootprintProbes p) {
 }
 
 // The second moments of the horizons of the pair of directions beside the
-// sun (rad^2; engine/terrain_scene.h horizonMomentPages), filtered over the
-// footprint as terrainSlopeProbes filters their means. They take the slope
+// sun (rad^2; engine/terrain_scene.h horizonMomentPages) at a level of
+// detail, read once per fragment (terrain_shading.glsl). They take the slope
 // kind's pages 2 and 3, which the slopes (in the heights' pages, two at
 // most) never use: no binding of their own (engine/terrain_renderer.cpp).
 #if defined(AAL_TERRAIN_PAGED)
@@ -164,9 +164,9 @@ vec4 terrainSlopeProbes(vec2 texel, FootprintProbes p) {
 #else
 #define AAL_TERRAIN_FETCH_HORIZON_MOMENTS(t, lod) AAL_TERRAIN_FETCH_FROM(terrainSlope, 2, t, lod)
 #endif
-vec2 terrainHorizonMomentProbes(vec2 texel, FootprintProbes p) {
-  AAL_TERRAIN_PROBE_MEAN(vec2, texel, p, frame.heightLayersPerPage,
-                         AAL_TERRAIN_FETCH_HORIZON_MOMENTS(t, p.lod).rg)
+vec2 terrainHorizonMomentsLod(vec2 texel, float lod) {
+  TerrainTileTexel t = terrainTexel(texel, frame.heightLayersPerPage);
+  return AAL_TERRAIN_FETCH_HORIZON_MOMENTS(t, lod).rg;
 }
 
 #endif

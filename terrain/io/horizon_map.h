@@ -23,7 +23,7 @@ constexpr int kMaxHorizonDirections = 16;
 // What aal-bake --horizons writes unless asked: 16 directions of 4-bit codes,
 // 8 B per texel as 8 of 8 bits, with the horizon mode's error within 0.1
 // points of 16 of 8 bits and below 8 of 8 bits' (mean over 16 low suns,
-// docs/comparison.md: 3.46, 3.38 and 4.10 %). The in-memory bakes of
+// docs/comparison.md: 3.52, 3.44 and 4.17 %). The in-memory bakes of
 // aal-view and Python keep kHorizonDirections of kHorizonBits.
 constexpr int kBakeToolHorizonDirections = 16;
 constexpr int kBakeToolHorizonBits = 4;
