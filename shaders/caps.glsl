@@ -6,6 +6,13 @@
 #include "config.h"
 
 // 2 pi (1 - cos r) as 4 pi sin^2(r/2): no cancellation for tiny caps (the sun).
+// Angle (rad) between two unit directions, the centres of two caps, as
+// atan2(|a x b|, a.b): GPU acos approximations are too coarse at the sun's
+// scale (lavapipe's was off by ~1e-3 rad).
+float capCentreDistance(vec3 a, vec3 b) {
+  return atan(length(cross(a, b)), dot(a, b));
+}
+
 float capArea(float radiusRad) {
   float h = sin(0.5 * radiusRad);
   return 2.0 * float(AAL_TWO_PI) * h * h;

@@ -73,10 +73,7 @@ ShadingTerms shadingTerms(ShadingInputs s, int mode) {
     t.direct = diffuse * s.sunIrradiance * t.sunFraction * nDotL;
     sunSeen = t.sunFraction * sunArea;
   } else {
-    // atan2 of sine and cosine: GPU acos approximations are too coarse at the
-    // sun's scale (lavapipe's was off by ~1e-3 rad here).
-    float d =
-        atan(length(cross(s.bentNormal, s.sunDirection)), dot(s.bentNormal, s.sunDirection));
+    float d = capCentreDistance(s.bentNormal, s.sunDirection);
     float dCap = sunEdgeFootprintDistance(s.apertureRad, s.sunRadiusRad, d, s.sunEdgeSpreadRad);
     sunSeen = mode == AAL_MODE_EXACT
                   ? capIntersectionTable(capTable, s.apertureRad, s.sunRadiusRad, dCap)

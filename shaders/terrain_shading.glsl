@@ -72,9 +72,7 @@ void main() {
   // pixel sees the step's mean there, a wider transition (docs/rendering.md,
   // "The sun's edge over the footprint"). The spread is that of a box as
   // wide as the pixel: its derivatives / sqrt(12).
-  float sunToEdge =
-      atan(length(cross(s.bentNormal, s.sunDirection)), dot(s.bentNormal, s.sunDirection)) -
-      s.apertureRad;
+  float sunToEdge = capCentreDistance(s.bentNormal, s.sunDirection) - s.apertureRad;
   vec2 edgeChange = vec2(dFdx(sunToEdge), dFdy(sunToEdge));
   s.sunEdgeSpreadRad = sqrt(dot(edgeChange, edgeChange) / 12.0);
   s.sunHorizonVarianceRad2 = 0.0;
