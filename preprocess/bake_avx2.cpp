@@ -5,7 +5,8 @@
 // same operations in the same order, and no fused multiply-adds. The
 // functions target AVX2 without FMA, and so must any added here: where FMA
 // is enabled GCC fuses the intrinsics' multiplies and adds too, which
-// changed 0.23 % of a 1024² bake's texels (docs/performance.md, session 4).
+// changed 0.23 % of a 1024² bake's texels (docs/baking.md, "Alternatives
+// measured").
 // The file is compiled for plain x86-64; only these functions are AVX2
 // code, so nothing in it that the linker may share with other files is.
 #include <algorithm>
