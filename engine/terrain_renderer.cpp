@@ -40,12 +40,6 @@ constexpr VkFormat kTransferFormat = VK_FORMAT_R16G16B16A16_SFLOAT;
 constexpr VkFormat kHistoryMeansFormat = VK_FORMAT_R16G16B16A16_SFLOAT;
 constexpr VkFormat kHistoryPointsFormat = VK_FORMAT_R32G32B32A32_SFLOAT;
 
-bool isDebug(ShadingMode mode) {
-  return mode == ShadingMode::DebugVisible || mode == ShadingMode::DebugBentNormal ||
-         mode == ShadingMode::DebugSunFraction || mode == ShadingMode::DebugSkyFill ||
-         mode == ShadingMode::DebugObscurance || mode == ShadingMode::DebugTransfer;
-}
-
 // The modes whose picture W changes: the AAL sky fill (docs/design.md §5) and
 // the O/W views. The baselines keep their own ambient term.
 bool usesTransfer(ShadingMode mode) {
@@ -175,6 +169,12 @@ std::vector<int32_t> variantConstants(ShadingMode mode, int albedoSource, bool d
 }
 
 }  // namespace
+
+bool isDebugMode(ShadingMode mode) {
+  return mode == ShadingMode::DebugVisible || mode == ShadingMode::DebugBentNormal ||
+         mode == ShadingMode::DebugSunFraction || mode == ShadingMode::DebugSkyFill ||
+         mode == ShadingMode::DebugObscurance || mode == ShadingMode::DebugTransfer;
+}
 
 // Pipelines are made for the variants frames ask for (shading mode, albedo
 // source, display or HDR output, texture paging) and kept: switching modes
@@ -484,7 +484,7 @@ bool TerrainRenderer::writeUniforms(const TerrainScene& scene, const FrameSettin
 
   u.extent = glm::ivec2(glm::uvec2(extent_.width, extent_.height));
   u.previousExtent = glm::ivec2(glm::uvec2(previousExtent_.width, previousExtent_.height));
-  u.rawOutput = isDebug(s.mode) ? 1 : 0;
+  u.rawOutput = isDebugMode(s.mode) ? 1 : 0;
   const ObscuranceSettings& o = s.obscurance;
   const bool obscurance = o.enabled && usesTransfer(s.mode);
   if (obscurance) {

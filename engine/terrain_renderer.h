@@ -77,6 +77,10 @@ struct FrameSettings {
   uint64_t horizonRelayTexelsPerFrame = 0;
 };
 
+// The debug views, whose display values are the raw values clamped to
+// [0, 1] instead of tone-mapped radiance.
+bool isDebugMode(ShadingMode mode);
+
 struct FrameResult {
   uint32_t width = 0, height = 0;
   std::vector<uint8_t> display;  // RGBA8, sRGB encoded (debug modes: raw values)

@@ -15,6 +15,7 @@
 #include <CLI/CLI.hpp>
 
 #include "aperture/engine/screenshot.h"
+#include "aperture/engine/supersampling.h"
 #include "aperture/engine/terrain_renderer.h"
 #include "aperture/engine/terrain_scene.h"
 #include "aperture/engine/vk/device.h"
@@ -68,6 +69,7 @@ struct Options {
   size_t triangleBudget = 2'000'000;
   double lodErrorPixels = aal::LodSettings{}.maxErrorPixels;
   int anisotropy = aal::kDefaultFootprintProbes;
+  uint32_t supersample = 1;
   uint32_t maxTileTexels = 0;
   bool stats = false;
   bool quiet = false;
@@ -187,6 +189,7 @@ aal::ComparisonOptions comparisonOptions(const Options& o,
   c.skyRays = o.referenceSkyRays;
   c.subpixels = o.referenceSubpixels;
   c.albedo = albedoValue.value_or(glm::vec3(aal::kReferenceTerrainAlbedo));
+  c.supersample = o.supersample;
   return c;
 }
 
@@ -335,6 +338,18 @@ void setSequenceFrame(const Options& o, const Sequence& seq, const aal::Heightfi
   }
 }
 
+// A frame of -o at the output's size: with --supersample N rendered at N
+// times the width and height (the renderer's size) and averaged down
+// (engine/supersampling.h); an explicit --lod-error stays in output pixels.
+aal::FrameResult renderOutputFrame(const Options& o, const aal::TerrainScene& scene,
+                                   aal::TerrainRenderer& renderer, aal::FrameSettings settings) {
+  const bool linear = aal::wantsLinearOutput(o.output);
+  if (o.supersample <= 1) return renderer.render(scene, settings, linear);
+  settings.lod.maxErrorPixels *= static_cast<double>(o.supersample);
+  return aal::downsampleFrame(renderer.render(scene, settings, true), o.supersample,
+                              settings.lighting.exposure, aal::isDebugMode(settings.mode), linear);
+}
+
 // The MP4 a sequence of PNG frames makes with ffmpeg: OUT.mp4 (none for
 // EXR frames).
 std::string moviePath(const Options& o) {
@@ -353,8 +368,7 @@ int renderSequence(const Options& o, const Sequence& seq, const aal::Heightfield
   for (int i = 0; i < seq.frames; ++i) {
     setSequenceFrame(o, seq, field, i, settings);
     aal::throwIfInterrupted();
-    const aal::FrameResult frame =
-        renderer.render(scene, settings, aal::wantsLinearOutput(o.output));
+    const aal::FrameResult frame = renderOutputFrame(o, scene, renderer, settings);
     aal::writeFrame(aal::sequenceFramePath(o.output, i, seq.frames), frame);
     bar.update(double(i + 1) / seq.frames);
   }
@@ -467,6 +481,10 @@ int run(const Options& o) {
   if ((reference || !o.compare.empty()) && !o.albedo.empty()) {
     throw aal::InputError(
         "the reference renderer knows only a constant albedo: use --albedo-value, not --albedo");
+  }
+  if (reference && o.supersample > 1) {
+    throw aal::InputError(
+        "--supersample is for the GPU's modes: the reference takes --reference-subpixels");
   }
   if (reference && !o.compare.empty()) {
     throw aal::InputError("--compare renders the reference itself: leave out --mode reference");
@@ -598,10 +616,17 @@ int run(const Options& o) {
 
   aal::Instance instance;
   aal::Device device(instance, o.device);
-  if (width > device.properties().limits.maxImageDimension2D ||
-      height > device.properties().limits.maxImageDimension2D) {
+  const uint32_t largest = device.properties().limits.maxImageDimension2D;
+  if (width > largest || height > largest) {
     throw aal::InputError("--size " + o.size + " exceeds the device's largest image (" +
-                          std::to_string(device.properties().limits.maxImageDimension2D) + ")");
+                          std::to_string(largest) + ")");
+  }
+  if (uint64_t(width) * o.supersample > largest || uint64_t(height) * o.supersample > largest) {
+    throw aal::InputError(
+        "--size " + o.size + " with --supersample " + std::to_string(o.supersample) + " renders " +
+        std::to_string(uint64_t(width) * o.supersample) + "x" +
+        std::to_string(uint64_t(height) * o.supersample) + ", beyond the device's largest image (" +
+        std::to_string(largest) + "): a smaller --size or --supersample");
   }
   if (o.maxTileTexels > 0) {
     // A forced tile size that needs more texture pages than the renderer
@@ -643,14 +668,13 @@ int run(const Options& o) {
     }
     horizonMaps.push_back(std::move(horizons));
   }
-  aal::TerrainRenderer renderer(device, width, height);
+  aal::TerrainRenderer renderer(device, width * o.supersample, height * o.supersample);
   if (!o.compare.empty()) {
     return runComparison(o, field, *scene, renderer, settings, albedoValue, device, horizonMaps,
                          sequence);
   }
   if (sequence) return renderSequence(o, *sequence, field, *scene, renderer, settings);
-  const aal::FrameResult frame =
-      renderer.render(*scene, settings, aal::wantsLinearOutput(o.output));
+  const aal::FrameResult frame = renderOutputFrame(o, *scene, renderer, settings);
   aal::writeFrame(o.output, frame);
 
   if (o.stats) {
@@ -824,6 +848,13 @@ int main(int argc, char** argv) {
       ->check(CLI::Range(1e-3, 1e3));
   app.add_option("--anisotropy", o.anisotropy, aal::kAnisotropyHelp)
       ->check(CLI::Range(1, aal::kMaxFootprintProbes))
+      ->capture_default_str();
+  app.add_option("--supersample", o.supersample,
+                 "N x N shading points per pixel, averaged (linear radiance, then the tone map): "
+                 "smooth edges, and less shimmer in --camera-path movies, for about N^2 the "
+                 "time and memory of a frame (docs/comparison.md, \"Shimmer in motion\"). "
+                 "With --compare: the GPU modes' frames")
+      ->check(CLI::Range(1u, aal::kMaxSupersampling))
       ->capture_default_str();
   app.add_option("--max-tile", o.maxTileTexels,
                  "split the DEM's textures into tiles of at most N texels across, rounded down "

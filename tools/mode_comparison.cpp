@@ -10,6 +10,7 @@
 #include <stdexcept>
 
 #include "aperture/engine/screenshot.h"
+#include "aperture/engine/supersampling.h"
 #include "aperture/terrain/io/atomic_file.h"
 #include "aperture/terrain/light/atmosphere.h"
 #include "aperture/terrain/light/tone_map.h"
@@ -45,10 +46,29 @@ FrameSettings modeSettings(const FrameSettings& settings, const ComparedMode& m,
   s.lod.maxErrorPixels = s.lod.maxErrorPixels > 0
                              ? std::min(s.lod.maxErrorPixels, kComparisonLodErrorPixels)
                              : kComparisonLodErrorPixels;
+  // In the output's pixels: a supersampled frame's are smaller.
+  s.lod.maxErrorPixels *= static_cast<double>(options.supersample);
   s.mode = m.mode;
   s.obscurance.enabled = m.obscurance;
   s.albedoValue = options.albedo;
   return s;
+}
+
+// The reference's size: the renderer's, less its supersampling.
+uint32_t outputWidth(const TerrainRenderer& renderer, const ComparisonOptions& options) {
+  return renderer.width() / std::max(options.supersample, 1u);
+}
+uint32_t outputHeight(const TerrainRenderer& renderer, const ComparisonOptions& options) {
+  return renderer.height() / std::max(options.supersample, 1u);
+}
+
+// A mode's frame at the reference's size, linear values included.
+FrameResult modeFrame(TerrainRenderer& renderer, const TerrainScene& scene, const FrameSettings& s,
+                      const ComparisonOptions& options) {
+  FrameResult frame = renderer.render(scene, s, true);
+  if (options.supersample <= 1) return frame;
+  return downsampleFrame(frame, options.supersample, s.lighting.exposure, isDebugMode(s.mode),
+                         true);
 }
 
 }  // namespace
@@ -100,9 +120,10 @@ Comparison compareModes(TerrainRenderer& renderer, const TerrainScene& scene,
                         const std::function<void(double)>& progress) {
   Comparison c;
   const auto start = std::chrono::steady_clock::now();
-  c.reference = renderReference(
-      field, referenceSettingsFor(settings, renderer.width(), renderer.height(), options),
-      progress);
+  c.reference = renderReference(field,
+                                referenceSettingsFor(settings, outputWidth(renderer, options),
+                                                     outputHeight(renderer, options), options),
+                                progress);
   c.referenceSeconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   c.mask = interiorMask(c.reference.terrain, c.reference.width, c.reference.height);
@@ -111,7 +132,7 @@ Comparison compareModes(TerrainRenderer& renderer, const TerrainScene& scene,
     if (m.prepare) m.prepare();
     ModeError e;
     e.mode = m.name;
-    e.frame = renderer.render(scene, modeSettings(settings, m, options), true);
+    e.frame = modeFrame(renderer, scene, modeSettings(settings, m, options), options);
     const std::vector<glm::vec3> gpu = linearRgb(e.frame);
     e.relativeRmse = relativeRmse(gpu, c.reference.radiance, c.mask);
     double sum = 0;
@@ -141,8 +162,8 @@ void measureShimmer(Comparison& c, TerrainRenderer& renderer, const TerrainScene
   }
   ShimmerMeter reference;
   std::vector<ShimmerMeter> meters(modes.size());
-  ReferenceSettings r =
-      referenceSettingsFor(settings, renderer.width(), renderer.height(), options);
+  ReferenceSettings r = referenceSettingsFor(settings, outputWidth(renderer, options),
+                                             outputHeight(renderer, options), options);
   // Frame by frame, each mode after the reference: one reference frame and
   // two of each mode's are held at a time.
   for (size_t f = 0; f < cameras.size(); ++f) {
@@ -154,7 +175,7 @@ void measureShimmer(Comparison& c, TerrainRenderer& renderer, const TerrainScene
       if (modes[i].prepare) modes[i].prepare();
       FrameSettings s = modeSettings(settings, modes[i], options);
       s.camera = cameras[f];
-      meters[i].addFrame(linearRgb(renderer.render(scene, s, true)), mask);
+      meters[i].addFrame(linearRgb(modeFrame(renderer, scene, s, options)), mask);
     }
     if (progress) progress(double(f + 1) / double(cameras.size()));
   }

@@ -43,6 +43,10 @@ struct ComparisonOptions {
   // albedoValue): the reference knows only a constant.
   glm::vec3 albedo{0.2f};
   bool interreflection = true;
+  // The GPU modes' points per pixel per axis (engine/supersampling.h): the
+  // renderer is `supersample` times the reference's width and height, and
+  // each mode's frame is averaged down to it.
+  uint32_t supersample = 1;
 };
 
 // The reference's settings for a GPU frame: same camera, sun, sky, haze,

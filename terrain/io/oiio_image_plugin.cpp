@@ -120,8 +120,11 @@ std::string write(const std::string& path, int width, int height, int channels, 
   return guarded([&]() -> std::string {
     auto out = OIIO::ImageOutput::create(path);
     if (!out) return OIIO::geterror();
-    const OIIO::ImageSpec spec(width, height, channels,
-                               floatFile ? OIIO::TypeDesc::FLOAT : OIIO::TypeDesc::UINT8);
+    OIIO::ImageSpec spec(width, height, channels,
+                         floatFile ? OIIO::TypeDesc::FLOAT : OIIO::TypeDesc::UINT8);
+    // 8-bit samples' colour is not multiplied by their alpha (as PNG stores
+    // it): without this the writer would divide it by alpha once more.
+    if (!floatFile) spec.attribute("oiio:UnassociatedAlpha", 1);
     // Encoded in memory, then written with checked system calls.
     std::vector<unsigned char> bytes;
     OIIO::Filesystem::IOVecOutput proxy(bytes);

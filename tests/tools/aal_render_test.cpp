@@ -103,6 +103,7 @@ TEST(AalRender, BadInputExitsWithTwo) {
         " -o " + quoted(dir.path() / "x.jpg"), " -o " + quoted(dir.path() / "no" / "x.png"),
         out + " --time yesterday", out + " --sun-azimuth 10", out + " --mode magic",
         out + " --camera 1,2", out + " --anisotropy 0", out + " --anisotropy 5",
+        out + " --supersample 0", out + " --supersample 5", out + " --size 9000x8 --supersample 2",
         out + " --albedo " + quoted(dir.path() / "missing.png"),
         out + " --aperture " + quoted(dir.path() / "missing.exr")}) {
     const auto r = render(dir, args);
@@ -875,6 +876,51 @@ TEST(AalRender, HorizonModeTakesTheBakesDirectionalHorizons) {
                fs::exists(dir.path() / "n.png"));
 }
 
+TEST(AalRender, SupersampleAveragesItsPointsIntoTheAskedSize) {
+  // 3 x 3 points per pixel at 64 x 36 against one point per pixel at
+  // 192 x 108 averaged over each 3 x 3 block by hand: the colour over the
+  // block's terrain (alpha unassociated), the alpha its coverage. They differ
+  // by the tone map taken after the mean instead of before it, and rounding.
+  TempDir dir;
+  const fs::path big = dir.path() / "big.png", smooth = dir.path() / "smooth.png";
+  const std::string common = " -q --background transparent";
+  ASSERT_EQ(render(dir, "-o " + quoted(big) + " --size 192x108" + common).exitCode, 0);
+  const auto r = render(dir, "-o " + quoted(smooth) + " --size 64x36 --supersample 3" + common);
+  ASSERT_EQ(r.exitCode, 0) << r.out;
+  const std::vector<uint8_t> a = pixelsOf(big), b = pixelsOf(smooth);
+  ASSERT_EQ(a.size(), 192u * 108 * 4);
+  ASSERT_EQ(b.size(), 64u * 36 * 4);
+  double difference = 0, worst = 0;
+  size_t partial = 0;
+  for (size_t y = 0; y < 36; ++y) {
+    for (size_t x = 0; x < 64; ++x) {
+      double covered[3] = {}, all[3] = {}, alpha = 0;
+      for (size_t j = 0; j < 3; ++j) {
+        for (size_t i = 0; i < 3; ++i) {
+          const uint8_t* p = &a[4 * ((3 * y + j) * 192 + 3 * x + i)];
+          for (int c = 0; c < 3; ++c) {
+            covered[c] += p[3] / 255.0 * p[c];
+            all[c] += p[c];
+          }
+          alpha += p[3] / 255.0;
+        }
+      }
+      const uint8_t* q = &b[4 * (y * 64 + x)];
+      for (int c = 0; c < 3; ++c) {
+        const double expected = alpha > 0 ? covered[c] / alpha : all[c] / 9;
+        difference += std::abs(q[c] - expected);
+        worst = std::max(worst, std::abs(q[c] - expected));
+      }
+      EXPECT_NEAR(q[3], 255 * alpha / 9, 0.51) << x << "," << y;
+      partial += q[3] > 0 && q[3] < 255;
+    }
+  }
+  EXPECT_LT(difference / (3.0 * 64 * 36), 0.5);
+  EXPECT_LT(worst, 3.0);
+  // The silhouette against the sky partly covers pixels.
+  EXPECT_GT(partial, 20u);
+}
+
 TEST(AalRender, ReferenceAndCompareRefuseWhatTheyCannotDo) {
   TempDir dir;
   const fs::path albedo = dir.path() / "albedo.png";
@@ -886,6 +932,7 @@ TEST(AalRender, ReferenceAndCompareRefuseWhatTheyCannotDo) {
       {"--compare " + quoted(dir.path() / "c") + " --mode reference", "leave out --mode reference"},
       {out + " --compare " + quoted(dir.path() / "c"), "one of them"},
       {"--size 8x8", "one of them"},
+      {out + " --mode reference --supersample 2", "--reference-subpixels"},
   };
   for (const auto& [args, message] : cases) {
     const auto r = render(dir, args);

@@ -1,0 +1,29 @@
+// Supersampling: a frame rendered at `factor` times the output's width and
+// height, averaged back to the output's size. The renderer shades one point
+// per pixel; where the picture varies within a pixel (the mesh's occluding
+// edges, detail the textures' filtering cannot average for a nonlinear
+// shading) that point aliases and shimmers in motion, which only more points
+// per pixel remove (docs/comparison.md, "Shimmer in motion").
+#pragma once
+
+#include <cstdint>
+
+#include "aperture/engine/terrain_renderer.h"
+
+namespace aal {
+
+// Largest supersampling factor the tools offer (factor² points per pixel).
+inline constexpr uint32_t kMaxSupersampling = 4;
+
+// The output frame of `big`, rendered with its linear radiance at `factor`
+// times the width and height: each pixel the mean of its factor × factor
+// linear values (alpha: the terrain's coverage; colour: the mean over the
+// covered points, alpha being unassociated), displayed as the
+// renderer displays them (toneMap at `exposure`, or for debug views, `raw`,
+// the values clamped to [0, 1]; 8 bits, rounded). `keepLinear`: whether the
+// result carries the averaged linear values. Throws std::invalid_argument
+// when `big` has no linear values or a size that is not a multiple of factor.
+FrameResult downsampleFrame(const FrameResult& big, uint32_t factor, float exposure, bool raw,
+                            bool keepLinear);
+
+}  // namespace aal
