@@ -1,9 +1,10 @@
 // How well do encodings of the directional horizons (terrain/io/horizon_map.h)
 // predict a low sun's visible fraction between their stored directions?
-// A proxy for the horizon mode's error (docs/comparison.md, issue 18) that
-// needs no renderer: per texel, the direct light's Lambert-weighted
-// visible fraction from an encoding against the one from the sweep's exact
-// horizon in the sun's own azimuth, as an RMS over the DEM relative to that
+// A proxy for the horizon mode's error (docs/comparison.md, "Directional
+// horizons for the sun") that needs no renderer: per texel, the direct
+// light's Lambert-weighted visible fraction from an encoding against the
+// one from the sweep's exact horizon in the sun's own azimuth, as an RMS
+// over the DEM relative to that
 // of baseline-lambert (no shadow), for sun elevations 3, 5, 8, 12, 20, 30
 // and 45 degrees and the compass azimuths 1, 6, ..., 356 (never a stored
 // direction; or the azimuths given).
