@@ -368,8 +368,9 @@ int main(int argc, char** argv) {
       ->check(CLI::IsMember({4, 8, 12, 16}))
       ->capture_default_str();
   app.add_option("--horizon-bits", o.horizonBits,
-                 "bits per direction and texel on the device: 8 (elevations to 90 degrees) or 4 "
-                 "(to 45 degrees, coarser; 16 directions in 8 bytes, docs/comparison.md)")
+                 "bits of each horizon code: 8 (elevations to 90 degrees) or 4 (to 45 degrees, "
+                 "coarser: more error, and no smaller, as a code takes a byte either way; "
+                 "docs/comparison.md)")
       ->check(CLI::IsMember({4, 8}))
       ->capture_default_str();
   app.add_option(

@@ -20,20 +20,22 @@ namespace aal {
 // (RGBA8 layers on the device) up to kMaxHorizonDirections.
 constexpr int kHorizonDirections = 8;
 constexpr int kMaxHorizonDirections = 16;
-// What aal-bake --horizons writes unless asked: 16 directions of 4-bit codes,
-// 8 B per texel as 8 of 8 bits, with the horizon mode's error within 0.1
-// points of 16 of 8 bits and below 8 of 8 bits' (mean over 16 low suns,
-// docs/comparison.md: 3.52, 3.44 and 4.17 %). The in-memory bakes of
-// aal-view and Python keep kHorizonDirections of kHorizonBits.
+// What aal-bake --horizons writes unless asked: 16 directions of 8-bit codes,
+// the horizon mode's lowest error (mean over 16 low suns, docs/comparison.md:
+// 3.44 % against 3.52 % for 16 of 4 bits and 4.17 % for 8 of 8 bits). A code
+// takes a byte whatever its bits, in the file and the host's memory, and the
+// device holds only the decoded pair beside the sun, so 4-bit codes save
+// nothing. The in-memory bakes of aal-view and Python keep kHorizonDirections
+// of kHorizonBits (half the host memory of 16 directions).
 constexpr int kBakeToolHorizonDirections = 16;
-constexpr int kBakeToolHorizonBits = 4;
+constexpr int kBakeToolHorizonBits = 8;
 bool validHorizonDirections(int directions);
 
 // The stored elevation range. 8-bit codes 0..255 map to [kHorizonMinRad,
 // kHorizonMaxRad] with code = 255 sqrt((e - min) / (max - min)), so steps
 // are finest near the horizontal where low suns are (0.11 degrees at 0,
-// 0.26 at 10, 0.43 at 30 degrees). 4-bit codes 0..15 (twice the directions
-// in the same memory, docs/comparison.md) spend their 16 levels on
+// 0.26 at 10, 0.43 at 30 degrees). 4-bit codes 0..15 (one byte each all the
+// same: a format for a packed store, docs/comparison.md) spend their 16 levels on
 // [kHorizonMinRad, kHorizon4BitMaxRad] with code = 15 ((e - min) / (max -
 // min))^(2/3): levels 1.9 degrees apart near the horizontal, 3.1 at 10
 // degrees, 4.6 at 40; higher horizons read as 45 degrees (a sun above 45 degrees is

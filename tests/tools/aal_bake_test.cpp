@@ -96,27 +96,27 @@ TEST(AalBake, WritesTheDirectionalHorizons) {
   const HorizonMap map = readHorizonMap(horizons);
   EXPECT_EQ(map.width, 40);
   EXPECT_EQ(map.height, 40);
-  // 16 directions of 4 bits by default (kBakeToolHorizonDirections, ...Bits).
+  // 16 directions of 8 bits by default (kBakeToolHorizonDirections, ...Bits).
   EXPECT_EQ(map.directions, 16);
-  EXPECT_EQ(map.bits, 4);
+  EXPECT_EQ(map.bits, 8);
   BakeOptions o;
   o.azimuths = 16;
   o.horizons = true;
   o.horizonDirections = 16;
-  o.horizonBits = 4;
+  o.horizonBits = 8;
   EXPECT_EQ(map.codes, bakeApertures(loadDem(dem.string()), o).horizons.codes);
-  // 8 directions of 8 bits when asked.
+  // 8 directions of 4 bits when asked.
   const fs::path eight = dir.path() / "eight.horizons";
   const auto r8 = runTool("aal-bake", quoted(dem) + " -o " + quoted(dir.path() / "c.exr") +
-                                          " --azimuths 16 --horizon-directions 8 --horizon-bits 8 "
+                                          " --azimuths 16 --horizon-directions 8 --horizon-bits 4 "
                                           "--horizons " +
                                           quoted(eight) + " -q");
   ASSERT_EQ(r8.exitCode, 0) << r8.out;
   const HorizonMap eightMap = readHorizonMap(eight);
-  EXPECT_EQ(eightMap.bits, 8);
+  EXPECT_EQ(eightMap.bits, 4);
   EXPECT_EQ(eightMap.directions, 8);
   o.horizonDirections = 8;
-  o.horizonBits = 8;
+  o.horizonBits = 4;
   EXPECT_EQ(eightMap.codes, bakeApertures(loadDem(dem.string()), o).horizons.codes);
   // Horizons the bake cannot give, or that would overwrite another output.
   for (const std::string& args :
