@@ -851,7 +851,7 @@ int main(int argc, char** argv) {
       ->capture_default_str();
   app.add_option("--supersample", o.supersample,
                  "N x N shading points per pixel, averaged (linear radiance, then the tone map): "
-                 "smooth edges, and less shimmer in --camera-path movies, for about N^2 the "
+                 "smooth edges, and less shimmer in --camera-path movies, for up to N^2 the "
                  "time and memory of a frame (docs/comparison.md, \"Shimmer in motion\"). "
                  "With --compare: the GPU modes' frames")
       ->check(CLI::Range(1u, aal::kMaxSupersampling))
