@@ -15,6 +15,7 @@
 
 #include <tbb/global_control.h>
 
+#include "aperture/engine/supersampling.h"
 #include "aperture/engine/terrain_renderer.h"
 #include "aperture/engine/terrain_scene.h"
 #include "aperture/engine/vk/device.h"
@@ -56,6 +57,7 @@ struct RenderArguments {
   int obscuranceSamples = ObscuranceSettings{}.samples, obscuranceSteps = 1;
   std::optional<double> waterLevelM;
   int anisotropy = kDefaultFootprintProbes;
+  uint32_t supersample = 1;  // points per pixel per axis (engine/supersampling.h)
   double exaggeration = 1.0;
   int device = -1;
   int threads = 0;
@@ -133,6 +135,12 @@ Frame renderArray(Task& task, DemArray dem, const RenderArguments& a) {
       throw InputError("size " + std::to_string(a.width) + "x" + std::to_string(a.height) +
                        " exceeds the device's largest image (" + std::to_string(largest) + ")");
     }
+    if (uint64_t{a.width} * a.supersample > largest ||
+        uint64_t{a.height} * a.supersample > largest) {
+      throw InputError("size " + std::to_string(a.width) + "x" + std::to_string(a.height) +
+                       " with supersample " + std::to_string(a.supersample) +
+                       " exceeds the device's largest image (" + std::to_string(largest) + ")");
+    }
     TerrainScene scene(device, field, baked.aperture, nullptr, kTriangleBudget, TerrainTiling{});
     baked.aperture = {};
     if (options.horizons) {
@@ -141,8 +149,16 @@ Frame renderArray(Task& task, DemArray dem, const RenderArguments& a) {
       scene.setHorizons(device, horizons, horizonPairFor(horizons->directions, azimuth, -1));
     }
     task.throwIfCancelled();
-    TerrainRenderer renderer(device, a.width, a.height);
-    FrameResult frame = renderer.render(scene, settings, /*wantLinear=*/false);
+    TerrainRenderer renderer(device, a.width * a.supersample, a.height * a.supersample);
+    FrameResult frame;
+    if (a.supersample > 1) {
+      // As aal-render --supersample: an explicit LOD error stays in output pixels.
+      settings.lod.maxErrorPixels *= static_cast<double>(a.supersample);
+      frame = downsampleFrame(renderer.render(scene, settings, true), a.supersample,
+                              settings.lighting.exposure, isDebugMode(settings.mode), false);
+    } else {
+      frame = renderer.render(scene, settings, /*wantLinear=*/false);
+    }
     out.rgba = std::move(frame.display);
   }  // the device's destruction is validated too
   if (instance.validationEnabled() && instance.validationLog().count() > 0) {
@@ -190,8 +206,8 @@ void addRenderFunction(py::module_& m) {
          std::optional<double> ev, std::optional<double> visibilityKm, const std::string& mode,
          bool transparent, std::optional<std::array<double, 3>> albedo, bool obscurance,
          std::optional<double> obscuranceRadius, int obscuranceSamples, int obscuranceSteps,
-         std::optional<double> waterLevel, int anisotropy, int device, int threads,
-         const py::object& progress) {
+         std::optional<double> waterLevel, int anisotropy, uint32_t supersample, int device,
+         int threads, const py::object& progress) {
         RenderArguments a;
         a.width = width;
         a.height = height;
@@ -216,6 +232,7 @@ void addRenderFunction(py::module_& m) {
         a.obscuranceSteps = obscuranceSteps;
         a.waterLevelM = waterLevel;
         a.anisotropy = anisotropy;
+        a.supersample = supersample;
         a.device = device;
         a.threads = threads;
         return render(dem, std::move(a), progress);
@@ -225,8 +242,8 @@ void addRenderFunction(py::module_& m) {
       py::arg("lat"), py::arg("lon"), py::arg("sun_radius"), py::arg("turbidity"), py::arg("ev"),
       py::arg("visibility"), py::arg("mode"), py::arg("transparent"), py::arg("albedo"),
       py::arg("obscurance"), py::arg("obscurance_radius"), py::arg("obscurance_samples"),
-      py::arg("obscurance_steps"), py::arg("water_level"), py::arg("anisotropy"), py::arg("device"),
-      py::arg("threads"), py::arg("progress"),
+      py::arg("obscurance_steps"), py::arg("water_level"), py::arg("anisotropy"),
+      py::arg("supersample"), py::arg("device"), py::arg("threads"), py::arg("progress"),
       "aal-render's frame of a _Dem as RGBA8 (H, W, 4). Use aperture.render.");
 }
 

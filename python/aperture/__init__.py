@@ -202,7 +202,8 @@ def render(dem, cell_size, *, size=(1280, 720), camera=None, look_at=None, fov=4
            sun_radius=_SUN_RADIUS_DEG, turbidity=_DEFAULT_TURBIDITY, ev=None, visibility=None,
            mode="approx", exaggeration=1.0, background="sky", albedo=None, obscurance=True,
            obscurance_radius=None, obscurance_samples=16, obscurance_steps=1, water_level=None,
-           anisotropy=3, z_scale=1.0, nodata=None, device=None, threads=None, progress=None):
+           anisotropy=3, supersample=1, z_scale=1.0, nodata=None, device=None, threads=None,
+           progress=None):
     """Renders a DEM lit by the sun and the sky, headless on Vulkan, as aal-render does.
 
     The aperture map is baked in memory first (aal-render's options: 64 azimuths, open edge;
@@ -232,6 +233,9 @@ def render(dem, cell_size, *, size=(1280, 720), camera=None, look_at=None, fov=4
     anisotropy    texture filtering along each pixel's footprint, 1 to 4 probes (default 3), as
                   aal-render's --anisotropy (1: one trilinear fetch, fastest, blurred in
                   oblique views).
+    supersample   N x N shading points per pixel, averaged (1 to 4, default 1), as aal-render's
+                  --supersample: smooth edges and no shimmer in a sequence of frames, for up
+                  to N^2 the time.
     device        Vulkan device index (None: the best one).
     z_scale, nodata, threads, progress  as for bake().
 
@@ -272,6 +276,7 @@ def render(dem, cell_size, *, size=(1280, 720), camera=None, look_at=None, fov=4
         **_obscurance_arguments(obscurance_radius, obscurance_samples, obscurance_steps),
         water_level=_optional_float("water_level", water_level),
         anisotropy=_anisotropy_value(anisotropy),
+        supersample=_supersample_value(supersample),
         device=-1 if device is None else int(_integer("device", device)),
         threads=_inputs.threads_value(threads), progress=_inputs.progress_value(progress))
 
@@ -339,6 +344,13 @@ def _integer(name, value):
     if not -2**31 <= value < 2**31:
         raise ValueError(f"{name} is out of range, got {value}")
     return value
+
+
+def _supersample_value(value):
+    value = _integer("supersample", value)
+    if not 1 <= value <= 4:
+        raise ValueError(f"supersample must be 1 to 4 points per pixel and axis, got {value}")
+    return int(value)
 
 
 def _anisotropy_value(value):

@@ -97,6 +97,7 @@ def test_relief_needs_a_surface():
     ({"albedo": (1, 2, 3)}, "albedo must be A or (R, G, B) with values in [0, 1]"),
     ({"exaggeration": 0}, "exaggeration must be in [0.01, 100]"),
     ({"anisotropy": 5}, "anisotropy must be 1 to 4 probes, got 5"),
+    ({"supersample": 0}, "supersample must be 1 to 4 points per pixel and axis, got 0"),
     ({"time": "2024-13-01T00:00Z"}, "time must be ISO 8601"),
 ])
 def test_render_refuses_bad_options_before_any_work(options, message):

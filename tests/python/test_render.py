@@ -87,6 +87,20 @@ def test_equals_aal_render_bit_for_bit(tmp_path, tool_env):
     np.testing.assert_array_equal(one, expected_one)
     assert not np.array_equal(one, image)
 
+    # --supersample and supersample= too: 2 x 2 points per pixel, the same pixels as the tool's.
+    run_tool("aal-render", tmp_path / "dem.tif", "-o", tmp_path / "four.png", "--size", "96x64",
+             "--sun-azimuth", "200", "--sun-elevation", "20", "--exaggeration", "2",
+             "--supersample", "2", "-q", env=tool_env)
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", rasterio.errors.NotGeoreferencedWarning)
+        with rasterio.open(tmp_path / "four.png") as png:
+            expected_four = np.moveaxis(png.read(), 0, 2)
+    four = aperture.render(dem, info.cell_size, size=(96, 64), sun_azimuth=200,
+                           sun_elevation=20, exaggeration=2, supersample=2)
+    assert four.shape == image.shape
+    np.testing.assert_array_equal(four, expected_four)
+    assert not np.array_equal(four, image)
+
 
 def test_no_vulkan_device_is_a_runtime_error():
     # A child process whose Vulkan loader finds no driver.
