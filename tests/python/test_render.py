@@ -58,47 +58,35 @@ def test_equals_aal_render_bit_for_bit(tmp_path, tool_env):
                             None, 1.0, "float32", {})
     rio.write(tmp_path / "dem.tif", z, like=placed)
     tool_env["AAL_VALIDATION"] = "1"
-    run_tool("aal-render", tmp_path / "dem.tif", "-o", tmp_path / "frame.png", "--size", "96x64",
-             "--sun-azimuth", "200", "--sun-elevation", "20", "--exaggeration", "2", "-q",
-             env=tool_env)
     import rasterio
     import warnings
-    with warnings.catch_warnings():
-        warnings.simplefilter("ignore", rasterio.errors.NotGeoreferencedWarning)
-        with rasterio.open(tmp_path / "frame.png") as png:
-            expected = np.moveaxis(png.read(), 0, 2)
+
+    def tool_frame(name, *options):
+        run_tool("aal-render", tmp_path / "dem.tif", "-o", tmp_path / name, "--size", "96x64",
+                 "--sun-azimuth", "200", "--sun-elevation", "20", "--exaggeration", "2",
+                 *options, "-q", env=tool_env)
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore", rasterio.errors.NotGeoreferencedWarning)
+            with rasterio.open(tmp_path / name) as png:
+                return np.moveaxis(png.read(), 0, 2)
 
     dem, info = rio.read(tmp_path / "dem.tif")
-    image = aperture.render(dem, info.cell_size, size=(96, 64), sun_azimuth=200,
-                            sun_elevation=20, exaggeration=2)
-    np.testing.assert_array_equal(image, expected)
 
+    def module_frame(**options):
+        return aperture.render(dem, info.cell_size, size=(96, 64), sun_azimuth=200,
+                               sun_elevation=20, exaggeration=2, **options)
+
+    image = module_frame()
+    np.testing.assert_array_equal(image, tool_frame("frame.png"))
     # --anisotropy and anisotropy= are one setting: one trilinear fetch blurs the oblique
     # view into another picture, the same in both.
-    run_tool("aal-render", tmp_path / "dem.tif", "-o", tmp_path / "one.png", "--size", "96x64",
-             "--sun-azimuth", "200", "--sun-elevation", "20", "--exaggeration", "2",
-             "--anisotropy", "1", "-q", env=tool_env)
-    with warnings.catch_warnings():
-        warnings.simplefilter("ignore", rasterio.errors.NotGeoreferencedWarning)
-        with rasterio.open(tmp_path / "one.png") as png:
-            expected_one = np.moveaxis(png.read(), 0, 2)
-    one = aperture.render(dem, info.cell_size, size=(96, 64), sun_azimuth=200, sun_elevation=20,
-                          exaggeration=2, anisotropy=1)
-    np.testing.assert_array_equal(one, expected_one)
+    one = module_frame(anisotropy=1)
+    np.testing.assert_array_equal(one, tool_frame("one.png", "--anisotropy", "1"))
     assert not np.array_equal(one, image)
-
     # --supersample and supersample= too: 2 x 2 points per pixel, the same pixels as the tool's.
-    run_tool("aal-render", tmp_path / "dem.tif", "-o", tmp_path / "four.png", "--size", "96x64",
-             "--sun-azimuth", "200", "--sun-elevation", "20", "--exaggeration", "2",
-             "--supersample", "2", "-q", env=tool_env)
-    with warnings.catch_warnings():
-        warnings.simplefilter("ignore", rasterio.errors.NotGeoreferencedWarning)
-        with rasterio.open(tmp_path / "four.png") as png:
-            expected_four = np.moveaxis(png.read(), 0, 2)
-    four = aperture.render(dem, info.cell_size, size=(96, 64), sun_azimuth=200,
-                           sun_elevation=20, exaggeration=2, supersample=2)
+    four = module_frame(supersample=2)
     assert four.shape == image.shape
-    np.testing.assert_array_equal(four, expected_four)
+    np.testing.assert_array_equal(four, tool_frame("four.png", "--supersample", "2"))
     assert not np.array_equal(four, image)
 
 
