@@ -100,18 +100,33 @@ TEST(ImageFiles, ResizesAsOpenImageIo) {
 
 TEST(ImageFiles, WritesAsOpenImageIo) {
   test::TempDir dir;
-  // Bytes: a PNG as ImageOutput wrote it (engine/screenshot.cpp before).
+  // Bytes: a PNG as ImageOutput writes samples whose colour is not
+  // multiplied by their alpha (PNG's own convention; the renderer's frames,
+  // whose supersampled silhouettes have alpha between 0 and 1). Without
+  // "oiio:UnassociatedAlpha" it would divide the colour by alpha.
   std::vector<uint8_t> bytes(6 * 4 * 4);
   for (size_t i = 0; i < bytes.size(); ++i) bytes[i] = static_cast<uint8_t>(i * 11);
   const auto ours = dir.path() / "ours.png", theirs = dir.path() / "theirs.png";
   writeImageFile(ours.string(), 6, 4, 4, bytes.data());
   {
     auto out = OIIO::ImageOutput::create(theirs.string());
-    ASSERT_TRUE(out->open(theirs.string(), OIIO::ImageSpec(6, 4, 4, OIIO::TypeDesc::UINT8)));
+    OIIO::ImageSpec spec(6, 4, 4, OIIO::TypeDesc::UINT8);
+    spec.attribute("oiio:UnassociatedAlpha", 1);
+    ASSERT_TRUE(out->open(theirs.string(), spec));
     ASSERT_TRUE(out->write_image(OIIO::TypeDesc::UINT8, bytes.data()));
     out->close();
   }
   EXPECT_EQ(fileBytes(ours), fileBytes(theirs));
+  {
+    // Stored as given: read back unassociated, every sample is the same.
+    OIIO::ImageSpec config;
+    config.attribute("oiio:UnassociatedAlpha", 1);
+    auto in = OIIO::ImageInput::open(ours.string(), &config);
+    ASSERT_TRUE(in);
+    std::vector<uint8_t> back(bytes.size());
+    ASSERT_TRUE(in->read_image(0, 0, 0, 4, OIIO::TypeDesc::UINT8, back.data()));
+    EXPECT_EQ(back, bytes);
+  }
 
   // Floats rounded to 8 bits: as ImageBuf::write did (tools/cap_error_plot.cpp).
   std::vector<float> floats = randomValues(6 * 4 * 3, -0.2f, 1.2f);
