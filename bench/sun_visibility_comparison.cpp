@@ -1,5 +1,5 @@
 // The sun's visible fraction per texel by each way of storing a texel's sky
-// (issue 18 items 1 and 3), against a brute-force reference: Oat's single
+// (docs/comparison.md), against a brute-force reference: Oat's single
 // aperture (approx and exact cap intersection), the directional horizons of
 // 8 and 16 azimuths (terrain/io/horizon_map.h), and K sector apertures and
 // anti-apertures (preprocess/sector_apertures.h) read three ways, and the
@@ -10,7 +10,7 @@
 //
 //   bench_sun_visibility DEM|fbm
 //
-// `fbm` is the issue's rugged fBm, `aal-synth --size 256 --amplitude 2500
+// `fbm` is docs/comparison.md's rugged fBm, `aal-synth --size 256 --amplitude 2500
 // --feature-size 64`, made in memory.
 //
 // Reference: the sun's disk (radius 0.004653 rad) is cut into 8 vertical
