@@ -1,4 +1,4 @@
-// Aperture map file I/O (issue 16): writing a 1024^2 and a 4096^2 map as
+// Aperture map file I/O: writing a 1024^2 and a 4096^2 map as
 // halves, and reading them back whole (floats) and in row bands (halves, as
 // the renderer streams them). The map is a real bake of a synthetic fBm DEM, so the
 // compression sees bake-like data. Figures: docs/performance.md.

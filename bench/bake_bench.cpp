@@ -1,5 +1,5 @@
-// Baking speed: the sweep on synthetic fBm DEMs. Targets (issue 4, this
-// 2-core machine): 1024^2 at 32 azimuths in <= 0.25 s (>= 1.3e8
+// Baking speed: the sweep on synthetic fBm DEMs. Targets (docs/performance.md,
+// "Baking"; this 2-core machine): 1024^2 at 32 azimuths in <= 0.25 s (>= 1.3e8
 // texel-azimuths/s). Larger sizes: scripts/bench-bake.sh.
 #include <benchmark/benchmark.h>
 

@@ -1,6 +1,6 @@
 // The heights checksum (aal:sourceChecksum, docs/baking.md "Heights
-// checksum") on an N x N field: the byte-serial FNV-1a of maps baked before
-// issue 20 against the row-hash version on 1 thread and on all cores.
+// checksum") on an N x N field: version 1, the byte-serial FNV-1a of older
+// maps, against version 2, the row hash, on 1 thread and on all cores.
 // bench_heightfield_checksum --benchmark_filter=/8192 (docs/performance.md).
 #include <benchmark/benchmark.h>
 #include <tbb/global_control.h>

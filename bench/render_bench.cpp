@@ -1,7 +1,7 @@
 // Frame time of the headless renderer at 1280x720 per shading mode, on the
 // DEM given by AAL_BENCH_DEM (default: the shipped jacksboro DEM), coloured
 // by the image AAL_BENCH_ALBEDO (default: the palette). Target
-// (issue 5): approx within 15% of baseline-lambert.
+// (docs/performance.md, "Rendering"): approx within 15% of baseline-lambert.
 #include <benchmark/benchmark.h>
 
 #include <algorithm>
@@ -64,7 +64,8 @@ struct Fixture {
     // and 16 directions; at 285 in two (the renderer before the rotated
     // layout fetched two layers there; now it re-lays them for rotation 2 in
     // the first frame, docs/rendering.md; docs/performance.md).
-    // AAL_BENCH_SUN_ELEVATION (degrees, default 25): the issue's low suns.
+    // AAL_BENCH_SUN_ELEVATION (degrees, default 25): a low sun, where the
+    // horizon mode differs from approx.
     const char* sunAzimuth = std::getenv("AAL_BENCH_SUN_AZIMUTH");
     const char* sunElevation = std::getenv("AAL_BENCH_SUN_ELEVATION");
     aal::setSunAndSky(settings.lighting, sunAzimuth ? std::atof(sunAzimuth) : 250.0,
@@ -81,7 +82,7 @@ Fixture& fixture() {
 void BM_RenderFrame(benchmark::State& state) {
   Fixture& f = fixture();
   f.settings.mode = static_cast<aal::ShadingMode>(state.range(0));
-  f.settings.obscurance.enabled = false;  // the frame of issue 5; see BM_RenderObscurance
+  f.settings.obscurance.enabled = false;  // the target's frame; see BM_RenderObscurance
   double gpuMs = 0;
   for (auto _ : state) {
     const aal::FrameResult frame = f.renderer->render(*f.scene, f.settings, false);
@@ -123,7 +124,7 @@ BENCHMARK(BM_RenderAnisotropy)
     ->MeasureProcessCPUTime()
     ->UseRealTime();
 
-// Issue 15: the frame over jacksboro from three views (0: the framed start
+// The frame over jacksboro from three views (0: the framed start
 // view, 1: a flight 1.2 km above the ground looking ahead, 2: a lower one
 // in the middle of the DEM) with and without the obscurance passes, at a
 // geometric error of 1, 2, 4 (the default) and 8 pixels. The per-pass GPU
@@ -152,7 +153,7 @@ BENCHMARK(BM_RenderView)
     ->Unit(benchmark::kMillisecond)
     ->UseRealTime();
 
-// The approx frame with the obscurance passes (issue 6) for n = 0 (off), 8,
+// The approx frame with the obscurance passes for n = 0 (off), 8,
 // 16, 32 at half (second argument 1) or full resolution (0). Target: the
 // default n within 1.5x of the frame without the passes. Counters: GPU time
 // of the whole frame and of the obscurance, filter and composite passes.
@@ -182,7 +183,7 @@ BENCHMARK(BM_RenderObscurance)
     ->Unit(benchmark::kMillisecond)
     ->UseRealTime();
 
-// Issue 7: the quadtree LOD flying over synthetic fBm DEMs of 1024^2 to
+// The quadtree LOD flying over synthetic fBm DEMs of 1024^2 to
 // 16384^2 texels (30 m cells; made in memory, never stored), 1280x720, the
 // approx frame without the obscurance passes, the default 2 M triangle
 // budget. The scene has an open sky for apertures (the map's content does

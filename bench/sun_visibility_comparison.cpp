@@ -1,8 +1,8 @@
 // The sun's visible fraction per texel by each way of storing a texel's sky
-// (issue 18 items 1 and 3), against a brute-force reference: Oat's single
+// (docs/comparison.md), against a brute-force reference: Oat's single
 // aperture (approx and exact cap intersection), the directional horizons of
 // 8 and 16 azimuths (terrain/io/horizon_map.h), and K sector apertures and
-// anti-apertures (preprocess/sector_apertures.h) read three ways, and the
+// anti-apertures (bench/sector_apertures.h) read three ways, and the
 // single aperture less the anti-apertures. Prints, per sun and method, the
 // mean |error| and the RMSE of the visible fraction over the texels that
 // face the sun (N.L > 0: elsewhere the Lambert term hides the fraction).
@@ -10,7 +10,7 @@
 //
 //   bench_sun_visibility DEM|fbm
 //
-// `fbm` is the issue's rugged fBm, `aal-synth --size 256 --amplitude 2500
+// `fbm` is docs/comparison.md's rugged fBm, `aal-synth --size 256 --amplitude 2500
 // --feature-size 64`, made in memory.
 //
 // Reference: the sun's disk (radius 0.004653 rad) is cut into 8 vertical
@@ -30,10 +30,10 @@
 #include <tbb/parallel_for.h>
 #include <glm/geometric.hpp>
 
+#include "aperture/bench/sector_apertures.h"
 #include "aperture/preprocess/bake.h"
 #include "aperture/preprocess/bake_terrain.h"
 #include "aperture/preprocess/ray_bake.h"
-#include "aperture/preprocess/sector_apertures.h"
 #include "aperture/terrain/errors.h"
 #include "aperture/terrain/io/dem_loader.h"
 #include "aperture/terrain/io/horizon_map.h"

@@ -18,6 +18,7 @@
 #include "aperture/engine/vk/device.h"
 #include "aperture/engine/vk/upload.h"
 #include "aperture/engine/vk/vk_check.h"
+#include "aperture/terrain/view/height_mips.h"
 
 namespace aal {
 
@@ -65,15 +66,15 @@ RowWriter tileRows(const TerrainTileLayout& t, uint32_t tileX, uint32_t tileY, s
   };
 }
 
-// Mip levels (UploadBatch): the mean of 2 x 2 texels, summed in one fixed
-// order so that a level is the same in every tile that holds it.
+// Mip levels (UploadBatch): the mean of 2 x 2 texels (meanOf2x2), the same
+// in every tile that holds it and in HeightMips.
 void reduceHeights(const unsigned char* upper, const unsigned char* lower, unsigned char* out,
                    uint32_t width) {
   const auto* a = reinterpret_cast<const float*>(upper);
   const auto* b = reinterpret_cast<const float*>(lower);
   auto* o = reinterpret_cast<float*>(out);
   for (uint32_t i = 0; i < width; ++i) {
-    o[i] = ((a[2 * i] + a[2 * i + 1]) + (b[2 * i] + b[2 * i + 1])) * 0.25f;
+    o[i] = meanOf2x2(a[2 * i], a[2 * i + 1], b[2 * i], b[2 * i + 1]);
   }
 }
 
@@ -100,7 +101,7 @@ void reduceApertures(const unsigned char* upper, const unsigned char* lower, uns
   };
   reduceRgba<uint16_t>(
       upper, lower, out, width, [&](uint16_t a, uint16_t b, uint16_t c, uint16_t d) {
-        return Imath::half(((value(a) + value(b)) + (value(c) + value(d))) * 0.25f).bits();
+        return Imath::half(meanOf2x2(value(a), value(b), value(c), value(d))).bits();
       });
 }
 

@@ -38,8 +38,8 @@ std::string cacheName(const std::string& checksum, const Heightfield& field, con
   return checksum + options;
 }
 
-// The entry a cache filled before issue 20 holds for this DEM: named by the
-// older checksum (heightfield_checksum.h), which is computed only when the
+// The entry an older cache holds for this DEM: named by the version 1
+// heights checksum (heightfield_checksum.h), which is computed only when the
 // folder holds a name of that form with these options.
 fs::path legacyCachedAperture(const Heightfield& field, const BakeOptions& o) {
   const std::string options = cacheName("", field, o);
@@ -99,7 +99,7 @@ fs::path findCachedAperture(const Heightfield& field, const std::string& demPath
     ApertureMapReader reader(path.string());
     checkApertureMatchesDem(reader.header(), path.string(), field, demPath);
     // Only a map whose every pixel verifies is used: the header alone
-    // survives a truncation (issue 17).
+    // survives a truncation.
     if (!reader.header().pixelChecksum) {
       throw InputError("aperture map " + path.string() +
                        " has no pixel checksum (aal:pixelChecksum): written before maps "

@@ -318,8 +318,8 @@ namespace {
 using TileTerrain = std::function<const Heightfield&(const TexelWindow& tile)>;
 
 // `pyramid`: the whole DEM's, for a bake without a max distance;
-// `legacyChecksum`: the DEM's checksum as maps baked before issue 20 carry
-// it (tiledBakeChecksum).
+// `legacyChecksum`: the DEM's version 1 checksum, which older maps carry
+// (tiledBakeChecksum).
 TiledBakeSummary bakeTiles(const Heightfield& geometry, const std::string& checksum,
                            const std::function<std::string()>& legacyChecksum,
                            const TileTerrain& terrainFor, const HeightPyramid* pyramid,
@@ -329,7 +329,7 @@ TiledBakeSummary bakeTiles(const Heightfield& geometry, const std::string& check
   checkSkyViewFactorTiles(geometry, bake.skyViewFactor);
   createTileFolder(folder);
   // Held to the end: a second bake into this folder stops here, before it
-  // could sweep this one's temporaries or write a tile (issue 17).
+  // could sweep this one's temporaries or write a tile.
   std::optional<TiledBakeLock> ownLock;
   if (!tiled.lock) ownLock.emplace(folder);
   const ApertureTileIndex index =

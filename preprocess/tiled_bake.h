@@ -204,14 +204,14 @@ int demPassChunkRows(const Heightfield& geometry, const HeightPyramid* pyramid);
 // `pyramid` (addBlockRows) when there is one.
 void scanDemChunk(const DemSource& source, const Heightfield& geometry, int firstRow, int count,
                   uint64_t* rowHashes, HeightPyramid* pyramid);
-// The checksum maps baked before issue 20 carry, of the DEM read in chunks:
-// serial, for a folder such a bake left unfinished.
+// The version 1 heights checksum (heightfield_checksum.h) of the DEM read in
+// chunks: serial, for a folder an older bake left unfinished.
 std::string legacyDemChecksum(const DemSource& source, const Heightfield& geometry);
 // The heights checksum a bake into `folder` records: `checksum`, unless
-// the folder's index.txt or manifest.txt records the older checksum
+// the folder's index.txt or manifest.txt records a version 1 checksum
 // (isLegacyHeightChecksum) and `legacyChecksum()` (called then only) is
-// that: then the older one, so that a bake started before issue 20 resumes
-// as one bake. Call with the folder's lock held.
+// that: then the version 1 one, so that a bake an older aperture started
+// resumes as one bake. Call with the folder's lock held.
 std::string tiledBakeChecksum(const std::string& folder, const std::string& checksum,
                               const std::function<std::string()>& legacyChecksum);
 // The index (and manifest) of the bake: the whole map's size and attributes.

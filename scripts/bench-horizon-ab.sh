@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# The horizon mode's frame cost over approx (issue 18: at most +10 %), before
+# The horizon mode's frame cost over approx (target: at most +10 %), before
 # and after a change of the renderer, in one run: bench_render's
 # BM_RenderFrame (jacksboro, 1280x720, sun at 25 degrees, no obscurance) for
 # approx and horizon, with horizons of 8 directions of 8 bits and of 16

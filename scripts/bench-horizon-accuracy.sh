@@ -1,11 +1,11 @@
 #!/usr/bin/env bash
-# Issue 18's accuracy table (docs/comparison.md, "Directional horizons for
+# The horizon mode's accuracy table (docs/comparison.md, "Directional horizons for
 # the sun"): `aal-render --compare` against the CPU ray tracer on the rugged
 # fBm (aal-synth --size 256 --amplitude 2500 --feature-size 64) and jacksboro,
 # with horizons of 8 directions of 8 bits, 16 of 8 bits and 16 of 4 bits,
 # for every sun azimuth in AZ and elevation in EL. Prints one Markdown row per
-# scene and sun: relative RMSE of every mode and the ratios the issue's
-# targets are stated in. About 4 s a sun on two cores.
+# scene and sun: relative RMSE of every mode and the ratios the targets
+# (docs/comparison.md) are stated in. About 4 s a sun on two cores.
 #
 #   scripts/bench-horizon-accuracy.sh [WORK]      default /tmp/aal-horizon-accuracy
 #

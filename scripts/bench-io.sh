@@ -1,12 +1,12 @@
 #!/usr/bin/env bash
-# Start-up and I/O costs (issue 16), measured against gdalinfo in one run:
+# Start-up and I/O costs, measured against gdalinfo in one run:
 #  1. `aal-info DEM --json` and `gdalinfo DEM` on the shipped DEM, interleaved:
 #     median wall time and peak memory, and their ratio (target <= 1.5);
 #  2. `--help` of every tool (median time, peak memory);
 #  3. a 1024^2 bake: the whole process's time minus the bake's own, against
 #     gdalinfo's time on the same file (target <= 0.15 s, set when gdalinfo
 #     took ~0.05 s: 0.10 s beyond gdalinfo);
-#  4. a SIZE^2 bake (default 4096; 16384 is the issue's case, ~2 min here):
+#  4. a SIZE^2 bake (default 4096; 16384 is the target's case, ~2 min here):
 #     the DEM's read and the map's write against the bake (target <= 10 %).
 #   scripts/bench-io.sh [RUNS] [SIZE]       RUNS default 7
 set -euo pipefail
@@ -55,7 +55,7 @@ bake_parts() { grep -oP 'in \K[0-9.]+(?= s \()|read in \K[0-9.]+|written in \K[0
 "$bin/aal-synth" -o "$work/fbm-1024.tif" --size 1024 --cell-size 30 --seed 1 >/dev/null
 echo "== 1024^2 bake (default options): process minus bake, median of $runs, against gdalinfo"
 # Wall times in ms resolution; gdalinfo of the same file, run in turn, is the
-# yardstick for process start (the issue's 0.15 s was set with gdalinfo at
+# yardstick for process start (the target's 0.15 s was set with gdalinfo at
 # ~0.05 s); the map is removed first, as a first bake finds no file to replace.
 seconds_of() { local t0 t1; t0=$(date +%s.%N); "$@" >/dev/null 2>&1; t1=$(date +%s.%N); echo "$t1 - $t0" | bc; }
 : >"$work/small.txt"

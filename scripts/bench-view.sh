@@ -1,10 +1,10 @@
 #!/usr/bin/env bash
-# The viewer's frame rate against a yardstick, in one run (issue 15): vkcube
+# The viewer's frame rate against a yardstick, in one run: vkcube
 # and aal-view at 1280x720 under the same Xvfb screen on this machine's
 # Vulkan driver (lavapipe here), alternated round by round so that load from
 # other processes hits every case alike. Prints per case the median frame
 # time, frames per second and the ratio to vkcube's frame time measured in
-# the same round (median over rounds), with the targets of issue 15:
+# the same round (median over rounds), with the targets (docs/viewer.md):
 # without obscurances at most 4x vkcube's frame, with them at most 8x.
 #
 #   scripts/bench-view.sh [ROUNDS]          (default 3)

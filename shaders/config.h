@@ -21,7 +21,7 @@
 #define AAL_MODE_DEBUG_OBSCURANCE 8
 #define AAL_MODE_DEBUG_TRANSFER 9
 // The sun through the directional horizons, the sky through the aperture
-// (terrain/io/horizon_map.h; issue 18).
+// (terrain/io/horizon_map.h).
 #define AAL_MODE_HORIZON 10
 
 // Specialisation constant IDs of the pipelines that shade (shaders/variant.glsl):

@@ -1,4 +1,4 @@
-// aal-render's image sequences (issue 19, item 3; docs/rendering.md, "Image
+// aal-render's image sequences (docs/rendering.md, "Image
 // sequences and movies"): frame file names, the instants of a --time-range,
 // and the MP4 made from the frames by ffmpeg when it is installed.
 #pragma once

@@ -665,7 +665,7 @@ void checkApertureMatchesDem(const ApertureMapHeader& map, const std::string& ma
                      std::to_string(map.height) + ", DEM is " + std::to_string(field.width) + "x" +
                      std::to_string(field.height));
   }
-  // A map baked before issue 20 carries the older checksum: computed for it.
+  // An older map carries the version 1 checksum: computed for it.
   if (!heightfieldMatchesChecksum(field, map.info.sourceChecksum)) {
     // Another z scale (a vertical exaggeration is one) changes every height:
     // say so, and how to get a matching map.

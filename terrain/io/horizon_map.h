@@ -1,4 +1,4 @@
-// Directional horizons (issue 18): per texel the horizon's elevation in 8
+// Directional horizons: per texel the horizon's elevation in 8
 // (or 4, 12, 16) azimuths, 8 or 4 bits each, beside the aperture map. The sun
 // is tiny, so whether a texel sees it depends on the horizon in the sun's
 // azimuth, which one aperture cap summarises poorly at a low sun

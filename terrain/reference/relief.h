@@ -51,7 +51,7 @@ struct ReliefSettings {
   ObscuranceSettings obscurance;           // enabled, radiusM (> 0), samples, steps are used
   float obscuranceAlbedo = 0.2f;           // the surroundings' albedo in W
   bool keepHeights = false;                // fill ReliefImage::heightM (colour relief)
-  // Water (issue 19 item 4): none unless asked. Texels at or below
+  // Water: none unless asked. Texels at or below
   // waterLevelM, or flagged in waterMask (DEM-sized, non-zero = water), are
   // lit as a horizontal surface and flagged in ReliefImage::water.
   std::optional<double> waterLevelM;

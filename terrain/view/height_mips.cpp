@@ -40,10 +40,9 @@ HeightMips::HeightMips(const Heightfield& field, int levels) : field_(field) {
       const int m = row - 1;
       for (int column = 0; column < next.width; ++column) {
         const int k = column - 1;
-        // The four texels of the level above, in the renderer's order.
-        const float sum = (source(2 * k, 2 * m) + source(2 * k + 1, 2 * m)) +
-                          (source(2 * k, 2 * m + 1) + source(2 * k + 1, 2 * m + 1));
-        next.texels[size_t(row) * size_t(next.width) + size_t(column)] = 0.25f * sum;
+        next.texels[size_t(row) * size_t(next.width) + size_t(column)] =
+            meanOf2x2(source(2 * k, 2 * m), source(2 * k + 1, 2 * m), source(2 * k, 2 * m + 1),
+                      source(2 * k + 1, 2 * m + 1));
       }
     });
     levels_.push_back(std::move(next));

@@ -14,6 +14,13 @@
 
 namespace aal {
 
+// The mean of 2 x 2 texels as every mip level is reduced, here and in the
+// renderer's uploads (engine/terrain_scene.cpp): summed in this fixed order
+// so that a level is bit for bit the same on the CPU and in every tile.
+inline float meanOf2x2(float upperLeft, float upperRight, float lowerLeft, float lowerRight) {
+  return ((upperLeft + upperRight) + (lowerLeft + lowerRight)) * 0.25f;
+}
+
 class HeightMips {
  public:
   // Levels 0 (the DEM itself) to `levels` - 1. Memory: about a third of the

@@ -9,7 +9,7 @@
 // coarser grid over the last kLodMorphFraction of its range, so levels switch
 // without popping and neighbouring levels meet without cracks or T-junctions.
 //
-// The ranges come from the geometric error of each level (issue 15): every
+// The ranges come from the geometric error of each level: every
 // node knows how far its drawn surface may lie from the DEM's (a bound, in
 // metres, of the height difference), and a level is drawn only where its
 // largest error projects to at most LodSettings::maxErrorPixels on screen. The

@@ -1,5 +1,5 @@
 // Where the renderer's frame goes and what was folded into fewer passes
-// (engine/terrain_renderer.h FrameOutput; issue 15): display values written
+// (engine/terrain_renderer.h FrameOutput): display values written
 // by the last pass equal the tone-mapped linear frame; the sky from its
 // table (shaders/sky_lut.glsl) equals the clear-sky model; a frame drawn
 // straight into another image (a swapchain image) equals the headless one;
@@ -104,7 +104,7 @@ TEST_F(FrameOutputTest, DisplayValuesEqualTheToneMappedLinearFrame) {
   }
 }
 
-// aal-render --background transparent (issue 19): pixels without terrain get
+// aal-render --background transparent: pixels without terrain get
 // alpha 0, terrain keeps alpha 1, and no colour changes, in every way a frame
 // is written (display values from the terrain and sky passes, from the
 // composite with obscurances, the tone-map pass after a linear frame, and the

@@ -1,4 +1,4 @@
-// The picture the geometric-error LOD (terrain/view/quadtree_lod.h, issue 15)
+// The picture the geometric-error LOD (terrain/view/quadtree_lod.h)
 // draws against the finest mesh the budget allows: over the shipped DEM, in
 // the framed start view and two low flights, the tone-mapped image stays
 // within 1 % RMSE while the mesh has a fraction of the triangles.

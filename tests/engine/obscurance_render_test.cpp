@@ -264,10 +264,10 @@ TEST_F(ObscuranceRender, InterleavingAndFilteringCutTheErrorVariance) {
         "|difference| %.2g\n",
         n, errorOneSet, errorFull, errorOneSet / errorFull, errorHalf, errorOneSet / errorHalf,
         cpuDifference);
-    // Issue 6: at least 4x less error variance for every n. The 16 sets
-    // differ in elevation and distance too (Cranley-Patterson shifts,
-    // obscurance_samples.h), so the filtered error keeps falling with n
-    // (docs/obscurance.md).
+    // Interleaving and the filter: at least 4x less error variance for every
+    // n. The 16 sets differ in elevation and distance too (Cranley-Patterson
+    // shifts, obscurance_samples.h), so the filtered error keeps falling with
+    // n (docs/obscurance.md).
     EXPECT_GT(errorOneSet, 4.0 * errorFull) << n;
     EXPECT_GT(errorOneSet, 4.0 * errorHalf) << n;
     EXPECT_LT(cpuDifference, 0.01) << n;

@@ -109,7 +109,7 @@ TEST_F(Render, LowWesternSunShadowsTheEastSlope) {
   EXPECT_LT(westSky, 0.0f) << "the aperture takes sky away, never sun";
 }
 
-// The horizon mode (issue 18): the plain 600 m east of the ridge sees its top
+// The horizon mode: the plain 600 m east of the ridge sees its top
 // 33.7 degrees up in the west. A sun in the west at 28 degrees is behind the
 // ridge there; one cap per texel (approx) lets it through, the directional
 // horizons do not. At 40 degrees both light it alike.
@@ -380,7 +380,7 @@ int skyGapColumns(const FrameResult& plain, const FrameResult& withBase, uint32_
   return gaps;
 }
 
-// Issue 19, --base: the solid base's walls hang from the DEM's edge down to
+// --base: the solid base's walls hang from the DEM's edge down to
 // `depth` below its lowest point, shaded as a Lambertian wall lit by the sun
 // and half the sky (docs/rendering.md, "Solid base"): at the middle of the
 // south wall (facing the sun) and of the east wall (sky only) the display

@@ -548,7 +548,7 @@ TEST_F(TileRender, SlopesHoldTheHorizonPairInEveryTile) {
   }
 }
 
-// The horizon mode (issue 18) in a tiled scene: the horizons of the pair
+// The horizon mode in a tiled scene: the horizons of the pair
 // of directions beside the sun lie in the slope texture (engine/
 // terrain_scene.h setHorizons), in the heights' tiles, read with the
 // normal's fetch. 8-bit codes of 8 directions and 4-bit codes of 16, a sun

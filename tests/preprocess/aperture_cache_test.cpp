@@ -1,7 +1,7 @@
 // The bake cache (preprocess/aperture_cache.h): an entry is used only when
 // every pixel verifies; a damaged one is rebaked and replaced with one
-// warning line (issue 17, item 8: a truncated entry made every later render
-// of its DEM exit 2 until it was deleted by hand).
+// warning line (a truncated entry must not make every later render of its
+// DEM exit 2 until it is deleted by hand).
 #include "aperture/preprocess/aperture_cache.h"
 
 #include <gtest/gtest.h>

@@ -1,6 +1,6 @@
-// The aperture map's file format is the one OpenImageIO wrote before
-// terrain/io/aperture_map.cpp used OpenEXR directly (issue 16): maps written by
-// either read the same in both, and a broken file is an InputError.
+// The aperture map's file format is the one an OpenImageIO write gives, though
+// terrain/io/aperture_map.cpp uses OpenEXR directly: maps written by either
+// read the same in both, and a broken file is an InputError.
 #include <gtest/gtest.h>
 
 #include <Imath/half.h>
@@ -44,8 +44,8 @@ ApertureMap bakedMap() {
   return map;
 }
 
-// What writeApertureMap did with OpenImageIO before issue 16, plus the pixel
-// checksum when one is given (issue 17).
+// An aperture map written through OpenImageIO, as aperture's first writer did,
+// plus the pixel checksum when one is given.
 void writeWithOiio(const std::string& path, const ApertureMap& map, bool halfFloat,
                    const std::string& pixelChecksum = "") {
   OIIO::ImageSpec spec(map.width, map.height, 4,

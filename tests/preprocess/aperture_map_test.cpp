@@ -93,9 +93,9 @@ TEST(ApertureMap, RefusesAMapOfAnotherDem) {
   EXPECT_THROW(checkApertureMatchesDem(r.aperture, "a.exr", bigger, "b.tif"), InputError);
 }
 
-// Maps baked before issue 20 carry the byte-serial checksum: still accepted
-// with their DEM (the older checksum is computed for them), refused with
-// another.
+// Older maps carry the version 1 (byte-serial) heights checksum: still
+// accepted with their DEM (the version 1 checksum is computed for them),
+// refused with another.
 TEST(ApertureMap, AMapWithTheOlderChecksumMatchesItsDemOnly) {
   test::TempDir dir;
   const Heightfield field = smallField();
@@ -137,7 +137,7 @@ TEST(ApertureMap, BadFilesGiveInputErrors) {
   EXPECT_THROW(readApertureMap(junk), InputError);
 }
 
-// Issue 17, item 8: every map carries the checksum of its pixels as stored.
+// Every map carries the checksum of its pixels as stored.
 TEST(ApertureMap, CarriesTheChecksumOfItsPixels) {
   test::TempDir dir;
   const BakeResult r = bakeApertures(smallField(), BakeOptions{});

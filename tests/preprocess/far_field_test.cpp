@@ -305,7 +305,7 @@ BakeOptions unlimited(bool curvature = false) {
 }
 
 // The tiled bake without a max distance against the in-memory bake with
-// unlimited distance: within the targets everywhere and on the
+// unlimited distance: within the targets (docs/baking.md, "Far field") everywhere and on the
 // western tiles, which the ridge shadows from beyond their halo. Without
 // the far field (the near sweep alone, as a max distance of the reach)
 // those tiles miss the ridge by far more than the targets.

@@ -299,7 +299,7 @@ TEST(TiledBake, AFolderOfAnotherBakeIsAnError) {
                          "tile_0000_0000.exr", "a tile of another bake was accepted");
 }
 
-// A folder a bake before issue 20 left unfinished records the byte-serial
+// A folder an older bake left unfinished records the version 1 (byte-serial)
 // checksum in its manifest and tiles: the same bake of the same DEM resumes
 // it with that checksum (the folder stays one bake); another DEM is
 // refused. A new folder records the row-hash checksum.
@@ -444,7 +444,7 @@ void interruptedBake(const Heightfield& field, const std::string& folder) {
       << "killed";
 }
 
-// Issue 17, item 10: a second bake into a folder that a running bake holds
+// A second bake into a folder that a running bake holds
 // (its flock) is refused before it touches anything: before the sweep that
 // deleted the first bake's temporary tile.
 TEST(TiledBake, ASecondBakeIntoALockedFolderIsRefusedTouchingNothing) {

@@ -100,7 +100,7 @@ TEST(AalBakeMpi, ThreeRanksWriteTheSingleProcessFolderByteForByte) {
     EXPECT_EQ(have.size(), want.size());
   }
   // The ranks' shared pass records the checksum aal-bake's in-memory bake
-  // writes (the row-hash version, issue 20).
+  // writes (version 2, the row hash).
   const fs::path one = dir.path() / "one.exr";
   ASSERT_EQ(runBake(quoted(dem) + " -o " + quoted(one) + " --azimuths 8 -q").exitCode, 0);
   const std::string checksum = ApertureMapReader(one.string()).header().info.sourceChecksum;

@@ -148,8 +148,8 @@ std::string bytesOf(const fs::path& path) {
   return std::string(std::istreambuf_iterator<char>(in), {});
 }
 
-// Issue 17, items 1 and 2: `aal-bake d.tif -o d.tif` turned the DEM into an
-// aperture map (exit 0); `-o a.tif` wrote a map nothing reads.
+// `aal-bake d.tif -o d.tif` must not turn the DEM into an aperture map
+// (exit 0), nor `-o a.tif` write a map nothing reads.
 TEST(AalBake, OutputsThatAreInputsOrEachOtherOrNotExrExitWithTwo) {
   TempDir dir;
   const fs::path dem = writeDem(dir, 16);
@@ -324,8 +324,8 @@ TEST(AalBake, InterruptStopsTheDemReadWithinASecond) {
   EXPECT_EQ(filesIn(dir.path()), 2u);  // the GeoTIFF and the VRT: no temporary
 }
 
-// Issue 17, item 11: the ray baker polled SIGTERM once per 1 % of rows,
-// minutes apart at 2^20 rays per texel (a 64^2 DEM: a row is ~30 s here).
+// The ray baker polls SIGTERM often: once per 1 % of rows would be minutes
+// apart at 2^20 rays per texel (a 64^2 DEM: a row is ~30 s here).
 // The bound below is for a loaded machine; it answers in ~0.1 s.
 TEST(AalBake, RayBakeStopsSoonAfterSigterm) {
   TempDir dir;

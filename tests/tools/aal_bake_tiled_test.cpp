@@ -327,7 +327,7 @@ TEST(AalBakeTiled, ViewerReadsTheTileFolder) {
   EXPECT_EQ(a, b);
 }
 
-// Issue 17, item 10: a second aal-bake into a folder that a running one
+// A second aal-bake into a folder that a running one
 // holds exits with 1 (the folder is busy: run it again later), before it
 // reads the DEM, touching nothing; in memory and in bands alike.
 TEST(AalBakeTiled, ABusyFolderExitsWithOneTouchingNothing) {

@@ -50,7 +50,7 @@ TEST(AalCaps, BadArgumentsExitWithTwo) {
   }
 }
 
-// Issue 17, item 1: one file for both outputs.
+// One file for both outputs.
 TEST(AalCaps, TableAndPlotInOneFileExitWithTwo) {
   test::TempDir dir;
   const std::string same = test::quoted(dir.path() / "x.png");
@@ -96,7 +96,7 @@ TEST(AalCaps, TableAndPlotAreWritten) {
 }
 
 // OpenImageIO and its ~260 libraries come with the image plugin, loaded for
-// the plot alone (issue 16).
+// the plot alone.
 TEST(AalCaps, StartsWithoutOpenImageIo) {
   const auto ldd = test::runShell("ldd " + test::quoted(test::binDir() / "aal-caps"));
   ASSERT_EQ(ldd.exitCode, 0) << ldd.out;

@@ -333,7 +333,7 @@ TEST(AalRelief, ByteOutputAndStretch) {
 }
 
 // A write that fails half way (a file-size limit, as a full disk) exits 1,
-// names the output and leaves nothing behind (issue 17's rule).
+// names the output and leaves nothing behind, as every tool's writes do.
 TEST(AalRelief, AWriteThatFailsHalfWayExitsWithOneAndLeavesNothing) {
   TempDir inputs, outputs;
   const fs::path dem = fs::path(AAL_TEST_SOURCE_DIR) / "heightmaps" / "jacksboro_fault_dem.tif";

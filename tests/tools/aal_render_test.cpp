@@ -112,8 +112,8 @@ TEST(AalRender, BadInputExitsWithTwo) {
   EXPECT_FALSE(fs::exists(dir.path() / "x.png"));
 }
 
-// Issue 17, items 4 and 5: NaN passed every range check (exit 0 with an
-// EXR full of NaN) and, cast to an index, crashed the reference renderer.
+// NaN passes a plain range check: it must exit 2 and say which, not give an
+// EXR full of NaN or, cast to an index, crash the reference renderer.
 TEST(AalRender, NonFiniteNumbersExitWithTwoAndSayWhich) {
   TempDir dir;
   const std::string out = " -o " + quoted(dir.path() / "x.exr") + " --size 64x36";
@@ -129,8 +129,8 @@ TEST(AalRender, NonFiniteNumbersExitWithTwoAndSayWhich) {
   EXPECT_FALSE(fs::exists(dir.path() / "x.exr"));
 }
 
-// Issue 17, item 1: `aal-render DEM --aperture a.exr -o a.exr` overwrote
-// the map it read.
+// `aal-render DEM --aperture a.exr -o a.exr` must not overwrite the map it
+// reads.
 TEST(AalRender, AnOutputThatIsAnInputExitsWithTwo) {
   TempDir dir;
   const fs::path map = dir.path() / "a.exr", albedo = dir.path() / "albedo.png";
@@ -259,7 +259,7 @@ TEST(AalRender, MaxTileTilesTheTexturesWithoutChangingThePicture) {
   EXPECT_NE(tooSmall.out.find("--max-tile"), std::string::npos) << tooSmall.out;
 }
 
-// The horizon mode with --max-tile (issue 18): the directional horizons
+// The horizon mode with --max-tile: the directional horizons
 // split in the textures' tiles give the single image's picture within
 // 1 LSB, for 8-bit codes of 8 directions and 4-bit codes of 16, under a
 // sun low enough for them to change the picture.
@@ -413,7 +413,7 @@ TEST(AalRender, RefusesAnApertureMapBakedForAnotherCellSize) {
   EXPECT_EQ(cached, 2u);
 }
 
-// Issue 19: --exaggeration X multiplies the heights; the aperture map is
+// --exaggeration X multiplies the heights; the aperture map is
 // baked for it (one cache entry per exaggeration, reused), and a map baked
 // for other heights is refused with the z scales and the way out named.
 TEST(AalRender, ExaggerationBakesForItOrRefusesAMapOfAnotherZScale) {
@@ -457,7 +457,7 @@ TEST(AalRender, ExaggerationBakesForItOrRefusesAMapOfAnotherZScale) {
   }
 }
 
-// Issue 19: --base DEPTH draws walls and a bottom under the DEM: from a
+// --base DEPTH draws walls and a bottom under the DEM: from a
 // fixed camera more opaque pixels than without (transparent background), a
 // deeper base more still; the default camera frames the base too (the last
 // rows, the 5 % margin, stay empty); bad values exit 2.
@@ -498,7 +498,7 @@ TEST(AalRender, BaseAddsWallsUnderTheDem) {
   }
 }
 
-// Issue 19, item 3: --time-range START END --frames N writes OUT-0001.png
+// --time-range START END --frames N writes OUT-0001.png
 // ... OUT-000N.png, the first and last being the renders at START and END,
 // with a progress bar (in runs over a second); without ffmpeg (AAL_FFMPEG set empty) no MP4 and a
 // note saying how to get one.
@@ -678,8 +678,8 @@ TEST(AalRender, BadSequenceOptionsExitWithTwoAndSayWhich) {
   }
 }
 
-// Issue 19, item 4: water only where the user asks; a georeferenced DEM
-// no longer paints every height <= 0 m as a lake.
+// Water only where the user asks: a georeferenced DEM does not paint every
+// height <= 0 m as a lake.
 TEST(AalRender, WaterOnlyAtTheLevelAsked) {
   TempDir dir;
   const auto shot = [&](const std::string& name, const std::string& extra) {
@@ -705,10 +705,11 @@ TEST(AalRender, WaterOnlyAtTheLevelAsked) {
   EXPECT_EQ(r.exitCode, 2) << r.out;
 }
 
-// Issue 19: --background transparent gives alpha 0 where there is no terrain
+// --background transparent gives alpha 0 where there is no terrain
 // (the PNG keeps the sky's colour there), alpha 255 on the terrain, the same
 // RGB as the default; the default camera frames the DEM (its diamond covers
-// 36 % of the frame, 14 % with the camera before issue 19). Bad values and the CPU paths are
+// 36 % of the frame, 14 % with the older camera that looked at the box's
+// centre). Bad values and the CPU paths are
 // refused with exit 2.
 TEST(AalRender, TransparentBackgroundHasAlphaZeroOffTheTerrain) {
   TempDir dir;
@@ -729,7 +730,7 @@ TEST(AalRender, TransparentBackgroundHasAlphaZeroOffTheTerrain) {
   }
   EXPECT_EQ(b[3], 0);                         // top-left corner: beyond the DEM
   EXPECT_EQ(b[4 * (18 * 64 + 32) + 3], 255);  // the centre: terrain
-  EXPECT_GT(terrain, a.size() / 4 * 3 / 10);  // framed: 36 %, was 14 % before issue 19
+  EXPECT_GT(terrain, a.size() / 4 * 3 / 10);  // framed: 36 %, 14 % with the older camera
   EXPECT_LT(terrain, a.size() / 4 * 9 / 10);
   for (const std::string& bad : {std::string("--background purple"),
                                  std::string("--background transparent --mode reference")}) {
@@ -941,8 +942,8 @@ TEST(AalRender, ReferenceAndCompareRefuseWhatTheyCannotDo) {
   }
 }
 
-// Issue 17, item 8: a truncated cache entry made every later render of its
-// DEM exit 2 until it was deleted by hand. Now it is rebaked and replaced,
+// A truncated cache entry must not make every later render of its DEM exit
+// 2 until it is deleted by hand: it is rebaked and replaced,
 // with one warning line naming it.
 TEST(AalRender, ADamagedCacheEntryIsRebakedWithAWarning) {
   TempDir dir;

@@ -258,7 +258,7 @@ TEST(AalView, BadCommandLineExitsWithTwoBeforeOpeningAWindow) {
     EXPECT_EQ(r.exitCode, 2) << args << "\n" << r.out;
     EXPECT_EQ(r.out.find("aal-render"), std::string::npos) << args << "\n" << r.out;
   }
-  // Issue 17, item 1: a screenshot that would overwrite an input.
+  // A screenshot that would overwrite an input.
   const fs::path png = dir.path() / "dem.png";
   fs::copy_file(kDem, dir.path() / "dem.tif");
   fs::create_symlink(dir.path() / "dem.tif", png);
@@ -273,7 +273,7 @@ TEST(AalView, BadCommandLineExitsWithTwoBeforeOpeningAWindow) {
   EXPECT_NE(path.out.find("line 1"), std::string::npos) << path.out;
 }
 
-// Issue 17, item 12: these exited 1, as if the system had failed.
+// Bad input, not a failed system: exit 2, not 1.
 TEST(AalView, ATinyDemAndAMissingDeviceExitWithTwo) {
   TempDir dir;
   const fs::path one = dir.path() / "one.asc";

@@ -74,7 +74,7 @@ TEST(ViewLighting, IntensitiesAndExposureScale) {
   EXPECT_NEAR(b.skyRadiance.y, 0.5 * a.skyRadiance.y, 1e-4 * a.skyRadiance.y);
   EXPECT_NEAR(b.exposure, 2 * a.exposure, 1e-6 * a.exposure);
   EXPECT_GT(a.hazeDensityPerM, 0);
-  EXPECT_FALSE(base.waterLevelM);  // no water unless asked for (issue 19, item 4)
+  EXPECT_FALSE(base.waterLevelM);  // no water unless asked for
   l.waterLevelM = 350;
   applyViewLighting(l, f, scaled);
   EXPECT_EQ(scaled.waterLevelM, 350.0f);

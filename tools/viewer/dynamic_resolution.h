@@ -1,4 +1,4 @@
-// The viewer's dynamic resolution (issue 15): while the view changes, the
+// The viewer's dynamic resolution: while the view changes, the
 // frame is drawn at a fraction of the window's pixels (scaled up; engine
 // FrameOutput::resolutionScale) chosen to keep a target frame rate; as soon
 // as it rests, a frame at full resolution. Pure policy, no window or device.

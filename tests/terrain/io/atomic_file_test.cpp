@@ -1,6 +1,6 @@
 // Outputs through a temporary file renamed into place (terrain/io/atomic_file.h),
-// and the sweep of temporaries that killed runs left behind (issue 17, item
-// 9: a killed render's 11.8 MB cache temporary stayed forever).
+// and the sweep of temporaries that killed runs left behind (a killed
+// render's 11.8 MB cache temporary must not stay forever).
 #include <gtest/gtest.h>
 
 #include <sys/stat.h>

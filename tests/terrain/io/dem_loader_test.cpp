@@ -131,7 +131,7 @@ TEST_F(DemLoader, InvalidOverridesAreRefused) {
   }
 }
 
-// Issue 19: a vertical exaggeration multiplies the z scale, so the heights
+// A vertical exaggeration multiplies the z scale, so the heights
 // and the zScale an aperture map records both carry it.
 TEST_F(DemLoader, ExaggerationMultipliesTheZScale) {
   test::writeBytes(path("g.asc"), kAsc);

@@ -1,7 +1,7 @@
 // The heights checksum a map carries (aal:sourceChecksum): the row-hash
 // version against a straight loop over the rows, the same however its rows
-// are split over callers and threads; the byte-serial version of maps baked
-// before issue 20 still computed and told apart.
+// are split over callers and threads; version 1, the byte-serial checksum of
+// older maps, still computed and told apart.
 #include "aperture/terrain/io/heightfield_checksum.h"
 
 #include <gtest/gtest.h>
@@ -61,7 +61,7 @@ std::string referenceChecksum(const Heightfield& field) {
   return "r2-" + hex(hash);
 }
 
-// The checksum of maps baked before issue 20: every byte in order.
+// The version 1 checksum: every byte in order.
 std::string referenceLegacyChecksum(const Heightfield& field) {
   uint64_t hash = 0xcbf29ce484222325ull;
   const int32_t width = field.width, height = field.height;

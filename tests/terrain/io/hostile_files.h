@@ -1,5 +1,5 @@
 // Files whose headers claim more than they hold, built byte by byte: the
-// tests' and the fuzzers' standard oversize cases (issue 17, item 3).
+// tests' and the fuzzers' standard oversize cases.
 #pragma once
 
 #include <cstdint>

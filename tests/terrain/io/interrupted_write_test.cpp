@@ -1,6 +1,6 @@
 // Writers poll the interrupt flag (terrain/interrupt.h) between blocks of
 // rows: a SIGTERM while an output is written leaves neither the output nor
-// its temporary (issue 17, item 11: aal-bake ignored it and exited 0).
+// its temporary (aal-bake must not ignore it and exit 0).
 #include <gtest/gtest.h>
 
 #include <csignal>

@@ -427,7 +427,7 @@ TEST(Obscurance, TheDefaultRadiusOfANarrowDemPassesItsOwnCheck) {
   }
 }
 
-// Issue 17, item 4: a NaN position passed std::clamp and became an index.
+// A NaN position passes std::clamp: it must not become an index.
 TEST(Heightfield, BilinearHeightAtNanIsTheFirstTexelsNotACrash) {
   Heightfield f;
   f.width = 3;

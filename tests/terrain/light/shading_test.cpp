@@ -91,7 +91,7 @@ TEST(Shading, BaselinesIgnoreTheAperture) {
               1e-3f);
 }
 
-// Closed forms of the sky and sun terms (issue 17), by quadrature over the
+// Closed forms of the sky and sun terms, by quadrature over the
 // sphere here rather than by the shading code's helpers: the same error in
 // terrain/light/shading.cpp and shaders/shading.glsl passes their parity test, and
 // at r = pi/2 with N = B the sky term cannot tell sin^2 r from sin r.

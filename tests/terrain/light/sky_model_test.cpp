@@ -80,7 +80,7 @@ glm::vec3 displayedSky(const PreethamSky& sky, const glm::vec3& view, double sun
   return toneMap(skyRadiance(sky, view), exposure);
 }
 
-// Issue 19: at 17:40 UTC on 2024-06-21 over jacksboro (sun 77° up) the sky 3°
+// At 17:40 UTC on 2024-06-21 over jacksboro (sun 77° up) the sky 3°
 // above the horizon towards the sun showed R134 G131 B138, grey-lavender:
 // Preetham's y there is 0.317, below the daylight locus (0.326); and under a
 // 60-65° sun the Perez x fit made the same band warm white (x = 0.318, CCT

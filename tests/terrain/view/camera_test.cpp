@@ -38,7 +38,7 @@ Bounds projectedBox(const Camera& camera, glm::dvec2 extent, double zMin, double
   return b;
 }
 
-// Issue 19: the default view showed jacksboro small in a void (the old
+// The default view once showed jacksboro small in a void (the old
 // camera looked at the box's centre, so the near corner bound the view and
 // the far half of the image stayed empty). Now every corner lies within 90%
 // of the half-image, the tighter axis is touched on both sides and the other

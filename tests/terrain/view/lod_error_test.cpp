@@ -66,6 +66,40 @@ TEST(HeightMips, LevelTexelsAreBlockMeansWithTheEdgeRepeated) {
   EXPECT_LT(worst, 1e-3);  // float sums of up to 1024 heights of ~400 m
 }
 
+// The upper pair and the lower pair summed apart, then together: the order
+// the renderer's uploads sum in too.
+TEST(HeightMips, MeanOf2x2SumsThePairsOfRowsFirst) {
+  EXPECT_EQ(meanOf2x2(1, 2, 3, 4), 2.5f);
+  // 1e8 + 1 rounds to 1e8: only the pairs' order gives 0 (one after another
+  // gives 0.25, columns first 0.5).
+  EXPECT_EQ(meanOf2x2(1e8f, 1, -1e8f, 1), 0.0f);
+}
+
+// A level texel holds exactly meanOf2x2 of the four texels of the level
+// above (the DEM's edge repeated), and a fetch at its centre returns it.
+TEST(HeightMips, LevelTexelsAreMeanOf2x2OfTheLevelAbove) {
+  const Heightfield& f = roughDem();
+  const HeightMips mips(f, 3);
+  // Texel (k, m) of a level, read at its centre.
+  const auto texel = [&](int level, int k, int m) -> float {
+    if (level == 0) return f.at(std::clamp(k, 0, f.width - 1), std::clamp(m, 0, f.height - 1));
+    const int n = 1 << level;
+    return mips.at(level, (k + 0.5) * n - 0.5, (m + 0.5) * n - 0.5);
+  };
+  for (int level = 1; level <= 2; ++level) {
+    const int n = 1 << level;
+    for (int m = -1; m <= (f.height + n - 1) / n; ++m) {
+      for (int k = -1; k <= (f.width + n - 1) / n; ++k) {
+        const int l = level - 1;
+        ASSERT_EQ(texel(level, k, m),
+                  meanOf2x2(texel(l, 2 * k, 2 * m), texel(l, 2 * k + 1, 2 * m),
+                            texel(l, 2 * k, 2 * m + 1), texel(l, 2 * k + 1, 2 * m + 1)))
+            << "level " << level << ", texel " << k << ", " << m;
+      }
+    }
+  }
+}
+
 TEST(HeightMips, FetchesAreBilinearBetweenTexelCentres) {
   const Heightfield& f = roughDem();
   const HeightMips mips(f, 6);

@@ -1,4 +1,4 @@
-#include "aperture/preprocess/sector_apertures.h"
+#include "aperture/bench/sector_apertures.h"
 
 #include <algorithm>
 #include <array>

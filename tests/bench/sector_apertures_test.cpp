@@ -1,4 +1,4 @@
-// Several apertures per texel (preprocess/sector_apertures.h) against the
+// Several apertures per texel (bench/sector_apertures.h) against the
 // single aperture and against rays marched through the heightfield.
 #include <gtest/gtest.h>
 
@@ -9,10 +9,10 @@
 
 #include <glm/geometric.hpp>
 
+#include "aperture/bench/sector_apertures.h"
 #include "aperture/preprocess/bake.h"
 #include "aperture/preprocess/bake_terrain.h"
 #include "aperture/preprocess/ray_bake.h"
-#include "aperture/preprocess/sector_apertures.h"
 #include "aperture/terrain/synthetic.h"
 #include "aperture/tests/preprocess/bake_test_util.h"
 

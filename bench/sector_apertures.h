@@ -1,4 +1,4 @@
-// Several apertures per texel (issue 18 item 3): Oat's "next level" (Oat,
+// Several apertures per texel: Oat's "next level" (Oat,
 // Ambient Aperture Lighting, SIGGRAPH 2006 course: multiple visibility
 // apertures, and occlusion "anti-apertures"), tried against the directional
 // horizons (terrain/io/horizon_map.h) for the sun. docs/comparison.md,
