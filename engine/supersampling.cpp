@@ -62,4 +62,12 @@ FrameResult downsampleFrame(const FrameResult& big, uint32_t factor, float expos
   return out;
 }
 
+FrameResult renderSupersampled(TerrainRenderer& renderer, const TerrainScene& scene,
+                               FrameSettings settings, uint32_t factor, bool keepLinear) {
+  if (factor <= 1) return renderer.render(scene, settings, keepLinear);
+  settings.lod.maxErrorPixels *= static_cast<double>(factor);
+  return downsampleFrame(renderer.render(scene, settings, true), factor, settings.lighting.exposure,
+                         isDebugMode(settings.mode), keepLinear);
+}
+
 }  // namespace aal

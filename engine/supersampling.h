@@ -26,4 +26,11 @@ inline constexpr uint32_t kMaxSupersampling = 4;
 FrameResult downsampleFrame(const FrameResult& big, uint32_t factor, float exposure, bool raw,
                             bool keepLinear);
 
+// A frame of `factor` × `factor` points per pixel from a renderer of factor
+// times the output's width and height: rendered with its linear values and
+// averaged down (downsampleFrame); factor 1 is the renderer's own frame. An
+// explicit settings.lod.maxErrorPixels stays in output pixels.
+FrameResult renderSupersampled(TerrainRenderer& renderer, const TerrainScene& scene,
+                               FrameSettings settings, uint32_t factor, bool keepLinear);
+
 }  // namespace aal

@@ -150,15 +150,7 @@ Frame renderArray(Task& task, DemArray dem, const RenderArguments& a) {
     }
     task.throwIfCancelled();
     TerrainRenderer renderer(device, a.width * a.supersample, a.height * a.supersample);
-    FrameResult frame;
-    if (a.supersample > 1) {
-      // As aal-render --supersample: an explicit LOD error stays in output pixels.
-      settings.lod.maxErrorPixels *= static_cast<double>(a.supersample);
-      frame = downsampleFrame(renderer.render(scene, settings, true), a.supersample,
-                              settings.lighting.exposure, isDebugMode(settings.mode), false);
-    } else {
-      frame = renderer.render(scene, settings, /*wantLinear=*/false);
-    }
+    FrameResult frame = renderSupersampled(renderer, scene, settings, a.supersample, false);
     out.rgba = std::move(frame.display);
   }  // the device's destruction is validated too
   if (instance.validationEnabled() && instance.validationLog().count() > 0) {

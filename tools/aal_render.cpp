@@ -342,12 +342,10 @@ void setSequenceFrame(const Options& o, const Sequence& seq, const aal::Heightfi
 // times the width and height (the renderer's size) and averaged down
 // (engine/supersampling.h); an explicit --lod-error stays in output pixels.
 aal::FrameResult renderOutputFrame(const Options& o, const aal::TerrainScene& scene,
-                                   aal::TerrainRenderer& renderer, aal::FrameSettings settings) {
-  const bool linear = aal::wantsLinearOutput(o.output);
-  if (o.supersample <= 1) return renderer.render(scene, settings, linear);
-  settings.lod.maxErrorPixels *= static_cast<double>(o.supersample);
-  return aal::downsampleFrame(renderer.render(scene, settings, true), o.supersample,
-                              settings.lighting.exposure, aal::isDebugMode(settings.mode), linear);
+                                   aal::TerrainRenderer& renderer,
+                                   const aal::FrameSettings& settings) {
+  return aal::renderSupersampled(renderer, scene, settings, o.supersample,
+                                 aal::wantsLinearOutput(o.output));
 }
 
 // The MP4 a sequence of PNG frames makes with ffmpeg: OUT.mp4 (none for

@@ -46,8 +46,6 @@ FrameSettings modeSettings(const FrameSettings& settings, const ComparedMode& m,
   s.lod.maxErrorPixels = s.lod.maxErrorPixels > 0
                              ? std::min(s.lod.maxErrorPixels, kComparisonLodErrorPixels)
                              : kComparisonLodErrorPixels;
-  // In the output's pixels: a supersampled frame's are smaller.
-  s.lod.maxErrorPixels *= static_cast<double>(options.supersample);
   s.mode = m.mode;
   s.obscurance.enabled = m.obscurance;
   s.albedoValue = options.albedo;
@@ -65,10 +63,7 @@ uint32_t outputHeight(const TerrainRenderer& renderer, const ComparisonOptions& 
 // A mode's frame at the reference's size, linear values included.
 FrameResult modeFrame(TerrainRenderer& renderer, const TerrainScene& scene, const FrameSettings& s,
                       const ComparisonOptions& options) {
-  FrameResult frame = renderer.render(scene, s, true);
-  if (options.supersample <= 1) return frame;
-  return downsampleFrame(frame, options.supersample, s.lighting.exposure, isDebugMode(s.mode),
-                         true);
+  return renderSupersampled(renderer, scene, s, options.supersample, true);
 }
 
 }  // namespace
