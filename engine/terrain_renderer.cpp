@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
-#include <map>
 #include <stdexcept>
 #include <string>
 
@@ -12,6 +11,7 @@
 #include <glm/matrix.hpp>
 
 #include "aperture/engine/frame_uniforms.h"
+#include "aperture/engine/passes/pass_pipelines.h"
 #include "aperture/engine/terrain_scene.h"
 #include "aperture/engine/vk/commands.h"
 #include "aperture/engine/vk/descriptors.h"
@@ -25,20 +25,6 @@
 namespace aal {
 
 namespace {
-
-constexpr VkFormat kHdrFormat = VK_FORMAT_R16G16B16A16_SFLOAT;
-constexpr VkFormat kDepthFormat = VK_FORMAT_D32_SFLOAT;
-constexpr VkFormat kSkyTableFormat = VK_FORMAT_R16G16B16A16_SFLOAT;
-// The exact mode's cap table: values g in [0, 1] to 1e-3 (docs/caps.md);
-// halves would spend half of that on rounding.
-constexpr VkFormat kCapTableFormat = VK_FORMAT_R32_SFLOAT;
-constexpr VkFormat kAmbientFormat = VK_FORMAT_R16G16B16A16_SFLOAT;
-constexpr VkFormat kSurfaceFormat = VK_FORMAT_R32G32B32A32_SFLOAT;
-constexpr VkFormat kTransferFormat = VK_FORMAT_R16G16B16A16_SFLOAT;
-// Obscurance reuse: means per sample (open, occluders' albedo), and the
-// surface point (texel) and sample count they belong to.
-constexpr VkFormat kHistoryMeansFormat = VK_FORMAT_R16G16B16A16_SFLOAT;
-constexpr VkFormat kHistoryPointsFormat = VK_FORMAT_R32G32B32A32_SFLOAT;
 
 // The modes whose picture W changes: the AAL sky fill (docs/design.md §5) and
 // the O/W views. The baselines keep their own ambient term.
@@ -123,51 +109,6 @@ DescriptorWrites terrainWrites(const Buffer& uniforms, const TerrainScene& scene
   return writes;
 }
 
-// Which shader variants sample a scene's textures
-// (shaders/terrain_textures.glsl): page 0 only, a pick among two or four
-// pages for the apertures only, or among four for the apertures and two for
-// the heights and albedo. Lavapipe pays
-// for every page a fetch could pick, so each scene gets the least its pages
-// need.
-enum class TexturePaging { OnePage, TwoAperturePages, AperturePages, All };
-constexpr int kTexturePagings = 4;
-
-TexturePaging texturePagingOf(const TerrainTileLayout& tiles) {
-  if (tiles.pagesOf(TerrainTexture::Height) > 1 || tiles.pagesOf(TerrainTexture::Albedo) > 1) {
-    return TexturePaging::All;
-  }
-  const uint32_t pages = tiles.pagesOf(TerrainTexture::Aperture);
-  return pages == 1   ? TexturePaging::OnePage
-         : pages == 2 ? TexturePaging::TwoAperturePages
-                      : TexturePaging::AperturePages;
-}
-
-// The shaders of one TexturePaging.
-const char* terrainVertexShader(TexturePaging paging) {
-  return paging == TexturePaging::All ? "terrain_paged.vert" : "terrain.vert";
-}
-const char* terrainFragmentShader(TexturePaging paging, bool gbuffer) {
-  switch (paging) {
-    case TexturePaging::OnePage: return gbuffer ? "terrain_gbuffer.frag" : "terrain.frag";
-    case TexturePaging::TwoAperturePages:
-      return gbuffer ? "terrain_gbuffer_aperture_pages2.frag" : "terrain_aperture_pages2.frag";
-    case TexturePaging::AperturePages:
-      return gbuffer ? "terrain_gbuffer_aperture_pages4.frag" : "terrain_aperture_pages4.frag";
-    case TexturePaging::All: break;
-  }
-  return gbuffer ? "terrain_gbuffer_paged.frag" : "terrain_paged.frag";
-}
-
-// The constants of shaders/variant.glsl, in AAL_SPEC_* order.
-// `footprintProbes`: the terrain pass's most probes (FrameSettings::anisotropy);
-// the passes that filter no footprint keep the default.
-std::vector<int32_t> variantConstants(ShadingMode mode, int albedoSource, bool display,
-                                      int footprintProbes = kMaxFootprintProbes) {
-  static_assert(AAL_SPEC_SHADING_MODE == 0 && AAL_SPEC_ALBEDO_SOURCE == 1 &&
-                AAL_SPEC_DISPLAY_OUTPUT == 2 && AAL_SPEC_FOOTPRINT_PROBES == 3);
-  return {static_cast<int32_t>(mode), albedoSource, display ? 1 : 0, footprintProbes};
-}
-
 }  // namespace
 
 bool isDebugMode(ShadingMode mode) {
@@ -175,143 +116,6 @@ bool isDebugMode(ShadingMode mode) {
          mode == ShadingMode::DebugSunFraction || mode == ShadingMode::DebugSkyFill ||
          mode == ShadingMode::DebugObscurance || mode == ShadingMode::DebugTransfer;
 }
-
-// Pipelines are made for the variants frames ask for (shading mode, albedo
-// source, display or HDR output, texture paging) and kept: switching modes
-// costs one pipeline build the first time (lavapipe: ~0.1-0.3 s).
-struct TerrainRenderer::Passes {
-  const Device& device;
-  VkFormat displayFormat;
-  std::map<std::string, std::unique_ptr<GraphicsPipeline>> pipelines;
-  GraphicsPipeline skyTable, filter, composite, toneMap, upscale;
-  // terrainSampler: the DEM's mipmapped textures (terrain_textures.glsl);
-  // skySampler: the sky table, wrapping in azimuth.
-  Sampler terrainSampler, nearest, skySampler, linear;
-
-  Passes(const Device& d, VkFormat display)
-      : device(d),
-        displayFormat(display),
-        skyTable(d, {.vertexShader = "fullscreen.vert",
-                     .fragmentShader = "sky_lut.frag",
-                     .colorFormats = {kSkyTableFormat}}),
-        filter(d, {.vertexShader = "fullscreen.vert",
-                   .fragmentShader = "obscurance_filter.frag",
-                   .colorFormats = {kTransferFormat}}),
-        composite(d, {.vertexShader = "fullscreen.vert",
-                      .fragmentShader = "composite.frag",
-                      .colorFormats = {kHdrFormat},
-                      .additiveBlend = true}),
-        toneMap(d, {.vertexShader = "fullscreen.vert",
-                    .fragmentShader = "tone_map.frag",
-                    .colorFormats = {display}}),
-        upscale(d, {.vertexShader = "fullscreen.vert",
-                    .fragmentShader = "upscale.frag",
-                    .colorFormats = {display}}),
-        terrainSampler(d, VK_FILTER_LINEAR, true),
-        nearest(d, VK_FILTER_NEAREST),
-        skySampler(d, VK_FILTER_LINEAR, false, true),
-        linear(d, VK_FILTER_LINEAR) {}
-
-  const GraphicsPipeline& cached(const std::string& key, const GraphicsPipelineDesc& desc) {
-    std::unique_ptr<GraphicsPipeline>& p = pipelines[key];
-    if (!p) p = std::make_unique<GraphicsPipeline>(device, desc);
-    return *p;
-  }
-
-  // The terrain pass: forward into the display (or HDR) target, or with the
-  // obscurance pass into its three targets.
-  const GraphicsPipeline& terrain(TexturePaging paging, ShadingMode mode, int albedo, bool gbuffer,
-                                  bool display, int footprintProbes) {
-    display = display && !gbuffer;
-    const std::string key = "terrain/" + std::to_string(int(paging)) + "/" +
-                            std::to_string(int(mode)) + "/" + std::to_string(albedo) + "/" +
-                            std::to_string(footprintProbes) + "/" +
-                            (gbuffer   ? "g"
-                             : display ? "d"
-                                       : "h");
-    std::vector<VkFormat> formats{display ? displayFormat : kHdrFormat};
-    // With the obscurance pass the terrain also writes the ambient term and
-    // the surface point; without it the frame pays nothing for them.
-    if (gbuffer) formats = {kHdrFormat, kAmbientFormat, kSurfaceFormat};
-    return cached(key,
-                  {.vertexShader = terrainVertexShader(paging),
-                   .fragmentShader = terrainFragmentShader(paging, gbuffer),
-                   .colorFormats = formats,
-                   .depthFormat = kDepthFormat,
-                   .depthTest = true,
-                   .depthWrite = true,
-                   .specialization = variantConstants(mode, albedo, display, footprintProbes)});
-  }
-
-  // The solid base, drawn in the terrain's rendering with the terrain's
-  // bindings (its vertex shader reads the heights at the DEM's edge); with
-  // the G-buffer it writes "no surface" to the other targets itself.
-  const GraphicsPipeline& base(TexturePaging paging, ShadingMode mode, bool gbuffer, bool display) {
-    display = display && !gbuffer;
-    const bool paged = paging == TexturePaging::All;
-    const std::string key = std::string("base/") + (paged ? "p/" : "1/") +
-                            std::to_string(int(mode)) +
-                            (gbuffer   ? "/g"
-                             : display ? "/d"
-                                       : "/h");
-    std::vector<VkFormat> formats{display ? displayFormat : kHdrFormat};
-    if (gbuffer) formats = {kHdrFormat, kAmbientFormat, kSurfaceFormat};
-    return cached(key, {.vertexShader = paged ? "base_paged.vert" : "base.vert",
-                        .fragmentShader = gbuffer ? "base_gbuffer.frag" : "base.frag",
-                        .colorFormats = formats,
-                        .depthFormat = kDepthFormat,
-                        .depthTest = true,
-                        .depthWrite = true,
-                        .cullMode = VK_CULL_MODE_BACK_BIT,
-                        .specialization = variantConstants(mode, 0, display)});
-  }
-
-  // The sky, after the terrain at the far plane with the depth test on, so
-  // only the pixels the terrain left empty run its shader; with the
-  // G-buffer in the same rendering (one rendering fewer: lavapipe loads and
-  // stores its targets at each), writing only the colour.
-  const GraphicsPipeline& sky(ShadingMode mode, bool display, bool gbuffer) {
-    const std::string key =
-        "sky/" + std::to_string(int(mode)) + (display ? "/d" : "/h") + (gbuffer ? "/g" : "");
-    std::vector<VkFormat> formats{display ? displayFormat : kHdrFormat};
-    if (gbuffer) formats = {kHdrFormat, kAmbientFormat, kSurfaceFormat};
-    return cached(key, {.vertexShader = "fullscreen.vert",
-                        .fragmentShader = "sky.frag",
-                        .colorFormats = formats,
-                        .depthFormat = kDepthFormat,
-                        .depthTest = true,
-                        .specialization = variantConstants(mode, 0, display),
-                        .writtenColors = 1u});
-  }
-
-  // The composite writing display values (the mode decides raw or tone-mapped).
-  const GraphicsPipeline& compositeDisplay(ShadingMode mode) {
-    return cached("composite/" + std::to_string(int(mode)),
-                  {.vertexShader = "fullscreen.vert",
-                   .fragmentShader = "composite_display.frag",
-                   .colorFormats = {displayFormat},
-                   .specialization = variantConstants(mode, 0, true)});
-  }
-
-  // The obscurance pass reads heights and albedo, never apertures.
-  // `temporal`: the variant that reads and writes the history of samples.
-  const GraphicsPipeline& obscurance(TexturePaging paging, ShadingMode mode, int albedo,
-                                     bool temporal) {
-    const bool paged = paging == TexturePaging::All;
-    const std::string key = std::string("obscurance/") + (paged ? "p/" : "1/") +
-                            (temporal ? "t/" : "") + std::to_string(int(mode)) + "/" +
-                            std::to_string(albedo);
-    std::vector<VkFormat> formats{kTransferFormat};
-    if (temporal) formats.insert(formats.end(), {kHistoryMeansFormat, kHistoryPointsFormat});
-    const char* shader =
-        temporal ? (paged ? "obscurance_temporal_paged.frag" : "obscurance_temporal.frag")
-                 : (paged ? "obscurance_paged.frag" : "obscurance.frag");
-    return cached(key, {.vertexShader = "fullscreen.vert",
-                        .fragmentShader = shader,
-                        .colorFormats = formats,
-                        .specialization = variantConstants(mode, albedo, false)});
-  }
-};
 
 namespace {
 
@@ -383,7 +187,7 @@ TerrainRenderer::TerrainRenderer(const Device& device, uint32_t width, uint32_t 
                 MemoryIntent::Upload),
       samples_(device, sizeof(ObscuranceSampleBlock), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT,
                MemoryIntent::Upload),
-      passes_(std::make_unique<Passes>(device, displayFormat)),
+      passes_(std::make_unique<PassPipelines>(device, displayFormat)),
       timer_(device, 8) {}
 
 TerrainRenderer::~TerrainRenderer() = default;

@@ -28,6 +28,7 @@ namespace aal {
 
 class Device;
 class TerrainScene;
+struct PassPipelines;
 
 struct FrameSettings {
   Camera camera;
@@ -166,7 +167,6 @@ class TerrainRenderer {
   // AAL_ALBEDO_* of the frame.
   static int albedoSourceOf(const TerrainScene& scene, const FrameSettings& s);
 
-  struct Passes;
   const Device& device_;
   uint32_t width_, height_;
   VkExtent2D extent_{0, 0};  // drawn this frame: width_ x height_, or less (FrameOutput)
@@ -208,7 +208,7 @@ class TerrainRenderer {
   Buffer patches_;  // LodPatch instances of the frame (grows as needed)
   LodSelection selection_;
   glm::mat4 viewProj_{1.0f};  // of the last writeUniforms
-  std::unique_ptr<Passes> passes_;
+  std::unique_ptr<PassPipelines> passes_;
   GpuTimer timer_;
 };
 
