@@ -42,8 +42,8 @@ void drawWallsAndBottom(VkCommandBuffer cmd, const LodSelection& selection, glm:
 
 }  // namespace
 
-// Shaders/base_vertex.glsl, base_shading.glsl; the terrain's bindings, as its
-// vertex shader reads the heights at the DEM's edge.
+// With the terrain's bindings: the base's vertex shader reads the heights at
+// the DEM's edge (shaders/base_vertex.glsl).
 void drawBase(const PassContext& pass, const FramePlan& plan) {
   pass.pipelines.base(plan.paging, plan.mode, plan.obscurance, plan.direct)
       .bind(pass.cmd, terrainWrites(pass).buffer(kAfterTerrainTextures, pass.patches), nullptr);

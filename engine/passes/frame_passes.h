@@ -10,9 +10,6 @@
 
 namespace aal {
 
-class Buffer;
-class Image;
-
 // The exact mode's cap table, from its staging copy (cap_table_upload.cpp).
 void recordCapTableUpload(VkCommandBuffer cmd, const Buffer& staging, const Image& table);
 

@@ -1,7 +1,5 @@
 #include "aperture/engine/passes/frame_passes.h"
 
-#include "aperture/engine/vk/gpu_timer.h"
-
 namespace aal {
 
 namespace {
