@@ -12,7 +12,10 @@
 #include <glm/mat4x4.hpp>
 #include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
+#include <glm/vec4.hpp>
 
+#include "aperture/shaders/config.h"
+#include "aperture/terrain/light/obscurance_samples.h"
 #include "aperture/terrain/light/sky_model.h"
 
 namespace aal {
@@ -107,5 +110,14 @@ static_assert(offsetof(FrameUniforms, sky) == 416, "std140 aligns the sky to 16 
 static_assert(offsetof(FrameUniforms, horizonWeights) == 416 + sizeof(PreethamSky) &&
               offsetof(FrameUniforms, horizonWeights) == 528);
 static_assert(sizeof(FrameUniforms) == 536);
+
+// The unit-radius sample offsets of eq. 8 of Umenhoffer et al., "Efficient
+// Methods for Ambient Lighting", 2009, as std140 vec4s, one set per interleave
+// cell (set k's sample i at k * AAL_OBSCURANCE_MAX_SAMPLES + i; 8 KiB, within
+// lavapipe's 64 KiB uniform buffers).
+static_assert(kObscuranceSampleSets == AAL_OBSCURANCE_SAMPLE_SETS);
+struct ObscuranceSampleBlock {
+  glm::vec4 offsets[AAL_OBSCURANCE_SAMPLE_SETS * AAL_OBSCURANCE_MAX_SAMPLES];
+};
 
 }  // namespace aal

@@ -28,6 +28,10 @@ namespace aal {
 
 class Device;
 class TerrainScene;
+struct FramePlan;
+struct FrameTargets;
+struct FrameUniforms;
+struct PassPipelines;
 
 struct FrameSettings {
   Camera camera;
@@ -144,29 +148,31 @@ class TerrainRenderer {
   std::vector<std::pair<std::string, double>> passMilliseconds() const { return timer_.results(); }
 
  private:
-  // Writes the frame's uniforms (and the obscurance sample set); returns
-  // whether the obscurance pass runs this frame.
-  bool writeUniforms(const TerrainScene& scene, const FrameSettings& settings);
-  // Scales the frame's passes up into the output image (dynamic resolution).
-  void recordUpscale(VkCommandBuffer cmd, const FrameOutput& output);
+  // The host's part of the frame (engine/frame_preparation.cpp), the only
+  // one that changes the scene (the horizon re-lay) or the renderer's state:
+  // the LOD selection, the uniforms, the cap table and the obscurance
+  // history's bookkeeping. Decides which passes run and where they write.
+  FramePlan prepareFrame(const TerrainScene& scene, const FrameSettings& settings,
+                         const FrameOutput& output);
+  // Re-lays the scene's horizons when the frame's sun left their pair.
+  void relayHorizons(const TerrainScene& scene, const FrameSettings& settings);
+  // Writes the frame's uniforms (and, with `obscurance`, the sample set).
+  void writeUniforms(const TerrainScene& scene, const FrameSettings& settings, bool obscurance);
+  // The obscurance uniforms and the history's validity for this frame.
+  void setObscurance(FrameUniforms& u, const TerrainScene& scene, const FrameSettings& settings,
+                     bool obscurance);
   // Selects the LOD patches for the camera and writes them to patches_.
   void selectPatches(const TerrainScene& scene, const FrameSettings& settings);
-  // Draws the selected patches: whole nodes, then each quadrant's.
-  void drawPatches(VkCommandBuffer cmd) const;
-  // Obscurance/W, the 4x4 filter, then upsampling and composite onto hdr_
-  // (docs/design.md §6, §8).
-  void recordObscurance(VkCommandBuffer cmd, const TerrainScene& scene, const FrameSettings& frame,
-                        bool linear, const VkRenderingAttachmentInfo& display);
-  // Makes the obscurance history's images on first use and readies the one
-  // this frame writes.
-  void prepareHistory(VkCommandBuffer cmd);
   // Makes the exact mode's cap table for the frame's sun radius when it
-  // changed (on the host, terrain/light/cap_table.h) and records its upload.
-  void updateCapTable(VkCommandBuffer cmd, const FrameSettings& settings);
-  // AAL_ALBEDO_* of the frame.
-  static int albedoSourceOf(const TerrainScene& scene, const FrameSettings& s);
+  // changed (on the host, terrain/light/cap_table.h) into its staging
+  // copy; returns whether the frame uploads it.
+  bool prepareCapTable(const FrameSettings& settings);
+  // Makes the obscurance history's images on first use and picks the one
+  // this frame reads and the one it writes.
+  void prepareHistory(FramePlan& plan);
+  // The renderer's images, as the passes see them.
+  FrameTargets frameTargets() const;
 
-  struct Passes;
   const Device& device_;
   uint32_t width_, height_;
   VkExtent2D extent_{0, 0};  // drawn this frame: width_ x height_, or less (FrameOutput)
@@ -208,7 +214,7 @@ class TerrainRenderer {
   Buffer patches_;  // LodPatch instances of the frame (grows as needed)
   LodSelection selection_;
   glm::mat4 viewProj_{1.0f};  // of the last writeUniforms
-  std::unique_ptr<Passes> passes_;
+  std::unique_ptr<PassPipelines> passes_;
   GpuTimer timer_;
 };
 

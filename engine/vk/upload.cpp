@@ -41,6 +41,47 @@ size_t bandBytes(const Image& image, size_t bytesPerTexel, uint32_t rows) {
   return bytes;
 }
 
+// The copies of one staging-buffer load, with the images' transitions.
+void recordCopies(VkCommandBuffer cmd, const Buffer& staging, const std::vector<Copy>& copies) {
+  for (const Copy& c : copies) {
+    if (c.buffer) {
+      const VkBufferCopy region{
+          .srcOffset = c.stagingOffset, .dstOffset = c.bufferOffset, .size = c.bytes};
+      vkCmdCopyBuffer(cmd, staging.handle(), c.buffer->handle(), 1, &region);
+      continue;
+    }
+    // Bands after the first find the image already in TRANSFER_DST.
+    if (c.first) {
+      transitionImage(cmd, *c.image, VK_IMAGE_LAYOUT_UNDEFINED,
+                      VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL);
+    }
+    const VkBufferImageCopy region{
+        .bufferOffset = c.stagingOffset,
+        .imageSubresource = {.aspectMask = VK_IMAGE_ASPECT_COLOR_BIT,
+                             .mipLevel = c.level,
+                             .baseArrayLayer = c.layer,
+                             .layerCount = 1},
+        .imageOffset = {.x = 0, .y = static_cast<int32_t>(c.firstRow), .z = 0},
+        .imageExtent = {.width = c.image->desc().width >> c.level, .height = c.rows, .depth = 1}};
+    vkCmdCopyBufferToImage(cmd, staging.handle(), c.image->handle(),
+                           VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 1, &region);
+    if (c.last) {
+      transitionImage(cmd, *c.image, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL,
+                      VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL);
+    }
+  }
+  // Buffer copies must be visible to vertex input and shaders.
+  const VkMemoryBarrier2 barrier{.sType = VK_STRUCTURE_TYPE_MEMORY_BARRIER_2,
+                                 .srcStageMask = VK_PIPELINE_STAGE_2_TRANSFER_BIT,
+                                 .srcAccessMask = VK_ACCESS_2_TRANSFER_WRITE_BIT,
+                                 .dstStageMask = VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT,
+                                 .dstAccessMask = VK_ACCESS_2_MEMORY_READ_BIT};
+  const VkDependencyInfo dependency{.sType = VK_STRUCTURE_TYPE_DEPENDENCY_INFO,
+                                    .memoryBarrierCount = 1,
+                                    .pMemoryBarriers = &barrier};
+  vkCmdPipelineBarrier2(cmd, &dependency);
+}
+
 }  // namespace
 
 void UploadBatch::addImage(const Image& image, size_t bytesPerTexel, RowWriter rows, uint32_t layer,
@@ -155,46 +196,7 @@ void UploadBatch::submit() {
     }
     staging.flush();
 
-    submitAndWait(device_, [&](VkCommandBuffer cmd) {
-      for (const Copy& c : copies) {
-        if (c.buffer) {
-          const VkBufferCopy region{
-              .srcOffset = c.stagingOffset, .dstOffset = c.bufferOffset, .size = c.bytes};
-          vkCmdCopyBuffer(cmd, staging.handle(), c.buffer->handle(), 1, &region);
-          continue;
-        }
-        // Bands after the first find the image already in TRANSFER_DST.
-        if (c.first) {
-          transitionImage(cmd, *c.image, VK_IMAGE_LAYOUT_UNDEFINED,
-                          VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL);
-        }
-        const VkBufferImageCopy region{
-            .bufferOffset = c.stagingOffset,
-            .imageSubresource = {.aspectMask = VK_IMAGE_ASPECT_COLOR_BIT,
-                                 .mipLevel = c.level,
-                                 .baseArrayLayer = c.layer,
-                                 .layerCount = 1},
-            .imageOffset = {.x = 0, .y = static_cast<int32_t>(c.firstRow), .z = 0},
-            .imageExtent = {
-                .width = c.image->desc().width >> c.level, .height = c.rows, .depth = 1}};
-        vkCmdCopyBufferToImage(cmd, staging.handle(), c.image->handle(),
-                               VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 1, &region);
-        if (c.last) {
-          transitionImage(cmd, *c.image, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL,
-                          VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL);
-        }
-      }
-      // Buffer copies must be visible to vertex input and shaders.
-      const VkMemoryBarrier2 barrier{.sType = VK_STRUCTURE_TYPE_MEMORY_BARRIER_2,
-                                     .srcStageMask = VK_PIPELINE_STAGE_2_TRANSFER_BIT,
-                                     .srcAccessMask = VK_ACCESS_2_TRANSFER_WRITE_BIT,
-                                     .dstStageMask = VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT,
-                                     .dstAccessMask = VK_ACCESS_2_MEMORY_READ_BIT};
-      const VkDependencyInfo dependency{.sType = VK_STRUCTURE_TYPE_DEPENDENCY_INFO,
-                                        .memoryBarrierCount = 1,
-                                        .pMemoryBarriers = &barrier};
-      vkCmdPipelineBarrier2(cmd, &dependency);
-    });
+    submitAndWait(device_, [&](VkCommandBuffer cmd) { recordCopies(cmd, staging, copies); });
   }
   pending_.clear();
 }

@@ -1,0 +1,298 @@
+// The host's part of a frame (TerrainRenderer::prepareFrame): everything that
+// changes the scene or the renderer's state happens here, before a command
+// is recorded, so the passes (engine/passes/) only record.
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <stdexcept>
+
+#include <glm/matrix.hpp>
+
+#include "aperture/engine/frame_uniforms.h"
+#include "aperture/engine/passes/frame_plan.h"
+#include "aperture/engine/terrain_renderer.h"
+#include "aperture/engine/terrain_scene.h"
+#include "aperture/engine/vk/device.h"
+#include "aperture/terrain/io/horizon_map.h"
+#include "aperture/terrain/light/cap_table.h"
+#include "aperture/terrain/light/obscurance_samples.h"
+#include "aperture/terrain/view/texel_footprint.h"
+
+namespace aal {
+
+namespace {
+
+// The modes whose picture W changes: the AAL sky fill (docs/design.md §5) and
+// the O/W views. The baselines keep their own ambient term.
+bool usesTransfer(ShadingMode mode) {
+  return mode == ShadingMode::Approx || mode == ShadingMode::Exact ||
+         mode == ShadingMode::Horizon || mode == ShadingMode::DebugObscurance ||
+         mode == ShadingMode::DebugTransfer;
+}
+
+// AAL_ALBEDO_* of the frame.
+int albedoSourceOf(const TerrainScene& scene, const FrameSettings& s) {
+  return s.albedoValue       ? AAL_ALBEDO_CONSTANT
+         : scene.hasAlbedo() ? AAL_ALBEDO_IMAGE
+                             : AAL_ALBEDO_PALETTE;
+}
+
+// Which passes run, at what size, into which targets.
+FramePlan planPasses(const TerrainScene& scene, const FrameSettings& s, const FrameOutput& output,
+                     VkExtent2D extent, VkExtent2D fullExtent, bool independentBlend) {
+  FramePlan plan;
+  plan.mode = s.mode;
+  plan.albedoSource = albedoSourceOf(scene, s);
+  plan.paging = texturePagingOf(scene.tiles());
+  plan.footprintProbes = std::clamp(s.anisotropy, 1, kMaxFootprintProbes);
+  plan.base = s.base.has_value();
+  plan.extent = extent;
+  plan.fullExtent = fullExtent;
+  plan.linear = output.linear;
+  const bool external = output.image != VK_NULL_HANDLE && !output.linear;
+  plan.intoOutput =
+      external && extent.width == fullExtent.width && extent.height == fullExtent.height;
+  plan.upscale = external && !plan.intoOutput;
+  plan.outputImage = output.image;
+  plan.outputView = output.view;
+  const ObscuranceSettings& o = s.obscurance;
+  plan.obscurance = o.enabled && usesTransfer(s.mode);
+  plan.direct = !plan.linear && !plan.obscurance;
+  plan.skyApart = plan.obscurance && !independentBlend;
+  if (plan.obscurance) {
+    const uint32_t step = o.halfResolution ? 2 : 1;
+    plan.obscuranceExtent = {(extent.width + step - 1) / step, (extent.height + step - 1) / step};
+    plan.interleaved = o.interleaved;
+    plan.temporal = o.history != ObscuranceSettings::History::None;
+  }
+  return plan;
+}
+
+void setLighting(FrameUniforms& u, const Lighting& light) {
+  u.sunDirection = light.sunDirection;
+  u.sunRadiusRad = light.sunRadiusRad;
+  u.sunIrradiance = light.sunIrradiance;
+  u.hazeDensityPerM = light.hazeDensityPerM;
+  u.skyRadiance = light.skyRadiance;
+  u.exposure = light.exposure;
+  u.sky = light.sky;
+}
+
+// The DEM and its surface; `bottom`: the base's bottom (m).
+void setSurface(FrameUniforms& u, const TerrainScene& scene, const FrameSettings& s,
+                double bottom) {
+  const glm::vec4 dem = scene.demInfo();  // width, height (texels), cell size x, y (m)
+  u.demSize = {dem.x, dem.y};
+  u.cellSizeM = {dem.z, dem.w};
+  u.minHeightM = scene.minHeight();
+  u.maxHeightM = scene.maxHeight();
+  u.waterLevelM = s.waterLevelM.value_or(0.0f);
+  u.hasWater = s.waterLevelM ? 1 : 0;
+  u.albedoValue = s.albedoValue.value_or(glm::vec3(0.0f));
+  u.backgroundAlpha = s.transparentBackground ? 0.0f : 1.0f;
+  if (s.base) {
+    u.baseAlbedo = s.base->albedo;
+    u.baseBottomM = float(bottom);
+  }
+}
+
+void setTiles(FrameUniforms& u, const TerrainTileLayout& tiles) {
+  u.tileCoreSize = glm::ivec2(glm::uvec2(tiles.coreWidth, tiles.coreHeight));
+  u.tileCount = glm::ivec2(glm::uvec2(tiles.tilesX, tiles.tilesY));
+  u.tileImageSize = glm::ivec2(glm::uvec2(tiles.imageWidth(), tiles.imageHeight()));
+  u.tileBorder = int32_t(tiles.border);
+  u.heightLayersPerPage = int32_t(tiles.layersPerPage[0]);
+  u.apertureLayersPerPage = int32_t(tiles.layersPerPage[1]);
+  u.albedoLayersPerPage = int32_t(tiles.layersPerPage[2]);
+}
+
+}  // namespace
+
+FramePlan TerrainRenderer::prepareFrame(const TerrainScene& scene, const FrameSettings& s,
+                                        const FrameOutput& output) {
+  const float scale = std::clamp(output.resolutionScale, 0.05f, 1.0f);
+  if (scale < 1.0f && (output.image == VK_NULL_HANDLE || output.linear)) {
+    throw std::invalid_argument(
+        "TerrainRenderer::record: a reduced resolution needs an output image, not linear output");
+  }
+  if (s.mode == ShadingMode::Horizon && !scene.hasHorizons()) {
+    throw std::invalid_argument(
+        "the horizon mode needs the DEM's directional horizons (aal-bake --horizons)");
+  }
+  extent_ = {std::max(1u, static_cast<uint32_t>(std::lround(width_ * scale))),
+             std::max(1u, static_cast<uint32_t>(std::lround(height_ * scale)))};
+  if (s.mode == ShadingMode::Horizon) relayHorizons(scene, s);
+  FramePlan plan =
+      planPasses(scene, s, output, extent_, {width_, height_}, device_.independentBlend());
+  writeUniforms(scene, s, plan.obscurance);
+  selectPatches(scene, s);
+  plan.selection = &selection_;
+  plan.capTableUpload = prepareCapTable(s);
+  if (plan.temporal) prepareHistory(plan);
+  // What the next frame's obscurance reuse reprojects with.
+  previousViewProj_ = viewProj_;
+  previousExtent_ = extent_;
+  return plan;
+}
+
+void TerrainRenderer::relayHorizons(const TerrainScene& scene, const FrameSettings& s) {
+  // The slope texture must hold the horizons of the two directions beside
+  // the sun: re-lay when the sun leaves the pair on the device, at once or
+  // this frame's share of a spread re-lay (engine/horizon_relay.h). Safe
+  // here: the previous frame's submission has finished (as writeUniforms
+  // requires; aal-view keeps one frame in flight, engine/vk/frame_sync.h,
+  // so no frame still reads the slopes), and the writing waits for itself
+  // before this frame's commands are submitted. With more frames in flight
+  // this would need the device idle first.
+  const int n = scene.horizonDirections();
+  const float azimuth = sunAzimuthRad(s.lighting.sunDirection);
+  const float motion =
+      horizonSunScene_ == scene.id() ? horizonMotionSteps(n, horizonSunAzimuth_, azimuth) : 0.0f;
+  HorizonRelayPolicy policy;
+  if (s.horizonRelayTexelsPerFrame > 0) {
+    policy.bandsPerFrame = uint32_t(std::clamp<uint64_t>(
+        s.horizonRelayTexelsPerFrame / scene.horizonBandTexels(), 1, scene.horizonBands()));
+  }
+  scene.writeHorizonRelay(device_, planHorizonRelay(n, scene.horizonChannels(), azimuth, motion,
+                                                    scene.horizonBands(), policy));
+  horizonSunScene_ = scene.id();
+  horizonSunAzimuth_ = azimuth;
+}
+
+void TerrainRenderer::writeUniforms(const TerrainScene& scene, const FrameSettings& s,
+                                    bool obscurance) {
+  const double aspect = double(extent_.width) / double(extent_.height);
+  // The depth range must hold the whole DEM: approximate it from the box.
+  const glm::vec4 dem = scene.demInfo();  // width, height (texels), cell size x, y (m)
+  const double bottom = scene.minHeight() - (s.base ? double(s.base->depthM) : 0.0);
+  const DepthRange range = depthRangeFor(s.camera, {(dem.x - 1.0) * dem.z, (dem.y - 1.0) * dem.w},
+                                         bottom, scene.maxHeight());
+
+  FrameUniforms u;
+  u.viewProj = projectionMatrix(s.camera, aspect, range) * viewMatrix(s.camera);
+  viewProj_ = u.viewProj;
+  u.invViewProj = glm::inverse(u.viewProj);
+  u.previousViewProj = previousViewProj_;
+  u.cameraPos = glm::vec3(s.camera.position);
+  u.pixelAngle =
+      float(2.0 * std::tan(0.5 * s.camera.verticalFovDeg * AAL_PI / 180.0) / extent_.height);
+  setLighting(u, s.lighting);
+  setSurface(u, scene, s, bottom);
+  u.extent = glm::ivec2(glm::uvec2(extent_.width, extent_.height));
+  u.previousExtent = glm::ivec2(glm::uvec2(previousExtent_.width, previousExtent_.height));
+  u.rawOutput = isDebugMode(s.mode) ? 1 : 0;
+  setObscurance(u, scene, s, obscurance);
+  setTiles(u, scene.tiles());
+  if (s.mode == ShadingMode::Horizon && scene.hasHorizons()) {
+    // What B and A hold serves this sun (relayHorizons ran first): the pair's
+    // weights, or the shared direction alone while a re-lay is under way.
+    const std::array<float, 2> w = horizonChannelWeights(
+        scene.horizonDirections(), scene.horizonChannels(), sunAzimuthRad(u.sunDirection));
+    u.horizonWeights = glm::vec2(w[0], w[1]);
+  }
+  uniforms_.write(&u, sizeof u);
+}
+
+void TerrainRenderer::setObscurance(FrameUniforms& u, const TerrainScene& scene,
+                                    const FrameSettings& s, bool obscurance) {
+  const ObscuranceSettings& o = s.obscurance;
+  if (obscurance) {
+    const glm::vec4 dem = scene.demInfo();
+    u.obscuranceRadiusM =
+        o.radiusM > 0
+            ? o.radiusM
+            : defaultObscuranceRadiusM({dem.z, dem.w}, {(dem.x - 1) * dem.z, (dem.y - 1) * dem.w});
+    u.obscuranceSamples = o.samples;
+    u.obscuranceSteps = o.steps;
+    u.obscuranceInterleaved = o.interleaved ? 1 : 0;
+    u.obscurancePixelSize = o.halfResolution ? 2 : 1;
+    ObscuranceSampleBlock block{};
+    for (int k = 0; k < kObscuranceSampleSets; ++k) {
+      const std::vector<glm::vec3>& offsets = obscuranceCellSampleOffsets(o.samples, k);
+      for (size_t i = 0; i < offsets.size(); ++i) {
+        block.offsets[static_cast<size_t>(k) * AAL_OBSCURANCE_MAX_SAMPLES + i] =
+            glm::vec4(offsets[i], 0.0f);
+      }
+    }
+    samples_.write(&block, sizeof block);
+  }
+  if (obscurance && o.history != ObscuranceSettings::History::None) {
+    // The samples kept from the previous frame belong to the same terrain,
+    // settings and occluders' albedo, or to nothing.
+    const HistoryKey key{scene.id(),
+                         u.obscuranceRadiusM,
+                         o.samples,
+                         o.steps,
+                         o.interleaved,
+                         o.halfResolution,
+                         albedoSourceOf(scene, s),
+                         s.albedoValue.value_or(glm::vec3(-1.0f))};
+    historyValid_ = historyValid_ && key == historyKey_;
+    historyKey_ = key;
+    u.historyValid = historyValid_ ? 1 : 0;
+    if (historyValid_ && o.history == ObscuranceSettings::History::Reuse) {
+      u.historySubset = int(historySubset_++ % AAL_OBSCURANCE_SUBSETS);
+    }
+  } else {
+    historyValid_ = false;
+  }
+}
+
+void TerrainRenderer::selectPatches(const TerrainScene& scene, const FrameSettings& s) {
+  LodFrame frame;
+  frame.cameraM = s.camera.position;
+  frame.viewProj = viewProj_;
+  frame.viewportHeightPx = extent_.height;
+  frame.verticalFovDeg = s.camera.verticalFovDeg;
+  frame.triangleBudget = scene.triangleBudget();
+  frame.budgetErrorScale = scene.lodBudgetErrorScale();
+  frame.settings = s.lod;
+  selection_ = selectLodForFrame(scene.lod(), frame);
+  // At least one instance, so the buffer exists when nothing is in view.
+  const size_t bytes = std::max<size_t>(selection_.patches.size(), 1) * sizeof(LodPatch);
+  if (patches_.size() < bytes) {
+    // The previous frame's submission has finished (see record()): the old
+    // buffer may go. Grow by half again to avoid a new one every frame.
+    patches_ = Buffer(device_, bytes + bytes / 2, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
+                      MemoryIntent::Upload);
+  }
+  if (!selection_.patches.empty()) {
+    patches_.write(selection_.patches.data(), selection_.patches.size() * sizeof(LodPatch));
+  }
+}
+
+bool TerrainRenderer::prepareCapTable(const FrameSettings& s) {
+  // Other modes only need a valid image behind the binding: the first frame
+  // makes one, and the exact mode remakes it for its sun.
+  // The tools allow suns of 0.01 to 20 degrees; the table wants (0, pi/2).
+  const float radius = std::clamp(s.lighting.sunRadiusRad, 1e-6f, 1.5f);
+  const bool wanted = s.mode == ShadingMode::Exact || capTableRadius_ == 0.0f;
+  if (!wanted || radius == capTableRadius_) return false;
+  const CapIntersectionTable table = makeCapIntersectionTable(radius);
+  // The previous frame's submission has finished (see record()): the staging
+  // buffer and the image are free.
+  capTableStaging_.write(table.values.data(), table.values.size() * sizeof(float));
+  capTableRadius_ = radius;
+  return true;
+}
+
+void TerrainRenderer::prepareHistory(FramePlan& plan) {
+  plan.historyFresh = !historyMeans_[0];
+  if (plan.historyFresh) {
+    for (int i = 0; i < 2; ++i) {
+      const VkImageUsageFlags usage =
+          VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_SAMPLED_BIT;
+      historyMeans_[i] =
+          std::make_unique<Image>(device_, ImageDesc{width_, height_, kHistoryMeansFormat, usage});
+      historyPoints_[i] =
+          std::make_unique<Image>(device_, ImageDesc{width_, height_, kHistoryPointsFormat, usage});
+    }
+  }
+  plan.historyRead = historyRead_;
+  plan.historyWrite = 1 - historyRead_;
+  // What this frame writes is what the next one reads.
+  historyRead_ = plan.historyWrite;
+  historyValid_ = true;
+}
+
+}  // namespace aal

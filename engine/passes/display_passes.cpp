@@ -1,0 +1,55 @@
+#include "aperture/engine/passes/frame_passes.h"
+
+#include "aperture/engine/vk/gpu_timer.h"
+
+namespace aal {
+
+namespace {
+
+// Scales the frame's smaller picture up into the output image (dynamic
+// resolution, shaders/upscale.frag).
+void recordUpscale(const PassContext& pass, const FramePlan& plan, const FrameTargets& targets) {
+  transitionImage(pass.cmd, targets.display, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL,
+                  VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL);
+  transitionImage(pass.cmd, plan.outputImage, VK_IMAGE_LAYOUT_UNDEFINED,
+                  VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL);
+  VkRenderingAttachmentInfo target = colorAttachment(targets.display, false);
+  target.imageView = plan.outputView;
+  drawFullscreen(pass, "upscale", plan.fullExtent, &target, 1, pass.pipelines.upscale,
+                 DescriptorWrites()
+                     .buffer(0, pass.uniforms)
+                     .image(1, targets.display.view(), pass.pipelines.linear.handle()));
+  transitionImage(pass.cmd, targets.display, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL,
+                  VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL);
+}
+
+}  // namespace
+
+void recordToneMap(const PassContext& pass, const FramePlan& plan, const FrameTargets& targets) {
+  const VkCommandBuffer cmd = pass.cmd;
+  transitionImage(cmd, targets.hdr, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL,
+                  VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL);
+  const VkRenderingAttachmentInfo display = displayAttachment(plan, targets);
+  beginRendering(cmd, plan.extent, &display, 1, nullptr);
+  pass.timer.begin(cmd, "tone map");
+  pass.pipelines.toneMap.bind(cmd,
+                              DescriptorWrites()
+                                  .buffer(0, pass.uniforms)
+                                  .image(1, targets.hdr.view(), pass.pipelines.nearest.handle()),
+                              nullptr);
+  vkCmdDraw(cmd, 3, 1, 0, 0);
+  pass.timer.end(cmd);
+  vkCmdEndRendering(cmd);
+}
+
+void recordDisplayHandoff(const PassContext& pass, const FramePlan& plan,
+                          const FrameTargets& targets) {
+  // The display image ends ready to be copied (or read by the upscale).
+  if (!plan.intoOutput) {
+    transitionImage(pass.cmd, targets.display, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL,
+                    VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL);
+  }
+  if (plan.upscale) recordUpscale(pass, plan, targets);
+}
+
+}  // namespace aal
