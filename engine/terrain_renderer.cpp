@@ -20,6 +20,7 @@
 #include "aperture/terrain/io/horizon_map.h"
 #include "aperture/terrain/light/cap_table.h"
 #include "aperture/terrain/light/obscurance_samples.h"
+#include "aperture/terrain/units.h"
 #include "aperture/terrain/view/texel_footprint.h"
 
 namespace aal {
@@ -458,7 +459,7 @@ bool TerrainRenderer::writeUniforms(const TerrainScene& scene, const FrameSettin
   u.previousViewProj = previousViewProj_;
   u.cameraPos = glm::vec3(s.camera.position);
   u.pixelAngle =
-      float(2.0 * std::tan(0.5 * s.camera.verticalFovDeg * AAL_PI / 180.0) / extent_.height);
+      float(2.0 * std::tan(0.5 * s.camera.verticalFovDeg * kPi / 180.0) / extent_.height);
 
   const Lighting& light = s.lighting;
   u.sunDirection = light.sunDirection;

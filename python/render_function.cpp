@@ -7,7 +7,6 @@
 #include <cmath>
 #include <cstdint>
 #include <memory>
-#include <numbers>
 #include <optional>
 #include <string>
 #include <utility>
@@ -28,6 +27,7 @@
 #include "aperture/terrain/light/sky_lighting.h"
 #include "aperture/terrain/light/solar_position.h"
 #include "aperture/terrain/light/tone_map.h"
+#include "aperture/terrain/units.h"
 #include "aperture/terrain/view/camera.h"
 #include "aperture/tools/horizon_option.h"
 #include "aperture/tools/tool_options.h"
@@ -42,7 +42,7 @@ struct RenderArguments {
   uint32_t width = 1280, height = 720;
   std::optional<std::array<double, 3>> camera, lookAt;
   double fovDeg = 40;
-  double sunAzimuthDeg = 315, sunElevationDeg = 45;
+  double sunAzimuthDeg = kDefaultSunAzimuthDeg, sunElevationDeg = kDefaultSunElevationDeg;
   std::optional<std::string> time;
   std::optional<double> lat, lon;
   double sunRadiusDeg = kSunAngularRadiusDeg;
@@ -115,7 +115,7 @@ Frame renderArray(Task& task, DemArray dem, const RenderArguments& a) {
   settings.transparentBackground = a.transparentBackground;
   Lighting& light = settings.lighting;
   light = defaultLighting(field, sun.azimuthDeg, sun.elevationDeg, a.turbidity, sun.sunDistanceAu);
-  light.sunRadiusRad = static_cast<float>(a.sunRadiusDeg * std::numbers::pi / 180.0);
+  light.sunRadiusRad = static_cast<float>(radians(a.sunRadiusDeg));
   if (a.visibilityKm) {
     light.hazeDensityPerM = static_cast<float>(hazeDensityForVisibility(*a.visibilityKm * 1000));
   }
