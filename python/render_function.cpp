@@ -61,9 +61,6 @@ struct RenderArguments {
   int threads = 0;
 };
 
-// aal-render's triangle budget (--triangles' default).
-constexpr size_t kTriangleBudget = 2'000'000;
-
 glm::dvec3 toVec(const std::array<double, 3>& v) {
   return {v[0], v[1], v[2]};
 }
@@ -133,7 +130,8 @@ Frame renderArray(Task& task, DemArray dem, const RenderArguments& a) {
       throw InputError("size " + std::to_string(a.width) + "x" + std::to_string(a.height) +
                        " exceeds the device's largest image (" + std::to_string(largest) + ")");
     }
-    TerrainScene scene(device, field, baked.aperture, nullptr, kTriangleBudget, TerrainTiling{});
+    TerrainScene scene(device, field, baked.aperture, nullptr, kDefaultTriangleBudget,
+                       TerrainTiling{});
     baked.aperture = {};
     if (options.horizons) {
       auto horizons = std::make_shared<const HorizonMap>(std::move(baked.horizons));
