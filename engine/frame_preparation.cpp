@@ -16,6 +16,7 @@
 #include "aperture/terrain/io/horizon_map.h"
 #include "aperture/terrain/light/cap_table.h"
 #include "aperture/terrain/light/obscurance_samples.h"
+#include "aperture/terrain/units.h"
 #include "aperture/terrain/view/texel_footprint.h"
 
 namespace aal {
@@ -175,7 +176,7 @@ void TerrainRenderer::writeUniforms(const TerrainScene& scene, const FrameSettin
   u.previousViewProj = previousViewProj_;
   u.cameraPos = glm::vec3(s.camera.position);
   u.pixelAngle =
-      float(2.0 * std::tan(0.5 * s.camera.verticalFovDeg * AAL_PI / 180.0) / extent_.height);
+      float(2.0 * std::tan(0.5 * s.camera.verticalFovDeg * kPi / 180.0) / extent_.height);
   setLighting(u, s.lighting);
   setSurface(u, scene, s, bottom);
   u.extent = glm::ivec2(glm::uvec2(extent_.width, extent_.height));

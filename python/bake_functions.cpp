@@ -22,6 +22,7 @@
 #include "aperture/terrain/io/horizon_map.h"
 #include "aperture/terrain/light/solar_position.h"
 #include "aperture/terrain/reference/relief.h"
+#include "aperture/terrain/units.h"
 #include "aperture/tools/tool_options.h"
 
 namespace py = pybind11;
@@ -29,8 +30,6 @@ namespace py = pybind11;
 namespace aal::python {
 
 namespace {
-
-constexpr double kRadToDeg = 180.0 / 3.14159265358979323846;
 
 // `threads` > 0 caps oneTBB's workers while it lives, as aal-bake --threads.
 std::optional<tbb::global_control> threadLimit(int threads) {
@@ -85,7 +84,7 @@ BakeOutput bakeArray(Task& task, DemArray dem, BakeOptions options, int threads)
     out.horizonDirections = h.directions;
     out.horizonsDeg.resize(h.codes.size());
     for (size_t i = 0; i < h.codes.size(); ++i) {
-      out.horizonsDeg[i] = static_cast<float>(decodeHorizon(h.codes[i], h.bits) * kRadToDeg);
+      out.horizonsDeg[i] = static_cast<float>(degrees(decodeHorizon(h.codes[i], h.bits)));
     }
   }
   if (field.voidCount > 0) {
@@ -139,7 +138,7 @@ constexpr double kDefaultSkyWeight = 0.2;
 
 struct ReliefArguments {
   std::string lighting;  // sun, sky, multidirectional
-  double sunAzimuthDeg = 315, sunElevationDeg = 45;
+  double sunAzimuthDeg = kDefaultSunAzimuthDeg, sunElevationDeg = kDefaultSunElevationDeg;
   std::optional<std::string> time;
   std::optional<double> lat, lon;
   double sunRadiusDeg = kSunAngularRadiusDeg;

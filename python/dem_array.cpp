@@ -3,7 +3,6 @@
 #include <cmath>
 #include <cstdio>
 #include <memory>
-#include <numbers>
 #include <utility>
 
 #include <ogr_spatialref.h>
@@ -14,12 +13,11 @@
 #include "aperture/terrain/io/gdal_session.h"
 #include "aperture/terrain/io/raw_dem.h"
 #include "aperture/terrain/number_text.h"
+#include "aperture/terrain/units.h"
 
 namespace aal::python {
 
 namespace {
-
-constexpr double kRadToDeg = 180.0 / std::numbers::pi;
 
 // The range the DEM reader accepts for a metric cell size (georeference.h),
 // checked here because a spacing handed over is not measured again.
@@ -139,7 +137,7 @@ GridSpacing gridSpacing(const std::string& crs, const std::array<double, 6>& gt,
     }
     if (srs.IsGeographic()) {
       geo.crs = CrsKind::Geographic;
-      geo.angularUnitDeg = srs.GetAngularUnits(nullptr) * kRadToDeg;
+      geo.angularUnitDeg = degrees(srs.GetAngularUnits(nullptr));
       geo.primeMeridianDeg = srs.GetPrimeMeridian(nullptr);
     } else if (srs.IsProjected() || srs.IsLocal()) {
       geo.crs = CrsKind::Projected;

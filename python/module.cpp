@@ -20,6 +20,7 @@
 #include "aperture/terrain/io/dem_options.h"
 #include "aperture/terrain/io/raw_dem.h"
 #include "aperture/terrain/light/solar_position.h"
+#include "aperture/terrain/units.h"
 #include "aperture/terrain/version.h"
 
 namespace py = pybind11;
@@ -101,6 +102,10 @@ PYBIND11_MODULE(_aperture, m) {
   m.doc() = "The compiled half of aperture (docs/python.md); use the functions of `aperture`.";
   m.attr("__version__") = aal::versionNumber();
   m.attr("software") = aal::softwareName();
+  // The sun the tools default to (terrain/units.h), for aperture's defaults.
+  m.attr("_DEFAULT_SUN_AZIMUTH_DEG") = aal::kDefaultSunAzimuthDeg;
+  m.attr("_DEFAULT_SUN_ELEVATION_DEG") = aal::kDefaultSunElevationDeg;
+  m.attr("_SUN_ANGULAR_RADIUS_DEG") = aal::kSunAngularRadiusDeg;
 
   // Bad input is a ValueError with the library's message, the one the
   // tools print before exiting with 2.

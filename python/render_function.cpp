@@ -7,7 +7,6 @@
 #include <cmath>
 #include <cstdint>
 #include <memory>
-#include <numbers>
 #include <optional>
 #include <string>
 #include <utility>
@@ -29,6 +28,7 @@
 #include "aperture/terrain/light/sky_lighting.h"
 #include "aperture/terrain/light/solar_position.h"
 #include "aperture/terrain/light/tone_map.h"
+#include "aperture/terrain/units.h"
 #include "aperture/terrain/view/camera.h"
 #include "aperture/tools/horizon_option.h"
 #include "aperture/tools/tool_options.h"
@@ -43,7 +43,7 @@ struct RenderArguments {
   uint32_t width = 1280, height = 720;
   std::optional<std::array<double, 3>> camera, lookAt;
   double fovDeg = 40;
-  double sunAzimuthDeg = 315, sunElevationDeg = 45;
+  double sunAzimuthDeg = kDefaultSunAzimuthDeg, sunElevationDeg = kDefaultSunElevationDeg;
   std::optional<std::string> time;
   std::optional<double> lat, lon;
   double sunRadiusDeg = kSunAngularRadiusDeg;
@@ -62,9 +62,6 @@ struct RenderArguments {
   int device = -1;
   int threads = 0;
 };
-
-// aal-render's triangle budget (--triangles' default).
-constexpr size_t kTriangleBudget = 2'000'000;
 
 glm::dvec3 toVec(const std::array<double, 3>& v) {
   return {v[0], v[1], v[2]};
@@ -117,7 +114,7 @@ Frame renderArray(Task& task, DemArray dem, const RenderArguments& a) {
   settings.transparentBackground = a.transparentBackground;
   Lighting& light = settings.lighting;
   light = defaultLighting(field, sun.azimuthDeg, sun.elevationDeg, a.turbidity, sun.sunDistanceAu);
-  light.sunRadiusRad = static_cast<float>(a.sunRadiusDeg * std::numbers::pi / 180.0);
+  light.sunRadiusRad = static_cast<float>(radians(a.sunRadiusDeg));
   if (a.visibilityKm) {
     light.hazeDensityPerM = static_cast<float>(hazeDensityForVisibility(*a.visibilityKm * 1000));
   }
@@ -141,7 +138,8 @@ Frame renderArray(Task& task, DemArray dem, const RenderArguments& a) {
                        " with supersample " + std::to_string(a.supersample) +
                        " exceeds the device's largest image (" + std::to_string(largest) + ")");
     }
-    TerrainScene scene(device, field, baked.aperture, nullptr, kTriangleBudget, TerrainTiling{});
+    TerrainScene scene(device, field, baked.aperture, nullptr, kDefaultTriangleBudget,
+                       TerrainTiling{});
     baked.aperture = {};
     if (options.horizons) {
       auto horizons = std::make_shared<const HorizonMap>(std::move(baked.horizons));

@@ -27,6 +27,7 @@
 #include "aperture/terrain/io/geotiff_writer.h"
 #include "aperture/terrain/io/memory_budget.h"
 #include "aperture/tools/bake_command_line.h"
+#include "aperture/tools/options/output_options.h"
 #include "aperture/tools/tool_main.h"
 #include "aperture/tools/tool_options.h"
 #include "aperture/tools/tool_paths.h"
@@ -396,7 +397,7 @@ int main(int argc, char** argv) {
       "write --svf and --visible as cloud-optimized GeoTIFFs (tiled, with overviews); not a "
       "tiled bake's SVF tiles");
   aal::addMapStorageOptions(app, o);
-  app.add_flag("-q,--quiet", o.quiet, "no progress and no summary");
+  aal::addQuietFlag(app, o.quiet);
 
   return aal::runTool(app, argc, argv, [&] {
     o.svf = svf->count() > 0;

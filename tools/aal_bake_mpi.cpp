@@ -25,6 +25,7 @@
 #include "aperture/terrain/io/dem_loader.h"
 #include "aperture/terrain/io/dem_source.h"
 #include "aperture/tools/bake_command_line.h"
+#include "aperture/tools/options/output_options.h"
 #include "aperture/tools/tool_main.h"
 #include "aperture/tools/tool_options.h"
 #include "aperture/tools/tool_paths.h"
@@ -218,7 +219,7 @@ int main(int argc, char** argv) {
                  "worker threads per rank (default: the host's cores shared among its ranks)")
       ->check(CLI::Range(1, 1024));
   aal::addMapStorageOptions(app, o);
-  app.add_flag("-q,--quiet", o.quiet, "no summary");
+  aal::addQuietFlag(app, o.quiet, /*progress=*/false);
 
   aal::installInterruptHandler();
   // Every rank parses the same command line; only rank 0 says what is wrong.

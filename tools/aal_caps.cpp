@@ -7,7 +7,6 @@
 #include <filesystem>
 #include <fstream>
 #include <iostream>
-#include <numbers>
 #include <optional>
 #include <string>
 #include <vector>
@@ -16,15 +15,13 @@
 
 #include "aperture/terrain/io/atomic_file.h"
 #include "aperture/terrain/light/cap_error.h"
+#include "aperture/terrain/units.h"
 #include "aperture/tools/cap_error_plot.h"
 #include "aperture/tools/tool_main.h"
 #include "aperture/tools/tool_options.h"
 #include "aperture/tools/tool_paths.h"
 
 namespace {
-
-constexpr double kPi = std::numbers::pi;
-constexpr double kDeg = 180.0 / kPi;
 
 struct Options {
   std::vector<std::string> values;  // R0 R1 D
@@ -48,12 +45,12 @@ double parseAngle(const std::string& name, const std::string& text, bool degrees
   if (used != text.size() || text.empty()) {
     throw aal::InputError(name + " must be a number, got '" + text + "'");
   }
-  const double limit = degrees ? 180.0 : kPi;
+  const double limit = degrees ? 180.0 : aal::kPi;
   if (!std::isfinite(value) || value < 0.0 || value > limit) {
     throw aal::InputError(name + " must be in [0, " + (degrees ? "180] degrees" : "pi] radians") +
                           ", got " + text);
   }
-  return degrees ? value / kDeg : value;
+  return degrees ? value / aal::kDegreesPerRadian : value;
 }
 
 int printOne(const Options& o) {
@@ -97,26 +94,26 @@ void printSummary(const std::vector<aal::CapErrorSample>& samples, double maxRad
   std::printf(
       "Oat's approximation vs exact, partially overlapping caps, error relative to the "
       "smaller cap's area:\n");
-  const double limits[] = {kPi / 2, maxRadius};
+  const double limits[] = {aal::kPi / 2, maxRadius};
   for (double limit : limits) {
     if (limit > maxRadius + 1e-12) continue;
     const aal::CapErrorSummary s = aal::summarizeCapError(samples, limit);
     std::printf("  radii <= %5.1f deg: mean %5.2f%%  max %6.2f%%  (%zu configurations)\n",
-                limit * kDeg, 100 * s.meanRelError, 100 * s.maxRelError, s.count);
+                aal::degrees(limit), 100 * s.meanRelError, 100 * s.maxRelError, s.count);
     if (limit >= maxRadius) break;
   }
 }
 
 int sweep(const Options& o) {
   if (!o.values.empty()) throw aal::InputError("give either R0 R1 D or --table/--plot, not both");
-  double maxRadius = kPi;
+  double maxRadius = aal::kPi;
   if (o.maxRadius) {
-    const double limit = o.degrees ? 180.0 : kPi;
+    const double limit = o.degrees ? 180.0 : aal::kPi;
     if (!std::isfinite(*o.maxRadius) || *o.maxRadius <= 0.0 || *o.maxRadius > limit) {
       throw aal::InputError("--max-radius must be in (0, " +
                             std::string(o.degrees ? "180] degrees" : "pi] radians"));
     }
-    maxRadius = o.degrees ? *o.maxRadius / kDeg : *o.maxRadius;
+    maxRadius = o.degrees ? *o.maxRadius / aal::kDegreesPerRadian : *o.maxRadius;
   }
   aal::checkDistinctFiles({}, {{"--table", o.tablePath}, {"--plot", o.plotPath}});
   if (!o.tablePath.empty()) aal::requireWritableOutput(o.tablePath);

@@ -10,6 +10,7 @@
 #include "aperture/terrain/io/dem_loader.h"
 #include "aperture/terrain/io/dem_source.h"
 #include "aperture/terrain/io/dem_summary.h"
+#include "aperture/tools/options/dem_units_options.h"
 #include "aperture/tools/tool_main.h"
 
 namespace {
@@ -17,8 +18,7 @@ namespace {
 struct Options {
   std::string dem;
   bool json = false;
-  std::optional<double> cellSizeM;
-  std::optional<double> zScale;
+  aal::DemUnitsOptions units;
 };
 
 const char* crsName(aal::CrsKind crs) {
@@ -143,15 +143,12 @@ int main(int argc, char** argv) {
                "print one JSON object with the keys format, driver, width, height, crs, "
                "crs_name, epsg, cell_size_m [x, y], center_lat, center_lon, nodata, units "
                "{horizontal, vertical}, z_scale, z_min, z_max, voids");
-  app.add_option("--cell-size", o.cellSizeM,
-                 "metres between texel centres; overrides the file's georeferencing");
-  app.add_option("--z-scale", o.zScale,
-                 "metres per stored height unit; overrides the file's vertical unit");
+  // Unchecked by the parser: loadDem's checks say what is wrong.
+  aal::addDemUnitsOptions(app, o.units, /*checked=*/false);
 
   return aal::runTool(app, argc, argv, [&] {
     aal::DemLoadOptions options;
-    options.cellSizeM = o.cellSizeM;
-    options.zScale = o.zScale;
+    aal::applyDemUnits(o.units, options);
     options.warn = [](const std::string& message) {
       std::fprintf(stderr, "aal-info: warning: %s\n", message.c_str());
     };

@@ -21,12 +21,14 @@
 #include "aperture/terrain/io/dem_options.h"
 #include "aperture/terrain/io/geotiff_writer.h"
 #include "aperture/terrain/io/memory_budget.h"
-#include "aperture/terrain/light/atmosphere.h"
 #include "aperture/terrain/light/lighting_defaults.h"
 #include "aperture/terrain/light/solar_position.h"
 #include "aperture/terrain/reference/color_ramp.h"
 #include "aperture/terrain/reference/relief.h"
 #include "aperture/terrain/view/camera.h"
+#include "aperture/tools/options/dem_units_options.h"
+#include "aperture/tools/options/output_options.h"
+#include "aperture/tools/options/sun_options.h"
 #include "aperture/tools/tool_main.h"
 #include "aperture/tools/tool_options.h"
 #include "aperture/tools/tool_paths.h"
@@ -36,10 +38,7 @@ namespace {
 struct Options {
   std::string dem, output, aperture;
   std::string resolution;
-  std::optional<double> sunAzimuth, sunElevation;
-  std::string time;
-  std::optional<double> lat, lon;
-  double sunRadiusDeg = aal::kSunAngularRadiusDeg;
+  aal::SunOptions sun;
   std::optional<double> skyWeight;  // default kDefaultSkyWeight
   bool skyOnly = false, multidirectional = false;
   std::string mode = "approx";
@@ -52,7 +51,7 @@ struct Options {
   std::optional<double> waterLevel;
   std::string waterMask;
   bool cog = false;
-  std::optional<double> cellSize, zScale;
+  aal::DemUnitsOptions units;
   bool quiet = false;
 };
 
@@ -128,19 +127,19 @@ void checkOptions(const Options& o) {
     throw aal::InputError("output " + o.output + " must end in .tif or .tiff (a GeoTIFF)");
   }
   aal::requireWritableOutput(o.output);
-  const bool sunGiven = o.sunAzimuth || o.sunElevation || !o.time.empty();
+  const bool sunGiven = o.sun.azimuthDeg || o.sun.elevationDeg || !o.sun.time.empty();
   if (o.skyOnly && (sunGiven || o.multidirectional || o.skyWeight)) {
     throw aal::InputError(
         "--sky-only has no sun: leave out --sun-azimuth, --sun-elevation, --time, "
         "--multidirectional and --sky");
   }
-  if (!o.time.empty() && (o.sunAzimuth || o.sunElevation)) {
+  if (!o.sun.time.empty() && (o.sun.azimuthDeg || o.sun.elevationDeg)) {
     throw aal::InputError("give --time or --sun-azimuth/--sun-elevation, not both");
   }
-  if (o.time.empty() && (o.lat || o.lon)) {
+  if (o.sun.time.empty() && (o.sun.latitudeDeg || o.sun.longitudeDeg)) {
     throw aal::InputError("--lat and --lon place the sun for --time; give --time too");
   }
-  if (o.multidirectional && (o.sunAzimuth || !o.time.empty())) {
+  if (o.multidirectional && (o.sun.azimuthDeg || !o.sun.time.empty())) {
     throw aal::InputError(
         "--multidirectional lights from 225, 270, 315 and 360 degrees: leave "
         "out --sun-azimuth and --time (--sun-elevation sets their elevation)");
@@ -185,8 +184,7 @@ int run(const Options& o) {
   if (!o.palette.empty()) ramp = aal::builtinPalette(o.palette);
 
   aal::DemLoadOptions load;
-  load.cellSizeM = o.cellSize;
-  load.zScale = o.zScale;
+  aal::applyDemUnits(o.units, load);
   load.peakBytesPerTexel = aal::kReliefBytesPerTexel;
   load.workName = "a relief";
   load.memoryHint =
@@ -199,21 +197,17 @@ int run(const Options& o) {
   s.outWidth = outWidth;
   s.outHeight = outHeight;
   s.mode = o.mode == "exact" ? aal::ShadingMode::Exact : aal::ShadingMode::Approx;
-  s.sunRadiusDeg = o.sunRadiusDeg;
+  s.sunRadiusDeg = o.sun.radiusDeg;
   s.skyWeight = static_cast<float>(o.skyWeight.value_or(kDefaultSkyWeight));
   s.lighting = o.skyOnly            ? aal::ReliefLighting::SkyOnly
                : o.multidirectional ? aal::ReliefLighting::Multidirectional
                                     : aal::ReliefLighting::Sun;
-  s.sunAzimuthDeg = o.sunAzimuth.value_or(315.0);
-  s.sunElevationDeg = o.sunElevation.value_or(45.0);
-  if (!o.time.empty()) {
-    const aal::SolarPosition sun = aal::sunAtTime(o.time, o.lat, o.lon, field);
-    s.sunAzimuthDeg = sun.azimuthDeg;
-    s.sunElevationDeg = sun.elevationDeg;
-    if (sun.elevationDeg < -o.sunRadiusDeg && !o.quiet) {
-      std::fprintf(stderr, "note: the sun is %.1f deg below the horizon then: sky light only\n",
-                   -sun.elevationDeg);
-    }
+  const aal::SolarPosition sun = aal::sunOf(o.sun, field);
+  s.sunAzimuthDeg = sun.azimuthDeg;
+  s.sunElevationDeg = sun.elevationDeg;
+  if (!o.sun.time.empty() && sun.elevationDeg < -o.sun.radiusDeg && !o.quiet) {
+    std::fprintf(stderr, "note: the sun is %.1f deg below the horizon then: sky light only\n",
+                 -sun.elevationDeg);
   }
   s.obscurance = aal::obscuranceFromOptions(!o.noObscurance, o.obscuranceSamples, o.obscuranceSteps,
                                             o.obscuranceRadiusM, field);
@@ -344,23 +338,7 @@ int main(int argc, char** argv) {
                  "output pixel size: metres (30 or 30m, along the DEM's north-south spacing) or "
                  "a scale factor on the pixels per side (2x, 0.5x); the DEM's extent is kept "
                  "(default: one pixel per DEM texel)");
-  app.add_option("--sun-azimuth", o.sunAzimuth,
-                 "sun azimuth, degrees clockwise from north (default 315, as gdaldem)")
-      ->check(CLI::Range(-360.0, 720.0));
-  app.add_option("--sun-elevation", o.sunElevation,
-                 "sun elevation above the horizon, degrees (default 45, as gdaldem)")
-      ->check(CLI::Range(-90.0, 90.0));
-  app.add_option("--time", o.time,
-                 "UTC date and time (ISO 8601) for the sun position at the DEM's centre");
-  app.add_option("--lat", o.lat, "latitude for --time (default: the DEM's centre, else 45)")
-      ->check(CLI::Range(-90.0, 90.0));
-  app.add_option("--lon", o.lon,
-                 "longitude for --time, east positive (default: the DEM's centre, else 0)")
-      ->check(CLI::Range(-180.0, 180.0));
-  app.add_option("--sun-radius", o.sunRadiusDeg,
-                 "sun angular radius in degrees (larger: softer shadow edges)")
-      ->check(CLI::Range(0.01, 20.0))
-      ->capture_default_str();
+  aal::addSunOptions(app, o.sun);
   app.add_option("--sky", o.skyWeight,
                  "sky weight k: the sky's share of the light (default 0.2; 0: the sun alone, "
                  "like gdaldem)")
@@ -405,11 +383,8 @@ int main(int argc, char** argv) {
                  "raster of the DEM's size, non-zero where there is water (instead of "
                  "--water-level)");
   app.add_flag("--cog", o.cog, "write a cloud-optimized GeoTIFF (tiled, with overviews)");
-  app.add_option("--cell-size", o.cellSize, "cell size in metres for a DEM without georeferencing")
-      ->check(aal::kPositive);
-  app.add_option("--z-scale", o.zScale, "multiply the heights by this factor")
-      ->check(aal::kPositive);
-  app.add_flag("-q,--quiet", o.quiet, "no progress and no summary");
+  aal::addDemUnitsOptions(app, o.units);
+  aal::addQuietFlag(app, o.quiet);
 
   return aal::runTool(app, argc, argv, [&] { return run(o); });
 }

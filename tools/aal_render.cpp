@@ -6,7 +6,6 @@
 #include <filesystem>
 #include <map>
 #include <memory>
-#include <numbers>
 #include <optional>
 #include <sstream>
 #include <string>
@@ -38,6 +37,11 @@
 #include "aperture/terrain/view/camera_path.h"
 #include "aperture/tools/horizon_option.h"
 #include "aperture/tools/mode_comparison.h"
+#include "aperture/tools/options/camera_options.h"
+#include "aperture/tools/options/dem_units_options.h"
+#include "aperture/tools/options/gpu_options.h"
+#include "aperture/tools/options/output_options.h"
+#include "aperture/tools/options/sun_options.h"
 #include "aperture/tools/render_sequence.h"
 #include "aperture/tools/tool_main.h"
 #include "aperture/tools/tool_options.h"
@@ -52,23 +56,16 @@ struct Options {
   // Directional horizons (aal-bake --horizons); --compare takes several.
   std::vector<std::string> horizons;
   std::string size = "1280x720";
-  std::string camera, lookAt;
-  double fovDeg = 40;
-  std::optional<double> sunAzimuth, sunElevation;
-  std::string time;
-  std::optional<double> lat, lon;
-  double sunRadiusDeg = aal::kSunAngularRadiusDeg;
+  aal::CameraOptions camera;
+  aal::SunOptions sun;
   double turbidity = aal::kDefaultTurbidity;
   std::optional<double> ev100;
   std::optional<double> visibilityKm;
   std::optional<double> waterLevelM;
   std::string mode = "approx";
-  std::optional<double> cellSize, zScale;
+  aal::DemUnitsOptions units;
   double exaggeration = 1.0;
-  int device = -1;
-  size_t triangleBudget = 2'000'000;
-  double lodErrorPixels = aal::LodSettings{}.maxErrorPixels;
-  int anisotropy = aal::kDefaultFootprintProbes;
+  aal::GpuOptions gpu;
   uint32_t supersample = 1;
   uint32_t maxTileTexels = 0;
   bool stats = false;
@@ -112,15 +109,6 @@ glm::vec3 parseAlbedoValue(const std::string& text, const std::string& option = 
   return glm::vec3(v);
 }
 
-// The sun of --time (NOAA position) or of --sun-azimuth/--sun-elevation.
-aal::SolarPosition sunFor(const Options& o, const aal::Heightfield& field) {
-  if (!o.time.empty()) return aal::sunAtTime(o.time, o.lat, o.lon, field);
-  aal::SolarPosition sun;
-  sun.azimuthDeg = o.sunAzimuth.value_or(315.0);
-  sun.elevationDeg = o.sunElevation.value_or(45.0);
-  return sun;
-}
-
 // A sequence's checks and its time range, before any work; its camera path
 // is read once the paths are checked (run).
 struct Sequence {
@@ -156,12 +144,12 @@ std::optional<Sequence> sequenceOf(const Options& o, bool reference) {
   Sequence s;
   s.frames = *o.frames;
   if (!o.cameraPath.empty()) {
-    if (!o.camera.empty() || !o.lookAt.empty()) {
+    if (!o.camera.position.empty() || !o.camera.lookAt.empty()) {
       throw aal::InputError("--camera-path sets the camera: leave out --camera and --look-at");
     }
   }
   if (!o.timeRange.empty()) {
-    if (!o.time.empty() || o.sunAzimuth) {
+    if (!o.sun.time.empty() || o.sun.azimuthDeg) {
       throw aal::InputError(
           "--time-range sets the sun: leave out --time, --sun-azimuth and --sun-elevation");
     }
@@ -330,7 +318,8 @@ void setSequenceFrame(const Options& o, const Sequence& seq, const aal::Heightfi
   if (seq.path) settings.camera = seq.path->at(seq.path->frameTime(i, seq.frames));
   if (seq.start) {
     const aal::GeoPlace place = aal::defaultSunPlace(field);
-    const double lat = o.lat.value_or(place.latitudeDeg), lon = o.lon.value_or(place.longitudeDeg);
+    const double lat = o.sun.latitudeDeg.value_or(place.latitudeDeg),
+                 lon = o.sun.longitudeDeg.value_or(place.longitudeDeg);
     const aal::UtcTime t = aal::sequenceTime(*seq.start, *seq.end, i, seq.frames);
     const aal::SolarPosition sun = aal::solarPosition(t, lat, lon);
     aal::setSunAndSky(settings.lighting, sun.azimuthDeg, sun.elevationDeg, o.turbidity,
@@ -509,11 +498,11 @@ int run(const Options& o) {
     throw aal::InputError("--background transparent is for -o images of the GPU renderer, not " +
                           std::string(reference ? "--mode reference" : "--compare"));
   }
-  if (o.sunAzimuth.has_value() != o.sunElevation.has_value()) {
+  if (o.sun.azimuthDeg.has_value() != o.sun.elevationDeg.has_value()) {
     throw aal::InputError("give --sun-azimuth and --sun-elevation together");
   }
   // As aal-relief: a place without a time would be ignored.
-  if (o.time.empty() && o.timeRange.empty() && (o.lat || o.lon)) {
+  if (o.sun.time.empty() && o.timeRange.empty() && (o.sun.latitudeDeg || o.sun.longitudeDeg)) {
     throw aal::InputError(
         "--lat and --lon place the sun for --time (or --time-range); give --time too");
   }
@@ -529,8 +518,7 @@ int run(const Options& o) {
       o.albedoValue.empty() ? std::nullopt : std::optional(parseAlbedoValue(o.albedoValue));
 
   aal::DemLoadOptions load;
-  load.cellSizeM = o.cellSize;
-  load.zScale = o.zScale;
+  aal::applyDemUnits(o.units, load);
   load.exaggeration = o.exaggeration;
   load.peakBytesPerTexel =
       reference ? aal::kReferenceRenderBytesPerTexel : aal::kRenderBytesPerTexel;
@@ -543,13 +531,13 @@ int run(const Options& o) {
       !o.noObscurance, o.obscuranceSamples, o.obscuranceSteps, o.obscuranceRadiusM, field);
   // The camera's points against the DEM's extent, before the bake.
   std::optional<glm::dvec3> camera, lookAt;
-  if (!o.camera.empty()) {
-    camera = aal::parseTriple("--camera", o.camera);
-    aal::requireWithinCameraReach("--camera " + o.camera, *camera, field);
+  if (!o.camera.position.empty()) {
+    camera = aal::parseTriple("--camera", o.camera.position);
+    aal::requireWithinCameraReach("--camera " + o.camera.position, *camera, field);
   }
-  if (!o.lookAt.empty()) {
-    lookAt = aal::parseTriple("--look-at", o.lookAt);
-    aal::requireWithinCameraReach("--look-at " + o.lookAt, *lookAt, field);
+  if (!o.camera.lookAt.empty()) {
+    lookAt = aal::parseTriple("--look-at", o.camera.lookAt);
+    aal::requireWithinCameraReach("--look-at " + o.camera.lookAt, *lookAt, field);
   }
   if (sequence && sequence->path) {
     aal::requireCameraPathWithinReach(*sequence->path, o.cameraPath, field);
@@ -580,7 +568,7 @@ int run(const Options& o) {
   }
   // A --time-range sets the sun of every frame itself.
   const aal::SolarPosition sun =
-      sequence && sequence->start ? aal::SolarPosition{} : sunFor(o, field);
+      sequence && sequence->start ? aal::SolarPosition{} : aal::sunOf(o.sun, field);
   aal::FrameSettings settings;
   settings.mode = mode;
   settings.obscurance = obscurance;
@@ -588,20 +576,20 @@ int run(const Options& o) {
   const double aspect = double(width) / double(height);
   // Framed for the field of view asked for (docs/rendering.md, "Default camera").
   const double baseDepthM = o.baseDepthM.value_or(0.0) * o.exaggeration;
-  settings.camera = aal::defaultCamera(field, aspect, o.fovDeg, baseDepthM);
+  settings.camera = aal::defaultCamera(field, aspect, o.camera.fovDeg, baseDepthM);
   if (camera) settings.camera.position = *camera;
   if (lookAt) settings.camera.lookAt = *lookAt;
   aal::requireCameraDirection(settings.camera.position, settings.camera.lookAt);
-  settings.camera.verticalFovDeg = o.fovDeg;
-  settings.lod.maxErrorPixels = o.lodErrorPixels;
-  settings.anisotropy = o.anisotropy;
+  settings.camera.verticalFovDeg = o.camera.fovDeg;
+  settings.lod.maxErrorPixels = o.gpu.lodErrorPixels;
+  settings.anisotropy = o.gpu.anisotropy;
   settings.transparentBackground = o.background == "transparent";
   // The depth is in the DEM's metres, like the heights before --exaggeration.
   if (o.baseDepthM) settings.base = aal::FrameSettings::Base{float(baseDepthM), baseAlbedo};
   aal::Lighting& light = settings.lighting;
   light =
       aal::defaultLighting(field, sun.azimuthDeg, sun.elevationDeg, o.turbidity, sun.sunDistanceAu);
-  light.sunRadiusRad = static_cast<float>(o.sunRadiusDeg * std::numbers::pi / 180.0);
+  light.sunRadiusRad = static_cast<float>(aal::radians(o.sun.radiusDeg));
   if (o.visibilityKm) {
     light.hazeDensityPerM =
         static_cast<float>(aal::hazeDensityForVisibility(*o.visibilityKm * 1000));
@@ -613,7 +601,7 @@ int run(const Options& o) {
   if (reference) return renderReferenceImage(o, field, settings, width, height, albedoValue);
 
   aal::Instance instance;
-  aal::Device device(instance, o.device);
+  aal::Device device(instance, o.gpu.device);
   const uint32_t largest = device.properties().limits.maxImageDimension2D;
   if (width > largest || height > largest) {
     throw aal::InputError("--size " + o.size + " exceeds the device's largest image (" +
@@ -639,12 +627,12 @@ int run(const Options& o) {
   std::unique_ptr<aal::TerrainScene> scene;
   if (aperturePath.empty()) {
     scene = std::make_unique<aal::TerrainScene>(device, field, inMemory,
-                                                albedo ? &*albedo : nullptr, o.triangleBudget,
+                                                albedo ? &*albedo : nullptr, o.gpu.triangleBudget,
                                                 aal::TerrainTiling{o.maxTileTexels, 0});
   } else {
     aal::ApertureMapReader reader(aperturePath);
     scene = std::make_unique<aal::TerrainScene>(device, field, reader, albedo ? &*albedo : nullptr,
-                                                o.triangleBudget,
+                                                o.gpu.triangleBudget,
                                                 aal::TerrainTiling{o.maxTileTexels, 0});
   }
   inMemory = {};
@@ -763,35 +751,8 @@ int main(int argc, char** argv) {
   app.add_flag("--no-obscurance", o.noObscurance,
                "no obscurances: the ambient transfer W is 1 everywhere");
   app.add_option("--size", o.size, "image size WIDTHxHEIGHT")->capture_default_str();
-  app.add_option("--camera", o.camera,
-                 "camera position X,Y,Z in metres (DEM frame: x east, y north, "
-                 "z up, origin at the DEM centre), within 10,000 km of the centre (100 DEM "
-                 "diagonals for larger DEMs); default: from the south-east");
-  app.add_option("--look-at", o.lookAt,
-                 "point the camera looks at, X,Y,Z in metres (within --camera's reach)");
-  app.add_option("--fov", o.fovDeg, "vertical field of view in degrees")
-      ->check(CLI::Range(aal::kMinFovDeg, aal::kMaxFovDeg))
-      ->capture_default_str();
-  app.add_option("--sun-azimuth", o.sunAzimuth,
-                 "sun azimuth, degrees clockwise from north "
-                 "(default 315 like gdaldem)")
-      ->check(CLI::Range(-360.0, 720.0));
-  app.add_option("--sun-elevation", o.sunElevation,
-                 "sun elevation above the horizon, degrees "
-                 "(default 45)")
-      ->check(CLI::Range(-90.0, 90.0));
-  app.add_option("--time", o.time, "UTC date and time (ISO 8601) for the sun position");
-  app.add_option("--lat", o.lat,
-                 "latitude for --time or --time-range (default: the DEM's centre, else 45)")
-      ->check(CLI::Range(-90.0, 90.0));
-  app.add_option("--lon", o.lon,
-                 "longitude for --time or --time-range, east positive (default: the DEM's "
-                 "centre, else 0)")
-      ->check(CLI::Range(-180.0, 180.0));
-  app.add_option("--sun-radius", o.sunRadiusDeg,
-                 "sun angular radius in degrees (larger: softer shadows)")
-      ->check(CLI::Range(0.01, 20.0))
-      ->capture_default_str();
+  aal::addCameraOptions(app, o.camera);
+  aal::addSunOptions(app, o.sun, {.placed = "--time or --time-range"});
   app.add_option("--turbidity", o.turbidity, "atmospheric turbidity (2 very clear .. 10 hazy)")
       ->check(CLI::Range(2.0, 10.0))
       ->capture_default_str();
@@ -822,31 +783,14 @@ int main(int argc, char** argv) {
         return names;
       }()))
       ->capture_default_str();
-  app.add_option("--cell-size", o.cellSize, "texel spacing in metres (as given to aal-bake)")
-      ->check(aal::kPositive);
-  app.add_option("--z-scale", o.zScale, "metres per height unit (as given to aal-bake)")
-      ->check(aal::kPositive);
+  aal::addDemUnitsOptions(app, o.units);
   app.add_option("--exaggeration", o.exaggeration,
                  "vertical exaggeration: heights times X (the aperture map is baked for it: "
                  "cached per exaggeration; a map given with --aperture must have been baked with "
                  "the same z scale)")
       ->check(CLI::Range(0.01, 100.0))
       ->capture_default_str();
-  app.add_option("--device", o.device, "Vulkan device index (default: the best one)")
-      ->check(aal::kNonNegative);
-  app.add_option("--triangles", o.triangleBudget,
-                 "per-frame triangle budget of the terrain's quadtree LOD")
-      ->check(CLI::Range(size_t(2), size_t(1) << 28))
-      ->capture_default_str();
-  app.add_option("--lod-error", o.lodErrorPixels,
-                 "largest geometric error of the terrain mesh in pixels: the quadtree LOD "
-                 "refines where a coarser level's height error would cover more on screen "
-                 "(smaller: more triangles; the shading's detail comes from textures). "
-                 "Default: 4 at 720 lines, in proportion to the image height, at least 1")
-      ->check(CLI::Range(1e-3, 1e3));
-  app.add_option("--anisotropy", o.anisotropy, aal::kAnisotropyHelp)
-      ->check(CLI::Range(1, aal::kMaxFootprintProbes))
-      ->capture_default_str();
+  aal::addGpuOptions(app, o.gpu);
   app.add_option("--supersample", o.supersample,
                  "N x N shading points per pixel, averaged (linear radiance, then the tone map): "
                  "smooth edges, and less shimmer in --camera-path movies, for up to N^2 the "
@@ -859,12 +803,11 @@ int main(int argc, char** argv) {
                  "to a multiple of 32 (tests; by default only DEMs beyond the device's largest "
                  "image are tiled)")
       ->check(CLI::Range(aal::kTerrainMipAlignment, uint32_t(1) << 20));
-  app.add_option("--camera-path", o.cameraPath,
-                 "render an image sequence along this camera path (aal-view's format: lines of "
-                 "TIME_S X Y Z LOOK_X LOOK_Y LOOK_Z [FOV_DEG], points within --camera's reach, "
-                 "FOV_DEG in --fov's range), --frames images spread from its first keyframe to "
-                 "its last, into OUT-0001.png ... (and OUT.mp4 with ffmpeg); with --compare, "
-                 "the pan along which the shimmer is measured");
+  aal::addCameraPathOption(
+      app, o.cameraPath,
+      "render an image sequence along it: --frames images spread from its first keyframe to its "
+      "last, into OUT-0001.png ... (and OUT.mp4 with ffmpeg); with --compare, the pan along "
+      "which the shimmer is measured");
   app.add_option("--time-range", o.timeRange,
                  "render an image sequence with the sun from START to END (UTC, ISO 8601), "
                  "--frames images, both ends included (a time-lapse)")
@@ -874,6 +817,6 @@ int main(int argc, char** argv) {
       ->check(CLI::Range(1.0, 240.0))
       ->capture_default_str();
   app.add_flag("--stats", o.stats, "print per-pass GPU times and the triangle count");
-  app.add_flag("-q,--quiet", o.quiet, "no progress messages");
+  aal::addQuietFlag(app, o.quiet);
   return aal::runTool(app, argc, argv, [&] { return run(o); });
 }

@@ -10,6 +10,9 @@
 #include "aperture/terrain/io/aperture_map.h"
 #include "aperture/terrain/io/atomic_file.h"
 #include "aperture/tools/horizon_option.h"
+#include "aperture/tools/options/camera_options.h"
+#include "aperture/tools/options/gpu_options.h"
+#include "aperture/tools/options/sun_options.h"
 #include "aperture/tools/tool_main.h"
 #include "aperture/tools/tool_options.h"
 #include "aperture/tools/tool_paths.h"
@@ -36,17 +39,16 @@ struct Options {
   std::string dem, aperture, horizons, cameraPath, screenshot, drop, size = "1280x720";
   std::optional<std::string> resizeAfter, minimiseAfter, toggleVsyncAfter, modeAfter,
       sunAzimuthAfter;  // test hooks
-  std::string mode = "approx", time;
-  std::optional<double> lat, lon, sunAzimuth, sunElevation, waterLevelM;
+  std::string mode = "approx";
+  aal::SunOptions sun;
+  std::optional<double> waterLevelM;
   double exaggeration = 1.0;
   std::optional<int> frames;
   double timeoutS = 0;
   bool noVsync = false, stats = false, noObscurance = false;
-  int device = -1, azimuths = 64;
+  int azimuths = 64;
   double sunSweepDeg = 0;
-  size_t triangleBudget = 2'000'000;
-  double lodErrorPixels = aal::LodSettings{}.maxErrorPixels;
-  int anisotropy = aal::kDefaultFootprintProbes;
+  aal::GpuOptions gpu;
   std::optional<double> targetFps;
 };
 
@@ -70,7 +72,7 @@ void checkScript(const Options& o) {
     }
     aal::requireWritableOutput(o.screenshot);
   }
-  if (o.sunAzimuth.has_value() != o.sunElevation.has_value()) {
+  if (o.sun.azimuthDeg.has_value() != o.sun.elevationDeg.has_value()) {
     throw aal::InputError("give --sun-azimuth and --sun-elevation together");
   }
 }
@@ -146,20 +148,20 @@ aal::WindowScript windowScript(const Options& o) {
 
 aal::ViewLighting initialLighting(const Options& o, const aal::Heightfield& field) {
   aal::ViewLighting l = aal::defaultViewLighting(field);
-  if (o.lat) l.latitudeDeg = *o.lat;
-  if (o.lon) l.longitudeDeg = *o.lon;
-  if (!o.time.empty()) {
-    const std::optional<aal::UtcTime> t = aal::parseIso8601Utc(o.time);
+  if (o.sun.latitudeDeg) l.latitudeDeg = *o.sun.latitudeDeg;
+  if (o.sun.longitudeDeg) l.longitudeDeg = *o.sun.longitudeDeg;
+  if (!o.sun.time.empty()) {
+    const std::optional<aal::UtcTime> t = aal::parseIso8601Utc(o.sun.time);
     if (!t) throw aal::InputError("--time must be ISO 8601, e.g. 2024-06-21T12:00:00Z");
     l.year = t->year;
     l.month = t->month;
     l.day = t->day;
     l.hourUtc = t->hour + t->minute / 60.0 + t->second / 3600.0;
   }
-  if (o.sunAzimuth) {
+  if (o.sun.azimuthDeg) {
     l.fromTime = false;
-    l.sunAzimuthDeg = *o.sunAzimuth;
-    l.sunElevationDeg = *o.sunElevation;
+    l.sunAzimuthDeg = *o.sun.azimuthDeg;
+    l.sunElevationDeg = *o.sun.elevationDeg;
   }
   // The level is in the DEM's metres; the drawn heights are exaggerated.
   if (o.waterLevelM) l.waterLevelM = *o.waterLevelM * o.exaggeration;
@@ -177,10 +179,10 @@ int run(const Options& o) {
   v.vsync = !o.noVsync;
   v.mode = aal::toolShadingModes().at(o.mode);
   v.obscurance = !o.noObscurance;
-  v.device = o.device;
-  v.triangleBudget = o.triangleBudget;
-  v.lodErrorPixels = o.lodErrorPixels;
-  v.anisotropy = o.anisotropy;
+  v.device = o.gpu.device;
+  v.triangleBudget = o.gpu.triangleBudget;
+  v.lodErrorPixels = o.gpu.lodErrorPixels;
+  v.anisotropy = o.gpu.anisotropy;
   // Scripted runs measure and take screenshots: full resolution unless asked.
   v.targetFps = o.targetFps.value_or(o.frames ? 0.0 : 30.0);
   v.bakeAzimuths = o.azimuths;
@@ -242,15 +244,9 @@ int main(int argc, char** argv) {
   app.add_option("--mode", o.mode, "shading: " + modes + " (horizon needs --horizons)")
       ->check(CLI::IsMember(aal::toolShadingModes()))
       ->capture_default_str();
-  app.add_option("--time", o.time, "UTC date and time (ISO 8601) for the sun position");
-  app.add_option("--lat", o.lat, "latitude for the sun (default: the DEM's centre, else 45)")
-      ->check(CLI::Range(-90.0, 90.0));
-  app.add_option("--lon", o.lon, "longitude, east positive (default: the DEM's centre, else 0)")
-      ->check(CLI::Range(-180.0, 180.0));
-  app.add_option("--sun-azimuth", o.sunAzimuth, "direct sun azimuth, degrees clockwise from north")
-      ->check(CLI::Range(-360.0, 720.0));
-  app.add_option("--sun-elevation", o.sunElevation, "direct sun elevation, degrees")
-      ->check(CLI::Range(-90.0, 90.0));
+  aal::addSunOptions(
+      app, o.sun,
+      {.defaultSun = false, .placed = "--time, or the panel's date and time", .radius = false});
   app.add_option("--exaggeration", o.exaggeration,
                  "vertical exaggeration: heights times X (the aperture map is baked for it: "
                  "cached per exaggeration; a map given with --aperture must have been baked with "
@@ -261,10 +257,8 @@ int main(int argc, char** argv) {
                  "paint terrain at or below this height (m) as water (default: no water)");
   app.add_option("--frames", o.frames,
                  "scripted run: render N frames (after the aperture map is ready), then exit");
-  app.add_option("--camera-path", o.cameraPath,
-                 "keyframes 'TIME_S X Y Z LOOK_X LOOK_Y LOOK_Z [FOV_DEG]' per line (DEM frame, "
-                 "metres, within 10,000 km of its centre or 100 DEM diagonals; FOV_DEG in [1, "
-                 "170]); with --frames spread over the N frames, else played in real time");
+  aal::addCameraPathOption(app, o.cameraPath,
+                           "with --frames spread over the N frames, else played in real time");
   app.add_option("--screenshot", o.screenshot, "save the last scripted frame as this PNG");
   app.add_option("--timeout", o.timeoutS, "close the window after this many seconds")
       ->check(aal::kPositive);
@@ -294,20 +288,7 @@ int main(int argc, char** argv) {
                "start with the obscurance pass off (the panel switches it)");
   app.add_flag("--no-vsync", o.noVsync, "present without waiting for vsync (MAILBOX/IMMEDIATE)");
   app.add_flag("--stats", o.stats, "print frame time, FPS and GPU time per pass at the end");
-  app.add_option("--device", o.device, "Vulkan device index (default: the best one)")
-      ->check(aal::kNonNegative);
-  app.add_option("--triangles", o.triangleBudget,
-                 "per-frame triangle budget of the terrain's quadtree LOD")
-      ->check(CLI::Range(size_t(2), size_t(1) << 28))
-      ->capture_default_str();
-  app.add_option("--lod-error", o.lodErrorPixels,
-                 "largest geometric error of the terrain mesh in pixels (default: 4 at 720 "
-                 "lines, in proportion to the window's height)")
-      ->check(CLI::Range(1e-3, 1e3));
-  app.add_option("--anisotropy", o.anisotropy,
-                 std::string(aal::kAnisotropyHelp) + "; the panel changes it")
-      ->check(CLI::Range(1, aal::kMaxFootprintProbes))
-      ->capture_default_str();
+  aal::addGpuOptions(app, o.gpu, /*panel=*/true);
   app.add_option("--target-fps", o.targetFps,
                  "while the view changes, draw fewer pixels (down to half the width and height, "
                  "scaled up) to keep this frame rate; at rest every pixel. 0: off. Default 30, "

@@ -16,6 +16,7 @@
 #include "aperture/terrain/errors.h"
 #include "aperture/terrain/io/dem_loader.h"
 #include "aperture/terrain/io/map_compression.h"
+#include "aperture/tools/options/dem_units_options.h"
 #include "aperture/tools/tool_main.h"
 #include "aperture/tools/tool_options.h"
 #include "aperture/tools/tool_paths.h"
@@ -24,8 +25,7 @@ namespace aal {
 
 struct SweepCommandLine {
   int azimuths = 64;
-  std::optional<double> cellSize;
-  std::optional<double> zScale;
+  DemUnitsOptions units;
   std::string edge = "open";
   bool curvature = false;
   double refraction = 0.13;
@@ -41,10 +41,7 @@ inline void addSweepOptions(CLI::App& app, SweepCommandLine& o) {
   app.add_option("--azimuths", o.azimuths, "azimuth slices of the sweep")
       ->check(CLI::Range(4, 4096))
       ->capture_default_str();
-  app.add_option("--cell-size", o.cellSize, "texel spacing in metres (overrides the file)")
-      ->check(kPositive);
-  app.add_option("--z-scale", o.zScale, "metres per height unit (overrides the file)")
-      ->check(kPositive);
+  addDemUnitsOptions(app, o.units);
   app.add_option("--edge", o.edge,
                  "beyond the DEM: open sky, or terrain continuing flat at the edge height")
       ->check(CLI::IsMember({"open", "clamp"}))
@@ -127,8 +124,7 @@ inline DemLoadOptions demLoadOptions(const SweepCommandLine& o, bool windowed) {
         "64 MB for its checksum): give a smaller --tile-size (or a shorter --max-distance), or "
         "allow more memory (AAL_MEMORY_LIMIT)";
   }
-  load.cellSizeM = o.cellSize;
-  load.zScale = o.zScale;
+  applyDemUnits(o.units, load);
   return load;
 }
 

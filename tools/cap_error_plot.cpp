@@ -5,20 +5,18 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
-#include <numbers>
 #include <stdexcept>
 #include <vector>
 
 #include "aperture/terrain/io/atomic_file.h"
 #include "aperture/terrain/io/image_files.h"
 #include "aperture/terrain/light/caps.h"
+#include "aperture/terrain/units.h"
 
 namespace aal {
 
 namespace {
 
-constexpr double kPi = std::numbers::pi;
-constexpr double kDeg = 180.0 / kPi;
 constexpr int kMarginLeft = 70, kMarginTop = 40, kMarginBottom = 60, kGap = 40;
 constexpr int kLegendWidth = 24, kLegendMargin = 110;
 
@@ -109,7 +107,7 @@ void drawPanel(Picture& image, Labeller& label, int left, int top, double r0,
   fillRect(image, left - 1, top, left, top + n, black);
   fillRect(image, left + n, top, left + n + 1, top + n, black);
 
-  label.text(left + n / 2, top - 10, "r0 = " + formatNumber("%.0f", r0 * kDeg) + " deg", 18,
+  label.text(left + n / 2, top - 10, "r0 = " + formatNumber("%.0f", degrees(r0)) + " deg", 18,
              TextAlign::Center);
   for (int deg = 0; deg <= 180; deg += 45) {  // d axis ticks
     const int x = left + static_cast<int>(std::lround(n * deg / 180.0));
@@ -117,7 +115,7 @@ void drawPanel(Picture& image, Labeller& label, int left, int top, double r0,
     label.text(x, top + n + 22, std::to_string(deg), 14, TextAlign::Center);
   }
   label.text(left + n / 2, top + n + 44, "d (degrees)", 15, TextAlign::Center);
-  const double maxDeg = o.maxRadiusRad * kDeg;
+  const double maxDeg = degrees(o.maxRadiusRad);
   for (int i = 0; i <= 4; ++i) {  // r1 axis ticks
     const double deg = maxDeg * i / 4;
     const int y = top + n - static_cast<int>(std::lround(n * i / 4.0));

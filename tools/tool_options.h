@@ -23,14 +23,6 @@
 
 namespace aal {
 
-// --anisotropy of aal-render and aal-view (FrameSettings::anisotropy,
-// 1..kMaxFootprintProbes).
-inline constexpr const char* kAnisotropyHelp =
-    "texture filtering along each pixel's footprint on the DEM: up to N trilinear probes along "
-    "its longer axis (1: one trilinear fetch, a GPU's isotropic filter, blurred in oblique "
-    "views; each probe more costs a fetch per texture, about +12 % of a CPU frame: "
-    "docs/rendering.md, \"Footprint filtering\")";
-
 // checkOutputWritable for a path the user gave: an output that cannot be
 // written is bad input (exit 2), found before any work starts.
 inline void requireWritableOutput(const std::string& path) {

@@ -41,9 +41,9 @@ __all__ = [
 ]
 
 # aal-render's and aal-relief's defaults (tools/aal_render.cpp, aal_relief.cpp).
-_DEFAULT_SUN_AZIMUTH = 315.0
-_DEFAULT_SUN_ELEVATION = 45.0
-_SUN_RADIUS_DEG = 0.26656  # terrain/light/atmosphere.h, kSunAngularRadiusDeg
+_DEFAULT_SUN_AZIMUTH = _aperture._DEFAULT_SUN_AZIMUTH_DEG  # terrain/units.h
+_DEFAULT_SUN_ELEVATION = _aperture._DEFAULT_SUN_ELEVATION_DEG
+_SUN_RADIUS_DEG = _aperture._SUN_ANGULAR_RADIUS_DEG
 _DEFAULT_TURBIDITY = 2.5  # kDefaultTurbidity
 
 

@@ -13,7 +13,6 @@
 #include <future>
 #include <limits>
 #include <mutex>
-#include <numbers>
 #include <stdexcept>
 #include <vector>
 
@@ -30,12 +29,11 @@
 #include "aperture/terrain/io/input_file.h"
 #include "aperture/terrain/io/memory_budget.h"
 #include "aperture/terrain/number_text.h"
+#include "aperture/terrain/units.h"
 
 namespace aal {
 
 namespace {
-
-constexpr double kRadToDeg = 180.0 / std::numbers::pi;
 
 [[noreturn]] void refuse(const std::string& path, const std::string& why) {
   throw InputError(path + ": " + why);
@@ -280,7 +278,7 @@ void describeCrs(const std::string& path, const OGRSpatialReference& srs,
   const char* key = nullptr;
   if (srs.IsGeographic()) {
     geo.crs = CrsKind::Geographic;
-    geo.angularUnitDeg = srs.GetAngularUnits(nullptr) * kRadToDeg;
+    geo.angularUnitDeg = degrees(srs.GetAngularUnits(nullptr));
     geo.primeMeridianDeg = srs.GetPrimeMeridian(nullptr);
     key = "GEOGCS";
   } else if (srs.IsProjected() || srs.IsLocal()) {

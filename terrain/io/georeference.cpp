@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
-#include <numbers>
 
 #include <memory>
 #include <utility>
@@ -17,12 +16,12 @@
 #include "aperture/terrain/errors.h"
 #include "aperture/terrain/io/gdal_session.h"
 #include "aperture/terrain/number_text.h"
+#include "aperture/terrain/units.h"
 
 namespace aal {
 
 namespace {
 
-constexpr double kDegToRad = std::numbers::pi / 180.0;
 // Latitudes may pass the pole by rounding noise only.
 constexpr double kLatitudeSlackDeg = 1e-9;
 // 25 times the Earth's circumference.
@@ -82,7 +81,7 @@ MetricSpacing geographicSpacing(const std::string& path, const GeoReference& geo
       height > 1
           ? meridianArcM(std::clamp(southDeg, -90.0, 90.0), std::clamp(northDeg, -90.0, 90.0)) /
                 (height - 1)
-          : wgs84().MeridionalCurvatureRadius(centerLatDeg) * stepYDeg * kDegToRad;
+          : wgs84().MeridionalCurvatureRadius(centerLatDeg) * stepYDeg * kRadiansPerDegree;
   checkCellSize(path, "y", s.cellSizeYM);
   checkCellSize(path, "x", s.cellSizeXM);
   s.hasCenter = true;
@@ -182,7 +181,7 @@ MetricSpacing projectedSpacing(const std::string& path, const GeoReference& geo,
 }  // namespace
 
 double parallelArcM(double latDeg, double dLonDeg) {
-  return wgs84().CircleRadius(latDeg) * dLonDeg * kDegToRad;
+  return wgs84().CircleRadius(latDeg) * dLonDeg * kRadiansPerDegree;
 }
 
 double meridianArcM(double lat0Deg, double lat1Deg) {

@@ -2,14 +2,12 @@
 
 #include <algorithm>
 #include <cmath>
-#include <numbers>
+
+#include "aperture/terrain/units.h"
 
 namespace aal {
 
 namespace {
-
-constexpr double kPi = std::numbers::pi;
-constexpr double kDegToRad = kPi / 180.0;
 
 // Ozone absorption coefficients k_o = sigma N_L at 680, 550, 440 nm, cm^-1
 // (see atmosphere.h: Serdyuchenko et al. 2014 cross-sections 1.209e-21,
@@ -22,8 +20,7 @@ constexpr double kAngstromAlpha = 1.3;  // Preetham et al. 1999, App. A.2
 
 double relativeAirMass(double elevationDeg) {
   const double zenithDeg = 90.0 - std::clamp(elevationDeg, 0.0, 90.0);
-  return 1.0 /
-         (std::cos(zenithDeg * kDegToRad) + 0.50572 * std::pow(96.07995 - zenithDeg, -1.6364));
+  return 1.0 / (std::cos(radians(zenithDeg)) + 0.50572 * std::pow(96.07995 - zenithDeg, -1.6364));
 }
 
 double angstromBeta(double turbidity) {

@@ -31,15 +31,14 @@
 
 #include <glm/vec3.hpp>
 
+#include "aperture/terrain/units.h"
+
 namespace aal {
 
 // Solar illuminance constant at 1 AU: 133.3 klx (Darula, Kittler & Gueymard
 // 2005, "Reference luminous solar constant and solar luminance for
 // illuminance calculations", Solar Energy 79).
 constexpr double kSolarIlluminanceKlx = 133.334;
-
-// Angular radius of the sun's disk at 1 AU, degrees (docs/design.md §7).
-constexpr double kSunAngularRadiusDeg = 0.26656;
 
 // Default atmospheric turbidity (Preetham's T: 2 very clear, 3 clear, 6 hazy).
 constexpr double kDefaultTurbidity = 2.5;

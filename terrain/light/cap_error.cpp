@@ -2,15 +2,11 @@
 
 #include <algorithm>
 #include <cmath>
-#include <numbers>
 
 #include "aperture/terrain/light/caps.h"
+#include "aperture/terrain/units.h"
 
 namespace aal {
-
-namespace {
-constexpr double kPi = std::numbers::pi;
-}
 
 double capRelativeError(double exact, double approx, double r0Rad, double r1Rad) {
   const double smaller = capArea(std::min(r0Rad, r1Rad));

@@ -2,17 +2,15 @@
 
 #include <algorithm>
 #include <cmath>
-#include <numbers>
 #include <stdexcept>
 
 #include "aperture/shaders/config.h"
 #include "aperture/terrain/light/caps.h"
+#include "aperture/terrain/units.h"
 
 namespace aal {
 
 namespace {
-
-constexpr double kPi = std::numbers::pi;
 
 // u at pi/2: the largest u of a tabulated aperture.
 double largestU(double lightRadiusRad) {

@@ -2,15 +2,14 @@
 
 #include <algorithm>
 #include <cmath>
-#include <numbers>
 
 #include <glm/geometric.hpp>
+
+#include "aperture/terrain/units.h"
 
 namespace aal {
 
 namespace {
-
-constexpr double kPi = std::numbers::pi;
 
 float smoothstep01(float x) {
   const float t = std::clamp(x, 0.0f, 1.0f);

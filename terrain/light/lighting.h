@@ -9,13 +9,9 @@
 #include <glm/vec3.hpp>
 
 #include "aperture/terrain/light/sky_model.h"
+#include "aperture/terrain/units.h"
 
 namespace aal {
-
-// The sun's angular radius at 1 AU in radians: kSunAngularRadiusDeg
-// (atmosphere.h; 0.0046524 rad) rounded as the renders and golden images have always had
-// it. The tools pass the exact value of their --sun-radius.
-constexpr float kSunRadiusRad = 0.004653f;
 
 struct Lighting {
   glm::vec3 sunDirection{0, 0, 1};  // unit, towards the sun, world frame

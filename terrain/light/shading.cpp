@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <numbers>
 
 #include <glm/geometric.hpp>
 #include <glm/vec2.hpp>
@@ -10,6 +9,7 @@
 #include "aperture/shaders/config.h"
 #include "aperture/terrain/light/cap_table.h"
 #include "aperture/terrain/light/caps.h"
+#include "aperture/terrain/units.h"
 
 namespace aal {
 
@@ -29,14 +29,10 @@ const std::map<std::string, ShadingMode>& shadingModeNames() {
   return names;
 }
 
-namespace {
-constexpr float kPi = std::numbers::pi_v<float>;
-}
-
 float horizonSunFraction(float sunElevationRad, float horizonRad, float sunRadiusRad) {
   if (!(sunRadiusRad > 0.0f)) return sunElevationRad > horizonRad ? 1.0f : 0.0f;
   const float x = std::clamp((sunElevationRad - horizonRad) / sunRadiusRad, -1.0f, 1.0f);
-  return 1.0f - (std::acos(x) - x * std::sqrt(1.0f - x * x)) / kPi;
+  return 1.0f - (std::acos(x) - x * std::sqrt(1.0f - x * x)) / kPiFloat;
 }
 
 float sunEdgeFootprintDistance(float apertureRad, float sunRadiusRad, float dRad, float spreadRad) {
@@ -57,14 +53,15 @@ float horizonMomentSunFraction(float sunElevationRad, float horizonMeanRad,
 ShadingTerms shadingTerms(const ShadingInputs& in, ShadingMode mode,
                           const CapIntersectionTable* exactTable) {
   ShadingTerms t;
-  const glm::vec3 diffuse = in.albedo / kPi;
+  const glm::vec3 diffuse = in.albedo / kPiFloat;
   const float nDotL = std::max(0.0f, glm::dot(in.normal, in.sunDirection));
   const float visible = 1.0f - std::cos(in.apertureRad);  // Omega / 2 pi
   if (mode == ShadingMode::BaselineLambert || mode == ShadingMode::BaselineAo) {
     t.sunFraction = 1.0f;
     t.direct = diffuse * in.sunIrradiance * nDotL;
     // Constant ambient: the irradiance of the full sky dome, pi L_sky.
-    t.skyIrradiance = kPi * in.skyRadiance * (mode == ShadingMode::BaselineAo ? visible : 1.0f);
+    t.skyIrradiance =
+        kPiFloat * in.skyRadiance * (mode == ShadingMode::BaselineAo ? visible : 1.0f);
     t.ambient = diffuse * t.skyIrradiance;
     return t;
   }
@@ -108,7 +105,7 @@ ShadingTerms shadingTerms(const ShadingInputs& in, ShadingMode mode,
   const float apertureArea = static_cast<float>(capArea(in.apertureRad));
   const float skyShare = apertureArea > 0 ? 1.0f - std::min(1.0f, sunSeen / apertureArea) : 0.0f;
   const float sinR = std::sin(in.apertureRad);
-  t.skyIrradiance = in.skyRadiance * kPi * sinR * sinR *
+  t.skyIrradiance = in.skyRadiance * kPiFloat * sinR * sinR *
                     std::max(0.0f, glm::dot(in.normal, in.bentNormal)) * skyShare;
   t.ambient = diffuse * t.skyIrradiance * in.transfer;
   return t;
@@ -121,7 +118,8 @@ glm::vec3 shade(const ShadingInputs& in, ShadingMode mode, const CapIntersection
     case ShadingMode::DebugSunFraction:
       return glm::vec3(shadingTerms(in, ShadingMode::Approx).sunFraction);
     case ShadingMode::DebugSkyFill: {
-      const float full = kPi * std::max({in.skyRadiance.r, in.skyRadiance.g, in.skyRadiance.b});
+      const float full =
+          kPiFloat * std::max({in.skyRadiance.r, in.skyRadiance.g, in.skyRadiance.b});
       const glm::vec3 e = shadingTerms(in, ShadingMode::Approx).skyIrradiance;
       return glm::vec3(full > 0 ? std::max({e.r, e.g, e.b}) / full : 0.0f);
     }

@@ -2,17 +2,16 @@
 
 #include <algorithm>
 #include <cmath>
-#include <numbers>
 
 #include <glm/common.hpp>
 #include <glm/exponential.hpp>
 #include <glm/geometric.hpp>
 
+#include "aperture/terrain/units.h"
+
 namespace aal {
 
 namespace {
-
-constexpr double kPi = std::numbers::pi;
 
 struct Perez {
   double a, b, c, d, e;

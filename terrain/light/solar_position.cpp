@@ -4,23 +4,21 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
-#include <numbers>
+
+#include "aperture/terrain/units.h"
 
 namespace aal {
 
 namespace {
 
-constexpr double kPi = std::numbers::pi;
-constexpr double kDegToRad = kPi / 180.0;
-
 double sinDeg(double deg) {
-  return std::sin(deg * kDegToRad);
+  return std::sin(radians(deg));
 }
 double cosDeg(double deg) {
-  return std::cos(deg * kDegToRad);
+  return std::cos(radians(deg));
 }
 double tanDeg(double deg) {
-  return std::tan(deg * kDegToRad);
+  return std::tan(radians(deg));
 }
 double wrap(double value, double period) {
   const double r = std::fmod(value, period);
@@ -236,8 +234,9 @@ SolarPosition solarPosition(const UtcTime& time, double latitudeDeg, double long
   // Apparent right ascension and declination (Meeus eqs. 25.6, 25.7).
   const double rightAscension =
       std::atan2(cosDeg(obliquity) * sinDeg(apparentLongitude), cosDeg(apparentLongitude)) /
-      kDegToRad;
-  const double declination = std::asin(sinDeg(obliquity) * sinDeg(apparentLongitude)) / kDegToRad;
+      kRadiansPerDegree;
+  const double declination =
+      std::asin(sinDeg(obliquity) * sinDeg(apparentLongitude)) / kRadiansPerDegree;
 
   // Equation of time, Smart's formula (Meeus eq. 28.3), in minutes of time.
   const double y = tanDeg(obliquity / 2) * tanDeg(obliquity / 2);
@@ -245,7 +244,7 @@ SolarPosition solarPosition(const UtcTime& time, double latitudeDeg, double long
                         4 * eccentricity * y * sinDeg(meanAnomaly) * cosDeg(2 * meanLongitude) -
                         0.5 * y * y * sinDeg(4 * meanLongitude) -
                         1.25 * eccentricity * eccentricity * sinDeg(2 * meanAnomaly);
-  const double equationOfTimeMin = 4.0 * eotRad / kDegToRad;
+  const double equationOfTimeMin = 4.0 * eotRad / kRadiansPerDegree;
 
   // True solar time and hour angle (NOAA spreadsheet, time zone 0).
   const double minutesUtc = 60.0 * time.hour + time.minute + time.second / 60.0;
@@ -261,8 +260,8 @@ SolarPosition solarPosition(const UtcTime& time, double latitudeDeg, double long
                        cosDeg(declination) * cosDeg(hourAngle) * sinDeg(latitudeDeg);
   const double up = sinDeg(declination) * sinDeg(latitudeDeg) +
                     cosDeg(declination) * cosDeg(hourAngle) * cosDeg(latitudeDeg);
-  const double geometricElevation = std::atan2(up, std::hypot(east, north)) / kDegToRad;
-  const double azimuth = wrap(std::atan2(east, north) / kDegToRad, 360.0);
+  const double geometricElevation = std::atan2(up, std::hypot(east, north)) / kRadiansPerDegree;
+  const double azimuth = wrap(std::atan2(east, north) / kRadiansPerDegree, 360.0);
 
   // NOAA atmospheric refraction correction, in arc seconds.
   const double e = geometricElevation;

@@ -2,10 +2,10 @@
 
 #include <algorithm>
 #include <cmath>
-#include <numbers>
 
 #include "aperture/shaders/config.h"
 #include "aperture/terrain/light/atmosphere.h"
+#include "aperture/terrain/units.h"
 
 namespace aal {
 
@@ -14,7 +14,6 @@ namespace {
 constexpr float kA = float(AAL_FILMIC_A), kB = float(AAL_FILMIC_B), kC = float(AAL_FILMIC_C),
                 kD = float(AAL_FILMIC_D), kE = float(AAL_FILMIC_E), kF = float(AAL_FILMIC_F),
                 kW = float(AAL_FILMIC_W);
-constexpr double kPi = std::numbers::pi;
 
 // Hable's curve before normalisation, (x (A x + C B) + D E) / (x (A x + B) + D F) - E / F,
 // over one denominator: the D E F terms cancel, so h(0) = 0 exactly and no

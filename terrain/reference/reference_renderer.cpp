@@ -1,11 +1,11 @@
 #include "aperture/terrain/reference/reference_renderer.h"
 
 #include "aperture/terrain/reference/terrain_surface.h"
+#include "aperture/terrain/units.h"
 
 #include <algorithm>
 #include <atomic>
 #include <cmath>
-#include <numbers>
 #include <random>
 #include <stdexcept>
 #include <string>
@@ -18,8 +18,6 @@
 namespace aal {
 
 namespace {
-
-constexpr double kPi = std::numbers::pi;
 
 // An orthonormal frame around n (Duff et al. 2017, "Building an Orthonormal
 // Basis, Revisited").

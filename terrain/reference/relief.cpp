@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
-#include <numbers>
 #include <stdexcept>
 
 #include <tbb/blocked_range.h>
@@ -16,13 +15,11 @@
 #include "aperture/terrain/interrupt.h"
 #include "aperture/terrain/light/obscurance_samples.h"
 #include "aperture/terrain/light/solar_position.h"
+#include "aperture/terrain/units.h"
 
 namespace aal {
 
 namespace {
-
-constexpr double kPi = std::numbers::pi;
-constexpr double kDeg = kPi / 180.0;
 
 // Normal from height differences over one texel either side, one-sided at
 // the DEM's edges (gdaldem's -compute_edges, not the renderer's clamped
@@ -85,7 +82,7 @@ void sampleAperture(const Texels& at, int width, int height, double col, double 
 
 float aspectDeg(const glm::vec3& normal) {
   // The horizontal part of the normal points downslope, where the slope faces.
-  const double a = std::atan2(normal.x, normal.y) / kDeg;
+  const double a = std::atan2(normal.x, normal.y) / kRadiansPerDegree;
   return static_cast<float>(a < 0 ? a + 360 : a);
 }
 
@@ -122,7 +119,7 @@ void boxFilter4(std::vector<float>& w, const std::vector<uint8_t>& voids, int wi
 std::array<double, 4> multidirectionalWeights(double aspectDegrees) {
   std::array<double, 4> w{};
   for (size_t i = 0; i < w.size(); ++i) {
-    const double c = std::cos((aspectDegrees - kMultidirectionalAzimuthsDeg[i]) * kDeg);
+    const double c = std::cos(radians(aspectDegrees - kMultidirectionalAzimuthsDeg[i]));
     w[i] = c * c;
   }
   return w;
@@ -176,7 +173,7 @@ ReliefImage shadeWith(const Heightfield& field, const Texels& texels, const Reli
 
   ShadingInputs base;
   base.albedo = glm::vec3(static_cast<float>(kPi));  // albedo / pi = 1
-  base.sunRadiusRad = static_cast<float>(s.sunRadiusDeg * kDeg);
+  base.sunRadiusRad = static_cast<float>(radians(s.sunRadiusDeg));
   base.sunIrradiance = glm::vec3(1.0f - s.skyWeight);
   base.skyRadiance = glm::vec3(static_cast<float>(s.skyWeight / kPi));
   if (s.lighting == ReliefLighting::SkyOnly) {

@@ -23,9 +23,9 @@
 
 #include "aperture/terrain/heightfield.h"
 #include "aperture/terrain/io/aperture_map.h"
-#include "aperture/terrain/light/atmosphere.h"
 #include "aperture/terrain/light/obscurance.h"
 #include "aperture/terrain/light/shading.h"
+#include "aperture/terrain/units.h"
 
 namespace aal {
 
@@ -44,7 +44,8 @@ struct ReliefSettings {
   // its centre.
   int outWidth = 0, outHeight = 0;
   ReliefLighting lighting = ReliefLighting::Sun;
-  double sunAzimuthDeg = 315, sunElevationDeg = 45;  // clockwise from north; above horizon
+  double sunAzimuthDeg = kDefaultSunAzimuthDeg;      // clockwise from north
+  double sunElevationDeg = kDefaultSunElevationDeg;  // above the horizon
   double sunRadiusDeg = kSunAngularRadiusDeg;
   float skyWeight = 0.2f;                  // k in [0, 1]
   ShadingMode mode = ShadingMode::Approx;  // Approx or Exact

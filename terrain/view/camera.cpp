@@ -4,17 +4,17 @@
 #include <array>
 #include <cmath>
 #include <limits>
-#include <numbers>
 #include <stdexcept>
 
 #include <glm/ext/matrix_clip_space.hpp>
 #include <glm/ext/matrix_transform.hpp>
 #include <glm/geometric.hpp>
 
+#include "aperture/terrain/units.h"
+
 namespace aal {
 
 namespace {
-constexpr double kDegToRad = std::numbers::pi / 180.0;
 
 std::pair<float, float> heightRange(const Heightfield& field) {
   const auto [lo, hi] = std::minmax_element(field.z.begin(), field.z.end());
@@ -67,7 +67,7 @@ glm::mat4 viewMatrix(const Camera& camera) {
 
 glm::mat4 projectionMatrix(const Camera& camera, double aspect, const DepthRange& range) {
   glm::dmat4 p =
-      glm::perspectiveRH_ZO(camera.verticalFovDeg * kDegToRad, aspect, range.nearM, range.farM);
+      glm::perspectiveRH_ZO(radians(camera.verticalFovDeg), aspect, range.nearM, range.farM);
   p[1][1] *= -1.0;  // Vulkan's clip space y points down
   return glm::mat4(p);
 }
@@ -82,7 +82,7 @@ Camera framingCamera(glm::dvec2 extentM, double zMin, double zMax, double aspect
                      double elevationDeg, double verticalFovDeg, double fill) {
   Camera camera;
   camera.verticalFovDeg = verticalFovDeg;
-  const double elevation = elevationDeg * kDegToRad, azimuth = azimuthDeg * kDegToRad;
+  const double elevation = radians(elevationDeg), azimuth = radians(azimuthDeg);
   // Camera frame: forward f (from the camera towards the DEM), right r, up u.
   const glm::dvec3 f = -glm::dvec3(std::cos(elevation) * std::sin(azimuth),
                                    std::cos(elevation) * std::cos(azimuth), std::sin(elevation));
@@ -104,7 +104,7 @@ Camera framingCamera(glm::dvec2 extentM, double zMin, double zMax, double aspect
   // both sides; the other pair is then loose, and its coordinate is moved
   // (it does not change the first pair's planes) until the box's extremes
   // along it are symmetric in the image.
-  const double b = fill * std::tan(0.5 * verticalFovDeg * kDegToRad);
+  const double b = fill * std::tan(radians(0.5 * verticalFovDeg));
   const double a = b * aspect;
   const auto highest = [&](const glm::dvec3& n) {
     double h = -std::numeric_limits<double>::infinity();

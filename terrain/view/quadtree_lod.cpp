@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
-#include <numbers>
 #include <stdexcept>
 
 #include <tbb/parallel_for.h>
@@ -11,13 +10,13 @@
 #include <glm/geometric.hpp>
 
 #include "aperture/shaders/config.h"
+#include "aperture/terrain/units.h"
 #include "aperture/terrain/view/height_mips.h"
 
 namespace aal {
 
 namespace {
 
-constexpr double kPi = std::numbers::pi;
 // A finite stand-in for an unbounded range: single precision holds it and
 // its doublings up to level 31 (the shader computes in floats).
 constexpr double kUnboundedRangeM = 1e12;

@@ -164,6 +164,10 @@ struct LodSelection {
 LodSelection selectLod(const LodQuadtree& tree, const LodRanges& ranges, glm::dvec3 cameraM,
                        const glm::mat4* viewProj);
 
+// The triangles a frame draws unless asked otherwise (the triangle budget
+// of aal-render's and aal-view's --triangles and of the Python render).
+constexpr size_t kDefaultTriangleBudget = 2'000'000;
+
 // The frame's selection: P = min(budget scale, view scale); should the
 // selection still exceed `triangleBudget` (a camera the budget's samples
 // missed), P shrinks for this frame until it fits or reaches 0.

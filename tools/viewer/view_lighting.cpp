@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <numbers>
 
 #include "aperture/engine/terrain_renderer.h"
 #include "aperture/terrain/light/lighting_defaults.h"
@@ -57,7 +56,7 @@ Lighting viewLighting(const ViewLighting& l, const Heightfield& field) {
   light.sunIrradiance *= l.sunIntensity;
   light.skyRadiance *= l.skyIntensity;
   light.sky.zenith.x *= l.skyIntensity;  // the background sky too
-  light.sunRadiusRad = static_cast<float>(l.sunRadiusDeg * std::numbers::pi / 180.0);
+  light.sunRadiusRad = static_cast<float>(radians(l.sunRadiusDeg));
   light.exposure *= std::exp2(l.exposureStops);
   return light;
 }

@@ -7,9 +7,9 @@
 #include <optional>
 
 #include "aperture/terrain/heightfield.h"
-#include "aperture/terrain/light/atmosphere.h"
 #include "aperture/terrain/light/lighting.h"
 #include "aperture/terrain/light/solar_position.h"
+#include "aperture/terrain/units.h"
 
 namespace aal {
 
@@ -20,7 +20,7 @@ struct ViewLighting {
   int year = 2024, month = 6, day = 21;
   double hourUtc = 15;  // time of day, hours UTC in [0, 24)
   double latitudeDeg = 45, longitudeDeg = 0;
-  double sunAzimuthDeg = 315, sunElevationDeg = 45;  // gdaldem convention
+  double sunAzimuthDeg = kDefaultSunAzimuthDeg, sunElevationDeg = kDefaultSunElevationDeg;
   double sunRadiusDeg = kSunAngularRadiusDeg;
   double turbidity = 2.5;
   float sunIntensity = 1, skyIntensity = 1;  // multipliers of E_sun and L_sky

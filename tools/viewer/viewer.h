@@ -60,7 +60,7 @@ struct ViewerOptions {
   ShadingMode mode = ShadingMode::Approx;
   bool obscurance = true;  // the obscurance pass on at the start
   int device = -1;
-  size_t triangleBudget = 2'000'000;
+  size_t triangleBudget = kDefaultTriangleBudget;
   double lodErrorPixels = LodSettings{}.maxErrorPixels;
   int anisotropy = kDefaultFootprintProbes;  // FrameSettings::anisotropy at the start
   // Dynamic resolution while the view changes (DynamicResolution); 0: off.
