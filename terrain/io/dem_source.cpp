@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <cctype>
 #include <cmath>
-#include <cstdio>
 #include <cstdlib>
 #include <cstring>
 #include <exception>
@@ -24,6 +23,7 @@
 
 #include "aperture/terrain/errors.h"
 #include "aperture/terrain/interrupt.h"
+#include "aperture/terrain/io/declared_size_check.h"
 #include "aperture/terrain/io/gdal_session.h"
 #include "aperture/terrain/io/georeference.h"
 #include "aperture/terrain/io/input_file.h"
@@ -37,127 +37,6 @@ namespace {
 
 [[noreturn]] void refuse(const std::string& path, const std::string& why) {
   throw InputError(path + ": " + why);
-}
-
-// Bytes of the file GDAL opened (its first file), or nothing when unknown.
-std::optional<uint64_t> mainFileBytes(GDALDataset& dataset) {
-  char** files = dataset.GetFileList();
-  VSIStatBufL stat{};
-  const bool known = files != nullptr && files[0] != nullptr && VSIStatL(files[0], &stat) == 0;
-  CSLDestroy(files);
-  if (!known) return std::nullopt;
-  return static_cast<uint64_t>(stat.st_size);
-}
-
-int bitsPerSample(GDALRasterBand& band) {
-  const char* nbits = band.GetMetadataItem("NBITS", "IMAGE_STRUCTURE");
-  const int bits = nbits != nullptr ? std::atoi(nbits) : 0;
-  return bits > 0 ? bits : 8 * GDALGetDataTypeSizeBytes(band.GetRasterDataType());
-}
-
-// The most a TIFF codec can expand its bytes: PackBits 2 bytes into 128,
-// deflate's best is 1032:1 (258-byte matches in 2 bits), LZW's 12-bit codes
-// stand for at most 4096 bytes. Nothing for codecs without a small bound
-// (ZSTD, LZMA, LERC) or that DEMs do not use.
-std::optional<double> tiffExpansionBound(const char* compression) {
-  if (compression == nullptr || std::strcmp(compression, "NONE") == 0) return 1.0;
-  if (std::strcmp(compression, "PACKBITS") == 0) return 64.0;
-  if (std::strcmp(compression, "DEFLATE") == 0 || std::strcmp(compression, "ZIP") == 0) {
-    return 1032.0;
-  }
-  if (std::strcmp(compression, "LZW") == 0) return 4096.0 * 8.0 / 12.0;
-  return std::nullopt;
-}
-
-[[noreturn]] void refuseDeclaredSize(const std::string& path, uint64_t declared, uint64_t held,
-                                     const std::string& why) {
-  refuse(path, "is truncated or corrupt: its header declares " + std::to_string(declared) +
-                   " bytes of samples, but " + why + " only " + std::to_string(held) +
-                   " bytes can hold");
-}
-
-// TIFF blocks must lie in the file, cannot together hold more bytes than it
-// has, and cannot decode to more than their codec can expand to: a 556 kB
-// file whose 46340 strips all pointed at one row claimed 8.6 GB of heights,
-// and a reader filled 10 GB with copies. Sparse blocks (offset 0) hold
-// nothing and cost nothing. Above a million blocks the count itself would
-// cost seconds; the memory check in read() still stands there.
-void checkTiffBlocks(const std::string& path, GDALDataset& dataset, GDALRasterBand& band,
-                     uint64_t fileBytes) {
-  int blockW = 0, blockH = 0;
-  band.GetBlockSize(&blockW, &blockH);
-  if (blockW < 1 || blockH < 1) return;
-  const int width = dataset.GetRasterXSize(), height = dataset.GetRasterYSize();
-  const int64_t columns = (width + int64_t{blockW} - 1) / blockW;
-  const int64_t rows = (height + int64_t{blockH} - 1) / blockH;
-  if (columns * rows > 1000000) return;
-  const char* interleave = dataset.GetMetadataItem("INTERLEAVE", "IMAGE_STRUCTURE");
-  const int samples =
-      interleave != nullptr && std::strcmp(interleave, "PIXEL") == 0 ? dataset.GetRasterCount() : 1;
-  const uint64_t rowBytes = (static_cast<uint64_t>(blockW) * samples * bitsPerSample(band) + 7) / 8;
-  const bool strips = blockW == width;  // a strip ends with the image; a tile is padded
-  const auto item = [&](const char* what, int64_t x, int64_t y) -> uint64_t {
-    char key[64];
-    std::snprintf(key, sizeof key, "%s_%lld_%lld", what, static_cast<long long>(x),
-                  static_cast<long long>(y));
-    const char* value = band.GetMetadataItem(key, "TIFF");
-    return value != nullptr ? std::strtoull(value, nullptr, 10) : 0;
-  };
-  uint64_t claimed = 0, declared = 0;
-  for (int64_t y = 0; y < rows; ++y) {
-    for (int64_t x = 0; x < columns; ++x) {
-      const uint64_t offset = item("BLOCK_OFFSET", x, y);
-      if (offset == 0) continue;
-      const uint64_t bytes = item("BLOCK_SIZE", x, y);
-      if (offset > fileBytes || bytes > fileBytes - offset) {
-        refuse(path, "is truncated or corrupt: block " + std::to_string(x) + ", " +
-                         std::to_string(y) + " lies at bytes " + std::to_string(offset) + " to " +
-                         std::to_string(offset + bytes) + " of a " + std::to_string(fileBytes) +
-                         "-byte file");
-      }
-      claimed += bytes;
-      const int64_t blockRows = strips ? std::min<int64_t>(blockH, height - y * blockH) : blockH;
-      declared += rowBytes * static_cast<uint64_t>(blockRows);
-    }
-  }
-  if (claimed > fileBytes) {
-    refuse(path, "is corrupt: its blocks claim " + std::to_string(claimed) +
-                     " bytes in all, more than the file's " + std::to_string(fileBytes) +
-                     " (blocks that share bytes)");
-  }
-  const char* compression = dataset.GetMetadataItem("COMPRESSION", "IMAGE_STRUCTURE");
-  if (const auto bound = tiffExpansionBound(compression);
-      bound && static_cast<double>(declared) > *bound * static_cast<double>(claimed)) {
-    refuseDeclaredSize(path, declared, static_cast<uint64_t>(*bound * claimed),
-                       std::string("its ") + (compression ? compression : "uncompressed") +
-                           " blocks of " + std::to_string(claimed) + " bytes");
-  }
-}
-
-// What a file declares must fit in what it holds, before anything of the
-// declared size is allocated: for TIFF block by block, for PNG at zlib's
-// best ratio (a 225 kB PNG claimed 40000^2 samples).
-void checkDeclaredSizeFitsTheFile(const std::string& path, GDALDataset& dataset,
-                                  GDALRasterBand& band) {
-  GDALDriver* driver = dataset.GetDriver();
-  if (driver == nullptr) return;
-  const std::optional<uint64_t> fileBytes = mainFileBytes(dataset);
-  if (!fileBytes) return;
-  const char* name = driver->GetDescription();
-  if (std::strcmp(name, "GTiff") == 0) {
-    checkTiffBlocks(path, dataset, band, *fileBytes);
-  } else if (std::strcmp(name, "PNG") == 0) {
-    const uint64_t declared = static_cast<uint64_t>(dataset.GetRasterYSize()) *
-                              ((static_cast<uint64_t>(dataset.GetRasterXSize()) *
-                                    dataset.GetRasterCount() * bitsPerSample(band) +
-                                7) /
-                               8);
-    if (static_cast<double>(declared) > 1032.0 * static_cast<double>(*fileBytes)) {
-      refuseDeclaredSize(
-          path, declared, 1032 * *fileBytes,
-          "at zlib's best ratio (1032:1) its " + std::to_string(*fileBytes) + " bytes of file");
-    }
-  }
 }
 
 std::string oneBandHint(const std::string& path) {
@@ -451,6 +330,90 @@ std::optional<double> nodataOf(GDALRasterBand& band, GDALDataType type) {
   return value;
 }
 
+// A window of the file's rows and columns (rows as the file stores them).
+struct FileWindow {
+  int column, row, width, height;
+};
+
+// The band's nodata value, compared in the sample's own precision, as
+// GDAL's masks do: float32 samples against the value rounded to float.
+struct NodataValue {
+  explicit NodataValue(const std::optional<double>& nodata)
+      : present(nodata.has_value() && !std::isnan(*nodata)),
+        value(present ? *nodata : 0.0),
+        asFloat(present ? static_cast<float>(*nodata) : 0.0f) {}
+  bool present;
+  double value;
+  float asFloat;
+};
+
+// Samples that float32 holds exactly, read by GDAL straight into `z`, in
+// bands of rows as well: a driver that reports no progress inside one call
+// (a VRT of one source) still hears Ctrl-C between bands.
+void readFloatHeights(const std::string& path, GDALRasterBand& band, const FileWindow& window,
+                      GDALRasterIOExtraArg& extra, float* z) {
+  const int w = window.width, h = window.height;
+  const int bandRows =
+      std::max(1, std::min(h, static_cast<int>((size_t{16} << 20) / (sizeof(float) * w))));
+  for (int r = 0; r < h; r += bandRows) {
+    const int rows = std::min(bandRows, h - r);
+    if (band.RasterIO(GF_Read, window.column, window.row + r, w, rows,
+                      z + static_cast<size_t>(r) * w, w, rows, GDT_Float32, 0, 0,
+                      &extra) != CE_None) {
+      throwReadFailure(path);
+    }
+    throwIfInterrupted();
+  }
+}
+
+// Flags the void texels of `dem` (1 in voidMask) and zeroes their heights:
+// where the mask or alpha read into voidMask is 0 (maskRead), where the
+// height is NaN or infinite, and with compareNodata where it equals the
+// nodata value.
+void flagVoids(RawDem& dem, bool maskRead, bool compareNodata, float nodata) {
+  const size_t texels = dem.texelCount();
+  tbb::parallel_for(size_t{0}, texels, size_t{1} << 16, [&](size_t i) {
+    const size_t end = std::min(texels, i + (size_t{1} << 16));
+    for (; i < end; ++i) {
+      const bool isVoid = (maskRead && dem.voidMask[i] == 0) || !std::isfinite(dem.z[i]) ||
+                          (compareNodata && dem.z[i] == nodata);
+      dem.voidMask[i] = isVoid ? 1 : 0;
+      if (isVoid) dem.z[i] = 0.0f;
+    }
+  });
+}
+
+// Turns the rows of a south-up window upside down, so that row 0 is north.
+void flipRows(RawDem& dem) {
+  const int w = dem.width, h = dem.height;
+  for (int r = 0; r < h / 2; ++r) {
+    std::swap_ranges(dem.z.begin() + static_cast<ptrdiff_t>(r) * w,
+                     dem.z.begin() + static_cast<ptrdiff_t>(r + 1) * w,
+                     dem.z.begin() + static_cast<ptrdiff_t>(h - 1 - r) * w);
+    std::swap_ranges(dem.voidMask.begin() + static_cast<ptrdiff_t>(r) * w,
+                     dem.voidMask.begin() + static_cast<ptrdiff_t>(r + 1) * w,
+                     dem.voidMask.begin() + static_cast<ptrdiff_t>(h - 1 - r) * w);
+  }
+}
+
+// The description with the samples of the window at (column, row) (row 0 =
+// north) and the georeference placed at its texel (0, 0); the whole raster's
+// metric spacing only for the whole raster.
+RawDem placedWindow(const RawDem& description, RawDem samples, int column, int row,
+                    bool wholeRaster) {
+  RawDem placed = description;
+  placed.width = samples.width;
+  placed.height = samples.height;
+  placed.z = std::move(samples.z);
+  placed.voidMask = std::move(samples.voidMask);
+  if (!wholeRaster) placed.spacing.reset();
+  if (placed.geo.crs != CrsKind::None) {
+    placed.geo.originX += column * placed.geo.stepX;
+    placed.geo.originY -= row * placed.geo.stepY;
+  }
+  return placed;
+}
+
 }  // namespace
 
 struct DemSource::Impl {
@@ -478,7 +441,102 @@ struct DemSource::Impl {
   std::mutex settling;
   bool settled = false;
   std::exception_ptr failure;
+
+  // Refuses (InputError) a read of w x h texels that does not fit in memory:
+  // a window's heights and void mask, or for the whole raster the caller's
+  // work on it when that needs more (DemLoadOptions::peakBytesPerTexel).
+  void requireMemoryToRead(const std::string& path, int w, int h, bool wholeRaster) const;
+  // Samples GDAL can write straight into the heights: exact in float32,
+  // unscaled.
+  bool readsDirect() const {
+    return exactInFloat(type) && !signedBytes && scale == 1.0 && offset == 0.0;
+  }
+  // The window's heights into dem.z, scale and offset applied, and its voids
+  // flagged in dem.voidMask, their heights 0 (flagVoids).
+  void readSamples(const std::string& path, const FileWindow& window, const NodataValue& nodata,
+                   RawDem& dem) const;
+  // Samples of any type through float64, converted to heights; NaN for
+  // nodata, which flagVoids then makes a void.
+  void readConvertedHeights(const std::string& path, const FileWindow& window,
+                            const NodataValue& nodata, GDALRasterIOExtraArg& extra, float* z) const;
+  // The band whose zeros are voids (alpha, else the mask), or none.
+  GDALRasterBand* voidBand() const;
 };
+
+void DemSource::Impl::requireMemoryToRead(const std::string& path, int w, int h,
+                                          bool wholeRaster) const {
+  const double readBytes = sizeof(float) + sizeof(uint8_t);
+  const bool withWork = wholeRaster && peakBytesPerTexel > readBytes;
+  const std::string size = std::to_string(w) + " x " + std::to_string(h);
+  requireMemory(
+      path, static_cast<double>(w) * h * (withWork ? peakBytesPerTexel : readBytes),
+      withWork ? workName + " of its " + size + " texels (" + numberText(peakBytesPerTexel) +
+                     " bytes per texel)"
+               : (wholeRaster ? "its " : "a window of ") + size + " heights and void mask",
+      !memoryHint.empty() ? memoryHint
+                          : "aal-bake bakes it a tile at a time (--tile-size N --low-memory); for "
+                            "the other tools cut it (`gdal_translate -srcwin`) or coarsen it "
+                            "(`gdal_translate -outsize 50% 50%`)");
+}
+
+void DemSource::Impl::readSamples(const std::string& path, const FileWindow& window,
+                                  const NodataValue& nodata, RawDem& dem) const {
+  // Stops at the next block once Ctrl-C or SIGTERM came (terrain/interrupt.h).
+  GDALRasterIOExtraArg extra = interruptibleRead();
+  const bool direct = readsDirect();
+  CPLErrorReset();
+  if (direct) {
+    readFloatHeights(path, *band, window, extra, dem.z.data());
+  } else {
+    readConvertedHeights(path, window, nodata, extra, dem.z.data());
+  }
+  // Mask or alpha as bytes, 0 = void (alpha rounds to the nearest byte).
+  GDALRasterBand* mask = voidBand();
+  if (mask != nullptr && mask->RasterIO(GF_Read, window.column, window.row, window.width,
+                                        window.height, dem.voidMask.data(), window.width,
+                                        window.height, GDT_Byte, 0, 0, &extra) != CE_None) {
+    throwReadFailure(path);
+  }
+  flagVoids(dem, mask != nullptr, direct && nodata.present, nodata.asFloat);
+}
+
+void DemSource::Impl::readConvertedHeights(const std::string& path, const FileWindow& window,
+                                           const NodataValue& nodata, GDALRasterIOExtraArg& extra,
+                                           float* z) const {
+  // float64 through a band of rows: integers past 2^24 and scale/offset
+  // in double precision, then rounded once to float.
+  const int w = window.width, h = window.height;
+  const int bandRows =
+      std::max(1, std::min(h, static_cast<int>((size_t{32} << 20) / (sizeof(double) * w))));
+  std::vector<double> samples(static_cast<size_t>(bandRows) * w);
+  for (int r = 0; r < h; r += bandRows) {
+    const int rows = std::min(bandRows, h - r);
+    if (band->RasterIO(GF_Read, window.column, window.row + r, w, rows, samples.data(), w, rows,
+                       GDT_Float64, 0, 0, &extra) != CE_None) {
+      throwReadFailure(path);
+    }
+    throwIfInterrupted();
+    float* out = z + static_cast<size_t>(r) * w;
+    const size_t count = static_cast<size_t>(rows) * w;
+    tbb::parallel_for(size_t{0}, count, size_t{1} << 16, [&](size_t i) {
+      const size_t end = std::min(count, i + (size_t{1} << 16));
+      for (; i < end; ++i) {
+        double v = samples[i];
+        if (signedBytes && v >= 128.0) v -= 256.0;
+        const bool isNodata =
+            nodata.present &&
+            (type == GDT_Float32 ? static_cast<float>(v) == nodata.asFloat : v == nodata.value);
+        out[i] = isNodata ? std::numeric_limits<float>::quiet_NaN()
+                          : static_cast<float>(v * scale + offset);
+      }
+    });
+  }
+}
+
+GDALRasterBand* DemSource::Impl::voidBand() const {
+  if (alphaBand > 0) return dataset->GetRasterBand(alphaBand);
+  return readMask ? band->GetMaskBand() : nullptr;
+}
 
 DemSource::DemSource(const std::string& path, const DemLoadOptions& options)
     : path_(path), impl_(std::make_unique<Impl>()) {
@@ -615,120 +673,16 @@ RawDem DemSource::read(int column, int row, int w, int h) const {
   }
   checkDemSize(path_, w, h, impl_->maxTexels);
   const bool wholeRaster = w == whole.width && h == whole.height;
-  const double readBytes = sizeof(float) + sizeof(uint8_t);
-  const bool withWork = wholeRaster && impl_->peakBytesPerTexel > readBytes;
-  const std::string size = std::to_string(w) + " x " + std::to_string(h);
-  requireMemory(
-      path_, static_cast<double>(w) * h * (withWork ? impl_->peakBytesPerTexel : readBytes),
-      withWork ? impl_->workName + " of its " + size + " texels (" +
-                     numberText(impl_->peakBytesPerTexel) + " bytes per texel)"
-               : (wholeRaster ? "its " : "a window of ") + size + " heights and void mask",
-      !impl_->memoryHint.empty()
-          ? impl_->memoryHint
-          : "aal-bake bakes it a tile at a time (--tile-size N --low-memory); for the "
-            "other tools cut it (`gdal_translate -srcwin`) or coarsen it "
-            "(`gdal_translate -outsize 50% 50%`)");
+  impl_->requireMemoryToRead(path_, w, h, wholeRaster);
   RawDem dem;  // the samples; the description joins them at the end
   dem.allocate(w, h);
   texelsRead_ += static_cast<uint64_t>(w) * static_cast<uint64_t>(h);
-
-  GDALRasterBand& band = *impl_->band;
   const int fileRow = impl_->southUp ? whole.height - row - h : row;
-  const auto failed = [&] { throwReadFailure(path_); };
-  // Stops at the next block once Ctrl-C or SIGTERM came (terrain/interrupt.h).
-  GDALRasterIOExtraArg extra = interruptibleRead();
-  const bool direct = exactInFloat(impl_->type) && !impl_->signedBytes && impl_->scale == 1.0 &&
-                      impl_->offset == 0.0;
-  const size_t texels = dem.texelCount();
-  // Nodata compared in the sample's own precision, as GDAL's masks do.
-  const bool hasNodata = whole.nodata.has_value() && !std::isnan(*whole.nodata);
-  const float nodataFloat = hasNodata ? static_cast<float>(*whole.nodata) : 0.0f;
-  CPLErrorReset();
-  if (direct) {
-    // Bands of rows as well: a driver that reports no progress inside one
-    // call (a VRT of one source) still hears Ctrl-C between bands.
-    const int bandRows =
-        std::max(1, std::min(h, static_cast<int>((size_t{16} << 20) / (sizeof(float) * w))));
-    for (int r = 0; r < h; r += bandRows) {
-      const int rows = std::min(bandRows, h - r);
-      if (band.RasterIO(GF_Read, column, fileRow + r, w, rows,
-                        dem.z.data() + static_cast<size_t>(r) * w, w, rows, GDT_Float32, 0, 0,
-                        &extra) != CE_None) {
-        failed();
-      }
-      throwIfInterrupted();
-    }
-  } else {
-    // float64 through a band of rows: integers past 2^24 and scale/offset
-    // in double precision, then rounded once to float.
-    const int bandRows =
-        std::max(1, std::min(h, static_cast<int>((size_t{32} << 20) / (sizeof(double) * w))));
-    std::vector<double> samples(static_cast<size_t>(bandRows) * w);
-    const double nodata = hasNodata ? *whole.nodata : 0.0;
-    for (int r = 0; r < h; r += bandRows) {
-      const int rows = std::min(bandRows, h - r);
-      if (band.RasterIO(GF_Read, column, fileRow + r, w, rows, samples.data(), w, rows, GDT_Float64,
-                        0, 0, &extra) != CE_None) {
-        failed();
-      }
-      throwIfInterrupted();
-      float* out = dem.z.data() + static_cast<size_t>(r) * w;
-      const size_t count = static_cast<size_t>(rows) * w;
-      tbb::parallel_for(size_t{0}, count, size_t{1} << 16, [&](size_t i) {
-        const size_t end = std::min(count, i + (size_t{1} << 16));
-        for (; i < end; ++i) {
-          double v = samples[i];
-          if (impl_->signedBytes && v >= 128.0) v -= 256.0;
-          const bool isNodata =
-              hasNodata &&
-              (impl_->type == GDT_Float32 ? static_cast<float>(v) == nodataFloat : v == nodata);
-          out[i] = isNodata ? std::numeric_limits<float>::quiet_NaN()
-                            : static_cast<float>(v * impl_->scale + impl_->offset);
-        }
-      });
-    }
-  }
-  // Mask or alpha as bytes, 0 = void (alpha rounds to the nearest byte).
-  GDALRasterBand* mask = impl_->alphaBand > 0 ? impl_->dataset->GetRasterBand(impl_->alphaBand)
-                         : impl_->readMask    ? band.GetMaskBand()
-                                              : nullptr;
-  if (mask != nullptr && mask->RasterIO(GF_Read, column, fileRow, w, h, dem.voidMask.data(), w, h,
-                                        GDT_Byte, 0, 0, &extra) != CE_None) {
-    failed();
-  }
-  const bool maskRead = mask != nullptr, compareNodata = direct && hasNodata;
-  tbb::parallel_for(size_t{0}, texels, size_t{1} << 16, [&](size_t i) {
-    const size_t end = std::min(texels, i + (size_t{1} << 16));
-    for (; i < end; ++i) {
-      const bool isVoid = (maskRead && dem.voidMask[i] == 0) || !std::isfinite(dem.z[i]) ||
-                          (compareNodata && dem.z[i] == nodataFloat);
-      dem.voidMask[i] = isVoid ? 1 : 0;
-      if (isVoid) dem.z[i] = 0.0f;
-    }
-  });
-  if (impl_->southUp) {
-    for (int r = 0; r < h / 2; ++r) {
-      std::swap_ranges(dem.z.begin() + static_cast<ptrdiff_t>(r) * w,
-                       dem.z.begin() + static_cast<ptrdiff_t>(r + 1) * w,
-                       dem.z.begin() + static_cast<ptrdiff_t>(h - 1 - r) * w);
-      std::swap_ranges(dem.voidMask.begin() + static_cast<ptrdiff_t>(r) * w,
-                       dem.voidMask.begin() + static_cast<ptrdiff_t>(r + 1) * w,
-                       dem.voidMask.begin() + static_cast<ptrdiff_t>(h - 1 - r) * w);
-    }
-  }
+  impl_->readSamples(path_, {column, fileRow, w, h}, NodataValue(whole.nodata), dem);
+  if (impl_->southUp) flipRows(dem);
   // The CRS was found meanwhile (findCrs); the window is placed in it.
   settle();
-  RawDem placed = description_;
-  placed.width = w;
-  placed.height = h;
-  placed.z = std::move(dem.z);
-  placed.voidMask = std::move(dem.voidMask);
-  if (!wholeRaster) placed.spacing.reset();
-  if (placed.geo.crs != CrsKind::None) {
-    placed.geo.originX += column * placed.geo.stepX;
-    placed.geo.originY -= row * placed.geo.stepY;
-  }
-  return placed;
+  return placedWindow(description_, std::move(dem), column, row, wholeRaster);
 }
 
 }  // namespace aal

@@ -138,9 +138,9 @@ GeoReference resampledGeoReference(const GeoReference& geo, int demWidth, int de
 
 namespace {
 
-template <class Texels>
-ReliefImage shadeWith(const Heightfield& field, const Texels& texels, const ReliefSettings& s,
-                      const std::function<void(double)>& progress) {
+// Throws std::invalid_argument for settings the relief cannot be shaded
+// with on this DEM.
+void checkReliefSettings(const Heightfield& field, const ReliefSettings& s, bool obscure) {
   if (!(s.skyWeight >= 0 && s.skyWeight <= 1) ||
       (s.mode != ShadingMode::Approx && s.mode != ShadingMode::Exact)) {
     throw std::invalid_argument("shadeRelief: sky weight in [0, 1], mode approx or exact");
@@ -148,20 +148,37 @@ ReliefImage shadeWith(const Heightfield& field, const Texels& texels, const Reli
   if (!s.waterMask.empty() && s.waterMask.size() != field.texelCount()) {
     throw std::invalid_argument("shadeRelief: the water mask must have the DEM's size");
   }
+  if (obscure &&
+      (!isSupportedObscuranceSampleCount(s.obscurance.samples) || s.obscurance.radiusM <= 0 ||
+       (s.obscurance.steps != 1 && s.obscurance.steps != 2))) {
+    throw std::invalid_argument("shadeRelief: bad obscurance settings");
+  }
+}
+
+// W multiplies the sky term only: nothing to do without one.
+bool obscures(const ReliefSettings& s) {
+  return s.obscurance.enabled && (s.lighting == ReliefLighting::SkyOnly || s.skyWeight > 0);
+}
+
+bool asksForWater(const ReliefSettings& s) {
+  return s.waterLevelM.has_value() || !s.waterMask.empty();
+}
+
+// The output raster, zeroed: values, and heights and water flags when asked for.
+ReliefImage blankReliefImage(const Heightfield& field, const ReliefSettings& s) {
   ReliefImage image;
   image.width = s.outWidth > 0 ? s.outWidth : field.width;
   image.height = s.outHeight > 0 ? s.outHeight : field.height;
   const size_t pixels = static_cast<size_t>(image.width) * image.height;
   image.value.assign(pixels, 0.0f);
   if (s.keepHeights) image.heightM.assign(pixels, 0.0f);
-  const bool anyWater = s.waterLevelM.has_value() || !s.waterMask.empty();
-  if (anyWater) image.water.assign(pixels, 0);
+  if (asksForWater(s)) image.water.assign(pixels, 0);
+  return image;
+}
 
-  const double scaleX = double(field.width) / image.width;
-  const double scaleY = double(field.height) / image.height;
-
-  // Suns and their weights (the weights of Multidirectional depend on the
-  // aspect and are set per pixel).
+// The suns' directions: none for the sky alone; the weights of
+// Multidirectional depend on the aspect and are set per point.
+std::vector<glm::vec3> reliefSuns(const ReliefSettings& s) {
   std::vector<glm::vec3> suns;
   if (s.lighting == ReliefLighting::Multidirectional) {
     for (const double a : kMultidirectionalAzimuthsDeg) {
@@ -170,7 +187,12 @@ ReliefImage shadeWith(const Heightfield& field, const Texels& texels, const Reli
   } else if (s.lighting == ReliefLighting::Sun) {
     suns.push_back(sunDirection(s.sunAzimuthDeg, s.sunElevationDeg));
   }
+  return suns;
+}
 
+// The shading inputs every point shares: the irradiances normalised as
+// relief.h says, albedo pi.
+ShadingInputs reliefBaseInputs(const ReliefSettings& s) {
   ShadingInputs base;
   base.albedo = glm::vec3(static_cast<float>(kPi));  // albedo / pi = 1
   base.sunRadiusRad = static_cast<float>(radians(s.sunRadiusDeg));
@@ -182,139 +204,206 @@ ReliefImage shadeWith(const Heightfield& field, const Texels& texels, const Reli
     base.sunIrradiance = glm::vec3(0.0f);
     base.skyRadiance = glm::vec3(static_cast<float>(1.0 / kPi));
   }
+  return base;
+}
 
-  // W multiplies the sky term only: nothing to do without one.
-  const bool obscure =
-      s.obscurance.enabled && (s.lighting == ReliefLighting::SkyOnly || s.skyWeight > 0);
-  std::vector<float> transfer;
-  ObscuranceField obscuranceField;
-  if (obscure) {
-    if (!isSupportedObscuranceSampleCount(s.obscurance.samples) || s.obscurance.radiusM <= 0 ||
-        (s.obscurance.steps != 1 && s.obscurance.steps != 2)) {
-      throw std::invalid_argument("shadeRelief: bad obscurance settings");
-    }
-    transfer.assign(pixels, 1.0f);
-    obscuranceField.heightAt = [&field](glm::vec2 t) { return bilinearHeight(field, t); };
-    const glm::vec3 albedo(s.obscuranceAlbedo);
-    obscuranceField.albedoAt = [albedo](glm::vec2) { return albedo; };
-    obscuranceField.cellSizeM = glm::vec2(glm::dvec2(field.cellSizeXM, field.cellSizeYM));
+// A point on the DEM: continuous texel position and the nearest texel.
+struct TexelPoint {
+  double col, row;
+  int tc, tr;
+};
+
+// The output pixels laid over the DEM's texels (ReliefSettings::outWidth).
+struct PixelGrid {
+  PixelGrid(const Heightfield& f, int imageWidth, int imageHeight)
+      : field(f),
+        width(imageWidth),
+        height(imageHeight),
+        scaleX(double(f.width) / imageWidth),
+        scaleY(double(f.height) / imageHeight),
+        subX(std::max(1, static_cast<int>(std::ceil(scaleX - 1e-9)))),
+        subY(std::max(1, static_cast<int>(std::ceil(scaleY - 1e-9)))) {}
+
+  // The point at pixel coordinates (x, y) in output pixels, 0.5 = the
+  // centre of the first, clamped to the DEM.
+  TexelPoint at(double x, double y) const {
+    const double col = std::clamp(x * scaleX - 0.5, 0.0, field.width - 1.0);
+    const double row = std::clamp(y * scaleY - 0.5, 0.0, field.height - 1.0);
+    return {col, row, std::clamp(static_cast<int>(std::lround(col)), 0, field.width - 1),
+            std::clamp(static_cast<int>(std::lround(row)), 0, field.height - 1)};
   }
+  TexelPoint centre(int x, int y) const { return at(x + 0.5, y + 0.5); }
 
-  auto isWater = [&](int tc, int tr, double height) {
-    if (s.waterLevelM && height <= *s.waterLevelM) return true;
-    return !s.waterMask.empty() &&
-           s.waterMask[static_cast<size_t>(tr) * field.width + static_cast<size_t>(tc)] != 0;
-  };
+  const Heightfield& field;
+  int width, height;      // output pixels
+  double scaleX, scaleY;  // texels per pixel
+  // Points per pixel along x and y: one, or when the output is coarser than
+  // the DEM, n x n points on the texels it covers, averaged (a mean, not a
+  // sample: no aliasing of ridges finer than a pixel).
+  int subX, subY;
+};
 
-  // Rows in parallel, a band at a time so that progress and interrupts are
-  // heard; W first, as it is filtered across pixels before the shading.
-  const int bandRows = std::max(1, (1 << 20) / image.width);
-  const int passes = obscure ? 2 : 1;
-  auto forRows = [&](int pass, const std::function<void(int)>& row) {
-    for (int first = 0; first < image.height; first += bandRows) {
-      const int end = std::min(image.height, first + bandRows);
+// Runs a pass over the output rows in parallel, a band at a time so that
+// progress and interrupts are heard.
+class RowBands {
+ public:
+  RowBands(const PixelGrid& grid, int passes, const std::function<void(double)>& progress)
+      : height_(grid.height),
+        bandRows_(std::max(1, (1 << 20) / grid.width)),
+        passes_(passes),
+        progress_(progress) {}
+
+  template <class Row>
+  void run(int pass, const Row& row) const {
+    for (int first = 0; first < height_; first += bandRows_) {
+      const int end = std::min(height_, first + bandRows_);
       tbb::parallel_for(tbb::blocked_range<int>(first, end), [&](const tbb::blocked_range<int>& r) {
         for (int y = r.begin(); y < r.end(); ++y) row(y);
       });
       throwIfInterrupted();
-      if (progress) progress((pass + double(end) / image.height) / passes);
+      if (progress_) progress_((pass + double(end) / height_) / passes_);
     }
-  };
-
-  auto texelOf = [&](int x, int y, double& col, double& row, int& tc, int& tr) {
-    col = (x + 0.5) * scaleX - 0.5;
-    row = (y + 0.5) * scaleY - 0.5;
-    col = std::clamp(col, 0.0, field.width - 1.0);
-    row = std::clamp(row, 0.0, field.height - 1.0);
-    tc = std::clamp(static_cast<int>(std::lround(col)), 0, field.width - 1);
-    tr = std::clamp(static_cast<int>(std::lround(row)), 0, field.height - 1);
-  };
-
-  if (obscure) {
-    std::vector<uint8_t> voids(pixels, 0);
-    forRows(0, [&](int y) {
-      for (int x = 0; x < image.width; ++x) {
-        double col, row;
-        int tc, tr;
-        texelOf(x, y, col, row, tc, tr);
-        const int cell = interleavePatternIndex(x, y);
-        const ObscuranceEstimate e = estimateObscurance(
-            obscuranceField, obscuranceCellSampleOffsets(s.obscurance.samples, cell),
-            glm::vec2(static_cast<float>(col), static_cast<float>(row)), s.obscurance.radiusM,
-            s.obscurance.steps, interleaveRotationRad(cell));
-        const size_t i = static_cast<size_t>(y) * image.width + x;
-        transfer[i] = e.transfer.r;
-        voids[i] = field.isVoid(tc, tr) ? 1 : 0;
-      }
-    });
-    boxFilter4(transfer, voids, image.width, image.height);
   }
+  int lastPass() const { return passes_ - 1; }
 
-  // One shaded point per output pixel, at its centre, or when the output is
-  // coarser than the DEM, n x n points on the texels it covers, averaged
-  // (a mean, not a sample: no aliasing of ridges finer than a pixel).
-  const int subX = std::max(1, static_cast<int>(std::ceil(scaleX - 1e-9)));
-  const int subY = std::max(1, static_cast<int>(std::ceil(scaleY - 1e-9)));
-  // The value at one point (texel position col, row) of pixel i.
-  auto shadePoint = [&](size_t i, double col, double row, int tc, int tr, double height) {
-    ShadingInputs in = base;
-    const bool water = anyWater && isWater(tc, tr, height);
-    in.normal = water ? glm::vec3(0, 0, 1) : surfaceNormal(field, col, row);
-    sampleAperture(texels, field.width, field.height, col, row, in.bentNormal, in.apertureRad);
-    in.transfer = glm::vec3(obscure ? transfer[i] : 1.0f);
-    if (suns.empty()) {
-      in.sunDirection = -in.bentNormal;
-      return shade(in, s.mode).r;
+ private:
+  int height_, bandRows_, passes_;
+  const std::function<void(double)>& progress_;
+};
+
+// The ambient transfer W of every output pixel, at its centre, filtered
+// across pixels (boxFilter4): the first pass, before the shading.
+std::vector<float> obscuranceTransfer(const Heightfield& field, const ReliefSettings& s,
+                                      const PixelGrid& grid, const RowBands& bands) {
+  ObscuranceField obscuranceField;
+  obscuranceField.heightAt = [&field](glm::vec2 t) { return bilinearHeight(field, t); };
+  const glm::vec3 albedo(s.obscuranceAlbedo);
+  obscuranceField.albedoAt = [albedo](glm::vec2) { return albedo; };
+  obscuranceField.cellSizeM = glm::vec2(glm::dvec2(field.cellSizeXM, field.cellSizeYM));
+  const size_t pixels = static_cast<size_t>(grid.width) * grid.height;
+  std::vector<float> transfer(pixels, 1.0f);
+  std::vector<uint8_t> voids(pixels, 0);
+  bands.run(0, [&](int y) {
+    for (int x = 0; x < grid.width; ++x) {
+      const TexelPoint p = grid.centre(x, y);
+      const int cell = interleavePatternIndex(x, y);
+      const ObscuranceEstimate e = estimateObscurance(
+          obscuranceField, obscuranceCellSampleOffsets(s.obscurance.samples, cell),
+          glm::vec2(static_cast<float>(p.col), static_cast<float>(p.row)), s.obscurance.radiusM,
+          s.obscurance.steps, interleaveRotationRad(cell));
+      const size_t i = static_cast<size_t>(y) * grid.width + x;
+      transfer[i] = e.transfer.r;
+      voids[i] = field.isVoid(p.tc, p.tr) ? 1 : 0;
     }
-    if (suns.size() == 1) {
-      in.sunDirection = suns[0];
-      return shade(in, s.mode).r;
-    }
-    const std::array<double, 4> w = multidirectionalWeights(aspectDeg(in.normal));
-    double sum = 0;
-    for (size_t k = 0; k < suns.size(); ++k) {
-      in.sunDirection = suns[k];
-      sum += w[k] * shade(in, s.mode).r;
-    }
-    return static_cast<float>(sum / 2);
-  };
-  forRows(passes - 1, [&](int y) {
-    for (int x = 0; x < image.width; ++x) {
-      const size_t i = static_cast<size_t>(y) * image.width + x;
-      double col, row;
-      int tc, tr;
-      texelOf(x, y, col, row, tc, tr);
-      const double height = field.bilinearHeight(col, row);
-      if (s.keepHeights) image.heightM[i] = static_cast<float>(height);
-      if (field.isVoid(tc, tr)) {
+  });
+  boxFilter4(transfer, voids, grid.width, grid.height);
+  return transfer;
+}
+
+// Shades the output pixels: the last pass.
+template <class Texels>
+class ReliefShader {
+ public:
+  // `transfer`: W per output pixel, or empty for none.
+  ReliefShader(const Heightfield& field, const Texels& texels, const ReliefSettings& s,
+               const PixelGrid& grid, const std::vector<float>& transfer)
+      : field_(field),
+        texels_(texels),
+        s_(s),
+        grid_(grid),
+        transfer_(transfer),
+        suns_(reliefSuns(s)),
+        base_(reliefBaseInputs(s)),
+        anyWater_(asksForWater(s)) {}
+
+  // Row y of the image: value, and the height and water flags when asked for.
+  void shadeRow(int y, ReliefImage& image) const {
+    for (int x = 0; x < grid_.width; ++x) {
+      const size_t i = static_cast<size_t>(y) * grid_.width + x;
+      const TexelPoint p = grid_.centre(x, y);
+      const double height = field_.bilinearHeight(p.col, p.row);
+      if (s_.keepHeights) image.heightM[i] = static_cast<float>(height);
+      if (field_.isVoid(p.tc, p.tr)) {
         image.value[i] = std::numeric_limits<float>::quiet_NaN();
         continue;
       }
-      if (anyWater && isWater(tc, tr, height)) image.water[i] = 1;
-      float v = 0;
-      if (subX == 1 && subY == 1) {
-        v = shadePoint(i, col, row, tc, tr, height);
-      } else {
-        double sum = 0;
-        int n = 0;
-        for (int sy = 0; sy < subY; ++sy) {
-          const double r =
-              std::clamp((y + (sy + 0.5) / subY) * scaleY - 0.5, 0.0, field.height - 1.0);
-          const int pr = std::clamp(static_cast<int>(std::lround(r)), 0, field.height - 1);
-          for (int sx = 0; sx < subX; ++sx) {
-            const double c =
-                std::clamp((x + (sx + 0.5) / subX) * scaleX - 0.5, 0.0, field.width - 1.0);
-            const int pc = std::clamp(static_cast<int>(std::lround(c)), 0, field.width - 1);
-            if (field.isVoid(pc, pr)) continue;
-            sum += shadePoint(i, c, r, pc, pr, field.bilinearHeight(c, r));
-            ++n;
-          }
-        }
-        v = static_cast<float>(sum / std::max(n, 1));
-      }
+      if (anyWater_ && isWater(p, height)) image.water[i] = 1;
+      const float v =
+          grid_.subX == 1 && grid_.subY == 1 ? shadePoint(i, p, height) : meanOverPixel(i, x, y);
       image.value[i] = std::clamp(v, 0.0f, 1.0f);
     }
-  });
+  }
+
+ private:
+  bool isWater(const TexelPoint& p, double height) const {
+    if (s_.waterLevelM && height <= *s_.waterLevelM) return true;
+    return !s_.waterMask.empty() &&
+           s_.waterMask[static_cast<size_t>(p.tr) * field_.width + static_cast<size_t>(p.tc)] != 0;
+  }
+
+  // The mean of the values at subX x subY points spread over pixel (x, y),
+  // voids left out.
+  float meanOverPixel(size_t i, int x, int y) const {
+    double sum = 0;
+    int n = 0;
+    for (int sy = 0; sy < grid_.subY; ++sy) {
+      for (int sx = 0; sx < grid_.subX; ++sx) {
+        const TexelPoint p = grid_.at(x + (sx + 0.5) / grid_.subX, y + (sy + 0.5) / grid_.subY);
+        if (field_.isVoid(p.tc, p.tr)) continue;
+        sum += shadePoint(i, p, field_.bilinearHeight(p.col, p.row));
+        ++n;
+      }
+    }
+    return static_cast<float>(sum / std::max(n, 1));
+  }
+
+  // The value at one point of pixel i (whose W it takes).
+  float shadePoint(size_t i, const TexelPoint& p, double height) const {
+    ShadingInputs in = base_;
+    const bool water = anyWater_ && isWater(p, height);
+    in.normal = water ? glm::vec3(0, 0, 1) : surfaceNormal(field_, p.col, p.row);
+    sampleAperture(texels_, field_.width, field_.height, p.col, p.row, in.bentNormal,
+                   in.apertureRad);
+    in.transfer = glm::vec3(transfer_.empty() ? 1.0f : transfer_[i]);
+    if (suns_.empty()) {
+      in.sunDirection = -in.bentNormal;
+      return shade(in, s_.mode).r;
+    }
+    if (suns_.size() == 1) {
+      in.sunDirection = suns_[0];
+      return shade(in, s_.mode).r;
+    }
+    const std::array<double, 4> w = multidirectionalWeights(aspectDeg(in.normal));
+    double sum = 0;
+    for (size_t k = 0; k < suns_.size(); ++k) {
+      in.sunDirection = suns_[k];
+      sum += w[k] * shade(in, s_.mode).r;
+    }
+    return static_cast<float>(sum / 2);
+  }
+
+  const Heightfield& field_;
+  const Texels& texels_;
+  const ReliefSettings& s_;
+  const PixelGrid& grid_;
+  const std::vector<float>& transfer_;
+  std::vector<glm::vec3> suns_;
+  ShadingInputs base_;
+  bool anyWater_;
+};
+
+template <class Texels>
+ReliefImage shadeWith(const Heightfield& field, const Texels& texels, const ReliefSettings& s,
+                      const std::function<void(double)>& progress) {
+  const bool obscure = obscures(s);
+  checkReliefSettings(field, s, obscure);
+  ReliefImage image = blankReliefImage(field, s);
+  const PixelGrid grid(field, image.width, image.height);
+  const RowBands bands(grid, obscure ? 2 : 1, progress);
+  const std::vector<float> transfer =
+      obscure ? obscuranceTransfer(field, s, grid, bands) : std::vector<float>();
+  const ReliefShader<Texels> shader(field, texels, s, grid, transfer);
+  bands.run(bands.lastPass(), [&](int y) { shader.shadeRow(y, image); });
   return image;
 }
 
