@@ -400,6 +400,52 @@ int run(const Options& o) {
   return aal::kExitOk;
 }
 
+// --svf, --horizons with its directions and bits, --visible: what the bake
+// writes besides the map. Returns --svf, which may come without a path.
+CLI::Option* addExtraOutputOptions(CLI::App& app, Options& o) {
+  CLI::Option* svf = app.add_option(
+      "--svf", o.svfPath,
+      "also write the sky-view factor (Zaksek) as a float32 GeoTIFF placed like the DEM (its "
+      "voids nodata); a tiled bake takes --svf without a path and writes it into its folder: "
+      "svf_ROW_COL.tif per tile and their mosaic sky_view_factor.vrt");
+  svf->expected(0, 1);
+  app.add_option(
+      "--horizons", o.horizonsPath,
+      "also write the directional horizons (--horizon-directions azimuths, --horizon-bits "
+      "each) for aal-render --mode horizon (docs/baking.md)");
+  app.add_option("--horizon-directions", o.horizonDirections,
+                 "azimuths of --horizons: 4, 8, 12 or 16")
+      ->check(CLI::IsMember({4, 8, 12, 16}))
+      ->capture_default_str();
+  app.add_option("--horizon-bits", o.horizonBits,
+                 "bits of each horizon code: 8 (elevations to 90 degrees) or 4 (to 45 degrees, "
+                 "coarser: more error, and no smaller, as a code takes a byte either way; "
+                 "docs/comparison.md)")
+      ->check(CLI::IsMember({4, 8}))
+      ->capture_default_str();
+  app.add_option(
+      "--visible", o.visiblePath,
+      "also write the visible fraction Omega/2pi as a float32 GeoTIFF placed like the DEM");
+  return svf;
+}
+
+// --tile-size, --near-reach, --low-memory.
+void addTiledBakeOptions(CLI::App& app, Options& o) {
+  app.add_option("--tile-size", o.tileSize,
+                 "bake in tiles of N x N texels into the folder -o, resumable (without "
+                 "--max-distance the far horizons come from a pyramid); DEMs above 16384x16384 "
+                 "texels are always baked tiled, in "
+                 "tiles of 4096")
+      ->check(CLI::Range(aal::kMinTileSize, aal::kMaxTileSize));
+  aal::addNearReachOption(app, o);
+  app.add_flag("--low-memory", o.lowMemory,
+               "read the DEM one window at a time (a tile plus its halo, slid along the tile "
+               "row): a tiled bake then needs memory for two windows, not the DEM; automatic "
+               "when the DEM "
+               "does not fit in memory; the DEM must have no voids (gdal_fillnodata.py fills "
+               "them)");
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -432,44 +478,10 @@ int main(int argc, char** argv) {
       ->check(CLI::Range(16, 1 << 20))
       ->capture_default_str();
   aal::addSweepOptions(app, o);
-  CLI::Option* svf = app.add_option(
-      "--svf", o.svfPath,
-      "also write the sky-view factor (Zaksek) as a float32 GeoTIFF placed like the DEM (its "
-      "voids nodata); a tiled bake takes --svf without a path and writes it into its folder: "
-      "svf_ROW_COL.tif per tile and their mosaic sky_view_factor.vrt");
-  svf->expected(0, 1);
-  app.add_option(
-      "--horizons", o.horizonsPath,
-      "also write the directional horizons (--horizon-directions azimuths, --horizon-bits "
-      "each) for aal-render --mode horizon (docs/baking.md)");
-  app.add_option("--horizon-directions", o.horizonDirections,
-                 "azimuths of --horizons: 4, 8, 12 or 16")
-      ->check(CLI::IsMember({4, 8, 12, 16}))
-      ->capture_default_str();
-  app.add_option("--horizon-bits", o.horizonBits,
-                 "bits of each horizon code: 8 (elevations to 90 degrees) or 4 (to 45 degrees, "
-                 "coarser: more error, and no smaller, as a code takes a byte either way; "
-                 "docs/comparison.md)")
-      ->check(CLI::IsMember({4, 8}))
-      ->capture_default_str();
-  app.add_option(
-      "--visible", o.visiblePath,
-      "also write the visible fraction Omega/2pi as a float32 GeoTIFF placed like the DEM");
+  CLI::Option* svf = addExtraOutputOptions(app, o);
   app.add_option("--threads", o.threads, "worker threads (default: all cores)")
       ->check(CLI::Range(1, 1024));
-  app.add_option("--tile-size", o.tileSize,
-                 "bake in tiles of N x N texels into the folder -o, resumable (without "
-                 "--max-distance the far horizons come from a pyramid); DEMs above 16384x16384 "
-                 "texels are always baked tiled, in "
-                 "tiles of 4096")
-      ->check(CLI::Range(aal::kMinTileSize, aal::kMaxTileSize));
-  aal::addNearReachOption(app, o);
-  app.add_flag("--low-memory", o.lowMemory,
-               "read the DEM one window at a time (a tile plus its halo, slid along the tile "
-               "row): a tiled bake then needs memory for two windows, not the DEM; automatic "
-               "when the DEM "
-               "does not fit in memory; the DEM must have no voids (gdal_fillnodata.py fills "
-               "them)");
+  addTiledBakeOptions(app, o);
   app.add_flag(
       "--cog", o.cog,
       "write --svf and --visible as cloud-optimized GeoTIFFs (tiled, with overviews); not a "
