@@ -138,19 +138,10 @@ std::vector<float> visibleFractions(const aal::ApertureMap& map) {
   return visible;
 }
 
-int run(const Options& o) {
-  // Outputs are checked before minutes of work, not after (again once the
-  // DEM's size has decided the tiling).
-  const bool askedTiled = o.tileSize > 0 || std::filesystem::is_directory(o.output);
-  checkOutputs(o, askedTiled);
-  // A folder another bake is writing is refused before the DEM is read
-  // (exit 1, TiledBakeBusy); the lock is held to the end of the bake.
-  std::optional<aal::TiledBakeLock> lock;
-  if (askedTiled && std::filesystem::is_directory(o.output)) lock.emplace(o.output);
-  const aal::DemLoadOptions load = aal::demLoadOptions(o, askedTiled || o.lowMemory);
-  const auto readStart = std::chrono::steady_clock::now();
-  const aal::DemSource dem(o.dem, load);
-  const bool tiled = checkTiling(o, dem);
+// The checks that need the DEM's size: --near-reach and --svf without a
+// path are for tiled bakes, and the reach must cover the DEM's cells.
+void checkTiledOptions(const Options& o, const aal::DemSource& dem, const aal::DemLoadOptions& load,
+                       bool tiled) {
   if (!tiled && o.nearReach > 0) {
     throw aal::InputError("--near-reach is for tiled bakes without --max-distance (--tile-size)");
   }
@@ -166,35 +157,50 @@ int run(const Options& o) {
         "--svf needs a path (a GeoTIFF) for a bake into one file; only a tiled bake "
         "(--tile-size) writes it into its folder");
   }
-  if (tiled != askedTiled) checkOutputs(o, tiled);
-  if (!tiled) {
-    // Refused with the numbers before anything is allocated, not by the
-    // allocator half-way through (memory_budget.h).
-    const double texels = double(dem.width()) * double(dem.height());
-    const double perTexel = aal::kInMemoryBakeBytesPerTexel + (o.svf ? 4 : 0) +
-                            (o.visiblePath.empty() ? 0 : 4) +
-                            (o.horizonsPath.empty() ? 0 : o.horizonDirections);
-    aal::requireMemory(
-        o.dem, texels * perTexel,
-        "its bake in memory (" + std::to_string(std::lround(perTexel)) + " bytes per texel)",
-        "bake it in tiles (--tile-size 4096; with --low-memory the DEM is read a "
-        "window at a time)");
-  }
-  // A tiled bake of a DEM that does not fit in memory reads it in windows.
-  const bool inBands = tiled && (o.lowMemory || !fitsInMemory(dem));
+}
+
+// Refused with the numbers before anything is allocated, not by the
+// allocator half-way through (memory_budget.h).
+void requireInMemoryBake(const Options& o, const aal::DemSource& dem) {
+  const double texels = double(dem.width()) * double(dem.height());
+  const double perTexel = aal::kInMemoryBakeBytesPerTexel + (o.svf ? 4 : 0) +
+                          (o.visiblePath.empty() ? 0 : 4) +
+                          (o.horizonsPath.empty() ? 0 : o.horizonDirections);
+  aal::requireMemory(
+      o.dem, texels * perTexel,
+      "its bake in memory (" + std::to_string(std::lround(perTexel)) + " bytes per texel)",
+      "bake it in tiles (--tile-size 4096; with --low-memory the DEM is read a "
+      "window at a time)");
+}
+
+// The DEM as the bake reads it: its geometry always, its heights unless
+// the tiles read it in windows (`inBands`).
+struct BakeDem {
+  aal::Heightfield geometry;
+  aal::Heightfield field;  // empty when read in windows
+  double readSeconds = 0;
+};
+
+BakeDem readBakeDem(const Options& o, const aal::DemSource& dem, const aal::DemLoadOptions& load,
+                    bool inBands, std::chrono::steady_clock::time_point readStart) {
   // The samples first: DemSource finds the CRS while they decode.
   std::optional<aal::RawDem> samples;
   if (!inBands) samples = dem.readAll();
-  const aal::Heightfield geometry = aal::demGeometry(dem, load);
-  aal::Heightfield field;
+  BakeDem read;
+  read.geometry = aal::demGeometry(dem, load);
   if (samples) {
     aal::DemLoadOptions quiet = load;
     quiet.warn = nullptr;  // demGeometry has said it
-    field = aal::heightfieldFromRaw(std::move(*samples), o.dem, quiet);
+    read.field = aal::heightfieldFromRaw(std::move(*samples), o.dem, quiet);
   }
-  const double readSeconds =
+  read.readSeconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - readStart).count();
+  return read;
+}
 
+// The bake's options, less its progress and cancel; InputError when the
+// method cannot give what is asked.
+aal::BakeOptions bakeOptions(const Options& o) {
   aal::BakeOptions bake;
   bake.method = o.method == "rays" ? aal::BakeMethod::Rays : aal::BakeMethod::Sweep;
   aal::applySweepOptions(o, bake);
@@ -214,37 +220,53 @@ int run(const Options& o) {
                           std::to_string(o.horizonDirections) +
                           " (the horizons are the sweep's own)");
   }
-  aal::ProgressBar progress("aal-bake", !o.quiet);
-  bake.progress = [&](double fraction) { progress.update(fraction); };
-  // First Ctrl-C or SIGTERM: stop cleanly, nothing written; a second kills.
-  bake.cancel = &aal::interruptFlag();
+  return bake;
+}
 
-  const int threads =
-      o.threads > 0 ? o.threads : static_cast<int>(std::thread::hardware_concurrency());
-  tbb::global_control parallelism(tbb::global_control::max_allowed_parallelism,
-                                  static_cast<size_t>(std::max(1, threads)));
-  const std::string source = std::filesystem::path(o.dem).filename().string();
-  const auto start = std::chrono::steady_clock::now();
-  aal::BakeResult result;
-  aal::TiledBakeSummary tiles;
+aal::TiledBakeOptions tiledBakeOptions(const Options& o, const std::string& source,
+                                       const aal::TiledBakeLock* lock) {
   aal::TiledBakeOptions tiling;
   tiling.tileSize = o.tileSize > 0 ? o.tileSize : aal::kDefaultTileSize;
   tiling.halfFloat = !o.fullFloat;
   tiling.compression = aal::mapCompression(o);
   tiling.sourceName = source;
-  tiling.lock = lock ? &*lock : nullptr;
+  tiling.lock = lock;
   tiling.farField.nearReachM = o.nearReach;
+  return tiling;
+}
+
+// How the bake runs: in one piece, in tiles, or in tiles read in windows.
+struct BakePlan {
+  bool tiled = false, inBands = false;
+  aal::BakeOptions bake;
+  aal::TiledBakeOptions tiling;
+};
+
+// What the bake made: the maps of a bake in one piece, or the tiles'
+// counts (the tiles are in the folder already).
+struct Baked {
+  aal::BakeResult result;
+  aal::TiledBakeSummary tiles;
+  double seconds = 0;
+};
+
+// The bake; nullopt when interrupted (said on stderr).
+std::optional<Baked> bakeOrInterrupted(const Options& o, const aal::DemSource& dem,
+                                       const BakeDem& read, const BakePlan& plan,
+                                       aal::ProgressBar& progress) {
+  const auto start = std::chrono::steady_clock::now();
+  Baked baked;
   try {
-    if (inBands) {
-      tiles = aal::bakeTiledInBands(dem, geometry, bake, tiling, o.output);
-    } else if (tiled) {
-      tiles = aal::bakeTiled(field, bake, tiling, o.output);
+    if (plan.inBands) {
+      baked.tiles = aal::bakeTiledInBands(dem, read.geometry, plan.bake, plan.tiling, o.output);
+    } else if (plan.tiled) {
+      baked.tiles = aal::bakeTiled(read.field, plan.bake, plan.tiling, o.output);
     } else {
-      result = aal::bakeApertures(field, bake);
+      baked.result = aal::bakeApertures(read.field, plan.bake);
     }
   } catch (const aal::BakeCancelled&) {
     progress.finish();
-    if (tiled) {
+    if (plan.tiled) {
       std::fprintf(stderr,
                    "aal-bake: interrupted; the finished tiles are kept in %s: run the same "
                    "command again to resume\n",
@@ -252,14 +274,18 @@ int run(const Options& o) {
     } else {
       std::fprintf(stderr, "aal-bake: interrupted; nothing was written\n");
     }
-    return aal::kExitFailure;
+    return std::nullopt;
   }
   progress.finish();
-  const double seconds =
-      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  baked.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return baked;
+}
 
-  const auto writeStart = std::chrono::steady_clock::now();
-  // The writers poll the interrupt too: each output is whole or absent.
+// The map of a bake in one piece and the extra rasters; false when
+// interrupted (said on stderr). The writers poll the interrupt too: each
+// output is whole or absent.
+bool writeOutputs(const Options& o, bool tiled, aal::BakeResult& result,
+                  const aal::Heightfield& field, const std::string& source) {
   try {
     if (!tiled) {
       result.aperture.info.source = source;
@@ -276,50 +302,148 @@ int run(const Options& o) {
     std::fprintf(stderr,
                  "aal-bake: interrupted while writing; the outputs written before are kept, the "
                  "one being written was removed\n");
-    return aal::kExitFailure;
+    return false;
   }
+  return true;
+}
 
+// A tiled bake's part of the summary: its tiles, baked and resumed, and the
+// windows' reads.
+std::string tiledLayout(const BakePlan& plan, const aal::TiledBakeSummary& tiles,
+                        const aal::Heightfield& geometry) {
+  std::string layout = ", " + std::to_string(plan.tiling.tileSize) + "-texel tiles" +
+                       (plan.inBands ? " read in windows" : "") + " (" +
+                       std::to_string(tiles.baked) + " baked, " + std::to_string(tiles.resumed) +
+                       " resumed)";
+  if (plan.inBands && tiles.baked > 0) {
+    char reads[96];
+    std::snprintf(reads, sizeof reads, ", windows of %.3g DEM texels read per texel",
+                  static_cast<double>(tiles.texelsRead) / geometry.texelCount());
+    layout += reads;
+  }
+  return layout;
+}
+
+// The one line on stderr: the DEM, the layout, the method, the rate and
+// the times.
+void printSummary(const Options& o, const BakePlan& plan, const Baked& baked, const BakeDem& read,
+                  double writeSeconds, const std::string& source) {
+  // A resumed tiled bake counts only the texels it baked.
+  double texels = static_cast<double>(read.geometry.texelCount());
+  std::string layout;
+  if (plan.tiled) {
+    layout = tiledLayout(plan, baked.tiles, read.geometry);
+    if (baked.tiles.tiles > 0) texels *= static_cast<double>(baked.tiles.baked) / baked.tiles.tiles;
+  }
+  const bool sweep = plan.bake.method == aal::BakeMethod::Sweep;
+  const double work = texels * (sweep ? o.azimuths : o.rays);
+  std::string target = o.output;
+  if (plan.tiled && o.svf) {
+    target += " (sky-view factor: " +
+              (std::filesystem::path(o.output) / aal::kSkyViewFactorMosaicName).string() + ")";
+  }
+  // A bake that only resumed finished tiles has no rate to report.
+  char rate[64] = "nothing baked";
+  if (work > 0) {
+    std::snprintf(rate, sizeof rate, "%.3g texel-%s/s", work / baked.seconds,
+                  sweep ? "azimuths" : "rays");
+  }
+  std::fprintf(
+      stderr,
+      "aal-bake: %s %dx%d%s, %s, %s in %.2f s (%s); DEM read in %.2f s, output "
+      "written in %.2f s -> %s\n",
+      source.c_str(), read.geometry.width, read.geometry.height, layout.c_str(), o.method.c_str(),
+      (sweep ? std::to_string(o.azimuths) + " azimuths" : std::to_string(o.rays) + " rays").c_str(),
+      baked.seconds, rate, read.readSeconds, writeSeconds, target.c_str());
+}
+
+int run(const Options& o) {
+  // Outputs are checked before minutes of work, not after (again once the
+  // DEM's size has decided the tiling).
+  const bool askedTiled = o.tileSize > 0 || std::filesystem::is_directory(o.output);
+  checkOutputs(o, askedTiled);
+  // A folder another bake is writing is refused before the DEM is read
+  // (exit 1, TiledBakeBusy); the lock is held to the end of the bake.
+  std::optional<aal::TiledBakeLock> lock;
+  if (askedTiled && std::filesystem::is_directory(o.output)) lock.emplace(o.output);
+  const aal::DemLoadOptions load = aal::demLoadOptions(o, askedTiled || o.lowMemory);
+  const auto readStart = std::chrono::steady_clock::now();
+  const aal::DemSource dem(o.dem, load);
+  BakePlan plan;
+  plan.tiled = checkTiling(o, dem);
+  checkTiledOptions(o, dem, load, plan.tiled);
+  if (plan.tiled != askedTiled) checkOutputs(o, plan.tiled);
+  if (!plan.tiled) requireInMemoryBake(o, dem);
+  // A tiled bake of a DEM that does not fit in memory reads it in windows.
+  plan.inBands = plan.tiled && (o.lowMemory || !fitsInMemory(dem));
+  const BakeDem read = readBakeDem(o, dem, load, plan.inBands, readStart);
+
+  plan.bake = bakeOptions(o);
+  aal::ProgressBar progress("aal-bake", !o.quiet);
+  plan.bake.progress = [&](double fraction) { progress.update(fraction); };
+  // First Ctrl-C or SIGTERM: stop cleanly, nothing written; a second kills.
+  plan.bake.cancel = &aal::interruptFlag();
+  const int threads =
+      o.threads > 0 ? o.threads : static_cast<int>(std::thread::hardware_concurrency());
+  tbb::global_control parallelism(tbb::global_control::max_allowed_parallelism,
+                                  static_cast<size_t>(std::max(1, threads)));
+  const std::string source = std::filesystem::path(o.dem).filename().string();
+  plan.tiling = tiledBakeOptions(o, source, lock ? &*lock : nullptr);
+  std::optional<Baked> baked = bakeOrInterrupted(o, dem, read, plan, progress);
+  if (!baked) return aal::kExitFailure;
+
+  const auto writeStart = std::chrono::steady_clock::now();
+  if (!writeOutputs(o, plan.tiled, baked->result, read.field, source)) return aal::kExitFailure;
   const double writeSeconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - writeStart).count();
-
-  // A resumed tiled bake counts only the texels it baked.
-  double texels = static_cast<double>(geometry.texelCount());
-  std::string layout;
-  if (tiled) {
-    layout = ", " + std::to_string(tiling.tileSize) + "-texel tiles" +
-             (inBands ? " read in windows" : "") + " (" + std::to_string(tiles.baked) + " baked, " +
-             std::to_string(tiles.resumed) + " resumed)";
-    if (inBands && tiles.baked > 0) {
-      char reads[96];
-      std::snprintf(reads, sizeof reads, ", windows of %.3g DEM texels read per texel",
-                    static_cast<double>(tiles.texelsRead) / geometry.texelCount());
-      layout += reads;
-    }
-    if (tiles.tiles > 0) texels *= static_cast<double>(tiles.baked) / tiles.tiles;
-  }
-  const double work = texels * (bake.method == aal::BakeMethod::Sweep ? o.azimuths : o.rays);
-  if (!o.quiet) {
-    std::string target = o.output;
-    if (tiled && o.svf) {
-      target += " (sky-view factor: " +
-                (std::filesystem::path(o.output) / aal::kSkyViewFactorMosaicName).string() + ")";
-    }
-    // A bake that only resumed finished tiles has no rate to report.
-    char rate[64] = "nothing baked";
-    if (work > 0) {
-      std::snprintf(rate, sizeof rate, "%.3g texel-%s/s", work / seconds,
-                    bake.method == aal::BakeMethod::Sweep ? "azimuths" : "rays");
-    }
-    std::fprintf(stderr,
-                 "aal-bake: %s %dx%d%s, %s, %s in %.2f s (%s); DEM read in %.2f s, output "
-                 "written in %.2f s -> %s\n",
-                 source.c_str(), geometry.width, geometry.height, layout.c_str(), o.method.c_str(),
-                 (bake.method == aal::BakeMethod::Sweep ? std::to_string(o.azimuths) + " azimuths"
-                                                        : std::to_string(o.rays) + " rays")
-                     .c_str(),
-                 seconds, rate, readSeconds, writeSeconds, target.c_str());
-  }
+  if (!o.quiet) printSummary(o, plan, *baked, read, writeSeconds, source);
   return aal::kExitOk;
+}
+
+// --svf, --horizons with its directions and bits, --visible: what the bake
+// writes besides the map. Returns --svf, which may come without a path.
+CLI::Option* addExtraOutputOptions(CLI::App& app, Options& o) {
+  CLI::Option* svf = app.add_option(
+      "--svf", o.svfPath,
+      "also write the sky-view factor (Zaksek) as a float32 GeoTIFF placed like the DEM (its "
+      "voids nodata); a tiled bake takes --svf without a path and writes it into its folder: "
+      "svf_ROW_COL.tif per tile and their mosaic sky_view_factor.vrt");
+  svf->expected(0, 1);
+  app.add_option(
+      "--horizons", o.horizonsPath,
+      "also write the directional horizons (--horizon-directions azimuths, --horizon-bits "
+      "each) for aal-render --mode horizon (docs/baking.md)");
+  app.add_option("--horizon-directions", o.horizonDirections,
+                 "azimuths of --horizons: 4, 8, 12 or 16")
+      ->check(CLI::IsMember({4, 8, 12, 16}))
+      ->capture_default_str();
+  app.add_option("--horizon-bits", o.horizonBits,
+                 "bits of each horizon code: 8 (elevations to 90 degrees) or 4 (to 45 degrees, "
+                 "coarser: more error, and no smaller, as a code takes a byte either way; "
+                 "docs/comparison.md)")
+      ->check(CLI::IsMember({4, 8}))
+      ->capture_default_str();
+  app.add_option(
+      "--visible", o.visiblePath,
+      "also write the visible fraction Omega/2pi as a float32 GeoTIFF placed like the DEM");
+  return svf;
+}
+
+// --tile-size, --near-reach, --low-memory.
+void addTiledBakeOptions(CLI::App& app, Options& o) {
+  app.add_option("--tile-size", o.tileSize,
+                 "bake in tiles of N x N texels into the folder -o, resumable (without "
+                 "--max-distance the far horizons come from a pyramid); DEMs above 16384x16384 "
+                 "texels are always baked tiled, in "
+                 "tiles of 4096")
+      ->check(CLI::Range(aal::kMinTileSize, aal::kMaxTileSize));
+  aal::addNearReachOption(app, o);
+  app.add_flag("--low-memory", o.lowMemory,
+               "read the DEM one window at a time (a tile plus its halo, slid along the tile "
+               "row): a tiled bake then needs memory for two windows, not the DEM; automatic "
+               "when the DEM "
+               "does not fit in memory; the DEM must have no voids (gdal_fillnodata.py fills "
+               "them)");
 }
 
 }  // namespace
@@ -354,44 +478,10 @@ int main(int argc, char** argv) {
       ->check(CLI::Range(16, 1 << 20))
       ->capture_default_str();
   aal::addSweepOptions(app, o);
-  CLI::Option* svf = app.add_option(
-      "--svf", o.svfPath,
-      "also write the sky-view factor (Zaksek) as a float32 GeoTIFF placed like the DEM (its "
-      "voids nodata); a tiled bake takes --svf without a path and writes it into its folder: "
-      "svf_ROW_COL.tif per tile and their mosaic sky_view_factor.vrt");
-  svf->expected(0, 1);
-  app.add_option(
-      "--horizons", o.horizonsPath,
-      "also write the directional horizons (--horizon-directions azimuths, --horizon-bits "
-      "each) for aal-render --mode horizon (docs/baking.md)");
-  app.add_option("--horizon-directions", o.horizonDirections,
-                 "azimuths of --horizons: 4, 8, 12 or 16")
-      ->check(CLI::IsMember({4, 8, 12, 16}))
-      ->capture_default_str();
-  app.add_option("--horizon-bits", o.horizonBits,
-                 "bits of each horizon code: 8 (elevations to 90 degrees) or 4 (to 45 degrees, "
-                 "coarser: more error, and no smaller, as a code takes a byte either way; "
-                 "docs/comparison.md)")
-      ->check(CLI::IsMember({4, 8}))
-      ->capture_default_str();
-  app.add_option(
-      "--visible", o.visiblePath,
-      "also write the visible fraction Omega/2pi as a float32 GeoTIFF placed like the DEM");
+  CLI::Option* svf = addExtraOutputOptions(app, o);
   app.add_option("--threads", o.threads, "worker threads (default: all cores)")
       ->check(CLI::Range(1, 1024));
-  app.add_option("--tile-size", o.tileSize,
-                 "bake in tiles of N x N texels into the folder -o, resumable (without "
-                 "--max-distance the far horizons come from a pyramid); DEMs above 16384x16384 "
-                 "texels are always baked tiled, in "
-                 "tiles of 4096")
-      ->check(CLI::Range(aal::kMinTileSize, aal::kMaxTileSize));
-  aal::addNearReachOption(app, o);
-  app.add_flag("--low-memory", o.lowMemory,
-               "read the DEM one window at a time (a tile plus its halo, slid along the tile "
-               "row): a tiled bake then needs memory for two windows, not the DEM; automatic "
-               "when the DEM "
-               "does not fit in memory; the DEM must have no voids (gdal_fillnodata.py fills "
-               "them)");
+  addTiledBakeOptions(app, o);
   app.add_flag(
       "--cog", o.cog,
       "write --svf and --visible as cloud-optimized GeoTIFFs (tiled, with overviews); not a "

@@ -9,6 +9,7 @@
 #include <optional>
 #include <sstream>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include <CLI/CLI.hpp>
@@ -177,22 +178,22 @@ std::vector<uint8_t> readWaterMask(const std::string& path, const aal::Heightfie
   return water;
 }
 
-int run(const Options& o) {
-  checkOptions(o);
-  std::optional<aal::ColorRamp> ramp;
-  if (!o.colorRelief.empty()) ramp = aal::readColorRamp(o.colorRelief);
-  if (!o.palette.empty()) ramp = aal::builtinPalette(o.palette);
-
+aal::Heightfield loadReliefDem(const Options& o) {
   aal::DemLoadOptions load;
   aal::applyDemUnits(o.units, load);
   load.peakBytesPerTexel = aal::kReliefBytesPerTexel;
   load.workName = "a relief";
   load.memoryHint =
       "cut the DEM (`gdal_translate -srcwin`) or coarsen it (`gdal_translate -outsize 50% 50%`)";
-  const aal::Heightfield field = aal::loadDem(o.dem, load);
+  aal::Heightfield field = aal::loadDem(o.dem, load);
   aal::requireRenderableDem(field);
-  const auto [outWidth, outHeight] = outputSize(o.resolution, field);
+  return field;
+}
 
+// The shading the options ask for, at outWidth x outHeight; a note when
+// --time puts the sun below the horizon.
+aal::ReliefSettings reliefSettings(const Options& o, const aal::Heightfield& field, int outWidth,
+                                   int outHeight, bool keepHeights) {
   aal::ReliefSettings s;
   s.outWidth = outWidth;
   s.outHeight = outHeight;
@@ -211,110 +212,152 @@ int run(const Options& o) {
   }
   s.obscurance = aal::obscuranceFromOptions(!o.noObscurance, o.obscuranceSamples, o.obscuranceSteps,
                                             o.obscuranceRadiusM, field);
-  s.keepHeights = ramp.has_value();
+  s.keepHeights = keepHeights;
   s.waterLevelM = o.waterLevel;
   if (!o.waterMask.empty()) s.waterMask = readWaterMask(o.waterMask, field);
+  return s;
+}
 
-  // The map as halves (8 bytes a texel), as the renderer holds it.
-  aal::HalfApertureMap map;
+// The aperture map as halves (8 bytes a texel), as the renderer holds it:
+// --aperture checked against the DEM, else the cached or baked map.
+aal::HalfApertureMap halfApertureMap(const Options& o, const aal::Heightfield& field) {
   if (!o.aperture.empty()) {
     aal::ApertureMapReader reader(o.aperture);
     aal::checkApertureMatchesDem(reader.header(), o.aperture, field, o.dem);
-    map = aal::readHalfApertureMap(reader);
-  } else {
-    aal::CachedAperture cached = aal::cachedOrBakedAperture(field, o.dem, aal::BakeOptions{},
-                                                            o.quiet, {o.waterMask, o.colorRelief});
-    if (cached.path.empty()) {
-      map = aal::toHalfApertureMap(cached.map);
-    } else {
-      aal::ApertureMapReader reader(cached.path.string());
-      map = aal::readHalfApertureMap(reader);
+    return aal::readHalfApertureMap(reader);
+  }
+  aal::CachedAperture cached = aal::cachedOrBakedAperture(field, o.dem, aal::BakeOptions{}, o.quiet,
+                                                          {o.waterMask, o.colorRelief});
+  if (cached.path.empty()) return aal::toHalfApertureMap(cached.map);
+  aal::ApertureMapReader reader(cached.path.string());
+  return aal::readHalfApertureMap(reader);
+}
+
+// A relief value through --stretch LOW,HIGH, clamped to [0, 1].
+float stretched(float v, const std::pair<double, double>& stretch) {
+  const auto [low, high] = stretch;
+  return static_cast<float>(std::clamp((v - low) / (high - low), 0.0, 1.0));
+}
+
+// The lowest and highest heights of the DEM's texels that are not void.
+std::pair<double, double> heightRange(const aal::Heightfield& field) {
+  double zMin = std::numeric_limits<double>::infinity(), zMax = -zMin;
+  for (int y = 0; y < field.height; ++y) {
+    for (int x = 0; x < field.width; ++x) {
+      if (field.isVoid(x, y)) continue;
+      zMin = std::min(zMin, double(field.at(x, y)));
+      zMax = std::max(zMax, double(field.at(x, y)));
     }
   }
+  return {zMin, zMax};
+}
+
+// Colour from the ramp at the pixel's height, times the shading; voids
+// take the ramp's nv colour, else transparent black (an alpha band).
+void writeColourRelief(const Options& o, const aal::Heightfield& field,
+                       const aal::ReliefImage& relief, const aal::ColorRamp& ramp,
+                       const aal::GeoReference& geo, const aal::RasterWriteOptions& write) {
+  const auto [zMin, zMax] = heightRange(field);
+  const aal::ResolvedColorRamp resolved = aal::resolveColorRamp(ramp, zMin, zMax);
+  bool alpha = field.voidCount > 0;
+  for (const glm::vec4& c : resolved.rgba) alpha = alpha || c.a < 255;
+  const int bands = alpha ? 4 : 3;
+  const size_t pixels = relief.value.size();
+  const std::pair<double, double> stretch = parseStretch(o.stretch);
+  std::vector<uint8_t> rgb(pixels * bands);
+  const glm::vec4 nodataColour = resolved.nodata.value_or(glm::vec4(0));
+  for (size_t i = 0; i < pixels; ++i) {
+    glm::vec4 c;
+    if (relief.isVoid(i)) {
+      c = nodataColour;
+    } else {
+      c = !relief.water.empty() && relief.water[i]
+              ? glm::vec4(kWaterRgb[0], kWaterRgb[1], kWaterRgb[2], 255)
+              : aal::rampColor(resolved, relief.heightM[i]);
+      c = glm::vec4(glm::vec3(c) * stretched(relief.value[i], stretch), c.a);
+    }
+    for (int b = 0; b < bands; ++b) {
+      rgb[i * bands + b] = static_cast<uint8_t>(std::clamp(std::lround(c[b]), 0L, 255L));
+    }
+  }
+  aal::writeGeoTiff(
+      o.output,
+      aal::RasterImage{relief.width, relief.height, bands, aal::RasterSampleType::Byte, rgb.data()},
+      geo, write);
+}
+
+// gdaldem's scale: 1 + 254 v, 0 reserved for nodata.
+void writeGreyRelief(const Options& o, const aal::Heightfield& field,
+                     const aal::ReliefImage& relief, const aal::GeoReference& geo,
+                     aal::RasterWriteOptions write) {
+  const std::pair<double, double> stretch = parseStretch(o.stretch);
+  std::vector<uint8_t> grey(relief.value.size());
+  for (size_t i = 0; i < grey.size(); ++i) {
+    grey[i] =
+        relief.isVoid(i)
+            ? 0
+            : static_cast<uint8_t>(1 + std::lround(254.0 * stretched(relief.value[i], stretch)));
+  }
+  if (field.voidCount > 0 || field.nodata) write.nodata = 0;
+  aal::writeGeoTiff(
+      o.output,
+      aal::RasterImage{relief.width, relief.height, 1, aal::RasterSampleType::Byte, grey.data()},
+      geo, write);
+}
+
+// -o as colour, float or grey, placed like the DEM.
+void writeRelief(const Options& o, const aal::Heightfield& field, const aal::ReliefImage& relief,
+                 const std::optional<aal::ColorRamp>& ramp) {
+  const aal::GeoReference geo =
+      aal::resampledGeoReference(field.geo, field.width, field.height, relief.width, relief.height);
+  aal::RasterWriteOptions write;
+  write.cog = o.cog;
+  if (ramp) {
+    writeColourRelief(o, field, relief, *ramp, geo, write);
+  } else if (o.format == "float") {
+    if (field.voidCount > 0 || field.nodata)
+      write.nodata = std::numeric_limits<double>::quiet_NaN();
+    aal::writeFloatGeoTiff(o.output, relief.width, relief.height, relief.value.data(), geo, write);
+  } else {
+    writeGreyRelief(o, field, relief, geo, write);
+  }
+}
+
+// The one line on stderr: the size, the light and the time.
+void printSummary(const Options& o, const aal::ReliefSettings& s, double seconds) {
+  char light[96];
+  if (o.skyOnly) {
+    std::snprintf(light, sizeof light, "sky only");
+  } else if (o.multidirectional) {
+    std::snprintf(light, sizeof light, "multidirectional, elevation %.1f deg, sky %.2f",
+                  s.sunElevationDeg, double(s.skyWeight));
+  } else {
+    std::snprintf(light, sizeof light, "sun azimuth %.1f deg, elevation %.1f deg, sky %.2f",
+                  s.sunAzimuthDeg, s.sunElevationDeg, double(s.skyWeight));
+  }
+  std::fprintf(stderr, "aal-relief: %dx%d pixels (%s) in %.2f s, wrote %s\n", s.outWidth,
+               s.outHeight, light, seconds, o.output.c_str());
+}
+
+int run(const Options& o) {
+  checkOptions(o);
+  std::optional<aal::ColorRamp> ramp;
+  if (!o.colorRelief.empty()) ramp = aal::readColorRamp(o.colorRelief);
+  if (!o.palette.empty()) ramp = aal::builtinPalette(o.palette);
+  const aal::Heightfield field = loadReliefDem(o);
+  const auto [outWidth, outHeight] = outputSize(o.resolution, field);
+  const aal::ReliefSettings s = reliefSettings(o, field, outWidth, outHeight, ramp.has_value());
+  aal::HalfApertureMap map = halfApertureMap(o, field);
 
   const auto start = std::chrono::steady_clock::now();
   aal::ProgressBar bar("shading", !o.quiet);
   const aal::ReliefImage relief = aal::shadeRelief(field, map, s, [&](double f) { bar.update(f); });
   bar.finish();
   map = {};
-
-  const aal::GeoReference geo =
-      aal::resampledGeoReference(field.geo, field.width, field.height, outWidth, outHeight);
-  aal::RasterWriteOptions write;
-  write.cog = o.cog;
-  const bool voids = field.voidCount > 0;
-  const size_t pixels = relief.value.size();
-  const auto [low, high] = parseStretch(o.stretch);
-  auto stretched = [low, high](float v) {
-    return static_cast<float>(std::clamp((v - low) / (high - low), 0.0, 1.0));
-  };
-  if (ramp) {
-    // Colour from the ramp at the pixel's height, times the shading; voids
-    // take the ramp's nv colour, else transparent black (an alpha band).
-    double zMin = std::numeric_limits<double>::infinity(), zMax = -zMin;
-    for (int y = 0; y < field.height; ++y) {
-      for (int x = 0; x < field.width; ++x) {
-        if (field.isVoid(x, y)) continue;
-        zMin = std::min(zMin, double(field.at(x, y)));
-        zMax = std::max(zMax, double(field.at(x, y)));
-      }
-    }
-    const aal::ResolvedColorRamp resolved = aal::resolveColorRamp(*ramp, zMin, zMax);
-    bool alpha = voids;
-    for (const glm::vec4& c : resolved.rgba) alpha = alpha || c.a < 255;
-    const int bands = alpha ? 4 : 3;
-    std::vector<uint8_t> rgb(pixels * bands);
-    const glm::vec4 nodataColour = resolved.nodata.value_or(glm::vec4(0));
-    for (size_t i = 0; i < pixels; ++i) {
-      glm::vec4 c;
-      if (relief.isVoid(i)) {
-        c = nodataColour;
-      } else {
-        c = !relief.water.empty() && relief.water[i]
-                ? glm::vec4(kWaterRgb[0], kWaterRgb[1], kWaterRgb[2], 255)
-                : aal::rampColor(resolved, relief.heightM[i]);
-        c = glm::vec4(glm::vec3(c) * stretched(relief.value[i]), c.a);
-      }
-      for (int b = 0; b < bands; ++b) {
-        rgb[i * bands + b] = static_cast<uint8_t>(std::clamp(std::lround(c[b]), 0L, 255L));
-      }
-    }
-    aal::writeGeoTiff(
-        o.output,
-        aal::RasterImage{outWidth, outHeight, bands, aal::RasterSampleType::Byte, rgb.data()}, geo,
-        write);
-  } else if (o.format == "float") {
-    if (voids || field.nodata) write.nodata = std::numeric_limits<double>::quiet_NaN();
-    aal::writeFloatGeoTiff(o.output, outWidth, outHeight, relief.value.data(), geo, write);
-  } else {
-    // gdaldem's scale: 1 + 254 v, 0 reserved for nodata.
-    std::vector<uint8_t> grey(pixels);
-    for (size_t i = 0; i < pixels; ++i) {
-      grey[i] = relief.isVoid(i)
-                    ? 0
-                    : static_cast<uint8_t>(1 + std::lround(254.0 * stretched(relief.value[i])));
-    }
-    if (voids || field.nodata) write.nodata = 0;
-    aal::writeGeoTiff(
-        o.output,
-        aal::RasterImage{outWidth, outHeight, 1, aal::RasterSampleType::Byte, grey.data()}, geo,
-        write);
-  }
+  writeRelief(o, field, relief, ramp);
   if (!o.quiet) {
-    const double seconds =
-        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    char light[96];
-    if (o.skyOnly) {
-      std::snprintf(light, sizeof light, "sky only");
-    } else if (o.multidirectional) {
-      std::snprintf(light, sizeof light, "multidirectional, elevation %.1f deg, sky %.2f",
-                    s.sunElevationDeg, double(s.skyWeight));
-    } else {
-      std::snprintf(light, sizeof light, "sun azimuth %.1f deg, elevation %.1f deg, sky %.2f",
-                    s.sunAzimuthDeg, s.sunElevationDeg, double(s.skyWeight));
-    }
-    std::fprintf(stderr, "aal-relief: %dx%d pixels (%s) in %.2f s, wrote %s\n", outWidth, outHeight,
-                 light, seconds, o.output.c_str());
+    printSummary(o, s,
+                 std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
   }
   return aal::kExitOk;
 }

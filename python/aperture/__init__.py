@@ -40,7 +40,7 @@ __all__ = [
     "solar_position",
 ]
 
-# aal-render's and aal-relief's defaults (tools/aal_render.cpp, aal_relief.cpp).
+# aal-render's and aal-relief's defaults (tools/render/render_options.h, aal_relief.cpp).
 _DEFAULT_SUN_AZIMUTH = _aperture._DEFAULT_SUN_AZIMUTH_DEG  # terrain/units.h
 _DEFAULT_SUN_ELEVATION = _aperture._DEFAULT_SUN_ELEVATION_DEG
 _SUN_RADIUS_DEG = _aperture._SUN_ANGULAR_RADIUS_DEG
