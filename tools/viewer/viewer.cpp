@@ -16,6 +16,7 @@
 
 #include "aperture/engine/screenshot.h"
 #include "aperture/engine/vk/buffer.h"
+#include "aperture/engine/vk/frames_in_flight.h"
 #include "aperture/engine/vk/image.h"
 #include "aperture/engine/vk/vk_check.h"
 #include "aperture/preprocess/aperture_cache.h"
@@ -498,7 +499,10 @@ bool Viewer::frameNeeded(const FrameSettings& settings) {
 }
 
 bool Viewer::drawFrame() {
-  sync_.waitForPreviousFrame();
+  sync_.waitForFrameSlot();
+  // The GPU timer holds the last frame's queries: it is the one waited for
+  // only with one frame in flight (a timer per frame before more).
+  static_assert(kFramesInFlight == 1, "the pass times read are the last frame's");
   timing_->lastPassMs = renderer_->passMilliseconds();
   uint32_t imageIndex = 0;
   SwapchainStatus status = swapchain_.acquire(sync_.acquired(), &imageIndex);
@@ -532,7 +536,7 @@ bool Viewer::drawFrame() {
 }
 
 void Viewer::saveScreenshot(const std::string& path) {
-  sync_.waitForPreviousFrame();
+  sync_.waitForSubmittedFrames();
   FrameResult frame;
   frame.width = renderer_->width();
   frame.height = renderer_->height();
