@@ -8,10 +8,11 @@
 
 namespace aal {
 
-// Raising it is checked, not audited: the code that still writes host-visible
-// memory in place once per frame (the renderer's uniforms, the GPU timer's
-// queries) static_asserts on this value, and needs one copy per frame in
-// flight first.
+// Raising it is checked, not audited: the code that still reuses one
+// resource in place every frame (the renderer's host-written uniforms and
+// LOD patches, the viewer's read of the last frame's GPU timer)
+// static_asserts on this value, and needs one copy per frame in flight
+// first.
 inline constexpr uint32_t kFramesInFlight = 1;
 static_assert(kFramesInFlight >= 1, "at least the frame being drawn");
 
