@@ -5,6 +5,7 @@
 #include <array>
 #include <cmath>
 #include <stdexcept>
+#include <utility>
 
 #include <glm/matrix.hpp>
 
@@ -13,6 +14,7 @@
 #include "aperture/engine/terrain_renderer.h"
 #include "aperture/engine/terrain_scene.h"
 #include "aperture/engine/vk/device.h"
+#include "aperture/engine/vk/frames_in_flight.h"
 #include "aperture/terrain/io/horizon_map.h"
 #include "aperture/terrain/light/cap_table.h"
 #include "aperture/terrain/light/obscurance_samples.h"
@@ -111,6 +113,11 @@ void setTiles(FrameUniforms& u, const TerrainTileLayout& tiles) {
 
 FramePlan TerrainRenderer::prepareFrame(const TerrainScene& scene, const FrameSettings& s,
                                         const FrameOutput& output) {
+  // The host writes the uniforms, the obscurance samples and the LOD patches
+  // in place, and the cap table's copy starts from an undefined image at the
+  // transfer stage: no earlier frame may still read them. A copy of each per
+  // frame in flight before this may rise.
+  static_assert(kFramesInFlight == 1, "the frame's host-written buffers are single");
   const float scale = std::clamp(output.resolutionScale, 0.05f, 1.0f);
   if (scale < 1.0f && (output.image == VK_NULL_HANDLE || output.linear)) {
     throw std::invalid_argument(
@@ -140,11 +147,10 @@ void TerrainRenderer::relayHorizons(const TerrainScene& scene, const FrameSettin
   // The slope texture must hold the horizons of the two directions beside
   // the sun: re-lay when the sun leaves the pair on the device, at once or
   // this frame's share of a spread re-lay (engine/horizon_relay.h). Safe
-  // here: the previous frame's submission has finished (as writeUniforms
-  // requires; aal-view keeps one frame in flight, engine/vk/frame_sync.h,
-  // so no frame still reads the slopes), and the writing waits for itself
-  // before this frame's commands are submitted. With more frames in flight
-  // this would need the device idle first.
+  // with frames in flight: the re-lay writes the slopes with commands of its
+  // own, submitted to the same queue after them, whose first barrier waits
+  // for their reads (transitionImage), and waited for before this frame's
+  // commands are submitted; its upload buffers and code images are its own.
   const int n = scene.horizonDirections();
   const float azimuth = sunAzimuthRad(s.lighting.sunDirection);
   const float motion =
@@ -252,10 +258,11 @@ void TerrainRenderer::selectPatches(const TerrainScene& scene, const FrameSettin
   // At least one instance, so the buffer exists when nothing is in view.
   const size_t bytes = std::max<size_t>(selection_.patches.size(), 1) * sizeof(LodPatch);
   if (patches_.size() < bytes) {
-    // The previous frame's submission has finished (see record()): the old
-    // buffer may go. Grow by half again to avoid a new one every frame.
-    patches_ = Buffer(device_, bytes + bytes / 2, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
-                      MemoryIntent::Upload);
+    // Grow by half again to avoid a new one every frame. The old buffer is
+    // retired: a frame in flight may still read it.
+    device_.deletionQueue().retire(
+        std::exchange(patches_, Buffer(device_, bytes + bytes / 2,
+                                       VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, MemoryIntent::Upload)));
   }
   if (!selection_.patches.empty()) {
     patches_.write(selection_.patches.data(), selection_.patches.size() * sizeof(LodPatch));
@@ -270,9 +277,13 @@ bool TerrainRenderer::prepareCapTable(const FrameSettings& s) {
   const bool wanted = s.mode == ShadingMode::Exact || capTableRadius_ == 0.0f;
   if (!wanted || radius == capTableRadius_) return false;
   const CapIntersectionTable table = makeCapIntersectionTable(radius);
-  // The previous frame's submission has finished (see record()): the staging
-  // buffer and the image are free.
-  capTableStaging_.write(table.values.data(), table.values.size() * sizeof(float));
+  // A fresh staging buffer for this frame's copy; the one before is retired,
+  // as a frame in flight may still copy from it.
+  Buffer staging(device_, table.values.size() * sizeof(float), VK_BUFFER_USAGE_TRANSFER_SRC_BIT,
+                 MemoryIntent::Upload);
+  staging.write(table.values.data(), table.values.size() * sizeof(float));
+  Buffer before = std::exchange(capTableStaging_, std::move(staging));
+  if (before.handle() != VK_NULL_HANDLE) device_.deletionQueue().retire(std::move(before));
   capTableRadius_ = radius;
   return true;
 }

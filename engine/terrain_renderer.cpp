@@ -42,8 +42,6 @@ TerrainRenderer::TerrainRenderer(const Device& device, uint32_t width, uint32_t 
                          VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_SAMPLED_BIT}),
       capTable_(device, {AAL_CAP_TABLE_WIDTH, AAL_CAP_TABLE_HEIGHT, kCapTableFormat,
                          VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT}),
-      capTableStaging_(device, size_t{AAL_CAP_TABLE_WIDTH} * AAL_CAP_TABLE_HEIGHT * sizeof(float),
-                       VK_BUFFER_USAGE_TRANSFER_SRC_BIT, MemoryIntent::Upload),
       uniforms_(device, sizeof(FrameUniforms), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT,
                 MemoryIntent::Upload),
       samples_(device, sizeof(ObscuranceSampleBlock), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT,
@@ -107,6 +105,9 @@ FrameResult TerrainRenderer::render(const TerrainScene& scene, const FrameSettin
       copyImageToBuffer(cmd, hdr_, linearReadback);
     }
   });
+  // The headless frame has completed: what it retired goes now.
+  DeletionQueue& deletions = device_.deletionQueue();
+  deletions.releaseCompleted(deletions.endFrame());
 
   FrameResult result;
   result.width = width_;

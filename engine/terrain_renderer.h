@@ -123,15 +123,20 @@ class TerrainRenderer {
                   VkFormat displayFormat = VK_FORMAT_R8G8B8A8_UNORM);
   ~TerrainRenderer();
 
-  // Headless frame: records the passes, submits, waits and reads back.
+  // Headless frame: records the passes, submits, waits and reads back. A
+  // frame of its own for the device's DeletionQueue: what it retired is
+  // destroyed after the wait (so not while a windowed frame is recorded).
   FrameResult render(const TerrainScene& scene, const FrameSettings& settings, bool wantLinear);
 
   // Records the frame's passes into `cmd` (the windowed viewer presents the
   // result; see FrameOutput for where it goes). Writes the frame's uniforms
-  // at once, so the previous frame's submission must have finished. In the
-  // horizon mode it first re-lays the scene's horizons when the frame's sun
-  // left their pair of directions (TerrainScene::relayHorizons: an upload and
-  // a compute pass, waited for; docs/rendering.md). With `output.linear` hdrImage() then holds the
+  // at once, so no earlier frame may still be in flight (kFramesInFlight is
+  // 1, engine/vk/frames_in_flight.h); what it replaces (a grown patch
+  // buffer, the cap table's staging) it retires into the device's
+  // DeletionQueue. In the horizon mode it first re-lays the scene's horizons
+  // when the frame's sun left their pair of directions
+  // (TerrainScene::relayHorizons: an upload and a compute pass, waited for;
+  // docs/rendering.md). With `output.linear` hdrImage() then holds the
   // linear radiance, in VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL.
   void record(VkCommandBuffer cmd, const TerrainScene& scene, const FrameSettings& settings,
               const FrameOutput& output = {});
@@ -182,7 +187,8 @@ class TerrainRenderer {
   Image ambient_, surface_, transfer_, filtered_;
   Image skyTable_;  // the sky's radiance per view direction (shaders/sky_lut.glsl)
   // The exact cap intersection against the sun (shaders/cap_table.glsl), for
-  // the sun radius capTableRadius_ (0: not made yet), and its staging copy.
+  // the sun radius capTableRadius_ (0: not made yet), and its staging copy
+  // (a new one for each table; the one before retired).
   Image capTable_;
   Buffer capTableStaging_;
   float capTableRadius_ = 0.0f;

@@ -7,6 +7,7 @@
 #include <cstring>
 #include <stdexcept>
 #include <string>
+#include <utility>
 
 #include <Imath/half.h>
 #include <tbb/blocked_range.h>
@@ -544,8 +545,9 @@ void TerrainScene::setHorizons(const Device& device, std::shared_ptr<const Horiz
         std::make_unique<ComputePipeline>(device, "slopes_horizons.comp", sizeof(SlopePush));
   }
   const uint64_t bytes = slopeBytes(tiles_, true) - slopeBytes(tiles_, false);
-  slopes_ = std::move(slopes);
-  horizonMoments_ = std::move(moments);
+  // Frames in flight may still read the images before: retired.
+  device.deletionQueue().retire(std::exchange(slopes_, std::move(slopes)));
+  device.deletionQueue().retire(std::exchange(horizonMoments_, std::move(moments)));
   textureBytes_ += bytes - horizonBytes_;  // a second map replaces the first
   horizonBytes_ = bytes;
   horizonMap_ = std::move(shared);
@@ -602,8 +604,10 @@ void TerrainScene::writeHorizonRelay(const Device& device, const HorizonRelaySte
       throw std::invalid_argument("writeHorizonRelay: direction " + std::to_string(step.first) +
                                   " of " + std::to_string(horizonDirections_));
     }
-    // The same images: the previous frame has finished reading them (the
-    // caller's promise).
+    // The same images, written in place: frames already submitted may still
+    // read them, and the pass's first barrier waits for those reads
+    // (runSlopePass); commands not yet submitted must not (the caller's
+    // promise).
     computeSlopes(device, step.first, true);
   } else {
     if (step.channel < 0 || step.channel > 1 ||

@@ -89,7 +89,8 @@ class TerrainScene {
   // RGBA16F: 4 B more per texel), the second moments in horizonMomentPages
   // (4 B more);
   // the scene keeps `map` (shared, not copied) to lay another pair. Replaces
-  // the slope images: the device must not be reading the scene. Throws
+  // the slope images, retiring the ones before into the device's
+  // DeletionQueue (frames in flight may still read them). Throws
   // std::invalid_argument for a map of another size or an invalid pair.
   void setHorizons(const Device& device, std::shared_ptr<const HorizonMap> map, int first = 0);
   // The same with a copy of `map` (tests; the tools share theirs).
@@ -97,14 +98,15 @@ class TerrainScene {
   // Writes the horizons of another pair into the slope texture at once
   // (nothing when it is the current one): an upload of the codes and a
   // compute pass, waited for; of one direction when the pairs share the
-  // other (only its channel changes), else of both. The device must not be
-  // reading the slopes. Const: the horizons stay what they are, only the
-  // pair on the device changes.
+  // other (only its channel changes), else of both. Frames already submitted
+  // may read the slopes (the compute pass's barrier waits for them);
+  // commands recorded but not yet submitted must not. Const: the horizons
+  // stay what they are, only the pair on the device changes.
   void relayHorizons(const Device& device, int first) const;
   // One frame's share of a re-lay (engine/horizon_relay.h planHorizonRelay):
   // the bands' codes uploaded and their rows of every level computed, waited
-  // for. TerrainRenderer::record calls it for a frame's sun, when the
-  // previous frame has finished (the device must not be reading the slopes).
+  // for. TerrainRenderer::record calls it for a frame's sun before it records
+  // a command (as relayHorizons, no unsubmitted command may read the slopes).
   void writeHorizonRelay(const Device& device, const HorizonRelayStep& step) const;
   // What B and A hold now, per band while a re-lay is under way.
   const HorizonChannels& horizonChannels() const { return horizonChannels_; }

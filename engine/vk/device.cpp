@@ -160,6 +160,8 @@ Device::Device(const Instance& instance, int deviceIndex,
 Device::~Device() {
   if (device_ != VK_NULL_HANDLE) {
     vkDeviceWaitIdle(device_);
+    // Idle: whatever is still retired goes before the device.
+    deletions_.releaseAll();
     vkDestroyDevice(device_, nullptr);
   }
 }

@@ -7,6 +7,8 @@
 
 #include <vulkan/vulkan.h>
 
+#include "aperture/engine/vk/deletion_queue.h"
+
 namespace aal {
 
 class Instance;
@@ -47,6 +49,11 @@ class Device {
 
   // Blocks until the device is idle (used at shutdown and in tests).
   void waitIdle() const;
+  // What is retired while frames may still use it, destroyed when they have
+  // completed (engine/vk/deletion_queue.h); the rest at the device's end.
+  // Reached through a const Device, as every resource holds its device:
+  // retiring changes no state of the device.
+  DeletionQueue& deletionQueue() const { return deletions_; }
 
  private:
   VkPhysicalDevice physical_ = VK_NULL_HANDLE;
@@ -56,6 +63,7 @@ class Device {
   VkPhysicalDeviceProperties properties_{};
   bool independentBlend_ = false;
   VkPhysicalDeviceMemoryProperties memory_{};
+  mutable DeletionQueue deletions_;
 };
 
 }  // namespace aal

@@ -16,6 +16,7 @@
 
 #include "aperture/engine/screenshot.h"
 #include "aperture/engine/vk/buffer.h"
+#include "aperture/engine/vk/frames_in_flight.h"
 #include "aperture/engine/vk/image.h"
 #include "aperture/engine/vk/vk_check.h"
 #include "aperture/preprocess/aperture_cache.h"
@@ -256,8 +257,6 @@ void Viewer::showTerrain(std::shared_ptr<const Heightfield> field, const std::st
       terrain->horizons = sharedHorizons(findCachedHorizons(*field, bakeOptions));
     }
   }
-  // The GPU may still draw the previous terrain.
-  device_.waitIdle();
   if (!mapPath.empty()) {
     ApertureMapReader reader(mapPath);
     checkApertureMatchesDem(reader.header(), mapPath, *field, path);
@@ -270,6 +269,9 @@ void Viewer::showTerrain(std::shared_ptr<const Heightfield> field, const std::st
         std::make_unique<TerrainScene>(device_, *field, nullptr, options_.triangleBudget);
     terrain->bake = std::make_unique<BackgroundBake>(field, path, bakeOptions);
   }
+  // A frame in flight may still draw the previous terrain: its scene is
+  // retired (the bake, on the host, is cancelled now).
+  if (terrain_) device_.deletionQueue().retire(std::move(terrain_->scene));
   terrain_ = std::move(terrain);
   attachHorizons();
   const VkExtent2D extent = swapchain_.extent();
@@ -320,15 +322,17 @@ void Viewer::updateBake() {
   try {
     CachedAperture cached = t.bake->take();
     if (!t.horizons) t.horizons = sharedHorizons(std::move(cached.horizons));
-    device_.waitIdle();
+    std::unique_ptr<TerrainScene> scene;
     if (!cached.path.empty()) {
       ApertureMapReader reader(cached.path.string());
-      t.scene = std::make_unique<TerrainScene>(device_, *t.field, reader, nullptr,
-                                               options_.triangleBudget);
+      scene = std::make_unique<TerrainScene>(device_, *t.field, reader, nullptr,
+                                             options_.triangleBudget);
     } else {
-      t.scene = std::make_unique<TerrainScene>(device_, *t.field, cached.map, nullptr,
-                                               options_.triangleBudget);
+      scene = std::make_unique<TerrainScene>(device_, *t.field, cached.map, nullptr,
+                                             options_.triangleBudget);
     }
+    // A frame in flight may still draw the placeholder: retired.
+    device_.deletionQueue().retire(std::exchange(t.scene, std::move(scene)));
     attachHorizons();
     setMessage("aperture map ready" + (cached.path.empty()
                                            ? std::string(" (not cached)")
@@ -498,7 +502,10 @@ bool Viewer::frameNeeded(const FrameSettings& settings) {
 }
 
 bool Viewer::drawFrame() {
-  sync_.waitForPreviousFrame();
+  sync_.waitForFrameSlot();
+  // The GPU timer holds the last frame's queries: it is the one waited for
+  // only with one frame in flight (a timer per frame before more).
+  static_assert(kFramesInFlight == 1, "the pass times read are the last frame's");
   timing_->lastPassMs = renderer_->passMilliseconds();
   uint32_t imageIndex = 0;
   SwapchainStatus status = swapchain_.acquire(sync_.acquired(), &imageIndex);
@@ -532,7 +539,7 @@ bool Viewer::drawFrame() {
 }
 
 void Viewer::saveScreenshot(const std::string& path) {
-  sync_.waitForPreviousFrame();
+  sync_.waitForSubmittedFrames();
   FrameResult frame;
   frame.width = renderer_->width();
   frame.height = renderer_->height();
@@ -568,8 +575,10 @@ void Viewer::recreateSwapchain() {
   const VkExtent2D extent = swapchain_.extent();
   if (renderer_->width() != extent.width || renderer_->height() != extent.height ||
       renderer_->displayImage().desc().format != swapchain_.format()) {
-    renderer_ = std::make_unique<TerrainRenderer>(device_, extent.width, extent.height,
-                                                  swapchain_.format());
+    // Its targets go with the frames that drew into them.
+    device_.deletionQueue().retire(
+        std::exchange(renderer_, std::make_unique<TerrainRenderer>(
+                                     device_, extent.width, extent.height, swapchain_.format())));
   }
   swapchainStale_ = false;
 }
