@@ -6,18 +6,9 @@
 #include <vector>
 
 #include "aperture/terrain/heightfield.h"
+#include "aperture/terrain/texel_window.h"
 
 namespace aal {
-
-// A rectangle of texels of a heightfield: the part a tiled bake works on.
-struct TexelWindow {
-  int col = 0, row = 0, width = 0, height = 0;
-
-  size_t texelCount() const { return static_cast<size_t>(width) * static_cast<size_t>(height); }
-  bool covers(const Heightfield& field) const {
-    return col == 0 && row == 0 && width == field.width && height == field.height;
-  }
-};
 
 struct BakeTerrain {
   const Heightfield* field = nullptr;
