@@ -44,11 +44,10 @@ BENCHMARK(BM_BakeSweep)
     ->UseRealTime();
 
 // `window` of `field` as a DEM read in parts holds it.
-aal::Heightfield cutWindow(const aal::Heightfield& field, const aal::TexelWindow& window) {
-  aal::Heightfield part = field;
-  part.firstColumn = window.col;
-  part.firstRow = window.row;
-  part.windowColumns = window.width;
+aal::HeightWindow cutWindow(const aal::Heightfield& field, const aal::TexelWindow& window) {
+  aal::HeightWindow part;
+  part.dem = &field;
+  part.texels = window;
   part.z.resize(window.texelCount());
   for (int row = 0; row < window.height; ++row) {
     for (int col = 0; col < window.width; ++col) {
@@ -79,7 +78,7 @@ void BM_BakeTileWindow(benchmark::State& state) {
   }
   const aal::TexelWindow tile{384, 384, 256, 256};
   const int halo = aal::tileHalo(field, options, tiled);
-  const aal::Heightfield window = cutWindow(field, aal::tileReadWindow(field, halo, tile));
+  const aal::HeightWindow window = cutWindow(field, aal::tileReadWindow(field, halo, tile));
   for (auto _ : state) {
     aal::BakeResult result = aal::bakeApertureWindow(window, tile, options);
     benchmark::DoNotOptimize(result.aperture.texels.data());
