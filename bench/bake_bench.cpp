@@ -3,7 +3,11 @@
 // texel-azimuths/s). Larger sizes: scripts/bench-bake.sh.
 #include <benchmark/benchmark.h>
 
+#include <optional>
+
 #include "aperture/preprocess/bake.h"
+#include "aperture/preprocess/tile_window_reader.h"
+#include "aperture/preprocess/tiled_bake.h"
 #include "aperture/terrain/synthetic.h"
 
 namespace {
@@ -38,6 +42,51 @@ BENCHMARK(BM_BakeSweep)
     ->Args({1024, 64})
     ->Unit(benchmark::kMillisecond)
     ->UseRealTime();
+
+// `window` of `field` as a DEM read in parts holds it.
+aal::HeightWindow cutWindow(const aal::Heightfield& field, const aal::TexelWindow& window) {
+  aal::HeightWindow part;
+  part.dem = &field;
+  part.texels = window;
+  part.z.resize(window.texelCount());
+  for (int row = 0; row < window.height; ++row) {
+    for (int col = 0; col < window.width; ++col) {
+      part.z[static_cast<size_t>(row) * window.width + col] =
+          field.at(window.col + col, window.row + row);
+    }
+  }
+  return part;
+}
+
+// A tile of a tiled bake read in windows (aal-bake --tile-size
+// --low-memory): the centre 256^2 tile of a 1024^2 DEM, baked from its
+// window (the tile and tileHalo around it), with a max distance in metres
+// (state.range(0)) or, at 0, the far field.
+void BM_BakeTileWindow(benchmark::State& state) {
+  const aal::Heightfield field = terrain(1024);
+  aal::BakeOptions options;
+  options.azimuths = 32;
+  options.maxDistanceM = static_cast<double>(state.range(0));
+  aal::TiledBakeOptions tiled;
+  tiled.tileSize = 256;
+  std::optional<aal::HeightPyramid> pyramid;
+  aal::FarField far;
+  if (!(options.maxDistanceM > 0.0)) {
+    pyramid.emplace(aal::buildHeightPyramid(field, aal::tiledBakePyramidShift(field, tiled)));
+    far = aal::FarField{&*pyramid, aal::resolvedFarField(field, tiled)};
+    options.farField = &far;
+  }
+  const aal::TexelWindow tile{384, 384, 256, 256};
+  const int halo = aal::tileHalo(field, options, tiled);
+  const aal::HeightWindow window = cutWindow(field, aal::tileReadWindow(field, halo, tile));
+  for (auto _ : state) {
+    aal::BakeResult result = aal::bakeApertureWindow(window, tile, options);
+    benchmark::DoNotOptimize(result.aperture.texels.data());
+  }
+  state.counters["texel_azimuths_per_s"] = benchmark::Counter(
+      double(tile.texelCount()) * options.azimuths, benchmark::Counter::kIsIterationInvariantRate);
+}
+BENCHMARK(BM_BakeTileWindow)->Arg(3000)->Arg(0)->Unit(benchmark::kMillisecond)->UseRealTime();
 
 }  // namespace
 

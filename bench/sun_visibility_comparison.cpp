@@ -59,7 +59,7 @@ const int kSectorCounts[] = {2, 4, 8};
 // ahead. Positions as the bake's (BakeTerrain), so geographic grids too.
 double marchedHorizonTangent(const BakeTerrain& terrain, int col, int row, double phi,
                              double zMax) {
-  const Heightfield& f = *terrain.field;
+  const Heightfield& f = *terrain.heights.dem;
   const double ux = std::cos(phi), uy = std::sin(phi);
   const double x = terrain.x(col, row), y = terrain.y(row), z0 = f.at(col, row);
   const double step = 0.25 * std::min(terrain.cellY, terrain.rowCellX[f.height / 2]);
@@ -108,7 +108,7 @@ double marchedDiskFraction(const BakeTerrain& terrain, int col, int row, const g
       const glm::dvec3 d = glm::normalize(sun + kSunRadiusRad * (x * right + y * up));
       const double dir[3] = {d.x, d.y, d.z};
       escaped += rayEscapes(terrain, open, terrain.x(col, row), terrain.y(row),
-                            terrain.field->at(col, row), dir, zMax);
+                            terrain.heights.at(col, row), dir, zMax);
     }
   }
   return double(escaped) / inside;

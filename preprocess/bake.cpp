@@ -23,14 +23,15 @@ namespace {
 
 constexpr double kTwoPi = 2.0 * std::numbers::pi;
 
-void checkOptions(const Heightfield& field, const BakeOptions& o) {
-  // The whole field, or a window of it (Heightfield::firstRow, firstColumn).
-  const int columns = field.residentColumns();
-  const bool window = columns >= 1 && field.z.size() % static_cast<size_t>(columns) == 0 &&
-                      field.firstColumn >= 0 && field.firstColumn + columns <= field.width &&
-                      field.firstRow >= 0 && field.residentRows() >= 1 &&
-                      field.firstRow + field.residentRows() <= field.height;
-  if (field.width < 1 || field.height < 1 || !window) {
+void checkOptions(HeightView heights, const BakeOptions& o) {
+  // The whole DEM, or a window of it inside the DEM.
+  const Heightfield& dem = *heights.dem;
+  const TexelWindow& held = heights.texels;
+  const bool consistent = held.width >= 1 && held.height >= 1 && held.col >= 0 && held.row >= 0 &&
+                          held.col + held.width <= dem.width &&
+                          held.row + held.height <= dem.height &&
+                          heights.z.size() == held.texelCount();
+  if (dem.width < 1 || dem.height < 1 || !consistent) {
     throw std::invalid_argument("bake: empty or inconsistent heightfield");
   }
   if (o.azimuths < 4 || o.azimuths > 4096) {
@@ -145,7 +146,7 @@ class AzimuthSweeps {
           const int col = w.col + static_cast<int>(texel % w.width);
           const int row = w.row + static_cast<int>(texel / w.width);
           const double tangent =
-              far.mergedTangent(col, row, terrain_.field->at(col, row), b.tanHorizon[j]);
+              far.mergedTangent(col, row, terrain_.heights.at(col, row), b.tanHorizon[j]);
           merged[j] = static_cast<float>(std::max(tangent, double(kNoHorizonTangent)));
         }
         HorizonBlock block = b;
@@ -159,7 +160,7 @@ class AzimuthSweeps {
       const int col = w.col + static_cast<int>(texel % w.width);
       const int row = w.row + static_cast<int>(texel / w.width);
       sums_.addTexel(
-          texel, std::max(tanHorizon, far.tangentAt(col, row, terrain_.field->at(col, row))), s);
+          texel, std::max(tanHorizon, far.tangentAt(col, row, terrain_.heights.at(col, row))), s);
     });
   }
 
@@ -205,7 +206,7 @@ void finishApertures(const BakeTerrain& terrain, std::vector<float>& texels) {
 
 // Bakes the texels of the terrain's window; info.sourceChecksum is left to
 // the caller.
-BakeResult bakeWindow(const Heightfield& field, const BakeTerrain& terrain, const BakeOptions& o) {
+BakeResult bakeWindow(const BakeTerrain& terrain, const BakeOptions& o) {
   // The running sums live in the output's own storage: 16 bytes per texel.
   BakeResult result;
   ApertureMap& map = result.aperture;
@@ -229,7 +230,7 @@ BakeResult bakeWindow(const Heightfield& field, const BakeTerrain& terrain, cons
     bakeRays(terrain, o, map.texels.data(), result.skyViewFactor);
   }
   finishApertures(terrain, map.texels);
-  map.info = bakeInfo(field, o);
+  map.info = bakeInfo(*terrain.heights.dem, o);
   return result;
 }
 
@@ -254,9 +255,6 @@ ApertureMapInfo bakeInfo(const Heightfield& field, const BakeOptions& o) {
 
 BakeResult bakeApertures(const Heightfield& field, const BakeOptions& o) {
   checkOptions(field, o);
-  if (field.z.size() != field.texelCount()) {
-    throw std::invalid_argument("bake: a window of the field bakes only as windows");
-  }
   // The DEM's checksum (its rows hashed in parallel) is a task beside the
   // sweeps rather than a wait after them.
   std::string checksum;
@@ -264,7 +262,7 @@ BakeResult bakeApertures(const Heightfield& field, const BakeOptions& o) {
   beside.run([&] { checksum = heightfieldChecksum(field); });
   BakeResult result;
   try {
-    result = bakeWindow(field, prepareBakeTerrain(field), o);
+    result = bakeWindow(prepareBakeTerrain(field), o);
   } catch (...) {
     beside.wait();
     throw;
@@ -275,20 +273,18 @@ BakeResult bakeApertures(const Heightfield& field, const BakeOptions& o) {
   return result;
 }
 
-BakeResult bakeApertureWindow(const Heightfield& field, const TexelWindow& window,
-                              const BakeOptions& o) {
-  checkOptions(field, o);
-  if (!window.covers(field) &&
+BakeResult bakeApertureWindow(HeightView heights, const TexelWindow& window, const BakeOptions& o) {
+  checkOptions(heights, o);
+  if (!window.covers(*heights.dem) &&
       (o.method != BakeMethod::Sweep || !(o.maxDistanceM > 0.0 || o.farField))) {
     throw std::invalid_argument("a bake window needs the sweep with a max distance or a far field");
   }
-  // A window read in parts must at least hold the tile; the halo around it
-  // is the caller's (tileHalo, tiled_bake.h).
-  if (!field.holdsColumn(window.col) || !field.holdsColumn(window.col + window.width - 1) ||
-      !field.holdsRow(window.row) || !field.holdsRow(window.row + window.height - 1)) {
-    throw std::invalid_argument("bake window outside the heightfield's resident part");
+  // A window of the DEM must at least hold the tile; the halo around it is
+  // the caller's (tileHalo, tiled_bake.h).
+  if (!heights.texels.contains(window)) {
+    throw std::invalid_argument("bake window outside the heights held");
   }
-  return bakeWindow(field, prepareBakeTerrain(field, window), o);
+  return bakeWindow(prepareBakeTerrain(heights, window), o);
 }
 
 }  // namespace aal

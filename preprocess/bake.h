@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "aperture/preprocess/bake_terrain.h"
+#include "aperture/terrain/height_view.h"
 #include "aperture/terrain/heightfield.h"
 #include "aperture/terrain/io/aperture_map.h"
 #include "aperture/terrain/io/horizon_map.h"
@@ -68,15 +69,18 @@ BakeResult bakeApertures(const Heightfield& field, const BakeOptions& options);
 // `source` and `sourceChecksum`.
 ApertureMapInfo bakeInfo(const Heightfield& field, const BakeOptions& options);
 
-// Bakes only the texels of `window` (a tile of the field), with the whole
-// field's geometry and horizons: equal bit for bit to the same texels of
-// bakeApertures. A partial window needs the sweep with a max distance (then
-// only terrain near the tile is walked), or a far field (then the horizons
-// beyond the near reach come from the far field's pyramid: close to, not
-// equal to, the whole field's). The map has the window's size; its
-// info describes the whole source, except that sourceChecksum is left empty
-// (a tiled bake hashes the field once, not per tile).
-BakeResult bakeApertureWindow(const Heightfield& field, const TexelWindow& window,
+// Bakes only the texels of `window` (a tile of the DEM), with the whole
+// DEM's geometry and horizons: equal bit for bit to the same texels of
+// bakeApertures. `heights`: the whole DEM (a Heightfield), or a window of
+// it (a HeightWindow) that holds the tile and what its sweeps read around
+// it (tileHalo, tiled_bake.h). A partial window needs the sweep with a max
+// distance (then only terrain near the tile is walked), or a far field
+// (then the horizons beyond the near reach come from the far field's
+// pyramid: close to, not equal to, the whole DEM's). The map has the
+// window's size; its info describes the whole source, except that
+// sourceChecksum is left empty (a tiled bake hashes the DEM once, not per
+// tile).
+BakeResult bakeApertureWindow(HeightView heights, const TexelWindow& window,
                               const BakeOptions& options);
 
 }  // namespace aal

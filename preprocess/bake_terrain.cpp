@@ -4,17 +4,18 @@
 
 namespace aal {
 
-BakeTerrain prepareBakeTerrain(const Heightfield& field) {
-  return prepareBakeTerrain(field, TexelWindow{0, 0, field.width, field.height});
+BakeTerrain prepareBakeTerrain(HeightView heights) {
+  return prepareBakeTerrain(heights, TexelWindow{0, 0, heights.dem->width, heights.dem->height});
 }
 
-BakeTerrain prepareBakeTerrain(const Heightfield& field, const TexelWindow& window) {
+BakeTerrain prepareBakeTerrain(HeightView heights, const TexelWindow& window) {
+  const Heightfield& field = *heights.dem;
   if (window.width < 1 || window.height < 1 || window.col < 0 || window.row < 0 ||
       window.col + window.width > field.width || window.row + window.height > field.height) {
     throw std::invalid_argument("bake window outside the heightfield");
   }
   BakeTerrain t;
-  t.field = &field;
+  t.heights = heights;
   t.width = field.width;
   t.height = field.height;
   t.centreCol = 0.5 * (field.width - 1);

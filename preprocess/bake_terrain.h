@@ -5,23 +5,18 @@
 
 #include <vector>
 
+#include "aperture/terrain/height_view.h"
 #include "aperture/terrain/heightfield.h"
+#include "aperture/terrain/texel_window.h"
 
 namespace aal {
 
-// A rectangle of texels of a heightfield: the part a tiled bake works on.
-struct TexelWindow {
-  int col = 0, row = 0, width = 0, height = 0;
-
-  size_t texelCount() const { return static_cast<size_t>(width) * static_cast<size_t>(height); }
-  bool covers(const Heightfield& field) const {
-    return col == 0 && row == 0 && width == field.width && height == field.height;
-  }
-};
-
 struct BakeTerrain {
-  const Heightfield* field = nullptr;
-  int width = 0, height = 0;
+  // The heights the bake reads: the whole DEM's, or those of a window of it
+  // that holds the texels being baked and what their sweeps read around
+  // them (tileHalo, tiled_bake.h). heights.dem is the DEM.
+  HeightView heights;
+  int width = 0, height = 0;  // the DEM's
   // World-frame position of texel (col, row): x = (col - cx) * rowCellX[row]
   // (east), y = rowY[row] (north), origin at the DEM centre.
   std::vector<double> rowCellX, rowInvCellX;
@@ -43,12 +38,12 @@ struct BakeTerrain {
   // memory and of traffic per azimuth pair.
   float slopeEastAt(int col, int row) const {
     const int west = col > 0 ? col - 1 : col, east = col + 1 < width ? col + 1 : col;
-    return (field->at(east, row) - field->at(west, row)) *
+    return (heights.at(east, row) - heights.at(west, row)) *
            (differenceScale(west, east) * static_cast<float>(rowInvCellX[row]));
   }
   float slopeNorthAt(int col, int row) const {
     const int north = row > 0 ? row - 1 : row, south = row + 1 < height ? row + 1 : row;
-    return (field->at(col, north) - field->at(col, south)) *
+    return (heights.at(col, north) - heights.at(col, south)) *
            (differenceScale(north, south) * invCellYF());
   }
   // The same at window texel i (windowIndex).
@@ -68,15 +63,14 @@ struct BakeTerrain {
   float invCellYF() const { return static_cast<float>(1.0 / cellY); }
   double x(int col, int row) const { return (col - centreCol) * rowCellX[row]; }
   double y(int row) const { return rowY[row]; }
-  size_t windowIndex(int col, int row) const {
-    return static_cast<size_t>(row - window.row) * static_cast<size_t>(window.width) +
-           static_cast<size_t>(col - window.col);
-  }
+  size_t windowIndex(int col, int row) const { return window.index(col, row); }
 };
 
-// zScale and cell sizes are taken as already applied to the heightfield.
-BakeTerrain prepareBakeTerrain(const Heightfield& field);
-// The same for the texels of `window` only (inside the field).
-BakeTerrain prepareBakeTerrain(const Heightfield& field, const TexelWindow& window);
+// zScale and cell sizes are taken as already applied to the heights. The
+// terrain views `heights`, which must outlive it.
+BakeTerrain prepareBakeTerrain(HeightView heights);
+// The same for the texels of `window` only (inside the DEM; the heights
+// must hold them and what their sweeps read: bakeApertureWindow checks).
+BakeTerrain prepareBakeTerrain(HeightView heights, const TexelWindow& window);
 
 }  // namespace aal

@@ -14,7 +14,6 @@ BlockLineWalker<kMajorIsColumn>::BlockLineWalker(const BakeTerrain& terrain,
                                                  const HorizonSweepOptions& options,
                                                  HullPointF* hulls)
     : terrain_(terrain),
-      field_(*terrain.field),
       layout_(layout),
       ux_(ux),
       uy_(uy),
@@ -35,11 +34,12 @@ BlockLineWalker<kMajorIsColumn>::BlockLineWalker(const BakeTerrain& terrain,
   wMajorNeighbour_ = kMajorIsColumn ? wx : wy;
   wMinorNeighbour_ = kMajorIsColumn ? wy : wx;
   invCellY_ = static_cast<float>(1.0 / terrain.cellY);
-  residentHeights_ = field_.z.data();
-  rowStride_ = field_.residentColumns();
-  residentOffset_ = field_.firstRow * rowStride_ + field_.firstColumn;
-  const int columns[2] = {field_.firstColumn, field_.firstColumn + field_.residentColumns() - 1};
-  const int rows[2] = {field_.firstRow, field_.firstRow + field_.residentRows() - 1};
+  const TexelWindow& held = terrain.heights.texels;
+  residentHeights_ = terrain.heights.z.data();
+  rowStride_ = held.width;
+  residentOffset_ = held.row * rowStride_ + held.col;
+  const int columns[2] = {held.col, held.col + held.width - 1};
+  const int rows[2] = {held.row, held.row + held.height - 1};
   std::copy(kMajorIsColumn ? columns : rows, (kMajorIsColumn ? columns : rows) + 2, residentMajor_);
   std::copy(kMajorIsColumn ? rows : columns, (kMajorIsColumn ? rows : columns) + 2, residentMinor_);
 }

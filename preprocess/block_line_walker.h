@@ -137,9 +137,9 @@ class BlockLineWalker {
                                                                              int i, int j) const;
 #endif
 
-  // Heightfield::at over the resident part, from the walker's own copy of
-  // its layout (one subtraction, as before the field held windows: the
-  // whole-DEM bake was 5-9 % slower through at()).
+  // HeightView::at over the heights held, from the walker's own copy of
+  // their layout: one subtraction (the whole-DEM bake was 5-9 % slower
+  // through a field's at() that offset rows and columns apart).
   const float* heightPointer(int major, int minor) const {
     const ptrdiff_t col = kMajorIsColumn ? major : minor, row = kMajorIsColumn ? minor : major;
     return residentHeights_ + (row * rowStride_ + col - residentOffset_);
@@ -149,7 +149,6 @@ class BlockLineWalker {
   }
 
   const BakeTerrain& terrain_;
-  const Heightfield& field_;
   const SweepLayout& layout_;
   const double ux_, uy_;
   HullPointF* const hulls_;
@@ -158,9 +157,10 @@ class BlockLineWalker {
   const int minorMax_;
   const float rowCentre_;
   const bool avx2_;
-  // The field's resident part: its heights, row stride, the offset of its
-  // first texel (firstRow * stride + firstColumn), and its first and last
-  // major and minor coordinates, for the prefetches.
+  // The heights held (terrain.heights: the whole DEM or a window of it):
+  // where they start, their row stride, the offset of the first one (its
+  // row * stride + its column), and the first and last major and minor
+  // coordinates held, for the prefetches.
   const float* residentHeights_;
   ptrdiff_t rowStride_, residentOffset_;
   int residentMajor_[2], residentMinor_[2];
@@ -183,8 +183,8 @@ inline void BlockLineWalker<kMajorIsColumn>::prefetchAhead(int step) const {
   // The heights of steps ahead, a row or a column that the hardware
   // prefetcher does not foresee (the previous step's are on the next
   // slice): 6 % faster at 4096², the same at 1024² (in cache anyway).
-  // Only the field's resident part (a window of a DEM read in parts) is
-  // prefetched: the steps ahead may leave it.
+  // Only the heights held (a window of a DEM read in parts) are
+  // prefetched: the steps ahead may leave them.
   const int majorLength = layout_.majorLength, lines = lines_;
   if constexpr (kMajorIsColumn) {
     // A cache line holds 16 columns: every 8 steps, the column 16 on.

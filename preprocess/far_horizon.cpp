@@ -108,11 +108,11 @@ FarHorizons::Point FarHorizons::march(const BakeTerrain& terrain, int col, int r
   // Lattice points past the DEM's last row or column march from its edge.
   col = std::min(col, terrain.width - 1);
   row = std::min(row, terrain.height - 1);
-  const Heightfield& field = *terrain.field;
+  const HeightView& heights = terrain.heights;
   // The height the best sample is chosen for: the point's own (from the
   // finest level where it is not in memory).
-  const double zRef = field.holdsColumn(col) && field.holdsRow(row)
-                          ? field.at(col, row)
+  const double zRef = heights.holds(col, row)
+                          ? heights.at(col, row)
                           : pyramid.level(pyramid.baseShift())
                                 .meanAt(col >> pyramid.baseShift(), row >> pyramid.baseShift());
 

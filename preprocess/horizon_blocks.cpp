@@ -100,7 +100,7 @@ void forEachGroup(const BlockSweep& sweep, int groupLines, WalkGroup&& walkGroup
     s.hulls.resize(static_cast<size_t>(BlockLineWalker<kMajorIsColumn>::kMaxLines) *
                    layout.majorLength);
     const int first = firstLine + group * groupLines;
-    const GroupTexels<kMajorIsColumn> texels{layout, sweep.terrain.field->width, first,
+    const GroupTexels<kMajorIsColumn> texels{layout, sweep.terrain.width, first,
                                              std::min(groupLines, layout.lastLine + 1 - first)};
     walkGroup(texels, s);
   });

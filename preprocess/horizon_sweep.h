@@ -170,7 +170,7 @@ class LineWalker {
   LineWalker(const BakeTerrain& terrain, const SweepLayout& layout, double ux, double uy,
              const HorizonSweepOptions& options)
       : terrain_(terrain),
-        field_(*terrain.field),
+        heights_(terrain.heights),
         layout_(layout),
         ux_(ux),
         uy_(uy),
@@ -233,24 +233,24 @@ class LineWalker {
   // samples are a cell apart, so without this a texel in a crease would miss
   // the wall right next to it (and see more sky than the terrain allows).
   [[gnu::always_inline]] double leavingSlope(int col, int row) const {
-    const double z = field_.at(col, row);
+    const double z = heights_.at(col, row);
     double slope = 0.0;
     if (wx_ > 0.0) {
       const int c = col + dCol_;
-      if (c < 0 || c >= field_.width) return kNoHorizon;  // the cell ahead is off the grid
-      slope += wx_ * (field_.at(c, row) - z) * terrain_.rowInvCellX[row];
+      if (c < 0 || c >= terrain_.width) return kNoHorizon;  // the cell ahead is off the grid
+      slope += wx_ * (heights_.at(c, row) - z) * terrain_.rowInvCellX[row];
     }
     if (wy_ > 0.0) {
       const int r = row + dRow_;
-      if (r < 0 || r >= field_.height) return kNoHorizon;
-      slope += wy_ * (field_.at(col, r) - z) * invCellY_;
+      if (r < 0 || r >= terrain_.height) return kNoHorizon;
+      slope += wy_ * (heights_.at(col, r) - z) * invCellY_;
     }
     return slope;
   }
 
  private:
   float heightAt(int major, int minor) const {
-    return kMajorIsColumn ? field_.at(major, minor) : field_.at(minor, major);
+    return kMajorIsColumn ? heights_.at(major, minor) : heights_.at(minor, major);
   }
 
   // Metric position of the grid point (major, minor) projected on u.
@@ -292,7 +292,7 @@ class LineWalker {
   }
 
   const BakeTerrain& terrain_;
-  const Heightfield& field_;
+  const HeightView heights_;  // the walker's own copy: one load fewer per height
   const SweepLayout& layout_;
   const double ux_, uy_, curvature_, maxDistance_;
   const bool clampEdge_;

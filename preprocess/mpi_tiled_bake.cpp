@@ -192,7 +192,7 @@ class TileWorker {
   int work(int row, int column) {
     if (tileFinished(index_, folder_, row, column)) return kResumed;
     if (hooks_.beforeTile) hooks_.beforeTile(row, column);
-    const Heightfield& window = reader_.windowFor(tileWindow(index_, row, column));
+    const HeightWindow& window = reader_.windowFor(tileWindow(index_, row, column));
     bandRow_ = row;
     bakeTileInto(window, far_, index_, bake_, tiled_, folder_, row, column);
     return kBaked;

@@ -30,7 +30,7 @@ double nextUniform(uint64_t& state) {
 
 bool rayEscapes(const BakeTerrain& terrain, const BakeOptions& o, double x, double y, double z,
                 const double dir[3], double zMax) {
-  const Heightfield& f = *terrain.field;
+  const Heightfield& f = *terrain.heights.dem;
   const double horizontal = std::sqrt(dir[0] * dir[0] + dir[1] * dir[1]);
   if (horizontal < 1e-12) return dir[2] > 0;
   const double rise = dir[2] / horizontal;  // metres up per metre along the ground
@@ -62,10 +62,11 @@ bool rayEscapes(const BakeTerrain& terrain, const BakeOptions& o, double x, doub
 void bakeRays(const BakeTerrain& terrain, const BakeOptions& o, float* sums,
               std::vector<float>& svf) {
   if (!svf.empty()) throw std::invalid_argument("the sky-view factor needs the sweep method");
-  if (!terrain.window.covers(*terrain.field)) {
+  // The rays march the DEM's own heights (Heightfield::bilinearHeight).
+  const Heightfield& f = *terrain.heights.dem;
+  if (!terrain.window.covers(f) || f.z.size() != f.texelCount()) {
     throw std::invalid_argument("the ray method bakes whole fields only, not windows");
   }
-  const Heightfield& f = *terrain.field;
   const double zMax = *std::max_element(f.z.begin(), f.z.end());
   const int azimuthStrata = std::max(1, static_cast<int>(std::lround(std::sqrt(o.rays * 2.0))));
   const int elevationStrata = std::max(1, o.rays / azimuthStrata);

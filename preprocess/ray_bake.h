@@ -21,7 +21,8 @@ void bakeRays(const BakeTerrain& terrain, const BakeOptions& options, float* sum
 
 // True when the ray from world point (x, y, z) in unit direction `dir`
 // leaves the terrain without passing under it; zMax is the field's tallest
-// height (a ray rising above it has escaped). Exposed for tests.
+// height (a ray rising above it has escaped). The terrain must be of a whole
+// DEM in memory: the ray marches terrain.heights.dem. Exposed for tests.
 bool rayEscapes(const BakeTerrain& terrain, const BakeOptions& options, double x, double y,
                 double z, const double dir[3], double zMax);
 

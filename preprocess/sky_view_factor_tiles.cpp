@@ -33,8 +33,9 @@ void checkSkyViewFactorTiles(const Heightfield& geometry, bool skyViewFactor) {
   }
 }
 
-std::optional<float> markVoidsAsNodata(std::vector<float>& values, const Heightfield& field,
+std::optional<float> markVoidsAsNodata(std::vector<float>& values, HeightView heights,
                                        const TexelWindow& window) {
+  const Heightfield& field = *heights.dem;
   if (field.voidCount == 0 && !field.nodata) return std::nullopt;
   const bool fits = field.nodata && std::isfinite(static_cast<float>(*field.nodata));
   const float nodata =
@@ -42,7 +43,7 @@ std::optional<float> markVoidsAsNodata(std::vector<float>& values, const Heightf
   for (size_t i = 0; i < values.size(); ++i) {
     const int col = window.col + static_cast<int>(i % static_cast<size_t>(window.width));
     const int row = window.row + static_cast<int>(i / static_cast<size_t>(window.width));
-    if (field.isVoid(col, row)) values[i] = nodata;
+    if (heights.isVoid(col, row)) values[i] = nodata;
   }
   return nodata;
 }
@@ -89,17 +90,17 @@ uint64_t skyViewFactorPixelChecksum(const std::vector<float>& values, int width,
 }
 
 void writeSkyViewFactorTile(const std::string& folder, const ApertureTileIndex& index, int row,
-                            int column, std::vector<float> values, const Heightfield& field,
+                            int column, std::vector<float> values, HeightView heights,
                             const TexelWindow& window) {
   RasterWriteOptions options;
   // The same nodata value in every tile, so that the mosaic has one.
-  if (const std::optional<float> nodata = markVoidsAsNodata(values, field, window)) {
+  if (const std::optional<float> nodata = markVoidsAsNodata(values, heights, window)) {
     options.nodata = *nodata;
   }
   options.metadata = skyViewFactorTileItems(index, row, column);
   options.metadata.emplace_back(kSvfPixelChecksumItem, checksumHex(skyViewFactorPixelChecksum(
                                                            values, window.width, window.height)));
-  GeoReference geo = field.geo;
+  GeoReference geo = heights.dem->geo;
   geo.originX += window.col * geo.stepX;
   geo.originY -= window.row * geo.stepY;
   writeFloatGeoTiff((fs::path(folder) / skyViewFactorTileName(row, column)).string(), window.width,

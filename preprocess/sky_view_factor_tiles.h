@@ -10,9 +10,10 @@
 #include <utility>
 #include <vector>
 
-#include "aperture/preprocess/bake_terrain.h"
+#include "aperture/terrain/height_view.h"
 #include "aperture/terrain/heightfield.h"
 #include "aperture/terrain/io/aperture_map.h"
+#include "aperture/terrain/texel_window.h"
 
 namespace aal {
 
@@ -30,10 +31,11 @@ void checkSkyViewFactorTiles(const Heightfield& geometry, bool skyViewFactor);
 
 // The rule of every per-texel GeoTIFF a bake writes (--svf, --visible):
 // the DEM's voids hold nodata, the DEM's own nodata value when a float holds
-// it, else NaN. `values` are `window`'s texels of `field`, row-major.
-// Returns the nodata value, or none when the DEM has neither voids nor a
-// nodata value (then nothing is changed).
-std::optional<float> markVoidsAsNodata(std::vector<float>& values, const Heightfield& field,
+// it, else NaN. `values` are `window`'s texels of the DEM, row-major;
+// `heights` (the whole DEM, or a window of it holding `window`) gives the
+// voids. Returns the nodata value, or none when the DEM has neither voids
+// nor a nodata value (then nothing is changed).
+std::optional<float> markVoidsAsNodata(std::vector<float>& values, HeightView heights,
                                        const TexelWindow& window);
 
 // GDAL metadata items of a tile's GeoTIFF that tie it to its place and its
@@ -58,13 +60,13 @@ uint64_t skyViewFactorPixelChecksum(const std::vector<float>& values, int width,
 
 // Writes `values` (the window's texels, row-major) of tile (row, column) of
 // `index` as a float32 GeoTIFF FOLDER/svf_ROW_COL.tif placed like `window`
-// of the DEM: `field` (the DEM, or a band of its rows holding the window)
-// gives the georeferencing, offset by the window's origin, and the voids,
+// of the DEM: `heights` (the whole DEM, or a window of it holding `window`)
+// give the georeferencing, offset by the window's origin, and the voids,
 // which are nodata as in aal-bake's whole-DEM --svf (the DEM's nodata value
 // when float holds it, else NaN). It carries skyViewFactorTileItems and the
 // pixel checksum of the values as written. Temporary file, renamed.
 void writeSkyViewFactorTile(const std::string& folder, const ApertureTileIndex& index, int row,
-                            int column, std::vector<float> values, const Heightfield& field,
+                            int column, std::vector<float> values, HeightView heights,
                             const TexelWindow& window);
 
 // Whether tile (row, column)'s GeoTIFF is in the folder as this bake wrote

@@ -18,12 +18,14 @@ TexelWindow tileReadWindow(const Heightfield& geometry, int halo, const TexelWin
 }
 
 TileWindowReader::TileWindowReader(const DemSource& source, const Heightfield& geometry, int halo)
-    : source_(source), geometry_(geometry), halo_(halo), window_(geometry) {}
+    : source_(source), geometry_(geometry), halo_(halo) {
+  window_.dem = &geometry;
+}
 
 void TileWindowReader::readColumns(const TexelWindow& want, int col, int columns,
                                    std::vector<float>& z) {
   if (columns <= 0) return;
-  const Heightfield part = readDemWindow(source_, geometry_, col, want.row, columns, want.height);
+  const HeightWindow part = readDemWindow(source_, geometry_, col, want.row, columns, want.height);
   texelsRead_ += part.z.size();
   const size_t offset = static_cast<size_t>(col - want.col);
   for (int r = 0; r < want.height; ++r) {
@@ -32,9 +34,9 @@ void TileWindowReader::readColumns(const TexelWindow& want, int col, int columns
   }
 }
 
-const Heightfield& TileWindowReader::windowFor(const TexelWindow& tile) {
+const HeightWindow& TileWindowReader::windowFor(const TexelWindow& tile) {
   const TexelWindow want = tileReadWindow(geometry_, halo_, tile);
-  const TexelWindow& held = held_;
+  const TexelWindow& held = window_.texels;
   if (held.width > 0 && held.col == want.col && held.row == want.row && held.width == want.width &&
       held.height == want.height) {
     return window_;
@@ -55,10 +57,7 @@ const Heightfield& TileWindowReader::windowFor(const TexelWindow& tile) {
   readColumns(want, want.col, keepFirst - want.col, z);
   readColumns(want, keepEnd, want.col + want.width - keepEnd, z);
   window_.z = std::move(z);
-  window_.firstColumn = want.col;
-  window_.firstRow = want.row;
-  window_.windowColumns = want.width;
-  held_ = want;
+  window_.texels = want;
   return window_;
 }
 

@@ -8,8 +8,9 @@
 #include <cstdint>
 #include <vector>
 
-#include "aperture/preprocess/bake_terrain.h"
+#include "aperture/terrain/height_window.h"
 #include "aperture/terrain/heightfield.h"
+#include "aperture/terrain/texel_window.h"
 
 namespace aal {
 
@@ -24,14 +25,13 @@ class TileWindowReader {
   // `geometry`: demGeometry of `source`; both must outlive the reader.
   TileWindowReader(const DemSource& source, const Heightfield& geometry, int halo);
 
-  // The window of `tile` (tileReadWindow) as a Heightfield of `geometry`
-  // (Heightfield::firstColumn, firstRow, windowColumns), valid until the
-  // next call. When the window held before has the same rows, the columns
+  // The window of `tile` (tileReadWindow) as a HeightWindow of `geometry`,
+  // valid until the next call. When the window held before has the same rows, the columns
   // both share are kept and only the others are read through the source;
   // otherwise the whole window is read. The previous window is freed once
   // the new one is complete (memory: two windows at most, and the new
   // columns). Voids: readDemWindow's InputError.
-  const Heightfield& windowFor(const TexelWindow& tile);
+  const HeightWindow& windowFor(const TexelWindow& tile);
 
   // Samples read through the source by this reader.
   uint64_t texelsRead() const { return texelsRead_; }
@@ -44,8 +44,7 @@ class TileWindowReader {
   const DemSource& source_;
   const Heightfield& geometry_;
   const int halo_;
-  Heightfield window_;  // geometry_ with the held window's heights
-  TexelWindow held_;    // empty: nothing held
+  HeightWindow window_;  // empty (texels.width 0): nothing held
   uint64_t texelsRead_ = 0;
 };
 

@@ -291,20 +291,20 @@ TexelWindow tileWindow(const ApertureTileIndex& index, int row, int column) {
                      index.tileHeight(row)};
 }
 
-void bakeTileInto(const Heightfield& field, const FarField* far, const ApertureTileIndex& index,
+void bakeTileInto(HeightView heights, const FarField* far, const ApertureTileIndex& index,
                   const BakeOptions& bake, const TiledBakeOptions& tiled, const std::string& folder,
                   int row, int column) {
   BakeOptions tile = bake;
   if (!(bake.maxDistanceM > 0.0)) tile.farField = far;
   const TexelWindow window = tileWindow(index, row, column);
-  BakeResult result = bakeApertureWindow(field, window, tile);
+  BakeResult result = bakeApertureWindow(heights, window, tile);
   ApertureMapInfo& info = result.aperture.info;
   info.source = index.map.info.source;
   info.sourceChecksum = index.map.info.sourceChecksum;
   info.originCol = window.col;
   info.originRow = window.row;
   if (bake.skyViewFactor) {
-    writeSkyViewFactorTile(folder, index, row, column, std::move(result.skyViewFactor), field,
+    writeSkyViewFactorTile(folder, index, row, column, std::move(result.skyViewFactor), heights,
                            window);
   }
   writeApertureMap((fs::path(folder) / apertureTileName(row, column)).string(), result.aperture,
@@ -313,9 +313,9 @@ void bakeTileInto(const Heightfield& field, const FarField* far, const ApertureT
 
 namespace {
 
-// Gives the field a tile is baked from: the whole DEM, or a window of it
-// that holds the tile and the terrain its sweeps read (tileHalo).
-using TileTerrain = std::function<const Heightfield&(const TexelWindow& tile)>;
+// Gives the heights a tile is baked from: the whole DEM's, or a window of
+// it that holds the tile and the terrain its sweeps read (tileHalo).
+using TileTerrain = std::function<HeightView(const TexelWindow& tile)>;
 
 // `pyramid`: the whole DEM's, for a bake without a max distance;
 // `legacyChecksum`: the DEM's version 1 checksum, which older maps carry
@@ -416,8 +416,8 @@ TiledBakeSummary bakeTiled(const Heightfield& field, const BakeOptions& bake,
     pyramid.emplace(buildHeightPyramid(field, tiledBakePyramidShift(field, tiled)));
   return bakeTiles(
       field, heightfieldChecksum(field), [&] { return legacyHeightfieldChecksum(field); },
-      [&](const TexelWindow&) -> const Heightfield& { return field; },
-      pyramid ? &*pyramid : nullptr, bake, tiled, folder);
+      [&](const TexelWindow&) { return HeightView(field); }, pyramid ? &*pyramid : nullptr, bake,
+      tiled, folder);
 }
 
 int tileHalo(const Heightfield& geometry, const BakeOptions& bake, const TiledBakeOptions& tiled) {
@@ -434,6 +434,7 @@ int tileHalo(const Heightfield& geometry, const BakeOptions& bake, const TiledBa
   // distance are read, then ignored; TileWindow.* tests the bound).
   const double reach =
       bake.maxDistanceM > 0.0 ? bake.maxDistanceM : resolvedFarField(geometry, tiled).nearReachM;
+  // (Only the positions of the terrain are used: geometry may hold no heights.)
   return detail::stepsCovering(prepareBakeTerrain(geometry), reach) + tiled.tileSize + 3;
 }
 
@@ -454,7 +455,7 @@ int demPassChunkRows(const Heightfield& geometry, const HeightPyramid* pyramid) 
 
 void scanDemChunk(const DemSource& source, const Heightfield& geometry, int firstRow, int count,
                   uint64_t* rowHashes, HeightPyramid* pyramid) {
-  const Heightfield rows = readDemRows(source, geometry, firstRow, count);
+  const HeightWindow rows = readDemRows(source, geometry, firstRow, count);
   tbb::parallel_invoke(
       [&] {
         tbb::parallel_for(tbb::blocked_range<int>(0, count), [&](const tbb::blocked_range<int>& r) {
@@ -490,7 +491,7 @@ std::string legacyDemChecksum(const DemSource& source, const Heightfield& geomet
   LegacyHeightfieldHasher hasher(geometry.width, geometry.height);
   const int chunk = demPassChunkRows(geometry, nullptr);
   for (int row = 0; row < geometry.height; row += chunk) {
-    const Heightfield rows =
+    const HeightWindow rows =
         readDemRows(source, geometry, row, std::min(chunk, geometry.height - row));
     hasher.add(rows.z.data(), rows.z.size());
   }
@@ -554,7 +555,7 @@ TiledBakeSummary bakeTiledInBands(const DemSource& source, const Heightfield& ge
   TileWindowReader reader(source, geometry, tileHalo(geometry, bake, tiled));
   TiledBakeSummary summary = bakeTiles(
       geometry, pass.checksum, [&] { return legacyDemChecksum(source, geometry); },
-      [&](const TexelWindow& tile) -> const Heightfield& { return reader.windowFor(tile); },
+      [&](const TexelWindow& tile) -> HeightView { return reader.windowFor(tile); },
       pass.pyramid ? &*pass.pyramid : nullptr, bake, locked, folder);
   summary.texelsRead = reader.texelsRead();
   return summary;

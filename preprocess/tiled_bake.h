@@ -232,11 +232,11 @@ void openTileFolder(const std::string& folder, const ApertureTileIndex& index);
 bool tileFinished(const ApertureTileIndex& index, const std::string& folder, int row, int column);
 // The texels of tile (row, column).
 TexelWindow tileWindow(const ApertureTileIndex& index, int row, int column);
-// Bakes tile (row, column) from `field` (the whole DEM, or a window that
+// Bakes tile (row, column) from `heights` (the whole DEM, or a window that
 // holds the tile and tileHalo around it: TileWindowReader) and writes it into the folder (a
 // temporary file, renamed), with its SVF GeoTIFF when the bake writes the SVF. `far`: the whole
 // DEM's far field, for a bake without a max distance (its options resolvedFarField's).
-void bakeTileInto(const Heightfield& field, const FarField* far, const ApertureTileIndex& index,
+void bakeTileInto(HeightView heights, const FarField* far, const ApertureTileIndex& index,
                   const BakeOptions& bake, const TiledBakeOptions& tiled, const std::string& folder,
                   int row, int column);
 // Once every tile is finished: the SVF mosaic when the bake writes the SVF,

@@ -1,5 +1,7 @@
 // A DEM in memory: heights on a regular grid with metric spacing, a void mask
-// and optional georeferencing. docs/design.md §1.
+// and optional georeferencing. docs/design.md §1. Always the whole DEM (or,
+// with z empty, only its geometry: demGeometry); a rectangle of a DEM read in
+// parts is a HeightWindow (terrain/height_window.h).
 //
 // Conventions: row 0 is the northern edge, column 0 the western edge, texel
 // centres sit on the grid points. Heights are metres (z scale applied) above
@@ -70,31 +72,9 @@ struct Heightfield {
   std::optional<double> nodata;
   std::string zUnitName;
 
-  // The part held in z and voidMask: every texel, but in a window of a DEM
-  // read in parts (a tiled bake of a DEM larger than memory, preprocess/
-  // tiled_bake.h), whose z holds only columns [firstColumn, firstColumn +
-  // residentColumns()) of rows [firstRow, firstRow + residentRows()), row
-  // after row. index() and at() take the whole DEM's columns and rows either
-  // way; only the resident texels may be read.
-  int firstRow = 0, firstColumn = 0;
-  int windowColumns = 0;  // columns held per row; 0: every column
-
   size_t texelCount() const { return static_cast<size_t>(width) * static_cast<size_t>(height); }
-  int residentColumns() const { return windowColumns > 0 ? windowColumns : width; }
-  int residentRows() const {
-    const int columns = residentColumns();
-    return columns > 0 ? static_cast<int>(z.size() / static_cast<size_t>(columns)) : 0;
-  }
-  // Every texel of the DEM, not a window of it.
-  bool holdsEveryTexel() const {
-    return firstRow == 0 && firstColumn == 0 && residentColumns() == width &&
-           residentRows() == height;
-  }
-  bool holdsColumn(int x) const { return x >= firstColumn && x < firstColumn + residentColumns(); }
-  bool holdsRow(int y) const { return y >= firstRow && y < firstRow + residentRows(); }
   size_t index(int x, int y) const {
-    return static_cast<size_t>(y - firstRow) * static_cast<size_t>(residentColumns()) +
-           static_cast<size_t>(x - firstColumn);
+    return static_cast<size_t>(y) * static_cast<size_t>(width) + static_cast<size_t>(x);
   }
   float at(int x, int y) const { return z[index(x, y)]; }
   bool isVoid(int x, int y) const { return !voidMask.empty() && voidMask[index(x, y)] != 0; }

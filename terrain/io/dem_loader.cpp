@@ -146,16 +146,13 @@ Heightfield demGeometry(const DemSource& source, const DemLoadOptions& options) 
   return geometryOf(source.description(), source.path(), options);
 }
 
-Heightfield readDemRows(const DemSource& source, const Heightfield& geometry, int firstRow,
-                        int rows) {
-  // A window of every column, held as whole rows (windowColumns 0).
-  Heightfield band = readDemWindow(source, geometry, 0, firstRow, source.width(), rows);
-  band.windowColumns = 0;
-  return band;
+HeightWindow readDemRows(const DemSource& source, const Heightfield& geometry, int firstRow,
+                         int rows) {
+  return readDemWindow(source, geometry, 0, firstRow, source.width(), rows);
 }
 
-Heightfield readDemWindow(const DemSource& source, const Heightfield& geometry, int firstColumn,
-                          int firstRow, int columns, int rows) {
+HeightWindow readDemWindow(const DemSource& source, const Heightfield& geometry, int firstColumn,
+                           int firstRow, int columns, int rows) {
   RawDem raw = source.read(firstColumn, firstRow, columns, rows);
   const size_t voids = scaleHeights(raw, geometry.zScale, source.path(), firstRow, firstColumn);
   if (voids > 0) {
@@ -167,10 +164,9 @@ Heightfield readDemWindow(const DemSource& source, const Heightfield& geometry, 
                      "DEM: fill them first, e.g. `gdal_fillnodata.py " +
                      source.path() + " filled.tif`");
   }
-  Heightfield window = geometry;
-  window.firstColumn = firstColumn;
-  window.firstRow = firstRow;
-  window.windowColumns = columns;
+  HeightWindow window;
+  window.dem = &geometry;
+  window.texels = TexelWindow{firstColumn, firstRow, columns, rows};
   window.z = std::move(raw.z);
   return window;
 }

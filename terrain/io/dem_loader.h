@@ -4,6 +4,7 @@
 
 #include <string>
 
+#include "aperture/terrain/height_window.h"
 #include "aperture/terrain/heightfield.h"
 #include "aperture/terrain/io/dem_options.h"
 #include "aperture/terrain/io/raw_dem.h"
@@ -38,19 +39,21 @@ class DemSource;
 // (same checks and warnings). For work on parts of a DEM larger than memory.
 Heightfield demGeometry(const DemSource& source, const DemLoadOptions& options);
 
-// Rows [firstRow, firstRow + rows) of the DEM, every column, as a band of
-// `geometry` (demGeometry of the same source): Heightfield::firstRow set, z
-// holding those rows in metres. Throws InputError when a void falls in them:
-// filling voids needs the whole DEM, so a DEM read in parts must have none.
-Heightfield readDemRows(const DemSource& source, const Heightfield& geometry, int firstRow,
-                        int rows);
+// Rows [firstRow, firstRow + rows) of the DEM, every column, as a window
+// of `geometry` (demGeometry of the same source, which must outlive it: the
+// window points to it), z holding those rows in metres. Throws InputError
+// when a void falls in them: filling voids needs the whole DEM, so a DEM
+// read in parts must have none.
+HeightWindow readDemRows(const DemSource& source, const Heightfield& geometry, int firstRow,
+                         int rows);
+HeightWindow readDemRows(const DemSource&, const Heightfield&&, int, int) = delete;
 
 // Columns [firstColumn, firstColumn + columns) of rows [firstRow, firstRow +
 // rows) of the DEM as a window of `geometry`, as readDemRows gives a band:
-// Heightfield::firstColumn, firstRow and windowColumns set, z holding those
-// texels row after row. The same InputError for voids.
-Heightfield readDemWindow(const DemSource& source, const Heightfield& geometry, int firstColumn,
-                          int firstRow, int columns, int rows);
+// z holding those texels row after row. The same InputError for voids.
+HeightWindow readDemWindow(const DemSource& source, const Heightfield& geometry, int firstColumn,
+                           int firstRow, int columns, int rows);
+HeightWindow readDemWindow(const DemSource&, const Heightfield&&, int, int, int, int) = delete;
 
 // Heights of `raw` (the window from firstColumn, firstRow of the DEM at
 // `path`) times zScale, in place; non-finite ones flagged as voids (set to

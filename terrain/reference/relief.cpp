@@ -413,7 +413,7 @@ ReliefImage shadeRelief(const Heightfield& field, const ApertureMap& map, const 
                         const std::function<void(double)>& progress) {
   if (field.width < 2 || field.height < 2 || map.width != field.width ||
       map.height != field.height || map.texels.size() != 4 * map.texelCount() ||
-      !field.holdsEveryTexel()) {
+      field.z.size() != field.texelCount()) {
     throw std::invalid_argument(
         "shadeRelief: the DEM (at least 2 x 2, whole) and its aperture "
         "map must have the same size");
@@ -426,7 +426,7 @@ ReliefImage shadeRelief(const Heightfield& field, const HalfApertureMap& map,
   if (field.width < 2 || field.height < 2 || map.width != field.width ||
       map.height != field.height ||
       map.texels.size() != 4 * static_cast<size_t>(map.width) * map.height ||
-      !field.holdsEveryTexel()) {
+      field.z.size() != field.texelCount()) {
     throw std::invalid_argument(
         "shadeRelief: the DEM (at least 2 x 2, whole) and its aperture "
         "map must have the same size");

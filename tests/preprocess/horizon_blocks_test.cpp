@@ -45,7 +45,7 @@ Heightfield roughTerrain(int width, int height, bool geographic) {
 // Largest |a - b| relative to max(1, |b|) over the texels, with both "no
 // horizon" markers taken as equal; fails on a texel visited other than once.
 void expectSameHorizons(const BakeTerrain& terrain, double phi, const HorizonSweepOptions& o) {
-  const size_t texels = terrain.field->texelCount();
+  const size_t texels = terrain.heights.dem->texelCount();
   std::vector<double> reference(texels, std::nan(""));
   sweepHorizons(terrain, phi, o, [&](size_t i, double tanH) { reference[i] = tanH; });
   std::vector<float> blocks(texels, std::nanf(""));
@@ -77,7 +77,7 @@ void expectSameHorizons(const BakeTerrain& terrain, double phi, const HorizonSwe
 // each must match its own reference sweep. Returns whether it paired.
 bool expectSameOpposedHorizons(const BakeTerrain& terrain, double phi, double phiOpposite,
                                const HorizonSweepOptions& o) {
-  const size_t texels = terrain.field->texelCount();
+  const size_t texels = terrain.heights.dem->texelCount();
   std::vector<double> reference(texels), referenceOpposite(texels);
   sweepHorizons(terrain, phi, o, [&](size_t i, double tanH) { reference[i] = tanH; });
   sweepHorizons(terrain, phiOpposite, o,
@@ -191,7 +191,7 @@ bool cpuHasAvx2() {
 // says whether the opposed sweep paired).
 std::vector<float> blockTangents(const BakeTerrain& terrain, double phi,
                                  const HorizonSweepOptions& o) {
-  const size_t texels = terrain.field->texelCount();
+  const size_t texels = terrain.heights.dem->texelCount();
   std::vector<float> out(3 * texels + 1, std::nanf(""));
   sweepHorizonBlocks(terrain, phi, o, [&](const HorizonBlock& b) {
     for (int j = 0; j < b.count; ++j) out[b.firstTexel + j * b.stride] = b.tanHorizon[j];

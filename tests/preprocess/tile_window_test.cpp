@@ -59,11 +59,10 @@ Heightfield geographicField() {
 }
 
 // `window` of `field` as a DEM read in parts would hold it.
-Heightfield cutWindow(const Heightfield& field, const TexelWindow& window) {
-  Heightfield part = field;
-  part.firstColumn = window.col;
-  part.firstRow = window.row;
-  part.windowColumns = window.width;
+HeightWindow cutWindow(const Heightfield& field, const TexelWindow& window) {
+  HeightWindow part;
+  part.dem = &field;
+  part.texels = window;
   part.z.resize(window.texelCount());
   for (int row = 0; row < window.height; ++row) {
     for (int col = 0; col < window.width; ++col) {
@@ -133,7 +132,7 @@ void expectWindowsBakeTheWholeFieldsTiles(const Heightfield& field, const BakeOp
       const TexelWindow read = tileReadWindow(field, halo, tile);
       partial = partial || (read.width < field.width && read.height < field.height &&
                             read.col > 0 && read.row > 0);
-      const Heightfield window = cutWindow(field, read);
+      const HeightWindow window = cutWindow(field, read);
       EXPECT_TRUE(sameBits(bakeApertureWindow(window, tile, tiles.bake),
                            bakeApertureWindow(field, tile, tiles.bake)))
           << "tile at " << col << "," << row << ", halo " << halo;
@@ -225,13 +224,14 @@ TEST(TileWindow, TheReaderSlidesAlongATileRowReadingOnlyTheNewColumns) {
 
   const auto expectWindow = [&](const TexelWindow& tile, uint64_t newTexels) {
     const uint64_t before = source.texelsRead();
-    const Heightfield& window = reader.windowFor(tile);
+    const HeightWindow& window = reader.windowFor(tile);
     const TexelWindow want = tileReadWindow(geometry, kHalo, tile);
     EXPECT_EQ(source.texelsRead() - before, newTexels) << "tile at " << tile.col;
-    EXPECT_EQ(window.firstColumn, want.col);
-    EXPECT_EQ(window.firstRow, want.row);
-    EXPECT_EQ(window.residentColumns(), want.width);
-    EXPECT_EQ(window.residentRows(), want.height);
+    EXPECT_EQ(window.texels.col, want.col);
+    EXPECT_EQ(window.texels.row, want.row);
+    EXPECT_EQ(window.texels.width, want.width);
+    EXPECT_EQ(window.texels.height, want.height);
+    EXPECT_EQ(window.z.size(), want.texelCount());
     size_t differing = 0;
     for (int row = want.row; row < want.row + want.height; ++row) {
       for (int col = want.col; col < want.col + want.width; ++col) {

@@ -322,18 +322,16 @@ TEST(Relief, RefusesAMismatchedMap) {
   EXPECT_THROW(shadeRelief(f, m, s), std::invalid_argument);
 }
 
-// A window of a DEM (preprocess/tile_window_reader.h) is not the DEM, even
-// one that holds every row.
+// A DEM without all its heights (a window's worth, as a HeightWindow of
+// terrain/height_window.h holds, or none: demGeometry) is not the DEM, even
+// with every row.
 TEST(Relief, RefusesAWindowOfTheDem) {
   const Heightfield whole = plane(8, 10, 0, 0);
   const ApertureMap m = openAperture(whole, {0, 0, 1});
   const ReliefSettings s = sunAt(250, 30, 0.3f);
   ASSERT_NO_THROW(shadeRelief(whole, m, s));
   Heightfield window = whole;
-  window.firstColumn = 2;
-  window.windowColumns = 4;
-  window.z.resize(size_t(window.windowColumns) * size_t(window.height));
-  ASSERT_EQ(window.residentRows(), window.height);
+  window.z.resize(size_t(4) * size_t(window.height));
   EXPECT_THROW(shadeRelief(window, m, s), std::invalid_argument);
   EXPECT_THROW(shadeRelief(window, toHalfApertureMap(m), s), std::invalid_argument);
 }
