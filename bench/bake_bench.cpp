@@ -43,21 +43,6 @@ BENCHMARK(BM_BakeSweep)
     ->Unit(benchmark::kMillisecond)
     ->UseRealTime();
 
-// `window` of `field` as a DEM read in parts holds it.
-aal::HeightWindow cutWindow(const aal::Heightfield& field, const aal::TexelWindow& window) {
-  aal::HeightWindow part;
-  part.dem = &field;
-  part.texels = window;
-  part.z.resize(window.texelCount());
-  for (int row = 0; row < window.height; ++row) {
-    for (int col = 0; col < window.width; ++col) {
-      part.z[static_cast<size_t>(row) * window.width + col] =
-          field.at(window.col + col, window.row + row);
-    }
-  }
-  return part;
-}
-
 // A tile of a tiled bake read in windows (aal-bake --tile-size
 // --low-memory): the centre 256^2 tile of a 1024^2 DEM, baked from its
 // window (the tile and tileHalo around it), with a max distance in metres
@@ -78,7 +63,7 @@ void BM_BakeTileWindow(benchmark::State& state) {
   }
   const aal::TexelWindow tile{384, 384, 256, 256};
   const int halo = aal::tileHalo(field, options, tiled);
-  const aal::HeightWindow window = cutWindow(field, aal::tileReadWindow(field, halo, tile));
+  const aal::HeightWindow window = aal::windowOf(field, aal::tileReadWindow(field, halo, tile));
   for (auto _ : state) {
     aal::BakeResult result = aal::bakeApertureWindow(window, tile, options);
     benchmark::DoNotOptimize(result.aperture.texels.data());

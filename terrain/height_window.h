@@ -44,4 +44,29 @@ struct HeightWindow {
   operator HeightView() const&& = delete;
 };
 
+// Rectangle `window` of a DEM held whole, `field`, copied out as a window of
+// it (heights and void flags): what a DEM read in parts would hold there.
+// `field` becomes the window's dem, so it must outlive the window.
+inline HeightWindow windowOf(const Heightfield& field, const TexelWindow& window) {
+  HeightWindow part;
+  part.dem = &field;
+  part.texels = window;
+  part.z.reserve(window.texelCount());
+  for (int row = window.row; row < window.row + window.height; ++row) {
+    for (int col = window.col; col < window.col + window.width; ++col) {
+      part.z.push_back(field.at(col, row));
+    }
+  }
+  if (!field.voidMask.empty()) {
+    part.voidMask.reserve(window.texelCount());
+    for (int row = window.row; row < window.row + window.height; ++row) {
+      for (int col = window.col; col < window.col + window.width; ++col) {
+        part.voidMask.push_back(field.isVoid(col, row) ? 1 : 0);
+      }
+    }
+  }
+  return part;
+}
+HeightWindow windowOf(const Heightfield&& field, const TexelWindow& window) = delete;
+
 }  // namespace aal

@@ -58,21 +58,6 @@ Heightfield geographicField() {
   return field;
 }
 
-// `window` of `field` as a DEM read in parts would hold it.
-HeightWindow cutWindow(const Heightfield& field, const TexelWindow& window) {
-  HeightWindow part;
-  part.dem = &field;
-  part.texels = window;
-  part.z.resize(window.texelCount());
-  for (int row = 0; row < window.height; ++row) {
-    for (int col = 0; col < window.width; ++col) {
-      part.z[static_cast<size_t>(row) * window.width + col] =
-          field.at(window.col + col, window.row + row);
-    }
-  }
-  return part;
-}
-
 // Bit for bit (NaN payloads and signed zeros too). Empty vectors are equal
 // without memcmp, whose null pointers would be undefined behaviour.
 bool sameBits(const std::vector<float>& a, const std::vector<float>& b) {
@@ -132,7 +117,7 @@ void expectWindowsBakeTheWholeFieldsTiles(const Heightfield& field, const BakeOp
       const TexelWindow read = tileReadWindow(field, halo, tile);
       partial = partial || (read.width < field.width && read.height < field.height &&
                             read.col > 0 && read.row > 0);
-      const HeightWindow window = cutWindow(field, read);
+      const HeightWindow window = windowOf(field, read);
       EXPECT_TRUE(sameBits(bakeApertureWindow(window, tile, tiles.bake),
                            bakeApertureWindow(field, tile, tiles.bake)))
           << "tile at " << col << "," << row << ", halo " << halo;

@@ -30,7 +30,7 @@ Heightfield wholeDem() {
 }
 
 // Columns 3..6 of rows 2..6 of `dem`, as a DEM read in parts holds them.
-HeightWindow windowOf(const Heightfield& dem, const TexelWindow& texels = {3, 2, 4, 5}) {
+HeightWindow handMadeWindow(const Heightfield& dem, const TexelWindow& texels = {3, 2, 4, 5}) {
   HeightWindow window;
   window.dem = &dem;
   window.texels = texels;
@@ -44,7 +44,7 @@ HeightWindow windowOf(const Heightfield& dem, const TexelWindow& texels = {3, 2,
 
 TEST(HeightWindow, IndexesItsHeightsInTheWholeDemsColumnsAndRows) {
   const Heightfield dem = wholeDem();
-  const HeightWindow window = windowOf(dem);
+  const HeightWindow window = handMadeWindow(dem);
   EXPECT_EQ(window.index(3, 2), 0u);
   EXPECT_EQ(window.index(6, 2), 3u);
   EXPECT_EQ(window.index(3, 3), 4u);
@@ -56,7 +56,7 @@ TEST(HeightWindow, IndexesItsHeightsInTheWholeDemsColumnsAndRows) {
 
 TEST(HeightWindow, HoldsOnlyItsRectangle) {
   const Heightfield dem = wholeDem();
-  const HeightWindow window = windowOf(dem);
+  const HeightWindow window = handMadeWindow(dem);
   EXPECT_FALSE(window.holdsColumn(2));
   EXPECT_TRUE(window.holdsColumn(3));
   EXPECT_TRUE(window.holdsColumn(6));
@@ -70,14 +70,14 @@ TEST(HeightWindow, HoldsOnlyItsRectangle) {
   EXPECT_FALSE(window.holds(7, 2));
   EXPECT_FALSE(window.holdsEveryTexel());
   // Every row but not every column, and the other way round, is a window.
-  EXPECT_FALSE(windowOf(dem, {0, 0, 9, 8}).holdsEveryTexel());
-  EXPECT_FALSE(windowOf(dem, {0, 1, 10, 7}).holdsEveryTexel());
-  EXPECT_TRUE(windowOf(dem, {0, 0, 10, 8}).holdsEveryTexel());
+  EXPECT_FALSE(handMadeWindow(dem, {0, 0, 9, 8}).holdsEveryTexel());
+  EXPECT_FALSE(handMadeWindow(dem, {0, 1, 10, 7}).holdsEveryTexel());
+  EXPECT_TRUE(handMadeWindow(dem, {0, 0, 10, 8}).holdsEveryTexel());
 }
 
 TEST(HeightWindow, FlagsVoidsInTheWholeDemsColumnsAndRows) {
   const Heightfield dem = wholeDem();
-  HeightWindow window = windowOf(dem);
+  HeightWindow window = handMadeWindow(dem);
   EXPECT_FALSE(window.isVoid(4, 5));  // no mask: no voids
   window.voidMask.assign(window.z.size(), 0);
   window.voidMask[window.index(4, 5)] = 1;
@@ -88,7 +88,7 @@ TEST(HeightWindow, FlagsVoidsInTheWholeDemsColumnsAndRows) {
 
 TEST(HeightView, OfAWindowReadsTheWindowsHeightsAndVoids) {
   const Heightfield dem = wholeDem();
-  HeightWindow window = windowOf(dem);
+  HeightWindow window = handMadeWindow(dem);
   window.voidMask.assign(window.z.size(), 0);
   window.voidMask[window.index(6, 2)] = 1;
   const HeightView view = window;
@@ -131,6 +131,24 @@ TEST(TexelWindow, ContainsARectangleWhoseCornersItHolds) {
   EXPECT_FALSE(window.contains(TexelWindow{5, 3, 3, 2}));
   EXPECT_FALSE(window.contains(TexelWindow{4, 1, 2, 2}));
   EXPECT_FALSE(window.contains(TexelWindow{4, 6, 2, 2}));
+}
+
+TEST(HeightWindow, CopiedOutOfAWholeDemHoldsWhatADemReadInPartsWould) {
+  Heightfield dem = wholeDem();
+  dem.voidMask.assign(dem.texelCount(), 0);
+  dem.voidMask[dem.index(4, 3)] = 1;  // inside the window
+  dem.voidMask[dem.index(0, 0)] = 1;  // outside it
+  const TexelWindow texels{3, 2, 4, 5};
+  const HeightWindow copied = windowOf(dem, texels);
+  const HeightWindow expected = handMadeWindow(dem, texels);
+  EXPECT_EQ(copied.dem, &dem);
+  EXPECT_EQ(copied.z, expected.z);
+  ASSERT_EQ(copied.voidMask.size(), copied.z.size());
+  for (int y = 2; y <= 6; ++y) {
+    for (int x = 3; x <= 6; ++x) EXPECT_EQ(copied.isVoid(x, y), x == 4 && y == 3) << x << "," << y;
+  }
+  dem.voidMask.clear();
+  EXPECT_TRUE(windowOf(dem, texels).voidMask.empty());
 }
 
 }  // namespace
