@@ -151,6 +151,7 @@ void BM_RenderView(benchmark::State& state) {
 BENCHMARK(BM_RenderView)
     ->ArgsProduct({{0, 1, 2}, {0, 1}, {1, 2, 4, 8}})
     ->Unit(benchmark::kMillisecond)
+    ->MeasureProcessCPUTime()
     ->UseRealTime();
 
 // The approx frame with the obscurance passes for n = 0 (off), 8,

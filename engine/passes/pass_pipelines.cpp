@@ -95,6 +95,9 @@ const GraphicsPipeline& PassPipelines::terrain(TexturePaging paging, ShadingMode
                       .depthFormat = kDepthFormat,
                       .depthTest = true,
                       .depthWrite = true,
+                      // Back faces are culled when the camera cannot see
+                      // them (drawTerrain; docs/rendering.md, "Drawing order").
+                      .dynamicCullMode = true,
                       .specialization = variantConstants(mode, albedo, display, footprintProbes)});
 }
 

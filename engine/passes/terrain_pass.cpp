@@ -100,6 +100,11 @@ void drawTerrain(const PassContext& pass, const FramePlan& plan, const FrameTarg
                 .image(kAfterTerrainTextures + 1, targets.capTable.view(),
                        pass.pipelines.linear.handle()),
             nullptr);
+  // Back faces the camera cannot see cost rasterization, and shading where
+  // they come before the front faces that hide them (docs/rendering.md,
+  // "Drawing order"); from under the sheet's open edge they show.
+  vkCmdSetCullMode(pass.cmd,
+                   plan.selection->backFacesHidden ? VK_CULL_MODE_BACK_BIT : VK_CULL_MODE_NONE);
   vkCmdBindIndexBuffer(pass.cmd, pass.scene.indices().handle(), 0, VK_INDEX_TYPE_UINT32);
   drawPatches(pass.cmd, *plan.selection);
 }

@@ -96,10 +96,11 @@ GraphicsPipeline::GraphicsPipeline(const Device& device, const GraphicsPipelineD
       .sType = VK_STRUCTURE_TYPE_PIPELINE_COLOR_BLEND_STATE_CREATE_INFO,
       .attachmentCount = static_cast<uint32_t>(blendAttachments.size()),
       .pAttachments = blendAttachments.data()};
-  const VkDynamicState dynamicStates[] = {VK_DYNAMIC_STATE_VIEWPORT, VK_DYNAMIC_STATE_SCISSOR};
+  const VkDynamicState dynamicStates[] = {VK_DYNAMIC_STATE_VIEWPORT, VK_DYNAMIC_STATE_SCISSOR,
+                                          VK_DYNAMIC_STATE_CULL_MODE};
   const VkPipelineDynamicStateCreateInfo dynamic{
       .sType = VK_STRUCTURE_TYPE_PIPELINE_DYNAMIC_STATE_CREATE_INFO,
-      .dynamicStateCount = 2,
+      .dynamicStateCount = desc.dynamicCullMode ? 3u : 2u,
       .pDynamicStates = dynamicStates};
 
   const VkPipelineRenderingCreateInfo rendering{

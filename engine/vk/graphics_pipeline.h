@@ -24,6 +24,8 @@ struct GraphicsPipelineDesc {
   bool depthTest = false;
   bool depthWrite = false;
   VkCullModeFlags cullMode = VK_CULL_MODE_NONE;
+  // The cull mode is set per draw (vkCmdSetCullMode) instead of `cullMode`.
+  bool dynamicCullMode = false;
   // Colour added to the target (ONE + ONE), alpha kept; else replaced.
   bool additiveBlend = false;
   // Specialisation constants of both stages: constant_id i takes

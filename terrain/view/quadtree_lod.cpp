@@ -70,15 +70,19 @@ class Selector {
   LodSelection run() {
     const int root = tree_.levels() - 1;
     select(root, 0, 0);
+    nearestFirst(whole_);
+    for (auto& q : quadrants_) nearestFirst(q);
     LodSelection s;
     s.errorScale = ranges_.errorScale;
     s.patchesPerLevel.assign(static_cast<size_t>(tree_.levels()), 0);
     s.wholeCount = static_cast<uint32_t>(whole_.size());
-    s.patches = whole_;
+    s.patches.reserve(whole_.size() + quadrants_[0].size() + quadrants_[1].size() +
+                      quadrants_[2].size() + quadrants_[3].size());
+    for (const Placed& p : whole_) s.patches.push_back(p.patch);
     s.triangles = whole_.size() * patchTriangles(true);
     for (size_t q = 0; q < 4; ++q) {
       s.quadrantCount[q] = static_cast<uint32_t>(quadrants_[q].size());
-      s.patches.insert(s.patches.end(), quadrants_[q].begin(), quadrants_[q].end());
+      for (const Placed& p : quadrants_[q]) s.patches.push_back(p.patch);
       s.triangles += quadrants_[q].size() * patchTriangles(false);
     }
     for (const LodPatch& p : s.patches) ++s.patchesPerLevel[static_cast<size_t>(p.node.w)];
@@ -103,18 +107,38 @@ class Selector {
     if (!root && !intersectsSphere(box, camera_, ranges_.rangeM[size_t(level)])) return false;
     if (cull_ && outsideFrustum(box, planes_)) return true;
     if (level == 0 || !intersectsSphere(box, camera_, ranges_.rangeM[size_t(level - 1)])) {
-      whole_.push_back(patch(level, i, j));
+      whole_.push_back({distanceTo(box), patch(level, i, j)});
       triangles_ += patchTriangles(true);
       return true;
     }
     for (int q = 0; q < 4; ++q) {
       const int ci = 2 * i + q % 2, cj = 2 * j + q / 2;
       if (!select(level - 1, ci, cj)) {
-        quadrants_[size_t(q)].push_back(patch(level, i, j));
+        quadrants_[size_t(q)].push_back({distanceTo(box), patch(level, i, j)});
         triangles_ += patchTriangles(false);
       }
     }
     return true;
+  }
+
+  // A patch and its box's distance from the camera.
+  struct Placed {
+    double distanceM;
+    LodPatch patch;
+  };
+
+  double distanceTo(const LodBox& box) const {
+    return glm::length(glm::clamp(camera_, box.min, box.max) - camera_);
+  }
+
+  // Nearest first, so that the depth test rejects what nearer terrain hides
+  // before it is shaded: a rasterizer draws a draw's instances in order, and
+  // a fragment's cost is its texture fetches (docs/rendering.md, "Drawing
+  // order"). Stable: equal distances keep the traversal's order, so a
+  // selection is drawn the same way every time.
+  static void nearestFirst(std::vector<Placed>& patches) {
+    std::stable_sort(patches.begin(), patches.end(),
+                     [](const Placed& a, const Placed& b) { return a.distanceM < b.distanceM; });
   }
 
   const LodQuadtree& tree_;
@@ -123,8 +147,8 @@ class Selector {
   bool cull_;
   size_t limit_, triangles_ = 0;
   std::array<glm::dvec4, 6> planes_{};
-  std::vector<LodPatch> whole_;
-  std::array<std::vector<LodPatch>, 4> quadrants_;
+  std::vector<Placed> whole_;
+  std::array<std::vector<Placed>, 4> quadrants_;
 };
 
 }  // namespace
@@ -387,7 +411,15 @@ double lodBudgetErrorScale(const LodQuadtree& tree, size_t triangleBudget) {
 
 LodSelection selectLod(const LodQuadtree& tree, const LodRanges& ranges, glm::dvec3 cameraM,
                        const glm::mat4* viewProj) {
-  return Selector(tree, ranges, cameraM, viewProj).run();
+  LodSelection s = Selector(tree, ranges, cameraM, viewProj).run();
+  s.backFacesHidden = lodHidesBackFaces(tree, cameraM);
+  return s;
+}
+
+bool lodHidesBackFaces(const LodQuadtree& tree, glm::dvec3 cameraM) {
+  const LodBox dem = tree.nodeBox(tree.levels() - 1, 0, 0);
+  return cameraM.x >= dem.min.x && cameraM.x <= dem.max.x && cameraM.y >= dem.min.y &&
+         cameraM.y <= dem.max.y && cameraM.z > dem.max.z;
 }
 
 LodSelection selectLodForFrame(const LodQuadtree& tree, const LodFrame& frame) {
@@ -404,6 +436,7 @@ LodSelection selectLodForFrame(const LodQuadtree& tree, const LodFrame& frame) {
     scale *= 0.8 * std::sqrt(double(frame.triangleBudget) / double(s.triangles));
     if (attempt == 14) scale = 0;  // the coarsest selection there is
   }
+  s.backFacesHidden = s.backFacesHidden && frame.settings.cullBackFaces;
   return s;
 }
 

@@ -56,6 +56,10 @@ struct LodSettings {
   // opens cracks between levels on rough terrain (the crack test checks that
   // it does).
   bool morph = true;
+  // Tests only: false draws back faces even where the camera cannot see them
+  // (LodSelection::backFacesHidden stays false), to show that culling them
+  // leaves the picture as it is.
+  bool cullBackFaces = true;
 };
 
 // World-space axis-aligned box of a node (metres, the frame of docs/design.md §1).
@@ -156,7 +160,19 @@ struct LodSelection {
   size_t triangles = 0;                   // as drawn (degenerate ones past the DEM edge included)
   std::vector<uint32_t> patchesPerLevel;  // whole nodes and quadrants, per level
   double errorScale = 0;                  // the P it was selected with
+  // The camera sees no back face of the drawn mesh (lodHidesBackFaces): the
+  // renderer may cull them.
+  bool backFacesHidden = false;
 };
+
+// True when no back face of the drawn mesh can be seen from `cameraM`: the
+// camera is over the DEM (within its rectangle) and above its highest
+// texel. A heightfield is a sheet z = h(x, y); a ray from such a camera that
+// reaches a back face has crossed the sheet downwards first, so a front
+// face hides it. Every drawn height (prefiltered means, their morph) lies
+// within the texels' range, so this holds for the mesh too. From beside or
+// below the sheet (a view under its open edge) back faces can show.
+bool lodHidesBackFaces(const LodQuadtree& tree, glm::dvec3 cameraM);
 
 // Strugar's LODSelect (§3.1): nodes within their level's range, refined where
 // the next finer range reaches them; nodes whose box is outside the frustum

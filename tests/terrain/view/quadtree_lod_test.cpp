@@ -12,6 +12,7 @@
 #include <set>
 #include <utility>
 
+#include <glm/common.hpp>
 #include <glm/geometric.hpp>
 
 #include "aperture/terrain/synthetic.h"
@@ -208,6 +209,56 @@ TEST(QuadtreeLod, SelectionCoversTheDemOnceWithoutCulling) {
     }
   }
   EXPECT_GE(mostLevels, 4);
+}
+
+// Distance (m) from `camera` to the box of the node a patch draws.
+double patchDistance(const LodQuadtree& tree, const LodPatch& p, glm::dvec3 camera) {
+  const int level = int(p.node.w), size = tree.nodeTexels(level);
+  const LodBox box = tree.nodeBox(level, int(p.node.x) / size, int(p.node.y) / size);
+  return glm::length(glm::clamp(camera, box.min, box.max) - camera);
+}
+
+TEST(QuadtreeLod, EachDrawListsItsPatchesNearestFirst) {
+  // Nearer terrain drawn first hides what lies behind it from the depth test
+  // before that is shaded; each of the frame's draws (whole nodes, each
+  // quadrant) keeps its instances in order.
+  const Heightfield& f = roughDem();
+  const LodQuadtree tree(f);
+  int checked = 0;
+  for (const glm::dvec3& camera : lowCameras(f)) {
+    const LodSelection s = selectLod(tree, makeLodRanges(tree, kViewScale / 16), camera, nullptr);
+    size_t first = 0;
+    std::array<uint32_t, 5> counts{s.wholeCount, s.quadrantCount[0], s.quadrantCount[1],
+                                   s.quadrantCount[2], s.quadrantCount[3]};
+    for (uint32_t count : counts) {
+      for (size_t i = first + 1; i < first + count; ++i) {
+        EXPECT_LE(patchDistance(tree, s.patches[i - 1], camera),
+                  patchDistance(tree, s.patches[i], camera));
+        ++checked;
+      }
+      first += count;
+    }
+    EXPECT_EQ(first, s.patches.size());
+  }
+  EXPECT_GT(checked, 50);
+}
+
+TEST(QuadtreeLod, BackFacesAreHiddenOnlyFromAboveTheWholeDem) {
+  const Heightfield& f = roughDem();
+  const LodQuadtree tree(f);
+  const float top = *std::max_element(f.z.begin(), f.z.end());
+  const glm::dvec2 half = 0.5 * demExtentM(f);
+  // Over the DEM and above its highest texel: hidden.
+  EXPECT_TRUE(lodHidesBackFaces(tree, {0, 0, top + 1.0}));
+  EXPECT_TRUE(lodHidesBackFaces(tree, {0.99 * half.x, -0.99 * half.y, top + 1.0}));
+  // Below the highest texel (a valley's floor may be far below), beside the
+  // DEM (its open edge seen from below its rim), or under it: not.
+  EXPECT_FALSE(lodHidesBackFaces(tree, {0, 0, top - 1.0}));
+  EXPECT_FALSE(lodHidesBackFaces(tree, {1.01 * half.x, 0, top + 1000.0}));
+  EXPECT_FALSE(lodHidesBackFaces(tree, {0, -1.01 * half.y, top + 1000.0}));
+  const LodSelection s =
+      selectLod(tree, makeLodRanges(tree, kViewScale), {0, 0, top + 1.0}, nullptr);
+  EXPECT_TRUE(s.backFacesHidden);
 }
 
 // For every pair of drawn pieces that share an edge: their levels differ by
