@@ -421,7 +421,8 @@ CLI::Option* addExtraOutputOptions(CLI::App& app, Options& o) {
   CLI::Option* svf = app.add_option(
       "--svf", o.svfPath,
       "also write the sky-view factor (Zaksek) as a float32 GeoTIFF placed like the DEM (its "
-      "voids nodata); a tiled bake takes --svf without a path and writes it into its folder: "
+      "voids NaN, the nodata value); a tiled bake takes --svf without a path and writes it into "
+      "its folder: "
       "svf_ROW_COL.tif per tile and their mosaic sky_view_factor.vrt");
   svf->expected(0, 1);
   app.add_option(
@@ -440,7 +441,8 @@ CLI::Option* addExtraOutputOptions(CLI::App& app, Options& o) {
       ->capture_default_str();
   app.add_option(
       "--visible", o.visiblePath,
-      "also write the visible fraction Omega/2pi as a float32 GeoTIFF placed like the DEM");
+      "also write the visible fraction Omega/2pi as a float32 GeoTIFF placed like the DEM (its "
+      "voids NaN, the nodata value)");
   return svf;
 }
 
@@ -467,7 +469,8 @@ int main(int argc, char** argv) {
   CLI::App app(
       "Bakes the aperture map of a DEM: for every texel the visible sky as a spherical cap, "
       "its\nbent normal (mean unoccluded direction) and arc length r = acos(1 - Omega/2pi), "
-      "written as\nEXR (RGB = bent normal, A = r). Horizons come from the whole DEM (no "
+      "written as\nEXR (RGB = bent normal, A = r), or as a float32 GeoTIFF of four bands placed "
+      "like the\nDEM for GIS tools (-o map.tif). Horizons come from the whole DEM (no "
       "distance limit\nunless --max-distance).\n\nAbove 16384x16384 texels (the in-memory bake's "
       "~20 bytes per texel, ~22 GB at the\nnext size up, would not fit 24 GiB) the DEM is baked in "
       "tiles into the folder -o. Each tile\nis baked from itself plus a halo: with "
@@ -500,9 +503,9 @@ int main(int argc, char** argv) {
   app.add_option("--threads", o.threads, "worker threads (default: all cores)")
       ->check(CLI::Range(1, 1024));
   addTiledBakeOptions(app, o);
-  aal::addGeoTiffOutputOptions(app, o.geotiff,
-                               "the GeoTIFFs (--svf, --visible, a .tif map; a tiled bake's "
-                               "sky-view factor tiles take -co and --overviews)");
+  // A tiled bake's SVF tiles take -co and --overviews (checkTiling refuses
+  // -of COG for them).
+  aal::addGeoTiffOutputOptions(app, o.geotiff, "the GeoTIFFs (--svf, --visible, a .tif map)");
   aal::addMapStorageOptions(app, o);
   aal::addQuietFlag(app, o.quiet);
 

@@ -33,12 +33,14 @@ void addGeoTiffOutputOptions(CLI::App& app, GeoTiffOutputOptions& output,
                  "-co: a GDAL creation option KEY=VALUE for " + outputs +
                      ", repeatable, as gdal_translate -co; it overrides ours (COMPRESS=DEFLATE, "
                      "PREDICTOR, TILED=YES, BIGTIFF=IF_SAFER; the keys: `gdalinfo --format "
-                     "GTiff`, or COG), e.g. -co COMPRESS=LZW")
+                     "GTiff`" +
+                     (formats ? std::string(", or COG") : std::string()) +
+                     "), e.g. -co COMPRESS=LZW; checked before any work")
       ->allow_extra_args(false);
   app.add_flag("--overviews", output.overviews,
                "add internal overviews to " + outputs +
-                   " (averaged halvings down to one 256-pixel tile, as gdaladdo -r average); a "
-                   "COG always has them");
+                   " (averaged halvings down to one 256-pixel tile, as gdaladdo -r average)" +
+                   (formats ? "; a COG has its own, down to one 512-pixel tile" : ""));
 }
 
 GdalArguments::GdalArguments(int argc, char** argv) : arguments_(argv, argv + argc) {
