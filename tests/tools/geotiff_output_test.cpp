@@ -205,6 +205,34 @@ TEST(GeoTiffOutputs, BadCreationOptionsAreRefusedBeforeAnyWork) {
   EXPECT_FALSE(fs::exists(map));
 }
 
+// A tiled bake's SVF tiles take -co and --overviews, hold NaN at the voids,
+// and their VRT mosaic keeps the nodata and the band's description; -of
+// COG, which the mosaic could not use, is refused before the bake.
+TEST(GeoTiffOutputs, TiledSvfTilesTakeCreationOptionsAndTheMosaicTheirLabels) {
+  TempDir dir;
+  const fs::path dem = writeDem(dir, 60, 50, 4);
+  const fs::path folder = dir.path() / "tiles";
+  const std::string bake = quoted(dem) + " -o " + quoted(folder) + " --tile-size 32 --svf " +
+                           "--azimuths 8 --max-distance 200 -q ";
+  auto r = runTool("aal-bake", bake + "-of COG");
+  EXPECT_EQ(r.exitCode, 2) << r.out;
+  EXPECT_NE(r.out.find("leave out -of COG"), std::string::npos) << r.out;
+  EXPECT_FALSE(fs::exists(folder / "index.txt"));
+  r = runTool("aal-bake", bake + "-co COMPRESS=LZW");
+  ASSERT_EQ(r.exitCode, 0) << r.out;
+  EXPECT_EQ(compressionOf(folder / "svf_0001_0001.tif"), "LZW");
+  EXPECT_EQ(descriptionOf(folder / "svf_0000_0000.tif", 1), "sky-view factor");
+  const fs::path mosaic = folder / "sky_view_factor.vrt";
+  EXPECT_EQ(descriptionOf(mosaic, 1), "sky-view factor");
+  expectNanNodata(mosaic, 4);
+  GDALDatasetUniquePtr in = open(mosaic), source = open(dem);
+  ASSERT_TRUE(in);
+  double have[6], want[6];
+  ASSERT_EQ(in->GetGeoTransform(have), CE_None);
+  ASSERT_EQ(source->GetGeoTransform(want), CE_None);
+  for (int i = 0; i < 6; ++i) EXPECT_EQ(have[i], want[i]) << i;
+}
+
 // What a GIS user sees first: gdalinfo -json -stats on the map and the SVF.
 TEST(GeoTiffOutputs, GdalinfoJsonShowsBandsCrsNodataAndSoftware) {
   TempDir dir;
