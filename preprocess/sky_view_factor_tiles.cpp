@@ -8,6 +8,7 @@
 #include <utility>
 
 #include "aperture/terrain/errors.h"
+#include "aperture/terrain/io/band_labels.h"
 #include "aperture/terrain/io/geotiff_writer.h"
 #include "aperture/terrain/io/pixel_checksum.h"
 #include "aperture/terrain/io/raster_mosaic.h"
@@ -35,11 +36,8 @@ void checkSkyViewFactorTiles(const Heightfield& geometry, bool skyViewFactor) {
 
 std::optional<float> markVoidsAsNodata(std::vector<float>& values, HeightView heights,
                                        const TexelWindow& window) {
-  const Heightfield& field = *heights.dem;
-  if (field.voidCount == 0 && !field.nodata) return std::nullopt;
-  const bool fits = field.nodata && std::isfinite(static_cast<float>(*field.nodata));
-  const float nodata =
-      fits ? static_cast<float>(*field.nodata) : std::numeric_limits<float>::quiet_NaN();
+  const float nodata = std::numeric_limits<float>::quiet_NaN();
+  if (heights.dem->voidCount == 0) return nodata;
   for (size_t i = 0; i < values.size(); ++i) {
     const int col = window.col + static_cast<int>(i % static_cast<size_t>(window.width));
     const int row = window.row + static_cast<int>(i / static_cast<size_t>(window.width));
@@ -91,12 +89,12 @@ uint64_t skyViewFactorPixelChecksum(const std::vector<float>& values, int width,
 
 void writeSkyViewFactorTile(const std::string& folder, const ApertureTileIndex& index, int row,
                             int column, std::vector<float> values, HeightView heights,
-                            const TexelWindow& window) {
-  RasterWriteOptions options;
-  // The same nodata value in every tile, so that the mosaic has one.
-  if (const std::optional<float> nodata = markVoidsAsNodata(values, heights, window)) {
-    options.nodata = *nodata;
-  }
+                            const TexelWindow& window, const RasterWriteOptions& raster) {
+  RasterWriteOptions options = raster;
+  options.cog = false;
+  // NaN in every tile, so that the mosaic has one nodata value.
+  options.nodata = markVoidsAsNodata(values, heights, window);
+  options.bandLabels = {skyViewFactorBandLabel()};
   options.metadata = skyViewFactorTileItems(index, row, column);
   options.metadata.emplace_back(kSvfPixelChecksumItem, checksumHex(skyViewFactorPixelChecksum(
                                                            values, window.width, window.height)));

@@ -13,6 +13,7 @@
 #include "aperture/terrain/height_view.h"
 #include "aperture/terrain/heightfield.h"
 #include "aperture/terrain/io/aperture_map.h"
+#include "aperture/terrain/io/geotiff_writer.h"
 #include "aperture/terrain/texel_window.h"
 
 namespace aal {
@@ -29,12 +30,13 @@ std::string skyViewFactorTileName(int row, int column);
 // georeferencing, which it must have. Nothing to check without the SVF.
 void checkSkyViewFactorTiles(const Heightfield& geometry, bool skyViewFactor);
 
-// The rule of every per-texel GeoTIFF a bake writes (--svf, --visible):
-// the DEM's voids hold nodata, the DEM's own nodata value when a float holds
-// it, else NaN. `values` are `window`'s texels of the DEM, row-major;
-// `heights` (the whole DEM, or a window of it holding `window`) gives the
-// voids. Returns the nodata value, or none when the DEM has neither voids
-// nor a nodata value (then nothing is changed).
+// The rule of every per-texel float GeoTIFF a bake writes (--svf,
+// --visible, a tiled bake's sky-view factor tiles): the DEM's voids hold
+// NaN, the band's nodata value, whatever integer nodata the DEM had (GDAL's
+// convention for float rasters; RVT and SAGA read it). `values` are
+// `window`'s texels of the DEM, row-major; `heights` (the whole DEM, or a
+// window of it holding `window`) gives the voids. Returns that nodata value
+// (NaN), which the GeoTIFF declares whether or not there are voids.
 std::optional<float> markVoidsAsNodata(std::vector<float>& values, HeightView heights,
                                        const TexelWindow& window);
 
@@ -62,12 +64,14 @@ uint64_t skyViewFactorPixelChecksum(const std::vector<float>& values, int width,
 // `index` as a float32 GeoTIFF FOLDER/svf_ROW_COL.tif placed like `window`
 // of the DEM: `heights` (the whole DEM, or a window of it holding `window`)
 // give the georeferencing, offset by the window's origin, and the voids,
-// which are nodata as in aal-bake's whole-DEM --svf (the DEM's nodata value
-// when float holds it, else NaN). It carries skyViewFactorTileItems and the
-// pixel checksum of the values as written. Temporary file, renamed.
+// which are NaN, the nodata value, as in aal-bake's whole-DEM --svf. It
+// carries the band description of skyViewFactorBandLabel,
+// skyViewFactorTileItems and the pixel checksum of the values as written.
+// `raster`: the creation options (-co) and overviews asked for; its
+// format is GTiff (the VRT mosaics plain tiles). Temporary file, renamed.
 void writeSkyViewFactorTile(const std::string& folder, const ApertureTileIndex& index, int row,
                             int column, std::vector<float> values, HeightView heights,
-                            const TexelWindow& window);
+                            const TexelWindow& window, const RasterWriteOptions& raster = {});
 
 // Whether tile (row, column)'s GeoTIFF is in the folder as this bake wrote
 // it: GDAL reads it as one float32 band of the tile's size, it carries this

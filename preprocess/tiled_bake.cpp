@@ -305,7 +305,7 @@ void bakeTileInto(HeightView heights, const FarField* far, const ApertureTileInd
   info.originRow = window.row;
   if (bake.skyViewFactor) {
     writeSkyViewFactorTile(folder, index, row, column, std::move(result.skyViewFactor), heights,
-                           window);
+                           window, tiled.skyViewFactorRaster);
   }
   writeApertureMap((fs::path(folder) / apertureTileName(row, column)).string(), result.aperture,
                    tiled.halfFloat, tiled.compression);

@@ -16,6 +16,7 @@
 #include "aperture/preprocess/bake.h"
 #include "aperture/preprocess/far_horizon.h"
 #include "aperture/preprocess/height_pyramid.h"
+#include "aperture/terrain/io/geotiff_writer.h"
 
 namespace aal {
 
@@ -96,6 +97,9 @@ struct TiledBakeOptions {
   // The folder's lock when the caller took it already (aal-bake does, before
   // loading the DEM); else the bake takes it.
   const TiledBakeLock* lock = nullptr;
+  // The sky-view factor tiles' creation options and overviews (-co,
+  // --overviews); always plain GeoTIFFs, NaN for voids.
+  RasterWriteOptions skyViewFactorRaster;
 };
 
 // That minimum in metres for `geometry` (of its smallest cell).

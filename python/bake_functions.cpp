@@ -64,8 +64,7 @@ BakeOutput bakeArray(Task& task, DemArray dem, BakeOptions options, int threads)
   out.height = field.height;
   const size_t texels = field.texelCount();
   const TexelWindow whole{.width = field.width, .height = field.height};
-  // As aal-bake's --visible and --svf: voids get the rule of its GIS
-  // rasters, NaN here, since an array has no nodata value.
+  // As aal-bake's --visible and --svf: voids are NaN (markVoidsAsNodata).
   out.visible.resize(texels);
   for (size_t i = 0; i < texels; ++i) out.visible[i] = result.aperture.visibleFraction(i);
   markVoidsAsNodata(out.visible, field, whole);

@@ -20,13 +20,16 @@
 #include "aperture/preprocess/sky_view_factor_tiles.h"
 #include "aperture/preprocess/tiled_bake.h"
 #include "aperture/terrain/interrupt.h"
+#include "aperture/terrain/io/aperture_geotiff.h"
 #include "aperture/terrain/io/aperture_map.h"
 #include "aperture/terrain/io/atomic_file.h"
+#include "aperture/terrain/io/band_labels.h"
 #include "aperture/terrain/io/dem_loader.h"
 #include "aperture/terrain/io/dem_source.h"
 #include "aperture/terrain/io/geotiff_writer.h"
 #include "aperture/terrain/io/memory_budget.h"
 #include "aperture/tools/bake_command_line.h"
+#include "aperture/tools/options/geotiff_output_options.h"
 #include "aperture/tools/options/output_options.h"
 #include "aperture/tools/tool_main.h"
 #include "aperture/tools/tool_options.h"
@@ -34,16 +37,14 @@
 
 namespace {
 
-// A per-texel result as a GeoTIFF placed like the DEM; the DEM's voids are
-// nodata there (the DEM's own nodata value when float holds it, else NaN).
+// A per-texel result as a float32 GeoTIFF placed like the DEM, the DEM's
+// voids NaN, its nodata value (sky_view_factor_tiles.h).
 void writeGisRaster(const std::string& path, std::vector<float> values,
-                    const aal::Heightfield& field, bool cog) {
-  aal::RasterWriteOptions options;
-  options.cog = cog;
+                    const aal::Heightfield& field, aal::RasterWriteOptions options,
+                    const aal::RasterBandLabel& label) {
   const aal::TexelWindow whole{.width = field.width, .height = field.height};
-  if (const std::optional<float> nodata = aal::markVoidsAsNodata(values, field, whole)) {
-    options.nodata = *nodata;
-  }
+  options.nodata = aal::markVoidsAsNodata(values, field, whole);
+  options.bandLabels = {label};
   aal::writeFloatGeoTiff(path, field.width, field.height, values.data(), field.geo, options);
 }
 
@@ -69,7 +70,8 @@ struct Options : aal::SweepCommandLine {
   std::string visiblePath;
   int threads = 0;
   bool quiet = false;
-  bool cog = false;
+  aal::GeoTiffOutputOptions geotiff;  // -of, -co, --overviews
+  aal::RasterWriteOptions raster;     // what they ask, checked (rasterWriteOptions)
   bool lowMemory = false;
   int tileSize = 0;  // 0: tiled only above the in-memory limit
 };
@@ -86,13 +88,13 @@ void checkOutputs(const Options& o, bool tiled) {
     aal::NamedPaths outputs = {{"-o", o.output}};
     aal::append(outputs, others);
     aal::checkDistinctFiles(dem, outputs);
-    // Checked before the bake, not by the EXR writer after it.
+    // Checked before the bake, not by the writer after it.
     std::string extension = std::filesystem::path(o.output).extension().string();
     for (char& c : extension) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
-    if (extension != ".exr") {
+    if (extension != ".exr" && !aal::isGeoTiffPath(o.output)) {
       throw aal::InputError("-o " + o.output +
-                            ": an aperture map is an OpenEXR file (.exr), or the folder of a "
-                            "tiled bake (--tile-size)");
+                            ": an aperture map is an OpenEXR file (.exr), a GeoTIFF (.tif, "
+                            ".tiff), or the folder of a tiled bake (--tile-size)");
     }
     aal::requireWritableOutput(o.output);
   }
@@ -127,6 +129,11 @@ bool checkTiling(const Options& o, const aal::DemSource& dem) {
   }
   if (!o.visiblePath.empty() || !o.horizonsPath.empty()) {
     throw aal::InputError(why + " writes no --visible or --horizons");
+  }
+  if (o.raster.cog) {
+    throw aal::InputError(why + " writes its sky-view factor as plain GeoTIFF tiles and a VRT " +
+                          "mosaic of them: leave out -of COG (--cog); -co and --overviews apply " +
+                          "to the tiles");
   }
   aal::checkSweepOptions(o);
   return true;
@@ -232,6 +239,7 @@ aal::TiledBakeOptions tiledBakeOptions(const Options& o, const std::string& sour
   tiling.sourceName = source;
   tiling.lock = lock;
   tiling.farField.nearReachM = o.nearReach;
+  tiling.skyViewFactorRaster = o.raster;
   return tiling;
 }
 
@@ -289,13 +297,19 @@ bool writeOutputs(const Options& o, bool tiled, aal::BakeResult& result,
   try {
     if (!tiled) {
       result.aperture.info.source = source;
-      aal::writeApertureMap(o.output, result.aperture, !o.fullFloat, aal::mapCompression(o));
+      if (aal::isGeoTiffPath(o.output)) {
+        aal::writeApertureGeoTiff(o.output, result.aperture, field.geo, o.raster);
+      } else {
+        aal::writeApertureMap(o.output, result.aperture, !o.fullFloat, aal::mapCompression(o));
+      }
     }
     if (!o.svfPath.empty()) {
-      writeGisRaster(o.svfPath, std::move(result.skyViewFactor), field, o.cog);
+      writeGisRaster(o.svfPath, std::move(result.skyViewFactor), field, o.raster,
+                     aal::skyViewFactorBandLabel());
     }
     if (!o.visiblePath.empty()) {
-      writeGisRaster(o.visiblePath, visibleFractions(result.aperture), field, o.cog);
+      writeGisRaster(o.visiblePath, visibleFractions(result.aperture), field, o.raster,
+                     aal::visibleFractionBandLabel());
     }
     if (!o.horizonsPath.empty()) aal::writeHorizonMap(o.horizonsPath, result.horizons);
   } catch (const aal::Interrupted&) {
@@ -357,7 +371,8 @@ void printSummary(const Options& o, const BakePlan& plan, const Baked& baked, co
       baked.seconds, rate, read.readSeconds, writeSeconds, target.c_str());
 }
 
-int run(const Options& o) {
+int run(Options& o) {
+  o.raster = aal::rasterWriteOptions(o.geotiff);
   // Outputs are checked before minutes of work, not after (again once the
   // DEM's size has decided the tiling).
   const bool askedTiled = o.tileSize > 0 || std::filesystem::is_directory(o.output);
@@ -406,7 +421,8 @@ CLI::Option* addExtraOutputOptions(CLI::App& app, Options& o) {
   CLI::Option* svf = app.add_option(
       "--svf", o.svfPath,
       "also write the sky-view factor (Zaksek) as a float32 GeoTIFF placed like the DEM (its "
-      "voids nodata); a tiled bake takes --svf without a path and writes it into its folder: "
+      "voids NaN, the nodata value); a tiled bake takes --svf without a path and writes it into "
+      "its folder: "
       "svf_ROW_COL.tif per tile and their mosaic sky_view_factor.vrt");
   svf->expected(0, 1);
   app.add_option(
@@ -425,7 +441,8 @@ CLI::Option* addExtraOutputOptions(CLI::App& app, Options& o) {
       ->capture_default_str();
   app.add_option(
       "--visible", o.visiblePath,
-      "also write the visible fraction Omega/2pi as a float32 GeoTIFF placed like the DEM");
+      "also write the visible fraction Omega/2pi as a float32 GeoTIFF placed like the DEM (its "
+      "voids NaN, the nodata value)");
   return svf;
 }
 
@@ -452,7 +469,8 @@ int main(int argc, char** argv) {
   CLI::App app(
       "Bakes the aperture map of a DEM: for every texel the visible sky as a spherical cap, "
       "its\nbent normal (mean unoccluded direction) and arc length r = acos(1 - Omega/2pi), "
-      "written as\nEXR (RGB = bent normal, A = r). Horizons come from the whole DEM (no "
+      "written as\nEXR (RGB = bent normal, A = r), or as a float32 GeoTIFF of four bands placed "
+      "like the\nDEM for GIS tools (-o map.tif). Horizons come from the whole DEM (no "
       "distance limit\nunless --max-distance).\n\nAbove 16384x16384 texels (the in-memory bake's "
       "~20 bytes per texel, ~22 GB at the\nnext size up, would not fit 24 GiB) the DEM is baked in "
       "tiles into the folder -o. Each tile\nis baked from itself plus a halo: with "
@@ -468,7 +486,10 @@ int main(int argc, char** argv) {
   Options o;
   app.add_option("dem", o.dem, "input DEM")->required();
   app.add_option("-o,--output", o.output,
-                 "output aperture map (.exr), or the output folder of a tiled bake")
+                 "output aperture map: .exr (OpenEXR, RGB = bent normal, A = arc length), or "
+                 ".tif/.tiff (a float32 GeoTIFF placed like the DEM, bands bent normal x, y, z "
+                 "and arc length; -of, -co and --overviews apply), or the output folder of a "
+                 "tiled bake")
       ->required();
   app.add_option("--method", o.method,
                  "sweep: exact horizons by line sweep (fast); rays: brute-force reference")
@@ -482,14 +503,14 @@ int main(int argc, char** argv) {
   app.add_option("--threads", o.threads, "worker threads (default: all cores)")
       ->check(CLI::Range(1, 1024));
   addTiledBakeOptions(app, o);
-  app.add_flag(
-      "--cog", o.cog,
-      "write --svf and --visible as cloud-optimized GeoTIFFs (tiled, with overviews); not a "
-      "tiled bake's SVF tiles");
+  // A tiled bake's SVF tiles take -co and --overviews (checkTiling refuses
+  // -of COG for them).
+  aal::addGeoTiffOutputOptions(app, o.geotiff, "the GeoTIFFs (--svf, --visible, a .tif map)");
   aal::addMapStorageOptions(app, o);
   aal::addQuietFlag(app, o.quiet);
 
-  return aal::runTool(app, argc, argv, [&] {
+  aal::GdalArguments arguments(argc, argv);
+  return aal::runTool(app, arguments.argc(), arguments.argv(), [&] {
     o.svf = svf->count() > 0;
     return run(o);
   });

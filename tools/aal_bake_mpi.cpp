@@ -25,6 +25,7 @@
 #include "aperture/terrain/io/dem_loader.h"
 #include "aperture/terrain/io/dem_source.h"
 #include "aperture/tools/bake_command_line.h"
+#include "aperture/tools/options/geotiff_output_options.h"
 #include "aperture/tools/options/output_options.h"
 #include "aperture/tools/tool_main.h"
 #include "aperture/tools/tool_options.h"
@@ -37,6 +38,7 @@ struct Options : aal::SweepCommandLine {
   std::string output;
   int tileSize = aal::kDefaultTileSize;
   bool svf = false;
+  aal::GeoTiffOutputOptions geotiff;  // -co, --overviews of the SVF tiles
   int threads = 0;
   bool quiet = false;
 };
@@ -76,6 +78,7 @@ int checkOnRankZero(int rank, const Options& o) {
     try {
       aal::checkTiledBakeOutput(aal::inputFiles("DEM", o.dem, /*raster=*/true), o.output);
       aal::checkSweepOptions(o);
+      aal::rasterWriteOptions(o.geotiff);
       const aal::DemLoadOptions load = aal::demLoadOptions(o, /*windowed=*/true);
       const aal::DemSource dem(o.dem, load);
       const aal::Heightfield geometry = aal::demGeometry(dem, load);  // its warnings, once
@@ -126,6 +129,7 @@ int run(const Options& o) {
   tiling.compression = aal::mapCompression(o);
   tiling.sourceName = std::filesystem::path(o.dem).filename().string();
   tiling.farField.nearReachM = o.nearReach;
+  tiling.skyViewFactorRaster = aal::rasterWriteOptions(o.geotiff);  // checked on rank 0
 
   // By default a host's cores are shared among its ranks.
   const int cores = std::max(1, static_cast<int>(std::thread::hardware_concurrency()));
@@ -215,6 +219,7 @@ int main(int argc, char** argv) {
                "also write the sky-view factor (Zaksek) into the folder: svf_ROW_COL.tif per tile "
                "(float32 GeoTIFF placed like that window of the DEM) and their mosaic "
                "sky_view_factor.vrt, written by rank 0 at the end");
+  aal::addGeoTiffOutputOptions(app, o.geotiff, "the --svf tiles", /*formats=*/false);
   app.add_option("--threads", o.threads,
                  "worker threads per rank (default: the host's cores shared among its ranks)")
       ->check(CLI::Range(1, 1024));
@@ -224,6 +229,9 @@ int main(int argc, char** argv) {
   aal::installInterruptHandler();
   // Every rank parses the same command line; only rank 0 says what is wrong.
   int code = 0;
+  aal::GdalArguments arguments(argc, argv);
+  argc = arguments.argc();
+  argv = arguments.argv();
   if (rank == 0) {
     code = aal::runToolBody(app, argc, argv, [&] { return run(o); });
   } else {

@@ -18,6 +18,7 @@
 #include "aperture/preprocess/progress.h"
 #include "aperture/terrain/interrupt.h"
 #include "aperture/terrain/io/aperture_map.h"
+#include "aperture/terrain/io/band_labels.h"
 #include "aperture/terrain/io/dem_loader.h"
 #include "aperture/terrain/io/dem_options.h"
 #include "aperture/terrain/io/geotiff_writer.h"
@@ -28,6 +29,7 @@
 #include "aperture/terrain/reference/relief.h"
 #include "aperture/terrain/view/camera.h"
 #include "aperture/tools/options/dem_units_options.h"
+#include "aperture/tools/options/geotiff_output_options.h"
 #include "aperture/tools/options/output_options.h"
 #include "aperture/tools/options/sun_options.h"
 #include "aperture/tools/tool_main.h"
@@ -51,7 +53,7 @@ struct Options {
   std::string stretch;
   std::optional<double> waterLevel;
   std::string waterMask;
-  bool cog = false;
+  aal::GeoTiffOutputOptions geotiff;  // -of, -co, --overviews
   aal::DemUnitsOptions units;
   bool quiet = false;
 };
@@ -116,7 +118,8 @@ std::pair<double, double> parseStretch(const std::string& text) {
   return {low, high};
 }
 
-void checkOptions(const Options& o) {
+// The GeoTIFF's write options: -of, -co, --overviews, checked.
+aal::RasterWriteOptions checkOptions(const Options& o) {
   // Against every file read: the rasters' (a VRT's sources too), a tiled
   // aperture map's.
   aal::NamedPaths inputs = aal::inputFiles("DEM", o.dem, /*raster=*/true);
@@ -159,6 +162,7 @@ void checkOptions(const Options& o) {
   if (o.waterLevel && !o.waterMask.empty()) {
     throw aal::InputError("give --water-level or --water-mask, not both");
   }
+  return aal::rasterWriteOptions(o.geotiff);
 }
 
 // Non-zero, non-void texels of a raster the DEM's size are water.
@@ -252,6 +256,15 @@ std::pair<double, double> heightRange(const aal::Heightfield& field) {
   return {zMin, zMax};
 }
 
+// The colour bands' descriptions (their colour interpretation is set too).
+aal::RasterWriteOptions colourLabels(int bands, aal::RasterWriteOptions write) {
+  static const char* const kNames[] = {"shaded colour relief (red)", "shaded colour relief (green)",
+                                       "shaded colour relief (blue)", "alpha (0: nodata)"};
+  write.bandLabels.clear();
+  for (int b = 0; b < bands; ++b) write.bandLabels.push_back({kNames[b], ""});
+  return write;
+}
+
 // Colour from the ramp at the pixel's height, times the shading; voids
 // take the ramp's nv colour, else transparent black (an alpha band).
 void writeColourRelief(const Options& o, const aal::Heightfield& field,
@@ -283,7 +296,7 @@ void writeColourRelief(const Options& o, const aal::Heightfield& field,
   aal::writeGeoTiff(
       o.output,
       aal::RasterImage{relief.width, relief.height, bands, aal::RasterSampleType::Byte, rgb.data()},
-      geo, write);
+      geo, colourLabels(bands, write));
 }
 
 // gdaldem's scale: 1 + 254 v, 0 reserved for nodata.
@@ -299,6 +312,7 @@ void writeGreyRelief(const Options& o, const aal::Heightfield& field,
             : static_cast<uint8_t>(1 + std::lround(254.0 * stretched(relief.value[i], stretch)));
   }
   if (field.voidCount > 0 || field.nodata) write.nodata = 0;
+  write.bandLabels = {aal::reliefBandLabel(/*bytes=*/true)};
   aal::writeGeoTiff(
       o.output,
       aal::RasterImage{relief.width, relief.height, 1, aal::RasterSampleType::Byte, grey.data()},
@@ -306,17 +320,16 @@ void writeGreyRelief(const Options& o, const aal::Heightfield& field,
 }
 
 // -o as colour, float or grey, placed like the DEM.
+// Float: NaN is the nodata value, declared whether or not there are voids.
 void writeRelief(const Options& o, const aal::Heightfield& field, const aal::ReliefImage& relief,
-                 const std::optional<aal::ColorRamp>& ramp) {
+                 const std::optional<aal::ColorRamp>& ramp, aal::RasterWriteOptions write) {
   const aal::GeoReference geo =
       aal::resampledGeoReference(field.geo, field.width, field.height, relief.width, relief.height);
-  aal::RasterWriteOptions write;
-  write.cog = o.cog;
   if (ramp) {
     writeColourRelief(o, field, relief, *ramp, geo, write);
   } else if (o.format == "float") {
-    if (field.voidCount > 0 || field.nodata)
-      write.nodata = std::numeric_limits<double>::quiet_NaN();
+    write.nodata = std::numeric_limits<double>::quiet_NaN();
+    write.bandLabels = {aal::reliefBandLabel(/*bytes=*/false)};
     aal::writeFloatGeoTiff(o.output, relief.width, relief.height, relief.value.data(), geo, write);
   } else {
     writeGreyRelief(o, field, relief, geo, write);
@@ -340,7 +353,7 @@ void printSummary(const Options& o, const aal::ReliefSettings& s, double seconds
 }
 
 int run(const Options& o) {
-  checkOptions(o);
+  const aal::RasterWriteOptions write = checkOptions(o);
   std::optional<aal::ColorRamp> ramp;
   if (!o.colorRelief.empty()) ramp = aal::readColorRamp(o.colorRelief);
   if (!o.palette.empty()) ramp = aal::builtinPalette(o.palette);
@@ -354,7 +367,7 @@ int run(const Options& o) {
   const aal::ReliefImage relief = aal::shadeRelief(field, map, s, [&](double f) { bar.update(f); });
   bar.finish();
   map = {};
-  writeRelief(o, field, relief, ramp);
+  writeRelief(o, field, relief, ramp, write);
   if (!o.quiet) {
     printSummary(o, s,
                  std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
@@ -425,9 +438,10 @@ int main(int argc, char** argv) {
   app.add_option("--water-mask", o.waterMask,
                  "raster of the DEM's size, non-zero where there is water (instead of "
                  "--water-level)");
-  app.add_flag("--cog", o.cog, "write a cloud-optimized GeoTIFF (tiled, with overviews)");
+  aal::addGeoTiffOutputOptions(app, o.geotiff, "the output");
   aal::addDemUnitsOptions(app, o.units);
   aal::addQuietFlag(app, o.quiet);
 
-  return aal::runTool(app, argc, argv, [&] { return run(o); });
+  aal::GdalArguments arguments(argc, argv);
+  return aal::runTool(app, arguments.argc(), arguments.argv(), [&] { return run(o); });
 }

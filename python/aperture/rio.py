@@ -114,9 +114,9 @@ def write(path, array, like=None, *, nodata=None, crs=None, transform=None, driv
     array      (H, W) or (H, W, bands), any type rasterio writes (float32 results, uint8
                reliefs and renders); masked cells and, in float arrays, NaN are voids.
     like       a RasterInfo: its CRS and transform place the array (which must have its
-               width and height) and its nodata value marks the voids, as aal-bake's
-               GeoTIFFs do (the DEM's nodata value when the array's type holds it, else NaN
-               for float arrays).
+               width and height) and its nodata value marks the voids (the DEM's nodata
+               value when the array's type holds it, else NaN for float arrays; give
+               nodata=float("nan") for NaN, as aal-bake's float GeoTIFFs have).
     nodata     the value voids get (overrides like's); crs and transform override like's.
     driver     GDAL driver; default by extension: .tif GTiff, .png PNG, .jpg JPEG. PNG and
                JPEG files get the pixels only.

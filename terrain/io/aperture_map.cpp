@@ -35,6 +35,7 @@
 
 #include "aperture/terrain/errors.h"
 #include "aperture/terrain/interrupt.h"
+#include "aperture/terrain/io/aperture_geotiff.h"
 #include "aperture/terrain/io/atomic_file.h"
 #include "aperture/terrain/io/exr_scanline_writer.h"
 #include "aperture/terrain/io/half_floats.h"
@@ -421,6 +422,42 @@ ApertureMap readTiledApertureMap(const std::string& folder) {
   return map;
 }
 
+// A GeoTIFF map whole, as floats.
+ApertureMap readApertureGeoTiff(const std::string& path) {
+  ApertureMapHeader header;
+  ApertureGeoTiff file(path, header);
+  ApertureMap map;
+  map.width = header.width;
+  map.height = header.height;
+  map.info = header.info;
+  map.texels.resize(map.texelCount() * 4);
+  const size_t rowBytes = static_cast<size_t>(map.width) * 4 * sizeof(float);
+  for (int y = 0; y < map.height; y += kBlockRows) {
+    const int end = std::min(map.height, y + kBlockRows);
+    file.readFloatRows(y, end, map.texels.data() + static_cast<size_t>(y) * map.width * 4,
+                       rowBytes);
+    throwIfInterrupted();
+  }
+  return map;
+}
+
+// Rows of a GeoTIFF map as halves (8 bytes per texel, tightly packed),
+// through floats a block at a time.
+void readGeoTiffHalfRows(ApertureGeoTiff& file, int width, int firstRow, int endRow,
+                         void* destination) {
+  const size_t rowFloats = static_cast<size_t>(width) * 4;
+  std::vector<float> block(rowFloats *
+                           static_cast<size_t>(std::min(endRow - firstRow, kBlockRows)));
+  for (int y = firstRow; y < endRow; y += kBlockRows) {
+    const int end = std::min(endRow, y + kBlockRows);
+    file.readFloatRows(y, end, block.data(), rowFloats * sizeof(float));
+    floatsToHalves(
+        block.data(),
+        static_cast<uint16_t*>(destination) + static_cast<size_t>(y - firstRow) * rowFloats,
+        rowFloats * static_cast<size_t>(end - y));
+  }
+}
+
 }  // namespace
 
 std::string apertureTileName(int row, int column) {
@@ -568,6 +605,7 @@ void checkApertureTile(const ApertureTileIndex& index, int row, int column,
 
 ApertureMap readApertureMap(const std::string& path) {
   if (isFolder(path)) return readTiledApertureMap(path);
+  if (isGeoTiffPath(path)) return readApertureGeoTiff(path);
   ApertureMapHeader header;
   OpenMap file = openApertureMap(path, header);
   ApertureMap map;
@@ -581,7 +619,8 @@ ApertureMap readApertureMap(const std::string& path) {
 }
 
 struct ApertureMapReader::Impl {
-  std::optional<OpenMap> input;  // a single file
+  std::optional<OpenMap> input;            // a single EXR file
+  std::optional<ApertureGeoTiff> geotiff;  // a single GeoTIFF
   // A tiled map: its index and the open tiles of one row of tiles.
   std::optional<ApertureTileIndex> tiles;
   int openTileRow = -1;
@@ -620,6 +659,8 @@ ApertureMapReader::ApertureMapReader(const std::string& path) : path_(path), imp
     if (isFolder(path)) {
       impl_->tiles = readApertureTileIndex(path);
       header_ = impl_->tiles->map;
+    } else if (isGeoTiffPath(path)) {
+      impl_->geotiff.emplace(path, header_);
     } else {
       impl_->input = openApertureMap(path, header_);
     }
@@ -639,6 +680,10 @@ void ApertureMapReader::readHalfRows(int firstRow, int endRow, void* destination
   }
   if (impl_->tiles) {
     impl_->readTiledRows(path_, firstRow, endRow, destination);
+    return;
+  }
+  if (impl_->geotiff) {
+    readGeoTiffHalfRows(*impl_->geotiff, header_.width, firstRow, endRow, destination);
     return;
   }
   readRows(*impl_->input, firstRow, endRow, Imf::HALF, destination,

@@ -4,7 +4,8 @@
 //
 // On disk: OpenEXR, same size as the DEM, channels R, G, B = bent normal,
 // A = arc length in radians, with `aal:` header attributes that tie the map
-// to its DEM and bake options.
+// to its DEM and bake options. Or a GeoTIFF of the same four bands
+// (terrain/io/aperture_geotiff.h), which every reader below takes alike.
 //
 // A tiled bake writes a folder instead: one such EXR per tile, named
 // tile_ROW_COL.exr (tile indices, 4 digits) with its place in the DEM in
@@ -71,7 +72,9 @@ struct ApertureMapHeader {
   std::optional<uint64_t> pixelChecksum;
 };
 
-// Reads a map written by writeApertureMap, or a tiled map's folder (whole).
+// Reads a map written by writeApertureMap, a GeoTIFF map (.tif, .tiff:
+// writeApertureGeoTiff, terrain/io/aperture_geotiff.h, read through GDAL),
+// or a tiled map's folder (whole).
 // Throws InputError naming the file when it is missing, unreadable, not 4
 // channels or lacks the aal: attributes, when its pixels do not match its
 // aal:pixelChecksum, or when a tile does not belong to its folder's index.

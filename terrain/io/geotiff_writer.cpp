@@ -4,11 +4,13 @@
 #include <cmath>
 #include <filesystem>
 #include <stdexcept>
+#include <vector>
 
 #include <cpl_string.h>
 #include <gdal_priv.h>
 #include <ogr_spatialref.h>
 
+#include "aperture/terrain/errors.h"
 #include "aperture/terrain/interrupt.h"
 #include "aperture/terrain/io/atomic_file.h"
 #include "aperture/terrain/io/dem_options.h"
@@ -51,13 +53,117 @@ void place(GDALDataset& dataset, const GeoReference& geo) {
   }
 }
 
-}  // namespace
+// The driver the file is written by: GTiff, or COG (a copy).
+const char* driverName(const RasterWriteOptions& options) {
+  return options.cog ? "COG" : "GTiff";
+}
 
-void writeGeoTiff(const std::string& path, const RasterImage& image, const GeoReference& geo,
-                  const RasterWriteOptions& options) {
-  const int width = image.width, height = image.height;
-  if (width < 1 || height < 1 || width > kMaxDemSide || height > kMaxDemSide || !image.data ||
-      image.bands < 1 || image.bands > 4) {
+// Our defaults, then the user's -co KEY=VALUE over them.
+CPLStringList creationOptions(const RasterImage& image, const RasterWriteOptions& options) {
+  const bool bytes = image.type == RasterSampleType::Byte;
+  CPLStringList creation;
+  creation.SetNameValue("COMPRESS", "DEFLATE");
+  creation.SetNameValue("BIGTIFF", "IF_SAFER");
+  creation.SetNameValue("NUM_THREADS", gdalThreads().c_str());
+  if (options.cog) {
+    creation.SetNameValue("PREDICTOR", "YES");
+    creation.SetNameValue("RESAMPLING", "AVERAGE");
+  } else {
+    creation.SetNameValue("PREDICTOR", bytes ? "2" : "3");
+    creation.SetNameValue("TILED", "YES");
+    // Float bands (the aperture map's) apart: each band's values are alike,
+    // so the predictor and DEFLATE do better band by band (docs/baking.md).
+    if (!bytes && image.bands > 1) creation.SetNameValue("INTERLEAVE", "BAND");
+    if (bytes && image.bands >= 3) {
+      creation.SetNameValue("PHOTOMETRIC", "RGB");
+      if (image.bands == 4) creation.SetNameValue("ALPHA", "UNASSOCIATED");
+    }
+  }
+  for (const std::string& option : options.creationOptions) {
+    const size_t equals = option.find('=');
+    creation.SetNameValue(option.substr(0, equals).c_str(), option.substr(equals + 1).c_str());
+  }
+  return creation;
+}
+
+// Nodata, colour interpretation (RGB bytes), description and unit per band.
+void describeBands(GDALDataset& dataset, const RasterImage& image,
+                   const RasterWriteOptions& options) {
+  static constexpr GDALColorInterp kInterp[] = {GCI_RedBand, GCI_GreenBand, GCI_BlueBand,
+                                                GCI_AlphaBand};
+  const bool colour = image.type == RasterSampleType::Byte && image.bands >= 3;
+  for (int b = 1; b <= image.bands; ++b) {
+    GDALRasterBand& band = *dataset.GetRasterBand(b);
+    if (options.nodata && band.SetNoDataValue(*options.nodata) != CE_None) {
+      fail("cannot set its nodata value");
+    }
+    if (colour) band.SetColorInterpretation(kInterp[b - 1]);
+    if (static_cast<size_t>(b) <= options.bandLabels.size()) {
+      const RasterBandLabel& label = options.bandLabels[b - 1];
+      band.SetDescription(label.description.c_str());
+      if (!label.unit.empty()) band.SetUnitType(label.unit.c_str());
+    }
+  }
+}
+
+// The samples in bands of rows, so that an interrupt is heard within one.
+void writeSamples(GDALDataset& dataset, const RasterImage& image) {
+  const bool bytes = image.type == RasterSampleType::Byte;
+  const GDALDataType type = bytes ? GDT_Byte : GDT_Float32;
+  const size_t sampleBytes = bytes ? 1 : 4;
+  const size_t pixelBytes = sampleBytes * static_cast<size_t>(image.bands);
+  const int width = image.width;
+  const int bandRows =
+      std::max(1, static_cast<int>((size_t{16} << 20) / (pixelBytes * size_t(width))));
+  auto* bytesIn = static_cast<GByte*>(const_cast<void*>(image.data));
+  for (int row = 0; row < image.height; row += bandRows) {
+    const int rows = std::min(bandRows, image.height - row);
+    if (dataset.RasterIO(GF_Write, 0, row, width, rows,
+                         bytesIn + static_cast<size_t>(row) * width * pixelBytes, width, rows, type,
+                         image.bands, nullptr, static_cast<GSpacing>(pixelBytes),
+                         static_cast<GSpacing>(pixelBytes * width),
+                         static_cast<GSpacing>(sampleBytes), nullptr) != CE_None) {
+      fail("cannot write its samples");
+    }
+    throwIfInterrupted();
+  }
+}
+
+// GDAL's progress callback: stop when the interrupt flag is up.
+int continueUnlessInterrupted(double, const char*, void*) {
+  return !interruptFlag().load();
+}
+
+// Halvings until the smallest overview fits one 256-texel tile (as
+// gdaladdo chooses when given no levels), averaged.
+void buildOverviews(GDALDataset& dataset, const RasterImage& image) {
+  std::vector<int> levels;
+  const int side = std::max(image.width, image.height);
+  for (int factor = 2; (side + factor / 2 - 1) / (factor / 2) > 256; factor *= 2) {
+    levels.push_back(factor);
+  }
+  if (levels.empty()) return;
+  if (dataset.BuildOverviews("AVERAGE", static_cast<int>(levels.size()), levels.data(), 0, nullptr,
+                             continueUnlessInterrupted, nullptr) != CE_None) {
+    throwIfInterrupted();
+    fail("cannot build its overviews");
+  }
+}
+
+// A COG is copied from an in-memory raster (the COG driver cannot Create).
+void copyAsCog(GDALDataset& source, const std::string& temporary, const CPLStringList& creation) {
+  GDALDriver* cog = GetGDALDriverManager()->GetDriverByName("COG");
+  if (cog == nullptr) fail("GDAL has no COG driver");
+  GDALDatasetUniquePtr copy(cog->CreateCopy(temporary.c_str(), &source, FALSE, creation.List(),
+                                            continueUnlessInterrupted, nullptr));
+  throwIfInterrupted();
+  if (!copy) fail("cannot write it as a COG");
+  copy->FlushCache();
+}
+
+void checkImage(const RasterImage& image, const GeoReference& geo) {
+  if (image.width < 1 || image.height < 1 || image.width > kMaxDemSide ||
+      image.height > kMaxDemSide || !image.data || image.bands < 1 || image.bands > 4) {
     throw std::invalid_argument("writeGeoTiff: size must be in [1, " + std::to_string(kMaxDemSide) +
                                 "], 1 to 4 bands and data non-null");
   }
@@ -67,83 +173,87 @@ void writeGeoTiff(const std::string& path, const RasterImage& image, const GeoRe
         geo.linearUnitM > 0.0)) {
     throw std::invalid_argument("writeGeoTiff: georeference needs finite positive steps");
   }
-  const bool bytes = image.type == RasterSampleType::Byte;
-  const GDALDataType type = bytes ? GDT_Byte : GDT_Float32;
-  const size_t sampleBytes = bytes ? 1 : 4;
-  const size_t pixelBytes = sampleBytes * static_cast<size_t>(image.bands);
+}
+
+// The file at `temporary`: created (GTiff) or copied (COG) with `options`.
+void writeDataset(const std::string& temporary, const RasterImage& image, const GeoReference& geo,
+                  const RasterWriteOptions& options) {
+  CPLErrorReset();
+  const CPLStringList creation = creationOptions(image, options);
+  GDALDriver* driver = GetGDALDriverManager()->GetDriverByName(options.cog ? "MEM" : "GTiff");
+  if (driver == nullptr) fail(options.cog ? "GDAL has no MEM driver" : "GDAL has no GTiff driver");
+  const GDALDataType type = image.type == RasterSampleType::Byte ? GDT_Byte : GDT_Float32;
+  GDALDatasetUniquePtr dataset(driver->Create(options.cog ? "" : temporary.c_str(), image.width,
+                                              image.height, image.bands, type,
+                                              options.cog ? nullptr : creation.List()));
+  if (!dataset) fail("cannot create it");
+  place(*dataset, geo);
+  // The TIFF Software tag: what wrote the file (a COG copies it).
+  dataset->SetMetadataItem("TIFFTAG_SOFTWARE", softwareName().c_str());
+  for (const auto& [name, value] : options.metadata) {
+    dataset->SetMetadataItem(name.c_str(), value.c_str());
+  }
+  describeBands(*dataset, image, options);
+  writeSamples(*dataset, image);
+  if (options.cog) {
+    copyAsCog(*dataset, temporary, creation);
+  } else {
+    if (options.overviews) buildOverviews(*dataset, image);
+    dataset->FlushCache();
+  }
+  dataset.reset();
+  if (CPLGetLastErrorType() == CE_Failure) fail("GDAL failed");
+}
+
+// GDAL's warnings, gathered while it validates creation options.
+void CPL_STDCALL gatherMessage(CPLErr, CPLErrorNum, const char* message) {
+  auto* messages = static_cast<std::vector<std::string>*>(CPLGetErrorHandlerUserData());
+  messages->push_back(message);
+}
+
+}  // namespace
+
+void checkCreationOptions(const RasterWriteOptions& options) {
+  for (const std::string& option : options.creationOptions) {
+    const size_t equals = option.find('=');
+    if (equals == std::string::npos || equals == 0) {
+      throw InputError("-co " + option +
+                       ": a creation option is KEY=VALUE, as gdal_translate's (e.g. -co "
+                       "COMPRESS=LZW)");
+    }
+  }
+  if (options.creationOptions.empty()) return;
+  ensureGdal();
+  GDALDriver* driver = GetGDALDriverManager()->GetDriverByName(driverName(options));
+  if (driver == nullptr)
+    throw InputError(std::string("GDAL has no ") + driverName(options) + " driver");
+  CPLStringList given;
+  for (const std::string& option : options.creationOptions) {
+    const size_t equals = option.find('=');
+    given.SetNameValue(option.substr(0, equals).c_str(), option.substr(equals + 1).c_str());
+  }
+  std::vector<std::string> messages;
+  CPLPushErrorHandlerEx(gatherMessage, &messages);
+  const int valid = GDALValidateCreationOptions(driver, given.List());
+  CPLPopErrorHandler();
+  if (valid) return;
+  std::string why;
+  for (const std::string& m : messages) why += "\n  " + m;
+  throw InputError(std::string("-co: GDAL's ") + driverName(options) +
+                   " driver refuses the creation options (see `gdalinfo --format " +
+                   driverName(options) + "`):" + why);
+}
+
+void writeGeoTiff(const std::string& path, const RasterImage& image, const GeoReference& geo,
+                  const RasterWriteOptions& options) {
+  checkImage(image, geo);
   ensureGdal();
   AtomicOutput output(path);
   // Absolute: GDAL takes a relative name that starts like a connection
   // string (MEM:::, NUMPY:::) for one (terrain/io/input_file.h).
   const std::string temporary = std::filesystem::absolute(output.temporaryPath()).string();
   try {
-    CPLErrorReset();
-    CPLStringList creation;
-    creation.SetNameValue("COMPRESS", "DEFLATE");
-    creation.SetNameValue("BIGTIFF", "IF_SAFER");
-    creation.SetNameValue("NUM_THREADS", gdalThreads().c_str());
-    // A COG is copied from an in-memory raster (the COG driver cannot Create).
-    GDALDriver* driver = GetGDALDriverManager()->GetDriverByName(options.cog ? "MEM" : "GTiff");
-    if (driver == nullptr)
-      fail(options.cog ? "GDAL has no MEM driver" : "GDAL has no GTiff driver");
-    if (!options.cog) {
-      creation.SetNameValue("PREDICTOR", bytes ? "2" : "3");
-      creation.SetNameValue("TILED", "YES");
-      if (image.bands >= 3) {
-        creation.SetNameValue("PHOTOMETRIC", "RGB");
-        if (image.bands == 4) creation.SetNameValue("ALPHA", "UNASSOCIATED");
-      }
-    }
-    GDALDatasetUniquePtr dataset(driver->Create(options.cog ? "" : temporary.c_str(), width, height,
-                                                image.bands, type,
-                                                options.cog ? nullptr : creation.List()));
-    if (!dataset) fail("cannot create it");
-    place(*dataset, geo);
-    // The TIFF Software tag: what wrote the file (a COG copies it).
-    dataset->SetMetadataItem("TIFFTAG_SOFTWARE", softwareName().c_str());
-    for (const auto& [name, value] : options.metadata) {
-      dataset->SetMetadataItem(name.c_str(), value.c_str());
-    }
-    for (int b = 1; b <= image.bands; ++b) {
-      GDALRasterBand& band = *dataset->GetRasterBand(b);
-      if (options.nodata && band.SetNoDataValue(*options.nodata) != CE_None) {
-        fail("cannot set its nodata value");
-      }
-      if (image.bands >= 3) {
-        static constexpr GDALColorInterp kInterp[] = {GCI_RedBand, GCI_GreenBand, GCI_BlueBand,
-                                                      GCI_AlphaBand};
-        band.SetColorInterpretation(kInterp[b - 1]);
-      }
-    }
-    // Bands of rows, so that an interrupt is heard within one band.
-    const int bandRows =
-        std::max(1, static_cast<int>((size_t{16} << 20) / (pixelBytes * size_t(width))));
-    auto* bytesIn = static_cast<GByte*>(const_cast<void*>(image.data));
-    for (int row = 0; row < height; row += bandRows) {
-      const int rows = std::min(bandRows, height - row);
-      if (dataset->RasterIO(GF_Write, 0, row, width, rows,
-                            bytesIn + static_cast<size_t>(row) * width * pixelBytes, width, rows,
-                            type, image.bands, nullptr, static_cast<GSpacing>(pixelBytes),
-                            static_cast<GSpacing>(pixelBytes * width),
-                            static_cast<GSpacing>(sampleBytes), nullptr) != CE_None) {
-        fail("cannot write its samples");
-      }
-      throwIfInterrupted();
-    }
-    if (options.cog) {
-      GDALDriver* cog = GetGDALDriverManager()->GetDriverByName("COG");
-      if (cog == nullptr) fail("GDAL has no COG driver");
-      creation.SetNameValue("PREDICTOR", "YES");
-      GDALDatasetUniquePtr copy(cog->CreateCopy(temporary.c_str(), dataset.get(), FALSE,
-                                                creation.List(), nullptr, nullptr));
-      if (!copy) fail("cannot write it as a COG");
-      copy->FlushCache();
-      copy.reset();
-    } else {
-      dataset->FlushCache();
-    }
-    dataset.reset();
-    if (CPLGetLastErrorType() == CE_Failure) fail("GDAL failed");
+    writeDataset(temporary, image, geo, options);
   } catch (const GdalWriteError& e) {
     throw output.failure(e.what());
   }

@@ -12,12 +12,35 @@
 
 namespace aal {
 
+// What a band is, for GIS tools: GDALSetDescription's text (QGIS and
+// gdalinfo show it as the band's name) and its unit (GDALSetUnitType; "" for
+// none).
+struct RasterBandLabel {
+  std::string description;
+  std::string unit;
+};
+
 struct RasterWriteOptions {
   // A cloud-optimized GeoTIFF (GDAL's COG driver: tiled, overviews, ordered
-  // for HTTP range reads) instead of a plain tiled GeoTIFF.
+  // for HTTP range reads; -of COG) instead of a plain tiled GeoTIFF (-of
+  // GTiff).
   bool cog = false;
+  // GDAL creation options, "KEY=VALUE" each, as gdal_translate's -co: given
+  // to the driver after our defaults, so that they override them (a plain
+  // GeoTIFF: COMPRESS=DEFLATE, PREDICTOR=3 for floats or 2 for bytes,
+  // TILED=YES, BIGTIFF=IF_SAFER, NUM_THREADS, INTERLEAVE=BAND for several
+  // float bands; a COG: COMPRESS=DEFLATE,
+  // PREDICTOR=YES, RESAMPLING=AVERAGE, BIGTIFF=IF_SAFER, NUM_THREADS).
+  // checkCreationOptions tells which the driver does not know.
+  std::vector<std::string> creationOptions;
+  // Internal overviews in a plain GeoTIFF, averaged (a COG always has
+  // them): halvings until the smallest fits one 256-texel tile.
+  bool overviews = false;
   // The band's nodata value: texels holding it are voids for GIS tools.
+  // The tools' float outputs give NaN.
   std::optional<double> nodata;
+  // Per band, from band 1; bands past the end are left unlabelled.
+  std::vector<RasterBandLabel> bandLabels;
   // GDAL metadata items (NAME, VALUE) of the dataset, in its default domain
   // (the GeoTIFF's GDAL_METADATA tag; gdalinfo lists them): what ties a tiled
   // bake's sky-view factor tile to its place and bake
@@ -25,11 +48,18 @@ struct RasterWriteOptions {
   std::vector<std::pair<std::string, std::string>> metadata;
 };
 
+// Throws InputError, with GDAL's words for each, when `options` holds a
+// creation option that is not KEY=VALUE, or one the driver (GTiff, or COG
+// for options.cog) does not know or whose value it does not take
+// (GDALValidateCreationOptions): checked before a bake, not after it.
+void checkCreationOptions(const RasterWriteOptions& options);
+
 enum class RasterSampleType { Float32, Byte };
 
 // Samples to write: row-major from the northern row, bands interleaved per
-// pixel (R, G, B, A, R, ...). 3 bands are tagged RGB, 4 RGB + alpha, so GIS
-// tools show them in colour and treat alpha 0 as transparent.
+// pixel (R, G, B, A, R, ...). Bytes in 3 bands are tagged RGB, in 4 RGB +
+// alpha, so GIS tools show them in colour and treat alpha 0 as
+// transparent; float bands are untagged values (up to 4).
 struct RasterImage {
   int width = 0, height = 0, bands = 1;
   RasterSampleType type = RasterSampleType::Float32;
@@ -38,7 +68,8 @@ struct RasterImage {
 
 // As writeFloatGeoTiff, for any RasterImage (1 to 4 bands; byte samples use
 // the horizontal-differencing predictor). options.nodata applies to every
-// band.
+// band. Every file carries TIFFTAG_SOFTWARE = softwareName()
+// (terrain/version.h).
 void writeGeoTiff(const std::string& path, const RasterImage& image, const GeoReference& geo,
                   const RasterWriteOptions& options = {});
 

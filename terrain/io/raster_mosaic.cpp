@@ -70,6 +70,23 @@ std::optional<uint64_t> floatRasterChecksum(const std::string& path) {
   return sum.value();
 }
 
+namespace {
+
+// The tile's band descriptions and units onto the mosaic (GDALBuildVRT
+// leaves them out), so that GIS tools name its bands as the tiles'.
+void copyBandLabels(const std::string& tile, GDALDataset& mosaic) {
+  GDALDatasetUniquePtr first(GDALDataset::Open(tile.c_str(), GDAL_OF_RASTER | GDAL_OF_READONLY));
+  if (!first) return;
+  const int bands = std::min(first->GetRasterCount(), mosaic.GetRasterCount());
+  for (int b = 1; b <= bands; ++b) {
+    GDALRasterBand* from = first->GetRasterBand(b);
+    mosaic.GetRasterBand(b)->SetDescription(from->GetDescription());
+    mosaic.GetRasterBand(b)->SetUnitType(from->GetUnitType());
+  }
+}
+
+}  // namespace
+
 void writeVrtMosaic(const std::string& path, const std::vector<std::string>& tiles) {
   namespace fs = std::filesystem;
   ensureGdal();
@@ -93,6 +110,7 @@ void writeVrtMosaic(const std::string& path, const std::vector<std::string>& til
       GDALBuildVRT(temporary.c_str(), names.Count(), nullptr, names.List(), options, &usageError);
   GDALBuildVRTOptionsFree(options);
   if (vrt == nullptr) throw output.failure(gdalLastError(), "the VRT");
+  if (!tiles.empty()) copyBandLabels(tiles.front(), *GDALDataset::FromHandle(vrt));
   // Closing the dataset writes it.
   GDALClose(vrt);
   if (CPLGetLastErrorType() == CE_Failure) {

@@ -33,7 +33,8 @@ std::optional<uint64_t> floatRasterChecksum(const std::string& path);
 
 // Writes a VRT at `path` (GDALBuildVRT) that places every file of `tiles`
 // (georeferenced GeoTIFFs of one CRS, resolution and band layout) by its
-// geotransform, at the finest resolution among them, with their nodata.
+// geotransform, at the finest resolution among them, with their nodata
+// and the first tile's band descriptions and units.
 // Tiles in the VRT's folder or below are named relative to it, so that the
 // folder can be moved. Written to a temporary file and renamed
 // (atomic_file.h). Throws std::runtime_error naming the VRT when GDAL fails.

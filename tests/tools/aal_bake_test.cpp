@@ -170,14 +170,14 @@ TEST(AalBake, OutputsThatAreInputsOrEachOtherOrNotExrExitWithTwo) {
         Case{"-o " + quoted(dir.path() / "c.exr") + " --svf " + quoted(dir.path() / "s.tif") +
                  " --visible " + quoted(dir.path() / "s.tif"),
              "is also the output of --svf"},
-        Case{"-o " + quoted(dir.path() / "a.tif"), "OpenEXR file (.exr)"},
+        Case{"-o " + quoted(dir.path() / "a.png"), "OpenEXR file (.exr), a GeoTIFF"},
         Case{"-o " + quoted(dir.path() / "a"), "OpenEXR file (.exr)"}}) {
     const auto r = runTool("aal-bake", in + c.args);
     EXPECT_EQ(r.exitCode, 2) << c.args << "\n" << r.out;
     EXPECT_NE(r.out.find(c.says), std::string::npos) << c.args << "\n" << r.out;
   }
   EXPECT_EQ(bytesOf(dem), before);
-  for (const char* name : {"a.tif", "a", "b.exr", "c.exr", "s.tif"}) {
+  for (const char* name : {"a.png", "a", "b.exr", "c.exr", "s.tif"}) {
     EXPECT_FALSE(fs::exists(dir.path() / name)) << name;
   }
   EXPECT_EQ(runTool("aal-bake", in + "-o " + quoted(dir.path() / "UPPER.EXR")).exitCode, 0);

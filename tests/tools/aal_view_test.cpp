@@ -524,6 +524,34 @@ TEST(AalView, HorizonModeReLaysTheHorizonsWhenTheSunPassesADirection) {
   EXPECT_GT(moves, m.rgba.size() / 4 / 10) << "the sun's move does not show";
 }
 
+// The aperture map as GeoTIFF (aal-bake -o map.tif) is taken as the EXR is:
+// its floats become the halves the EXR holds, so the picture is the EXR's;
+// the same check against the DEM: another DEM's map exits with 2.
+TEST(AalView, TakesTheApertureMapAsGeoTiff) {
+  TempDir dir;
+  std::vector<Picture> shots;
+  for (const char* name : {"a.exr", "a.tif"}) {
+    const fs::path map = dir.path() / name, shot = dir.path() / (std::string(name) + ".png");
+    const auto bake =
+        runTool("aal-bake", quoted(kDem) + " -o " + quoted(map) + " --azimuths 16 -q");
+    ASSERT_EQ(bake.exitCode, 0) << bake.out;
+    const auto r = view(dir, quoted(kDem) + " --aperture " + quoted(map) +
+                                 " --size 160x120 --frames 2 --timeout 60 --stats --screenshot " +
+                                 quoted(shot));
+    ASSERT_EQ(r.exitCode, 0) << r.out;
+    EXPECT_NE(r.out.find("validation on, 0 messages"), std::string::npos) << r.out;
+    shots.push_back(readPng(shot));
+  }
+  ASSERT_EQ(shots[0].width, 160);
+  EXPECT_TRUE(shots[0].rgba == shots[1].rgba);
+  const fs::path other = dir.path() / "other.tif";
+  ASSERT_EQ(runTool("aal-synth", "-o " + quoted(other) + " --size 32").exitCode, 0);
+  const auto refused =
+      view(dir, quoted(other) + " --aperture " + quoted(dir.path() / "a.tif") + " --frames 1");
+  EXPECT_EQ(refused.exitCode, 2) << refused.out;
+  EXPECT_NE(refused.out.find("does not belong to DEM"), std::string::npos) << refused.out;
+}
+
 TEST(AalView, WindowHooksAreInTheHelpAndMalformedOnesExitWithTwo) {
   const std::string dem = quoted(kDem);
   for (const std::string& args :

@@ -1,0 +1,38 @@
+// What each band of the GeoTIFFs the tools write is, in the words GIS tools
+// show as the band's name (GDALSetDescription) and its unit: declared once,
+// so that aal-bake's whole-DEM and tiled outputs, and the aperture map as
+// GeoTIFF, name them alike.
+#pragma once
+
+#include <array>
+
+#include "aperture/terrain/io/geotiff_writer.h"
+
+namespace aal {
+
+// aal-bake --svf (Zaksek et al., "Sky-view factor as a relief visualization
+// technique", 2011): dimensionless, 0..1.
+inline RasterBandLabel skyViewFactorBandLabel() {
+  return {"sky-view factor", ""};
+}
+
+// aal-bake --visible: the visible solid angle over 2 pi, 0..1.
+inline RasterBandLabel visibleFractionBandLabel() {
+  return {"visible sky fraction (solid angle / 2 pi)", ""};
+}
+
+// aal-relief's grey or float relief.
+inline RasterBandLabel reliefBandLabel(bool bytes) {
+  return {bytes ? "shaded relief (1 + 254 v, 0 = nodata)" : "shaded relief (0..1)", ""};
+}
+
+// The aperture map's four bands (terrain/io/aperture_map.h): the unit bent
+// normal in the world frame, then the cap's arc length.
+inline std::array<RasterBandLabel, 4> apertureMapBandLabels() {
+  return {{{"bent normal x (east)", ""},
+           {"bent normal y (north)", ""},
+           {"bent normal z (up)", ""},
+           {"aperture arc length (rad)", "rad"}}};
+}
+
+}  // namespace aal
