@@ -67,6 +67,7 @@ struct Options : aal::SweepCommandLine {
   int horizonDirections = aal::kBakeToolHorizonDirections;
   int horizonBits = aal::kBakeToolHorizonBits;
   std::string visiblePath;
+  std::string positiveOpennessPath, negativeOpennessPath;  // docs/baking.md, "Openness"
   int threads = 0;
   bool quiet = false;
   bool cog = false;
@@ -78,8 +79,11 @@ void checkOutputs(const Options& o, bool tiled) {
   // Every output against the DEM's files (a VRT's sources too) and each
   // other; a tiled bake's files by their names in its folder.
   const aal::NamedPaths dem = aal::inputFiles("DEM", o.dem, /*raster=*/true);
-  const aal::NamedPaths others = {
-      {"--svf", o.svfPath}, {"--visible", o.visiblePath}, {"--horizons", o.horizonsPath}};
+  const aal::NamedPaths others = {{"--svf", o.svfPath},
+                                  {"--visible", o.visiblePath},
+                                  {"--horizons", o.horizonsPath},
+                                  {"--openness-positive", o.positiveOpennessPath},
+                                  {"--openness-negative", o.negativeOpennessPath}};
   if (tiled) {
     aal::checkTiledBakeOutput(dem, o.output, others);
   } else {
@@ -96,7 +100,8 @@ void checkOutputs(const Options& o, bool tiled) {
     }
     aal::requireWritableOutput(o.output);
   }
-  for (const std::string& path : {o.svfPath, o.visiblePath, o.horizonsPath}) {
+  for (const std::string& path :
+       {o.svfPath, o.visiblePath, o.horizonsPath, o.positiveOpennessPath, o.negativeOpennessPath}) {
     if (path.empty()) continue;
     aal::requireWritableOutput(path);
   }
@@ -127,6 +132,12 @@ bool checkTiling(const Options& o, const aal::DemSource& dem) {
   }
   if (!o.visiblePath.empty() || !o.horizonsPath.empty()) {
     throw aal::InputError(why + " writes no --visible or --horizons");
+  }
+  if (!o.positiveOpennessPath.empty() || !o.negativeOpennessPath.empty()) {
+    throw aal::InputError(why +
+                          " writes no --openness-positive or --openness-negative: bake "
+                          "openness in one piece (a DEM cropped with gdal_translate -srcwin "
+                          "if need be)");
   }
   aal::checkSweepOptions(o);
   return true;
@@ -163,9 +174,11 @@ void checkTiledOptions(const Options& o, const aal::DemSource& dem, const aal::D
 // allocator half-way through (memory_budget.h).
 void requireInMemoryBake(const Options& o, const aal::DemSource& dem) {
   const double texels = double(dem.width()) * double(dem.height());
-  const double perTexel = aal::kInMemoryBakeBytesPerTexel + (o.svf ? 4 : 0) +
-                          (o.visiblePath.empty() ? 0 : 4) +
-                          (o.horizonsPath.empty() ? 0 : o.horizonDirections);
+  // Negative openness: its sums and the inverted heights it sweeps.
+  const double perTexel =
+      aal::kInMemoryBakeBytesPerTexel + (o.svf ? 4 : 0) + (o.visiblePath.empty() ? 0 : 4) +
+      (o.positiveOpennessPath.empty() ? 0 : 4) + (o.negativeOpennessPath.empty() ? 0 : 8) +
+      (o.horizonsPath.empty() ? 0 : o.horizonDirections);
   aal::requireMemory(
       o.dem, texels * perTexel,
       "its bake in memory (" + std::to_string(std::lround(perTexel)) + " bytes per texel)",
@@ -208,6 +221,18 @@ aal::BakeOptions bakeOptions(const Options& o) {
   bake.skyViewFactor = o.svf;
   if (bake.skyViewFactor && bake.method == aal::BakeMethod::Rays) {
     throw aal::InputError("--svf needs --method sweep (the ray reference has no horizons)");
+  }
+  bake.positiveOpenness = !o.positiveOpennessPath.empty();
+  bake.negativeOpenness = !o.negativeOpennessPath.empty();
+  if ((bake.positiveOpenness || bake.negativeOpenness) && bake.method == aal::BakeMethod::Rays) {
+    throw aal::InputError(
+        "--openness-positive and --openness-negative need --method sweep (the ray reference has "
+        "no horizons)");
+  }
+  if (bake.negativeOpenness && bake.curvature) {
+    throw aal::InputError(
+        "--openness-negative does not take --curvature (the inverted DEM's sweep would raise "
+        "distant terrain, not drop it)");
   }
   bake.horizons = !o.horizonsPath.empty();
   if (bake.horizons && bake.method == aal::BakeMethod::Rays) {
@@ -298,6 +323,12 @@ bool writeOutputs(const Options& o, bool tiled, aal::BakeResult& result,
       writeGisRaster(o.visiblePath, visibleFractions(result.aperture), field, o.cog);
     }
     if (!o.horizonsPath.empty()) aal::writeHorizonMap(o.horizonsPath, result.horizons);
+    if (!o.positiveOpennessPath.empty()) {
+      writeGisRaster(o.positiveOpennessPath, std::move(result.positiveOpenness), field, o.cog);
+    }
+    if (!o.negativeOpennessPath.empty()) {
+      writeGisRaster(o.negativeOpennessPath, std::move(result.negativeOpenness), field, o.cog);
+    }
   } catch (const aal::Interrupted&) {
     std::fprintf(stderr,
                  "aal-bake: interrupted while writing; the outputs written before are kept, the "
@@ -426,6 +457,16 @@ CLI::Option* addExtraOutputOptions(CLI::App& app, Options& o) {
   app.add_option(
       "--visible", o.visiblePath,
       "also write the visible fraction Omega/2pi as a float32 GeoTIFF placed like the DEM");
+  app.add_option("--openness-positive", o.positiveOpennessPath,
+                 "also write positive topographic openness (Yokoyama): the mean over the "
+                 "--azimuths of 90 degrees minus the highest signed elevation angle within "
+                 "--max-distance (else the whole DEM), in degrees, as a float32 GeoTIFF placed "
+                 "like the DEM; 90 on a plane, above on ridges; nodata at voids and, with --edge "
+                 "open, on the DEM's outer ring (docs/baking.md)");
+  app.add_option("--openness-negative", o.negativeOpennessPath,
+                 "also write negative openness: 90 degrees plus the mean lowest elevation angle, "
+                 "as --openness-positive; 90 on a plane, above in valleys; a second sweep over "
+                 "the inverted DEM, about as long again; not with --curvature");
   return svf;
 }
 
@@ -484,8 +525,8 @@ int main(int argc, char** argv) {
   addTiledBakeOptions(app, o);
   app.add_flag(
       "--cog", o.cog,
-      "write --svf and --visible as cloud-optimized GeoTIFFs (tiled, with overviews); not a "
-      "tiled bake's SVF tiles");
+      "write --svf, --visible and the openness rasters as cloud-optimized GeoTIFFs (tiled, "
+      "with overviews); not a tiled bake's SVF tiles");
   aal::addMapStorageOptions(app, o);
   aal::addQuietFlag(app, o.quiet);
 
