@@ -16,6 +16,7 @@
 #include <CLI/CLI.hpp>
 
 #include "aperture/preprocess/bake.h"
+#include "aperture/preprocess/local_dominance.h"
 #include "aperture/preprocess/progress.h"
 #include "aperture/preprocess/sky_view_factor_tiles.h"
 #include "aperture/preprocess/tiled_bake.h"
@@ -68,6 +69,9 @@ struct Options : aal::SweepCommandLine {
   int horizonBits = aal::kBakeToolHorizonBits;
   std::string visiblePath;
   std::string positiveOpennessPath, negativeOpennessPath;  // docs/baking.md, "Openness"
+  std::string localDominancePath;                          // "Local dominance"
+  std::vector<int> localDominanceRadii{10, 20};
+  double observerHeight = 1.7;
   int threads = 0;
   bool quiet = false;
   bool cog = false;
@@ -83,7 +87,8 @@ void checkOutputs(const Options& o, bool tiled) {
                                   {"--visible", o.visiblePath},
                                   {"--horizons", o.horizonsPath},
                                   {"--openness-positive", o.positiveOpennessPath},
-                                  {"--openness-negative", o.negativeOpennessPath}};
+                                  {"--openness-negative", o.negativeOpennessPath},
+                                  {"--local-dominance", o.localDominancePath}};
   if (tiled) {
     aal::checkTiledBakeOutput(dem, o.output, others);
   } else {
@@ -100,8 +105,8 @@ void checkOutputs(const Options& o, bool tiled) {
     }
     aal::requireWritableOutput(o.output);
   }
-  for (const std::string& path :
-       {o.svfPath, o.visiblePath, o.horizonsPath, o.positiveOpennessPath, o.negativeOpennessPath}) {
+  for (const std::string& path : {o.svfPath, o.visiblePath, o.horizonsPath, o.positiveOpennessPath,
+                                  o.negativeOpennessPath, o.localDominancePath}) {
     if (path.empty()) continue;
     aal::requireWritableOutput(path);
   }
@@ -133,11 +138,12 @@ bool checkTiling(const Options& o, const aal::DemSource& dem) {
   if (!o.visiblePath.empty() || !o.horizonsPath.empty()) {
     throw aal::InputError(why + " writes no --visible or --horizons");
   }
-  if (!o.positiveOpennessPath.empty() || !o.negativeOpennessPath.empty()) {
+  if (!o.positiveOpennessPath.empty() || !o.negativeOpennessPath.empty() ||
+      !o.localDominancePath.empty()) {
     throw aal::InputError(why +
-                          " writes no --openness-positive or --openness-negative: bake "
-                          "openness in one piece (a DEM cropped with gdal_translate -srcwin "
-                          "if need be)");
+                          " writes no --openness-positive, --openness-negative or "
+                          "--local-dominance: bake them in one piece (a DEM cropped with "
+                          "gdal_translate -srcwin if need be)");
   }
   aal::checkSweepOptions(o);
   return true;
@@ -178,7 +184,7 @@ void requireInMemoryBake(const Options& o, const aal::DemSource& dem) {
   const double perTexel =
       aal::kInMemoryBakeBytesPerTexel + (o.svf ? 4 : 0) + (o.visiblePath.empty() ? 0 : 4) +
       (o.positiveOpennessPath.empty() ? 0 : 4) + (o.negativeOpennessPath.empty() ? 0 : 8) +
-      (o.horizonsPath.empty() ? 0 : o.horizonDirections);
+      (o.localDominancePath.empty() ? 0 : 4) + (o.horizonsPath.empty() ? 0 : o.horizonDirections);
   aal::requireMemory(
       o.dem, texels * perTexel,
       "its bake in memory (" + std::to_string(std::lround(perTexel)) + " bytes per texel)",
@@ -234,6 +240,11 @@ aal::BakeOptions bakeOptions(const Options& o) {
         "--openness-negative does not take --curvature (the inverted DEM's sweep would raise "
         "distant terrain, not drop it)");
   }
+  if (o.localDominanceRadii[0] > o.localDominanceRadii[1]) {
+    throw aal::InputError("--local-dominance-radii " + std::to_string(o.localDominanceRadii[0]) +
+                          " " + std::to_string(o.localDominanceRadii[1]) +
+                          ": the inner radius must not exceed the outer");
+  }
   bake.horizons = !o.horizonsPath.empty();
   if (bake.horizons && bake.method == aal::BakeMethod::Rays) {
     throw aal::InputError("--horizons needs --method sweep (the ray reference has no horizons)");
@@ -271,9 +282,19 @@ struct BakePlan {
 // counts (the tiles are in the folder already).
 struct Baked {
   aal::BakeResult result;
+  std::vector<float> localDominance;  // --local-dominance
   aal::TiledBakeSummary tiles;
   double seconds = 0;
 };
+
+aal::LocalDominanceOptions localDominanceOptions(const Options& o) {
+  aal::LocalDominanceOptions options;
+  options.minRadiusCells = o.localDominanceRadii[0];
+  options.maxRadiusCells = o.localDominanceRadii[1];
+  options.observerHeightM = o.observerHeight;
+  options.cancel = &aal::interruptFlag();
+  return options;
+}
 
 // The bake; nullopt when interrupted (said on stderr).
 std::optional<Baked> bakeOrInterrupted(const Options& o, const aal::DemSource& dem,
@@ -288,6 +309,9 @@ std::optional<Baked> bakeOrInterrupted(const Options& o, const aal::DemSource& d
       baked.tiles = aal::bakeTiled(read.field, plan.bake, plan.tiling, o.output);
     } else {
       baked.result = aal::bakeApertures(read.field, plan.bake);
+      if (!o.localDominancePath.empty()) {
+        baked.localDominance = aal::localDominance(read.field, localDominanceOptions(o));
+      }
     }
   } catch (const aal::BakeCancelled&) {
     progress.finish();
@@ -309,8 +333,9 @@ std::optional<Baked> bakeOrInterrupted(const Options& o, const aal::DemSource& d
 // The map of a bake in one piece and the extra rasters; false when
 // interrupted (said on stderr). The writers poll the interrupt too: each
 // output is whole or absent.
-bool writeOutputs(const Options& o, bool tiled, aal::BakeResult& result,
-                  const aal::Heightfield& field, const std::string& source) {
+bool writeOutputs(const Options& o, bool tiled, Baked& baked, const aal::Heightfield& field,
+                  const std::string& source) {
+  aal::BakeResult& result = baked.result;
   try {
     if (!tiled) {
       result.aperture.info.source = source;
@@ -328,6 +353,9 @@ bool writeOutputs(const Options& o, bool tiled, aal::BakeResult& result,
     }
     if (!o.negativeOpennessPath.empty()) {
       writeGisRaster(o.negativeOpennessPath, std::move(result.negativeOpenness), field, o.cog);
+    }
+    if (!o.localDominancePath.empty()) {
+      writeGisRaster(o.localDominancePath, std::move(baked.localDominance), field, o.cog);
     }
   } catch (const aal::Interrupted&) {
     std::fprintf(stderr,
@@ -424,7 +452,7 @@ int run(const Options& o) {
   if (!baked) return aal::kExitFailure;
 
   const auto writeStart = std::chrono::steady_clock::now();
-  if (!writeOutputs(o, plan.tiled, baked->result, read.field, source)) return aal::kExitFailure;
+  if (!writeOutputs(o, plan.tiled, *baked, read.field, source)) return aal::kExitFailure;
   const double writeSeconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - writeStart).count();
   if (!o.quiet) printSummary(o, plan, *baked, read, writeSeconds, source);
@@ -467,6 +495,24 @@ CLI::Option* addExtraOutputOptions(CLI::App& app, Options& o) {
                  "also write negative openness: 90 degrees plus the mean lowest elevation angle, "
                  "as --openness-positive; 90 on a plane, above in valleys; a second sweep over "
                  "the inverted DEM, about as long again; not with --curvature");
+  CLI::Option* dominance =
+      app.add_option("--local-dominance", o.localDominancePath,
+                     "also write local dominance (Hesse; RVT's definition): how far an observer "
+                     "--observer-height above each texel looks down on the ring of "
+                     "--local-dominance-radii cells around it, relative to a plane (1 on a plane, "
+                     "above on peaks, 0 in hollows deeper than the observer), as a float32 GeoTIFF "
+                     "placed like the DEM; voids nodata (docs/baking.md)");
+  app.add_option("--local-dominance-radii", o.localDominanceRadii,
+                 "inner and outer radius of --local-dominance's ring, in cells")
+      ->expected(2)
+      ->check(CLI::Range(1, 1000))
+      ->needs(dominance)
+      ->capture_default_str();
+  app.add_option("--observer-height", o.observerHeight,
+                 "metres of the observer above each texel for --local-dominance")
+      ->check(CLI::PositiveNumber)
+      ->needs(dominance)
+      ->capture_default_str();
   return svf;
 }
 
@@ -523,10 +569,9 @@ int main(int argc, char** argv) {
   app.add_option("--threads", o.threads, "worker threads (default: all cores)")
       ->check(CLI::Range(1, 1024));
   addTiledBakeOptions(app, o);
-  app.add_flag(
-      "--cog", o.cog,
-      "write --svf, --visible and the openness rasters as cloud-optimized GeoTIFFs (tiled, "
-      "with overviews); not a tiled bake's SVF tiles");
+  app.add_flag("--cog", o.cog,
+               "write --svf, --visible, the openness and the local dominance rasters as "
+               "cloud-optimized GeoTIFFs (tiled, with overviews); not a tiled bake's SVF tiles");
   aal::addMapStorageOptions(app, o);
   aal::addQuietFlag(app, o.quiet);
 

@@ -105,7 +105,7 @@ TEST(AalBakeOpenness, RefusalsExitWithTwoAndWriteNothing) {
   };
   for (const Case& c : {
            Case{quoted(dem) + " -q -o " + quoted(dir.path() / "tiles") + " --tile-size 16" + pos,
-                "writes no --openness-positive or --openness-negative"},
+                "writes no --openness-positive, --openness-negative or --local-dominance"},
            Case{in + " --method rays" + neg, "need --method sweep"},
            Case{in + " --curvature" + neg, "--openness-negative does not take --curvature"},
            Case{in + " --openness-positive " + quoted(dir.path() / "no" / "p.tif"),
