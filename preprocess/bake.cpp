@@ -70,8 +70,9 @@ void checkCancel(const BakeOptions& o) {
 }
 
 // Sums the sky slices of every azimuth into `sums`, and the SVF terms and
-// horizon angles of openness where wanted; with `horizonCodes`, stores the horizons of the azimuths
-// k * 2 pi / o.horizonDirections there (that many codes per texel).
+// the horizon angles of openness where wanted; with `horizonCodes`, stores
+// the horizons of the azimuths k * 2 pi / o.horizonDirections there (that
+// many codes per texel).
 class AzimuthSweeps {
  public:
   AzimuthSweeps(const BakeTerrain& terrain, const BakeOptions& o, float* sums,

@@ -48,6 +48,7 @@ void sumHorizonAngles(const BakeTerrain& terrain, const BakeOptions& o, std::vec
     const double phi = pass * dPhi;
     if (o.maxDistanceM > 0.0) {
       sweepHorizons(terrain, phi, sweep, [&](size_t texel, double tanHorizon) {
+        checkCancel(o);  // one azimuth of a large DEM takes long: poll per texel too
         addHorizonAngle(sums[texel],
                         static_cast<float>(std::max(tanHorizon, double(kNoHorizonTangent))));
       });
