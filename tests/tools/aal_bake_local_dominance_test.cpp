@@ -1,8 +1,13 @@
 // aal-bake --local-dominance: the raster and its refusals.
 #include <gtest/gtest.h>
+#include <signal.h>
+#include <spawn.h>
+#include <sys/wait.h>
 
+#include <chrono>
 #include <filesystem>
 #include <string>
+#include <thread>
 
 #include "aperture/preprocess/local_dominance.h"
 #include "aperture/terrain/io/dem_loader.h"
@@ -18,12 +23,12 @@ using test::quoted;
 using test::runTool;
 using test::TempDir;
 
-// A 48 x 40 fBm DEM of 1 m cells (lidar-like relief) in UTM 16N, with a
-// void of 2 x 3 texels at (30, 5).
-fs::path writeDem(const TempDir& dir) {
+// A width x height (48 x 40) fBm DEM of 1 m cells (lidar-like relief) in
+// UTM 16N, with a void of 2 x 3 texels at (30, 5).
+fs::path writeDem(const TempDir& dir, int width = 48, int height = 40) {
   SyntheticTerrainOptions s;
-  s.width = 48;
-  s.height = 40;
+  s.width = width;
+  s.height = height;
   s.cellSizeM = 1;
   s.amplitudeM = 8;
   s.featureSizeTexels = 12;
@@ -40,7 +45,7 @@ fs::path writeDem(const TempDir& dir) {
   RasterWriteOptions options;
   options.nodata = -9999.0;
   const fs::path path = dir.path() / "dem.tif";
-  writeFloatGeoTiff(path.string(), 48, 40, field.z.data(), geo, options);
+  writeFloatGeoTiff(path.string(), width, height, field.z.data(), geo, options);
   return path;
 }
 
@@ -98,6 +103,39 @@ TEST(AalBakeLocalDominance, RefusalsExitWithTwoAndWriteNothing) {
   for (const char* name : {"a.exr", "ld.tif", "tiles"}) {
     EXPECT_FALSE(fs::exists(dir.path() / name)) << name;
   }
+}
+
+// Ctrl-C while local dominance runs (after the bake) stops it cleanly: exit
+// 1, not the watchdog's 128 + SIGINT, and nothing written.
+TEST(AalBakeLocalDominance, InterruptLeavesNoFile) {
+  TempDir dir;
+  const fs::path dem = writeDem(dir, 512, 512);
+  const std::string bake = (test::binDir() / "aal-bake").string();
+  const std::string demArg = dem.string(), out = (dir.path() / "a.exr").string(),
+                    ld = (dir.path() / "ld.tif").string();
+  // A ring of 24 x 1000 samples per texel of 512²: a minute of work after a
+  // bake of a few milliseconds.
+  const char* argv[] = {bake.c_str(), demArg.c_str(),
+                        "-o",         out.c_str(),
+                        "--azimuths", "4",
+                        "-q",         "--local-dominance",
+                        ld.c_str(),   "--local-dominance-radii",
+                        "1",          "1000",
+                        nullptr};
+  pid_t pid = 0;
+  ASSERT_EQ(posix_spawn(&pid, bake.c_str(), nullptr, nullptr, const_cast<char**>(argv), environ),
+            0);
+  for (int i = 0; i < 200 && !test::catchesSignal(pid, SIGINT); ++i) {
+    std::this_thread::sleep_for(std::chrono::milliseconds(20));
+  }
+  std::this_thread::sleep_for(std::chrono::milliseconds(500));
+  kill(pid, SIGINT);
+  int status = 0;
+  ASSERT_EQ(waitpid(pid, &status, 0), pid);
+  ASSERT_TRUE(WIFEXITED(status));
+  EXPECT_EQ(WEXITSTATUS(status), 1);
+  EXPECT_FALSE(fs::exists(out));
+  EXPECT_FALSE(fs::exists(ld));
 }
 
 }  // namespace
