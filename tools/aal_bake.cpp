@@ -1,4 +1,5 @@
 // aal-bake: aperture maps (bent normal + visible-sky cap) from a DEM.
+#include <algorithm>
 #include <atomic>
 #include <cctype>
 #include <chrono>
@@ -7,6 +8,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <limits>
 #include <optional>
 #include <string>
 #include <thread>
@@ -36,7 +38,8 @@
 namespace {
 
 // A per-texel result as a GeoTIFF placed like the DEM; the DEM's voids are
-// nodata there (the DEM's own nodata value when float holds it, else NaN).
+// nodata there (the DEM's own nodata value when float holds it, else NaN),
+// and so are the result's own NaNs (openness on an open edge).
 void writeGisRaster(const std::string& path, std::vector<float> values,
                     const aal::Heightfield& field, bool cog) {
   aal::RasterWriteOptions options;
@@ -44,6 +47,11 @@ void writeGisRaster(const std::string& path, std::vector<float> values,
   const aal::TexelWindow whole{.width = field.width, .height = field.height};
   if (const std::optional<float> nodata = aal::markVoidsAsNodata(values, field, whole)) {
     options.nodata = *nodata;
+  }
+  if (std::any_of(values.begin(), values.end(), [](float v) { return std::isnan(v); })) {
+    if (!options.nodata) options.nodata = std::numeric_limits<float>::quiet_NaN();
+    const float nodata = static_cast<float>(*options.nodata);
+    for (float& v : values) v = std::isnan(v) ? nodata : v;
   }
   aal::writeFloatGeoTiff(path, field.width, field.height, values.data(), field.geo, options);
 }

@@ -228,5 +228,47 @@ TEST(AalBakeOpenness, AgreesWithSaga) {
   }
 }
 
+// The openness's own nodata (the outer ring) is the raster's nodata value:
+// the DEM's where it has one, else NaN, declared as such.
+TEST(AalBakeOpenness, TheOuterRingIsTheRastersNodata) {
+  TempDir dir;
+  const fs::path withVoids = writeDemWithVoids(dir);
+  SyntheticTerrainOptions s;
+  s.width = s.height = 24;
+  s.cellSizeM = 30;
+  const Heightfield plain = makeSyntheticTerrain(s);
+  const fs::path noNodata = dir.path() / "plain.tif";
+  writeFloatGeoTiff(noNodata.string(), 24, 24, plain.z.data(), utm(30));
+  for (const auto& [dem, nodata] :
+       {std::pair{withVoids, double(kNodata)}, std::pair{noNodata, double(NAN)}}) {
+    const fs::path pos = dir.path() / "pos.tif";
+    const auto r =
+        runTool("aal-bake", quoted(dem) + " -q --azimuths 8 -o " + quoted(dir.path() / "a.exr") +
+                                " --openness-positive " + quoted(pos));
+    ASSERT_EQ(r.exitCode, 0) << r.out;
+    GDALAllRegister();
+    GDALDataset* ds = GDALDataset::Open(pos.string().c_str(), GDAL_OF_RASTER | GDAL_OF_READONLY);
+    ASSERT_NE(ds, nullptr);
+    const int width = ds->GetRasterXSize();
+    int hasNodata = 0;
+    const double declared = ds->GetRasterBand(1)->GetNoDataValue(&hasNodata);
+    float corner = 0, inside = 0;
+    EXPECT_EQ(ds->GetRasterBand(1)->RasterIO(GF_Read, 0, 0, 1, 1, &corner, 1, 1, GDT_Float32, 0, 0),
+              CE_None);
+    EXPECT_EQ(ds->GetRasterBand(1)->RasterIO(GF_Read, width / 2, 3, 1, 1, &inside, 1, 1,
+                                             GDT_Float32, 0, 0),
+              CE_None);
+    GDALClose(ds);
+    ASSERT_TRUE(hasNodata) << dem;
+    if (std::isnan(nodata)) {
+      EXPECT_TRUE(std::isnan(declared) && std::isnan(corner)) << dem;
+    } else {
+      EXPECT_EQ(declared, nodata) << dem;
+      EXPECT_EQ(corner, float(nodata)) << dem;
+    }
+    EXPECT_TRUE(std::isfinite(inside) && inside != float(kNodata)) << dem;
+  }
+}
+
 }  // namespace
 }  // namespace aal
