@@ -13,6 +13,7 @@
 #include "aperture/preprocess/far_horizon.h"
 #include "aperture/preprocess/horizon_blocks.h"
 #include "aperture/preprocess/horizon_sweep.h"
+#include "aperture/preprocess/openness.h"
 #include "aperture/preprocess/ray_bake.h"
 #include "aperture/preprocess/slice_accumulator.h"
 #include "aperture/terrain/huge_pages.h"
@@ -54,23 +55,33 @@ void checkOptions(HeightView heights, const BakeOptions& o) {
     throw std::invalid_argument("directional horizons need the sweep with a multiple of " +
                                 std::to_string(o.horizonDirections) + " azimuths");
   }
+  const bool openness = o.positiveOpenness || o.negativeOpenness;
+  if (openness && (o.method != BakeMethod::Sweep || o.farField)) {
+    throw std::invalid_argument(
+        "openness needs the sweep over the whole DEM or within a max distance (not a far field)");
+  }
+  if (o.negativeOpenness && o.curvature) {
+    throw std::invalid_argument("negative openness does not take Earth curvature");
+  }
 }
 
 void checkCancel(const BakeOptions& o) {
   if (o.cancel && o.cancel->load(std::memory_order_relaxed)) throw BakeCancelled();
 }
 
-// Sums the sky slices of every azimuth into `sums`, and the SVF terms; with
-// `horizonCodes`, stores the horizons of the azimuths k * 2 pi /
-// o.horizonDirections there (that many codes per texel).
+// Sums the sky slices of every azimuth into `sums`, and the SVF terms and
+// the horizon angles of openness where wanted; with `horizonCodes`, stores
+// the horizons of the azimuths k * 2 pi / o.horizonDirections there (that
+// many codes per texel).
 class AzimuthSweeps {
  public:
   AzimuthSweeps(const BakeTerrain& terrain, const BakeOptions& o, float* sums,
-                std::vector<float>& svf, uint8_t* horizonCodes)
+                std::vector<float>& svf, std::vector<float>& openness, uint8_t* horizonCodes)
       : terrain_(terrain),
         o_(o),
         svf_(svf),
-        sums_(terrain, o, sums, svf, horizonCodes),
+        openness_(openness),
+        sums_(terrain, o, sums, svf, openness, horizonCodes),
         dPhi_(kTwoPi / o.azimuths) {
     sweep_.clampEdge = o.clampEdge;
     sweep_.curvature = o.curvature ? (1.0 - o.refraction) / (2.0 * kEarthRadiusM) : 0.0;
@@ -99,6 +110,7 @@ class AzimuthSweeps {
       if (o_.progress) o_.progress(static_cast<double>(pass + 1) / passes);
     }
     if (!svf_.empty()) finishSkyViewFactor();
+    if (!openness_.empty()) finishOpenness(openness_, o_.azimuths);
   }
 
  private:
@@ -174,6 +186,7 @@ class AzimuthSweeps {
   const BakeTerrain& terrain_;
   const BakeOptions& o_;
   std::vector<float>& svf_;
+  std::vector<float>& openness_;
   const SliceAccumulator sums_;
   const double dPhi_;
   HorizonSweepOptions sweep_;
@@ -214,6 +227,7 @@ BakeResult bakeWindow(const BakeTerrain& terrain, const BakeOptions& o) {
   map.height = terrain.window.height;
   assignOnHugePages(map.texels, map.texelCount() * 4, 0.0f);
   if (o.skyViewFactor) result.skyViewFactor.assign(map.texelCount(), 0.0f);
+  if (o.positiveOpenness) result.positiveOpenness.assign(map.texelCount(), 0.0f);
   if (o.horizons) {
     result.horizons.width = map.width;
     result.horizons.height = map.height;
@@ -223,9 +237,18 @@ BakeResult bakeWindow(const BakeTerrain& terrain, const BakeOptions& o) {
   }
 
   if (o.method == BakeMethod::Sweep) {
-    AzimuthSweeps(terrain, o, map.texels.data(), result.skyViewFactor,
+    // With negative openness the second sweep takes the second half of the
+    // progress.
+    BakeOptions first = o;
+    if (o.negativeOpenness && o.progress) first.progress = [&](double f) { o.progress(0.5 * f); };
+    AzimuthSweeps(terrain, first, map.texels.data(), result.skyViewFactor, result.positiveOpenness,
                   o.horizons ? result.horizons.codes.data() : nullptr)
         .run();
+    if (o.negativeOpenness) {
+      BakeOptions second = o;
+      if (o.progress) second.progress = [&](double f) { o.progress(0.5 + 0.5 * f); };
+      result.negativeOpenness = negativeOpenness(terrain.heights, terrain.window, second);
+    }
   } else {
     bakeRays(terrain, o, map.texels.data(), result.skyViewFactor);
   }

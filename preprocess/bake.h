@@ -32,6 +32,12 @@ struct BakeOptions {
   double refraction = 0.13;    // refraction coefficient k: drop = (1 - k) t^2 / 2R
   double maxDistanceM = 0;     // 0 = the whole DEM counts
   bool skyViewFactor = false;  // also compute SVF = 1 - mean sin(max(h, 0))
+  // Also compute topographic openness (openness.h), in degrees: positive
+  // from the sweep's own horizons, negative from a second sweep over -z
+  // (about as long again). Not with a far field; negative not with Earth
+  // curvature.
+  bool positiveOpenness = false;
+  bool negativeOpenness = false;
   // Also keep the horizon of horizonDirections azimuths (terrain/io/horizon_map.h):
   // the sweep's own horizons at k * 360 / horizonDirections degrees, so
   // `azimuths` must be a multiple of horizonDirections.
@@ -56,7 +62,10 @@ class BakeCancelled : public std::runtime_error {
 struct BakeResult {
   ApertureMap aperture;              // info filled except `source`
   std::vector<float> skyViewFactor;  // per texel in [0, 1] when requested, else empty
-  HorizonMap horizons;               // when requested, else empty
+  // Per texel in degrees, in [0, 180], when requested, else empty; NaN on an
+  // open edge, where an azimuth has no terrain ahead.
+  std::vector<float> positiveOpenness, negativeOpenness;
+  HorizonMap horizons;  // when requested, else empty
 };
 
 constexpr double kEarthRadiusM = 6371000.0;

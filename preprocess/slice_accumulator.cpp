@@ -4,16 +4,19 @@
 #include <atomic>
 #include <cmath>
 
+#include "aperture/preprocess/openness.h"
 #include "aperture/preprocess/sky_slice.h"
 
 namespace aal {
 
 SliceAccumulator::SliceAccumulator(const BakeTerrain& terrain, const BakeOptions& o, float* sums,
-                                   std::vector<float>& svf, uint8_t* horizonCodes)
+                                   std::vector<float>& svf, std::vector<float>& openness,
+                                   uint8_t* horizonCodes)
     : terrain_(terrain),
       o_(o),
       sums_(sums),
       svf_(svf),
+      openness_(openness),
       horizonCodes_(horizonCodes),
       avx2_(detail::horizonAvx2()) {}
 
@@ -42,15 +45,11 @@ inline void SliceAccumulator::addSlices(const HorizonBlock& b, const AzimuthSlic
     if (opposite && opposite->horizonSlot >= 0) storeHorizons(b, b.tanOpposite, *opposite);
   }
   prefetchAhead(b);
-  const bool wantSvf = !svf_.empty();
+  addGisTerms(b, opposite != nullptr);
 #if AAL_HORIZON_AVX2
   // Not for the distance-limited sweep's blocks of one: 20 % slower there.
   if (avx2_ && b.count > 1) {
     detail::addSlicesAvx2(sums_, b, s, opposite);
-    if (wantSvf) {
-      addSkyViewFactor(b, b.tanHorizon);
-      if (opposite) addSkyViewFactor(b, b.tanOpposite);
-    }
     return;
   }
 #endif
@@ -95,6 +94,24 @@ inline void SliceAccumulator::storeHorizons(const HorizonBlock& b, const float* 
   }
 }
 
+inline void SliceAccumulator::addGisTerms(const HorizonBlock& b, bool opposite) const {
+  if (!svf_.empty()) {
+    addSkyViewFactor(b, b.tanHorizon);
+    if (opposite) addSkyViewFactor(b, b.tanOpposite);
+  }
+  if (!openness_.empty()) {
+    addOpenness(b, b.tanHorizon);
+    if (opposite) addOpenness(b, b.tanOpposite);
+  }
+}
+
+// Signed: openness counts terrain below the horizontal too.
+inline void SliceAccumulator::addOpenness(const HorizonBlock& b, const float* tanHorizon) const {
+  for (int j = 0; j < b.count; ++j) {
+    addHorizonAngle(openness_[b.firstTexel + j * b.stride], tanHorizon[j]);
+  }
+}
+
 inline void SliceAccumulator::addSkyViewFactor(const HorizonBlock& b,
                                                const float* tanHorizon) const {
   for (int j = 0; j < b.count; ++j) {
@@ -111,7 +128,6 @@ inline void SliceAccumulator::sliceTerms(const HorizonBlock& b, const float* tan
     const float tanPlane = b.slopeEast[j] * s.cosPhi + b.slopeNorth[j] * s.sinPhi;
     skySliceTerms(terms[j], std::max(tanHorizon[j], tanPlane), s.dPhi, s.cosPhiDPhi, s.sinPhiDPhi);
   }
-  if (!svf_.empty()) addSkyViewFactor(b, tanHorizon);
 }
 
 }  // namespace aal

@@ -1,8 +1,8 @@
 // A bake's running sums of sky slices (docs/design.md §3 step 2): the
 // visitor of the horizon sweeps (horizon_blocks.h, horizon_sweep.h), which
 // adds each slice's closed-form terms (sky_slice.h) to the 4 floats of every
-// texel it is given, and the sky-view factor's terms and the directional
-// horizons where wanted.
+// texel it is given, and the sky-view factor's terms, the horizon angles of
+// positive openness (openness.h) and the directional horizons where wanted.
 #pragma once
 
 #include <cstddef>
@@ -27,9 +27,10 @@ class SliceAccumulator {
  public:
   // sums: 4 floats per texel of terrain.window (bent vector, solid angle);
   // svf: empty, or one float per texel for the sky-view factor's sum;
+  // openness: empty, or one float per texel for the sum of horizon angles;
   // horizonCodes: null, or o.horizonDirections codes per texel.
   SliceAccumulator(const BakeTerrain& terrain, const BakeOptions& o, float* sums,
-                   std::vector<float>& svf, uint8_t* horizonCodes);
+                   std::vector<float>& svf, std::vector<float>& openness, uint8_t* horizonCodes);
 
   // Adds slice s (and, from b.tanOpposite, the opposite slice) to a block
   // of texels, reading and writing each texel's sums once. Throws
@@ -48,8 +49,12 @@ class SliceAccumulator {
   [[gnu::always_inline]] inline void prefetchAhead(const HorizonBlock& b) const;
   [[gnu::always_inline]] inline void storeHorizons(const HorizonBlock& b, const float* tanHorizon,
                                                    const AzimuthSlice& s) const;
+  // The sky-view factor's and openness's terms of both slices.
+  [[gnu::always_inline]] inline void addGisTerms(const HorizonBlock& b, bool opposite) const;
   [[gnu::always_inline]] inline void addSkyViewFactor(const HorizonBlock& b,
                                                       const float* tanHorizon) const;
+  [[gnu::always_inline]] inline void addOpenness(const HorizonBlock& b,
+                                                 const float* tanHorizon) const;
   [[gnu::always_inline]] inline void sliceTerms(const HorizonBlock& b, const float* tanHorizon,
                                                 const AzimuthSlice& s, float (*terms)[4]) const;
 
@@ -57,6 +62,7 @@ class SliceAccumulator {
   const BakeOptions& o_;
   float* const sums_;
   std::vector<float>& svf_;
+  std::vector<float>& openness_;
   uint8_t* const horizonCodes_;
   const bool avx2_;
 };

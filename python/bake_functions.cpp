@@ -48,6 +48,7 @@ void checkThreads(int threads) {
 struct BakeOutput {
   int width = 0, height = 0;
   std::vector<float> visible, skyViewFactor, bentNormal, arcLength, horizonsDeg;
+  std::vector<float> positiveOpenness, negativeOpenness;  // empty unless asked
   int horizonDirections = 0;
 };
 
@@ -70,6 +71,10 @@ BakeOutput bakeArray(Task& task, DemArray dem, BakeOptions options, int threads)
   markVoidsAsNodata(out.visible, field, whole);
   out.skyViewFactor = std::move(result.skyViewFactor);
   markVoidsAsNodata(out.skyViewFactor, field, whole);
+  out.positiveOpenness = std::move(result.positiveOpenness);
+  out.negativeOpenness = std::move(result.negativeOpenness);
+  if (options.positiveOpenness) markVoidsAsNodata(out.positiveOpenness, field, whole);
+  if (options.negativeOpenness) markVoidsAsNodata(out.negativeOpenness, field, whole);
   out.arcLength.resize(texels);
   out.bentNormal.resize(3 * texels);
   const std::vector<float>& t = result.aperture.texels;
@@ -99,7 +104,7 @@ BakeOutput bakeArray(Task& task, DemArray dem, BakeOptions options, int threads)
 }
 
 py::tuple bake(DemArray& demObject, int azimuths, double maxDistanceM, const std::string& edge,
-               bool curvature, double refraction, int horizons, int threads,
+               bool curvature, double refraction, int horizons, bool openness, int threads,
                const py::object& progress) {
   if (edge != "open" && edge != "clamp") {
     throw InputError("edge must be 'open' or 'clamp', got '" + edge + "'");
@@ -115,6 +120,13 @@ py::tuple bake(DemArray& demObject, int azimuths, double maxDistanceM, const std
   options.refraction = refraction;
   options.maxDistanceM = maxDistanceM;
   options.skyViewFactor = true;
+  // Both, as aal-bake --openness-positive and --openness-negative.
+  options.positiveOpenness = options.negativeOpenness = openness;
+  if (openness && curvature) {
+    throw InputError(
+        "openness does not take curvature (the negative openness's sweep of the "
+        "inverted DEM would raise distant terrain, not drop it)");
+  }
   options.horizons = horizons != 0;
   if (options.horizons) options.horizonDirections = horizons;
   options.horizonBits = kHorizonBits;
@@ -126,10 +138,15 @@ py::tuple bake(DemArray& demObject, int azimuths, double maxDistanceM, const std
   if (out.horizonDirections > 0) {
     horizonArray = toNumpy(std::move(out.horizonsDeg), {h, w, out.horizonDirections});
   }
-  return py::make_tuple(toNumpy(std::move(out.visible), {h, w}),
-                        toNumpy(std::move(out.skyViewFactor), {h, w}),
-                        toNumpy(std::move(out.bentNormal), {h, w, 3}),
-                        toNumpy(std::move(out.arcLength), {h, w}), horizonArray);
+  py::object positive = py::none(), negative = py::none();
+  if (openness) {
+    positive = toNumpy(std::move(out.positiveOpenness), {h, w});
+    negative = toNumpy(std::move(out.negativeOpenness), {h, w});
+  }
+  return py::make_tuple(
+      toNumpy(std::move(out.visible), {h, w}), toNumpy(std::move(out.skyViewFactor), {h, w}),
+      toNumpy(std::move(out.bentNormal), {h, w, 3}), toNumpy(std::move(out.arcLength), {h, w}),
+      horizonArray, positive, negative);
 }
 
 // aal-relief's sky weight when --sky is not given (tools/aal_relief.cpp).
@@ -234,9 +251,10 @@ py::array relief(DemArray& demObject, ReliefArguments a, const py::object& progr
 void addBakeFunctions(py::module_& m) {
   m.def("_bake", &bake, py::arg("dem"), py::arg("azimuths"), py::arg("max_distance"),
         py::arg("edge"), py::arg("curvature"), py::arg("refraction"), py::arg("horizons"),
-        py::arg("threads"), py::arg("progress"),
+        py::arg("openness"), py::arg("threads"), py::arg("progress"),
         "aal-bake's in-memory bake of a _Dem: (visible, sky_view_factor, bent_normal, "
-        "arc_length, horizons or None). Use aperture.bake.");
+        "arc_length, horizons or None, positive and negative openness or None). Use "
+        "aperture.bake.");
   m.def(
       "_relief",
       [](DemArray& dem, const std::string& lighting, double sunAzimuth, double sunElevation,

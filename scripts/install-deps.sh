@@ -34,6 +34,9 @@ packages=(
   dpkg-dev lintian help2man
   # fuzzing the DEM parsers (scripts/fuzz.sh): clang with libFuzzer
   clang libclang-rt-14-dev
+  # SAGA's Topographic Openness, which AalBakeOpenness.AgreesWithSaga compares
+  # aal-bake's openness with (skipped without saga_cmd)
+  saga
 )
 
 missing=()

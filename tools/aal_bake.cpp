@@ -1,4 +1,5 @@
 // aal-bake: aperture maps (bent normal + visible-sky cap) from a DEM.
+#include <algorithm>
 #include <atomic>
 #include <cctype>
 #include <chrono>
@@ -7,6 +8,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <limits>
 #include <optional>
 #include <string>
 #include <thread>
@@ -16,6 +18,7 @@
 #include <CLI/CLI.hpp>
 
 #include "aperture/preprocess/bake.h"
+#include "aperture/preprocess/local_dominance.h"
 #include "aperture/preprocess/progress.h"
 #include "aperture/preprocess/sky_view_factor_tiles.h"
 #include "aperture/preprocess/tiled_bake.h"
@@ -38,7 +41,8 @@
 namespace {
 
 // A per-texel result as a float32 GeoTIFF placed like the DEM, the DEM's
-// voids NaN, its nodata value (sky_view_factor_tiles.h).
+// voids and the result's own NaNs (openness on an open edge) NaN, its nodata
+// value (sky_view_factor_tiles.h).
 void writeGisRaster(const std::string& path, std::vector<float> values,
                     const aal::Heightfield& field, aal::RasterWriteOptions options,
                     const aal::RasterBandLabel& label) {
@@ -68,6 +72,10 @@ struct Options : aal::SweepCommandLine {
   int horizonDirections = aal::kBakeToolHorizonDirections;
   int horizonBits = aal::kBakeToolHorizonBits;
   std::string visiblePath;
+  std::string positiveOpennessPath, negativeOpennessPath;  // docs/baking.md, "Openness"
+  std::string localDominancePath;                          // "Local dominance"
+  std::vector<int> localDominanceRadii{10, 20};
+  double observerHeight = 1.7;
   int threads = 0;
   bool quiet = false;
   aal::GeoTiffOutputOptions geotiff;  // -of, -co, --overviews
@@ -80,8 +88,12 @@ void checkOutputs(const Options& o, bool tiled) {
   // Every output against the DEM's files (a VRT's sources too) and each
   // other; a tiled bake's files by their names in its folder.
   const aal::NamedPaths dem = aal::inputFiles("DEM", o.dem, /*raster=*/true);
-  const aal::NamedPaths others = {
-      {"--svf", o.svfPath}, {"--visible", o.visiblePath}, {"--horizons", o.horizonsPath}};
+  const aal::NamedPaths others = {{"--svf", o.svfPath},
+                                  {"--visible", o.visiblePath},
+                                  {"--horizons", o.horizonsPath},
+                                  {"--openness-positive", o.positiveOpennessPath},
+                                  {"--openness-negative", o.negativeOpennessPath},
+                                  {"--local-dominance", o.localDominancePath}};
   if (tiled) {
     aal::checkTiledBakeOutput(dem, o.output, others);
   } else {
@@ -98,7 +110,8 @@ void checkOutputs(const Options& o, bool tiled) {
     }
     aal::requireWritableOutput(o.output);
   }
-  for (const std::string& path : {o.svfPath, o.visiblePath, o.horizonsPath}) {
+  for (const std::string& path : {o.svfPath, o.visiblePath, o.horizonsPath, o.positiveOpennessPath,
+                                  o.negativeOpennessPath, o.localDominancePath}) {
     if (path.empty()) continue;
     aal::requireWritableOutput(path);
   }
@@ -135,6 +148,13 @@ bool checkTiling(const Options& o, const aal::DemSource& dem) {
                           "mosaic of them: leave out -of COG (--cog); -co and --overviews apply " +
                           "to the tiles");
   }
+  if (!o.positiveOpennessPath.empty() || !o.negativeOpennessPath.empty() ||
+      !o.localDominancePath.empty()) {
+    throw aal::InputError(why +
+                          " writes no --openness-positive, --openness-negative or "
+                          "--local-dominance: bake them in one piece (a DEM cropped with "
+                          "gdal_translate -srcwin if need be)");
+  }
   aal::checkSweepOptions(o);
   return true;
 }
@@ -170,9 +190,11 @@ void checkTiledOptions(const Options& o, const aal::DemSource& dem, const aal::D
 // allocator half-way through (memory_budget.h).
 void requireInMemoryBake(const Options& o, const aal::DemSource& dem) {
   const double texels = double(dem.width()) * double(dem.height());
-  const double perTexel = aal::kInMemoryBakeBytesPerTexel + (o.svf ? 4 : 0) +
-                          (o.visiblePath.empty() ? 0 : 4) +
-                          (o.horizonsPath.empty() ? 0 : o.horizonDirections);
+  // Negative openness: its sums and the inverted heights it sweeps.
+  const double perTexel =
+      aal::kInMemoryBakeBytesPerTexel + (o.svf ? 4 : 0) + (o.visiblePath.empty() ? 0 : 4) +
+      (o.positiveOpennessPath.empty() ? 0 : 4) + (o.negativeOpennessPath.empty() ? 0 : 8) +
+      (o.localDominancePath.empty() ? 0 : 4) + (o.horizonsPath.empty() ? 0 : o.horizonDirections);
   aal::requireMemory(
       o.dem, texels * perTexel,
       "its bake in memory (" + std::to_string(std::lround(perTexel)) + " bytes per texel)",
@@ -216,6 +238,23 @@ aal::BakeOptions bakeOptions(const Options& o) {
   if (bake.skyViewFactor && bake.method == aal::BakeMethod::Rays) {
     throw aal::InputError("--svf needs --method sweep (the ray reference has no horizons)");
   }
+  bake.positiveOpenness = !o.positiveOpennessPath.empty();
+  bake.negativeOpenness = !o.negativeOpennessPath.empty();
+  if ((bake.positiveOpenness || bake.negativeOpenness) && bake.method == aal::BakeMethod::Rays) {
+    throw aal::InputError(
+        "--openness-positive and --openness-negative need --method sweep (the ray reference has "
+        "no horizons)");
+  }
+  if (bake.negativeOpenness && bake.curvature) {
+    throw aal::InputError(
+        "--openness-negative does not take --curvature (the inverted DEM's sweep would raise "
+        "distant terrain, not drop it)");
+  }
+  if (o.localDominanceRadii[0] > o.localDominanceRadii[1]) {
+    throw aal::InputError("--local-dominance-radii " + std::to_string(o.localDominanceRadii[0]) +
+                          " " + std::to_string(o.localDominanceRadii[1]) +
+                          ": the inner radius must not exceed the outer");
+  }
   bake.horizons = !o.horizonsPath.empty();
   if (bake.horizons && bake.method == aal::BakeMethod::Rays) {
     throw aal::InputError("--horizons needs --method sweep (the ray reference has no horizons)");
@@ -254,9 +293,19 @@ struct BakePlan {
 // counts (the tiles are in the folder already).
 struct Baked {
   aal::BakeResult result;
+  std::vector<float> localDominance;  // --local-dominance
   aal::TiledBakeSummary tiles;
   double seconds = 0;
 };
+
+aal::LocalDominanceOptions localDominanceOptions(const Options& o) {
+  aal::LocalDominanceOptions options;
+  options.minRadiusCells = o.localDominanceRadii[0];
+  options.maxRadiusCells = o.localDominanceRadii[1];
+  options.observerHeightM = o.observerHeight;
+  options.cancel = &aal::interruptFlag();
+  return options;
+}
 
 // The bake; nullopt when interrupted (said on stderr).
 std::optional<Baked> bakeOrInterrupted(const Options& o, const aal::DemSource& dem,
@@ -271,6 +320,9 @@ std::optional<Baked> bakeOrInterrupted(const Options& o, const aal::DemSource& d
       baked.tiles = aal::bakeTiled(read.field, plan.bake, plan.tiling, o.output);
     } else {
       baked.result = aal::bakeApertures(read.field, plan.bake);
+      if (!o.localDominancePath.empty()) {
+        baked.localDominance = aal::localDominance(read.field, localDominanceOptions(o));
+      }
     }
   } catch (const aal::BakeCancelled&) {
     progress.finish();
@@ -292,8 +344,9 @@ std::optional<Baked> bakeOrInterrupted(const Options& o, const aal::DemSource& d
 // The map of a bake in one piece and the extra rasters; false when
 // interrupted (said on stderr). The writers poll the interrupt too: each
 // output is whole or absent.
-bool writeOutputs(const Options& o, bool tiled, aal::BakeResult& result,
-                  const aal::Heightfield& field, const std::string& source) {
+bool writeOutputs(const Options& o, bool tiled, Baked& baked, const aal::Heightfield& field,
+                  const std::string& source) {
+  aal::BakeResult& result = baked.result;
   try {
     if (!tiled) {
       result.aperture.info.source = source;
@@ -312,6 +365,18 @@ bool writeOutputs(const Options& o, bool tiled, aal::BakeResult& result,
                      aal::visibleFractionBandLabel());
     }
     if (!o.horizonsPath.empty()) aal::writeHorizonMap(o.horizonsPath, result.horizons);
+    if (!o.positiveOpennessPath.empty()) {
+      writeGisRaster(o.positiveOpennessPath, std::move(result.positiveOpenness), field, o.raster,
+                     aal::positiveOpennessBandLabel());
+    }
+    if (!o.negativeOpennessPath.empty()) {
+      writeGisRaster(o.negativeOpennessPath, std::move(result.negativeOpenness), field, o.raster,
+                     aal::negativeOpennessBandLabel());
+    }
+    if (!o.localDominancePath.empty()) {
+      writeGisRaster(o.localDominancePath, std::move(baked.localDominance), field, o.raster,
+                     aal::localDominanceBandLabel());
+    }
   } catch (const aal::Interrupted&) {
     std::fprintf(stderr,
                  "aal-bake: interrupted while writing; the outputs written before are kept, the "
@@ -408,7 +473,7 @@ int run(Options& o) {
   if (!baked) return aal::kExitFailure;
 
   const auto writeStart = std::chrono::steady_clock::now();
-  if (!writeOutputs(o, plan.tiled, baked->result, read.field, source)) return aal::kExitFailure;
+  if (!writeOutputs(o, plan.tiled, *baked, read.field, source)) return aal::kExitFailure;
   const double writeSeconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - writeStart).count();
   if (!o.quiet) printSummary(o, plan, *baked, read, writeSeconds, source);
@@ -443,6 +508,34 @@ CLI::Option* addExtraOutputOptions(CLI::App& app, Options& o) {
       "--visible", o.visiblePath,
       "also write the visible fraction Omega/2pi as a float32 GeoTIFF placed like the DEM (its "
       "voids NaN, the nodata value)");
+  app.add_option("--openness-positive", o.positiveOpennessPath,
+                 "also write positive topographic openness (Yokoyama): the mean over the "
+                 "--azimuths of 90 degrees minus the highest signed elevation angle within "
+                 "--max-distance (else the whole DEM), in degrees, as a float32 GeoTIFF placed "
+                 "like the DEM; 90 on a plane, above on ridges; nodata at voids and, with --edge "
+                 "open, on the DEM's outer ring (docs/baking.md)");
+  app.add_option("--openness-negative", o.negativeOpennessPath,
+                 "also write negative openness: 90 degrees plus the mean lowest elevation angle, "
+                 "as --openness-positive; 90 on a plane, above in valleys; a second sweep over "
+                 "the inverted DEM, about as long again; not with --curvature");
+  CLI::Option* dominance =
+      app.add_option("--local-dominance", o.localDominancePath,
+                     "also write local dominance (Hesse; RVT's definition): how far an observer "
+                     "--observer-height above each texel looks down on the ring of "
+                     "--local-dominance-radii cells around it, relative to a plane (1 on a plane, "
+                     "above on peaks, 0 in hollows deeper than the observer), as a float32 GeoTIFF "
+                     "placed like the DEM; voids nodata (docs/baking.md)");
+  app.add_option("--local-dominance-radii", o.localDominanceRadii,
+                 "inner and outer radius of --local-dominance's ring, in cells")
+      ->expected(2)
+      ->check(CLI::Range(1, 1000))
+      ->needs(dominance)
+      ->capture_default_str();
+  app.add_option("--observer-height", o.observerHeight,
+                 "metres of the observer above each texel for --local-dominance")
+      ->check(CLI::PositiveNumber)
+      ->needs(dominance)
+      ->capture_default_str();
   return svf;
 }
 
@@ -505,7 +598,7 @@ int main(int argc, char** argv) {
   addTiledBakeOptions(app, o);
   // A tiled bake's SVF tiles take -co and --overviews (checkTiling refuses
   // -of COG for them).
-  aal::addGeoTiffOutputOptions(app, o.geotiff, "the GeoTIFFs (--svf, --visible, a .tif map)");
+  aal::addGeoTiffOutputOptions(app, o.geotiff, "the GeoTIFFs (--svf, --visible, the openness and local dominance rasters, a .tif map)");
   aal::addMapStorageOptions(app, o);
   aal::addQuietFlag(app, o.quiet);
 

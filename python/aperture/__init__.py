@@ -34,6 +34,7 @@ __all__ = [
     "CellSize",
     "bake",
     "metric_cell_size",
+    "openness",
     "relief",
     "render",
     "sky_view_factor",
@@ -63,6 +64,13 @@ class BakeResult(NamedTuple):
                      east (east, north-east, north, ... for N = 8), as aal-bake --horizons
                      stores them: 8-bit codes (steps of 0.11 deg near the horizontal, 0.43 deg
                      at 30 deg), horizons below -2 deg read as -2 deg.
+    positive_openness, negative_openness
+                     float32 (H, W) or None: with bake(openness=True), topographic openness
+                     in degrees (Yokoyama et al. 2002; aal-bake --openness-positive and
+                     --openness-negative): 90 minus the mean over the azimuths of the highest
+                     signed elevation angle within max_distance, and 90 plus the mean lowest
+                     one; 90 on a plane; NaN also on the outer ring with edge="open", where an
+                     azimuth has no terrain ahead (docs/baking.md, "Openness").
 
     The bent normal and the arc length are aal-bake's aperture map (-o) before
     it is stored as 16-bit halves.
@@ -73,10 +81,13 @@ class BakeResult(NamedTuple):
     bent_normal: np.ndarray
     arc_length: np.ndarray
     horizons: Optional[np.ndarray] = None
+    positive_openness: Optional[np.ndarray] = None
+    negative_openness: Optional[np.ndarray] = None
 
 
 def bake(dem, cell_size, *, azimuths=64, max_distance=None, edge="open", curvature=False,
-         refraction=0.13, horizons=0, z_scale=1.0, nodata=None, threads=None, progress=None):
+         refraction=0.13, horizons=0, openness=False, z_scale=1.0, nodata=None, threads=None,
+         progress=None):
     """Bakes the visible sky of every texel of a DEM, as aal-bake does.
 
     dem           2-D array of heights (metres after z_scale), row 0 north; voids NaN,
@@ -91,6 +102,9 @@ def bake(dem, cell_size, *, azimuths=64, max_distance=None, edge="open", curvatu
                   coefficient `refraction` (drop = (1 - k) d^2 / 2R).
     horizons      N > 0 also keeps the horizon in N directions (4, 8, 12 or 16; azimuths a
                   multiple of N): BakeResult.horizons. 0: none.
+    openness      True also computes positive and negative topographic openness
+                  (BakeResult.positive_openness, .negative_openness): a second sweep, over
+                  the inverted DEM, about as long again. Not with curvature.
     z_scale       metres per height unit (aal-bake --z-scale).
     nodata        texels equal to this value are voids (besides NaN and masked ones).
     threads       worker threads (None: every core), as aal-bake --threads.
@@ -98,9 +112,9 @@ def bake(dem, cell_size, *, azimuths=64, max_distance=None, edge="open", curvatu
                   thread about every 50 ms while the bake runs, and with 1.0 at the end;
                   an exception it raises stops the bake and propagates.
 
-    Returns a BakeResult (visible, sky_view_factor, bent_normal, arc_length, horizons),
-    NaN at the DEM's voids. Equal bit for bit to aal-bake's --visible and --svf GeoTIFFs of
-    the same heights and spacing.
+    Returns a BakeResult (visible, sky_view_factor, bent_normal, arc_length, horizons,
+    positive_openness, negative_openness), NaN at the DEM's voids. Equal bit for bit to
+    aal-bake's --visible, --svf and openness GeoTIFFs of the same heights and spacing.
 
     Raises ValueError for bad input (the message aal-bake would print), KeyboardInterrupt on
     Ctrl-C (the bake stops within a block of work).
@@ -110,12 +124,12 @@ def bake(dem, cell_size, *, azimuths=64, max_distance=None, edge="open", curvatu
         max_distance = 0.0
     if not _inputs._is_number(max_distance):
         raise TypeError(f"max_distance must be a number of metres or None, got {max_distance!r}")
-    visible, svf, bent, arc, horizon = _aperture._bake(
+    visible, svf, bent, arc, horizon, positive, negative = _aperture._bake(
         handle, azimuths=int(_integer("azimuths", azimuths)), max_distance=float(max_distance),
         edge=str(edge), curvature=bool(curvature), refraction=float(refraction),
-        horizons=int(_integer("horizons", horizons)), threads=_inputs.threads_value(threads),
-        progress=_inputs.progress_value(progress))
-    return BakeResult(visible, svf, bent, arc, horizon)
+        horizons=int(_integer("horizons", horizons)), openness=bool(openness),
+        threads=_inputs.threads_value(threads), progress=_inputs.progress_value(progress))
+    return BakeResult(visible, svf, bent, arc, horizon, positive, negative)
 
 
 def sky_view_factor(dem, cell_size, **options):
@@ -127,6 +141,19 @@ def sky_view_factor(dem, cell_size, **options):
     bit to aal-bake --svf.
     """
     return bake(dem, cell_size, **options).sky_view_factor
+
+
+def openness(dem, cell_size, **options):
+    """Topographic openness of every texel of a DEM (Yokoyama, Shirasawa & Pike 2002).
+
+    Takes bake()'s arguments (azimuths, max_distance: the radius, None for the whole DEM;
+    edge, z_scale, nodata, threads, progress; not curvature). Returns (positive, negative),
+    float32 (H, W) arrays in degrees, 90 on a plane, NaN at voids and, with edge="open", on
+    the outer ring: bake(..., openness=True)'s, equal bit for bit to aal-bake
+    --openness-positive and --openness-negative.
+    """
+    result = bake(dem, cell_size, openness=True, **options)
+    return result.positive_openness, result.negative_openness
 
 
 def relief(dem, cell_size, *, sun_azimuth=None, sun_elevation=None, time=None, lat=None,

@@ -21,6 +21,22 @@ inline RasterBandLabel visibleFractionBandLabel() {
   return {"visible sky fraction (solid angle / 2 pi)", ""};
 }
 
+// aal-bake --openness-positive and --openness-negative (Yokoyama, Shirasawa
+// and Pike, "Visualizing topography by openness", 2002): degrees, 90 on a
+// plane.
+inline RasterBandLabel positiveOpennessBandLabel() {
+  return {"positive openness (deg)", "deg"};
+}
+inline RasterBandLabel negativeOpennessBandLabel() {
+  return {"negative openness (deg)", "deg"};
+}
+
+// aal-bake --local-dominance (Hesse, "Visualisation of elevation model data
+// with local dominance", 2016, as RVT computes it): 1 on a plane.
+inline RasterBandLabel localDominanceBandLabel() {
+  return {"local dominance", ""};
+}
+
 // aal-relief's grey or float relief.
 inline RasterBandLabel reliefBandLabel(bool bytes) {
   return {bytes ? "shaded relief (1 + 254 v, 0 = nodata)" : "shaded relief (0..1)", ""};

@@ -215,3 +215,33 @@ def test_progress_is_reported_and_can_stop_the_bake():
 
     with pytest.raises(Stop):
         aperture.bake(z, 10.0, azimuths=256, progress=stop)
+
+
+def test_openness_equals_aal_bake_bit_for_bit(tmp_path, tool_env):
+    from rasterio.transform import from_origin
+    z = hills(50, 60)
+    z[10:14, 20:25] = -9999.0  # a void block
+    dem = tmp_path / "dem.tif"
+    placed = rio.RasterInfo(60, 50, "EPSG:32616", from_origin(500000, 4000000, 10, 10),
+                            -9999.0, None, 1.0, "float32", {})
+    rio.write(dem, z, like=placed, nodata=-9999.0)
+    run_tool("aal-bake", dem, "-o", tmp_path / "a.exr", "--azimuths", "16", "--max-distance",
+             "200", "--openness-positive", tmp_path / "pos.tif", "--openness-negative",
+             tmp_path / "neg.tif", "-q", env=tool_env)
+    pos, _ = rio.read(tmp_path / "pos.tif")
+    neg, _ = rio.read(tmp_path / "neg.tif")
+    positive, negative = aperture.openness(z, 10.0, azimuths=16, max_distance=200,
+                                           nodata=-9999.0)
+    np.testing.assert_array_equal(positive, pos)
+    np.testing.assert_array_equal(negative, neg)
+    # NaN at the voids and on the outer ring (an open edge), values elsewhere.
+    nan = np.zeros(z.shape, dtype=bool)
+    nan[10:14, 20:25] = True
+    nan[[0, -1], :] = nan[:, [0, -1]] = True
+    np.testing.assert_array_equal(np.isnan(positive), nan)
+    np.testing.assert_array_equal(np.isnan(negative), nan)
+    assert np.nanmin(positive) < 90 < np.nanmax(positive)
+    # Not computed unless asked; refused with curvature.
+    assert aperture.bake(z, 10.0, azimuths=16).positive_openness is None
+    with pytest.raises(ValueError, match="curvature"):
+        aperture.openness(z, 10.0, nodata=-9999.0, curvature=True)
