@@ -16,7 +16,7 @@
 #include <CLI/CLI.hpp>
 
 #include "aperture/preprocess/bake.h"
-#include "aperture/preprocess/progress.h"
+#include "aperture/preprocess/progress_reporter.h"
 #include "aperture/preprocess/sky_view_factor_tiles.h"
 #include "aperture/preprocess/tiled_bake.h"
 #include "aperture/terrain/interrupt.h"
@@ -68,7 +68,7 @@ struct Options : aal::SweepCommandLine {
   int horizonBits = aal::kBakeToolHorizonBits;
   std::string visiblePath;
   int threads = 0;
-  bool quiet = false;
+  aal::ProgressOptions report;
   bool cog = false;
   bool lowMemory = false;
   int tileSize = 0;  // 0: tiled only above the in-memory limit
@@ -253,7 +253,7 @@ struct Baked {
 // The bake; nullopt when interrupted (said on stderr).
 std::optional<Baked> bakeOrInterrupted(const Options& o, const aal::DemSource& dem,
                                        const BakeDem& read, const BakePlan& plan,
-                                       aal::ProgressBar& progress) {
+                                       aal::ProgressReporter& progress) {
   const auto start = std::chrono::steady_clock::now();
   Baked baked;
   try {
@@ -379,7 +379,7 @@ int run(const Options& o) {
   const BakeDem read = readBakeDem(o, dem, load, plan.inBands, readStart);
 
   plan.bake = bakeOptions(o);
-  aal::ProgressBar progress("aal-bake", !o.quiet);
+  aal::ProgressReporter progress(o.report.style(), "baking", "aal-bake");
   plan.bake.progress = [&](double fraction) { progress.update(fraction); };
   // First Ctrl-C or SIGTERM: stop cleanly, nothing written; a second kills.
   plan.bake.cancel = &aal::interruptFlag();
@@ -396,7 +396,7 @@ int run(const Options& o) {
   if (!writeOutputs(o, plan.tiled, baked->result, read.field, source)) return aal::kExitFailure;
   const double writeSeconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - writeStart).count();
-  if (!o.quiet) printSummary(o, plan, *baked, read, writeSeconds, source);
+  if (!o.report.quiet) printSummary(o, plan, *baked, read, writeSeconds, source);
   return aal::kExitOk;
 }
 
@@ -487,7 +487,7 @@ int main(int argc, char** argv) {
       "write --svf and --visible as cloud-optimized GeoTIFFs (tiled, with overviews); not a "
       "tiled bake's SVF tiles");
   aal::addMapStorageOptions(app, o);
-  aal::addQuietFlag(app, o.quiet);
+  aal::addProgressOptions(app, o.report);
 
   return aal::runTool(app, argc, argv, [&] {
     o.svf = svf->count() > 0;
