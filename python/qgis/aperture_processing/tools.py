@@ -103,8 +103,11 @@ def run_tool(name, arguments, feedback):
     stopped by SIGINT, its unfinished outputs removed by it)."""
     command = [tool_path(name), *arguments, "--progress=json"]
     feedback.pushCommandInfo(" ".join(shlex.quote(part) for part in command))
-    process = subprocess.Popen(command, stdin=subprocess.DEVNULL, stdout=subprocess.PIPE,
-                               stderr=subprocess.PIPE, text=True, bufsize=1)
+    try:
+        process = subprocess.Popen(command, stdin=subprocess.DEVNULL, stdout=subprocess.PIPE,
+                                   stderr=subprocess.PIPE, text=True, bufsize=1)
+    except OSError as error:
+        raise QgsProcessingException(f"cannot run {command[0]}: {error}") from error
     lines = queue.Queue()
     readers = [threading.Thread(target=_pump, args=(process.stdout, "out", lines), daemon=True),
                threading.Thread(target=_pump, args=(process.stderr, "err", lines), daemon=True)]
