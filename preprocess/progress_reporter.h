@@ -29,11 +29,8 @@ inline constexpr const char* kProgressStyleNames[] = {"bar", "gdal", "json", "no
 // The style named `name` (one of kProgressStyleNames), else nullopt.
 std::optional<ProgressStyle> parseProgressStyle(std::string_view name);
 
-// Whether `style` writes on stdout: the tool's own stdout text then goes to
-// stderr (Json) so that the stream stays parseable.
-inline bool progressUsesStdout(ProgressStyle style) {
-  return style == ProgressStyle::Gdal || style == ProgressStyle::Json;
-}
+// The total of a stage that reports fractions: thousandths.
+inline constexpr uint64_t kFractionTotal = 1000;
 
 // One stage of a tool's work. `stage` is its stable name for scripts
 // ("baking", "shading", "tracing", "rendering"; docs/cli.md); `label` is the
@@ -44,8 +41,6 @@ inline bool progressUsesStdout(ProgressStyle style) {
 // ending "100 - done." and a newline, as GDAL's GDALTermProgress does.
 // `done` never goes back: a smaller value than one reported is held at it.
 // Safe to call from several threads.
-inline constexpr uint64_t kFractionTotal = 1000;
-
 class ProgressReporter {
  public:
   // `total`: the stage's units of work (frames, tiles); by default
