@@ -9,6 +9,8 @@
 #   include/aperture/...        their headers, as the sources include them
 #   lib/python3/dist-packages/  the Python module (python/CMakeLists.txt)
 #   share/doc/aperture/         copyright and changelog
+#   share/aperture/qgis/        the QGIS Processing plugin aperture_processing
+#                               (QGIS_PLUGINPATH; docs/gis.md, "QGIS")
 #   share/man/man1/             a manual page per tool (cmake/ManPages.cmake)
 # The shaders are inside the libraries (engine/vk/embedded_shaders.h).
 include(CMakePackageConfigHelpers)
@@ -42,6 +44,12 @@ foreach(folder terrain preprocess engine)
           FILES_MATCHING PATTERN "*.h")
 endforeach()
 install(FILES shaders/config.h DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}/aperture/shaders)
+
+# The QGIS plugin is Python and metadata only; it finds the tools in
+# PREFIX/bin from where it is installed (python/qgis/aperture_processing/tools.py).
+install(DIRECTORY python/qgis/aperture_processing
+        DESTINATION ${CMAKE_INSTALL_DATADIR}/aperture/qgis
+        FILES_MATCHING PATTERN "*.py" PATTERN "metadata.txt" PATTERN "__pycache__" EXCLUDE)
 
 install(EXPORT apertureTargets NAMESPACE aperture:: DESTINATION ${AAL_CMAKE_INSTALL_DIR})
 configure_package_config_file(cmake/apertureConfig.cmake.in

@@ -8,7 +8,7 @@
 #include <system_error>
 #include <vector>
 
-#include "aperture/preprocess/progress.h"
+#include "aperture/preprocess/progress_reporter.h"
 #include "aperture/terrain/errors.h"
 
 namespace aal {
@@ -130,7 +130,7 @@ std::optional<std::string> inputAt(const fs::path& entry, const std::vector<std:
 }  // namespace
 
 CachedAperture cachedOrBakedAperture(const Heightfield& field, const std::string& demPath,
-                                     BakeOptions options, bool quiet,
+                                     BakeOptions options, ProgressStyle progressStyle, bool quiet,
                                      const std::vector<std::string>& inputs) {
   const fs::path path = cachedAperturePath(field, options);
   std::error_code error;
@@ -147,7 +147,7 @@ CachedAperture cachedOrBakedAperture(const Heightfield& field, const std::string
     std::fprintf(stderr, "warning: rebaking the cached aperture map %s: %s\n", path.c_str(),
                  whyUnusable.c_str());
   }
-  ProgressBar progress("baking apertures", !quiet);
+  ProgressReporter progress(progressStyle, "baking", "baking apertures");
   // The caller's hook (e.g. aal-view's progress bar) still hears every step.
   const std::function<void(double)> callerProgress = options.progress;
   options.progress = [&](double fraction) {

@@ -6,9 +6,11 @@
 
 #include <filesystem>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "aperture/preprocess/bake.h"
+#include "aperture/preprocess/progress_reporter.h"
 #include "aperture/terrain/heightfield.h"
 #include "aperture/terrain/io/aperture_map.h"
 #include "aperture/terrain/io/horizon_map.h"
@@ -49,15 +51,22 @@ struct CachedAperture {
 };
 
 // The cached map when present and verified (findCachedAperture), else a
-// fresh bake (with progress on stderr unless quiet) written to the cache
-// atomically (with options.horizons, the horizons beside it); an unusable entry is replaced, with a
-// warning line on stderr naming it and why. `demPath` names the DEM in the map's aal:source.
-// options.progress, when set, is called too; options.cancel stops the bake (BakeCancelled) before
-// anything is written. An entry that would be written over the DEM or one of `inputs` (the run's
-// other input files: AAL_CACHE_DIR pointed at their folder) is not written: the map stays in
-// memory, with a warning.
+// fresh bake (its progress in the `progress` style, stage "baking"; `quiet`: no notes) written to
+// the cache atomically (with options.horizons, the horizons beside it); an unusable entry is
+// replaced, with a warning line on stderr naming it and why. `demPath` names the DEM in the map's
+// aal:source. options.progress, when set, is called too; options.cancel stops the bake
+// (BakeCancelled) before anything is written. An entry that would be written over the DEM or one of
+// `inputs` (the run's other input files: AAL_CACHE_DIR pointed at their folder) is not written: the
+// map stays in memory, with a warning.
 CachedAperture cachedOrBakedAperture(const Heightfield& field, const std::string& demPath,
-                                     BakeOptions options, bool quiet,
+                                     BakeOptions options, ProgressStyle progress, bool quiet,
                                      const std::vector<std::string>& inputs = {});
+// The same with progress as a bar on stderr, or none when quiet.
+inline CachedAperture cachedOrBakedAperture(const Heightfield& field, const std::string& demPath,
+                                            BakeOptions options, bool quiet,
+                                            const std::vector<std::string>& inputs = {}) {
+  return cachedOrBakedAperture(field, demPath, std::move(options),
+                               quiet ? ProgressStyle::None : ProgressStyle::Bar, quiet, inputs);
+}
 
 }  // namespace aal

@@ -29,6 +29,8 @@ packages=(
   libopenmpi-dev openmpi-bin
   # the Python module (python/) and its tests
   python3-dev python3-numpy pybind11-dev python3-pytest python3-rasterio
+  # the QGIS Processing plugin (python/qgis/) and its headless test
+  python3-qgis qgis-providers
   # the .deb (cpack -G DEB: Depends from dpkg-shlibdeps) and its check;
   # the tools' manual pages (help2man)
   dpkg-dev lintian help2man

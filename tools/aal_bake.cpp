@@ -19,7 +19,7 @@
 
 #include "aperture/preprocess/bake.h"
 #include "aperture/preprocess/local_dominance.h"
-#include "aperture/preprocess/progress.h"
+#include "aperture/preprocess/progress_reporter.h"
 #include "aperture/preprocess/sky_view_factor_tiles.h"
 #include "aperture/preprocess/tiled_bake.h"
 #include "aperture/terrain/interrupt.h"
@@ -77,7 +77,7 @@ struct Options : aal::SweepCommandLine {
   std::vector<int> localDominanceRadii{10, 20};
   double observerHeight = 1.7;
   int threads = 0;
-  bool quiet = false;
+  aal::ProgressOptions report;
   aal::GeoTiffOutputOptions geotiff;  // -of, -co, --overviews
   aal::RasterWriteOptions raster;     // what they ask, checked (rasterWriteOptions)
   bool lowMemory = false;
@@ -310,7 +310,7 @@ aal::LocalDominanceOptions localDominanceOptions(const Options& o) {
 // The bake; nullopt when interrupted (said on stderr).
 std::optional<Baked> bakeOrInterrupted(const Options& o, const aal::DemSource& dem,
                                        const BakeDem& read, const BakePlan& plan,
-                                       aal::ProgressBar& progress) {
+                                       aal::ProgressReporter& progress) {
   const auto start = std::chrono::steady_clock::now();
   Baked baked;
   try {
@@ -459,7 +459,7 @@ int run(Options& o) {
   const BakeDem read = readBakeDem(o, dem, load, plan.inBands, readStart);
 
   plan.bake = bakeOptions(o);
-  aal::ProgressBar progress("aal-bake", !o.quiet);
+  aal::ProgressReporter progress(o.report.style(), "baking", "aal-bake");
   plan.bake.progress = [&](double fraction) { progress.update(fraction); };
   // First Ctrl-C or SIGTERM: stop cleanly, nothing written; a second kills.
   plan.bake.cancel = &aal::interruptFlag();
@@ -476,7 +476,7 @@ int run(Options& o) {
   if (!writeOutputs(o, plan.tiled, *baked, read.field, source)) return aal::kExitFailure;
   const double writeSeconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - writeStart).count();
-  if (!o.quiet) printSummary(o, plan, *baked, read, writeSeconds, source);
+  if (!o.report.quiet) printSummary(o, plan, *baked, read, writeSeconds, source);
   return aal::kExitOk;
 }
 
@@ -600,7 +600,7 @@ int main(int argc, char** argv) {
   // -of COG for them).
   aal::addGeoTiffOutputOptions(app, o.geotiff, "the GeoTIFFs (--svf, --visible, the openness and local dominance rasters, a .tif map)");
   aal::addMapStorageOptions(app, o);
-  aal::addQuietFlag(app, o.quiet);
+  aal::addProgressOptions(app, o.report);
 
   aal::GdalArguments arguments(argc, argv);
   return aal::runTool(app, arguments.argc(), arguments.argv(), [&] {

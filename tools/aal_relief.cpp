@@ -15,7 +15,7 @@
 #include <CLI/CLI.hpp>
 
 #include "aperture/preprocess/aperture_cache.h"
-#include "aperture/preprocess/progress.h"
+#include "aperture/preprocess/progress_reporter.h"
 #include "aperture/terrain/interrupt.h"
 #include "aperture/terrain/io/aperture_map.h"
 #include "aperture/terrain/io/band_labels.h"
@@ -55,7 +55,7 @@ struct Options {
   std::string waterMask;
   aal::GeoTiffOutputOptions geotiff;  // -of, -co, --overviews
   aal::DemUnitsOptions units;
-  bool quiet = false;
+  aal::ProgressOptions report;
 };
 
 // The sky's share of the light by default: enough fill that slopes facing
@@ -210,7 +210,7 @@ aal::ReliefSettings reliefSettings(const Options& o, const aal::Heightfield& fie
   const aal::SolarPosition sun = aal::sunOf(o.sun, field);
   s.sunAzimuthDeg = sun.azimuthDeg;
   s.sunElevationDeg = sun.elevationDeg;
-  if (!o.sun.time.empty() && sun.elevationDeg < -o.sun.radiusDeg && !o.quiet) {
+  if (!o.sun.time.empty() && sun.elevationDeg < -o.sun.radiusDeg && !o.report.quiet) {
     std::fprintf(stderr, "note: the sun is %.1f deg below the horizon then: sky light only\n",
                  -sun.elevationDeg);
   }
@@ -230,8 +230,9 @@ aal::HalfApertureMap halfApertureMap(const Options& o, const aal::Heightfield& f
     aal::checkApertureMatchesDem(reader.header(), o.aperture, field, o.dem);
     return aal::readHalfApertureMap(reader);
   }
-  aal::CachedAperture cached = aal::cachedOrBakedAperture(field, o.dem, aal::BakeOptions{}, o.quiet,
-                                                          {o.waterMask, o.colorRelief});
+  aal::CachedAperture cached =
+      aal::cachedOrBakedAperture(field, o.dem, aal::BakeOptions{}, o.report.style(), o.report.quiet,
+                                 {o.waterMask, o.colorRelief});
   if (cached.path.empty()) return aal::toHalfApertureMap(cached.map);
   aal::ApertureMapReader reader(cached.path.string());
   return aal::readHalfApertureMap(reader);
@@ -363,12 +364,12 @@ int run(const Options& o) {
   aal::HalfApertureMap map = halfApertureMap(o, field);
 
   const auto start = std::chrono::steady_clock::now();
-  aal::ProgressBar bar("shading", !o.quiet);
+  aal::ProgressReporter bar(o.report.style(), "shading", "shading");
   const aal::ReliefImage relief = aal::shadeRelief(field, map, s, [&](double f) { bar.update(f); });
   bar.finish();
   map = {};
   writeRelief(o, field, relief, ramp, write);
-  if (!o.quiet) {
+  if (!o.report.quiet) {
     printSummary(o, s,
                  std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
   }
@@ -440,7 +441,7 @@ int main(int argc, char** argv) {
                  "--water-level)");
   aal::addGeoTiffOutputOptions(app, o.geotiff, "the output");
   aal::addDemUnitsOptions(app, o.units);
-  aal::addQuietFlag(app, o.quiet);
+  aal::addProgressOptions(app, o.report);
 
   aal::GdalArguments arguments(argc, argv);
   return aal::runTool(app, arguments.argc(), arguments.argv(), [&] { return run(o); });

@@ -81,7 +81,7 @@ std::optional<aal::AlbedoImage> loadAlbedo(const aal::RenderOptions& o,
                                            const aal::Heightfield& field) {
   if (o.albedo.empty()) return std::nullopt;
   return aal::loadAlbedoImage(o.albedo, field.width, field.height, [&](const std::string& m) {
-    if (!o.quiet) std::fprintf(stderr, "note: %s\n", m.c_str());
+    if (!o.report.quiet) std::fprintf(stderr, "note: %s\n", m.c_str());
   });
 }
 

@@ -38,6 +38,9 @@ test -x "$prefix/bin/aal-bake" && test -x "$prefix/bin/aal-render"
 ls "$prefix"/lib*/aperture/aal_oiio_images.so >/dev/null
 ls "$prefix"/lib*/cmake/aperture/apertureConfig.cmake >/dev/null
 ls "$prefix"/lib*/pkgconfig/aperture.pc >/dev/null
+for f in metadata.txt __init__.py provider.py tools.py; do
+  test -f "$prefix/share/aperture/qgis/aperture_processing/$f"
+done
 test -f "$prefix/include/aperture/engine/vk/buffer.h"
 if [ -e "$prefix/include/buffer.h" ]; then
   echo "install_tree_test: a bare header include/buffer.h was installed" >&2
@@ -58,6 +61,12 @@ pkg=$(PKG_CONFIG_PATH=$(dirname "$prefix"/lib*/pkgconfig/aperture.pc) pkg-config
 echo "pkg-config: aperture $pkg"
 
 cp "$source/heightmaps/jacksboro_fault_dem.tif" "$work/dem.tif"
+# The QGIS plugin finds the installed tools from where it is installed,
+# when python3-qgis is there to import it.
+qgis_python=""
+if /usr/bin/python3 -c "import qgis.core" 2>/dev/null; then
+  qgis_python=/usr/bin/python3
+fi
 # The Python module, when the build made it (python3 with numpy).
 python=""
 if ls "$prefix"/lib/python3/dist-packages/aperture/_aperture*.so >/dev/null 2>&1; then
@@ -79,6 +88,14 @@ import numpy, aperture
 svf = aperture.sky_view_factor(numpy.zeros((32, 32), numpy.float32), 30.0, azimuths=8)
 assert svf.shape == (32, 32) and (svf == 1).all(), svf
 print('python: aperture', aperture.__version__, 'from', aperture.__file__)"
+fi
+if [ -n "$qgis_python" ]; then
+  env -u APERTURE_BIN_DIR PATH=/usr/bin:/bin QT_QPA_PLATFORM=offscreen \
+    PYTHONPATH="$prefix/share/aperture/qgis" "$qgis_python" -c "
+from aperture_processing.tools import tool_path
+found = tool_path('aal-bake')
+assert found == '$prefix/bin/aal-bake', found
+print('qgis plugin: finds', found)"
 fi
 SCRIPT
 env $(env | sed -n 's/^\(AAL_[A-Z_]*\)=.*/-u \1/p') HOME="$work" "${hide[@]}" bash "$work/run.sh"

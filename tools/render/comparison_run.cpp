@@ -3,7 +3,7 @@
 #include <cstdio>
 #include <filesystem>
 
-#include "aperture/preprocess/progress.h"
+#include "aperture/preprocess/progress_reporter.h"
 #include "aperture/terrain/light/tone_map.h"
 #include "aperture/terrain/reference/reference_renderer.h"
 #include "aperture/tools/tool_main.h"
@@ -53,26 +53,26 @@ std::vector<ComparedMode> comparedModes(
   return modes;
 }
 
-// The table of --compare on stdout: each mode's errors and, along a pan, its
-// shimmer (kcd/m²) and the ratio to the reference's (whose row comes last).
-void printComparison(const Comparison& c) {
+// The table of --compare on `out` (stdout, or stderr with --progress json): each mode's errors and,
+// along a pan, its shimmer (kcd/m²) and the ratio to the reference's (whose row comes last).
+void printComparison(const Comparison& c, FILE* out) {
   const bool pan = c.referenceShimmer.has_value();
-  std::printf("%-20s %14s %22s", "mode", "relative RMSE", "mean relative error");
-  if (pan) std::printf(" %12s %12s", "shimmer", "x reference");
-  std::printf("\n");
+  std::fprintf(out, "%-20s %14s %22s", "mode", "relative RMSE", "mean relative error");
+  if (pan) std::fprintf(out, " %12s %12s", "shimmer", "x reference");
+  std::fprintf(out, "\n");
   const auto shimmer = [&](double s) {
-    std::printf(" %12.5f %12.2f", s, *c.referenceShimmer > 0 ? s / *c.referenceShimmer : 0.0);
+    std::fprintf(out, " %12.5f %12.2f", s, *c.referenceShimmer > 0 ? s / *c.referenceShimmer : 0.0);
   };
   for (const ModeError& e : c.modes) {
-    std::printf("%-20s %13.2f%% %21.2f%%", e.mode.c_str(), 100 * e.relativeRmse,
-                100 * e.meanRelativeError);
+    std::fprintf(out, "%-20s %13.2f%% %21.2f%%", e.mode.c_str(), 100 * e.relativeRmse,
+                 100 * e.meanRelativeError);
     if (pan) shimmer(e.shimmer.value_or(0));
-    std::printf("\n");
+    std::fprintf(out, "\n");
   }
   if (pan) {
-    std::printf("%-20s %14s %22s", "reference", "", "");
+    std::fprintf(out, "%-20s %14s %22s", "reference", "", "");
     shimmer(*c.referenceShimmer);
-    std::printf("\n");
+    std::fprintf(out, "\n");
   }
 }
 
@@ -111,21 +111,21 @@ int runComparison(const RenderOptions& o, const Heightfield& field, TerrainScene
     }
     settings.camera = cameras.front();
   }
-  ProgressBar bar("ray tracing the reference", !o.quiet);
+  ProgressReporter bar(o.report.style(), "tracing", "ray tracing the reference");
   const std::vector<ComparedMode> modes = comparedModes(o, scene, settings, device, horizons);
   Comparison c = compareModes(renderer, scene, field, settings, modes,
                               comparisonOptions(o, albedoValue), [&](double f) { bar.update(f); });
   bar.finish();
   if (!cameras.empty()) {
-    ProgressBar panBar("rendering the pan (" + std::to_string(cameras.size()) + " frames)",
-                       !o.quiet);
+    ProgressReporter panBar(o.report.style(), "rendering",
+                            "rendering the pan (" + std::to_string(cameras.size()) + " frames)");
     measureShimmer(c, renderer, scene, field, settings, modes, comparisonOptions(o, albedoValue),
                    cameras, [&](double f) { panBar.update(f); });
     panBar.finish();
   }
   writeComparison(o.compare, c, settings.lighting.exposure);
-  printComparison(c);
-  if (!o.quiet) {
+  printComparison(c, textOutput(o.report.style()));
+  if (!o.report.quiet) {
     std::fprintf(stderr, "aal-render: reference in %.1f s; wrote %s/\n", c.referenceSeconds,
                  o.compare.c_str());
   }

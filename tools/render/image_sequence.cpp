@@ -5,7 +5,7 @@
 #include <filesystem>
 
 #include "aperture/engine/screenshot.h"
-#include "aperture/preprocess/progress.h"
+#include "aperture/preprocess/progress_reporter.h"
 #include "aperture/terrain/errors.h"
 #include "aperture/terrain/interrupt.h"
 #include "aperture/terrain/light/lighting_defaults.h"
@@ -113,35 +113,37 @@ void encodeMovie(const RenderOptions& o, const ImageSequence& seq) {
   const std::optional<std::string> ffmpeg = findFfmpeg();
   const std::string mp4 = moviePath(o);
   if (!ffmpeg) {
-    if (!o.quiet) {
+    if (!o.report.quiet) {
       std::fprintf(stderr, "aal-render: ffmpeg not found (Debian: apt-get install ffmpeg): no %s\n",
                    mp4.c_str());
     }
     return;
   }
   encodeMp4(*ffmpeg, sequencePattern(o.output, seq.frames), o.fps, mp4);
-  if (!o.quiet) std::fprintf(stderr, "aal-render: wrote %s\n", mp4.c_str());
+  if (!o.report.quiet) std::fprintf(stderr, "aal-render: wrote %s\n", mp4.c_str());
 }
 
 }  // namespace
 
 int renderSequence(const RenderOptions& o, const ImageSequence& seq, const Heightfield& field,
                    const TerrainScene& scene, TerrainRenderer& renderer, FrameSettings settings) {
-  ProgressBar bar("rendering " + std::to_string(seq.frames) + " frames", !o.quiet);
+  ProgressReporter bar(o.report.style(), "rendering",
+                       "rendering " + std::to_string(seq.frames) + " frames",
+                       static_cast<uint64_t>(seq.frames));
   const auto start = std::chrono::steady_clock::now();
   for (int i = 0; i < seq.frames; ++i) {
     setSequenceFrame(o, seq, field, i, settings);
     throwIfInterrupted();
     const FrameResult frame = renderOutputFrame(o, scene, renderer, settings);
     writeFrame(sequenceFramePath(o.output, i, seq.frames), frame);
-    bar.update(double(i + 1) / seq.frames);
+    bar.updateDone(static_cast<uint64_t>(i + 1));
   }
   bar.finish();
   const double seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   const std::string first = sequenceFramePath(o.output, 0, seq.frames),
                     last = sequenceFramePath(o.output, seq.frames - 1, seq.frames);
-  if (!o.quiet) {
+  if (!o.report.quiet) {
     std::fprintf(stderr, "aal-render: %d frames in %.1f s (%.0f ms each): %s .. %s\n", seq.frames,
                  seconds, 1e3 * seconds / seq.frames, first.c_str(), last.c_str());
   }

@@ -4,7 +4,7 @@
 #include <cstdio>
 
 #include "aperture/engine/screenshot.h"
-#include "aperture/preprocess/progress.h"
+#include "aperture/preprocess/progress_reporter.h"
 #include "aperture/terrain/reference/reference_renderer.h"
 #include "aperture/tools/mode_comparison.h"
 #include "aperture/tools/render/comparison_run.h"
@@ -17,12 +17,12 @@ int renderReferenceImage(const RenderOptions& o, const Heightfield& field,
                          const std::optional<glm::vec3>& albedoValue) {
   const ReferenceSettings r =
       referenceSettingsFor(settings, width, height, comparisonOptions(o, albedoValue));
-  ProgressBar bar("ray tracing", !o.quiet);
+  ProgressReporter bar(o.report.style(), "tracing", "ray tracing");
   const auto start = std::chrono::steady_clock::now();
   const ReferenceImage image = renderReference(field, r, [&](double f) { bar.update(f); });
   bar.finish();
   writeFrame(o.output, referenceFrame(image, settings.lighting.exposure));
-  if (!o.quiet) {
+  if (!o.report.quiet) {
     const double seconds =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     std::fprintf(stderr,

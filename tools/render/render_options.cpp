@@ -169,7 +169,7 @@ void addRenderOptions(CLI::App& app, RenderOptions& o) {
   addTerrainAndGpuOptions(app, o);
   addSequenceOptions(app, o);
   app.add_flag("--stats", o.stats, "print per-pass GPU times and the triangle count");
-  addQuietFlag(app, o.quiet);
+  addProgressOptions(app, o.report);
 }
 
 glm::vec3 parseAlbedoValue(const std::string& text, const std::string& option) {

@@ -16,6 +16,7 @@
 #include "aperture/tools/options/camera_options.h"
 #include "aperture/tools/options/dem_units_options.h"
 #include "aperture/tools/options/gpu_options.h"
+#include "aperture/tools/options/output_options.h"
 #include "aperture/tools/options/sun_options.h"
 
 namespace aal {
@@ -38,7 +39,7 @@ struct RenderOptions {
   uint32_t supersample = 1;
   uint32_t maxTileTexels = 0;
   bool stats = false;
-  bool quiet = false;
+  ProgressOptions report;
   std::string albedoValue;
   std::optional<double> obscuranceRadiusM;
   int obscuranceSamples = ObscuranceSettings{}.samples, obscuranceSteps = 1;

@@ -20,7 +20,8 @@ ApertureSource apertureSource(const RenderOptions& o, const Heightfield& field, 
   } else {
     std::vector<std::string> inputs = {o.albedo, o.cameraPath};
     inputs.insert(inputs.end(), o.horizons.begin(), o.horizons.end());
-    CachedAperture cached = cachedOrBakedAperture(field, o.dem, BakeOptions{}, o.quiet, inputs);
+    CachedAperture cached = cachedOrBakedAperture(field, o.dem, BakeOptions{}, o.report.style(),
+                                                  o.report.quiet, inputs);
     source.path = cached.path.string();
     source.inMemory = std::move(cached.map);
   }

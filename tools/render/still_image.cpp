@@ -9,34 +9,34 @@
 namespace aal {
 namespace {
 
-// --stats on stdout.
+// --stats on `out` (stdout, or stderr with --progress json).
 void printFrameStats(const Device& device, const TerrainScene& scene, const FrameResult& frame,
                      const FrameSettings& settings, uint32_t width, uint32_t height,
-                     const SolarPosition& sun) {
-  std::printf("device     %s\n", device.name().c_str());
-  std::printf("size       %ux%u\n", width, height);
-  std::printf("triangles  %zu\n", frame.triangles);
-  std::printf("textures   %s, %.1f MiB\n", describeTerrainTiles(scene.tiles()).c_str(),
-              double(scene.textureBytes()) / (1 << 20));
+                     const SolarPosition& sun, FILE* out) {
+  std::fprintf(out, "device     %s\n", device.name().c_str());
+  std::fprintf(out, "size       %ux%u\n", width, height);
+  std::fprintf(out, "triangles  %zu\n", frame.triangles);
+  std::fprintf(out, "textures   %s, %.1f MiB\n", describeTerrainTiles(scene.tiles()).c_str(),
+               double(scene.textureBytes()) / (1 << 20));
   if (scene.hasHorizons()) {
-    std::printf("horizons   %.1f MiB of them (moments of two directions)\n",
-                double(scene.horizonBytes()) / (1 << 20));
+    std::fprintf(out, "horizons   %.1f MiB of them (moments of two directions)\n",
+                 double(scene.horizonBytes()) / (1 << 20));
   }
-  std::printf("sun        azimuth %.2f deg, elevation %.2f deg\n", sun.azimuthDeg,
-              sun.elevationDeg);
+  std::fprintf(out, "sun        azimuth %.2f deg, elevation %.2f deg\n", sun.azimuthDeg,
+               sun.elevationDeg);
   const ObscuranceSettings& obscurance = settings.obscurance;
   if (obscurance.enabled) {
-    std::printf("obscurance R %.1f m, n %d, m %d\n", obscurance.radiusM, obscurance.samples,
-                obscurance.steps);
+    std::fprintf(out, "obscurance R %.1f m, n %d, m %d\n", obscurance.radiusM, obscurance.samples,
+                 obscurance.steps);
   } else {
-    std::printf("obscurance off\n");
+    std::fprintf(out, "obscurance off\n");
   }
   double total = 0;
   for (const auto& [pass, ms] : frame.passMilliseconds) {
-    std::printf("gpu %-10s %8.3f ms\n", pass.c_str(), ms);
+    std::fprintf(out, "gpu %-10s %8.3f ms\n", pass.c_str(), ms);
     total += ms;
   }
-  std::printf("gpu total      %8.3f ms\n", total);
+  std::fprintf(out, "gpu total      %8.3f ms\n", total);
 }
 
 }  // namespace
@@ -51,8 +51,10 @@ int renderStillImage(const RenderOptions& o, const Device& device, const Terrain
                      uint32_t height, const SolarPosition& sun) {
   const FrameResult frame = renderOutputFrame(o, scene, renderer, settings);
   writeFrame(o.output, frame);
-  if (o.stats) printFrameStats(device, scene, frame, settings, width, height, sun);
-  if (!o.quiet) std::fprintf(stderr, "aal-render: wrote %s\n", o.output.c_str());
+  if (o.stats)
+    printFrameStats(device, scene, frame, settings, width, height, sun,
+                    textOutput(o.report.style()));
+  if (!o.report.quiet) std::fprintf(stderr, "aal-render: wrote %s\n", o.output.c_str());
   return kExitOk;
 }
 

@@ -1,0 +1,98 @@
+"""Sky-view factor and visible sky: aal-bake --svf / --visible (docs/baking.md)."""
+
+import os
+
+from qgis.core import (QgsProcessingException, QgsProcessingParameterBoolean,
+                       QgsProcessingParameterEnum, QgsProcessingParameterFileDestination,
+                       QgsProcessingParameterNumber, QgsProcessingParameterRasterDestination,
+                       QgsProcessingUtils)
+
+from .algorithm import ApertureAlgorithm
+
+# The rasters aal-bake writes beside the aperture map, each a float32
+# GeoTIFF placed like the DEM, its voids nodata: (parameter, aal-bake
+# option, name in the dialog, written unless the user unticks it). A new
+# output of aal-bake is one more line here.
+BAKE_RASTER_OUTPUTS = (
+    ("SKY_VIEW_FACTOR", "--svf", "Sky-view factor", True),
+    ("VISIBLE_SKY", "--visible", "Visible sky fraction (Omega / 2 pi)", False),
+)
+
+AZIMUTHS = "AZIMUTHS"
+MAX_DISTANCE = "MAX_DISTANCE"
+EDGE = "EDGE"
+CURVATURE = "CURVATURE"
+APERTURE_MAP = "APERTURE_MAP"
+EDGES = ("open", "clamp")
+
+
+class SkyViewFactorAlgorithm(ApertureAlgorithm):
+    def name(self):
+        return "skyviewfactor"
+
+    def displayName(self):  # noqa: N802
+        return "Sky-view factor and visible sky"
+
+    def shortHelpString(self):  # noqa: N802
+        return (
+            "Bakes the visible sky of every cell of the DEM with aal-bake's horizon sweep, over "
+            "the whole DEM unless a maximum distance is set, and writes the sky-view factor "
+            "(Zaksek et al. 2011) and the visible fraction of the sky as float32 GeoTIFFs placed "
+            "like the DEM (its voids are nodata). The aperture map (.exr, for aal-render and "
+            "aal-relief) is kept only when a file is given for it.")
+
+    def initAlgorithm(self, config=None):  # noqa: N802
+        self.add_dem_parameter()
+        self.addParameter(QgsProcessingParameterNumber(
+            AZIMUTHS, "Azimuth directions", QgsProcessingParameterNumber.Integer, 64,
+            minValue=4, maxValue=4096))
+        self.addParameter(QgsProcessingParameterNumber(
+            MAX_DISTANCE, "Maximum search distance (m, 0: the whole DEM)",
+            QgsProcessingParameterNumber.Double, 0.0, minValue=0.0))
+        self.addParameter(QgsProcessingParameterEnum(
+            EDGE, "Beyond the DEM's edge", ["Open sky", "Flat terrain at the edge height"],
+            defaultValue=0))
+        self.addParameter(QgsProcessingParameterBoolean(
+            CURVATURE, "Drop distant terrain by the Earth's curvature", False))
+        for name, _, description, by_default in BAKE_RASTER_OUTPUTS:
+            self.addParameter(QgsProcessingParameterRasterDestination(
+                name, description, optional=True, createByDefault=by_default))
+        self.addParameter(QgsProcessingParameterFileDestination(
+            APERTURE_MAP, "Aperture map", "OpenEXR (*.exr)", optional=True,
+            createByDefault=False))
+
+    def processAlgorithm(self, parameters, context, feedback):  # noqa: N802
+        _, dem = self.dem_path(parameters, context)
+        arguments = [dem]
+        results = {}
+        for name, option, _, _ in BAKE_RASTER_OUTPUTS:
+            path = self.parameterAsOutputLayer(parameters, name, context) \
+                if self.given(parameters, name) else ""
+            if path:
+                arguments.append(f"{option}={path}")
+                results[name] = path
+        if not results:
+            raise QgsProcessingException(
+                "no output chosen: choose at least one of " +
+                ", ".join(description for _, _, description, _ in BAKE_RASTER_OUTPUTS))
+        aperture = self.parameterAsFileOutput(parameters, APERTURE_MAP, context) \
+            if self.given(parameters, APERTURE_MAP) else ""
+        keep_aperture = bool(aperture)
+        if not keep_aperture:
+            aperture = QgsProcessingUtils.generateTempFilename("aperture.exr")
+        arguments += [
+            "-o", aperture,
+            f"--azimuths={self.parameterAsInt(parameters, AZIMUTHS, context)}",
+            f"--max-distance={self.parameterAsDouble(parameters, MAX_DISTANCE, context):.17g}",
+            f"--edge={EDGES[self.parameterAsEnum(parameters, EDGE, context)]}",
+        ]
+        if self.parameterAsBool(parameters, CURVATURE, context):
+            arguments.append("--curvature")
+        try:
+            self.run_tool("aal-bake", arguments, feedback)
+        finally:
+            if not keep_aperture and os.path.exists(aperture):
+                os.remove(aperture)
+        if keep_aperture:
+            results[APERTURE_MAP] = aperture
+        return results
