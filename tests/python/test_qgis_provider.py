@@ -3,6 +3,7 @@
 GeoTIFF, and Cancel stopping a long bake. Skipped where python3-qgis is not
 installed."""
 
+import math
 import os
 import sys
 import time
@@ -92,12 +93,14 @@ def test_sky_view_factor_is_placed_like_the_dem(qgis_app, tmp_path):
     import processing
     dem = write_dem(tmp_path / "dem.tif", hills(48, 64), voids=[(10, 20), (30, 5)])
     svf, visible = tmp_path / "svf.tif", tmp_path / "visible.tif"
+    openness = tmp_path / "openness.tif"
     progress = []
     feedback = qgis_core.QgsProcessingFeedback()
     feedback.progressChanged.connect(progress.append)
     result = processing.run("aperture:skyviewfactor", {
         "INPUT": str(dem), "AZIMUTHS": 16, "MAX_DISTANCE": 0, "EDGE": 0,
         "SKY_VIEW_FACTOR": str(svf), "VISIBLE_SKY": str(visible),
+        "OPENNESS_POSITIVE": str(openness),
     }, feedback=feedback)
     assert result["SKY_VIEW_FACTOR"] == str(svf)
     assert progress and progress[-1] == pytest.approx(100.0)
@@ -108,17 +111,30 @@ def test_sky_view_factor_is_placed_like_the_dem(qgis_app, tmp_path):
         assert out.crs() == source.crs()
         assert out.extent() == source.extent()
         assert (out.width(), out.height()) == (source.width(), source.height())
+        # The input's voids are the output's nodata: NaN, a float raster's
+        # own (GDAL's convention), not the DEM's integer value.
         provider = out.dataProvider()
         assert provider.sourceHasNoDataValue(1)
-        assert provider.sourceNoDataValue(1) == source.dataProvider().sourceNoDataValue(1)
+        assert math.isnan(provider.sourceNoDataValue(1))
         from osgeo import gdal
         values = gdal.Open(str(path)).ReadAsArray()
-        assert values[10, 20] == NODATA and values[30, 5] == NODATA
-        valid = values[values != NODATA]
+        assert math.isnan(values[10, 20]) and math.isnan(values[30, 5])
+        valid = values[~np.isnan(values)]
         assert valid.size == 48 * 64 - 2
         assert ((valid > 0) & (valid <= 1)).all()
+    # Openness, degrees: placed alike; with the open edge its outer ring has
+    # no angle in some direction and is nodata too (docs/baking.md).
+    out = raster_layer(openness)
+    assert out.crs() == source.crs() and out.extent() == source.extent()
+    from osgeo import gdal
+    values = gdal.Open(str(openness)).ReadAsArray()
+    assert math.isnan(values[10, 20]) and math.isnan(values[0, 7])
+    inner = values[1:-1, 1:-1]
+    valid = inner[~np.isnan(inner)]
+    assert valid.size == 46 * 62 - 2
+    assert ((valid > 45) & (valid < 135)).all()
     # No aperture map asked for: none kept, here or in the temporary folder.
-    assert files_in(tmp_path) == ["dem.tif", "svf.tif", "visible.tif"]
+    assert files_in(tmp_path) == ["dem.tif", "openness.tif", "svf.tif", "visible.tif"]
     assert temporary_maps() == []
 
 

@@ -16,6 +16,9 @@ from .algorithm import ApertureAlgorithm
 BAKE_RASTER_OUTPUTS = (
     ("SKY_VIEW_FACTOR", "--svf", "Sky-view factor", True),
     ("VISIBLE_SKY", "--visible", "Visible sky fraction (Omega / 2 pi)", False),
+    ("OPENNESS_POSITIVE", "--openness-positive", "Positive openness (degrees)", False),
+    ("OPENNESS_NEGATIVE", "--openness-negative", "Negative openness (degrees)", False),
+    ("LOCAL_DOMINANCE", "--local-dominance", "Local dominance", False),
 )
 
 AZIMUTHS = "AZIMUTHS"
@@ -31,15 +34,17 @@ class SkyViewFactorAlgorithm(ApertureAlgorithm):
         return "skyviewfactor"
 
     def displayName(self):  # noqa: N802
-        return "Sky-view factor and visible sky"
+        return "Sky-view factor, openness and visible sky"
 
     def shortHelpString(self):  # noqa: N802
         return (
             "Bakes the visible sky of every cell of the DEM with aal-bake's horizon sweep, over "
             "the whole DEM unless a maximum distance is set, and writes the sky-view factor "
-            "(Zaksek et al. 2011) and the visible fraction of the sky as float32 GeoTIFFs placed "
-            "like the DEM (its voids are nodata). The aperture map (.exr, for aal-render and "
-            "aal-relief) is kept only when a file is given for it.")
+            "(Zaksek et al. 2011), the visible fraction of the sky, positive and negative "
+            "openness (Yokoyama et al. 2002, degrees) and local dominance (Hesse 2016, RVT's "
+            "definition) as float32 GeoTIFFs placed like the DEM (its voids are nodata, NaN). "
+            "The aperture map (.exr or .tif, for aal-render and aal-relief) is kept only when a "
+            "file is given for it.")
 
     def initAlgorithm(self, config=None):  # noqa: N802
         self.add_dem_parameter()
@@ -58,7 +63,7 @@ class SkyViewFactorAlgorithm(ApertureAlgorithm):
             self.addParameter(QgsProcessingParameterRasterDestination(
                 name, description, optional=True, createByDefault=by_default))
         self.addParameter(QgsProcessingParameterFileDestination(
-            APERTURE_MAP, "Aperture map", "OpenEXR (*.exr)", optional=True,
+            APERTURE_MAP, "Aperture map", "OpenEXR (*.exr);;GeoTIFF (*.tif)", optional=True,
             createByDefault=False))
 
     def processAlgorithm(self, parameters, context, feedback):  # noqa: N802
