@@ -102,7 +102,6 @@ GraphicsPipeline::GraphicsPipeline(const Device& device, const GraphicsPipelineD
       .sType = VK_STRUCTURE_TYPE_PIPELINE_DYNAMIC_STATE_CREATE_INFO,
       .dynamicStateCount = desc.dynamicCullMode ? 3u : 2u,
       .pDynamicStates = dynamicStates};
-
   const VkPipelineRenderingCreateInfo rendering{
       .sType = VK_STRUCTURE_TYPE_PIPELINE_RENDERING_CREATE_INFO,
       .colorAttachmentCount = static_cast<uint32_t>(desc.colorFormats.size()),
