@@ -231,7 +231,8 @@ def test_shaded_relief_offers_every_option_of_aal_relief(qgis_app, tmp_path, mon
     ramp.write_text("0 0 0 0\n1000 255 255 255\n")
     common = {"INPUT": str(dem), "RESOLUTION": "2x", "SUN_RADIUS": 1.0, "SKY_WEIGHT": 0.3,
               "OBSCURANCE_RADIUS": 50, "OBSCURANCE_SAMPLES": 2, "OBSCURANCE_STEPS": 1,
-              "FORMAT": 1, "STRETCH": "0.1,0.9", "COG": True, "CELL_SIZE": 30, "Z_SCALE": 1,
+              "FORMAT": 1, "STRETCH": "0.1,0.9", "OUTPUT_FORMAT": 1,
+              "CREATION_OPTIONS": "COMPRESS=LZW BIGTIFF=YES", "OVERVIEWS": True, "CELL_SIZE": 30, "Z_SCALE": 1,
               "NO_OBSCURANCE": True, "MODE": 1, "OUTPUT": str(tmp_path / "r.tif")}
     # The options that exclude each other, one of each pair per run.
     processing.run("aperture:shadedrelief", {
@@ -244,8 +245,9 @@ def test_shaded_relief_offers_every_option_of_aal_relief(qgis_app, tmp_path, mon
              if argument.startswith("--")}
     listed, text = help_options("aal-relief")
     assert len(listed) > 25, listed
-    # What the plugin sets itself (-o, --progress) or has no use for.
-    assert listed - {"--help", "--version", "--quiet", "--output", "--progress"} <= given, \
+    # What the plugin sets itself (-o, --progress), has no use for, or gives
+    # in other words (--cog is -of COG).
+    assert listed - {"--help", "--version", "--quiet", "--output", "--progress", "--cog"} <= given, \
         listed - given
     # Every built-in palette --palette names.
     import re

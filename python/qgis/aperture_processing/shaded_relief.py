@@ -14,6 +14,8 @@ LIGHTINGS = (("Sun and sky", None), ("Sky only (sky-view relief)", "--sky-only")
 MODES = ("approx", "exact")
 PALETTES = (("None (grey)", None), ("Hypsometric", "hypsometric"), ("Earth", "earth"))
 FORMATS = ("byte", "float")
+# aal-relief -of: the label in the dialog, the GDAL driver.
+OUTPUT_FORMATS = (("GeoTIFF", "GTiff"), ("Cloud-optimized GeoTIFF", "COG"))
 OBSCURANCE_SAMPLES = ("8", "16", "32")
 OBSCURANCE_STEPS = ("1", "2")
 
@@ -101,8 +103,14 @@ class ShadedReliefAlgorithm(ApertureAlgorithm):
             optional=True))
         self.addParameter(QgsProcessingParameterRasterLayer(
             "WATER_MASK", "Water mask (non-zero: water)", optional=True))
+        self.addParameter(QgsProcessingParameterEnum(
+            "OUTPUT_FORMAT", "File format", [label for label, _ in OUTPUT_FORMATS],
+            defaultValue=0))
+        self.addParameter(QgsProcessingParameterString(
+            "CREATION_OPTIONS", "GDAL creation options, KEY=VALUE separated by spaces "
+            "(e.g. COMPRESS=LZW)", optional=True))
         self.addParameter(QgsProcessingParameterBoolean(
-            "COG", "Cloud-optimized GeoTIFF", False))
+            "OVERVIEWS", "Internal overviews (always with a cloud-optimized GeoTIFF)", False))
         self.addParameter(QgsProcessingParameterRasterDestination(OUTPUT, "Shaded relief"))
 
     def processAlgorithm(self, parameters, context, feedback):  # noqa: N802
@@ -137,7 +145,12 @@ class ShadedReliefAlgorithm(ApertureAlgorithm):
         if self.given(parameters, "WATER_MASK"):
             mask = self.parameterAsRasterLayer(parameters, "WATER_MASK", context)
             arguments.append(f"--water-mask={mask.source()}")
-        if self.parameterAsBool(parameters, "COG", context):
-            arguments.append("--cog")
+        arguments.append(
+            f"--of={OUTPUT_FORMATS[self.parameterAsEnum(parameters, 'OUTPUT_FORMAT', context)][1]}")
+        if self.given(parameters, "CREATION_OPTIONS"):
+            for option in self.parameterAsString(parameters, "CREATION_OPTIONS", context).split():
+                arguments.append(f"--co={option}")
+        if self.parameterAsBool(parameters, "OVERVIEWS", context):
+            arguments.append("--overviews")
         self.run_tool("aal-relief", arguments, feedback)
         return {OUTPUT: output}
