@@ -181,6 +181,22 @@ Agreement agreement(const std::vector<double>& a, const std::vector<double>& b, 
   return g;
 }
 
+// The DEM both SAGA comparisons read: kSagaCropSize² texels of the
+// Jacksboro DEM placed on a square 90 m grid.
+constexpr int kSagaCropSize = 256;
+fs::path writeJacksboroCrop(const TempDir& dir) {
+  const Heightfield jacksboro =
+      loadDem((fs::path(AAL_TEST_SOURCE_DIR) / "heightmaps" / "jacksboro_fault_dem.tif").string());
+  const int size = kSagaCropSize;
+  std::vector<float> crop(size_t(size) * size);
+  for (int row = 0; row < size; ++row) {
+    for (int col = 0; col < size; ++col) crop[size_t(row) * size + col] = jacksboro.at(col, row);
+  }
+  const fs::path dem = dir.path() / "dem.tif";
+  writeFloatGeoTiff(dem.string(), size, size, crop.data(), utm(90));
+  return dem;
+}
+
 // SAGA's Topographic Openness (ta_lighting 5, line tracing) on real terrain:
 // 256 x 256 texels of the Jacksboro DEM placed on a square 90 m grid, 16
 // directions, a radius of 1800 m (20 cells). SAGA steps one cell at a time
@@ -192,15 +208,8 @@ TEST(AalBakeOpenness, AgreesWithSaga) {
     GTEST_SKIP() << "saga_cmd is not installed (scripts/install-deps.sh installs saga)";
   }
   TempDir dir;
-  const Heightfield jacksboro =
-      loadDem((fs::path(AAL_TEST_SOURCE_DIR) / "heightmaps" / "jacksboro_fault_dem.tif").string());
-  const int size = 256;
-  std::vector<float> crop(size_t(size) * size);
-  for (int row = 0; row < size; ++row) {
-    for (int col = 0; col < size; ++col) crop[size_t(row) * size + col] = jacksboro.at(col, row);
-  }
-  const fs::path dem = dir.path() / "dem.tif";
-  writeFloatGeoTiff(dem.string(), size, size, crop.data(), utm(90));
+  const int size = kSagaCropSize;
+  const fs::path dem = writeJacksboroCrop(dir);
   const fs::path pos = dir.path() / "pos.tif", neg = dir.path() / "neg.tif";
   const auto r =
       runTool("aal-bake", quoted(dem) + " -q -o " + quoted(dir.path() / "a.exr") +
@@ -240,15 +249,8 @@ TEST(AalBakeOpenness, SkyViewFactorIsSagasVisibleSky) {
     GTEST_SKIP() << "saga_cmd is not installed (scripts/install-deps.sh installs saga)";
   }
   TempDir dir;
-  const Heightfield jacksboro =
-      loadDem((fs::path(AAL_TEST_SOURCE_DIR) / "heightmaps" / "jacksboro_fault_dem.tif").string());
-  const int size = 256;
-  std::vector<float> crop(size_t(size) * size);
-  for (int row = 0; row < size; ++row) {
-    for (int col = 0; col < size; ++col) crop[size_t(row) * size + col] = jacksboro.at(col, row);
-  }
-  const fs::path dem = dir.path() / "dem.tif";
-  writeFloatGeoTiff(dem.string(), size, size, crop.data(), utm(90));
+  const int size = kSagaCropSize;
+  const fs::path dem = writeJacksboroCrop(dir);
   const fs::path svf = dir.path() / "svf.tif", sagaVisible = dir.path() / "saga_visible.tif";
   const auto r = runTool("aal-bake", quoted(dem) + " -q -o " + quoted(dir.path() / "a.exr") +
                                          " --azimuths 16 --max-distance 1800 --svf " + quoted(svf));
