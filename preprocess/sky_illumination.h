@@ -13,6 +13,7 @@
 // n · w = (sin e - p cos e) / N and dw = cos e de dphi.
 #pragma once
 
+#include <algorithm>
 #include <cmath>
 #include <numbers>
 #include <vector>
@@ -31,9 +32,10 @@ enum class SkyModel {
 // without its constant; e0 given by its tangent t0 >= 0 and p the tangent
 // plane's tangent in the slice's azimuth (t0 >= p). Uniform:
 //   ∫ sin e cos e = cos² e0 / 2,  ∫ cos² e = (pi/2 - e0 - sin e0 cos e0) / 2.
-// Overcast adds twice
+// Overcast, L = 1 + 2 sin e, adds twice the same weighted by sin e:
 //   ∫ sin² e cos e = (1 - sin³ e0) / 3,  ∫ sin e cos² e = cos³ e0 / 3.
-// Never negative: the integrand is not where e >= e0 >= the plane.
+// The integrand is >= 0 for e >= e0 >= the plane's elevation; the max
+// guards the rounding.
 inline float skyIlluminationSlice(float t0, float p, SkyModel model) {
   constexpr float kHalfPi = float(std::numbers::pi / 2);
   const float c = 1.0f / std::sqrt(1.0f + t0 * t0), s = t0 * c;
