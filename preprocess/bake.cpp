@@ -60,6 +60,16 @@ void checkOptions(HeightView heights, const BakeOptions& o) {
     throw std::invalid_argument(
         "openness needs the sweep over the whole DEM or within a max distance (not a far field)");
   }
+  if ((o.anisotropicSkyViewFactor || o.skyIllumination) && o.method != BakeMethod::Sweep) {
+    throw std::invalid_argument(
+        "the anisotropic sky-view factor and sky illumination need the sweep's horizons");
+  }
+  if (o.anisotropicSkyViewFactor &&
+      !(o.anisotropy.minWeight >= 0 && o.anisotropy.minWeight <= 1 && o.anisotropy.exponent >= 0 &&
+        std::isfinite(o.anisotropy.mainDirectionDeg))) {
+    throw std::invalid_argument(
+        "anisotropy: minimum weight must be in [0, 1], exponent >= 0, direction finite");
+  }
   if (o.negativeOpenness && o.curvature) {
     throw std::invalid_argument("negative openness does not take Earth curvature");
   }
@@ -75,13 +85,12 @@ void checkCancel(const BakeOptions& o) {
 // many codes per texel).
 class AzimuthSweeps {
  public:
-  AzimuthSweeps(const BakeTerrain& terrain, const BakeOptions& o, float* sums,
-                std::vector<float>& svf, std::vector<float>& openness, uint8_t* horizonCodes)
+  AzimuthSweeps(const BakeTerrain& terrain, const BakeOptions& o, float* sums, GisSums& gis,
+                uint8_t* horizonCodes)
       : terrain_(terrain),
         o_(o),
-        svf_(svf),
-        openness_(openness),
-        sums_(terrain, o, sums, svf, openness, horizonCodes),
+        gis_(gis),
+        sums_(terrain, o, sums, gis, horizonCodes),
         dPhi_(kTwoPi / o.azimuths) {
     sweep_.clampEdge = o.clampEdge;
     sweep_.curvature = o.curvature ? (1.0 - o.refraction) / (2.0 * kEarthRadiusM) : 0.0;
@@ -109,8 +118,12 @@ class AzimuthSweeps {
       }
       if (o_.progress) o_.progress(static_cast<double>(pass + 1) / passes);
     }
-    if (!svf_.empty()) finishSkyViewFactor();
-    if (!openness_.empty()) finishOpenness(openness_, o_.azimuths);
+    if (!gis_.svf.empty()) finishSkyViewFactor(gis_.svf, o_.azimuths);
+    if (!gis_.openness.empty()) finishOpenness(gis_.openness, o_.azimuths);
+    if (!gis_.anisotropicSvf.empty()) finishSkyViewFactor(gis_.anisotropicSvf, weightSum());
+    if (!gis_.skyIllumination.empty()) {
+      finishSkyIllumination(terrain_, gis_.skyIllumination, o_.azimuths, o_.skyModel);
+    }
   }
 
  private:
@@ -123,7 +136,15 @@ class AzimuthSweeps {
                         static_cast<float>(dPhi_),
                         static_cast<float>(cosPhi * dPhi_),
                         static_cast<float>(sinPhi * dPhi_),
-                        stored ? a * o_.horizonDirections / o_.azimuths : -1};
+                        stored ? a * o_.horizonDirections / o_.azimuths : -1,
+                        static_cast<float>(anisotropicWeight(o_.anisotropy, phi))};
+  }
+
+  // The anisotropic weights of all azimuths, summed as the slices hold them.
+  double weightSum() const {
+    double sum = 0;
+    for (int a = 0; a < o_.azimuths; ++a) sum += sliceOf(a).anisotropicWeight;
+    return sum;
   }
 
   // Both slices in one pass; false where their lines do not pair.
@@ -176,17 +197,16 @@ class AzimuthSweeps {
     });
   }
 
-  // The sums of the SVF terms to the sky-view factor.
-  void finishSkyViewFactor() const {
-    const int azimuths = o_.azimuths;
-    tbb::parallel_for(size_t(0), svf_.size(),
-                      [&](size_t i) { svf_[i] = 1.0f - svf_[i] / azimuths; });
+  // The sums of the (weighted) SVF terms to the sky-view factor: 1 minus
+  // their mean, `weights` the sum of the weights (the azimuths unweighted).
+  static void finishSkyViewFactor(std::vector<float>& svf, double weights) {
+    const float w = static_cast<float>(weights);
+    tbb::parallel_for(size_t(0), svf.size(), [&](size_t i) { svf[i] = 1.0f - svf[i] / w; });
   }
 
   const BakeTerrain& terrain_;
   const BakeOptions& o_;
-  std::vector<float>& svf_;
-  std::vector<float>& openness_;
+  GisSums& gis_;
   const SliceAccumulator sums_;
   const double dPhi_;
   HorizonSweepOptions sweep_;
@@ -226,8 +246,11 @@ BakeResult bakeWindow(const BakeTerrain& terrain, const BakeOptions& o) {
   map.width = terrain.window.width;
   map.height = terrain.window.height;
   assignOnHugePages(map.texels, map.texelCount() * 4, 0.0f);
-  if (o.skyViewFactor) result.skyViewFactor.assign(map.texelCount(), 0.0f);
-  if (o.positiveOpenness) result.positiveOpenness.assign(map.texelCount(), 0.0f);
+  GisSums gis;
+  if (o.skyViewFactor) gis.svf.assign(map.texelCount(), 0.0f);
+  if (o.positiveOpenness) gis.openness.assign(map.texelCount(), 0.0f);
+  if (o.anisotropicSkyViewFactor) gis.anisotropicSvf.assign(map.texelCount(), 0.0f);
+  if (o.skyIllumination) gis.skyIllumination.assign(map.texelCount(), 0.0f);
   if (o.horizons) {
     result.horizons.width = map.width;
     result.horizons.height = map.height;
@@ -241,17 +264,21 @@ BakeResult bakeWindow(const BakeTerrain& terrain, const BakeOptions& o) {
     // progress.
     BakeOptions first = o;
     if (o.negativeOpenness && o.progress) first.progress = [&](double f) { o.progress(0.5 * f); };
-    AzimuthSweeps(terrain, first, map.texels.data(), result.skyViewFactor, result.positiveOpenness,
+    AzimuthSweeps(terrain, first, map.texels.data(), gis,
                   o.horizons ? result.horizons.codes.data() : nullptr)
         .run();
+    result.positiveOpenness = std::move(gis.openness);
+    result.anisotropicSkyViewFactor = std::move(gis.anisotropicSvf);
+    result.skyIllumination = std::move(gis.skyIllumination);
     if (o.negativeOpenness) {
       BakeOptions second = o;
       if (o.progress) second.progress = [&](double f) { o.progress(0.5 + 0.5 * f); };
       result.negativeOpenness = negativeOpenness(terrain.heights, terrain.window, second);
     }
   } else {
-    bakeRays(terrain, o, map.texels.data(), result.skyViewFactor);
+    bakeRays(terrain, o, map.texels.data(), gis.svf);
   }
+  result.skyViewFactor = std::move(gis.svf);
   finishApertures(terrain, map.texels);
   map.info = bakeInfo(*terrain.heights.dem, o);
   return result;

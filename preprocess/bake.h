@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "aperture/preprocess/bake_terrain.h"
+#include "aperture/preprocess/sky_illumination.h"
 #include "aperture/terrain/height_view.h"
 #include "aperture/terrain/heightfield.h"
 #include "aperture/terrain/io/aperture_map.h"
@@ -38,6 +39,13 @@ struct BakeOptions {
   // curvature.
   bool positiveOpenness = false;
   bool negativeOpenness = false;
+  // Also compute the anisotropic sky-view factor with these weights, and
+  // the diffuse illumination under a sky of this model
+  // (sky_illumination.h), from the sweep's own horizons.
+  bool anisotropicSkyViewFactor = false;
+  Anisotropy anisotropy;
+  bool skyIllumination = false;
+  SkyModel skyModel = SkyModel::Overcast;
   // Also keep the horizon of horizonDirections azimuths (terrain/io/horizon_map.h):
   // the sweep's own horizons at k * 360 / horizonDirections degrees, so
   // `azimuths` must be a multiple of horizonDirections.
@@ -65,6 +73,9 @@ struct BakeResult {
   // Per texel in degrees, in [0, 180], when requested, else empty; NaN on an
   // open edge, where an azimuth has no terrain ahead.
   std::vector<float> positiveOpenness, negativeOpenness;
+  // Per texel when requested, else empty: the anisotropic sky-view factor
+  // in [0, 1], the sky illumination, 1 on a plane under an open sky.
+  std::vector<float> anisotropicSkyViewFactor, skyIllumination;
   HorizonMap horizons;  // when requested, else empty
 };
 

@@ -5,18 +5,17 @@
 #include <cmath>
 
 #include "aperture/preprocess/openness.h"
+#include "aperture/preprocess/sky_illumination.h"
 #include "aperture/preprocess/sky_slice.h"
 
 namespace aal {
 
 SliceAccumulator::SliceAccumulator(const BakeTerrain& terrain, const BakeOptions& o, float* sums,
-                                   std::vector<float>& svf, std::vector<float>& openness,
-                                   uint8_t* horizonCodes)
+                                   GisSums& gis, uint8_t* horizonCodes)
     : terrain_(terrain),
       o_(o),
       sums_(sums),
-      svf_(svf),
-      openness_(openness),
+      gis_(gis),
       horizonCodes_(horizonCodes),
       avx2_(detail::horizonAvx2()) {}
 
@@ -45,7 +44,7 @@ inline void SliceAccumulator::addSlices(const HorizonBlock& b, const AzimuthSlic
     if (opposite && opposite->horizonSlot >= 0) storeHorizons(b, b.tanOpposite, *opposite);
   }
   prefetchAhead(b);
-  addGisTerms(b, opposite != nullptr);
+  addGisTerms(b, s, opposite);
 #if AAL_HORIZON_AVX2
   // Not for the distance-limited sweep's blocks of one: 20 % slower there.
   if (avx2_ && b.count > 1) {
@@ -94,29 +93,52 @@ inline void SliceAccumulator::storeHorizons(const HorizonBlock& b, const float* 
   }
 }
 
-inline void SliceAccumulator::addGisTerms(const HorizonBlock& b, bool opposite) const {
-  if (!svf_.empty()) {
-    addSkyViewFactor(b, b.tanHorizon);
-    if (opposite) addSkyViewFactor(b, b.tanOpposite);
+inline void SliceAccumulator::addGisTerms(const HorizonBlock& b, const AzimuthSlice& s,
+                                          const AzimuthSlice* opposite) const {
+  if (!gis_.svf.empty()) {
+    addSkyViewFactor(b, b.tanHorizon, gis_.svf, 1.0f);
+    if (opposite) addSkyViewFactor(b, b.tanOpposite, gis_.svf, 1.0f);
   }
-  if (!openness_.empty()) {
+  if (!gis_.openness.empty()) {
     addOpenness(b, b.tanHorizon);
     if (opposite) addOpenness(b, b.tanOpposite);
+  }
+  if (!gis_.anisotropicSvf.empty()) {
+    addSkyViewFactor(b, b.tanHorizon, gis_.anisotropicSvf, s.anisotropicWeight);
+    if (opposite) {
+      addSkyViewFactor(b, b.tanOpposite, gis_.anisotropicSvf, opposite->anisotropicWeight);
+    }
+  }
+  if (!gis_.skyIllumination.empty()) {
+    addSkyIllumination(b, b.tanHorizon, s);
+    if (opposite) addSkyIllumination(b, b.tanOpposite, *opposite);
   }
 }
 
 // Signed: openness counts terrain below the horizontal too.
 inline void SliceAccumulator::addOpenness(const HorizonBlock& b, const float* tanHorizon) const {
   for (int j = 0; j < b.count; ++j) {
-    addHorizonAngle(openness_[b.firstTexel + j * b.stride], tanHorizon[j]);
+    addHorizonAngle(gis_.openness[b.firstTexel + j * b.stride], tanHorizon[j]);
   }
 }
 
-inline void SliceAccumulator::addSkyViewFactor(const HorizonBlock& b,
-                                               const float* tanHorizon) const {
+// The sine of the horizon's elevation above the horizontal, times weight.
+inline void SliceAccumulator::addSkyViewFactor(const HorizonBlock& b, const float* tanHorizon,
+                                               std::vector<float>& sums, float weight) const {
   for (int j = 0; j < b.count; ++j) {
     const float t = tanHorizon[j];
-    if (t > 0.0f) svf_[b.firstTexel + j * b.stride] += t / std::sqrt(1.0f + t * t);
+    if (t > 0.0f) sums[b.firstTexel + j * b.stride] += weight * t / std::sqrt(1.0f + t * t);
+  }
+}
+
+// The sky above the horizontal, the horizon and the tangent plane.
+inline void SliceAccumulator::addSkyIllumination(const HorizonBlock& b, const float* tanHorizon,
+                                                 const AzimuthSlice& s) const {
+  for (int j = 0; j < b.count; ++j) {
+    const float tanPlane = b.slopeEast[j] * s.cosPhi + b.slopeNorth[j] * s.sinPhi;
+    const float t0 = std::max({0.0f, tanHorizon[j], tanPlane});
+    gis_.skyIllumination[b.firstTexel + j * b.stride] +=
+        skyIlluminationSlice(t0, tanPlane, o_.skyModel);
   }
 }
 

@@ -20,17 +20,24 @@ namespace aal {
 struct AzimuthSlice {
   double phi;
   float cosPhi, sinPhi, dPhi, cosPhiDPhi, sinPhiDPhi;
-  int horizonSlot = -1;  // direction of the horizon map this azimuth fills, or -1
+  int horizonSlot = -1;         // direction of the horizon map this azimuth fills, or -1
+  float anisotropicWeight = 1;  // of the anisotropic sky-view factor (sky_illumination.h)
+};
+
+// The per-texel sums of the GIS outputs, each empty unless wanted: the
+// sky-view factor's, the horizon angles of positive openness, the
+// anisotropic sky-view factor's weighted terms, the sky illumination's.
+struct GisSums {
+  std::vector<float> svf, openness, anisotropicSvf, skyIllumination;
 };
 
 class SliceAccumulator {
  public:
   // sums: 4 floats per texel of terrain.window (bent vector, solid angle);
-  // svf: empty, or one float per texel for the sky-view factor's sum;
-  // openness: empty, or one float per texel for the sum of horizon angles;
+  // gis: the GIS outputs' sums, one float per texel where wanted;
   // horizonCodes: null, or o.horizonDirections codes per texel.
-  SliceAccumulator(const BakeTerrain& terrain, const BakeOptions& o, float* sums,
-                   std::vector<float>& svf, std::vector<float>& openness, uint8_t* horizonCodes);
+  SliceAccumulator(const BakeTerrain& terrain, const BakeOptions& o, float* sums, GisSums& gis,
+                   uint8_t* horizonCodes);
 
   // Adds slice s (and, from b.tanOpposite, the opposite slice) to a block
   // of texels, reading and writing each texel's sums once. Throws
@@ -49,10 +56,15 @@ class SliceAccumulator {
   [[gnu::always_inline]] inline void prefetchAhead(const HorizonBlock& b) const;
   [[gnu::always_inline]] inline void storeHorizons(const HorizonBlock& b, const float* tanHorizon,
                                                    const AzimuthSlice& s) const;
-  // The sky-view factor's and openness's terms of both slices.
-  [[gnu::always_inline]] inline void addGisTerms(const HorizonBlock& b, bool opposite) const;
+  // The GIS outputs' terms of both slices.
+  [[gnu::always_inline]] inline void addGisTerms(const HorizonBlock& b, const AzimuthSlice& s,
+                                                 const AzimuthSlice* opposite) const;
   [[gnu::always_inline]] inline void addSkyViewFactor(const HorizonBlock& b,
-                                                      const float* tanHorizon) const;
+                                                      const float* tanHorizon,
+                                                      std::vector<float>& sums, float weight) const;
+  [[gnu::always_inline]] inline void addSkyIllumination(const HorizonBlock& b,
+                                                        const float* tanHorizon,
+                                                        const AzimuthSlice& s) const;
   [[gnu::always_inline]] inline void addOpenness(const HorizonBlock& b,
                                                  const float* tanHorizon) const;
   [[gnu::always_inline]] inline void sliceTerms(const HorizonBlock& b, const float* tanHorizon,
@@ -61,8 +73,7 @@ class SliceAccumulator {
   const BakeTerrain& terrain_;
   const BakeOptions& o_;
   float* const sums_;
-  std::vector<float>& svf_;
-  std::vector<float>& openness_;
+  GisSums& gis_;
   uint8_t* const horizonCodes_;
   const bool avx2_;
 };

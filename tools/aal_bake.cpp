@@ -76,6 +76,11 @@ struct Options : aal::SweepCommandLine {
   std::string localDominancePath;                          // "Local dominance"
   std::vector<int> localDominanceRadii{10, 20};
   double observerHeight = 1.7;
+  std::string anisotropicSvfPath;  // "Anisotropic sky-view factor"
+  double anisotropyDirection = 315;
+  std::string anisotropyLevel = "low";
+  std::string skyIlluminationPath;  // "Sky illumination"
+  std::string skyModel = "overcast";
   int threads = 0;
   aal::ProgressOptions report;
   aal::GeoTiffOutputOptions geotiff;  // -of, -co, --overviews
@@ -93,7 +98,9 @@ void checkOutputs(const Options& o, bool tiled) {
                                   {"--horizons", o.horizonsPath},
                                   {"--openness-positive", o.positiveOpennessPath},
                                   {"--openness-negative", o.negativeOpennessPath},
-                                  {"--local-dominance", o.localDominancePath}};
+                                  {"--local-dominance", o.localDominancePath},
+                                  {"--svf-anisotropic", o.anisotropicSvfPath},
+                                  {"--sky-illumination", o.skyIlluminationPath}};
   if (tiled) {
     aal::checkTiledBakeOutput(dem, o.output, others);
   } else {
@@ -110,8 +117,9 @@ void checkOutputs(const Options& o, bool tiled) {
     }
     aal::requireWritableOutput(o.output);
   }
-  for (const std::string& path : {o.svfPath, o.visiblePath, o.horizonsPath, o.positiveOpennessPath,
-                                  o.negativeOpennessPath, o.localDominancePath}) {
+  for (const std::string& path :
+       {o.svfPath, o.visiblePath, o.horizonsPath, o.positiveOpennessPath, o.negativeOpennessPath,
+        o.localDominancePath, o.anisotropicSvfPath, o.skyIlluminationPath}) {
     if (path.empty()) continue;
     aal::requireWritableOutput(path);
   }
@@ -148,12 +156,17 @@ bool checkTiling(const Options& o, const aal::DemSource& dem) {
                           "mosaic of them: leave out -of COG (--cog); -co and --overviews apply " +
                           "to the tiles");
   }
+  const std::string inOnePiece =
+      ": bake them in one piece (a DEM cropped with gdal_translate -srcwin if need be)";
   if (!o.positiveOpennessPath.empty() || !o.negativeOpennessPath.empty() ||
       !o.localDominancePath.empty()) {
     throw aal::InputError(why +
                           " writes no --openness-positive, --openness-negative or "
-                          "--local-dominance: bake them in one piece (a DEM cropped with "
-                          "gdal_translate -srcwin if need be)");
+                          "--local-dominance" +
+                          inOnePiece);
+  }
+  if (!o.anisotropicSvfPath.empty() || !o.skyIlluminationPath.empty()) {
+    throw aal::InputError(why + " writes no --svf-anisotropic or --sky-illumination" + inOnePiece);
   }
   aal::checkSweepOptions(o);
   return true;
@@ -194,7 +207,8 @@ void requireInMemoryBake(const Options& o, const aal::DemSource& dem) {
   const double perTexel =
       aal::kInMemoryBakeBytesPerTexel + (o.svf ? 4 : 0) + (o.visiblePath.empty() ? 0 : 4) +
       (o.positiveOpennessPath.empty() ? 0 : 4) + (o.negativeOpennessPath.empty() ? 0 : 8) +
-      (o.localDominancePath.empty() ? 0 : 4) + (o.horizonsPath.empty() ? 0 : o.horizonDirections);
+      (o.localDominancePath.empty() ? 0 : 4) + (o.anisotropicSvfPath.empty() ? 0 : 4) +
+      (o.skyIlluminationPath.empty() ? 0 : 4) + (o.horizonsPath.empty() ? 0 : o.horizonDirections);
   aal::requireMemory(
       o.dem, texels * perTexel,
       "its bake in memory (" + std::to_string(std::lround(perTexel)) + " bytes per texel)",
@@ -249,6 +263,16 @@ aal::BakeOptions bakeOptions(const Options& o) {
     throw aal::InputError(
         "--openness-negative does not take --curvature (the inverted DEM's sweep would raise "
         "distant terrain, not drop it)");
+  }
+  bake.anisotropicSkyViewFactor = !o.anisotropicSvfPath.empty();
+  bake.anisotropy = aal::anisotropyLevel(o.anisotropyLevel == "high", o.anisotropyDirection);
+  bake.skyIllumination = !o.skyIlluminationPath.empty();
+  bake.skyModel = o.skyModel == "uniform" ? aal::SkyModel::Uniform : aal::SkyModel::Overcast;
+  if ((bake.anisotropicSkyViewFactor || bake.skyIllumination) &&
+      bake.method == aal::BakeMethod::Rays) {
+    throw aal::InputError(
+        "--svf-anisotropic and --sky-illumination need --method sweep (the ray reference has no "
+        "horizons)");
   }
   if (o.localDominanceRadii[0] > o.localDominanceRadii[1]) {
     throw aal::InputError("--local-dominance-radii " + std::to_string(o.localDominanceRadii[0]) +
@@ -373,6 +397,14 @@ bool writeOutputs(const Options& o, bool tiled, Baked& baked, const aal::Heightf
       writeGisRaster(o.negativeOpennessPath, std::move(result.negativeOpenness), field, o.raster,
                      aal::negativeOpennessBandLabel());
     }
+    if (!o.anisotropicSvfPath.empty()) {
+      writeGisRaster(o.anisotropicSvfPath, std::move(result.anisotropicSkyViewFactor), field,
+                     o.raster, aal::anisotropicSkyViewFactorBandLabel());
+    }
+    if (!o.skyIlluminationPath.empty()) {
+      writeGisRaster(o.skyIlluminationPath, std::move(result.skyIllumination), field, o.raster,
+                     aal::skyIlluminationBandLabel(o.skyModel == "overcast"));
+    }
     if (!o.localDominancePath.empty()) {
       writeGisRaster(o.localDominancePath, std::move(baked.localDominance), field, o.raster,
                      aal::localDominanceBandLabel());
@@ -480,6 +512,39 @@ int run(Options& o) {
   return aal::kExitOk;
 }
 
+// --svf-anisotropic and --sky-illumination with their settings.
+void addSkyOptions(CLI::App& app, Options& o) {
+  CLI::Option* anisotropic = app.add_option(
+      "--svf-anisotropic", o.anisotropicSvfPath,
+      "also write the anisotropic sky-view factor (Zaksek et al.; RVT's weights): as --svf, each "
+      "azimuth's term weighted by (1 - m) cos((A - D) / 2)^p + m, A its azimuth, D "
+      "--svf-anisotropy-direction; p, m by --svf-anisotropy-level; a float32 GeoTIFF placed like "
+      "the DEM, voids nodata (docs/baking.md)");
+  app.add_option("--svf-anisotropy-direction", o.anisotropyDirection,
+                 "main direction of --svf-anisotropic, in degrees clockwise from north (as RVT; "
+                 "the sky there weighs most)")
+      ->check(CLI::Range(0.0, 360.0))
+      ->needs(anisotropic)
+      ->capture_default_str();
+  app.add_option("--svf-anisotropy-level", o.anisotropyLevel,
+                 "low: p = 4, m = 0.4; high: p = 8, m = 0.1 (RVT's levels)")
+      ->check(CLI::IsMember({"low", "high"}))
+      ->needs(anisotropic)
+      ->capture_default_str();
+  CLI::Option* sky = app.add_option(
+      "--sky-illumination", o.skyIlluminationPath,
+      "also write the diffuse illumination under the sky, shadowed by the horizons: the "
+      "irradiance from the sky above the horizontal, the horizon and the tangent plane, over "
+      "that of a horizontal plane under the open sky (1 there), as a float32 GeoTIFF placed "
+      "like the DEM, voids nodata (docs/baking.md)");
+  app.add_option("--sky-model", o.skyModel,
+                 "sky radiance of --sky-illumination: uniform, or overcast (the CIE standard "
+                 "overcast sky, (1 + 2 sin elevation) / 3)")
+      ->check(CLI::IsMember({"uniform", "overcast"}))
+      ->needs(sky)
+      ->capture_default_str();
+}
+
 // --svf, --horizons with its directions and bits, --visible: what the bake
 // writes besides the map. Returns --svf, which may come without a path.
 CLI::Option* addExtraOutputOptions(CLI::App& app, Options& o) {
@@ -536,6 +601,7 @@ CLI::Option* addExtraOutputOptions(CLI::App& app, Options& o) {
       ->check(CLI::PositiveNumber)
       ->needs(dominance)
       ->capture_default_str();
+  addSkyOptions(app, o);
   return svf;
 }
 
@@ -598,7 +664,9 @@ int main(int argc, char** argv) {
   addTiledBakeOptions(app, o);
   // A tiled bake's SVF tiles take -co and --overviews (checkTiling refuses
   // -of COG for them).
-  aal::addGeoTiffOutputOptions(app, o.geotiff, "the GeoTIFFs (--svf, --visible, the openness and local dominance rasters, a .tif map)");
+  aal::addGeoTiffOutputOptions(app, o.geotiff,
+                               "the GeoTIFFs (--svf, --visible, the openness, local dominance, "
+                               "anisotropic SVF and sky illumination rasters, a .tif map)");
   aal::addMapStorageOptions(app, o);
   aal::addProgressOptions(app, o.report);
 

@@ -37,6 +37,20 @@ inline RasterBandLabel localDominanceBandLabel() {
   return {"local dominance", ""};
 }
 
+// aal-bake --svf-anisotropic (Zaksek, Ostir and Kokalj 2011, RVT's
+// weights): dimensionless, 0..1.
+inline RasterBandLabel anisotropicSkyViewFactorBandLabel() {
+  return {"anisotropic sky-view factor", ""};
+}
+
+// aal-bake --sky-illumination: diffuse irradiance under the sky model over
+// that of a horizontal plane under the open sky, 1 there.
+inline RasterBandLabel skyIlluminationBandLabel(bool overcast) {
+  return {overcast ? "sky illumination (CIE overcast sky, 1 = open horizontal plane)"
+                   : "sky illumination (uniform sky, 1 = open horizontal plane)",
+          ""};
+}
+
 // aal-relief's grey or float relief.
 inline RasterBandLabel reliefBandLabel(bool bytes) {
   return {bytes ? "shaded relief (1 + 254 v, 0 = nodata)" : "shaded relief (0..1)", ""};

@@ -138,6 +138,32 @@ def test_sky_view_factor_is_placed_like_the_dem(qgis_app, tmp_path):
     assert temporary_maps() == []
 
 
+def test_sky_illumination_and_anisotropic_svf_are_placed_like_the_dem(qgis_app, tmp_path):
+    import processing
+    from osgeo import gdal
+    dem = write_dem(tmp_path / "dem.tif", hills(48, 64), voids=[(10, 20)])
+    asvf, sky = tmp_path / "asvf.tif", tmp_path / "sky.tif"
+    result = processing.run("aperture:skyviewfactor", {
+        "INPUT": str(dem), "AZIMUTHS": 16, "MAX_DISTANCE": 0, "EDGE": 0,
+        "SKY_VIEW_FACTOR": None, "SVF_ANISOTROPIC": str(asvf), "SKY_ILLUMINATION": str(sky),
+    })
+    assert result["SVF_ANISOTROPIC"] == str(asvf) and result["SKY_ILLUMINATION"] == str(sky)
+    source = raster_layer(dem)
+    for path, band in ((asvf, "anisotropic sky-view factor"),
+                       (sky, "sky illumination (CIE overcast sky, 1 = open horizontal plane)")):
+        out = raster_layer(path)
+        assert out.crs() == source.crs() and out.extent() == source.extent()
+        dataset = gdal.Open(str(path))
+        assert dataset.GetRasterBand(1).GetDescription() == band
+        values = dataset.ReadAsArray()
+        assert math.isnan(values[10, 20])
+        valid = values[~np.isnan(values)]
+        assert valid.size == 48 * 64 - 1
+        # Hills: darker than an open plane somewhere, never brighter.
+        assert ((valid > 0) & (valid <= 1 + 1e-6)).all() and valid.min() < 0.99
+    assert files_in(tmp_path) == ["asvf.tif", "dem.tif", "sky.tif"]
+
+
 def test_sky_view_factor_without_an_output_is_refused(qgis_app, tmp_path):
     import processing
     dem = write_dem(tmp_path / "dem.tif", hills(16, 16))

@@ -19,6 +19,9 @@ BAKE_RASTER_OUTPUTS = (
     ("OPENNESS_POSITIVE", "--openness-positive", "Positive openness (degrees)", False),
     ("OPENNESS_NEGATIVE", "--openness-negative", "Negative openness (degrees)", False),
     ("LOCAL_DOMINANCE", "--local-dominance", "Local dominance", False),
+    ("SVF_ANISOTROPIC", "--svf-anisotropic", "Anisotropic sky-view factor (RVT's low level, 315)",
+     False),
+    ("SKY_ILLUMINATION", "--sky-illumination", "Sky illumination (CIE overcast sky)", False),
 )
 
 AZIMUTHS = "AZIMUTHS"
@@ -41,8 +44,10 @@ class SkyViewFactorAlgorithm(ApertureAlgorithm):
             "Bakes the visible sky of every cell of the DEM with aal-bake's horizon sweep, over "
             "the whole DEM unless a maximum distance is set, and writes the sky-view factor "
             "(Zaksek et al. 2011), the visible fraction of the sky, positive and negative "
-            "openness (Yokoyama et al. 2002, degrees) and local dominance (Hesse 2016, RVT's "
-            "definition) as float32 GeoTIFFs placed like the DEM (its voids are nodata, NaN). "
+            "openness (Yokoyama et al. 2002, degrees), local dominance (Hesse 2016, RVT's "
+            "definition), the anisotropic sky-view factor (RVT's weights, low level, main "
+            "direction 315 degrees) and the sky illumination under the CIE overcast sky (1 on an "
+            "open horizontal plane) as float32 GeoTIFFs placed like the DEM (its voids are nodata, NaN). "
             "The aperture map (.exr or .tif, for aal-render and aal-relief) is kept only when a "
             "file is given for it.")
 
