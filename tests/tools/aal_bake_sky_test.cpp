@@ -14,6 +14,7 @@
 #include "aperture/terrain/io/geotiff_writer.h"
 #include "aperture/terrain/synthetic.h"
 #include "aperture/tests/tools/run_tool.h"
+#include "aperture/tests/tools/void_dem.h"
 
 namespace aal {
 namespace {
@@ -23,35 +24,10 @@ using test::quoted;
 using test::runTool;
 using test::TempDir;
 
-constexpr float kNodata = -9999.0f;
-
-// A 40 x 40 fBm DEM of 30 m cells in UTM 16N with a void of 3 x 2 texels
-// at (20, 10).
-fs::path writeDemWithVoids(const TempDir& dir) {
-  SyntheticTerrainOptions s;
-  s.width = s.height = 40;
-  s.cellSizeM = 30;
-  s.featureSizeTexels = 10;
-  Heightfield field = makeSyntheticTerrain(s);
-  for (int row = 10; row < 12; ++row) {
-    for (int col = 20; col < 23; ++col) field.z[field.index(col, row)] = kNodata;
-  }
-  GeoReference geo;
-  geo.crs = CrsKind::Projected;
-  geo.epsg = 32616;
-  geo.originX = 500000;
-  geo.originY = 4000000;
-  geo.stepX = geo.stepY = 30;
-  RasterWriteOptions options;
-  options.nodata = kNodata;
-  const fs::path path = dir.path() / "dem.tif";
-  writeFloatGeoTiff(path.string(), 40, 40, field.z.data(), geo, options);
-  return path;
-}
-
-bool isVoid(int col, int row) {
-  return row >= 10 && row < 12 && col >= 20 && col < 23;
-}
+constexpr float kNodata = test::kVoidDemNodata;
+using test::isVoid;
+using test::utm;
+using test::writeDemWithVoids;
 
 std::string bandDescription(const fs::path& path) {
   GDALAllRegister();
