@@ -110,30 +110,13 @@ TEST(AalBakeLocalDominance, RefusalsExitWithTwoAndWriteNothing) {
 TEST(AalBakeLocalDominance, InterruptLeavesNoFile) {
   TempDir dir;
   const fs::path dem = writeDem(dir, 512, 512);
-  const std::string bake = (test::binDir() / "aal-bake").string();
-  const std::string demArg = dem.string(), out = (dir.path() / "a.exr").string(),
-                    ld = (dir.path() / "ld.tif").string();
+  const std::string out = (dir.path() / "a.exr").string(), ld = (dir.path() / "ld.tif").string();
   // A ring of 24 x 1000 samples per texel of 512²: a minute of work after a
   // bake of a few milliseconds.
-  const char* argv[] = {bake.c_str(), demArg.c_str(),
-                        "-o",         out.c_str(),
-                        "--azimuths", "4",
-                        "-q",         "--local-dominance",
-                        ld.c_str(),   "--local-dominance-radii",
-                        "1",          "1000",
-                        nullptr};
-  pid_t pid = 0;
-  ASSERT_EQ(posix_spawn(&pid, bake.c_str(), nullptr, nullptr, const_cast<char**>(argv), environ),
-            0);
-  for (int i = 0; i < 200 && !test::catchesSignal(pid, SIGINT); ++i) {
-    std::this_thread::sleep_for(std::chrono::milliseconds(20));
-  }
-  std::this_thread::sleep_for(std::chrono::milliseconds(500));
-  kill(pid, SIGINT);
-  int status = 0;
-  ASSERT_EQ(waitpid(pid, &status, 0), pid);
-  ASSERT_TRUE(WIFEXITED(status));
-  EXPECT_EQ(WEXITSTATUS(status), 1);
+  EXPECT_EQ(test::interruptMidRun(
+                "aal-bake", {dem.string(), "-o", out, "--azimuths", "4", "-q", "--local-dominance",
+                             ld, "--local-dominance-radii", "1", "1000"}),
+            1);
   EXPECT_FALSE(fs::exists(out));
   EXPECT_FALSE(fs::exists(ld));
 }

@@ -257,25 +257,10 @@ TEST(AalBake, InterruptLeavesNoFile) {
   TempDir dir;
   const fs::path dem = writeDem(dir, 512);
   const fs::path out = dir.path() / "a.exr";
-  const std::string bake = (test::binDir() / "aal-bake").string();
-  const std::string demArg = dem.string(), outArg = out.string();
   // Enough azimuths for tens of seconds of work; interrupted well before.
-  const char* argv[] = {bake.c_str(), demArg.c_str(), "-o", outArg.c_str(),
-                        "--azimuths", "4096",         "-q", nullptr};
-  pid_t pid = 0;
-  ASSERT_EQ(posix_spawn(&pid, bake.c_str(), nullptr, nullptr, const_cast<char**>(argv), environ),
-            0);
-  // Interrupt once the tool catches SIGINT (bit 1 of SigCgt in
-  // /proc/PID/status), however slowly it starts, and a little later, mid-bake.
-  for (int i = 0; i < 200 && !test::catchesSignal(pid, SIGINT); ++i) {
-    std::this_thread::sleep_for(std::chrono::milliseconds(20));
-  }
-  std::this_thread::sleep_for(std::chrono::milliseconds(500));
-  kill(pid, SIGINT);
-  int status = 0;
-  ASSERT_EQ(waitpid(pid, &status, 0), pid);
-  ASSERT_TRUE(WIFEXITED(status));
-  EXPECT_EQ(WEXITSTATUS(status), 1);
+  EXPECT_EQ(test::interruptMidRun("aal-bake",
+                                  {dem.string(), "-o", out.string(), "--azimuths", "4096", "-q"}),
+            1);
   EXPECT_FALSE(fs::exists(out));
   EXPECT_EQ(filesIn(dir.path()), 1u);  // only the DEM: no temporary left behind
 }

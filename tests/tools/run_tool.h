@@ -2,10 +2,13 @@
 // exit code and output, for command-line contract tests.
 #pragma once
 
+#include <spawn.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
 #include <array>
+#include <chrono>
+#include <csignal>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
@@ -14,6 +17,7 @@
 #include <map>
 #include <stdexcept>
 #include <string>
+#include <thread>
 #include <vector>
 
 namespace aal::test {
@@ -153,6 +157,26 @@ inline bool catchesSignal(pid_t pid, int signal) {
     }
   }
   return false;
+}
+
+// Runs tool `tool` with `arguments` and sends it SIGINT mid-run: once it
+// catches the signal (however slowly it starts) and half a second later.
+// Returns its exit code, or -1 when it did not exit by itself (a signal).
+inline int interruptMidRun(const std::string& tool, const std::vector<std::string>& arguments) {
+  const std::string path = (binDir() / tool).string();
+  std::vector<char*> argv{const_cast<char*>(path.c_str())};
+  for (const std::string& a : arguments) argv.push_back(const_cast<char*>(a.c_str()));
+  argv.push_back(nullptr);
+  pid_t pid = 0;
+  if (posix_spawn(&pid, path.c_str(), nullptr, nullptr, argv.data(), environ) != 0) return -2;
+  for (int i = 0; i < 200 && !catchesSignal(pid, SIGINT); ++i) {
+    std::this_thread::sleep_for(std::chrono::milliseconds(20));
+  }
+  std::this_thread::sleep_for(std::chrono::milliseconds(500));
+  ::kill(pid, SIGINT);
+  int status = 0;
+  if (::waitpid(pid, &status, 0) != pid || !WIFEXITED(status)) return -1;
+  return WEXITSTATUS(status);
 }
 
 }  // namespace aal::test
