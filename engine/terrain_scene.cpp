@@ -314,20 +314,22 @@ void TerrainScene::runSlopePass(const Device& device, const std::vector<Image>* 
                              static_cast<int32_t>(end)};
         const uint32_t w = page.desc().width >> level;
         DescriptorWrites writes;
-        writes.image(0, heights_[p].view(), nearest.handle()).image(1, views[p][level]->handle());
+        // Level 0 takes the heights' differences (and decodes the codes);
+        // each level above is the mean of the one below (bound at level 0
+        // too, unread: any other level).
+        const uint32_t below = level > 0 ? level - 1 : std::min(1u, levels - 1);
+        writes.image(0, heights_[p].view(), nearest.handle())
+            .image(1, views[p][level]->handle())
+            .image(3, views[p][below]->handle());
         if (horizons) {
-          // Level 0 decodes the codes; each level above is the mean of the
-          // one below (bound at level 0 too, unread: any other level).
-          const uint32_t below = level > 0 ? level - 1 : std::min(1u, levels - 1);
           writes.image(2, (*codes)[p].view(), codeSampler.handle())
-              .image(3, views[p][below]->handle())
               .image(4, momentViews[p][level]->handle())
               .image(5, momentViews[p][below]->handle());
         }
         pipeline.record(cmd, writes, &push, (w + 7) / 8, (end - begin + 7) / 8, page.desc().layers);
-        // The next level reads this one's horizons.
+        // The next level reads this one's slopes and horizons.
+        transitionImage(cmd, page, VK_IMAGE_LAYOUT_GENERAL, VK_IMAGE_LAYOUT_GENERAL);
         if (horizons) {
-          transitionImage(cmd, page, VK_IMAGE_LAYOUT_GENERAL, VK_IMAGE_LAYOUT_GENERAL);
           transitionImage(cmd, horizonMoments_[p], VK_IMAGE_LAYOUT_GENERAL,
                           VK_IMAGE_LAYOUT_GENERAL);
         }

@@ -1,12 +1,15 @@
-// The slope texture of one page of heights at one mip level: per texel the
-// central differences of the level's heights one texel apart (dz/dx east,
-// dz/dy north, m/m), clamped at the image's edge. Sampled with the same
-// filter as the heights, these equal the differences of filtered heights
-// that the terrain's normals used to take with four fetches (a bilinear fetch
-// is linear in the texels, and a shift by one texel keeps its weights), for
-// one fetch (docs/rendering.md). Each tile is computed from its own image,
-// whose levels hold the whole DEM's bit for bit, so slopes match across
-// tiles too (the image's outermost texel, which no fetch reaches, aside).
+// The slope texture of one page of heights at one mip level (dz/dx east,
+// dz/dy north, m/m): at level 0 per texel the central differences of the
+// DEM's heights one texel apart, clamped at the image's edge; at each level
+// above the mean of the 2 x 2 texels below, so a level's texel holds the mean
+// slope of the DEM texels it covers and a filtered fetch the mean slope over
+// its footprint. The level's own heights' differences, two of its texels
+// apart, averaged the slopes over about twice the footprint: the normals of
+// far fragments were blurred twice as much as their other textures
+// (docs/rendering.md, "Footprint filtering"). Each tile is computed from its
+// own image, whose level 0 holds the whole DEM's heights bit for bit, so
+// slopes match across tiles too (each level's outermost texel, which holds
+// the image's edge and which no fetch reaches, aside).
 //
 // slopes_horizons.comp (AAL_SLOPES_HORIZONS) also writes B and A: the
 // means of the horizons (rad) of the pair of stored directions beside the
@@ -42,6 +45,8 @@ layout(set = 0, binding = 4, rg16f) uniform image2DArray secondMoments;
 layout(set = 0, binding = 5, rg16f) uniform readonly image2DArray finerSecondMoments;
 #else
 layout(set = 0, binding = 1, rg16f) uniform writeonly image2DArray slopes;
+// The page's level below (finer; read above level 0).
+layout(set = 0, binding = 3, rg16f) uniform readonly image2DArray finer;
 #endif
 
 layout(push_constant) uniform Level {
@@ -69,14 +74,23 @@ vec2 texelSecondMoments(vec2 storedHorizons) {
 }
 #endif
 
-// The central differences of the level's heights at texel t.
+// The slope at texel t: at level 0 the central differences of the DEM's
+// heights; above, the mean of the 2 x 2 texels of the level below (summed in
+// one fixed order), so that every level holds the mean slope of the DEM
+// texels it covers, as the other textures' levels hold their means.
 vec2 levelSlope(ivec3 t, ivec2 last) {
-  float east = texelFetch(heights, ivec3(min(t.x + 1, last.x), t.y, t.z), p.level).r;
-  float west = texelFetch(heights, ivec3(max(t.x - 1, 0), t.y, t.z), p.level).r;
-  float north = texelFetch(heights, ivec3(t.x, max(t.y - 1, 0), t.z), p.level).r;  // row - 1
-  float south = texelFetch(heights, ivec3(t.x, min(t.y + 1, last.y), t.z), p.level).r;
-  float span = 2.0 * exp2(float(p.level));
-  return vec2((east - west) / (span * p.cellSizeXM), (north - south) / (span * p.cellSizeYM));
+  if (p.level > 0) {
+    ivec3 f = ivec3(2 * t.xy, t.z);
+    ivec3 right = ivec3(1, 0, 0), down = ivec3(0, 1, 0);
+    return ((imageLoad(finer, f).rg + imageLoad(finer, f + right).rg) +
+            (imageLoad(finer, f + down).rg + imageLoad(finer, f + right + down).rg)) *
+           0.25;
+  }
+  float east = texelFetch(heights, ivec3(min(t.x + 1, last.x), t.y, t.z), 0).r;
+  float west = texelFetch(heights, ivec3(max(t.x - 1, 0), t.y, t.z), 0).r;
+  float north = texelFetch(heights, ivec3(t.x, max(t.y - 1, 0), t.z), 0).r;  // row - 1
+  float south = texelFetch(heights, ivec3(t.x, min(t.y + 1, last.y), t.z), 0).r;
+  return vec2((east - west) / (2.0 * p.cellSizeXM), (north - south) / (2.0 * p.cellSizeYM));
 }
 
 void main() {

@@ -31,8 +31,8 @@ layout(location = 1) out vec4 ambientOut;  // rgb ambient x transmittance, a vie
 layout(location = 2) out vec4 surfaceOut;
 #endif
 
-// Normal from slopes (terrainSlopeProbes): central differences of the
-// heights one of the fetch's level's texels (2^lod of the DEM's) apart.
+// Normal from slopes (terrainSlopeProbes): the footprint's mean of the
+// DEM's central differences.
 vec3 surfaceNormal(vec2 slope) {
   return normalize(vec3(-slope, 1.0));
 }

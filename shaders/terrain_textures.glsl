@@ -111,8 +111,8 @@ vec3 terrainAlbedo(vec2 texel) {
 }
 
 // Slope of the heights (xy: dz/dx east, dz/dy north; m/m) at level of
-// detail `lod`: the central differences of each level's heights one level
-// texel apart (slopes.glsl), laid out in tiles and pages as the heights. zw:
+// detail `lod`: the mean over the footprint of the DEM's central differences
+// (slopes.glsl), laid out in tiles and pages as the heights. zw:
 // with directional horizons, the horizons (rad) of the pair of directions
 // beside the sun (engine/terrain_scene.h setHorizons); else 0, 1.
 vec4 terrainSlopeLod(vec2 texel, float lod) {

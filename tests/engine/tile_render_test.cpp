@@ -301,34 +301,40 @@ std::vector<glm::vec4> readSlopes(const Device& device, const Image& page, uint3
   return slopes;
 }
 
-// The slope texture (shaders/slopes.glsl) holds, at every level of every
-// tile, the central differences of that level's heights one texel apart
-// (recomputed here in double from the heights read back; the image's edge
-// takes its own texel for the missing neighbour), to half-float rounding;
-// and each tile's slopes equal the single image's over the tile's window,
-// the tile image's outermost texels (which no fetch reaches) aside.
-TEST_F(TileRender, SlopesAreEachLevelsCentralDifferencesInEveryTile) {
+// The slope texture (shaders/slopes.glsl) holds at level 0 of every tile
+// the central differences of the heights one texel apart (recomputed here in
+// double from the heights read back; the image's edge takes its own texel for
+// the missing neighbour), and at each level above the mean of the 2 x 2
+// texels below (as read back), to half-float rounding: the mean slope of the
+// DEM texels a texel covers. Each tile's slopes equal the single image's over
+// the tile's window, each level's outermost texels (which hold the image's
+// edge, and which no fetch reaches) aside.
+TEST_F(TileRender, SlopesAreTheMeanSlopeOfTheTexelsEachLevelCovers) {
   const Heightfield field = fbm();
   const TerrainScene single(device(), field, nullptr, 400000);
   const TerrainScene tiled(device(), field, nullptr, 400000, {kTile, 0});
   const TerrainTileLayout& whole = single.tiles();
   const TerrainTileLayout& t = tiled.tiles();
   ASSERT_EQ(tiled.slopePages().size(), tiled.heightPages().size());
+  std::vector<std::vector<glm::vec4>> below(t.tileCount());  // each tile's level below
   for (uint32_t level = 0; level < kTerrainMipLevels; ++level) {
-    const double span = 2.0 * double(1 << level);
     const std::vector<glm::vec4> reference = readSlopes(device(), single.slopePages()[0], 0, level);
     const uint32_t referenceWidth = whole.imageWidth() >> level;
     const uint32_t referenceHeight = whole.imageHeight() >> level;
     double worst = 0;
     size_t compared = 0, different = 0;
     for (uint32_t tile = 0; tile < t.tileCount(); ++tile) {
-      const std::vector<float> heights = readLevel(device(), tiled.heightPages()[0], tile, level);
       const std::vector<glm::vec4> slopes =
           readSlopes(device(), tiled.slopePages()[0], tile, level);
       const uint32_t w = t.imageWidth() >> level, h = t.imageHeight() >> level;
+      const std::vector<float> heights =
+          level == 0 ? readLevel(device(), tiled.heightPages()[0], tile, 0) : std::vector<float>{};
       const auto height = [&](int64_t c, int64_t r) {
         return double(heights[size_t(std::clamp<int64_t>(r, 0, h - 1)) * w +
                               size_t(std::clamp<int64_t>(c, 0, w - 1))]);
+      };
+      const auto finer = [&](uint32_t c, uint32_t r) {
+        return glm::dvec2(below[tile][size_t{r} * (2 * w) + c]);
       };
       const uint32_t offsetX = (tile % t.tilesX) * t.coreWidth >> level;
       const uint32_t offsetY = (tile / t.tilesX) * t.coreHeight >> level;
@@ -336,10 +342,14 @@ TEST_F(TileRender, SlopesAreEachLevelsCentralDifferencesInEveryTile) {
         for (uint32_t c = 0; c < w; ++c) {
           const glm::vec4 got = slopes[size_t{r} * w + c];
           const int64_t x = c, y = r;
-          const double east = (height(x + 1, y) - height(x - 1, y)) / (span * kCellM);
-          const double north = (height(x, y - 1) - height(x, y + 1)) / (span * kCellM);
-          worst = std::max({worst, std::abs(got.x - east) / std::max(1.0, std::abs(east)),
-                            std::abs(got.y - north) / std::max(1.0, std::abs(north))});
+          const glm::dvec2 expected =
+              level == 0 ? glm::dvec2((height(x + 1, y) - height(x - 1, y)) / (2.0 * kCellM),
+                                      (height(x, y - 1) - height(x, y + 1)) / (2.0 * kCellM))
+                         : 0.25 * (finer(2 * c, 2 * r) + finer(2 * c + 1, 2 * r) +
+                                   finer(2 * c, 2 * r + 1) + finer(2 * c + 1, 2 * r + 1));
+          worst = std::max(
+              {worst, std::abs(got.x - expected.x) / std::max(1.0, std::abs(expected.x)),
+               std::abs(got.y - expected.y) / std::max(1.0, std::abs(expected.y))});
           if (r == 0 || c == 0 || r + 1 == h || c + 1 == w || offsetY + r >= referenceHeight ||
               offsetX + c >= referenceWidth) {
             continue;
@@ -348,6 +358,7 @@ TEST_F(TileRender, SlopesAreEachLevelsCentralDifferencesInEveryTile) {
           if (got != reference[size_t{offsetY + r} * referenceWidth + offsetX + c]) ++different;
         }
       }
+      below[tile] = slopes;
     }
     EXPECT_LE(worst, 1e-3) << "level " << level;
     EXPECT_GT(compared, 0u);
