@@ -6,6 +6,8 @@
 #include <cstdio>
 #include <cstdlib>
 #include <fstream>
+#include <sstream>
+#include <vector>
 
 #include <sys/resource.h>
 
@@ -67,19 +69,64 @@ std::optional<uint64_t> readNumber(const std::string& path) {
   return value;
 }
 
-// The cgroup v2 limit of this process ("0::/PATH" in /proc/self/cgroup).
-std::optional<uint64_t> cgroupLeft() {
+// The folder of the cgroup hierarchies: /sys/fs/cgroup, or AAL_CGROUP_ROOT
+// (how the tests pose a limit without one).
+std::string cgroupRoot() {
+  const char* root = std::getenv("AAL_CGROUP_ROOT");
+  return root != nullptr && *root != '\0' ? root : "/sys/fs/cgroup";
+}
+
+// "/a/b" and its ancestors "/a" and "/", leaf first.
+std::vector<std::string> selfAndAncestors(std::string path) {
+  std::vector<std::string> folders;
+  while (!path.empty() && path != "/") {
+    folders.push_back(path);
+    const size_t slash = path.find_last_of('/');
+    if (slash == std::string::npos) break;
+    path.erase(slash);
+  }
+  folders.push_back("");
+  return folders;
+}
+
+// What the cgroups of this process leave above their use: the least over the
+// process's cgroup and its ancestors, whose limits all apply, of cgroup v2's
+// memory.max - memory.current ("0::/PATH" in /proc/self/cgroup) and cgroup
+// v1's memory.limit_in_bytes - memory.usage_in_bytes ("N:memory:/PATH" or
+// "N:...,memory,...:/PATH"); a container sees its own cgroup as the root,
+// the host's path or not, so the walk up covers both. v1 writes "no limit"
+// as a number near 2^63.
+std::optional<MemoryLimit> cgroupLeft() {
+  std::string v2Path = "/", v1Path = "/";
   std::ifstream in("/proc/self/cgroup");
   std::string line;
   while (std::getline(in, line)) {
-    if (line.rfind("0::", 0) != 0) continue;
-    const std::string folder = "/sys/fs/cgroup" + line.substr(3);
-    const std::optional<uint64_t> max = readNumber(folder + "/memory.max");
-    if (!max) return std::nullopt;
-    const uint64_t current = readNumber(folder + "/memory.current").value_or(0);
-    return *max > current ? *max - current : 0;
+    const size_t first = line.find(':'), second = line.find(':', first + 1);
+    if (first == std::string::npos || second == std::string::npos) continue;
+    if (line.rfind("0::", 0) == 0) v2Path = line.substr(second + 1);
+    std::istringstream controllers(line.substr(first + 1, second - first - 1));
+    for (std::string name; std::getline(controllers, name, ',');) {
+      if (name == "memory") v1Path = line.substr(second + 1);
+    }
   }
-  return std::nullopt;
+  const std::string root = cgroupRoot();
+  constexpr uint64_t kV1NoLimit = uint64_t{1} << 60;
+  std::optional<MemoryLimit> tightest;
+  const auto consider = [&](const std::string& folder, const char* limitFile, const char* usageFile,
+                            const char* source) {
+    const std::optional<uint64_t> max = readNumber(folder + "/" + limitFile);
+    if (!max || *max >= kV1NoLimit) return;
+    const uint64_t used = readNumber(folder + "/" + usageFile).value_or(0);
+    const uint64_t left = *max > used ? *max - used : 0;
+    if (!tightest || left < tightest->bytes) tightest = MemoryLimit{left, source};
+  };
+  for (const std::string& folder : selfAndAncestors(v2Path))
+    consider(root + folder, "memory.max", "memory.current", "cgroup memory.max");
+  for (const std::string& folder : selfAndAncestors(v1Path)) {
+    consider(root + "/memory" + folder, "memory.limit_in_bytes", "memory.usage_in_bytes",
+             "cgroup memory.limit_in_bytes");
+  }
+  return tightest;
 }
 
 }  // namespace
@@ -93,7 +140,9 @@ std::optional<MemoryLimit> memoryLimit() {
   consider(procKilobytes("/proc/meminfo", "MemAvailable:"), "the system's available memory");
   consider(rlimitLeft(RLIMIT_AS, "VmSize:"), "ulimit -v");
   consider(rlimitLeft(RLIMIT_DATA, "VmData:"), "ulimit -d");
-  consider(cgroupLeft(), "cgroup memory.max");
+  if (const std::optional<MemoryLimit> cgroup = cgroupLeft()) {
+    if (!tightest || cgroup->bytes < tightest->bytes) tightest = cgroup;
+  }
   return tightest;
 }
 

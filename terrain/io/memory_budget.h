@@ -13,8 +13,9 @@ namespace aal {
 // The tightest limit on what the process may still allocate, and its name.
 struct MemoryLimit {
   uint64_t bytes = 0;
-  // "AAL_MEMORY_LIMIT", "ulimit -v", "ulimit -d", "cgroup memory.max" or
-  // "the system's available memory" (/proc/meminfo's MemAvailable).
+  // "AAL_MEMORY_LIMIT", "ulimit -v", "ulimit -d", "cgroup memory.max" (v2),
+  // "cgroup memory.limit_in_bytes" (v1) or "the system's available memory"
+  // (/proc/meminfo's MemAvailable).
   std::string source;
 };
 
@@ -32,9 +33,12 @@ constexpr double kReliefBytesPerTexel = 28;          // aal-relief (27.4)
 // shared machines, and how the tests pose a small one); else the least of
 // /proc/meminfo's MemAvailable, what the address-space and data limits
 // (ulimit -v, ulimit -d) leave above what the process maps now, and what
-// the cgroup v2 memory.max leaves above memory.current (how Slurm and
-// containers limit a job). Nothing when none is known. Throws InputError
-// when AAL_MEMORY_LIMIT is not a positive size.
+// the cgroups of the process and their ancestors leave above their use (v2's
+// memory.max over memory.current, v1's memory.limit_in_bytes over
+// memory.usage_in_bytes: how Slurm and containers limit a job; the
+// hierarchies under /sys/fs/cgroup, or under AAL_CGROUP_ROOT when set).
+// Nothing when none is known. Throws InputError when AAL_MEMORY_LIMIT is not
+// a positive size.
 std::optional<MemoryLimit> memoryLimit();
 
 // What ulimit -v (RLIMIT_AS) leaves above the address space the process

@@ -347,9 +347,9 @@ TEST_F(TileRender, SlopesAreTheMeanSlopeOfTheTexelsEachLevelCovers) {
                                       (height(x, y - 1) - height(x, y + 1)) / (2.0 * kCellM))
                          : 0.25 * (finer(2 * c, 2 * r) + finer(2 * c + 1, 2 * r) +
                                    finer(2 * c, 2 * r + 1) + finer(2 * c + 1, 2 * r + 1));
-          worst = std::max(
-              {worst, std::abs(got.x - expected.x) / std::max(1.0, std::abs(expected.x)),
-               std::abs(got.y - expected.y) / std::max(1.0, std::abs(expected.y))});
+          worst =
+              std::max({worst, std::abs(got.x - expected.x) / std::max(1.0, std::abs(expected.x)),
+                        std::abs(got.y - expected.y) / std::max(1.0, std::abs(expected.y))});
           if (r == 0 || c == 0 || r + 1 == h || c + 1 == w || offsetY + r >= referenceHeight ||
               offsetX + c >= referenceWidth) {
             continue;

@@ -1,12 +1,16 @@
 // Memory limits refuse cleanly: the budget (terrain/io/memory_budget.h)
-// honours AAL_MEMORY_LIMIT and ulimit -v, an in-memory bake is refused before
+// honours AAL_MEMORY_LIMIT, ulimit -v and the cgroups' limits (v2 and v1, in a
+// fake hierarchy), an in-memory bake is refused before
 // it allocates, a Vulkan driver that cannot start under an address-space
 // limit is said to be limited, not missing, and an allocation that fails
 // anyway ends the tool with exit 1 and a message that says memory.
 #include <gtest/gtest.h>
 
+#include <cstdlib>
 #include <filesystem>
+#include <fstream>
 #include <new>
+#include <optional>
 #include <string>
 #include <system_error>
 #include <utility>
@@ -148,6 +152,73 @@ TEST(MemoryBudget, NamesTheTightestLimit) {
   ASSERT_TRUE(system.has_value());  // /proc/meminfo at least
   EXPECT_GT(system->bytes, 0u);
   EXPECT_NE(outOfMemoryMessage("reading").find("out of memory while reading"), std::string::npos);
+}
+
+// A fake cgroup hierarchy (AAL_CGROUP_ROOT) with `file` = `limit` and
+// `usageFile` = `used` at its root, which limits every process whatever its
+// cgroup's path: the budget walks up to it.
+void writeCgroupRoot(const fs::path& root, const std::string& folder, const std::string& file,
+                     const std::string& limit, const std::string& usageFile,
+                     const std::string& used) {
+  fs::create_directories(root / folder);
+  std::ofstream(root / folder / file) << limit << "\n";
+  std::ofstream(root / folder / usageFile) << used << "\n";
+}
+
+std::optional<MemoryLimit> limitUnder(const fs::path& root) {
+  const std::string saved = std::getenv("AAL_MEMORY_LIMIT") ? std::getenv("AAL_MEMORY_LIMIT") : "";
+  unsetenv("AAL_MEMORY_LIMIT");
+  setenv("AAL_CGROUP_ROOT", root.c_str(), 1);
+  std::optional<MemoryLimit> limit = memoryLimit();
+  unsetenv("AAL_CGROUP_ROOT");
+  if (!saved.empty()) setenv("AAL_MEMORY_LIMIT", saved.c_str(), 1);
+  return limit;
+}
+
+TEST(MemoryBudget, ACgroupV2LimitLessItsUseIsTheBudget) {
+  TempDir dir;
+  writeCgroupRoot(dir.path(), ".", "memory.max", std::to_string(200u << 20), "memory.current",
+                  std::to_string(50u << 20));
+  const std::optional<MemoryLimit> limit = limitUnder(dir.path());
+  ASSERT_TRUE(limit.has_value());
+  EXPECT_EQ(limit->bytes, uint64_t{150} << 20);
+  EXPECT_EQ(limit->source, "cgroup memory.max");
+  // "max" is no limit.
+  writeCgroupRoot(dir.path(), ".", "memory.max", "max", "memory.current", "0");
+  const std::optional<MemoryLimit> none = limitUnder(dir.path());
+  ASSERT_TRUE(none.has_value());
+  EXPECT_NE(none->source, "cgroup memory.max");
+}
+
+TEST(MemoryBudget, ACgroupV1LimitLessItsUseIsTheBudget) {
+  TempDir dir;
+  writeCgroupRoot(dir.path(), "memory", "memory.limit_in_bytes", std::to_string(300u << 20),
+                  "memory.usage_in_bytes", std::to_string(100u << 20));
+  const std::optional<MemoryLimit> limit = limitUnder(dir.path());
+  ASSERT_TRUE(limit.has_value());
+  EXPECT_EQ(limit->bytes, uint64_t{200} << 20);
+  EXPECT_EQ(limit->source, "cgroup memory.limit_in_bytes");
+  // v1 writes "no limit" as a number near 2^63.
+  writeCgroupRoot(dir.path(), "memory", "memory.limit_in_bytes", "9223372036854771712",
+                  "memory.usage_in_bytes", "0");
+  const std::optional<MemoryLimit> none = limitUnder(dir.path());
+  ASSERT_TRUE(none.has_value());
+  EXPECT_NE(none->source, "cgroup memory.limit_in_bytes");
+}
+
+TEST(MemoryLimit, ABakeOverItsCgroupsLimitIsRefusedNamingIt) {
+  TempDir dir;
+  const fs::path dem = test::writeSyntheticDem(dir, 512, 512);
+  const fs::path root = dir.path() / "cgroup";
+  writeCgroupRoot(root, ".", "memory.max", std::to_string(4u << 20), "memory.current",
+                  std::to_string(1u << 20));
+  const auto r = runTool("aal-bake", quoted(dem) + " -o " + quoted(dir.path() / "a.exr") + " -q",
+                         "-u AAL_MEMORY_LIMIT AAL_CGROUP_ROOT=" + quoted(root));
+  EXPECT_EQ(r.exitCode, 2) << r.out;
+  EXPECT_NE(r.out.find("needs 5.8 MB, but only 3.1 MB of memory is available (cgroup memory.max)"),
+            std::string::npos)
+      << r.out;
+  EXPECT_FALSE(fs::exists(dir.path() / "a.exr"));
 }
 
 }  // namespace
