@@ -5,6 +5,7 @@
 nodata). rasterio is imported on first use: aperture itself needs only NumPy.
 """
 
+import errno
 import math
 import os
 from typing import Any, NamedTuple, Optional
@@ -188,12 +189,27 @@ def write(path, array, like=None, *, nodata=None, crs=None, transform=None, driv
                 out.write(data)
                 if driver == "GTiff":
                     out.update_tags(TIFFTAG_SOFTWARE=_aperture.software)  # what wrote it
+        _flush(temporary)
         os.replace(temporary, path)
+        _flush(folder, directory=True)
     except BaseException:
         for leftover in (temporary, temporary + ".aux.xml"):
             if os.path.exists(leftover):
                 os.remove(leftover)
         raise
+
+
+def _flush(path, directory=False):
+    """fsync a file or folder, so that a renamed output survives a power loss as the
+    tools' outputs do (docs/dem-input.md, "Outputs")."""
+    handle = os.open(path, os.O_RDONLY | (os.O_DIRECTORY if directory else 0))
+    try:
+        os.fsync(handle)
+    except OSError as error:
+        if not (directory and error.errno in (errno.EINVAL, errno.EROFS)):
+            raise
+    finally:
+        os.close(handle)
 
 
 def _holds(dtype, value):

@@ -1,5 +1,6 @@
 #include "aperture/terrain/io/atomic_file.h"
 
+#include <fcntl.h>
 #include <signal.h>
 #include <unistd.h>
 
@@ -7,6 +8,7 @@
 #include <cctype>
 #include <cerrno>
 #include <chrono>
+#include <cstring>
 #include <fstream>
 #include <mutex>
 #include <set>
@@ -21,6 +23,23 @@ namespace aal {
 namespace fs = std::filesystem;
 
 namespace {
+
+// fsync of a file or folder: "" when done, else why not. A file system that
+// cannot sync a folder (EINVAL) has nothing to flush for it.
+std::string syncPath(const fs::path& path, bool folder) {
+  const int fd = ::open(path.c_str(), O_RDONLY | O_CLOEXEC | (folder ? O_DIRECTORY : 0));
+  if (fd < 0) return "cannot open " + path.string() + " to flush it: " + std::strerror(errno);
+  int result;
+  do {
+    result = ::fsync(fd);
+  } while (result != 0 && errno == EINTR);
+  const int why = errno;
+  ::close(fd);
+  if (result != 0 && !(folder && (why == EINVAL || why == EROFS))) {
+    return "cannot flush " + path.string() + " to its disk: " + std::strerror(why);
+  }
+  return "";
+}
 
 // What a path that is not a regular file is, in words.
 std::string kindOf(fs::file_type type) {
@@ -194,6 +213,12 @@ AtomicOutput::~AtomicOutput() {
 }
 
 void AtomicOutput::commit() {
+  // The file's data reach the disk before its name does: a rename alone is
+  // atomic against a killed process, but after a power loss the file system
+  // may hold the new name with an empty or partial file behind it.
+  if (const std::string failed = syncPath(temporary_, false); !failed.empty()) {
+    throw std::runtime_error("cannot write " + final_.string() + ": " + failed);
+  }
   std::error_code error;
   fs::rename(temporary_, final_, error);
   if (error) {
@@ -201,6 +226,11 @@ void AtomicOutput::commit() {
                              ": " + error.message());
   }
   committed_ = true;
+  // And the rename itself: the folder's entry.
+  const fs::path folder = final_.has_parent_path() ? final_.parent_path() : fs::path(".");
+  if (const std::string failed = syncPath(folder, true); !failed.empty()) {
+    throw std::runtime_error("cannot write " + final_.string() + ": " + failed);
+  }
 }
 
 std::runtime_error AtomicOutput::failure(const std::string& detail, const std::string& what) const {

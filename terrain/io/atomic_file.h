@@ -46,7 +46,9 @@ class AtomicOutput {
   const std::filesystem::path& temporaryPath() const { return temporary_; }
   const std::filesystem::path& finalPath() const { return final_; }
 
-  // Renames the temporary file onto the final path.
+  // Flushes the temporary file to its disk (fsync), renames it onto the
+  // final path and flushes the folder, so that after a power loss the name
+  // holds the whole new file or the old one (docs/dem-input.md, "Outputs").
   void commit();
 
   // The error to throw when writing the temporary failed with `detail`:

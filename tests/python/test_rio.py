@@ -101,3 +101,27 @@ def test_a_missing_rasterio_says_what_to_install(monkeypatch):
     monkeypatch.setitem(sys.modules, "rasterio", None)  # import rasterio fails
     with pytest.raises(ImportError, match="aperture.rio needs rasterio"):
         rio.read(JACKSBORO)
+
+
+def test_a_write_is_flushed_before_its_rename_and_its_folder_after(tmp_path, monkeypatch):
+    import os
+    calls = []
+    real_fsync, real_replace = os.fsync, os.replace
+
+    def fsync(handle):
+        calls.append(("fsync", os.readlink(f"/proc/self/fd/{handle}")))
+        return real_fsync(handle)
+
+    def replace(source, target):
+        calls.append(("replace", os.fspath(target)))
+        return real_replace(source, target)
+
+    monkeypatch.setattr(os, "fsync", fsync)
+    monkeypatch.setattr(os, "replace", replace)
+    target = tmp_path / "grey.tif"
+    rio.write(target, np.zeros((8, 8), np.float32))
+    kinds = [kind for kind, _ in calls]
+    assert kinds == ["fsync", "replace", "fsync"], calls
+    assert os.path.basename(calls[0][1]).startswith(".grey.tmp-")  # the temporary
+    assert calls[1][1] == str(target)
+    assert calls[2][1] == os.path.realpath(tmp_path)
