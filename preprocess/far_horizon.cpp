@@ -39,11 +39,16 @@ FarHorizons::FarHorizons(const FarField& far, const BakeTerrain& terrain, double
     : far_(far),
       terrain_(terrain),
       smallestCell_(terrain.cellY),
+      largestCell_(terrain.cellY),
       ux_(std::cos(phi)),
       uy_(std::sin(phi)),
       curvature_(curvature),
       clampEdge_(clampEdge) {
-  for (double cellX : terrain.rowCellX) smallestCell_ = std::min(smallestCell_, cellX);
+  // Once per azimuth, not per lattice point: a row's cell per DEM row.
+  for (double cellX : terrain.rowCellX) {
+    smallestCell_ = std::min(smallestCell_, cellX);
+    largestCell_ = std::max(largestCell_, cellX);
+  }
   const TexelWindow& w = terrain.window;
   const int g = far.options.spacing;
   originCol_ = w.col;
@@ -61,9 +66,7 @@ FarHorizons::FarHorizons(const FarField& far, const BakeTerrain& terrain, double
   });
   // A texel of a cell is at most spacing * sqrt 2 cells from each of its
   // points along u: its distance to their samples is within that of theirs.
-  double largest = terrain.cellY;
-  for (double cellX : terrain.rowCellX) largest = std::max(largest, cellX);
-  const double slack = g * std::numbers::sqrt2 * largest;
+  const double slack = g * std::numbers::sqrt2 * largestCell_;
   bounds_.resize(static_cast<size_t>(columns_ - 1) * (rows_ - 1));
   for (int j = 0; j + 1 < rows_; ++j) {
     for (int i = 0; i + 1 < columns_; ++i) {
@@ -116,11 +119,7 @@ FarHorizons::Point FarHorizons::march(const BakeTerrain& terrain, int col, int r
                           : pyramid.level(pyramid.baseShift())
                                 .meanAt(col >> pyramid.baseShift(), row >> pyramid.baseShift());
 
-  double smallest = terrain.cellY, largest = terrain.cellY;
-  for (double cellX : terrain.rowCellX) {
-    smallest = std::min(smallest, cellX);
-    largest = std::max(largest, cellX);
-  }
+  const double smallest = smallestCell_, largest = largestCell_;
   double d = farMarchStartM(o, smallest, largest);
   const double x0 = terrain.x(col, row), y0 = terrain.y(row);
   const double rowY0 = terrain.rowY[0];

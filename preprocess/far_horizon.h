@@ -85,7 +85,7 @@ class FarHorizons {
 
   const FarField& far_;
   const BakeTerrain& terrain_;
-  double smallestCell_;
+  double smallestCell_, largestCell_;  // over the DEM's rows
   double ux_, uy_, curvature_;
   bool clampEdge_;
   int originCol_, originRow_, columns_, rows_;

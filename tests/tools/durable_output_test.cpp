@@ -38,7 +38,8 @@ std::vector<std::string> lines(const fs::path& file) {
 // Checks the log for `output`: a rename of a temporary onto it, preceded by
 // an fsync of that temporary and followed by an fsync of its folder.
 void expectDurable(const std::vector<std::string>& log, const fs::path& output) {
-  const std::string suffix = " " + output.string();
+  std::string suffix = " ";
+  suffix.append(output.string());  // not " " + ...: GCC 12's -Wrestrict false alarm
   for (size_t i = 0; i < log.size(); ++i) {
     const std::string& line = log[i];
     if (line.rfind("rename ", 0) != 0 || line.size() < suffix.size() ||
