@@ -1,6 +1,7 @@
 #include "aperture/preprocess/far_horizon.h"
 
 #include <algorithm>
+#include <bit>
 #include <cmath>
 #include <cstdio>
 #include <limits>
@@ -51,6 +52,9 @@ FarHorizons::FarHorizons(const FarField& far, const BakeTerrain& terrain, double
   }
   const TexelWindow& w = terrain.window;
   const int g = far.options.spacing;
+  // A power of two (the default 16) divides by a shift: that is once or
+  // twice per texel and azimuth (4 % of a tiled bake's CPU time at 4096²).
+  spacingShift_ = (g > 0 && (g & (g - 1)) == 0) ? std::countr_zero(unsigned(g)) : -1;
   originCol_ = w.col;
   originRow_ = w.row;
   // One point past the window's last texel on each axis, so every texel
@@ -96,8 +100,7 @@ double FarHorizons::cellBound(const CellBound& c, double z) const {
 
 double FarHorizons::mergedTangent(int col, int row, double z, double nearTangent) const {
   if (!clampEdge_) {
-    const int g = far_.options.spacing;
-    const int i = (col - originCol_) / g, j = (row - originRow_) / g;
+    const int i = latticeIndex(col - originCol_), j = latticeIndex(row - originRow_);
     if (cellBound(bounds_[static_cast<size_t>(j) * (columns_ - 1) + i], z) <= nearTangent) {
       return nearTangent;
     }
@@ -195,7 +198,7 @@ double FarHorizons::pointTangent(const Point& p, double x, double y, double z) c
 double FarHorizons::tangentAt(int col, int row, double z) const {
   const int g = far_.options.spacing;
   const int dc = col - originCol_, dr = row - originRow_;
-  const int i = dc / g, j = dr / g;
+  const int i = latticeIndex(dc), j = latticeIndex(dr);
   const double wx = double(dc - i * g) / g, wy = double(dr - j * g) / g;
   const Point* p = &points_[static_cast<size_t>(j) * columns_ + i];
   const double x = terrain_.x(col, row), y = terrain_.y(row);

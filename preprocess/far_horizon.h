@@ -83,11 +83,17 @@ class FarHorizons {
   };
   double cellBound(const CellBound& c, double z) const;
 
+  // The lattice cell of a texel `offset` texels into the window (>= 0).
+  int latticeIndex(int offset) const {
+    return spacingShift_ >= 0 ? offset >> spacingShift_ : offset / far_.options.spacing;
+  }
+
   const FarField& far_;
   const BakeTerrain& terrain_;
   double smallestCell_, largestCell_;  // over the DEM's rows
   double ux_, uy_, curvature_;
   bool clampEdge_;
+  int spacingShift_ = -1;  // log2 of the lattice's spacing, or -1: not a power of two
   int originCol_, originRow_, columns_, rows_;
   std::vector<Point> points_;
   std::vector<CellBound> bounds_;  // (columns_ - 1) x (rows_ - 1)
