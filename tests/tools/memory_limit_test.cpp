@@ -62,6 +62,18 @@ TEST(MemoryLimit, AnAddressSpaceLimitIsTheBudget) {
   EXPECT_FALSE(fs::exists(dir.path() / "a.exr"));
 }
 
+// RLIMIT_DATA (ulimit -d), posed with prlimit as a job scheduler would.
+TEST(MemoryLimit, ADataLimitIsTheBudget) {
+  if (!kAddressSpaceLimitsWork) GTEST_SKIP() << "AddressSanitizer build";
+  TempDir dir;
+  const fs::path dem = test::writeSyntheticDem(dir, 3000, 3000);
+  const auto r = runShell("prlimit --data=150000000 " + (test::binDir() / "aal-bake").string() +
+                          " " + quoted(dem) + " -o " + quoted(dir.path() / "a.exr") + " -q");
+  EXPECT_EQ(r.exitCode, 2) << r.out;
+  EXPECT_NE(r.out.find("of memory is available (ulimit -d)"), std::string::npos) << r.out;
+  EXPECT_FALSE(fs::exists(dir.path() / "a.exr"));
+}
+
 TEST(MemoryLimit, AVulkanDriverUnderATightLimitIsSaidToBeLimitedNotMissing) {
   if (!kAddressSpaceLimitsWork) GTEST_SKIP() << "AddressSanitizer build";
   TempDir dir;
