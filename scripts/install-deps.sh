@@ -36,9 +36,10 @@ packages=(
   dpkg-dev lintian help2man
   # fuzzing the DEM parsers (scripts/fuzz.sh): clang with libFuzzer
   clang libclang-rt-14-dev
-  # SAGA's Topographic Openness, which AalBakeOpenness.AgreesWithSaga compares
-  # aal-bake's openness with (skipped without saga_cmd)
-  saga
+  # SAGA's Topographic Openness and GRASS's r.horizon, which
+  # AalBakeOpenness.AgreesWithSaga and SkyViewFactorAgreesWithGrassRHorizon
+  # compare aal-bake's outputs with (skipped without saga_cmd or grass)
+  saga grass-core
 )
 
 missing=()
