@@ -89,6 +89,21 @@ struct Options : aal::SweepCommandLine {
   int tileSize = 0;  // 0: tiled only above the in-memory limit
 };
 
+// Without -o a bake writes only its GIS rasters (as SAGA or RVT would):
+// one must be asked for.
+void checkNeedsOutput(const Options& o) {
+  if (!o.output.empty()) return;
+  for (const std::string& path :
+       {o.svfPath, o.visiblePath, o.horizonsPath, o.positiveOpennessPath, o.negativeOpennessPath,
+        o.localDominancePath, o.anisotropicSvfPath, o.skyIlluminationPath}) {
+    if (!path.empty()) return;
+  }
+  throw aal::InputError(
+      "nothing to write: give -o MAP (the aperture map), or a raster alone (--svf PATH, "
+      "--visible, --openness-positive, --openness-negative, --local-dominance, "
+      "--svf-anisotropic, --sky-illumination or --horizons)");
+}
+
 void checkOutputs(const Options& o, bool tiled) {
   // Every output against the DEM's files (a VRT's sources too) and each
   // other; a tiled bake's files by their names in its folder.
@@ -101,7 +116,15 @@ void checkOutputs(const Options& o, bool tiled) {
                                   {"--local-dominance", o.localDominancePath},
                                   {"--svf-anisotropic", o.anisotropicSvfPath},
                                   {"--sky-illumination", o.skyIlluminationPath}};
-  if (tiled) {
+  if (o.output.empty()) {
+    // No map: the rasters alone (checkNeedsOutput made sure there is one).
+    if (tiled) {
+      throw aal::InputError(
+          "a tiled bake writes its tiles into the folder -o: give -o FOLDER (the DEM is above "
+          "16384x16384 texels, or --tile-size was given)");
+    }
+    aal::checkDistinctFiles(dem, others);
+  } else if (tiled) {
     aal::checkTiledBakeOutput(dem, o.output, others);
   } else {
     aal::NamedPaths outputs = {{"-o", o.output}};
@@ -135,6 +158,7 @@ bool checkTiling(const Options& o, const aal::DemSource& dem) {
   }
   const bool tooLarge = texels > aal::kInMemoryBakeTexelLimit;
   if (o.tileSize == 0 && !tooLarge) return false;
+  if (o.output.empty()) checkOutputs(o, true);  // says that a tiled bake needs -o FOLDER
   const std::string why =
       o.tileSize > 0
           ? std::string("a tiled bake (--tile-size)")
@@ -372,7 +396,7 @@ bool writeOutputs(const Options& o, bool tiled, Baked& baked, const aal::Heightf
                   const std::string& source) {
   aal::BakeResult& result = baked.result;
   try {
-    if (!tiled) {
+    if (!tiled && !o.output.empty()) {
       result.aperture.info.source = source;
       if (aal::isGeoTiffPath(o.output)) {
         aal::writeApertureGeoTiff(o.output, result.aperture, field.geo, o.raster);
@@ -449,6 +473,13 @@ void printSummary(const Options& o, const BakePlan& plan, const Baked& baked, co
   const bool sweep = plan.bake.method == aal::BakeMethod::Sweep;
   const double work = texels * (sweep ? o.azimuths : o.rays);
   std::string target = o.output;
+  if (target.empty()) {  // the rasters alone
+    for (const std::string& path :
+         {o.svfPath, o.visiblePath, o.horizonsPath, o.positiveOpennessPath, o.negativeOpennessPath,
+          o.localDominancePath, o.anisotropicSvfPath, o.skyIlluminationPath}) {
+      if (!path.empty()) target += (target.empty() ? "" : ", ") + path;
+    }
+  }
   if (plan.tiled && o.svf) {
     target += " (sky-view factor: " +
               (std::filesystem::path(o.output) / aal::kSkyViewFactorMosaicName).string() + ")";
@@ -470,6 +501,7 @@ void printSummary(const Options& o, const BakePlan& plan, const Baked& baked, co
 
 int run(Options& o) {
   o.raster = aal::rasterWriteOptions(o.geotiff);
+  checkNeedsOutput(o);
   // Outputs are checked before minutes of work, not after (again once the
   // DEM's size has decided the tiling).
   const bool askedTiled = o.tileSize > 0 || std::filesystem::is_directory(o.output);
@@ -648,8 +680,8 @@ int main(int argc, char** argv) {
                  "output aperture map: .exr (OpenEXR, RGB = bent normal, A = arc length), or "
                  ".tif/.tiff (a float32 GeoTIFF placed like the DEM, bands bent normal x, y, z "
                  "and arc length; -of, -co and --overviews apply), or the output folder of a "
-                 "tiled bake")
-      ->required();
+                 "tiled bake; without it the bake writes only the rasters asked for (--svf PATH, "
+                 "--openness-positive, ...), at least one");
   app.add_option("--method", o.method,
                  "sweep: exact horizons by line sweep (fast); rays: brute-force reference")
       ->check(CLI::IsMember({"sweep", "rays"}))

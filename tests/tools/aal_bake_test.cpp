@@ -9,6 +9,7 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <thread>
 
 #include "aperture/preprocess/bake.h"
@@ -83,6 +84,37 @@ TEST(AalBake, WritesTheApertureMapAndExtras) {
     ASSERT_LE(v, 1.0f);
   }
   EXPECT_EQ(filesIn(dir.path()), 4u);  // dem + three outputs, no temporaries
+}
+
+// Without -o a bake writes only the rasters asked for (as SAGA would), the
+// same bytes as beside a map; with nothing to write, or tiled without a
+// folder, it is refused before any work.
+TEST(AalBake, RastersAloneNeedNoMap) {
+  TempDir dir;
+  const fs::path dem = writeDem(dir, 48);
+  const fs::path withMap = dir.path() / "with_map.tif", alone = dir.path() / "alone.tif";
+  ASSERT_EQ(runTool("aal-bake", quoted(dem) + " -q --azimuths 16 -o " +
+                                    quoted(dir.path() / "a.exr") + " --svf " + quoted(withMap))
+                .exitCode,
+            0);
+  const auto r = runTool("aal-bake", quoted(dem) + " --azimuths 16 --svf " + quoted(alone));
+  ASSERT_EQ(r.exitCode, 0) << r.out;
+  EXPECT_NE(r.out.find("-> " + alone.string()), std::string::npos) << r.out;
+  const auto bytes = [](const fs::path& p) {
+    std::ifstream in(p, std::ios::binary);
+    return std::string(std::istreambuf_iterator<char>(in), {});
+  };
+  EXPECT_EQ(bytes(alone), bytes(withMap));
+  EXPECT_EQ(filesIn(dir.path()), 4u);  // dem, a.exr and the two rasters: no map beside alone.tif
+
+  const auto nothing = runTool("aal-bake", quoted(dem) + " --azimuths 16");
+  EXPECT_EQ(nothing.exitCode, 2) << nothing.out;
+  EXPECT_NE(nothing.out.find("nothing to write"), std::string::npos) << nothing.out;
+  const auto tiled =
+      runTool("aal-bake", quoted(dem) + " --tile-size 32 --svf " + quoted(dir.path() / "t.tif"));
+  EXPECT_EQ(tiled.exitCode, 2) << tiled.out;
+  EXPECT_NE(tiled.out.find("give -o FOLDER"), std::string::npos) << tiled.out;
+  EXPECT_EQ(filesIn(dir.path()), 4u);
 }
 
 // --horizons writes the directional horizons of the same bake (docs/baking.md).
