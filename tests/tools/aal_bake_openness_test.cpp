@@ -211,6 +211,37 @@ TEST(AalBakeOpenness, AgreesWithSaga) {
   }
 }
 
+// aal-bake's sky-view factor of the crop (16 directions, 1800 m), the
+// raster alone.
+fs::path bakeCropSkyViewFactor(const TempDir& dir, const fs::path& dem) {
+  const fs::path svf = dir.path() / "svf.tif";
+  const auto r = runTool(
+      "aal-bake", quoted(dem) + " -q --azimuths 16 --max-distance 1800 --svf " + quoted(svf));
+  EXPECT_EQ(r.exitCode, 0) << r.out;
+  return svf;
+}
+
+// Prints how `theirs` (times `scale`) agrees with aal-bake's sky-view factor
+// `ours` on the crop, 20 texels from the edges left out, and checks it.
+void expectSkyViewFactorAgreement(const fs::path& ours, const fs::path& theirs, double scale,
+                                  const char* against, double maxMeanAbs) {
+  const int size = kSagaCropSize;
+  int w = 0, h = 0, tw = 0, th = 0;
+  const std::vector<double> a = readBand(ours, w, h);
+  std::vector<double> b = readBand(theirs, tw, th);
+  ASSERT_EQ(a.size(), size_t(size) * size);
+  ASSERT_EQ(b.size(), a.size());
+  for (double& v : b) v *= scale;
+  const Agreement g = agreement(a, b, size, size, 20);
+  std::printf(
+      "sky-view factor against %s: mean |difference| %.4f, max %.4f, correlation %.4f (%zu "
+      "texels)\n",
+      against, g.meanAbs, g.max, g.correlation, g.count);
+  EXPECT_GT(g.count, size_t(200 * 200));
+  EXPECT_LE(g.meanAbs, maxMeanAbs);
+  EXPECT_GE(g.correlation, 0.99);
+}
+
 // The sky-view factor (Zaksek et al. 2011: 1 - mean sin of the horizon
 // clamped at the horizontal) is what SAGA calls Visible Sky (ta_lighting 3,
 // in percent); SAGA's own "Sky View Factor" weights the sky by the cosine to
@@ -223,30 +254,14 @@ TEST(AalBakeOpenness, SkyViewFactorIsSagasVisibleSky) {
     GTEST_SKIP() << "saga_cmd is not installed (scripts/install-deps.sh installs saga)";
   }
   TempDir dir;
-  const int size = kSagaCropSize;
   const fs::path dem = writeJacksboroCrop(dir);
-  const fs::path svf = dir.path() / "svf.tif", sagaVisible = dir.path() / "saga_visible.tif";
-  const auto r = runTool("aal-bake", quoted(dem) + " -q -o " + quoted(dir.path() / "a.exr") +
-                                         " --azimuths 16 --max-distance 1800 --svf " + quoted(svf));
-  ASSERT_EQ(r.exitCode, 0) << r.out;
+  const fs::path svf = bakeCropSkyViewFactor(dir, dem);
+  const fs::path sagaVisible = dir.path() / "saga_visible.tif";
   const auto saga = test::runShell(
       "saga_cmd ta_lighting 3 -DEM " + quoted(dem) + " -VISIBLE " + quoted(sagaVisible) + " -SVF " +
       quoted(dir.path() / "saga_svf.tif") + " -RADIUS 1800 -NDIRS 16 -METHOD 0");
   ASSERT_EQ(saga.exitCode, 0) << saga.out;
-  int w = 0, h = 0, sw = 0, sh = 0;
-  const std::vector<double> ours = readBand(svf, w, h);
-  std::vector<double> theirs = readBand(sagaVisible, sw, sh);
-  ASSERT_EQ(ours.size(), size_t(size) * size);
-  ASSERT_EQ(theirs.size(), ours.size());
-  for (double& v : theirs) v /= 100.0;  // percent
-  const Agreement g = agreement(ours, theirs, size, size, 20);
-  std::printf(
-      "sky-view factor against SAGA's Visible Sky: mean |difference| %.4f, max %.4f, "
-      "correlation %.4f (%zu texels)\n",
-      g.meanAbs, g.max, g.correlation, g.count);
-  EXPECT_GT(g.count, size_t(200 * 200));
-  EXPECT_LE(g.meanAbs, 0.05);
-  EXPECT_GE(g.correlation, 0.99);
+  expectSkyViewFactorAgreement(svf, sagaVisible, 0.01, "SAGA's Visible Sky", 0.05);  // percent
 }
 
 // GRASS's r.horizon (horizon angles per direction, counter-clockwise from
@@ -260,13 +275,9 @@ TEST(AalBakeOpenness, SkyViewFactorAgreesWithGrassRHorizon) {
     GTEST_SKIP() << "grass is not installed (scripts/install-deps.sh installs grass-core)";
   }
   TempDir dir;
-  const int size = kSagaCropSize;
   const fs::path dem = writeJacksboroCrop(dir);
-  const fs::path svf = dir.path() / "svf.tif", grassSvf = dir.path() / "grass_svf.tif";
-  const auto r = runTool("aal-bake", quoted(dem) + " -q -o " + quoted(dir.path() / "a.exr") +
-                                         " --azimuths 16 --max-distance 1800 --svf " + quoted(svf));
-  ASSERT_EQ(r.exitCode, 0) << r.out;
-  const fs::path location = dir.path() / "grass";
+  const fs::path svf = bakeCropSkyViewFactor(dir, dem);
+  const fs::path grassSvf = dir.path() / "grass_svf.tif", location = dir.path() / "grass";
   std::string terms;
   for (const char* a : {"000_0", "022_5", "045_0", "067_5", "090_0", "112_5", "135_0", "157_5",
                         "180_0", "202_5", "225_0", "247_5", "270_0", "292_5", "315_0", "337_5"}) {
@@ -285,19 +296,7 @@ TEST(AalBakeOpenness, SkyViewFactorAgreesWithGrassRHorizon) {
       test::runShell(home + " grass -c " + quoted(dem) + " " + quoted(location) + " -e && " + home +
                      " grass " + quoted(location / "PERMANENT") + " --exec bash " + quoted(script));
   ASSERT_EQ(grass.exitCode, 0) << grass.out;
-  int w = 0, h = 0, gw = 0, gh = 0;
-  const std::vector<double> ours = readBand(svf, w, h);
-  const std::vector<double> theirs = readBand(grassSvf, gw, gh);
-  ASSERT_EQ(ours.size(), size_t(size) * size);
-  ASSERT_EQ(theirs.size(), ours.size());
-  const Agreement g = agreement(ours, theirs, size, size, 20);
-  std::printf(
-      "sky-view factor against GRASS r.horizon: mean |difference| %.4f, max %.4f, "
-      "correlation %.4f (%zu texels)\n",
-      g.meanAbs, g.max, g.correlation, g.count);
-  EXPECT_GT(g.count, size_t(200 * 200));
-  EXPECT_LE(g.meanAbs, 0.01);
-  EXPECT_GE(g.correlation, 0.99);
+  expectSkyViewFactorAgreement(svf, grassSvf, 1.0, "GRASS r.horizon", 0.01);
 }
 
 // The openness's own nodata (the outer ring) is the raster's nodata value,
