@@ -259,14 +259,18 @@ TEST(SpirvReflection, TheTerrainPipelineMergesItsTwoStages) {
                                .stages = kFragment}));
 }
 
-// shaders/slopes.glsl: the heights sampled, a slope level written.
+// shaders/slopes.glsl: the heights sampled, a slope level written, the one below read.
 TEST(SpirvReflection, TheSlopeShaderReadsASampledAndWritesAStorageImage) {
   const ShaderInterface slopes = reflected("slopes.comp");
   EXPECT_EQ(slopes.stages, VkShaderStageFlags(VK_SHADER_STAGE_COMPUTE_BIT));
-  ASSERT_EQ(slopes.bindings.size(), 2u);
+  // The heights, sampled; the level written and the level below (whose
+  // means the levels above 0 take), storage images.
+  ASSERT_EQ(slopes.bindings.size(), 3u);
   EXPECT_EQ(slopes.bindings[0].type, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER);
   EXPECT_EQ(slopes.bindings[1].type, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE);
   EXPECT_EQ(slopes.bindings[1].binding, 1u);
+  EXPECT_EQ(slopes.bindings[2].type, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE);
+  EXPECT_EQ(slopes.bindings[2].binding, 3u);
   // With the horizon pair (slopes_horizons.comp): also its codes, sampled,
   // the level below, and the second moments of the level and the level
   // below, storage images.
