@@ -24,8 +24,8 @@ namespace fs = std::filesystem;
 
 namespace {
 
-// fsync of a file or folder: "" when done, else why not. A file system that
-// cannot sync a folder (EINVAL) has nothing to flush for it.
+// fsync of a file or folder: "" when done, else why not. A folder that
+// cannot be synced (EINVAL: some file systems; EROFS) has nothing to flush.
 std::string syncPath(const fs::path& path, bool folder) {
   const int fd = ::open(path.c_str(), O_RDONLY | O_CLOEXEC | (folder ? O_DIRECTORY : 0));
   if (fd < 0) return "cannot open " + path.string() + " to flush it: " + std::strerror(errno);
