@@ -89,14 +89,25 @@ struct Options : aal::SweepCommandLine {
   int tileSize = 0;  // 0: tiled only above the in-memory limit
 };
 
+// The rasters a bake writes beside (or without) its map, by option; the
+// paths not asked for are empty.
+aal::NamedPaths rasterOutputs(const Options& o) {
+  return {{"--svf", o.svfPath},
+          {"--visible", o.visiblePath},
+          {"--horizons", o.horizonsPath},
+          {"--openness-positive", o.positiveOpennessPath},
+          {"--openness-negative", o.negativeOpennessPath},
+          {"--local-dominance", o.localDominancePath},
+          {"--svf-anisotropic", o.anisotropicSvfPath},
+          {"--sky-illumination", o.skyIlluminationPath}};
+}
+
 // Without -o a bake writes only its GIS rasters (as SAGA or RVT would):
 // one must be asked for.
 void checkNeedsOutput(const Options& o) {
   if (!o.output.empty()) return;
-  for (const std::string& path :
-       {o.svfPath, o.visiblePath, o.horizonsPath, o.positiveOpennessPath, o.negativeOpennessPath,
-        o.localDominancePath, o.anisotropicSvfPath, o.skyIlluminationPath}) {
-    if (!path.empty()) return;
+  for (const aal::RunPath& raster : rasterOutputs(o)) {
+    if (!raster.path.empty()) return;
   }
   throw aal::InputError(
       "nothing to write: give -o MAP (the aperture map), or a raster alone (--svf PATH, "
@@ -108,14 +119,7 @@ void checkOutputs(const Options& o, bool tiled) {
   // Every output against the DEM's files (a VRT's sources too) and each
   // other; a tiled bake's files by their names in its folder.
   const aal::NamedPaths dem = aal::inputFiles("DEM", o.dem, /*raster=*/true);
-  const aal::NamedPaths others = {{"--svf", o.svfPath},
-                                  {"--visible", o.visiblePath},
-                                  {"--horizons", o.horizonsPath},
-                                  {"--openness-positive", o.positiveOpennessPath},
-                                  {"--openness-negative", o.negativeOpennessPath},
-                                  {"--local-dominance", o.localDominancePath},
-                                  {"--svf-anisotropic", o.anisotropicSvfPath},
-                                  {"--sky-illumination", o.skyIlluminationPath}};
+  const aal::NamedPaths others = rasterOutputs(o);
   if (o.output.empty()) {
     // No map: the rasters alone (checkNeedsOutput made sure there is one).
     if (tiled) {
@@ -140,11 +144,8 @@ void checkOutputs(const Options& o, bool tiled) {
     }
     aal::requireWritableOutput(o.output);
   }
-  for (const std::string& path :
-       {o.svfPath, o.visiblePath, o.horizonsPath, o.positiveOpennessPath, o.negativeOpennessPath,
-        o.localDominancePath, o.anisotropicSvfPath, o.skyIlluminationPath}) {
-    if (path.empty()) continue;
-    aal::requireWritableOutput(path);
+  for (const aal::RunPath& raster : others) {
+    if (!raster.path.empty()) aal::requireWritableOutput(raster.path);
   }
 }
 
@@ -474,10 +475,8 @@ void printSummary(const Options& o, const BakePlan& plan, const Baked& baked, co
   const double work = texels * (sweep ? o.azimuths : o.rays);
   std::string target = o.output;
   if (target.empty()) {  // the rasters alone
-    for (const std::string& path :
-         {o.svfPath, o.visiblePath, o.horizonsPath, o.positiveOpennessPath, o.negativeOpennessPath,
-          o.localDominancePath, o.anisotropicSvfPath, o.skyIlluminationPath}) {
-      if (!path.empty()) target += (target.empty() ? "" : ", ") + path;
+    for (const aal::RunPath& raster : rasterOutputs(o)) {
+      if (!raster.path.empty()) target += (target.empty() ? "" : ", ") + raster.path;
     }
   }
   if (plan.tiled && o.svf) {
