@@ -1,5 +1,7 @@
 #include "aperture/engine/terrain_renderer.h"
 
+#include <chrono>
+
 #include <Imath/half.h>
 
 #include "aperture/engine/frame_uniforms.h"
@@ -8,6 +10,7 @@
 #include "aperture/engine/terrain_scene.h"
 #include "aperture/engine/vk/commands.h"
 #include "aperture/engine/vk/device.h"
+#include "aperture/engine/vk/serial_pass_timer.h"
 
 namespace aal {
 
@@ -53,22 +56,70 @@ TerrainRenderer::~TerrainRenderer() = default;
 
 void TerrainRenderer::record(VkCommandBuffer cmd, const TerrainScene& scene, const FrameSettings& s,
                              const FrameOutput& output) {
+  const auto wall0 = std::chrono::steady_clock::now();
+  const double cpu0 = serial_ ? processCpuMs() : 0;
   const FramePlan plan = prepareFrame(scene, s, output);
+  if (serial_) {
+    const std::chrono::duration<double, std::milli> wall = std::chrono::steady_clock::now() - wall0;
+    serial_->addHost("prepare (host)", wall.count(), processCpuMs() - cpu0);
+  }
   const PassContext pass{cmd, scene, *passes_, timer_, uniforms_, patches_, samples_};
   const FrameTargets targets = frameTargets();
+  // Profiled (profile()): each step submitted on its own.
+  const auto step = [&](const char* name) {
+    if (serial_) serial_->split(cmd, name);
+  };
   timer_.reset(cmd);
   if (plan.capTableUpload) recordCapTableUpload(cmd, capTableStaging_, capTable_);
   recordSkyTable(pass, targets);
+  step("sky table");
   readyTerrainTargets(pass, plan, targets);
   recordTerrainPass(pass, plan, targets);
+  step(plan.obscurance ? "terrain + sky (G-buffer)" : "terrain + sky");
   if (plan.obscurance) {
     recordObscurance(pass, plan, targets);
-    if (plan.interleaved) recordObscuranceFilter(pass, plan, targets);
+    step("obscurance");
+    if (plan.interleaved) {
+      recordObscuranceFilter(pass, plan, targets);
+      step("obscurance filter");
+    }
     recordComposite(pass, plan, targets);
+    step("composite");
   }
   // Last: the tone map into the display image, unless a pass wrote it.
-  if (plan.linear) recordToneMap(pass, plan, targets);
+  if (plan.linear) {
+    recordToneMap(pass, plan, targets);
+    step("tone map");
+  }
   recordDisplayHandoff(pass, plan, targets);
+}
+
+std::vector<SerialPassTimer::Step> TerrainRenderer::profile(const TerrainScene& scene,
+                                                            const FrameSettings& s,
+                                                            bool serialized) {
+  SerialPassTimer serial(device_);
+  if (serialized) serial_ = &serial;
+  struct Restore {
+    SerialPassTimer*& timer;
+    ~Restore() { timer = nullptr; }
+  } restore{serial_};
+  const auto wall0 = std::chrono::steady_clock::now();
+  const double cpu0 = processCpuMs();
+  // The last step (the display's hand-over) is submitted by submitAndWait.
+  double splitWall = 0, splitCpu = 0;
+  submitAndWait(device_, [&](VkCommandBuffer cmd) {
+    record(cmd, scene, s, FrameOutput{});
+    for (const SerialPassTimer::Step& step : serial.steps()) {
+      splitWall += step.wallMs;
+      splitCpu += step.cpuMs;
+    }
+  });
+  const std::chrono::duration<double, std::milli> wall = std::chrono::steady_clock::now() - wall0;
+  serial.addHost(serialized ? "display hand-over, recording" : "frame in one submission",
+                 wall.count() - splitWall, processCpuMs() - cpu0 - splitCpu);
+  DeletionQueue& deletions = device_.deletionQueue();
+  deletions.releaseCompleted(deletions.endFrame());
+  return serial.steps();
 }
 
 FrameTargets TerrainRenderer::frameTargets() const {

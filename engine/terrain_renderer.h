@@ -17,6 +17,7 @@
 #include "aperture/engine/vk/gpu_timer.h"
 #include "aperture/engine/vk/graphics_pipeline.h"
 #include "aperture/engine/vk/image.h"
+#include "aperture/engine/vk/serial_pass_timer.h"
 #include "aperture/terrain/light/lighting.h"
 #include "aperture/terrain/light/obscurance.h"
 #include "aperture/terrain/light/shading.h"
@@ -127,6 +128,13 @@ class TerrainRenderer {
   // frame of its own for the device's DeletionQueue: what it retired is
   // destroyed after the wait (so not while a windowed frame is recorded).
   FrameResult render(const TerrainScene& scene, const FrameSettings& settings, bool wantLinear);
+  // A headless frame (display output, nothing read back) and its wall-clock
+  // and CPU time: `serialized`, each step submitted on its own and waited
+  // for, a Step each (the host's preparation one of them); else one Step,
+  // the frame in one submission (aal-render --pass-profile). What a CPU
+  // device's timestamps cannot tell (engine/vk/serial_pass_timer.h).
+  std::vector<SerialPassTimer::Step> profile(const TerrainScene& scene,
+                                             const FrameSettings& settings, bool serialized);
 
   // Records the frame's passes into `cmd` (the windowed viewer presents the
   // result; see FrameOutput for where it goes). Writes the frame's uniforms
@@ -222,6 +230,8 @@ class TerrainRenderer {
   glm::mat4 viewProj_{1.0f};  // of the last writeUniforms
   std::unique_ptr<PassPipelines> passes_;
   GpuTimer timer_;
+  // Set while profile() records: each step is then submitted on its own.
+  SerialPassTimer* serial_ = nullptr;
 };
 
 }  // namespace aal

@@ -8,8 +8,11 @@ namespace aal {
 void submitAndWait(const Device& device, const std::function<void(VkCommandBuffer)>& record) {
   VkDevice vk = device.handle();
 
+  // Resettable: a profiled frame submits its buffer step by step and begins
+  // it again (SerialPassTimer::split).
   const VkCommandPoolCreateInfo poolInfo{.sType = VK_STRUCTURE_TYPE_COMMAND_POOL_CREATE_INFO,
-                                         .flags = VK_COMMAND_POOL_CREATE_TRANSIENT_BIT,
+                                         .flags = VK_COMMAND_POOL_CREATE_TRANSIENT_BIT |
+                                                  VK_COMMAND_POOL_CREATE_RESET_COMMAND_BUFFER_BIT,
                                          .queueFamilyIndex = device.queueFamily()};
   VkCommandPool pool = VK_NULL_HANDLE;
   AAL_VK_CHECK(vkCreateCommandPool(vk, &poolInfo, nullptr, &pool));

@@ -19,6 +19,9 @@
 #include "aperture/engine/screenshot.h"
 #include "aperture/engine/terrain_renderer.h"
 #include "aperture/engine/terrain_scene.h"
+#include "aperture/engine/vk/buffer.h"
+#include "aperture/engine/vk/commands.h"
+#include "aperture/engine/vk/serial_pass_timer.h"
 #include "aperture/preprocess/bake.h"
 #include "aperture/terrain/io/dem_loader.h"
 #include "aperture/terrain/io/horizon_map.h"
@@ -552,6 +555,57 @@ TEST_F(Render, JacksboroRendersTerrainAndSky) {
   for (const auto& [name, ms] : frame.passMilliseconds) passes.push_back(name);
   EXPECT_EQ(passes, (std::vector<std::string>{"sky table", "terrain", "sky", "obscurance",
                                               "obscurance filter", "composite"}));
+}
+
+// The profiled frame (each step submitted on its own: aal-render
+// --pass-profile) is the same frame: the same steps in order, the same
+// picture to the bit, and every step's time measured. With obscurance off
+// the terrain pass writes the display values and the obscurance steps go.
+TEST_F(Render, AProfiledFrameSubmitsEachStepAloneAndDrawsTheSamePicture) {
+  const Heightfield f = ridge();
+  const ApertureMap aperture = bake(f);
+  const TerrainScene scene(device(), f, aperture, nullptr, 200000);
+  TerrainRenderer renderer(device(), 96, 64);
+  FrameSettings s = topView(f, ShadingMode::Approx, 250, 12);
+  for (const bool obscurance : {true, false}) {
+    s.obscurance.enabled = obscurance;
+    const FrameResult frame = renderer.render(scene, s, false);
+    const std::vector<SerialPassTimer::Step> steps = renderer.profile(scene, s, true);
+    // What the profiled frame left in the display image.
+    Buffer readback(device(), frame.display.size(), VK_BUFFER_USAGE_TRANSFER_DST_BIT,
+                    MemoryIntent::Readback);
+    submitAndWait(device(), [&](VkCommandBuffer cmd) {
+      copyImageToBuffer(cmd, renderer.displayImage(), readback);
+    });
+    std::vector<uint8_t> profiled(frame.display.size());
+    readback.read(profiled.data(), profiled.size());
+    EXPECT_TRUE(profiled == frame.display) << "obscurance " << obscurance;
+
+    std::vector<std::string> names;
+    for (const SerialPassTimer::Step& step : steps) {
+      names.push_back(step.name);
+      EXPECT_GE(step.wallMs, 0.0) << step.name;
+      EXPECT_GE(step.cpuMs, 0.0) << step.name;
+    }
+    const std::vector<std::string> expected =
+        obscurance ? std::vector<std::string>{"prepare (host)",
+                                              "sky table",
+                                              "terrain + sky (G-buffer)",
+                                              "obscurance",
+                                              "obscurance filter",
+                                              "composite",
+                                              "display hand-over, recording"}
+                   : std::vector<std::string>{"prepare (host)", "sky table", "terrain + sky",
+                                              "display hand-over, recording"};
+    EXPECT_EQ(names, expected);
+    // The terrain's shading is where the work is: its step is the longest
+    // of the device's (the sky table is 64 x 32 texels).
+    EXPECT_GT(steps[2].wallMs, steps[1].wallMs);
+    const std::vector<SerialPassTimer::Step> whole = renderer.profile(scene, s, false);
+    ASSERT_EQ(whole.size(), 1u);
+    EXPECT_EQ(whole[0].name, "frame in one submission");
+    EXPECT_GT(whole[0].wallMs, 0.0);
+  }
 }
 
 // Golden images (tests/golden/), compared pixel by pixel on RGB (the alpha

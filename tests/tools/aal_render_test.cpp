@@ -50,6 +50,26 @@ std::vector<uint8_t> pixelsOf(const fs::path& path) {
   return pixels;
 }
 
+// --pass-profile: each pass's wall-clock and CPU time, measured with the
+// pass submitted on its own, against the frame in one submission; only for
+// the GPU renderer's still image.
+TEST(AalRender, PassProfileTimesEachPassAlone) {
+  TempDir dir;
+  const fs::path out = dir.path() / "a.png";
+  const auto r = render(dir, "-o " + quoted(out) + " --size 64x36 --pass-profile 2");
+  ASSERT_EQ(r.exitCode, 0) << r.out;
+  for (const char* line : {"pass profile: medians of 2 frames", "prepare (host)", "sky table",
+                           "terrain + sky (G-buffer)", "obscurance filter", "composite",
+                           "sum of the steps", "frame in one submission"}) {
+    EXPECT_NE(r.out.find(line), std::string::npos) << line << "\n" << r.out;
+  }
+  const auto compare = render(dir, "--compare " + quoted(dir.path() / "cmp") + " --pass-profile 1");
+  EXPECT_EQ(compare.exitCode, 2) << compare.out;
+  EXPECT_NE(compare.out.find("--pass-profile"), std::string::npos) << compare.out;
+  const auto zero = render(dir, "-o " + quoted(out) + " --pass-profile 0");
+  EXPECT_EQ(zero.exitCode, 2) << zero.out;
+}
+
 TEST(AalRender, BakesCachesAndWritesAPng) {
   TempDir dir;
   const fs::path out = dir.path() / "a.png";

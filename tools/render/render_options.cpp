@@ -168,7 +168,14 @@ void addRenderOptions(CLI::App& app, RenderOptions& o) {
   addModeOption(app, o);
   addTerrainAndGpuOptions(app, o);
   addSequenceOptions(app, o);
-  app.add_flag("--stats", o.stats, "print per-pass GPU times and the triangle count");
+  app.add_flag("--stats", o.stats,
+               "print per-pass GPU times (the device's timestamps) and the triangle count");
+  app.add_option("--pass-profile", o.passProfile,
+                 "N: after the image, draw it N times more with each pass submitted on its own "
+                 "and waited for, and print each pass's median wall-clock and CPU time against "
+                 "the frame's in one submission (a CPU device's timestamps cannot tell where "
+                 "its time goes)")
+      ->check(CLI::Range(1, 1000));
   addProgressOptions(app, o.report);
 }
 

@@ -39,6 +39,7 @@ struct RenderOptions {
   uint32_t supersample = 1;
   uint32_t maxTileTexels = 0;
   bool stats = false;
+  int passProfile = 0;  // --pass-profile N: frames with each step submitted alone
   ProgressOptions report;
   std::string albedoValue;
   std::optional<double> obscuranceRadiusM;

@@ -86,6 +86,12 @@ RenderRequest checkedRequest(const RenderOptions& o) {
   // Read once the paths are known to be apart.
   if (r.sequence && !o.cameraPath.empty()) r.sequence->path = CameraPath::load(o.cameraPath);
 
+  if (o.passProfile > 0 && (r.reference || r.sequence || !o.compare.empty())) {
+    throw InputError("--pass-profile times the GPU renderer's still image: not with " +
+                     std::string(r.reference  ? "--mode reference"
+                                 : r.sequence ? "a sequence"
+                                              : "--compare"));
+  }
   if (!o.albedo.empty() && !o.albedoValue.empty()) {
     throw InputError("give --albedo or --albedo-value, not both");
   }

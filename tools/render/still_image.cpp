@@ -1,9 +1,14 @@
 #include "aperture/tools/render/still_image.h"
 
+#include <algorithm>
 #include <cstdio>
+#include <map>
+#include <string>
+#include <vector>
 
 #include "aperture/engine/screenshot.h"
 #include "aperture/engine/supersampling.h"
+#include "aperture/engine/vk/serial_pass_timer.h"
 #include "aperture/tools/tool_main.h"
 
 namespace aal {
@@ -39,6 +44,43 @@ void printFrameStats(const Device& device, const TerrainScene& scene, const Fram
   std::fprintf(out, "gpu total      %8.3f ms\n", total);
 }
 
+double median(std::vector<double> v) {
+  std::sort(v.begin(), v.end());
+  const size_t n = v.size();
+  return n % 2 ? v[n / 2] : (v[n / 2 - 1] + v[n / 2]) / 2;
+}
+
+// --pass-profile N: the frame in one submission and with each step on its
+// own (TerrainRenderer::profile), alternated N times; medians.
+void printPassProfile(const TerrainScene& scene, TerrainRenderer& renderer,
+                      const FrameSettings& settings, int frames, FILE* out) {
+  std::vector<std::string> names;
+  std::map<std::string, std::vector<double>> wall, cpu;
+  std::vector<double> whole, wholeCpu;
+  for (int i = 0; i < frames; ++i) {
+    const SerialPassTimer::Step frame = renderer.profile(scene, settings, false).at(0);
+    whole.push_back(frame.wallMs);
+    wholeCpu.push_back(frame.cpuMs);
+    for (const SerialPassTimer::Step& step : renderer.profile(scene, settings, true)) {
+      if (!wall.count(step.name)) names.push_back(step.name);
+      wall[step.name].push_back(step.wallMs);
+      cpu[step.name].push_back(step.cpuMs);
+    }
+  }
+  std::fprintf(out, "pass profile: medians of %d frames, each pass submitted on its own\n", frames);
+  std::fprintf(out, "%-30s %9s %9s\n", "step", "wall ms", "cpu ms");
+  double wallSum = 0, cpuSum = 0;
+  for (const std::string& name : names) {
+    const double w = median(wall[name]), c = median(cpu[name]);
+    std::fprintf(out, "%-30s %9.2f %9.2f\n", name.c_str(), w, c);
+    wallSum += w;
+    cpuSum += c;
+  }
+  std::fprintf(out, "%-30s %9.2f %9.2f\n", "sum of the steps", wallSum, cpuSum);
+  std::fprintf(out, "%-30s %9.2f %9.2f\n", "frame in one submission", median(whole),
+               median(wholeCpu));
+}
+
 }  // namespace
 
 FrameResult renderOutputFrame(const RenderOptions& o, const TerrainScene& scene,
@@ -54,6 +96,9 @@ int renderStillImage(const RenderOptions& o, const Device& device, const Terrain
   if (o.stats)
     printFrameStats(device, scene, frame, settings, width, height, sun,
                     textOutput(o.report.style()));
+  if (o.passProfile > 0) {
+    printPassProfile(scene, renderer, settings, o.passProfile, textOutput(o.report.style()));
+  }
   if (!o.report.quiet) std::fprintf(stderr, "aal-render: wrote %s\n", o.output.c_str());
   return kExitOk;
 }
