@@ -1,8 +1,11 @@
 #include "aperture/engine/window/ui_overlay.h"
 
+#include <GLFW/glfw3.h>
 #include <backends/imgui_impl_glfw.h>
 #include <backends/imgui_impl_vulkan.h>
 #include <imgui.h>
+
+#include <cfloat>
 
 #include "aperture/engine/vk/commands.h"
 #include "aperture/engine/vk/device.h"
@@ -71,9 +74,9 @@ VkDescriptorPool makeDescriptorPool(VkDevice device) {
 
 }  // namespace
 
-UiOverlay::UiOverlay(const Instance& instance, const Device& device, const Window& window,
+UiOverlay::UiOverlay(const Instance& instance, const Device& device, Window& window,
                      const Swapchain& swapchain)
-    : device_(device) {
+    : device_(device), window_(window) {
   renderPass_ = makeRenderPass(device.handle(), swapchain.format());
   descriptorPool_ = makeDescriptorPool(device.handle());
 
@@ -81,6 +84,8 @@ UiOverlay::UiOverlay(const Instance& instance, const Device& device, const Windo
   ImGui::CreateContext();
   ImGuiIO& io = ImGui::GetIO();
   io.IniFilename = nullptr;  // no imgui.ini in the user's folder
+  // The cursor's shape is the backend's, left out with its start of a frame.
+  io.ConfigFlags |= ImGuiConfigFlags_NoMouseCursorChange;
   const float scale = window.contentScale();
   ImFontConfig font;
   font.SizePixels = 13.0f * scale;
@@ -149,7 +154,26 @@ void UiOverlay::onSwapchainRecreated(const Swapchain& swapchain) {
 void UiOverlay::beginFrame() {
   if (frameStarted_) ImGui::EndFrame();  // the last frame was skipped (swapchain recreated)
   ImGui_ImplVulkan_NewFrame();
-  ImGui_ImplGlfw_NewFrame();
+  ImGuiIO& io = ImGui::GetIO();
+  const glm::ivec2 size = window_.size();
+  const VkExtent2D framebuffer = window_.framebufferSize();
+  io.DisplaySize = ImVec2(float(size.x), float(size.y));
+  if (size.x > 0 && size.y > 0) {
+    io.DisplayFramebufferScale =
+        ImVec2(float(framebuffer.width) / float(size.x), float(framebuffer.height) / float(size.y));
+  }
+  const double now = glfwGetTime();
+  io.DeltaTime = lastFrameS_ > 0 && now > lastFrameS_ ? float(now - lastFrameS_) : 1.0f / 60.0f;
+  lastFrameS_ = now;
+  // A press since the last frame counts as held, so a click shorter than a
+  // frame is not lost.
+  const unsigned pressed = window_.takeButtonPresses();
+  for (int b = 0; b < IM_ARRAYSIZE(io.MouseDown); ++b) {
+    io.MouseDown[b] = (pressed >> b & 1u) != 0 || window_.mouseButtonDown(b);
+  }
+  const glm::dvec2 cursor = window_.cursorPosition();
+  io.MousePos =
+      window_.focused() ? ImVec2(float(cursor.x), float(cursor.y)) : ImVec2(-FLT_MAX, -FLT_MAX);
   ImGui::NewFrame();
   frameStarted_ = true;
 }

@@ -19,7 +19,10 @@ class UiOverlay {
  public:
   // Creates the ImGui context with the GLFW and Vulkan backends, uploads
   // the font (scaled by the window's content scale for high-DPI screens).
-  UiOverlay(const Instance& instance, const Device& device, const Window& window,
+  // The GLFW backend's callbacks feed ImGui keys, characters and the wheel;
+  // the window's size, the cursor and the buttons are fed each frame from
+  // the state `window` keeps (beginFrame).
+  UiOverlay(const Instance& instance, const Device& device, Window& window,
             const Swapchain& swapchain);
   ~UiOverlay();
   UiOverlay(const UiOverlay&) = delete;
@@ -28,7 +31,11 @@ class UiOverlay {
   // After the swapchain was recreated (device idle): new framebuffers.
   void onSwapchainRecreated(const Swapchain& swapchain);
 
-  // Starts a UI frame: ImGui widgets may be issued until record().
+  // Starts a UI frame: ImGui widgets may be issued until record(). Asks
+  // the X server nothing: the GLFW backend's own start of a frame would ask
+  // it the window's size twice, its focus and the cursor, and each round
+  // trip waits for the server to finish copying the last frame's picture
+  // (docs/performance.md, "Where a frame's time goes").
   void beginFrame();
   // Finishes the UI frame and records the UI render pass into swapchain
   // image `imageIndex`, which must be in COLOR_ATTACHMENT_OPTIMAL; leaves it
@@ -45,6 +52,8 @@ class UiOverlay {
   void destroyFramebuffers();
 
   const Device& device_;
+  Window& window_;
+  double lastFrameS_ = 0;
   VkRenderPass renderPass_ = VK_NULL_HANDLE;
   VkDescriptorPool descriptorPool_ = VK_NULL_HANDLE;
   std::vector<VkFramebuffer> framebuffers_;

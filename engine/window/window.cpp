@@ -51,12 +51,46 @@ Window::Window(int width, int height, const std::string& title) {
   glfwSetScrollCallback(window_, onScroll);
   glfwSetKeyCallback(window_, onKey);
   glfwSetDropCallback(window_, onDrop);
-  glfwSetCursorPosCallback(window_, [](GLFWwindow* w, double, double) { ++owner(w).activity_; });
-  glfwSetMouseButtonCallback(window_, [](GLFWwindow* w, int, int, int) { ++owner(w).activity_; });
+  glfwSetCursorPosCallback(window_, [](GLFWwindow* w, double x, double y) {
+    owner(w).cursor_ = {x, y};
+    ++owner(w).activity_;
+  });
+  glfwSetMouseButtonCallback(window_, [](GLFWwindow* w, int button, int action, int) {
+    if (action == GLFW_PRESS && button >= 0 && button < 8) owner(w).buttonPresses_ |= 1u << button;
+    ++owner(w).activity_;
+  });
   glfwSetCharCallback(window_, [](GLFWwindow* w, unsigned) { ++owner(w).activity_; });
-  glfwSetWindowFocusCallback(window_, [](GLFWwindow* w, int) { ++owner(w).activity_; });
+  glfwSetWindowFocusCallback(window_, [](GLFWwindow* w, int focused) {
+    owner(w).focused_ = focused == GLFW_TRUE;
+    ++owner(w).activity_;
+  });
+  glfwSetWindowSizeCallback(window_, [](GLFWwindow* w, int newWidth, int newHeight) {
+    owner(w).size_ = {std::max(newWidth, 0), std::max(newHeight, 0)};
+  });
   glfwSetWindowRefreshCallback(window_, [](GLFWwindow* w) { ++owner(w).activity_; });
-  glfwSetFramebufferSizeCallback(window_, [](GLFWwindow* w, int, int) { ++owner(w).activity_; });
+  // The size and the minimised state are kept from their events: asking
+  // the X server each frame is a round trip, which waits until it has
+  // handled everything queued before it, the last frame's picture included
+  // (docs/performance.md, "Where a frame's time goes").
+  glfwSetFramebufferSizeCallback(window_, [](GLFWwindow* w, int newWidth, int newHeight) {
+    Window& self = owner(w);
+    self.framebuffer_ = {static_cast<uint32_t>(std::max(newWidth, 0)),
+                         static_cast<uint32_t>(std::max(newHeight, 0))};
+    ++self.activity_;
+  });
+  glfwSetWindowIconifyCallback(window_, [](GLFWwindow* w, int iconified) {
+    Window& self = owner(w);
+    self.iconified_ = iconified == GLFW_TRUE;
+    ++self.activity_;
+  });
+  int w = 0, h = 0;
+  glfwGetFramebufferSize(window_, &w, &h);
+  framebuffer_ = {static_cast<uint32_t>(std::max(w, 0)), static_cast<uint32_t>(std::max(h, 0))};
+  iconified_ = glfwGetWindowAttrib(window_, GLFW_ICONIFIED) == GLFW_TRUE;
+  focused_ = glfwGetWindowAttrib(window_, GLFW_FOCUSED) == GLFW_TRUE;
+  glfwGetWindowSize(window_, &w, &h);
+  size_ = {std::max(w, 0), std::max(h, 0)};
+  glfwGetCursorPos(window_, &cursor_.x, &cursor_.y);
 }
 
 Window::~Window() {
@@ -102,13 +136,11 @@ void Window::restore() {
   glfwRestoreWindow(window_);
 }
 bool Window::iconified() const {
-  return glfwGetWindowAttrib(window_, GLFW_ICONIFIED) == GLFW_TRUE;
+  return iconified_;
 }
 
 VkExtent2D Window::framebufferSize() const {
-  int w = 0, h = 0;
-  glfwGetFramebufferSize(window_, &w, &h);
-  return {static_cast<uint32_t>(std::max(w, 0)), static_cast<uint32_t>(std::max(h, 0))};
+  return framebuffer_;
 }
 
 float Window::contentScale() const {
@@ -126,9 +158,11 @@ bool Window::mouseButtonDown(int glfwButton) const {
 }
 
 glm::dvec2 Window::cursorPosition() const {
-  glm::dvec2 p{0.0};
-  glfwGetCursorPos(window_, &p.x, &p.y);
-  return p;
+  return cursor_;
+}
+
+unsigned Window::takeButtonPresses() {
+  return std::exchange(buttonPresses_, 0u);
 }
 
 double Window::takeWheelSteps() {

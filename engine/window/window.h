@@ -57,12 +57,21 @@ class Window {
   // Size of the drawable area in pixels; 0 x 0 while minimised. On high-DPI
   // screens it differs from the window size in screen coordinates.
   VkExtent2D framebufferSize() const;
+  // The window's size in screen coordinates (the panel's units).
+  glm::ivec2 size() const { return size_; }
+  bool focused() const { return focused_; }
   // Monitor content scale (1 on a standard-DPI screen): UI sizes scale by it.
   float contentScale() const;
 
   bool keyDown(int glfwKey) const;
   bool mouseButtonDown(int glfwButton) const;
+  // Where the cursor was last reported (screen coordinates; while captured,
+  // unbounded). Kept from the events: the window's state is read without
+  // asking the X server (framebufferSize).
   glm::dvec2 cursorPosition() const;
+  // Bit b: mouse button b was pressed since the last call (a click shorter
+  // than a frame still counts).
+  unsigned takeButtonPresses();
   // Input queued since the last call of each.
   double takeWheelSteps();
   std::vector<int> takeKeyPresses();
@@ -82,6 +91,12 @@ class Window {
   std::vector<int> keyPresses_;
   std::vector<std::string> droppedPaths_;
   unsigned activity_ = 0;
+  VkExtent2D framebuffer_{0, 0};  // from the size events
+  bool iconified_ = false;        // from the iconify events
+  glm::ivec2 size_{0};            // screen coordinates
+  bool focused_ = false;
+  glm::dvec2 cursor_{0.0};
+  unsigned buttonPresses_ = 0;
 };
 
 // A VkSurfaceKHR for a window, destroyed with its instance still alive.

@@ -3,6 +3,7 @@
 #include <GLFW/glfw3.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdio>
 #include <ctime>
@@ -60,6 +61,16 @@ struct Viewer::Timing {
   // longest (--stats: a hitch shows as max / median).
   std::vector<double> countedMs;
   double lastFrameMs = 0;
+  // Where the main thread's wall time went in the last drawn frame, and the
+  // sums over the counted frames (--stats): kFrameSplit's parts; the loop's
+  // rest (input, the panel) is the frame's time less them.
+  std::array<double, 5> lastSplitMs{}, splitSumsMs{};
+  double restSumMs = 0;
+  void split(size_t part, Clock::time_point& since) {
+    const Clock::time_point now = Clock::now();
+    lastSplitMs[part] = std::chrono::duration<double, std::milli>(now - since).count();
+    since = now;
+  }
 
   // Seconds since the last call (at most a quarter second: after a rest the
   // camera and the animated time must not jump).
@@ -501,8 +512,15 @@ bool Viewer::frameNeeded(const FrameSettings& settings) {
   return terrain_->bake && timing_->elapsedS() - lastBakeFrameS_ > 0.25;
 }
 
+// The parts of drawFrame that Timing::split measures.
+constexpr std::array<const char*, 5> kFrameSplit = {"wait for the slot's frame", "acquire",
+                                                    "prepare + record", "submit", "present"};
+
 bool Viewer::drawFrame() {
+  Timing::Clock::time_point since = Timing::Clock::now();
+  timing_->lastSplitMs.fill(0);
   sync_.waitForFrameSlot();
+  timing_->split(0, since);
   // The GPU timer holds the last frame's queries: it is the one waited for
   // only with one frame in flight (a timer per frame before more).
   static_assert(kFramesInFlight == 1, "the pass times read are the last frame's");
@@ -512,6 +530,7 @@ bool Viewer::drawFrame() {
   if (status == SwapchainStatus::OutOfDate) swapchainStale_ = true;
   if (status == SwapchainStatus::SurfaceLost) recreateSurface();
   if (status != SwapchainStatus::Ok) return false;
+  timing_->split(1, since);
 
   FrameSettings settings = frameSettings();
   // The view changes while the settings do (camera, time of day, panel):
@@ -524,7 +543,9 @@ bool Viewer::drawFrame() {
                                     : ObscuranceSettings::History::Refresh;
   const float scale = pendingScreenshot_.empty() ? resolution_.scaleFor(moving) : 1.0f;
   recordFrame(sync_.beginCommands(), imageIndex, settings, scale);
+  timing_->split(2, since);
   sync_.submit(imageIndex);
+  timing_->split(3, since);
   lastDrawn_ = settings;
   lastScale_ = scale;
   lastDrawnScene_ = terrain_->scene->id();
@@ -532,6 +553,7 @@ bool Viewer::drawFrame() {
   if (terrain_->bake) lastBakeFrameS_ = timing_->elapsedS();
   frameMoving_ = moving;
   status = swapchain_.present(imageIndex, sync_.rendered(imageIndex));
+  timing_->split(4, since);
   if (status == SwapchainStatus::OutOfDate) swapchainStale_ = true;
   if (status == SwapchainStatus::SurfaceLost) recreateSurface();
   if (!pendingScreenshot_.empty()) saveScreenshot(std::exchange(pendingScreenshot_, {}));
@@ -602,7 +624,15 @@ void Viewer::finishScriptedFrame() {
   Timing& t = *timing_;
   if (t.counted == 0) t.firstCounted = Timing::Clock::now();
   // The first counted frame's set-up is left out, as in the mean.
-  if (t.counted > 0) t.countedMs.push_back(t.lastFrameMs);
+  if (t.counted > 0) {
+    t.countedMs.push_back(t.lastFrameMs);
+    double parts = 0;
+    for (size_t i = 0; i < t.splitSumsMs.size(); ++i) {
+      t.splitSumsMs[i] += t.lastSplitMs[i];
+      parts += t.lastSplitMs[i];
+    }
+    t.restSumMs += t.lastFrameMs - parts;
+  }
   ++t.counted;
   for (const auto& [pass, ms] : t.lastPassMs) t.passSumsMs[pass] += ms;
   if (!t.lastPassMs.empty()) ++t.passFrames;
@@ -716,12 +746,30 @@ void Viewer::printStats() const {
     std::printf("frames ms  median %.2f, max %.2f (max/median %.2f) over %zu frames\n", median,
                 sorted.back(), sorted.back() / median, n);
   }
+  if (t.countedMs.size() > 0) {
+    // The main thread's wall time: a CPU device shades while the loop waits
+    // in "wait" or "present" (which waits for the frame to be drawn before
+    // it copies the picture to the window).
+    const double n = double(t.countedMs.size());
+    std::printf("main thread, mean ms per frame:");
+    for (size_t i = 0; i < kFrameSplit.size(); ++i) {
+      std::printf(" %s %.2f,", kFrameSplit[i], t.splitSumsMs[i] / n);
+    }
+    std::printf(" the rest of the loop (input and panel) %.2f\n", t.restSumMs / n);
+  }
+  // Timestamps tell a GPU's passes apart; a CPU device writes them when its
+  // queue thread reaches them, before its worker threads shade the draws
+  // (engine/vk/serial_pass_timer.h): aal-render --pass-profile tells them.
+  const bool cpu = device_.properties().deviceType == VK_PHYSICAL_DEVICE_TYPE_CPU;
   double total = 0;
   for (const auto& [pass, sum] : t.passSumsMs) {
     std::printf("gpu %-10s %8.3f ms\n", pass.c_str(), sum / std::max(t.passFrames, 1));
     total += sum / std::max(t.passFrames, 1);
   }
-  std::printf("gpu total      %8.3f ms\n", total);
+  std::printf("gpu total      %8.3f ms%s\n", total,
+              cpu ? " (timestamps of a CPU device: not the passes' cost; see aal-render "
+                    "--pass-profile)"
+                  : "");
 }
 
 int Viewer::run() {
