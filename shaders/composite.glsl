@@ -35,22 +35,29 @@ vec3 weightedAmbient(ivec2 pixel) {
   // Odd pixels at half resolution lie between two pass pixels.
   ivec2 last = min(first + (pixel - first * scale), size - 1);
   float tolerance = float(AAL_OBSCURANCE_DEPTH_TOLERANCE) * ambient.a;
+  // The taps in the order of rows, then columns: each of the 2 x 2 counts
+  // once where it is a distinct pass pixel (even pixels: one tap; odd: two
+  // or four). Straight-line code with the repeats weighted out, not a loop
+  // with bounds that differ from pixel to pixel: llvmpipe runs a loop until
+  // its longest lane is done, with the masks and branches that costs
+  // (docs/performance.md, "Where a frame's time goes").
+  ivec2 taps[4] = ivec2[4](first, ivec2(last.x, first.y), ivec2(first.x, last.y), last);
+  bool distinct[4] = bool[4](true, last.x != first.x, last.y != first.y,
+                             last.x != first.x && last.y != first.y);
   vec3 sum = vec3(0.0);
   float count = 0.0;
   vec3 nearest = vec3(1.0);  // fallback: the tap closest in depth
   float nearestDifference = 1e30;
-  for (int y = first.y; y <= last.y; ++y) {
-    for (int x = first.x; x <= last.x; ++x) {
-      vec4 t = texelFetch(transferImage, ivec2(x, y), 0);
-      float difference = abs(t.a - ambient.a);
-      if (t.a > 0.0 && difference <= tolerance) {
-        sum += t.rgb;
-        count += 1.0;
-      } else if (t.a > 0.0 && difference < nearestDifference) {
-        nearest = t.rgb;
-        nearestDifference = difference;
-      }
-    }
+  for (int i = 0; i < 4; ++i) {
+    vec4 t = texelFetch(transferImage, taps[i], 0);
+    float difference = abs(t.a - ambient.a);
+    bool counted = distinct[i] && t.a > 0.0;
+    bool same = counted && difference <= tolerance;
+    sum += same ? t.rgb : vec3(0.0);
+    count += same ? 1.0 : 0.0;
+    bool closer = counted && !same && difference < nearestDifference;
+    nearest = closer ? t.rgb : nearest;
+    nearestDifference = closer ? difference : nearestDifference;
   }
   vec3 w = count > 0.0 ? sum / count : nearest;
   return ambient.rgb * w;
