@@ -254,6 +254,15 @@ void TerrainRenderer::selectPatches(const TerrainScene& scene, const FrameSettin
   frame.triangleBudget = scene.triangleBudget();
   frame.budgetErrorScale = scene.lodBudgetErrorScale();
   frame.settings = s.lod;
+  // Drawn smaller (dynamic resolution), the automatic error is the full
+  // frame's in the pixels drawn, not its share of the drawn height: the same
+  // share would keep every triangle while the pixels fall with the square of
+  // the scale, and then the triangles, a few pixels each, cost the frame
+  // more than its pixels do (docs/performance.md, "Where a frame's time
+  // goes"). An explicit error is in the pixels drawn as it was.
+  if (frame.settings.maxErrorPixels <= 0 && extent_.height < height_) {
+    frame.settings.maxErrorPixels = lodAutomaticErrorPixels(height_);
+  }
   selection_ = selectLodForFrame(scene.lod(), frame);
   // At least one instance, so the buffer exists when nothing is in view.
   const size_t bytes = std::max<size_t>(selection_.patches.size(), 1) * sizeof(LodPatch);

@@ -26,6 +26,7 @@
 #include "aperture/terrain/light/tone_map.h"
 #include "aperture/terrain/synthetic.h"
 #include "aperture/terrain/view/camera.h"
+#include "aperture/terrain/view/quadtree_lod.h"
 #include "aperture/tests/engine/vulkan_test.h"
 
 namespace aal {
@@ -252,6 +253,48 @@ TEST_F(FrameOutputTest, ReducedResolutionIsTheSmallerPictureScaledUp) {
     }
     EXPECT_EQ(outside, 0) << (obscurance ? "with obscurance" : "without");
   }
+}
+
+// Drawn at half the size (dynamic resolution), the automatic LOD error is
+// the full frame's in the pixels drawn (4 at 720 lines), not its share of
+// the drawn height (2 at 360), which kept every triangle: fewer triangles,
+// the mesh a half-size frame draws when that error is asked of it.
+TEST_F(FrameOutputTest, ReducedResolutionKeepsTheFullFramesErrorInThePixelsDrawn) {
+  SyntheticTerrainOptions o;
+  o.width = o.height = 256;
+  o.cellSizeM = 30;
+  o.featureSizeTexels = 32;
+  o.amplitudeM = 400;
+  const Heightfield f = makeSyntheticTerrain(o);
+  const TerrainScene scene(device(), f, nullptr, 1000000);
+  TerrainRenderer renderer(device(), 1280, 720);
+  const Image target(device(),
+                     {1280, 720, VK_FORMAT_R8G8B8A8_UNORM,
+                      VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT});
+  FrameSettings s = view(ShadingMode::BaselineLambert, false);
+  s.camera.position = {-4000, -4000, 1500};
+  const auto trianglesAt = [&](float scale) {
+    submitAndWait(device(), [&](VkCommandBuffer cmd) {
+      renderer.record(cmd, scene, s,
+                      {.image = target.handle(), .view = target.view(), .resolutionScale = scale});
+    });
+    return renderer.lodSelection().triangles;
+  };
+  const size_t full = trianglesAt(1.0f), reduced = trianglesAt(0.5f);
+  TerrainRenderer half(device(), 640, 360);
+  const size_t halfAutomatic = half.render(scene, s, false).triangles;
+  FrameSettings asked = s;
+  asked.lod.maxErrorPixels = lodAutomaticErrorPixels(720);
+  const size_t halfAsked = half.render(scene, asked, false).triangles;
+  std::printf(
+      "triangles: full %zu, drawn at half %zu, half-size frame %zu (automatic), %zu (4 px)\n", full,
+      reduced, halfAutomatic, halfAsked);
+  EXPECT_EQ(halfAutomatic, full);  // the same share of the height: the same mesh
+  EXPECT_EQ(reduced, halfAsked);
+  EXPECT_LT(double(reduced), 0.8 * double(full));
+  // An explicit error stays in the pixels drawn.
+  s.lod.maxErrorPixels = 2;
+  EXPECT_EQ(trianglesAt(0.5f), half.render(scene, s, false).triangles);
 }
 
 TEST_F(FrameOutputTest, ReducedResolutionNeedsAnOutputImage) {
