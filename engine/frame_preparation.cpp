@@ -71,6 +71,35 @@ FramePlan planPasses(const TerrainScene& scene, const FrameSettings& s, const Fr
   return plan;
 }
 
+// The temporal reconstruction's jitter of frame `index`, in drawn pixels
+// within (-0.5, 0.5): the Halton sequence in bases 2 and 3 (its first 8
+// points, then again), which covers a pixel evenly in any run of frames.
+glm::vec2 resolveJitter(uint32_t index) {
+  const auto halton = [](uint32_t i, uint32_t base) {
+    float f = 1.0f, r = 0.0f;
+    for (; i > 0; i /= base) {
+      f /= float(base);
+      r += f * float(i % base);
+    }
+    return r;
+  };
+  const uint32_t i = index % 8 + 1;
+  return {halton(i, 2) - 0.5f, halton(i, 3) - 0.5f};
+}
+
+// `viewProj` with its picture shifted by `jitter` drawn pixels (a
+// translation in clip space, in proportion to w).
+glm::mat4 jitteredViewProj(const glm::mat4& viewProj, glm::vec2 jitter, VkExtent2D extent) {
+  glm::mat4 shift(1.0f);
+  shift[3][0] = 2.0f * jitter.x / float(extent.width);
+  shift[3][1] = 2.0f * jitter.y / float(extent.height);
+  return shift * viewProj;
+}
+
+// The share of this frame's value in a rebuilt pixel: the rest is the
+// history, so that about eight frames (the jitter's cycle) make a pixel.
+constexpr float kResolveCurrentWeight = 1.0f;
+
 void setLighting(FrameUniforms& u, const Lighting& light) {
   u.sunDirection = light.sunDirection;
   u.sunRadiusRad = light.sunRadiusRad;
@@ -132,13 +161,21 @@ FramePlan TerrainRenderer::prepareFrame(const TerrainScene& scene, const FrameSe
   if (s.mode == ShadingMode::Horizon) relayHorizons(scene, s);
   FramePlan plan =
       planPasses(scene, s, output, extent_, {width_, height_}, device_.independentBlend());
+  plan.resolve = plan.upscale && output.temporal;
+  jitter_ = plan.resolve ? resolveJitter(jitterIndex_++) : glm::vec2(0.0f);
   writeUniforms(scene, s, plan.obscurance);
   selectPatches(scene, s);
   plan.selection = &selection_;
   plan.capTableUpload = prepareCapTable(s);
   if (plan.temporal) prepareHistory(plan);
-  // What the next frame's obscurance reuse reprojects with.
-  previousViewProj_ = viewProj_;
+  if (plan.resolve) {
+    prepareResolve(plan, scene);
+  } else {
+    resolveValid_ = false;
+  }
+  // What the next frame's obscurance reuse reprojects with: where this
+  // frame's samples lie, the jitter included.
+  previousViewProj_ = jitteredViewProj(viewProj_, jitter_, extent_);
   previousExtent_ = extent_;
   return plan;
 }
@@ -176,8 +213,8 @@ void TerrainRenderer::writeUniforms(const TerrainScene& scene, const FrameSettin
                                          bottom, scene.maxHeight());
 
   FrameUniforms u;
-  u.viewProj = projectionMatrix(s.camera, aspect, range) * viewMatrix(s.camera);
-  viewProj_ = u.viewProj;
+  viewProj_ = projectionMatrix(s.camera, aspect, range) * viewMatrix(s.camera);
+  u.viewProj = jitteredViewProj(viewProj_, jitter_, extent_);
   u.invViewProj = glm::inverse(u.viewProj);
   u.previousViewProj = previousViewProj_;
   u.cameraPos = glm::vec3(s.camera.position);
@@ -186,6 +223,9 @@ void TerrainRenderer::writeUniforms(const TerrainScene& scene, const FrameSettin
   setLighting(u, s.lighting);
   setSurface(u, scene, s, bottom);
   u.extent = glm::ivec2(glm::uvec2(extent_.width, extent_.height));
+  // Rebuilt at full resolution, the textures are read for the output's
+  // pixels, not the drawn ones (the jitter brings their detail in).
+  if (jitter_ != glm::vec2(0.0f)) u.footprintScale = float(extent_.height) / float(height_);
   u.previousExtent = glm::ivec2(glm::uvec2(previousExtent_.width, previousExtent_.height));
   u.rawOutput = isDebugMode(s.mode) ? 1 : 0;
   setObscurance(u, scene, s, obscurance);
@@ -295,6 +335,27 @@ bool TerrainRenderer::prepareCapTable(const FrameSettings& s) {
   if (before.handle() != VK_NULL_HANDLE) device_.deletionQueue().retire(std::move(before));
   capTableRadius_ = radius;
   return true;
+}
+
+void TerrainRenderer::prepareResolve(FramePlan& plan, const TerrainScene& scene) {
+  if (!resolveHistory_[0]) {
+    for (auto& image : resolveHistory_) {
+      image = std::make_unique<Image>(
+          device_, ImageDesc{width_, height_, kResolveHistoryFormat,
+                             VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_SAMPLED_BIT});
+    }
+  }
+  const bool valid = resolveValid_ && resolveScene_ == scene.id();
+  plan.resolveRead = resolveRead_;
+  plan.resolveConstants = {.reproject = resolveViewProj_ * glm::inverse(viewProj_),
+                           .jitter = jitter_,
+                           .currentWeight = kResolveCurrentWeight,
+                           .historyValid = valid ? 1 : 0};
+  // What this frame writes is what the next one reads.
+  resolveRead_ = 1 - resolveRead_;
+  resolveValid_ = true;
+  resolveScene_ = scene.id();
+  resolveViewProj_ = viewProj_;
 }
 
 void TerrainRenderer::prepareHistory(FramePlan& plan) {

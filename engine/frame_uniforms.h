@@ -68,7 +68,10 @@ struct FrameUniforms {
   int32_t heightLayersPerPage = 0;
   int32_t apertureLayersPerPage = 0;
   int32_t albedoLayersPerPage = 0;
-  int32_t unused0 = 0;
+  // What a pixel's footprint is of the drawn pixel's: 1, or the resolution
+  // scale while the temporal reconstruction rebuilds the output's pixels
+  // (their footprints, not the drawn pixels', pick the textures' levels).
+  float footprintScale = 1.0f;
   int32_t unused1 = 0;
 
   PreethamSky sky;

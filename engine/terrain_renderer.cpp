@@ -28,7 +28,8 @@ TerrainRenderer::TerrainRenderer(const Device& device, uint32_t width, uint32_t 
       hdr_(device, {width, height, kHdrFormat,
                     VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_SAMPLED_BIT |
                         VK_IMAGE_USAGE_TRANSFER_SRC_BIT}),
-      depth_(device, {width, height, kDepthFormat, VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT,
+      depth_(device, {width, height, kDepthFormat,
+                      VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT | VK_IMAGE_USAGE_SAMPLED_BIT,
                       VK_IMAGE_ASPECT_DEPTH_BIT}),
       display_(device, {width, height, displayFormat,
                         VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT |
@@ -133,7 +134,8 @@ FrameTargets TerrainRenderer::frameTargets() const {
           .skyTable = skyTable_,
           .capTable = capTable_,
           .historyMeans = {historyMeans_[0].get(), historyMeans_[1].get()},
-          .historyPoints = {historyPoints_[0].get(), historyPoints_[1].get()}};
+          .historyPoints = {historyPoints_[0].get(), historyPoints_[1].get()},
+          .resolveHistory = {resolveHistory_[0].get(), resolveHistory_[1].get()}};
 }
 
 FrameResult TerrainRenderer::render(const TerrainScene& scene, const FrameSettings& s,

@@ -113,6 +113,13 @@ struct FrameOutput {
   // targets, scaled up (bilinear, shaders/upscale.frag) into `image` (which
   // must be set).
   float resolutionScale = 1.0f;
+  // Below full resolution: rebuild the full-resolution picture from this
+  // frame and the ones before it (shaders/resolve.frag: each frame's samples
+  // jittered, the last rebuilt frame reprojected with the camera's motion
+  // and clamped to the drawn neighbours) instead of scaling it up. The
+  // history goes with any frame that does not (docs/rendering.md,
+  // "Temporal reconstruction").
+  bool temporal = false;
 };
 
 class TerrainRenderer {
@@ -227,7 +234,18 @@ class TerrainRenderer {
   Buffer uniforms_, samples_;
   Buffer patches_;  // LodPatch instances of the frame (grows as needed)
   LodSelection selection_;
-  glm::mat4 viewProj_{1.0f};  // of the last writeUniforms
+  glm::mat4 viewProj_{1.0f};  // of the last writeUniforms, without the jitter
+  // Temporal reconstruction: the rebuilt frames (the last one at index
+  // resolveRead_, valid for scene resolveScene_ while resolveValid_), the
+  // last one's view-projection, and this frame's jitter (drawn pixels).
+  void prepareResolve(FramePlan& plan, const TerrainScene& scene);
+  std::unique_ptr<Image> resolveHistory_[2];
+  int resolveRead_ = 0;
+  bool resolveValid_ = false;
+  uint64_t resolveScene_ = 0;
+  glm::mat4 resolveViewProj_{1.0f};
+  uint32_t jitterIndex_ = 0;
+  glm::vec2 jitter_{0.0f};
   std::unique_ptr<PassPipelines> passes_;
   GpuTimer timer_;
   // Set while profile() records: each step is then submitted on its own.

@@ -59,7 +59,7 @@ layout(set = 0, binding = 0, std140) uniform Frame {
   int heightLayersPerPage;     // 396 tiles (layers) per texture page of each kind
   int apertureLayersPerPage;   // 400
   int albedoLayersPerPage;     // 404
-  int unused0;                 // 408
+  float footprintScale;        // 408 of the derivatives: the output pixels' share of the drawn ones
   int unused1;                 // 412 (the sky starts on 16 bytes)
 
   PreethamSky sky;  // 416 .. 528

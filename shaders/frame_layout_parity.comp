@@ -59,6 +59,7 @@ void main() {
   put(frame.heightLayersPerPage);
   put(frame.apertureLayersPerPage);
   put(frame.albedoLayersPerPage);
+  put(frame.footprintScale);
   put(frame.sky.perezA);
   put(frame.sky.perezB);
   put(frame.sky.perezC);

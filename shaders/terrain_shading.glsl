@@ -50,8 +50,11 @@ void main() {
   // (texel_footprint.glsl; docs/rendering.md, "Footprint filtering").
   // Prefiltered levels keep the fetches few and local, and the far field
   // free of aliasing.
-  FootprintProbes probes =
-      footprintProbes(dFdx(texelPosition), dFdy(texelPosition), kFootprintProbes);
+  // (Drawn smaller and rebuilt, the output pixel's footprint:
+  // frame.footprintScale.)
+  FootprintProbes probes = footprintProbes(dFdx(texelPosition) * frame.footprintScale,
+                                           dFdy(texelPosition) * frame.footprintScale,
+                                           kFootprintProbes);
   vec4 aperture = terrainApertureProbes(texelPosition, probes);
   // Slopes, and in the horizon mode the horizons of the two stored
   // directions beside the sun (engine/terrain_scene.h setHorizons).
@@ -73,7 +76,7 @@ void main() {
   // "The sun's edge over the footprint"). The spread is that of a box as
   // wide as the pixel: its derivatives / sqrt(12).
   float sunToEdge = capCentreDistance(s.bentNormal, s.sunDirection) - s.apertureRad;
-  vec2 edgeChange = vec2(dFdx(sunToEdge), dFdy(sunToEdge));
+  vec2 edgeChange = vec2(dFdx(sunToEdge), dFdy(sunToEdge)) * frame.footprintScale;
   s.sunEdgeSpreadRad = sqrt(dot(edgeChange, edgeChange) / 12.0);
   s.sunHorizonVarianceRad2 = 0.0;
   if (kShadingMode == AAL_MODE_HORIZON) {

@@ -50,6 +50,7 @@ struct Options {
   double sunSweepDeg = 0;
   aal::GpuOptions gpu;
   std::optional<double> targetFps;
+  std::string temporal = "auto";
 };
 
 // Scripted-run options checked before anything is loaded or opened.
@@ -185,6 +186,9 @@ int run(const Options& o) {
   v.anisotropy = o.gpu.anisotropy;
   // Scripted runs measure and take screenshots: full resolution unless asked.
   v.targetFps = o.targetFps.value_or(o.frames ? 0.0 : 30.0);
+  v.temporal = o.temporal == "on"    ? aal::TemporalReconstruction::On
+               : o.temporal == "off" ? aal::TemporalReconstruction::Off
+                                     : aal::TemporalReconstruction::Auto;
   v.bakeAzimuths = o.azimuths;
   v.exaggeration = o.exaggeration;
   v.frames = o.frames.value_or(0);
@@ -294,6 +298,13 @@ int main(int argc, char** argv) {
                  "scaled up) to keep this frame rate; at rest every pixel. 0: off. Default 30, "
                  "off in scripted runs (--frames)")
       ->check(CLI::Range(0.0, 1000.0));
+  app.add_option("--temporal", o.temporal,
+                 "the frames drawn smaller: on, rebuilt at full resolution from the frames "
+                 "before (jittered samples, the last frame reprojected); off, scaled up; auto, "
+                 "on except on a CPU device, where rebuilding costs more than it saves "
+                 "(docs/viewer.md)")
+      ->check(CLI::IsMember({"auto", "on", "off"}))
+      ->capture_default_str();
   app.add_option("--azimuths", o.azimuths, "azimuths of a background bake")
       ->check(CLI::Range(4, 4096))
       ->capture_default_str();

@@ -23,6 +23,46 @@ void recordUpscale(const PassContext& pass, const FramePlan& plan, const FrameTa
                   VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL);
 }
 
+// Rebuilds the full-resolution picture from the smaller one and the last
+// rebuilt frame into the output image and the history (temporal
+// reconstruction, shaders/resolve.frag).
+void recordResolve(const PassContext& pass, const FramePlan& plan, const FrameTargets& targets) {
+  const VkCommandBuffer cmd = pass.cmd;
+  const Image& read = *targets.resolveHistory[plan.resolveRead];
+  const Image& write = *targets.resolveHistory[1 - plan.resolveRead];
+  transitionImage(cmd, targets.display, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL,
+                  VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL);
+  transitionImage(cmd, targets.depth, VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL,
+                  VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL);
+  // The last rebuilt frame was left ready to be read; without one the image
+  // holds nothing the shader reads, but it must be in a layout to bind.
+  if (plan.resolveConstants.historyValid == 0) {
+    transitionImage(cmd, read, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL);
+  }
+  transitionImage(cmd, write, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL);
+  transitionImage(cmd, plan.outputImage, VK_IMAGE_LAYOUT_UNDEFINED,
+                  VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL);
+  VkRenderingAttachmentInfo outputs[2] = {colorAttachment(targets.display, false),
+                                          colorAttachment(write, false)};
+  outputs[0].imageView = plan.outputView;
+  pass.timer.begin(cmd, "resolve");
+  beginRendering(cmd, plan.fullExtent, outputs, 2, nullptr);
+  pass.pipelines.resolve.bind(cmd,
+                              DescriptorWrites()
+                                  .buffer(0, pass.uniforms)
+                                  .image(1, targets.display.view(), pass.pipelines.linear.handle())
+                                  .image(2, targets.depth.view(), pass.pipelines.nearest.handle())
+                                  .image(3, read.view(), pass.pipelines.linear.handle()),
+                              &plan.resolveConstants);
+  vkCmdDraw(cmd, 3, 1, 0, 0);
+  vkCmdEndRendering(cmd);
+  pass.timer.end(cmd);
+  transitionImage(cmd, write, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL,
+                  VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL);
+  transitionImage(cmd, targets.display, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL,
+                  VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL);
+}
+
 }  // namespace
 
 void recordToneMap(const PassContext& pass, const FramePlan& plan, const FrameTargets& targets) {
@@ -49,7 +89,11 @@ void recordDisplayHandoff(const PassContext& pass, const FramePlan& plan,
     transitionImage(pass.cmd, targets.display, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL,
                     VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL);
   }
-  if (plan.upscale) recordUpscale(pass, plan, targets);
+  if (plan.resolve) {
+    recordResolve(pass, plan, targets);
+  } else if (plan.upscale) {
+    recordUpscale(pass, plan, targets);
+  }
 }
 
 }  // namespace aal

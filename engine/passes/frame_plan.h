@@ -7,12 +7,24 @@
 #include <cstdint>
 
 #include <vulkan/vulkan.h>
+#include <glm/mat4x4.hpp>
+#include <glm/vec2.hpp>
 
 #include "aperture/engine/passes/pass_pipelines.h"
 #include "aperture/terrain/light/shading.h"
 #include "aperture/terrain/view/quadtree_lod.h"
 
 namespace aal {
+
+// shaders/resolve.frag's push constants.
+struct ResolveConstants {
+  // This frame's clip space without the jitter to the last rebuilt frame's.
+  glm::mat4 reproject{1.0f};
+  glm::vec2 jitter{0.0f};  // drawn pixels
+  float currentWeight = 1.0f;
+  int32_t historyValid = 0;
+};
+static_assert(sizeof(ResolveConstants) == 80, "the shader's push-constant block");
 
 struct FramePlan {
   ShadingMode mode = ShadingMode::Approx;
@@ -50,6 +62,13 @@ struct FramePlan {
   bool temporal = false;
   bool historyFresh = false;
   int historyRead = 0, historyWrite = 1;
+
+  // Temporal reconstruction in place of the upscale (FrameOutput::temporal):
+  // the history image read (an index into FrameTargets::resolveHistory),
+  // the other written.
+  bool resolve = false;
+  int resolveRead = 0;
+  ResolveConstants resolveConstants;
 
   // The exact mode's cap table was remade on the host: record its upload.
   bool capTableUpload = false;

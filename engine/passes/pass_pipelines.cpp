@@ -1,5 +1,7 @@
 #include "aperture/engine/passes/pass_pipelines.h"
 
+#include "aperture/engine/passes/frame_plan.h"
+
 #include "aperture/engine/terrain_tiles.h"
 #include "aperture/terrain/view/texel_footprint.h"
 
@@ -64,6 +66,10 @@ PassPipelines::PassPipelines(const Device& d, VkFormat display)
       upscale(d, {.vertexShader = "fullscreen.vert",
                   .fragmentShader = "upscale.frag",
                   .colorFormats = {display}}),
+      resolve(d, {.vertexShader = "fullscreen.vert",
+                  .fragmentShader = "resolve.frag",
+                  .pushConstantBytes = sizeof(ResolveConstants),
+                  .colorFormats = {display, kResolveHistoryFormat}}),
       terrainSampler(d, VK_FILTER_LINEAR, true),
       nearest(d, VK_FILTER_NEAREST),
       skySampler(d, VK_FILTER_LINEAR, false, true),

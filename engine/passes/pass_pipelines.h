@@ -34,6 +34,10 @@ constexpr VkFormat kTransferFormat = VK_FORMAT_R16G16B16A16_SFLOAT;
 // surface point (texel) and sample count they belong to.
 constexpr VkFormat kHistoryMeansFormat = VK_FORMAT_R16G16B16A16_SFLOAT;
 constexpr VkFormat kHistoryPointsFormat = VK_FORMAT_R32G32B32A32_SFLOAT;
+// Temporal reconstruction: the last rebuilt frame's display values, kept in
+// halves so that a small change blended in a little at a time is not lost
+// to 8-bit rounding.
+constexpr VkFormat kResolveHistoryFormat = VK_FORMAT_R16G16B16A16_SFLOAT;
 
 // Which shader variants sample a scene's textures
 // (shaders/terrain_textures.glsl): page 0 only, a pick among two or four
@@ -49,7 +53,7 @@ struct PassPipelines {
   const Device& device;
   VkFormat displayFormat;
   std::map<std::string, std::unique_ptr<GraphicsPipeline>> pipelines;
-  GraphicsPipeline skyTable, filter, composite, toneMap, upscale;
+  GraphicsPipeline skyTable, filter, composite, toneMap, upscale, resolve;
   // terrainSampler: the DEM's mipmapped textures (terrain_textures.glsl);
   // skySampler: the sky table, wrapping in azimuth.
   Sampler terrainSampler, nearest, skySampler, linear;

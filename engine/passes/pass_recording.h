@@ -44,6 +44,8 @@ struct FrameTargets {
   // Obscurance reuse; null until the first frame that reuses.
   const Image* historyMeans[2];
   const Image* historyPoints[2];
+  // Temporal reconstruction; null until the first frame that rebuilds.
+  const Image* resolveHistory[2];
 };
 
 // Binding of the first descriptor after the terrain textures.

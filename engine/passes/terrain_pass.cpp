@@ -62,13 +62,16 @@ void recordTerrainPass(const PassContext& pass, const FramePlan& plan,
       colorAttachment(targets.ambient, true), colorAttachment(targets.surface, true)};
   colors[0].loadOp = VK_ATTACHMENT_LOAD_OP_CLEAR;
   colors[2].clearValue.color = {{-1.0f, -1.0f, 0.0f, 0.0f}};
-  VkRenderingAttachmentInfo depth{
-      .sType = VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO,
-      .imageView = targets.depth.view(),
-      .imageLayout = VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL,
-      .loadOp = VK_ATTACHMENT_LOAD_OP_CLEAR,
-      .storeOp = plan.skyApart ? VK_ATTACHMENT_STORE_OP_STORE : VK_ATTACHMENT_STORE_OP_DONT_CARE,
-      .clearValue = {.depthStencil = {.depth = 1.0f, .stencil = 0}}};
+  VkRenderingAttachmentInfo depth{.sType = VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO,
+                                  .imageView = targets.depth.view(),
+                                  .imageLayout = VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL,
+                                  .loadOp = VK_ATTACHMENT_LOAD_OP_CLEAR,
+                                  // Kept for the sky's rendering of its own and the temporal
+                                  // reconstruction's reprojection.
+                                  .storeOp = plan.skyApart || plan.resolve
+                                                 ? VK_ATTACHMENT_STORE_OP_STORE
+                                                 : VK_ATTACHMENT_STORE_OP_DONT_CARE,
+                                  .clearValue = {.depthStencil = {.depth = 1.0f, .stencil = 0}}};
   beginRendering(cmd, plan.extent, colors, plan.obscurance ? 3 : 1, &depth);
   pass.timer.begin(cmd, "terrain");
   drawTerrain(pass, plan, targets);
@@ -83,7 +86,7 @@ void recordTerrainPass(const PassContext& pass, const FramePlan& plan,
                     VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL);
     colors[0].loadOp = VK_ATTACHMENT_LOAD_OP_LOAD;
     depth.loadOp = VK_ATTACHMENT_LOAD_OP_LOAD;
-    depth.storeOp = VK_ATTACHMENT_STORE_OP_DONT_CARE;
+    depth.storeOp = plan.resolve ? VK_ATTACHMENT_STORE_OP_STORE : VK_ATTACHMENT_STORE_OP_DONT_CARE;
     beginRendering(cmd, plan.extent, colors, 1, &depth);
   }
   drawSky(pass, plan, targets);

@@ -181,6 +181,28 @@ TEST(AalView, DynamicResolutionDrawsFewerPixelsWhileTheViewMoves) {
   EXPECT_NE(plain.out.find("0 frames reduced (target 0 fps: off)"), std::string::npos) << plain.out;
 }
 
+// --temporal on: the frames drawn smaller are rebuilt at full resolution
+// (the resolve pass in place of the upscale), validation-clean; off (as
+// auto is on lavapipe) scales them up.
+TEST(AalView, TemporalReconstructionRebuildsTheFramesDrawnSmaller) {
+  TempDir dir;
+  const fs::path path = dir.path() / "path.txt";
+  writeText(path, kPath);
+  const std::string run = quoted(kDem) + " --size 320x240 --frames 8 --camera-path " +
+                          quoted(path) + " --target-fps 1000 --stats --temporal ";
+  const auto on = view(dir, run + "on");
+  ASSERT_EQ(on.exitCode, 0) << on.out;
+  EXPECT_NE(on.out.find("validation on, 0 messages"), std::string::npos) << on.out;
+  EXPECT_NE(on.out.find("gpu resolve"), std::string::npos) << on.out;
+  EXPECT_EQ(on.out.find("gpu upscale"), std::string::npos) << on.out;
+  const auto off = view(dir, run + "off");
+  ASSERT_EQ(off.exitCode, 0) << off.out;
+  EXPECT_NE(off.out.find("gpu upscale"), std::string::npos) << off.out;
+  EXPECT_EQ(off.out.find("gpu resolve"), std::string::npos) << off.out;
+  const auto wrong = view(dir, run + "sometimes");
+  EXPECT_EQ(wrong.exitCode, 2) << wrong.out;
+}
+
 TEST(AalView, UsesTheCachedApertureMapOnTheSecondRunAndPresentsWithoutVsync) {
   TempDir dir;
   ASSERT_EQ(view(dir, quoted(kDem) + " --size 160x120 --frames 1").exitCode, 0);

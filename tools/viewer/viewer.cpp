@@ -241,6 +241,9 @@ Viewer::Viewer(const ViewerOptions& options, std::shared_ptr<const Heightfield> 
       resolution_(options.targetFps) {
   swapchainFramebuffer_ = window_.framebufferSize();
   obscurance_.enabled = options.obscurance;
+  temporal_ = options.temporal == TemporalReconstruction::On ||
+              (options.temporal == TemporalReconstruction::Auto &&
+               device_.properties().deviceType != VK_PHYSICAL_DEVICE_TYPE_CPU);
   renderer_ = std::make_unique<TerrainRenderer>(device_, swapchain_.extent().width,
                                                 swapchain_.extent().height, swapchain_.format());
   showTerrain(std::move(field), options.dem, options.aperture, options.horizons);
@@ -479,6 +482,8 @@ void Viewer::recordFrame(VkCommandBuffer cmd, uint32_t imageIndex, const FrameSe
   output.image = swapchain_.image(imageIndex);
   output.view = swapchain_.view(imageIndex);
   output.resolutionScale = resolutionScale;
+  // Drawn smaller while the view moves: rebuilt from the frames before.
+  output.temporal = resolutionScale < 1.0f && temporal_;
   renderer_->record(cmd, *terrain_->scene, settings, output);
   if (!pendingScreenshot_.empty()) {
     // What is presented (without the panel); the renderer's display image

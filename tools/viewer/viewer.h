@@ -49,6 +49,11 @@ struct WindowScript {
   double sunSweepDegPerFrame = 0;
 };
 
+// aal-view --temporal: Auto is On except on a CPU device, where the
+// reconstruction's full-resolution pass costs more than the pixels it
+// spares (docs/viewer.md, "Frame rate").
+enum class TemporalReconstruction { Auto, On, Off };
+
 struct ViewerOptions {
   std::string dem;       // the DEM first shown
   std::string aperture;  // its aperture map; empty: cached or baked in the background
@@ -65,6 +70,8 @@ struct ViewerOptions {
   int anisotropy = kDefaultFootprintProbes;  // FrameSettings::anisotropy at the start
   // Dynamic resolution while the view changes (DynamicResolution); 0: off.
   double targetFps = 30;
+  // Its frames rebuilt at full resolution (FrameOutput::temporal) or scaled up.
+  TemporalReconstruction temporal = TemporalReconstruction::Auto;
   int bakeAzimuths = 64;
   double exaggeration = 1.0;  // vertical, of this DEM and those dropped later
   // Scripted runs: render `frames` frames (0: run until the window closes),
@@ -146,6 +153,7 @@ class Viewer {
   int anisotropy_;  // FrameSettings::anisotropy (the panel changes it)
   ObscuranceSettings obscurance_;
   bool vsync_;
+  bool temporal_;  // frames drawn smaller are rebuilt (ViewerOptions::temporal, resolved)
   bool swapchainStale_ = false;
   std::string message_;
   std::string pendingScreenshot_;          // saved after the next frame
