@@ -34,12 +34,14 @@ namespace {
 
 constexpr uint32_t kWidth = 192, kHeight = 108;
 
-Heightfield fbm() {
+// An fBm DEM of 30 m cells; the larger one's mesh a 1280x720 view draws
+// coarser at 4 px of error than at 2.
+Heightfield fbm(int size = 96, double featureTexels = 24, double amplitudeM = 300) {
   SyntheticTerrainOptions o;
-  o.width = o.height = 96;
+  o.width = o.height = size;
   o.cellSizeM = 30;
-  o.featureSizeTexels = 24;
-  o.amplitudeM = 300;
+  o.featureSizeTexels = featureTexels;
+  o.amplitudeM = amplitudeM;
   return makeSyntheticTerrain(o);
 }
 
@@ -260,12 +262,7 @@ TEST_F(FrameOutputTest, ReducedResolutionIsTheSmallerPictureScaledUp) {
 // the drawn height (2 at 360), which kept every triangle: fewer triangles,
 // the mesh a half-size frame draws when that error is asked of it.
 TEST_F(FrameOutputTest, ReducedResolutionKeepsTheFullFramesErrorInThePixelsDrawn) {
-  SyntheticTerrainOptions o;
-  o.width = o.height = 256;
-  o.cellSizeM = 30;
-  o.featureSizeTexels = 32;
-  o.amplitudeM = 400;
-  const Heightfield f = makeSyntheticTerrain(o);
+  const Heightfield f = fbm(256, 32, 400);
   const TerrainScene scene(device(), f, nullptr, 1000000);
   TerrainRenderer renderer(device(), 1280, 720);
   const Image target(device(),
@@ -322,12 +319,7 @@ double relativeLinearRmse(const std::vector<uint8_t>& a, const std::vector<uint8
 // the full-resolution frame itself, whose single point per pixel is as far
 // from the converged picture, they read 3.5-4.4 %.)
 TEST_F(FrameOutputTest, TemporalReconstructionRebuildsTheFullResolutionInMotion) {
-  SyntheticTerrainOptions o;
-  o.width = o.height = 256;
-  o.cellSizeM = 30;
-  o.featureSizeTexels = 32;
-  o.amplitudeM = 400;
-  const Heightfield f = makeSyntheticTerrain(o);
+  const Heightfield f = fbm(256, 32, 400);
   const ApertureMap aperture = bake(f);
   const TerrainScene scene(device(), f, aperture, nullptr, 1000000);
   constexpr uint32_t kW = 320, kH = 180;
