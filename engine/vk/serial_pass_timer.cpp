@@ -19,7 +19,9 @@ SerialPassTimer::SerialPassTimer(const Device& device) : device_(device) {
   AAL_VK_CHECK(vkCreateFence(device.handle(), &info, nullptr, &fence_));
 }
 
-SerialPassTimer::~SerialPassTimer() { vkDestroyFence(device_.handle(), fence_, nullptr); }
+SerialPassTimer::~SerialPassTimer() {
+  vkDestroyFence(device_.handle(), fence_, nullptr);
+}
 
 void SerialPassTimer::split(VkCommandBuffer cmd, const std::string& step) {
   AAL_VK_CHECK(vkEndCommandBuffer(cmd));
