@@ -96,8 +96,10 @@ glm::mat4 jitteredViewProj(const glm::mat4& viewProj, glm::vec2 jitter, VkExtent
   return shift * viewProj;
 }
 
-// The share of this frame's value in a rebuilt pixel: the rest is the
-// history, so that about eight frames (the jitter's cycle) make a pixel.
+// The share of this frame's sample in a rebuilt pixel when it lies on the
+// pixel's centre (shaders/resolve.frag weighs it down with its distance
+// from there): the sample replaces the history, which carries the other
+// frames' samples.
 constexpr float kResolveCurrentWeight = 1.0f;
 
 void setLighting(FrameUniforms& u, const Lighting& light) {
@@ -163,7 +165,7 @@ FramePlan TerrainRenderer::prepareFrame(const TerrainScene& scene, const FrameSe
       planPasses(scene, s, output, extent_, {width_, height_}, device_.independentBlend());
   plan.resolve = plan.upscale && output.temporal;
   jitter_ = plan.resolve ? resolveJitter(jitterIndex_++) : glm::vec2(0.0f);
-  writeUniforms(scene, s, plan.obscurance);
+  writeUniforms(scene, s, plan.obscurance, plan.resolve);
   selectPatches(scene, s);
   plan.selection = &selection_;
   plan.capTableUpload = prepareCapTable(s);
@@ -204,7 +206,7 @@ void TerrainRenderer::relayHorizons(const TerrainScene& scene, const FrameSettin
 }
 
 void TerrainRenderer::writeUniforms(const TerrainScene& scene, const FrameSettings& s,
-                                    bool obscurance) {
+                                    bool obscurance, bool rebuilt) {
   const double aspect = double(extent_.width) / double(extent_.height);
   // The depth range must hold the whole DEM: approximate it from the box.
   const glm::vec4 dem = scene.demInfo();  // width, height (texels), cell size x, y (m)
@@ -225,7 +227,7 @@ void TerrainRenderer::writeUniforms(const TerrainScene& scene, const FrameSettin
   u.extent = glm::ivec2(glm::uvec2(extent_.width, extent_.height));
   // Rebuilt at full resolution, the textures are read for the output's
   // pixels, not the drawn ones (the jitter brings their detail in).
-  if (jitter_ != glm::vec2(0.0f)) u.footprintScale = float(extent_.height) / float(height_);
+  if (rebuilt) u.footprintScale = float(extent_.height) / float(height_);
   u.previousExtent = glm::ivec2(glm::uvec2(previousExtent_.width, previousExtent_.height));
   u.rawOutput = isDebugMode(s.mode) ? 1 : 0;
   setObscurance(u, scene, s, obscurance);

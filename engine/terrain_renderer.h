@@ -176,8 +176,11 @@ class TerrainRenderer {
                          const FrameOutput& output);
   // Re-lays the scene's horizons when the frame's sun left their pair.
   void relayHorizons(const TerrainScene& scene, const FrameSettings& settings);
-  // Writes the frame's uniforms (and, with `obscurance`, the sample set).
-  void writeUniforms(const TerrainScene& scene, const FrameSettings& settings, bool obscurance);
+  // Writes the frame's uniforms (and, with `obscurance`, the sample set);
+  // `rebuilt`: the frame is drawn for the temporal reconstruction (jittered
+  // by jitter_, its textures read at the output pixels' footprint).
+  void writeUniforms(const TerrainScene& scene, const FrameSettings& settings, bool obscurance,
+                     bool rebuilt);
   // The obscurance uniforms and the history's validity for this frame.
   void setObscurance(FrameUniforms& u, const TerrainScene& scene, const FrameSettings& settings,
                      bool obscurance);

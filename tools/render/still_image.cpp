@@ -1,6 +1,5 @@
 #include "aperture/tools/render/still_image.h"
 
-#include <algorithm>
 #include <cstdio>
 #include <map>
 #include <string>
@@ -9,6 +8,7 @@
 #include "aperture/engine/screenshot.h"
 #include "aperture/engine/supersampling.h"
 #include "aperture/engine/vk/serial_pass_timer.h"
+#include "aperture/tools/median.h"
 #include "aperture/tools/tool_main.h"
 
 namespace aal {
@@ -42,12 +42,6 @@ void printFrameStats(const Device& device, const TerrainScene& scene, const Fram
     total += ms;
   }
   std::fprintf(out, "gpu total      %8.3f ms\n", total);
-}
-
-double median(std::vector<double> v) {
-  std::sort(v.begin(), v.end());
-  const size_t n = v.size();
-  return n % 2 ? v[n / 2] : (v[n / 2 - 1] + v[n / 2]) / 2;
 }
 
 // --pass-profile N: the frame in one submission and with each step on its

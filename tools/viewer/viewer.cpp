@@ -26,6 +26,7 @@
 #include "aperture/terrain/io/memory_budget.h"
 #include "aperture/terrain/light/lighting_defaults.h"
 #include "aperture/terrain/light/obscurance.h"
+#include "aperture/tools/median.h"
 #include "aperture/tools/tool_options.h"
 #include "aperture/tools/viewer/view_panel.h"
 
@@ -744,12 +745,10 @@ void Viewer::printStats() const {
     std::printf("frame      %.2f ms (%.2f fps)\n", ms, 1e3 / ms);
   }
   if (!t.countedMs.empty()) {
-    std::vector<double> sorted = t.countedMs;
-    std::sort(sorted.begin(), sorted.end());
-    const size_t n = sorted.size();
-    const double median = n % 2 ? sorted[n / 2] : (sorted[n / 2 - 1] + sorted[n / 2]) / 2;
-    std::printf("frames ms  median %.2f, max %.2f (max/median %.2f) over %zu frames\n", median,
-                sorted.back(), sorted.back() / median, n);
+    const double middle = median(t.countedMs);
+    const double longest = *std::max_element(t.countedMs.begin(), t.countedMs.end());
+    std::printf("frames ms  median %.2f, max %.2f (max/median %.2f) over %zu frames\n", middle,
+                longest, longest / middle, t.countedMs.size());
   }
   if (t.countedMs.size() > 0) {
     // The main thread's wall time: a CPU device shades while the loop waits
