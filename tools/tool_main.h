@@ -97,6 +97,13 @@ inline void hintDashedFileNames(const CLI::App& app, int argc, char** argv) {
   }
 }
 
+// What a tool says when a thread could not start: one that could not start
+// for lack of resources (EAGAIN) is memory or a process limit.
+inline std::string threadFailureMessage(const std::system_error& e) {
+  if (e.code() != std::errc::resource_unavailable_try_again) return e.what();
+  return std::string("cannot start a thread (") + e.what() + "): " + outOfMemoryMessage("");
+}
+
 // Parses the command line with `app` and runs `body`; returns the exit code.
 // `--version` prints "aal-bake 0.2.0 (abc1234)" (terrain/version.h) and exits 0.
 inline int runToolBody(CLI::App& app, int argc, char** argv, const std::function<int()>& body) {
@@ -109,8 +116,14 @@ inline int runToolBody(CLI::App& app, int argc, char** argv, const std::function
     return kExitBadInput;
   }
   // Every tool: the first SIGINT, SIGTERM or SIGHUP stops it within a
-  // second, its unfinished outputs removed (terrain/interrupt.h).
-  installInterruptHandler();
+  // second, its unfinished outputs removed (terrain/interrupt.h). Its
+  // watchdog thread may not start under a tight ulimit -v.
+  try {
+    installInterruptHandler();
+  } catch (const std::system_error& e) {
+    std::cerr << app.get_name() << ": error: " << threadFailureMessage(e) << "\n";
+    return kExitFailure;
+  }
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
@@ -131,13 +144,7 @@ inline int runToolBody(CLI::App& app, int argc, char** argv, const std::function
     std::cerr << app.get_name() << ": error: " << outOfMemoryMessage("") << "\n";
     return kExitFailure;
   } catch (const std::system_error& e) {
-    // A thread that could not start (EAGAIN) is memory or a process limit.
-    if (e.code() != std::errc::resource_unavailable_try_again) {
-      std::cerr << app.get_name() << ": error: " << e.what() << "\n";
-    } else {
-      std::cerr << app.get_name() << ": error: cannot start a thread (" << e.what()
-                << "): " << outOfMemoryMessage("") << "\n";
-    }
+    std::cerr << app.get_name() << ": error: " << threadFailureMessage(e) << "\n";
     return kExitFailure;
   } catch (const std::exception& e) {
     // oneTBB says a worker it could not start with a runtime_error.

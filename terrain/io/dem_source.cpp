@@ -240,10 +240,26 @@ bool describeTransform(const std::string& path, GDALDataset& dataset, RawDem& de
   return true;
 }
 
+// Address space GDAL needs to open a DEM and PROJ to build its CRS (their
+// databases and caches). Below it Debian 12's libraries end the process
+// instead of reporting a failed allocation (GDAL aborts in its metadata
+// reader, PROJ 9.1 dereferences a null pointer in
+// proj_create_geographic_crs; seen under ulimit -v with a few MiB left):
+// refused before.
+constexpr uint64_t kGdalAddressSpaceBytes = uint64_t{16} << 20;
+
+void requireGdalAddressSpace(const std::string& path, const std::string& what) {
+  if (const std::optional<std::string> shortfall =
+          addressSpaceShortfall(kGdalAddressSpaceBytes, what)) {
+    throw std::runtime_error(path + ": " + *shortfall);
+  }
+}
+
 // The CRS of a placed grid into dem.geo (and a vertical CRS's unit into
 // dem.zUnit*).
 void describeCrsOf(const std::string& path, GDALDataset& dataset, const DemLoadOptions& options,
                    RawDem& dem) {
+  requireGdalAddressSpace(path, "reading its coordinate reference system");
   const OGRSpatialReference* srs = dataset.GetSpatialRef();
   if (srs != nullptr && !srs->IsEmpty()) {
     describeCrs(path, *srs, options, dem);
@@ -543,6 +559,7 @@ DemSource::DemSource(const std::string& path, const DemLoadOptions& options)
   // Files only, looked at before GDAL opens them: a FIFO would block the
   // open forever, a connection string (MEM:::DATAPOINTER=...) read memory.
   impl_->gdalName = gdalFileName(path, options.inMemoryFiles);
+  requireGdalAddressSpace(path, "opening it");
   impl_->dataset = openDataset(path, impl_->gdalName);
   GDALDataset& dataset = *impl_->dataset;
   impl_->maxTexels = options.maxTexels;
