@@ -63,11 +63,24 @@ FrameResult downsampleFrame(const FrameResult& big, uint32_t factor, float expos
 }
 
 FrameResult renderSupersampled(TerrainRenderer& renderer, const TerrainScene& scene,
-                               FrameSettings settings, uint32_t factor, bool keepLinear) {
-  if (factor <= 1) return renderer.render(scene, settings, keepLinear);
+                               FrameSettings settings, uint32_t factor, bool keepLinear,
+                               bool accumulate) {
+  const auto render = [&](bool linear) {
+    return accumulate ? renderer.renderAccumulated(scene, settings, linear)
+                      : renderer.render(scene, settings, linear);
+  };
+  if (factor <= 1) return render(keepLinear);
   settings.lod.maxErrorPixels *= static_cast<double>(factor);
-  return downsampleFrame(renderer.render(scene, settings, true), factor, settings.lighting.exposure,
+  return downsampleFrame(render(true), factor, settings.lighting.exposure,
                          isDebugMode(settings.mode), keepLinear);
+}
+
+void startAccumulation(TerrainRenderer& renderer, const TerrainScene& scene,
+                       const FrameSettings& settings, uint32_t factor) {
+  renderer.restartTemporal();
+  for (int i = 0; i < kAccumulationLeadFrames; ++i) {
+    renderSupersampled(renderer, scene, settings, factor, false, true);
+  }
 }
 
 }  // namespace aal

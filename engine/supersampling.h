@@ -30,7 +30,22 @@ FrameResult downsampleFrame(const FrameResult& big, uint32_t factor, float expos
 // times the output's width and height: rendered with its linear values and
 // averaged down (downsampleFrame); factor 1 is the renderer's own frame. An
 // explicit settings.lod.maxErrorPixels stays in output pixels.
+// `accumulate`: a frame of a sequence, accumulated over the frames before
+// it (TerrainRenderer::renderAccumulated).
 FrameResult renderSupersampled(TerrainRenderer& renderer, const TerrainScene& scene,
-                               FrameSettings settings, uint32_t factor, bool keepLinear);
+                               FrameSettings settings, uint32_t factor, bool keepLinear,
+                               bool accumulate = false);
+
+// The frames startAccumulation draws before a sequence: one cycle of the
+// jitter (engine/frame_preparation.cpp), so that the first frame's pixels
+// already hold that many points.
+inline constexpr int kAccumulationLeadFrames = 8;
+
+// Starts an accumulated sequence (renderSupersampled with `accumulate`)
+// whose first frame has `settings`: restarts the renderer's history and
+// accumulates kAccumulationLeadFrames frames of that first picture, so that
+// the sequence's first frame is as converged as the ones after it.
+void startAccumulation(TerrainRenderer& renderer, const TerrainScene& scene,
+                       const FrameSettings& settings, uint32_t factor);
 
 }  // namespace aal

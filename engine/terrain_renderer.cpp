@@ -27,7 +27,7 @@ TerrainRenderer::TerrainRenderer(const Device& device, uint32_t width, uint32_t 
       height_(height),
       hdr_(device, {width, height, kHdrFormat,
                     VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_SAMPLED_BIT |
-                        VK_IMAGE_USAGE_TRANSFER_SRC_BIT}),
+                        VK_IMAGE_USAGE_TRANSFER_SRC_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT}),
       depth_(device, {width, height, kDepthFormat,
                       VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT | VK_IMAGE_USAGE_SAMPLED_BIT,
                       VK_IMAGE_ASPECT_DEPTH_BIT}),
@@ -89,6 +89,10 @@ void TerrainRenderer::record(VkCommandBuffer cmd, const TerrainScene& scene, con
     recordComposite(pass, plan, targets);
     step("composite");
   }
+  if (plan.resolve && plan.linear) {
+    recordAccumulation(pass, plan, targets);
+    step("accumulate");
+  }
   // Last: the tone map into the display image, unless a pass wrote it.
   if (plan.linear) {
     recordToneMap(pass, plan, targets);
@@ -142,6 +146,16 @@ FrameTargets TerrainRenderer::frameTargets() const {
 
 FrameResult TerrainRenderer::render(const TerrainScene& scene, const FrameSettings& s,
                                     bool wantLinear) {
+  return renderHeadless(scene, s, wantLinear, false);
+}
+
+FrameResult TerrainRenderer::renderAccumulated(const TerrainScene& scene, const FrameSettings& s,
+                                               bool wantLinear) {
+  return renderHeadless(scene, s, wantLinear, true);
+}
+
+FrameResult TerrainRenderer::renderHeadless(const TerrainScene& scene, const FrameSettings& s,
+                                            bool wantLinear, bool temporal) {
   const size_t pixels = size_t(width_) * height_;
   Buffer displayReadback(device_, pixels * 4, VK_BUFFER_USAGE_TRANSFER_DST_BIT,
                          MemoryIntent::Readback);
@@ -152,7 +166,8 @@ FrameResult TerrainRenderer::render(const TerrainScene& scene, const FrameSettin
   }
 
   submitAndWait(device_, [&](VkCommandBuffer cmd) {
-    record(cmd, scene, s, FrameOutput{.linear = wantLinear});
+    // Accumulated in linear radiance, then tone-mapped.
+    record(cmd, scene, s, FrameOutput{.linear = wantLinear || temporal, .temporal = temporal});
     copyImageToBuffer(cmd, display_, displayReadback);
     if (wantLinear) {
       transitionImage(cmd, hdr_, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL,

@@ -113,12 +113,17 @@ struct FrameOutput {
   // targets, scaled up (bilinear, shaders/upscale.frag) into `image` (which
   // must be set).
   float resolutionScale = 1.0f;
-  // Below full resolution: rebuild the full-resolution picture from this
-  // frame and the ones before it (shaders/resolve.frag: each frame's samples
-  // jittered, the last rebuilt frame reprojected with the camera's motion
-  // and clamped to the drawn neighbours) instead of scaling it up. The
-  // history goes with any frame that does not (docs/rendering.md,
-  // "Temporal reconstruction").
+  // Accumulate this frame and the ones before it (shaders/resolve.glsl:
+  // each frame's samples jittered, the last accumulated frame reprojected
+  // with the camera's motion and clamped to the drawn neighbours;
+  // docs/rendering.md, "Temporal reconstruction"):
+  // - below full resolution, the full-resolution picture rebuilt instead of
+  //   scaled up;
+  // - at full resolution with `linear`, each pixel's linear radiance the
+  //   running mean of its jittered points (antialiasing for image
+  //   sequences), which hdrImage() and the display then hold.
+  // Otherwise (full resolution, display values) it does nothing. The history
+  // goes with any frame that does not accumulate, and with restartTemporal().
   bool temporal = false;
 };
 
@@ -135,6 +140,16 @@ class TerrainRenderer {
   // frame of its own for the device's DeletionQueue: what it retired is
   // destroyed after the wait (so not while a windowed frame is recorded).
   FrameResult render(const TerrainScene& scene, const FrameSettings& settings, bool wantLinear);
+  // The same with temporal antialiasing (FrameOutput::temporal at full
+  // resolution): a frame of a sequence, whose pixels are the running mean
+  // of their points over the frames since restartTemporal() (or since the
+  // last frame that did not accumulate), moved with the camera.
+  FrameResult renderAccumulated(const TerrainScene& scene, const FrameSettings& settings,
+                                bool wantLinear);
+  // The next accumulating frame starts a new history (another sequence, or
+  // other settings: the history is kept across frames of one scene whatever
+  // their settings).
+  void restartTemporal() { resolveValid_ = false; }
   // A headless frame (display output, nothing read back) and its wall-clock
   // and CPU time: `serialized`, each step submitted on its own and waited
   // for, a Step each (the host's preparation one of them); else one Step,
@@ -174,6 +189,8 @@ class TerrainRenderer {
   // history's bookkeeping. Decides which passes run and where they write.
   FramePlan prepareFrame(const TerrainScene& scene, const FrameSettings& settings,
                          const FrameOutput& output);
+  FrameResult renderHeadless(const TerrainScene& scene, const FrameSettings& settings,
+                             bool wantLinear, bool temporal);
   // Re-lays the scene's horizons when the frame's sun left their pair.
   void relayHorizons(const TerrainScene& scene, const FrameSettings& settings);
   // Writes the frame's uniforms (and, with `obscurance`, the sample set);
@@ -237,16 +254,21 @@ class TerrainRenderer {
   Buffer uniforms_, samples_;
   Buffer patches_;  // LodPatch instances of the frame (grows as needed)
   LodSelection selection_;
-  glm::mat4 viewProj_{1.0f};  // of the last writeUniforms, without the jitter
+  glm::mat4 viewProj_{1.0f};   // of the last writeUniforms, without the jitter
+  glm::dmat4 viewProjD_{1.0};  // the same in double (the reprojections invert it)
   // Temporal reconstruction: the rebuilt frames (the last one at index
   // resolveRead_, valid for scene resolveScene_ while resolveValid_), the
   // last one's view-projection, and this frame's jitter (drawn pixels).
-  void prepareResolve(FramePlan& plan, const TerrainScene& scene);
+  // `rebuild`: frames drawn smaller, else accumulated at full size; `moved`:
+  // the camera moved since the last accumulated frame.
+  void prepareResolve(FramePlan& plan, const TerrainScene& scene, bool rebuild, bool moved);
   std::unique_ptr<Image> resolveHistory_[2];
   int resolveRead_ = 0;
   bool resolveValid_ = false;
   uint64_t resolveScene_ = 0;
-  glm::mat4 resolveViewProj_{1.0f};
+  uint32_t resolveFrames_ = 0;  // in the history (full-resolution accumulation)
+  Camera resolveCamera_;        // of the last accumulated frame
+  glm::dmat4 resolveViewProjD_{1.0};
   uint32_t jitterIndex_ = 0;
   glm::vec2 jitter_{0.0f};
   std::unique_ptr<PassPipelines> passes_;

@@ -156,27 +156,42 @@ void measureShimmer(Comparison& c, TerrainRenderer& renderer, const TerrainScene
     throw std::invalid_argument("measureShimmer: the modes are not the comparison's");
   }
   ShimmerMeter reference;
-  std::vector<ShimmerMeter> meters(modes.size());
   ReferenceSettings r = referenceSettingsFor(settings, outputWidth(renderer, options),
                                              outputHeight(renderer, options), options);
-  // Frame by frame, each mode after the reference: one reference frame and
-  // two of each mode's are held at a time.
-  for (size_t f = 0; f < cameras.size(); ++f) {
+  // The reference first, each frame's radiance and mask kept; then each
+  // mode along the whole pan, so that an accumulated sequence is one mode's.
+  const size_t frames = cameras.size();
+  std::vector<std::vector<glm::vec3>> radiance(frames);
+  std::vector<std::vector<uint8_t>> masks(frames);
+  const double steps = double(frames * (modes.size() + 1));
+  for (size_t f = 0; f < frames; ++f) {
     r.camera = cameras[f];
-    const ReferenceImage image = renderReference(field, r);
-    const std::vector<uint8_t> mask = interiorMask(image.terrain, image.width, image.height);
-    reference.addFrame(image.radiance, mask);
-    for (size_t i = 0; i < modes.size(); ++i) {
-      if (modes[i].prepare) modes[i].prepare();
-      FrameSettings s = modeSettings(settings, modes[i], options);
-      s.camera = cameras[f];
-      meters[i].addFrame(linearRgb(modeFrame(renderer, scene, s, options)), mask);
-    }
-    if (progress) progress(double(f + 1) / double(cameras.size()));
+    ReferenceImage image = renderReference(field, r);
+    masks[f] = interiorMask(image.terrain, image.width, image.height);
+    reference.addFrame(image.radiance, masks[f]);
+    radiance[f] = std::move(image.radiance);
+    if (progress) progress(double(f + 1) / steps);
   }
   c.referenceShimmer = reference.meanSecondDifference();
-  c.panFrames = static_cast<int>(cameras.size());
-  for (size_t i = 0; i < modes.size(); ++i) c.modes[i].shimmer = meters[i].meanSecondDifference();
+  c.panFrames = static_cast<int>(frames);
+  for (size_t i = 0; i < modes.size(); ++i) {
+    if (modes[i].prepare) modes[i].prepare();
+    FrameSettings s = modeSettings(settings, modes[i], options);
+    s.camera = cameras.front();
+    if (options.temporal) startAccumulation(renderer, scene, s, options.supersample);
+    ShimmerMeter meter;
+    double error = 0;
+    for (size_t f = 0; f < frames; ++f) {
+      s.camera = cameras[f];
+      const std::vector<glm::vec3> gpu = linearRgb(
+          renderSupersampled(renderer, scene, s, options.supersample, true, options.temporal));
+      meter.addFrame(gpu, masks[f]);
+      error += relativeRmse(gpu, radiance[f], masks[f]) / double(frames);
+      if (progress) progress(double((i + 1) * frames + f + 1) / steps);
+    }
+    c.modes[i].shimmer = meter.meanSecondDifference();
+    c.modes[i].panRelativeRmse = error;
+  }
 }
 
 std::string comparisonImageName(const std::string& mode) {
@@ -220,7 +235,7 @@ void writeComparison(const std::string& folder, const Comparison& c, float expos
     return columns;
   };
   std::string csv = std::string("mode,relative_rmse,mean_relative_error") +
-                    (pan ? ",shimmer,shimmer_vs_reference" : "") + "\n";
+                    (pan ? ",shimmer,shimmer_vs_reference,pan_relative_rmse" : "") + "\n";
   for (const ModeError& e : c.modes) {
     writeFrame(path(comparisonImageName(e.mode)), e.frame);
     FrameResult error = imageFrame(w, h);
@@ -241,9 +256,12 @@ void writeComparison(const std::string& folder, const Comparison& c, float expos
     writeFrame(path(comparisonErrorImageName(e.mode)), error);
     csv += e.mode + "," + std::to_string(e.relativeRmse) + "," +
            std::to_string(e.meanRelativeError) +
-           (pan ? shimmerColumns(e.shimmer.value_or(0)) : "") + "\n";
+           (pan ? shimmerColumns(e.shimmer.value_or(0)) + "," +
+                      std::to_string(e.panRelativeRmse.value_or(0))
+                : "") +
+           "\n";
   }
-  if (pan) csv += "reference,0,0" + shimmerColumns(*c.referenceShimmer) + "\n";
+  if (pan) csv += "reference,0,0" + shimmerColumns(*c.referenceShimmer) + ",0\n";
   AtomicOutput out(path(kComparisonTableName));
   {
     std::ofstream file(out.temporaryPath());

@@ -47,6 +47,10 @@ struct ComparisonOptions {
   // renderer is `supersample` times the reference's width and height, and
   // each mode's frame is averaged down to it.
   uint32_t supersample = 1;
+  // Along a pan: each mode's frames accumulated over the frames before
+  // them (TerrainRenderer::renderAccumulated, started with
+  // startAccumulation), as aal-render's image sequences draw them.
+  bool temporal = false;
 };
 
 // The reference's settings for a GPU frame: same camera, sun, sky, haze,
@@ -66,6 +70,9 @@ struct ModeError {
   // Along a pan (measureShimmer): the mean |Y(t+1) - 2 Y(t) + Y(t-1)| of
   // linear luminance (kcd/m²) over the reference's interior mask.
   std::optional<double> shimmer;
+  // Along a pan: the mean over its frames of the relative RMSE against each
+  // frame's reference.
+  std::optional<double> panRelativeRmse;
 };
 
 struct Comparison {
@@ -97,7 +104,9 @@ Comparison compareModes(TerrainRenderer& renderer, const TerrainScene& scene,
 // settings compareModes gives them, and the temporal second difference
 // taken over the pixels of the reference's interior mask in all three
 // frames (ShimmerMeter). Sets c.referenceShimmer, c.panFrames and each
-// mode's shimmer. `progress` (may be empty) gets the finished fraction.
+// mode's shimmer and pan error. With options.temporal each mode's frames
+// are one accumulated sequence. `progress` (may be empty) gets the
+// finished fraction.
 // Throws std::invalid_argument for fewer than three cameras or modes that
 // are not c's.
 void measureShimmer(Comparison& c, TerrainRenderer& renderer, const TerrainScene& scene,
@@ -121,8 +130,8 @@ std::vector<std::string> comparisonFileNames(const std::vector<std::string>& mod
 // reference.png (tone-mapped with `exposure`), NAME.png and NAME-error.png
 // (per-pixel |Y_gpu - Y_ref| / Y_ref, black 0 to white >= 50 %, sky blue) for
 // each mode, and errors.csv (name, relative RMSE, mean relative error; after
-// measureShimmer also each one's shimmer and its ratio to the reference's,
-// and a row for the reference itself): comparisonFileNames. Files go
+// measureShimmer also each one's shimmer, its ratio to the reference's and
+// its mean error along the pan, and a row for the reference itself): comparisonFileNames. Files go
 // through temporary files renamed into place.
 void writeComparison(const std::string& folder, const Comparison& comparison, float exposure);
 

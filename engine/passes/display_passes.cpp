@@ -25,7 +25,7 @@ void recordUpscale(const PassContext& pass, const FramePlan& plan, const FrameTa
 
 // Rebuilds the full-resolution picture from the smaller one and the last
 // rebuilt frame into the output image and the history (temporal
-// reconstruction, shaders/resolve.frag).
+// reconstruction, shaders/resolve.glsl).
 void recordResolve(const PassContext& pass, const FramePlan& plan, const FrameTargets& targets) {
   const VkCommandBuffer cmd = pass.cmd;
   const Image& read = *targets.resolveHistory[plan.resolveRead];
@@ -65,6 +65,52 @@ void recordResolve(const PassContext& pass, const FramePlan& plan, const FrameTa
 
 }  // namespace
 
+void recordAccumulation(const PassContext& pass, const FramePlan& plan,
+                        const FrameTargets& targets) {
+  const VkCommandBuffer cmd = pass.cmd;
+  const Image& read = *targets.resolveHistory[plan.resolveRead];
+  const Image& write = *targets.resolveHistory[1 - plan.resolveRead];
+  transitionImage(cmd, targets.hdr, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL,
+                  VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL);
+  transitionImage(cmd, targets.depth, VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL,
+                  VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL);
+  if (plan.resolveConstants.historyValid == 0) {
+    transitionImage(cmd, read, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL);
+  }
+  transitionImage(cmd, write, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL);
+  const VkRenderingAttachmentInfo kept = colorAttachment(write, false);
+  pass.timer.begin(cmd, "accumulate");
+  beginRendering(cmd, plan.extent, &kept, 1, nullptr);
+  pass.pipelines.resolveLinear.bind(
+      cmd,
+      DescriptorWrites()
+          .buffer(0, pass.uniforms)
+          .image(1, targets.hdr.view(), pass.pipelines.nearest.handle())
+          .image(2, targets.depth.view(), pass.pipelines.nearest.handle())
+          .image(3, read.view(), pass.pipelines.linear.handle()),
+      &plan.resolveConstants);
+  vkCmdDraw(cmd, 3, 1, 0, 0);
+  vkCmdEndRendering(cmd);
+  pass.timer.end(cmd);
+  // The accumulated frame is the frame: into the HDR target, which the tone
+  // map and the linear read-back take as they would the drawn one.
+  transitionImage(cmd, write, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL,
+                  VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL);
+  transitionImage(cmd, targets.hdr, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL,
+                  VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL);
+  const VkImageSubresourceLayers layers{
+      .aspectMask = VK_IMAGE_ASPECT_COLOR_BIT, .mipLevel = 0, .baseArrayLayer = 0, .layerCount = 1};
+  const VkImageCopy region{.srcSubresource = layers,
+                           .dstSubresource = layers,
+                           .extent = {plan.extent.width, plan.extent.height, 1}};
+  vkCmdCopyImage(cmd, write.handle(), VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, targets.hdr.handle(),
+                 VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 1, &region);
+  transitionImage(cmd, write, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL,
+                  VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL);
+  transitionImage(cmd, targets.hdr, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL,
+                  VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL);
+}
+
 void recordToneMap(const PassContext& pass, const FramePlan& plan, const FrameTargets& targets) {
   const VkCommandBuffer cmd = pass.cmd;
   transitionImage(cmd, targets.hdr, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL,
@@ -89,7 +135,7 @@ void recordDisplayHandoff(const PassContext& pass, const FramePlan& plan,
     transitionImage(pass.cmd, targets.display, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL,
                     VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL);
   }
-  if (plan.resolve) {
+  if (plan.resolve && !plan.linear) {
     recordResolve(pass, plan, targets);
   } else if (plan.upscale) {
     recordUpscale(pass, plan, targets);

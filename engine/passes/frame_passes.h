@@ -40,6 +40,12 @@ void recordObscuranceFilter(const PassContext& pass, const FramePlan& plan,
 // (composite_pass.cpp).
 void recordComposite(const PassContext& pass, const FramePlan& plan, const FrameTargets& targets);
 
+// Temporal accumulation at full size (FramePlan::resolve with `linear`):
+// the HDR target's radiance blended with the last accumulated frame,
+// reprojected, into the history and back into the HDR target
+// (display_passes.cpp, shaders/resolve.glsl).
+void recordAccumulation(const PassContext& pass, const FramePlan& plan,
+                        const FrameTargets& targets);
 // The HDR target tone-mapped into the display values (display_passes.cpp).
 void recordToneMap(const PassContext& pass, const FramePlan& plan, const FrameTargets& targets);
 // The display image handed over as the frame's result, scaled up into the

@@ -16,15 +16,17 @@
 
 namespace aal {
 
-// shaders/resolve.frag's push constants.
+// shaders/resolve.glsl's push constants.
 struct ResolveConstants {
-  // This frame's clip space without the jitter to the last rebuilt frame's.
+  // This frame's clip space without the jitter to the last accumulated frame's.
   glm::mat4 reproject{1.0f};
   glm::vec2 jitter{0.0f};  // drawn pixels
   float currentWeight = 1.0f;
   int32_t historyValid = 0;
+  float centreFalloff = 0.0f;  // a sample's weight: 1 / (1 + centreFalloff d²), d in output pixels
+  float unused[3] = {};
 };
-static_assert(sizeof(ResolveConstants) == 80, "the shader's push-constant block");
+static_assert(sizeof(ResolveConstants) == 96, "the shader's push-constant block, padded");
 
 struct FramePlan {
   ShadingMode mode = ShadingMode::Approx;
@@ -63,9 +65,10 @@ struct FramePlan {
   bool historyFresh = false;
   int historyRead = 0, historyWrite = 1;
 
-  // Temporal reconstruction in place of the upscale (FrameOutput::temporal):
-  // the history image read (an index into FrameTargets::resolveHistory),
-  // the other written.
+  // Temporal accumulation (FrameOutput::temporal): in place of the upscale
+  // (display values), or at full size into the linear radiance before the
+  // tone map (`linear`). The history image read (an index into
+  // FrameTargets::resolveHistory), the other written.
   bool resolve = false;
   int resolveRead = 0;
   ResolveConstants resolveConstants;

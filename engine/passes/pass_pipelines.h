@@ -53,7 +53,7 @@ struct PassPipelines {
   const Device& device;
   VkFormat displayFormat;
   std::map<std::string, std::unique_ptr<GraphicsPipeline>> pipelines;
-  GraphicsPipeline skyTable, filter, composite, toneMap, upscale, resolve;
+  GraphicsPipeline skyTable, filter, composite, toneMap, upscale, resolve, resolveLinear;
   // terrainSampler: the DEM's mipmapped textures (terrain_textures.glsl);
   // skySampler: the sky table, wrapping in azimuth.
   Sampler terrainSampler, nearest, skySampler, linear;

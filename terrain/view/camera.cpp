@@ -54,7 +54,9 @@ DepthRange depthRangeFor(const Camera& camera, glm::dvec2 extentM, double zMin, 
   return range;
 }
 
-glm::mat4 viewMatrix(const Camera& camera) {
+namespace {
+
+glm::dmat4 viewMatrixD(const Camera& camera) {
   const glm::dvec3 forward = camera.lookAt - camera.position;
   if (glm::length(forward) < 1e-9) {
     throw std::invalid_argument("camera position and look-at point coincide");
@@ -62,14 +64,28 @@ glm::mat4 viewMatrix(const Camera& camera) {
   // Looking straight up or down: pick north as the up hint instead of z.
   const glm::dvec3 f = glm::normalize(forward);
   const glm::dvec3 up = std::abs(f.z) > 0.999 ? glm::dvec3(0, 1, 0) : glm::dvec3(0, 0, 1);
-  return glm::mat4(glm::lookAt(camera.position, camera.lookAt, up));
+  return glm::lookAt(camera.position, camera.lookAt, up);
 }
 
-glm::mat4 projectionMatrix(const Camera& camera, double aspect, const DepthRange& range) {
+glm::dmat4 projectionMatrixD(const Camera& camera, double aspect, const DepthRange& range) {
   glm::dmat4 p =
       glm::perspectiveRH_ZO(radians(camera.verticalFovDeg), aspect, range.nearM, range.farM);
   p[1][1] *= -1.0;  // Vulkan's clip space y points down
-  return glm::mat4(p);
+  return p;
+}
+
+}  // namespace
+
+glm::mat4 viewMatrix(const Camera& camera) {
+  return glm::mat4(viewMatrixD(camera));
+}
+
+glm::mat4 projectionMatrix(const Camera& camera, double aspect, const DepthRange& range) {
+  return glm::mat4(projectionMatrixD(camera, aspect, range));
+}
+
+glm::dmat4 viewProjectionMatrixD(const Camera& camera, double aspect, const DepthRange& range) {
+  return projectionMatrixD(camera, aspect, range) * viewMatrixD(camera);
 }
 
 Camera defaultCamera(const Heightfield& field, double aspect, double verticalFovDeg,

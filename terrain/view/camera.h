@@ -43,6 +43,11 @@ DepthRange depthRangeFor(const Camera& camera, glm::dvec2 extentM, double zMin, 
 // lookAt coincide.
 glm::mat4 viewMatrix(const Camera& camera);
 glm::mat4 projectionMatrix(const Camera& camera, double aspect, const DepthRange& range);
+// Projection times view in double: what a reprojection from one frame's
+// depth to another's inverts. With a near plane 1e-5 of the far one the
+// projection's depth and w rows are nearly parallel, and the inverse of its
+// float copy misplaces points by pixels.
+glm::dmat4 viewProjectionMatrixD(const Camera& camera, double aspect, const DepthRange& range);
 
 // The camera the tools start with: framingCamera of the DEM's bounding box
 // from the south-east, 30 degrees above the horizon, for that field of view.

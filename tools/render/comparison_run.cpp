@@ -86,6 +86,8 @@ ComparisonOptions comparisonOptions(const RenderOptions& o,
   c.subpixels = o.referenceSubpixels;
   c.albedo = albedoValue.value_or(glm::vec3(kReferenceTerrainAlbedo));
   c.supersample = o.supersample;
+  // Along the pan, as a --camera-path sequence draws its frames.
+  c.temporal = o.temporal != "off";
   return c;
 }
 

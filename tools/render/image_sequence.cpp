@@ -5,6 +5,7 @@
 #include <filesystem>
 
 #include "aperture/engine/screenshot.h"
+#include "aperture/engine/supersampling.h"
 #include "aperture/preprocess/progress_reporter.h"
 #include "aperture/terrain/errors.h"
 #include "aperture/terrain/interrupt.h"
@@ -43,6 +44,9 @@ std::optional<ImageSequence> imageSequenceOf(const RenderOptions& o, bool refere
   const bool wanted = !o.cameraPath.empty() || !o.timeRange.empty();
   if (!wanted) {
     if (o.frames) throw InputError("--frames needs --camera-path FILE or --time-range");
+    if (o.temporal != "auto") {
+      throw InputError("--temporal is for image sequences (--camera-path, --time-range)");
+    }
     return std::nullopt;
   }
   if (!o.frames) {
@@ -72,6 +76,9 @@ std::optional<ImageSequence> imageSequenceOf(const RenderOptions& o, bool refere
     }
   }
   if (!o.timeRange.empty()) parseTimeRange(o, s);
+  // The history follows the camera's motion, not the sun's: a time-lapse
+  // would show its shadows trailing.
+  s.temporal = o.temporal == "on" || (o.temporal == "auto" && o.timeRange.empty());
   return s;
 }
 
@@ -131,10 +138,15 @@ int renderSequence(const RenderOptions& o, const ImageSequence& seq, const Heigh
                        "rendering " + std::to_string(seq.frames) + " frames",
                        static_cast<uint64_t>(seq.frames));
   const auto start = std::chrono::steady_clock::now();
+  if (seq.temporal) {
+    FrameSettings first = settings;
+    setSequenceFrame(o, seq, field, 0, first);
+    startAccumulation(renderer, scene, first, o.supersample);
+  }
   for (int i = 0; i < seq.frames; ++i) {
     setSequenceFrame(o, seq, field, i, settings);
     throwIfInterrupted();
-    const FrameResult frame = renderOutputFrame(o, scene, renderer, settings);
+    const FrameResult frame = renderOutputFrame(o, scene, renderer, settings, seq.temporal);
     writeFrame(sequenceFramePath(o.output, i, seq.frames), frame);
     bar.updateDone(static_cast<uint64_t>(i + 1));
   }

@@ -23,6 +23,8 @@ struct ImageSequence {
   std::optional<CameraPath> path;
   std::optional<UtcTime> start, end;
   int frames = 0;
+  // --temporal: the frames accumulated (TerrainRenderer::renderAccumulated).
+  bool temporal = false;
 };
 
 // The sequence the options ask for, none without --camera-path and

@@ -153,6 +153,15 @@ void addSequenceOptions(CLI::App& app, RenderOptions& o) {
                  "--frames images, both ends included (a time-lapse)")
       ->expected(2);
   app.add_option("--frames", o.frames, "images in a --camera-path or --time-range sequence");
+  app.add_option("--temporal", o.temporal,
+                 "a sequence's frames: on, each pixel the running mean of its points (jittered "
+                 "within the pixel) over the frames before, moved with the camera: less shimmer "
+                 "at about the cost of one frame more in eight; off, each frame on its own; "
+                 "auto, on along a --camera-path (and the --compare pan), off for a "
+                 "--time-range, whose moving sun the history would trail "
+                 "(docs/rendering.md, \"Temporal reconstruction\")")
+      ->check(CLI::IsMember({"auto", "on", "off"}))
+      ->capture_default_str();
   app.add_option("--fps", o.fps, "frame rate of the sequence's MP4")
       ->check(CLI::Range(1.0, 240.0))
       ->capture_default_str();

@@ -37,6 +37,7 @@ struct RenderOptions {
   double exaggeration = 1.0;
   GpuOptions gpu;
   uint32_t supersample = 1;
+  std::string temporal = "auto";  // --temporal: accumulate a sequence's frames (auto|on|off)
   uint32_t maxTileTexels = 0;
   bool stats = false;
   int passProfile = 0;  // --pass-profile N: frames with each step submitted alone

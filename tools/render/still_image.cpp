@@ -78,8 +78,10 @@ void printPassProfile(const TerrainScene& scene, TerrainRenderer& renderer,
 }  // namespace
 
 FrameResult renderOutputFrame(const RenderOptions& o, const TerrainScene& scene,
-                              TerrainRenderer& renderer, const FrameSettings& settings) {
-  return renderSupersampled(renderer, scene, settings, o.supersample, wantsLinearOutput(o.output));
+                              TerrainRenderer& renderer, const FrameSettings& settings,
+                              bool accumulate) {
+  return renderSupersampled(renderer, scene, settings, o.supersample, wantsLinearOutput(o.output),
+                            accumulate);
 }
 
 int renderStillImage(const RenderOptions& o, const Device& device, const TerrainScene& scene,

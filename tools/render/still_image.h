@@ -15,9 +15,11 @@ namespace aal {
 // A frame of -o at the output's size: with --supersample N rendered at N
 // times the width and height (the renderer's size) and averaged down
 // (engine/supersampling.h); an explicit --lod-error stays in output pixels.
-// Each frame of a sequence is one too.
+// Each frame of a sequence is one too (`accumulate`: of a --temporal
+// sequence, engine/supersampling.h).
 FrameResult renderOutputFrame(const RenderOptions& o, const TerrainScene& scene,
-                              TerrainRenderer& renderer, const FrameSettings& settings);
+                              TerrainRenderer& renderer, const FrameSettings& settings,
+                              bool accumulate = false);
 
 // Renders and writes -o, then prints --stats (the device, the frame's
 // triangles, textures and pass times, the sun of `sun`). Returns the exit
