@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "aperture/terrain/io/horizon_map.h"
+#include "aperture/terrain/units.h"
 
 namespace aal {
 
@@ -48,6 +49,10 @@ int horizonChannelsPair(int directions, const HorizonChannels& c) {
   return c.directions[1] == (c.directions[0] + 1) % directions ? c.directions[0] : c.directions[1];
 }
 
+float horizonRelayReach(int directions) {
+  return kHorizonRelayReachRad * float(directions) / (2.0f * kPiFloat);
+}
+
 float horizonMotionSteps(int directions, float fromAzimuthRad, float toAzimuthRad) {
   const float n = float(directions);
   const float steps = horizonStepsFrom(directions, toAzimuthRad, 0) -
@@ -59,7 +64,8 @@ HorizonRelayStep planHorizonRelay(int directions, const HorizonChannels& now, fl
                                   float motionSteps, uint32_t bands,
                                   const HorizonRelayPolicy& policy) {
   const bool spread = policy.bandsPerFrame > 0;
-  const float margin = spread ? kHorizonRelayReach : kHorizonPairMargin;
+  const float reach = horizonRelayReach(directions);
+  const float margin = spread ? reach : kHorizonPairMargin;
   HorizonChannels m = now;
   if (!now.mixing()) {
     const int first = horizonChannelsPair(directions, now);
@@ -74,7 +80,7 @@ HorizonRelayStep planHorizonRelay(int directions, const HorizonChannels& now, fl
       // than the reach ahead. A sun turning back meanwhile takes the
       // written bands back the same way, spread too.
       const float frames = std::ceil(float(bands) / float(policy.bandsPerFrame));
-      const float lead = std::min(kHorizonRelayReach, 0.5f * frames * std::abs(motionSteps));
+      const float lead = std::min(reach, 0.5f * frames * std::abs(motionSteps));
       const float past = horizonStepsFrom(directions, azimuthRad, first);
       if (motionSteps > 0.0f && past >= 1.0f - lead) {
         target = next;
@@ -103,7 +109,7 @@ HorizonRelayStep planHorizonRelay(int directions, const HorizonChannels& now, fl
   }
   const int up = wrapDirection(shared + 1, directions);
   const int down = wrapDirection(shared - 1, directions);
-  const bool inReach = spread && std::abs(off) <= kHorizonRelayReach;
+  const bool inReach = spread && std::abs(off) <= reach;
   int target = off >= 0.0f ? up : down;
   if (inReach) target = motionSteps > 0.0f ? up : motionSteps < 0.0f ? down : m.head;
   const uint32_t remaining = target == m.head ? bands - m.split : m.split;
@@ -112,7 +118,7 @@ HorizonRelayStep planHorizonRelay(int directions, const HorizonChannels& now, fl
     count = policy.bandsPerFrame;
     if (motionSteps != 0.0f) {
       // Enough a frame to be done before the sun leaves the reach.
-      const float toEdge = kHorizonRelayReach - (motionSteps > 0.0f ? off : -off);
+      const float toEdge = reach - (motionSteps > 0.0f ? off : -off);
       const float framesLeft = std::floor(std::max(0.0f, toEdge) / std::abs(motionSteps)) + 1.0f;
       count = std::max(count, uint32_t(std::ceil(float(remaining) / framesLeft)));
     }

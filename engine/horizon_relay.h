@@ -8,11 +8,11 @@
 // that channel holds k in some bands and k + 2 in others the frame reads the
 // other channel alone, the horizon of the shared direction k + 1 (weights 1
 // and 0), which is right in every band. That costs accuracy only while the
-// sun is off k + 1, and never more than kHorizonRelayReach steps off it: there
+// sun is off k + 1, and never more than horizonRelayReach steps off it: there
 // the rest is written at once. So the horizon a frame reads is always either
 // the pair's interpolation for the sun or the horizon of a stored direction
-// within kHorizonRelayReach steps of the sun, which differs from the
-// interpolation by at most kHorizonRelayReach x |h(k + 1) - h(k or k + 2)|.
+// within horizonRelayReach steps of the sun, which differs from the
+// interpolation by at most horizonRelayReach x |h(k + 1) - h(k or k + 2)|.
 #pragma once
 
 #include <array>
@@ -20,11 +20,16 @@
 
 namespace aal {
 
-// Direction steps either side of the shared direction within which a frame
-// may read that direction alone (a re-lay under way, or a sun resting just
-// outside its pair's span): 1/8 of a step, 5.6 degrees of azimuth with 8
-// directions.
-constexpr float kHorizonRelayReach = 0.125f;
+// The azimuth either side of the shared direction within which a frame may
+// read that direction alone (a re-lay under way, or a sun resting just
+// outside its pair's span): 5.625 degrees, whatever the directions, so that
+// a sun turning at a given rate leaves as many frames for a re-lay with 16
+// directions as with 8. In direction steps (horizonRelayReach): 1/8 of a
+// step with 8 directions, 1/4 with 16; the bound above is then about the
+// same angle of a horizon that changes smoothly with azimuth (half the step,
+// twice its share).
+constexpr float kHorizonRelayReachRad = 0.09817477f;  // 2 pi / 64
+float horizonRelayReach(int directions);
 
 // What the slope texture holds: direction `directions[c]` in channel c (0: B,
 // 1: A) at every texel, except while a re-lay is under way: then channel
@@ -60,7 +65,7 @@ struct HorizonRelayStep {
 // How a re-lay is spread. bandsPerFrame 0: every re-lay done in the frame
 // that needs it, with horizonPairFor's margin (aal-render: every frame as
 // exact as a fresh scene). Above 0: at least that many bands a frame, more
-// when the sun would otherwise leave kHorizonRelayReach of the shared
+// when the sun would otherwise leave horizonRelayReach of the shared
 // direction first (the rest at once when it does), started ahead of a sun
 // moving towards the next pair (aal-view).
 struct HorizonRelayPolicy {

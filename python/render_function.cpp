@@ -84,10 +84,12 @@ Frame renderArray(Task& task, DemArray dem, const RenderArguments& a) {
     limit.emplace(tbb::global_control::max_allowed_parallelism, static_cast<size_t>(a.threads));
   }
   // aal-render's map is its cache's, the bake of BakeOptions{}; the horizon
-  // mode's horizons those of aal-bake --horizons (8 directions, 8 bits),
+  // mode's horizons those of aal-bake --horizons (16 directions, 8 bits),
   // which the same sweep keeps.
   BakeOptions options;
   options.horizons = mode == ShadingMode::Horizon;
+  options.horizonDirections = kBakeToolHorizonDirections;
+  options.horizonBits = kBakeToolHorizonBits;
   options.progress = [&task](double fraction) { task.report(0.9 * fraction); };
   options.cancel = &task.cancel();
   BakeResult baked = bakeApertures(field, options);

@@ -234,7 +234,7 @@ def render(dem, cell_size, *, size=(1280, 720), camera=None, look_at=None, fov=4
     """Renders a DEM lit by the sun and the sky, headless on Vulkan, as aal-render does.
 
     The aperture map is baked in memory first (aal-render's options: 64 azimuths, open edge;
-    for mode "horizon" with the directional horizons of aal-bake --horizons, 8 directions).
+    for mode "horizon" with the directional horizons of aal-bake --horizons, 16 directions).
 
     size          (width, height) of the image in pixels.
     camera, look_at  (x, y, z) in metres in the DEM's frame: x east, y north, z up, origin

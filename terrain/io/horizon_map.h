@@ -25,8 +25,7 @@ constexpr int kMaxHorizonDirections = 16;
 // 3.44 % against 3.52 % for 16 of 4 bits and 4.17 % for 8 of 8 bits). A code
 // takes a byte whatever its bits, in the file and the host's memory, and the
 // device holds only the decoded pair beside the sun, so 4-bit codes save
-// nothing. The in-memory bakes of aal-view and Python keep kHorizonDirections
-// of kHorizonBits (half the host memory of 16 directions).
+// nothing. The in-memory bakes of aal-view and Python render() keep the same.
 constexpr int kBakeToolHorizonDirections = 16;
 constexpr int kBakeToolHorizonBits = 8;
 bool validHorizonDirections(int directions);

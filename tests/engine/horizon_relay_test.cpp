@@ -66,7 +66,7 @@ struct Sweep {
 };
 
 // Drives the plan frame by frame along `azimuths` (rad), checking every
-// band's horizon against the bound: kHorizonRelayReach of the largest step
+// band's horizon against the bound: horizonRelayReach of the largest step
 // between adjacent directions.
 Sweep sweep(const Bands& b, HorizonChannels& c, const std::vector<float>& azimuths,
             const HorizonRelayPolicy& policy) {
@@ -87,8 +87,8 @@ Sweep sweep(const Bands& b, HorizonChannels& c, const std::vector<float>& azimut
     if (!c.mixing() && horizonChannelsPair(b.directions, c) != before) ++s.relays;
     for (uint32_t band = 0; band < b.count; ++band) {
       const double error = std::abs(b.read(c, azimuths[i], band) - b.exact(azimuths[i], band));
-      s.worstOverBound =
-          std::max(s.worstOverBound, error - kHorizonRelayReach * b.largestStep(band) - 1e-5);
+      s.worstOverBound = std::max(
+          s.worstOverBound, error - horizonRelayReach(b.directions) * b.largestStep(band) - 1e-5);
     }
   }
   return s;
@@ -156,7 +156,7 @@ TEST(HorizonRelay, AStillSunNeverReLays) {
     const int own = horizonPairFor(n, azimuth, -1);
     for (const int first : {own, (own + 1) % n, (own + n - 1) % n}) {
       const HorizonChannels c{{first, (first + 1) % n}};
-      if (horizonPairFor(n, azimuth, first, kHorizonRelayReach) != first) continue;
+      if (horizonPairFor(n, azimuth, first, horizonRelayReach(n)) != first) continue;
       for (int frame = 0; frame < 3; ++frame) {
         EXPECT_EQ(planHorizonRelay(n, c, azimuth, 0.0f, 132, HorizonRelayPolicy{8}).kind,
                   HorizonRelayStep::Kind::Keep)

@@ -250,7 +250,7 @@ TEST_F(Render, SpreadReLayDrawsTheSharedDirectionThenTheNewPair) {
     EXPECT_EQ(sharedDirection, 3);
     const float azimuth = sunAzimuthRad(s.lighting.sunDirection);
     const float off = horizonStepsFrom(8, azimuth, sharedDirection);
-    ASSERT_LE(std::abs(off), kHorizonRelayReach + 1e-6f) << compass;
+    ASSERT_LE(std::abs(off), horizonRelayReach(8) + 1e-6f) << compass;
     // A fresh scene and renderer (no motion seen): a pair that holds the
     // shared direction at its end nearest the sun keeps it and reads it alone.
     TerrainScene fresh(device(), f, baked.aperture, nullptr, 100000);

@@ -61,10 +61,10 @@ def test_equals_aal_render_bit_for_bit(tmp_path, tool_env):
     import rasterio
     import warnings
 
-    def tool_frame(name, *options):
+    def tool_frame(name, *options, sun=(200, 20)):
         run_tool("aal-render", tmp_path / "dem.tif", "-o", tmp_path / name, "--size", "96x64",
-                 "--sun-azimuth", "200", "--sun-elevation", "20", "--exaggeration", "2",
-                 *options, "-q", env=tool_env)
+                 "--sun-azimuth", str(sun[0]), "--sun-elevation", str(sun[1]), "--exaggeration",
+                 "2", *options, "-q", env=tool_env)
         with warnings.catch_warnings():
             warnings.simplefilter("ignore", rasterio.errors.NotGeoreferencedWarning)
             with rasterio.open(tmp_path / name) as png:
@@ -88,6 +88,20 @@ def test_equals_aal_render_bit_for_bit(tmp_path, tool_env):
     assert four.shape == image.shape
     np.testing.assert_array_equal(four, tool_frame("four.png", "--supersample", "2"))
     assert not np.array_equal(four, image)
+    # mode="horizon" bakes the horizons aal-bake --horizons writes by default (16
+    # directions of 8 bits): the picture of aal-render with that file, not of 8 directions.
+    for directions in (16, 8):
+        run_tool("aal-bake", tmp_path / "dem.tif", "-o", tmp_path / f"h{directions}.exr",
+                 "--z-scale", "2", "--horizons", tmp_path / f"h{directions}.horizons",
+                 "--horizon-directions", str(directions), "-q", env=tool_env)
+    low = dict(sun_azimuth=250, sun_elevation=6, mode="horizon")
+    horizon = aperture.render(dem, info.cell_size, size=(96, 64), exaggeration=2, **low)
+
+    def horizon_tool(directions):
+        return tool_frame(f"h{directions}.png", "--mode", "horizon", "--horizons",
+                          tmp_path / f"h{directions}.horizons", sun=(250, 6))
+    np.testing.assert_array_equal(horizon, horizon_tool(16))
+    assert not np.array_equal(horizon, horizon_tool(8))
 
 
 def test_no_vulkan_device_is_a_runtime_error():

@@ -459,7 +459,16 @@ TEST(AalView, HorizonModeWithTheBakesHorizonsAlsoSwitchedMidFlight) {
 
   // Without --aperture the viewer's own bake keeps the horizons (and caches
   // them beside the map): the mode is offered once baked, and again from the
-  // cache, with aal-bake's picture.
+  // cache, with the picture of aal-bake's default horizons (16 directions;
+  // which differs from that of 8).
+  const fs::path map16 = dir.path() / "a16.exr", horizons16 = dir.path() / "a16.horizons",
+                 shot16 = dir.path() / "horizon16.png";
+  ASSERT_EQ(test::bakeWithHorizons(kDem, map16, horizons16, 16), 0);
+  const auto horizon16 =
+      view(dir, common + quoted(shot16) + " --mode horizon --horizons " + quoted(horizons16));
+  ASSERT_EQ(horizon16.exitCode, 0) << horizon16.out;
+  const Picture h16 = readPng(shot16);
+  ASSERT_EQ(h16.rgba.size(), h.rgba.size());
   const std::string own = quoted(kDem) +
                           " --sun-azimuth 250 --sun-elevation 12 --size 160x120 --frames 4"
                           " --timeout 120 --stats --mode-after 2:horizon --screenshot ";
@@ -469,10 +478,10 @@ TEST(AalView, HorizonModeWithTheBakesHorizonsAlsoSwitchedMidFlight) {
     ASSERT_EQ(r.exitCode, 0) << r.out;
     EXPECT_NE(r.out.find("switched the shading mode"), std::string::npos) << run << r.out;
     const Picture p = readPng(shot);
-    ASSERT_EQ(p.rgba.size(), h.rgba.size());
+    ASSERT_EQ(p.rgba.size(), h16.rgba.size());
     int worst = 0;
-    for (size_t i = 0; i < h.rgba.size(); ++i) {
-      worst = std::max(worst, std::abs(int(p.rgba[i]) - int(h.rgba[i])));
+    for (size_t i = 0; i < h16.rgba.size(); ++i) {
+      worst = std::max(worst, std::abs(int(p.rgba[i]) - int(h16.rgba[i])));
     }
     EXPECT_LE(worst, 1) << run;
   }

@@ -65,12 +65,13 @@ inline ToolResult runTool(const std::string& tool, const std::string& arguments,
 }
 
 // Bakes `dem` into the aperture map `map` with its directional horizons in
-// `horizons` (aal-bake --horizons, 8 directions of 8 bits, which the tests'
-// suns are placed for; quiet): the exit code.
+// `horizons` (aal-bake --horizons, by default 8 directions of 8 bits, which
+// the tests' suns are placed for; quiet): the exit code.
 inline int bakeWithHorizons(const std::filesystem::path& dem, const std::filesystem::path& map,
-                            const std::filesystem::path& horizons) {
+                            const std::filesystem::path& horizons, int directions = 8) {
   return runTool("aal-bake", quoted(dem) + " -o " + quoted(map) + " --horizons " +
-                                 quoted(horizons) + " --horizon-directions 8 --horizon-bits 8 -q")
+                                 quoted(horizons) + " --horizon-directions " +
+                                 std::to_string(directions) + " --horizon-bits 8 -q")
       .exitCode;
 }
 

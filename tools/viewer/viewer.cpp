@@ -195,12 +195,14 @@ constexpr double kIdleWaitS = 0.1;
 // 2^20, about a tenth of the frame on lavapipe (docs/performance.md).
 constexpr uint64_t kViewerHorizonRelayTexels = uint64_t{1} << 20;
 
-// The bake also keeps the sweep's horizons of 8 azimuths (8-bit codes) for
-// the horizon mode when the azimuths allow: no extra sweep, 8 B per texel
-// (docs/viewer.md).
+// The bake also keeps the sweep's horizons in aal-bake --horizons' 16
+// azimuths (8-bit codes) for the horizon mode when the azimuths allow: no
+// extra sweep, 16 B per texel on the host (docs/viewer.md).
 BakeOptions viewerBakeOptions(int azimuths) {
   BakeOptions options;
   options.azimuths = azimuths;
+  options.horizonDirections = kBakeToolHorizonDirections;
+  options.horizonBits = kBakeToolHorizonBits;
   options.horizons = azimuths % options.horizonDirections == 0;
   return options;
 }
