@@ -229,7 +229,7 @@ def render(dem, cell_size, *, size=(1280, 720), camera=None, look_at=None, fov=4
            sun_radius=_SUN_RADIUS_DEG, turbidity=_DEFAULT_TURBIDITY, ev=None, visibility=None,
            mode="approx", exaggeration=1.0, background="sky", albedo=None, obscurance=True,
            obscurance_radius=None, obscurance_samples=16, obscurance_steps=1, water_level=None,
-           anisotropy=3, supersample=1, z_scale=1.0, nodata=None, device=None, threads=None,
+           anisotropy=2, supersample=1, z_scale=1.0, nodata=None, device=None, threads=None,
            progress=None):
     """Renders a DEM lit by the sun and the sky, headless on Vulkan, as aal-render does.
 
@@ -257,7 +257,7 @@ def render(dem, cell_size, *, size=(1280, 720), camera=None, look_at=None, fov=4
     obscurance, obscurance_radius, obscurance_samples, obscurance_steps  the near-field
                   obscurances, as aal-render's --no-obscurance, --obscurance-*.
     water_level   paint terrain at or below this height (metres) as water.
-    anisotropy    texture filtering along each pixel's footprint, 1 to 4 probes (default 3), as
+    anisotropy    texture filtering along each pixel's footprint, 1 to 4 probes (default 2), as
                   aal-render's --anisotropy (1: one trilinear fetch, fastest, blurred in
                   oblique views).
     supersample   N x N shading points per pixel, averaged (1 to 4, default 1), as aal-render's

@@ -24,11 +24,12 @@ namespace aal {
 // trilinear fetch per texture, and on lavapipe fetches are what a fragment
 // costs; docs/rendering.md, "Footprint filtering").
 constexpr int kMaxFootprintProbes = AAL_FOOTPRINT_MAX_PROBES;
-// What a frame takes unless asked: 3 probes reach the accuracy 4 do within
-// 0.1 points of relative error against the ray tracer (jacksboro 250/45
-// 1.56 against 1.46 %, 250/20 2.84 against 2.71 %, fBm 30 degrees 1.75
-// against 1.65 %) for 8 % less of a CPU frame (docs/rendering.md).
-constexpr int kDefaultFootprintProbes = 3;
+// What a frame takes unless asked: with the slopes' levels as means, 2
+// probes meet the accuracy bars against the ray tracer (jacksboro 250/45
+// 1.51 %, 250/20 2.79 %, fBm 30 degrees 1.51 %; bars 1.8, 3.3, 1.8) for
+// 6-9 % less of a CPU frame than 3 (1.25, 2.44, 1.17 %; docs/rendering.md,
+// "Frame cost, and the anisotropy setting").
+constexpr int kDefaultFootprintProbes = 2;
 // count rounds |L| / W - this up.
 constexpr float kFootprintRatioTolerance = AAL_FOOTPRINT_RATIO_TOLERANCE;
 
