@@ -154,9 +154,10 @@ void addSequenceOptions(CLI::App& app, RenderOptions& o) {
       ->expected(2);
   app.add_option("--frames", o.frames, "images in a --camera-path or --time-range sequence");
   app.add_option("--temporal", o.temporal,
-                 "a sequence's frames: on, each pixel the running mean of its points (jittered "
-                 "within the pixel) over the frames before, moved with the camera: less shimmer "
-                 "at about the cost of one frame more in eight; off, each frame on its own; "
+                 "a sequence's frames: on, each pixel the mean of its points over the frames "
+                 "before, moved with the camera (a still camera's points jittered within the "
+                 "pixel): less shimmer, for about a tenth more a frame and 8 frames more at the "
+                 "start; off, each frame on its own; "
                  "auto, on along a --camera-path (and the --compare pan), off for a "
                  "--time-range, whose moving sun the history would trail "
                  "(docs/rendering.md, \"Temporal reconstruction\")")
