@@ -190,6 +190,7 @@ FramePlan TerrainRenderer::prepareFrame(const TerrainScene& scene, const FrameSe
   plan.resolve = rebuild || (output.temporal && plan.linear);
   const bool moved =
       !rebuild && plan.resolve && resolveValid_ && resolveScene_ == scene.id() &&
+      !resolveRebuilt_ &&
       !(s.camera.position == resolveCamera_.position && s.camera.lookAt == resolveCamera_.lookAt &&
         s.camera.verticalFovDeg == resolveCamera_.verticalFovDeg);
   jitter_ = plan.resolve && !moved ? resolveJitter(jitterIndex_++) : glm::vec2(0.0f);
@@ -380,7 +381,8 @@ void TerrainRenderer::prepareResolve(FramePlan& plan, const TerrainScene& scene,
                                  VK_IMAGE_USAGE_TRANSFER_SRC_BIT});
     }
   }
-  const bool valid = resolveValid_ && resolveScene_ == scene.id();
+  // A rebuilt history holds display values, an accumulated one radiance.
+  const bool valid = resolveValid_ && resolveScene_ == scene.id() && resolveRebuilt_ == rebuild;
   // The frames the history holds before this one (accumulating).
   if (!valid) resolveFrames_ = 0;
   if (moved) resolveFrames_ = std::min(resolveFrames_, kMovingFrames - 1);
@@ -396,6 +398,7 @@ void TerrainRenderer::prepareResolve(FramePlan& plan, const TerrainScene& scene,
   resolveRead_ = 1 - resolveRead_;
   resolveValid_ = true;
   resolveScene_ = scene.id();
+  resolveRebuilt_ = rebuild;
   resolveViewProjD_ = viewProjD_;
 }
 

@@ -266,8 +266,9 @@ class TerrainRenderer {
   int resolveRead_ = 0;
   bool resolveValid_ = false;
   uint64_t resolveScene_ = 0;
-  uint32_t resolveFrames_ = 0;  // in the history (full-resolution accumulation)
-  Camera resolveCamera_;        // of the last accumulated frame
+  bool resolveRebuilt_ = false;  // the history rebuilt frames drawn smaller, else accumulated
+  uint32_t resolveFrames_ = 0;   // in the history (full-resolution accumulation)
+  Camera resolveCamera_;         // of the last accumulated frame
   glm::dmat4 resolveViewProjD_{1.0};
   uint32_t jitterIndex_ = 0;
   glm::vec2 jitter_{0.0f};
