@@ -245,6 +245,8 @@ void TerrainRenderer::writeUniforms(const TerrainScene& scene, const FrameSettin
                                          bottom, scene.maxHeight());
 
   FrameUniforms u;
+  // The float product the passes draw with (its rounding is the stills'),
+  // and the double one the reprojections invert.
   viewProj_ = projectionMatrix(s.camera, aspect, range) * viewMatrix(s.camera);
   viewProjD_ = viewProjectionMatrixD(s.camera, aspect, range);
   u.viewProj = jitteredViewProj(viewProj_, jitter_, extent_);

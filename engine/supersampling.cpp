@@ -62,6 +62,17 @@ FrameResult downsampleFrame(const FrameResult& big, uint32_t factor, float expos
   return out;
 }
 
+namespace {
+
+// The settings of a renderer of `factor` times the output's width and
+// height: an explicit LOD error stays in output pixels.
+FrameSettings pointSettings(FrameSettings settings, uint32_t factor) {
+  settings.lod.maxErrorPixels *= static_cast<double>(factor);
+  return settings;
+}
+
+}  // namespace
+
 FrameResult renderSupersampled(TerrainRenderer& renderer, const TerrainScene& scene,
                                FrameSettings settings, uint32_t factor, bool keepLinear,
                                bool accumulate) {
@@ -70,7 +81,7 @@ FrameResult renderSupersampled(TerrainRenderer& renderer, const TerrainScene& sc
                       : renderer.render(scene, settings, linear);
   };
   if (factor <= 1) return render(keepLinear);
-  settings.lod.maxErrorPixels *= static_cast<double>(factor);
+  settings = pointSettings(settings, factor);
   return downsampleFrame(render(true), factor, settings.lighting.exposure,
                          isDebugMode(settings.mode), keepLinear);
 }
@@ -78,9 +89,8 @@ FrameResult renderSupersampled(TerrainRenderer& renderer, const TerrainScene& sc
 void startAccumulation(TerrainRenderer& renderer, const TerrainScene& scene,
                        const FrameSettings& settings, uint32_t factor) {
   renderer.restartTemporal();
-  for (int i = 0; i < kAccumulationLeadFrames; ++i) {
-    renderSupersampled(renderer, scene, settings, factor, false, true);
-  }
+  const FrameSettings points = pointSettings(settings, std::max(factor, 1u));
+  for (int i = 0; i < kAccumulationLeadFrames; ++i) renderer.accumulate(scene, points);
 }
 
 }  // namespace aal

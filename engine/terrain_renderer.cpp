@@ -154,11 +154,19 @@ FrameResult TerrainRenderer::renderAccumulated(const TerrainScene& scene, const 
   return renderHeadless(scene, s, wantLinear, true);
 }
 
+void TerrainRenderer::accumulate(const TerrainScene& scene, const FrameSettings& s) {
+  renderHeadless(scene, s, false, true, false);
+}
+
 FrameResult TerrainRenderer::renderHeadless(const TerrainScene& scene, const FrameSettings& s,
-                                            bool wantLinear, bool temporal) {
+                                            bool wantLinear, bool temporal, bool readBack) {
   const size_t pixels = size_t(width_) * height_;
-  Buffer displayReadback(device_, pixels * 4, VK_BUFFER_USAGE_TRANSFER_DST_BIT,
-                         MemoryIntent::Readback);
+  wantLinear = wantLinear && readBack;
+  Buffer displayReadback;
+  if (readBack) {
+    displayReadback =
+        Buffer(device_, pixels * 4, VK_BUFFER_USAGE_TRANSFER_DST_BIT, MemoryIntent::Readback);
+  }
   Buffer linearReadback;
   if (wantLinear) {
     linearReadback =
@@ -168,7 +176,7 @@ FrameResult TerrainRenderer::renderHeadless(const TerrainScene& scene, const Fra
   submitAndWait(device_, [&](VkCommandBuffer cmd) {
     // Accumulated in linear radiance, then tone-mapped.
     record(cmd, scene, s, FrameOutput{.linear = wantLinear || temporal, .temporal = temporal});
-    copyImageToBuffer(cmd, display_, displayReadback);
+    if (readBack) copyImageToBuffer(cmd, display_, displayReadback);
     if (wantLinear) {
       transitionImage(cmd, hdr_, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL,
                       VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL);
@@ -182,8 +190,10 @@ FrameResult TerrainRenderer::renderHeadless(const TerrainScene& scene, const Fra
   FrameResult result;
   result.width = width_;
   result.height = height_;
-  result.display.resize(pixels * 4);
-  displayReadback.read(result.display.data(), result.display.size());
+  if (readBack) {
+    result.display.resize(pixels * 4);
+    displayReadback.read(result.display.data(), result.display.size());
+  }
   if (wantLinear) {
     std::vector<Imath::half> halves(pixels * 4);
     linearReadback.read(halves.data(), halves.size() * sizeof(Imath::half));

@@ -113,17 +113,18 @@ struct FrameOutput {
   // targets, scaled up (bilinear, shaders/upscale.frag) into `image` (which
   // must be set).
   float resolutionScale = 1.0f;
-  // Accumulate this frame and the ones before it (shaders/resolve.glsl:
-  // each frame's samples jittered, the last accumulated frame reprojected
-  // with the camera's motion and clamped to the drawn neighbours;
-  // docs/rendering.md, "Temporal reconstruction"):
-  // - below full resolution, the full-resolution picture rebuilt instead of
-  //   scaled up;
+  // Accumulate this frame and the ones before it (shaders/resolve.glsl: the
+  // last accumulated frame reprojected with the camera's motion and clamped
+  // to the drawn neighbours; docs/rendering.md, "Temporal reconstruction"):
+  // - below full resolution, the full-resolution picture rebuilt from
+  //   jittered frames instead of scaled up;
   // - at full resolution with `linear`, each pixel's linear radiance the
-  //   running mean of its jittered points (antialiasing for image
-  //   sequences), which hdrImage() and the display then hold.
+  //   mean of its points over the frames (jittered while the camera stands
+  //   still; antialiasing for image sequences), which hdrImage() and the
+  //   display then hold.
   // Otherwise (full resolution, display values) it does nothing. The history
-  // goes with any frame that does not accumulate, and with restartTemporal().
+  // goes with any frame that does not accumulate, with a switch between the
+  // two uses, and with restartTemporal().
   bool temporal = false;
 };
 
@@ -141,11 +142,14 @@ class TerrainRenderer {
   // destroyed after the wait (so not while a windowed frame is recorded).
   FrameResult render(const TerrainScene& scene, const FrameSettings& settings, bool wantLinear);
   // The same with temporal antialiasing (FrameOutput::temporal at full
-  // resolution): a frame of a sequence, whose pixels are the running mean
-  // of their points over the frames since restartTemporal() (or since the
-  // last frame that did not accumulate), moved with the camera.
+  // resolution): a frame of a sequence, whose pixels are the mean of their
+  // points over the frames since restartTemporal() (or since the last frame
+  // that did not accumulate), moved with the camera.
   FrameResult renderAccumulated(const TerrainScene& scene, const FrameSettings& settings,
                                 bool wantLinear);
+  // Such a frame accumulated and nothing read back (the frames that lead a
+  // sequence in, engine/supersampling.h startAccumulation).
+  void accumulate(const TerrainScene& scene, const FrameSettings& settings);
   // The next accumulating frame starts a new history (another sequence, or
   // other settings: the history is kept across frames of one scene whatever
   // their settings).
@@ -189,8 +193,10 @@ class TerrainRenderer {
   // history's bookkeeping. Decides which passes run and where they write.
   FramePlan prepareFrame(const TerrainScene& scene, const FrameSettings& settings,
                          const FrameOutput& output);
+  // A headless frame, submitted and waited for; `readBack`: its display
+  // values (and with `wantLinear` its radiance) copied out, else nothing.
   FrameResult renderHeadless(const TerrainScene& scene, const FrameSettings& settings,
-                             bool wantLinear, bool temporal);
+                             bool wantLinear, bool temporal, bool readBack = true);
   // Re-lays the scene's horizons when the frame's sun left their pair.
   void relayHorizons(const TerrainScene& scene, const FrameSettings& settings);
   // Writes the frame's uniforms (and, with `obscurance`, the sample set);
@@ -256,12 +262,14 @@ class TerrainRenderer {
   LodSelection selection_;
   glm::mat4 viewProj_{1.0f};   // of the last writeUniforms, without the jitter
   glm::dmat4 viewProjD_{1.0};  // the same in double (the reprojections invert it)
-  // Temporal reconstruction: the rebuilt frames (the last one at index
-  // resolveRead_, valid for scene resolveScene_ while resolveValid_), the
-  // last one's view-projection, and this frame's jitter (drawn pixels).
-  // `rebuild`: frames drawn smaller, else accumulated at full size; `moved`:
-  // the camera moved since the last accumulated frame.
+  // The resolve pass's constants and history for this frame. `rebuild`:
+  // frames drawn smaller, else accumulated at full size; `moved`: the camera
+  // moved since the last accumulated frame.
   void prepareResolve(FramePlan& plan, const TerrainScene& scene, bool rebuild, bool moved);
+  // Temporal reconstruction: the rebuilt or accumulated frames (the last one
+  // at index resolveRead_, valid for scene resolveScene_ while
+  // resolveValid_), the last one's view-projection, and this frame's jitter
+  // (drawn pixels).
   std::unique_ptr<Image> resolveHistory_[2];
   int resolveRead_ = 0;
   bool resolveValid_ = false;

@@ -8,13 +8,14 @@
 // last accumulated frame with the camera's motion and the drawn depth,
 // clamps what it finds there into the range of the drawn neighbours (a
 // value outside it belongs to a surface that is no longer there) and blends
-// the two. Two uses:
+// the two. (Accumulating, a camera that moves is not jittered: its motion
+// moves the points.) Two uses:
 // - resolve.frag: dynamic resolution, the full-resolution picture rebuilt
 //   from frames drawn smaller, in display values; it writes the output and,
 //   at higher precision, the history the next frame reads;
 // - resolve_linear.frag (AAL_RESOLVE_LINEAR): antialiasing at full
 //   resolution in linear radiance (aal-render's image sequences), each
-//   pixel the running mean of its jittered points; it writes the history,
+//   pixel the mean of its points over the frames; it writes the history,
 //   which the frame then shows.
 #include "frame.glsl"
 

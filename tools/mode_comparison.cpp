@@ -61,9 +61,10 @@ uint32_t outputHeight(const TerrainRenderer& renderer, const ComparisonOptions& 
 }
 
 // A mode's frame at the reference's size, linear values included.
+// `accumulate`: a frame of the pan's accumulated sequence.
 FrameResult modeFrame(TerrainRenderer& renderer, const TerrainScene& scene, const FrameSettings& s,
-                      const ComparisonOptions& options) {
-  return renderSupersampled(renderer, scene, s, options.supersample, true);
+                      const ComparisonOptions& options, bool accumulate = false) {
+  return renderSupersampled(renderer, scene, s, options.supersample, true, accumulate);
 }
 
 }  // namespace
@@ -183,8 +184,8 @@ void measureShimmer(Comparison& c, TerrainRenderer& renderer, const TerrainScene
     double error = 0;
     for (size_t f = 0; f < frames; ++f) {
       s.camera = cameras[f];
-      const std::vector<glm::vec3> gpu = linearRgb(
-          renderSupersampled(renderer, scene, s, options.supersample, true, options.temporal));
+      const std::vector<glm::vec3> gpu =
+          linearRgb(modeFrame(renderer, scene, s, options, options.temporal));
       meter.addFrame(gpu, masks[f]);
       error += relativeRmse(gpu, radiance[f], masks[f]) / double(frames);
       if (progress) progress(double((i + 1) * frames + f + 1) / steps);
