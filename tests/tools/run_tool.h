@@ -81,15 +81,27 @@ inline int bakeWithHorizons(const std::filesystem::path& dem, const std::filesys
 // ...") is set for the run. Under the sanitizer build scripts/test.sh
 // preloads the ASan runtime and lavapipe (LD_PRELOAD): that is for aal-view
 // alone, not for the X server and xauth that xvfb-run starts, which are not
-// built for it and fail.
+// built for it and fail. The exit code is aal-view's own, kept in a file:
+// xvfb-run replaces it with 5 when it cannot clean up its temporary folder
+// afterwards (seen once in CI, after aal-view had exited 2).
 inline ToolResult runViewer(const std::string& arguments, const std::string& environment = "") {
+  static int runs = 0;
   const std::string server = std::to_string(100 + getpid() % 800);
+  const std::filesystem::path status =
+      std::filesystem::temp_directory_path() /
+      ("aal-view-status-" + std::to_string(getpid()) + "-" + std::to_string(runs++));
   const char* preload = std::getenv("LD_PRELOAD");
   const std::string viewerEnv =
       preload && *preload ? "env LD_PRELOAD=" + quoted(std::filesystem::path(preload)) + " " : "";
-  return runShell("env -u LD_PRELOAD AAL_VALIDATION=1 " + environment + " xvfb-run -a -n " +
-                  server + " -s '-screen 0 1280x720x24' " + viewerEnv +
-                  quoted(binDir() / "aal-view") + " " + arguments);
+  ToolResult r =
+      runShell("env -u LD_PRELOAD AAL_VALIDATION=1 " + environment + " xvfb-run -a -n " + server +
+               " -s '-screen 0 1280x720x24' sh -c '\"$@\"; echo $? > \"$0\"' " + quoted(status) +
+               " " + viewerEnv + quoted(binDir() / "aal-view") + " " + arguments);
+  std::ifstream code(status);
+  if (int own = 0; code >> own) r.exitCode = own;
+  code.close();
+  std::filesystem::remove(status);
+  return r;
 }
 
 // A fresh empty folder under the system temp folder, removed by the destructor.
