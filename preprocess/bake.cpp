@@ -174,14 +174,7 @@ class AzimuthSweeps {
     if (!sweep_.clampEdge) {
       sweepWindowHorizonBlocks(terrain_, s.phi, sweep_, [&](const HorizonBlock& b) {
         alignas(32) float merged[HorizonBlock::kPaddedTexels];
-        for (int j = 0; j < b.count; ++j) {
-          const size_t texel = b.firstTexel + j * b.stride;
-          const int col = w.col + static_cast<int>(texel % w.width);
-          const int row = w.row + static_cast<int>(texel / w.width);
-          const double tangent =
-              far.mergedTangent(col, row, terrain_.heights.at(col, row), b.tanHorizon[j]);
-          merged[j] = static_cast<float>(std::max(tangent, double(kNoHorizonTangent)));
-        }
+        far.mergeBlock(b, merged);
         HorizonBlock block = b;
         block.tanHorizon = merged;
         sums_.addBlock(block, s, nullptr);

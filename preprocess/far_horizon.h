@@ -11,6 +11,7 @@
 
 #include "aperture/preprocess/bake_terrain.h"
 #include "aperture/preprocess/height_pyramid.h"
+#include "aperture/preprocess/horizon_blocks.h"
 
 namespace aal {
 
@@ -60,6 +61,10 @@ class FarHorizons {
   // max(nearTangent, tangentAt(col, row, z)), skipping the far field where
   // a bound of it over the texel's lattice cell is no higher.
   double mergedTangent(int col, int row, double z, double nearTangent) const;
+  // mergedTangent of each texel of a near sweep's block (window indices,
+  // along a row or a column of the window), as floats no lower than
+  // kNoHorizonTangent, into merged[0 .. b.count).
+  void mergeBlock(const HorizonBlock& b, float* merged) const;
 
  private:
   // The highest sample seen from a lattice point: its height z (before the
@@ -71,8 +76,14 @@ class FarHorizons {
     double x = 0.0, y = 0.0;  // the point's position
     double z = 0.0, t = 0.0;
     double edgeZ = 0.0, edgeT = -1.0;  // edgeT < 0: no edge
+    // The sample's place along u: t plus the point's (x, y) . u. A texel at
+    // (x, y) is along - (x, y) . u from it, one subtraction per point.
+    double along = 0.0;
   };
-  double pointTangent(const Point& p, double x, double y, double z) const;
+  // The tangent to p's sample from a texel at height z whose place along u
+  // is (x, y) . u.
+  double pointTangent(const Point& p, double along, double z) const;
+  double tangentAt(int col, int row, double along, double z) const;
   Point march(const BakeTerrain& terrain, int col, int row) const;
 
   // Per lattice cell (the four points around it): the highest sample's
@@ -80,6 +91,10 @@ class FarHorizons {
   // texels, for a bound of their far tangents; kNoHorizon height: none.
   struct CellBound {
     double z = 0.0, invNear = 0.0, invFar = 0.0;
+    // The four points' samples, (i, j), (i + 1, j), (i, j + 1), (i + 1,
+    // j + 1), side by side for mergeBlock's loops over them: where along u
+    // and how high (without an edge; -infinity along: no sample).
+    double along[4], z4[4];
   };
   double cellBound(const CellBound& c, double z) const;
 

@@ -168,6 +168,18 @@ void sweepWindowBlocks(const BlockSweep& sweep, const HorizonBlockVisitor& visit
               b.tanHorizon = tanHorizon;
               b.slopeEast = slopes.east;
               b.slopeNorth = slopes.north;
+              // The texels kAheadSteps on, for the visitor's prefetches:
+              // without them a tile's column passes wait on memory.
+              const int ahead = step + HorizonBlock::kAheadSteps;
+              if (ahead < layout.endStep) {
+                const auto [aheadLo, aheadHi] = windowTexelsAt(ahead);
+                if (aheadLo <= aheadHi) {
+                  const int aheadMajor = layout.start + ahead * layout.step;
+                  b.aheadFirstTexel = kMajorIsColumn ? terrain.windowIndex(aheadMajor, aheadLo)
+                                                     : terrain.windowIndex(aheadLo, aheadMajor);
+                  b.aheadCount = aheadHi - aheadLo + 1;
+                }
+              }
               visit(b);
             });
       });

@@ -6,7 +6,9 @@
 
 #include <algorithm>
 #include <atomic>
+#include <bit>
 #include <cmath>
+#include <cstdint>
 #include <filesystem>
 #include <limits>
 #include <numbers>
@@ -234,6 +236,69 @@ TEST(FarField, WindowBlocksEqualTheWindowSweep) {
     }
   }
   setHorizonAvx2Allowed(true);
+}
+
+// A window's far field merged a block at a time (single precision, 8
+// texels at once with AVX2) against the per-texel merge in double
+// precision (FarHorizons::mergedTangent), on the window's blocks of every
+// azimuth: within float rounding, and the AVX2 and scalar paths the same
+// bit for bit.
+TEST(FarField, MergedBlocksAgreeWithTheTexelMergeOnEveryPath) {
+  const Heightfield field = fbm(300, 220, 900);
+  const TexelWindow window{120, 70, 90, 75};
+  const BakeTerrain part = prepareBakeTerrain(field, window);
+  FarFieldOptions options;
+  options.nearReachM = 40 * 30.0;
+  options.spacing = 4;
+  const HeightPyramid pyramid =
+      buildHeightPyramid(field, farFieldBaseShift(options, field.cellSizeYM, field.cellSizeXM));
+  const FarField far{&pyramid, options};
+  HorizonSweepOptions o;
+  o.windowReachM = options.nearReachM;
+  size_t raised = 0, texels = 0;
+  for (const double curvature : {0.0, 1e-6}) {
+    o.curvature = curvature;
+    for (int a = 0; a < 16; ++a) {
+      const double phi = (a + 0.3) * 2 * std::numbers::pi / 16;
+      const FarHorizons horizons(far, part, phi, curvature, false);
+      std::vector<float> merged[2];
+      for (const bool avx2 : {true, false}) {
+        setHorizonAvx2Allowed(avx2);
+        std::vector<float>& out = merged[avx2 ? 0 : 1];
+        out.assign(window.texelCount(), NAN);
+        sweepWindowHorizonBlocks(part, phi, o, [&](const HorizonBlock& b) {
+          alignas(32) float block[HorizonBlock::kPaddedTexels];
+          horizons.mergeBlock(b, block);
+          for (int j = 0; j < b.count; ++j) {
+            const size_t i = b.firstTexel + j * b.stride;
+            out[i] = block[j];
+            const int col = window.col + static_cast<int>(i % window.width);
+            const int row = window.row + static_cast<int>(i / window.width);
+            const double expected =
+                horizons.mergedTangent(col, row, field.at(col, row), b.tanHorizon[j]);
+            if (expected <= kNoHorizonTangent) {
+              EXPECT_LE(block[j], kNoHorizonTangent);
+            } else {
+              EXPECT_NEAR(block[j], expected, 2e-5 * (1 + std::abs(expected)))
+                  << "texel " << i << " azimuth " << a;
+            }
+            if (avx2) {
+              ++texels;
+              if (block[j] > b.tanHorizon[j]) ++raised;
+            }
+          }
+        });
+      }
+      for (size_t i = 0; i < merged[0].size(); ++i) {
+        ASSERT_EQ(std::bit_cast<uint32_t>(merged[0][i]), std::bit_cast<uint32_t>(merged[1][i]))
+            << "texel " << i << " azimuth " << a << ": " << merged[0][i] << " with AVX2, "
+            << merged[1][i] << " without";
+      }
+    }
+  }
+  setHorizonAvx2Allowed(true);
+  // The far field decides a good share of the texels: the test exercises it.
+  EXPECT_GT(raised, texels / 10) << raised << " of " << texels;
 }
 
 // Mean and 99th percentile of |visible fraction difference| and mean
