@@ -112,12 +112,18 @@ void statusLines(const ViewPanelModel& m) {
   if (!m.message.empty()) ImGui::TextWrapped("%s", m.message.c_str());
 }
 
-void timings(ViewPanelModel& m) {
+void timings(ViewPanelModel& m, bool& changed) {
   ImGui::Text("%.1f fps, %.1f ms per frame", m.framesPerSecond, m.frameMs);
   ImGui::Text("resolution %.0f %% (drawn only when the view changes)", m.resolutionScale * 100);
   float target = static_cast<float>(m.targetFps);
   if (ImGui::SliderFloat("target fps", &target, 0.0f, 60.0f, target > 0 ? "%.0f" : "off")) {
     m.targetFps = target < 1 ? 0 : target;
+  }
+  changed = ImGui::Checkbox("rebuild smaller frames", &m.temporal);
+  if (ImGui::IsItemHovered()) {
+    ImGui::SetTooltip(
+        "Frames drawn below full resolution are rebuilt from the frames before\n"
+        "(sharper in motion); off: scaled up (cheaper on a CPU device).");
   }
   for (const auto& [pass, ms] : m.passMs) ImGui::Text("  gpu %-10s %7.2f ms", pass.c_str(), ms);
 }
@@ -152,7 +158,9 @@ ViewPanelActions drawViewPanel(ViewPanelModel& m) {
     actions.screenshot = ImGui::Button("screenshot (F12)");
     actions.vsyncChanged = ImGui::Checkbox("vsync", &m.vsync);
   }
-  if (ImGui::CollapsingHeader("timings", ImGuiTreeNodeFlags_DefaultOpen)) timings(m);
+  if (ImGui::CollapsingHeader("timings", ImGuiTreeNodeFlags_DefaultOpen)) {
+    timings(m, actions.temporalChanged);
+  }
   ImGui::PopItemWidth();
   ImGui::End();
   return actions;

@@ -22,6 +22,9 @@ struct ViewPanelModel {
   int& anisotropy;  // FrameSettings::anisotropy
   ObscuranceSettings& obscurance;
   bool& vsync;
+  // Frames drawn smaller are rebuilt at full resolution (FrameOutput::temporal)
+  // rather than scaled up: aal-view --temporal, resolved.
+  bool& temporal;
   CameraMode cameraMode = CameraMode::Fly;
   std::string demName;
   int demWidth = 0, demHeight = 0;
@@ -46,6 +49,7 @@ struct ViewPanelActions {
   bool frameDem = false;
   bool toggleOrbit = false;
   bool vsyncChanged = false;
+  bool temporalChanged = false;
 };
 
 ViewPanelActions drawViewPanel(ViewPanelModel& model);

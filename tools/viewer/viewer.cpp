@@ -424,7 +424,7 @@ void Viewer::updateCamera(double dtSeconds) {
 void Viewer::drawUi() {
   ui_.beginFrame();
   const Heightfield& field = *terrain_->field;
-  ViewPanelModel model{lighting_, mode_, anisotropy_, obscurance_, vsync_};
+  ViewPanelModel model{lighting_, mode_, anisotropy_, obscurance_, vsync_, temporal_};
   if (!terrain_->scene->hasHorizons()) {
     model.horizonsMissing = terrain_->bake && viewerBakeOptions(options_.bakeAzimuths).horizons
                                 ? "after the bake"
@@ -456,6 +456,8 @@ void Viewer::drawUi() {
   }
   if (actions.screenshot) pendingScreenshot_ = nextScreenshotName();
   if (actions.vsyncChanged) swapchainStale_ = true;
+  // The history holds frames of the other way: start it again.
+  if (actions.temporalChanged) renderer_->restartTemporal();
   if (model.targetFps != resolution_.targetFps()) resolution_.setTargetFps(model.targetFps);
 }
 
