@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <bit>
+#include <cassert>
 #include <cmath>
 #include <cstdio>
 #include <limits>
@@ -172,15 +173,11 @@ FarHorizons::Point FarHorizons::march(const BakeTerrain& terrain, int col, int r
           level.meanAt(x0i, y1i) + (level.meanAt(x1i, y1i) - level.meanAt(x0i, y1i)) * tx;
       z = top + (bottom - top) * ty;
     }
-    // tangent > bestTangent, multiplied out by d > 0: a division only for
-    // a new best (the division of every sample took 40 % of the march).
-    if (z - zRef > (bestTangent + curvature_ * d) * d) {
-      const double tangent = (z - zRef) / d - curvature_ * d;
-      if (tangent > bestTangent) {
-        bestTangent = tangent;
-        best.z = z;
-        best.t = d;
-      }
+    const double tangent = (z - zRef) / d - curvature_ * d;
+    if (tangent > bestTangent) {
+      bestTangent = tangent;
+      best.z = z;
+      best.t = d;
     }
     inside = true;
     lastZ = z;
@@ -236,14 +233,7 @@ void FarHorizons::mergeBlock(const HorizonBlock& b, float* merged) const {
   const bool alongRow = b.stride == 1;
   const int dCol = alongRow ? 1 : 0, dRow = 1 - dCol;
   const HeightView& heights = terrain_.heights;
-  if (clampEdge_) {
-    for (int j = 0; j < b.count; ++j) {
-      const int c = col + j * dCol, r = row + j * dRow;
-      merged[j] = static_cast<float>(std::max(
-          mergedTangent(c, r, heights.at(c, r), b.tanHorizon[j]), double(kNoHorizonTangent)));
-    }
-    return;
-  }
+  assert(!clampEdge_ && "the block sweep has open edges only");
   // The texels' heights and places along u, the places from the first
   // texel's: single precision is then good to well under a millimetre.
   // Whole vectors of 8 past the block, for the AVX2 path.

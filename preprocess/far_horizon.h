@@ -61,9 +61,10 @@ class FarHorizons {
   // max(nearTangent, tangentAt(col, row, z)), skipping the far field where
   // a bound of it over the texel's lattice cell is no higher.
   double mergedTangent(int col, int row, double z, double nearTangent) const;
-  // mergedTangent of each texel of a near sweep's block (window indices,
-  // along a row or a column of the window), as floats no lower than
-  // kNoHorizonTangent, into merged[0 .. b.count).
+  // mergedTangent of each texel of a block of the window's block sweep
+  // (sweepWindowHorizonBlocks: window indices along a row or a column,
+  // open edges, so this FarHorizons' clampEdge must be false), as floats,
+  // into merged[0 .. b.count).
   void mergeBlock(const HorizonBlock& b, float* merged) const;
 
  private:
