@@ -166,28 +166,12 @@ class AzimuthSweeps {
     }
   }
 
-  // A far-field bake's window: near horizons from the window's lines, far
-  // ones from the pyramid.
+  // A far-field bake's window: its lines walked from the near reach before
+  // it, each starting with the far field's samples beyond (FarLineMarch).
   void sweepNearAndFar(const AzimuthSlice& s) const {
-    const FarHorizons far(*o_.farField, terrain_, s.phi, sweep_.curvature, sweep_.clampEdge);
-    const TexelWindow& w = terrain_.window;
-    if (!sweep_.clampEdge) {
-      sweepWindowHorizonBlocks(terrain_, s.phi, sweep_, [&](const HorizonBlock& b) {
-        alignas(32) float merged[HorizonBlock::kPaddedTexels];
-        far.mergeBlock(b, merged);
-        HorizonBlock block = b;
-        block.tanHorizon = merged;
-        sums_.addBlock(block, s, nullptr);
-      });
-      return;
-    }
-    // Clamped edges: the general sweep knows where a line's walk began.
-    sweepHorizons(terrain_, s.phi, sweep_, [&](size_t texel, double tanHorizon) {
-      const int col = w.col + static_cast<int>(texel % w.width);
-      const int row = w.row + static_cast<int>(texel / w.width);
-      sums_.addTexel(
-          texel, std::max(tanHorizon, far.tangentAt(col, row, terrain_.heights.at(col, row))), s);
-    });
+    sweepWindowHorizonBlocks(
+        terrain_, s.phi, sweep_, [&](const HorizonBlock& b) { sums_.addBlock(b, s, nullptr); },
+        &*o_.farField);
   }
 
   // The sums of the (weighted) SVF terms to the sky-view factor: 1 minus

@@ -1,8 +1,7 @@
 // The bake's AVX2 kernels, for CPUs that have it (chosen at run time,
 // detail::horizonAvx2): the block sweep's line walk 8 lines at a time
 // (BlockLineWalker::stepAvx2) and the slice accumulator 8 texels at a time
-// (addSlicesAvx2), and the far field's merge 8 texels at a time
-// (mergeFarRunAvx2). Each gives the scalar path's results bit for bit: the
+// (addSlicesAvx2). Each gives the scalar path's results bit for bit: the
 // same operations in the same order, and no fused multiply-adds. The
 // functions target AVX2 without FMA, and so must any added here: where FMA
 // is enabled GCC fuses the intrinsics' multiplies and adds too, which
@@ -15,7 +14,6 @@
 #include <iterator>
 
 #include "aperture/preprocess/block_line_walker.h"
-#include "aperture/preprocess/far_merge.h"
 #include "aperture/preprocess/horizon_blocks.h"
 #include "aperture/preprocess/sky_slice.h"
 #include "aperture/preprocess/slice_accumulator.h"
@@ -452,63 +450,6 @@ __attribute__((target("avx2"))) inline void BlockLineWalker<kMajorIsColumn>::tex
 
 template void BlockLineWalker<true>::stepAvx2(int, int, int, float*, float*, float*);
 template void BlockLineWalker<false>::stepAvx2(int, int, int, float*, float*, float*);
-
-}  // namespace detail
-
-namespace detail {
-
-// farMergedTangent, 8 texels at a time: every lane's far tangent, kept where
-// the bound is above the near one.
-__attribute__((target("avx2"))) void mergeFarRunAvx2(const FarCellRun& r, const float* z,
-                                                     const float* along, const float* near,
-                                                     int count, float* merged) {
-  const __m256 zero = _mm256_setzero_ps(), none = _mm256_set1_ps(kNoHorizonTangent);
-  const __m256 top = _mm256_set1_ps(r.top), invNear = _mm256_set1_ps(r.invNear),
-               invFar = _mm256_set1_ps(r.invFar), halfCell = _mm256_set1_ps(r.halfCell),
-               curvature = _mm256_set1_ps(r.curvature), wStep = _mm256_set1_ps(r.wStep),
-               wFirst = _mm256_set1_ps(r.wFirst), wAcross = _mm256_set1_ps(r.wAcross);
-  const __m256 lane = _mm256_setr_ps(0, 1, 2, 3, 4, 5, 6, 7);
-  for (int k = 0; k < count; k += 8) {
-    const __m256 zk = _mm256_loadu_ps(z + k), alongK = _mm256_loadu_ps(along + k),
-                 nearK = _mm256_loadu_ps(near + k);
-    const __m256 rise = _mm256_sub_ps(top, zk);
-    const __m256 bound = _mm256_mul_ps(
-        rise, _mm256_blendv_ps(invFar, invNear, _mm256_cmp_ps(rise, zero, _CMP_GE_OQ)));
-    const __m256 wanted = _mm256_cmp_ps(bound, nearK, _CMP_GT_OQ);
-    if (_mm256_testz_ps(wanted, wanted)) {
-      _mm256_storeu_ps(merged + k, nearK);
-      continue;
-    }
-    __m256 corner[4];
-    for (int q = 0; q < 4; ++q) {
-      const __m256 t = _mm256_sub_ps(_mm256_set1_ps(r.along[q]), alongK);
-      const __m256 tangent =
-          _mm256_sub_ps(_mm256_div_ps(_mm256_sub_ps(_mm256_set1_ps(r.height[q]), zk), t),
-                        _mm256_mul_ps(curvature, t));
-      corner[q] = _mm256_blendv_ps(none, tangent, _mm256_cmp_ps(t, halfCell, _CMP_GT_OQ));
-    }
-    // std::max(a, b) is a < b ? b : a: max_ps(b, a).
-    const __m256 most =
-        _mm256_max_ps(_mm256_max_ps(corner[3], corner[2]), _mm256_max_ps(corner[1], corner[0]));
-    __m256 far = most;
-    if (r.blend) {
-      // std::min(a, b) is b < a ? b : a: min_ps(b, a).
-      const __m256 least =
-          _mm256_min_ps(_mm256_min_ps(corner[3], corner[2]), _mm256_min_ps(corner[1], corner[0]));
-      const __m256 index = _mm256_add_ps(_mm256_set1_ps(float(k)), lane);
-      const __m256 wAlong = _mm256_add_ps(wFirst, _mm256_mul_ps(index, wStep));
-      const __m256 wx = r.alongRow ? wAlong : wAcross, wy = r.alongRow ? wAcross : wAlong;
-      const __m256 upper =
-          _mm256_add_ps(corner[0], _mm256_mul_ps(_mm256_sub_ps(corner[1], corner[0]), wx));
-      const __m256 lower =
-          _mm256_add_ps(corner[2], _mm256_mul_ps(_mm256_sub_ps(corner[3], corner[2]), wx));
-      const __m256 blended = _mm256_add_ps(upper, _mm256_mul_ps(_mm256_sub_ps(lower, upper), wy));
-      far = _mm256_blendv_ps(most, blended, _mm256_cmp_ps(least, none, _CMP_GT_OQ));
-    }
-    const __m256 result = _mm256_max_ps(far, nearK);
-    _mm256_storeu_ps(merged + k, _mm256_blendv_ps(nearK, result, wanted));
-  }
-}
 
 }  // namespace detail
 

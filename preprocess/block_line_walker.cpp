@@ -56,6 +56,52 @@ void BlockLineWalker<kMajorIsColumn>::begin(int firstLine, int lines) {
 }
 
 template <bool kMajorIsColumn>
+void BlockLineWalker<kMajorIsColumn>::seedFar(const FarLineMarch& far, int step,
+                                              std::vector<float>& distance,
+                                              std::vector<float>& height) {
+  const int majorLength = layout_.majorLength;
+  const int major = layout_.start + step * layout_.step;
+  // The walk pushes at most one point per step from here: the far field
+  // keeps to the room left (its hull is far smaller in practice).
+  const int room = majorLength - (layout_.endStep - step) - 1;
+  for (int i = 0; i < lines_; ++i) {
+    const double minor = (firstLine_ + i) + step * layout_.minorPerStep;
+    if (minor < 0.0 || minor > minorMax_) continue;
+    // The samples beyond the line's first point, at (column, row).
+    const double t = lineT(major, minor);
+    if constexpr (kMajorIsColumn) {
+      far.march(major, minor, distance, height);
+    } else {
+      far.march(minor, major, distance, height);
+    }
+    HullPointF* hull = hulls_ + static_cast<size_t>(i) * majorLength;
+    int n = 0;
+    const int count = std::min(static_cast<int>(distance.size()), std::max(room, 0));
+    for (int k = count - 1; k >= 0; --k) {
+      const float pointT = static_cast<float>(t + distance[k]);
+      const float z = height[k] - curvature_ * pointT * pointT;
+      while (n >= 2 && (hull[n - 2].z - z) * (hull[n - 1].t - pointT) >=
+                           (hull[n - 1].z - z) * (hull[n - 2].t - pointT)) {
+        --n;
+      }
+      hull[n++] = {pointT, z};
+    }
+    size_[i] = n;
+    // Clamped edges: the ground goes on flat from the last sample in the
+    // DEM (else, as for a line that starts at the edge, from the first
+    // point walked).
+    if (!distance.empty()) {
+      edgeT_[i] = static_cast<float>(t + distance.back());
+      edgeZ_[i] = height.back();
+    }
+    // The AVX2 walk's copies of the top three points.
+    if (n >= 1) topT_[i] = hull[n - 1].t, topZ_[i] = hull[n - 1].z;
+    if (n >= 2) belowT_[i] = hull[n - 2].t, belowZ_[i] = hull[n - 2].z;
+    if (n >= 3) thirdT_[i] = hull[n - 3].t, thirdZ_[i] = hull[n - 3].z;
+  }
+}
+
+template <bool kMajorIsColumn>
 void BlockLineWalker<kMajorIsColumn>::step(int step, int minorLo, int minorHi, float* out,
                                            float* east, float* north) {
 #if AAL_HORIZON_AVX2
@@ -89,15 +135,7 @@ void BlockLineWalker<kMajorIsColumn>::lineSamples(int step, StepSlice& slice) co
     if (minor < 0.0 || minor > minorMax) continue;
     slice.lineFirst = std::min(slice.lineFirst, i);
     slice.lineLast = i;
-    double t;
-    if constexpr (kMajorIsColumn) {
-      const int nearRow = std::min(static_cast<int>(minor + 0.5), minorMax);
-      t = (major - terrain_.centreCol) * terrain_.rowCellX[nearRow] * ux_ +
-          (rowCentre_ - minor) * terrain_.cellY * uy_;
-    } else {
-      t = (minor - terrain_.centreCol) * terrain_.rowCellX[major] * ux_ + terrain_.y(major) * uy_;
-    }
-    slice.lineT[i] = static_cast<float>(t);
+    slice.lineT[i] = static_cast<float>(lineT(major, minor));
   }
 }
 

@@ -7,8 +7,10 @@
 #include <algorithm>
 #include <cmath>
 #include <cstddef>
+#include <vector>
 
 #include "aperture/preprocess/bake_terrain.h"
+#include "aperture/preprocess/far_horizon.h"
 #include "aperture/preprocess/horizon_blocks.h"
 #include "aperture/preprocess/horizon_sweep.h"
 
@@ -45,6 +47,12 @@ class BlockLineWalker {
   // Starts walking lines firstLine .. firstLine + lines - 1 (lines <=
   // kMaxLines) from the sweep's first step.
   void begin(int firstLine, int lines);
+  // After begin(), before the first step: each line on the grid at sweep
+  // step `step` (the first the walk takes) starts with the far field's
+  // samples beyond that point in its hull (FarLineMarch::march, into
+  // `distance` and `height`), pushed farthest first as though walked.
+  void seedFar(const FarLineMarch& far, int step, std::vector<float>& distance,
+               std::vector<float>& height);
 
   // Whether any walked line may be on the grid at `step` (with a texel of
   // margin against rounding; a step's texels lie between walked lines, so
@@ -136,6 +144,19 @@ class BlockLineWalker {
   __attribute__((target("avx2"), always_inline)) inline void texelSlopesAvx2(const StepSlice& slice,
                                                                              int i, int j) const;
 #endif
+
+  // A line's place along u (m) where it crosses major coordinate `major` at
+  // minor coordinate `minor`: the distance the hull points are placed by.
+  double lineT(int major, double minor) const {
+    if constexpr (kMajorIsColumn) {
+      const int nearRow = std::min(static_cast<int>(minor + 0.5), minorMax_);
+      return (major - terrain_.centreCol) * terrain_.rowCellX[nearRow] * ux_ +
+             (rowCentre_ - minor) * terrain_.cellY * uy_;
+    } else {
+      return (minor - terrain_.centreCol) * terrain_.rowCellX[major] * ux_ +
+             terrain_.y(major) * uy_;
+    }
+  }
 
   // HeightView::at over the heights held, from the walker's own copy of
   // their layout: one subtraction (the whole-DEM bake was 5-9 % slower

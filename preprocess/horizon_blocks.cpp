@@ -8,6 +8,8 @@
 #include <cmath>
 #include <cstddef>
 #include <limits>
+#include <optional>
+#include <stdexcept>
 #include <utility>
 #include <vector>
 
@@ -15,6 +17,7 @@
 #include <tbb/parallel_for.h>
 
 #include "aperture/preprocess/block_line_walker.h"
+#include "aperture/preprocess/far_horizon.h"
 
 namespace aal {
 
@@ -34,8 +37,9 @@ struct BlockSlopes {
 
 // One thread's storage for the walks of its groups.
 struct BlockScratch {
-  std::vector<HullPointF> hulls;  // kMaxLines stacks of majorLength points
-  std::vector<float> opposite;    // kLines tangents per step
+  std::vector<HullPointF> hulls;              // kMaxLines stacks of majorLength points
+  std::vector<float> opposite;                // kLines tangents per step
+  std::vector<float> farDistance, farHeight;  // a line's far samples (seedFar)
 };
 
 // The sweep of one azimuth: its layout and direction u = (ux, uy).
@@ -44,6 +48,8 @@ struct BlockSweep {
   const SweepLayout& layout;
   double ux, uy;
   const HorizonSweepOptions& options;
+  // The window sweep's far field: its lines start with it in their hulls.
+  const FarLineMarch* far = nullptr;
 };
 
 // The texels a group of lines hands over at each step, and what the blocks
@@ -117,6 +123,7 @@ void walkGroup(const BlockSweep& sweep, const GroupTexels<kMajorIsColumn>& texel
   BlockLineWalker<kMajorIsColumn> walker(sweep.terrain, sweep.layout, sweep.ux, sweep.uy,
                                          sweep.options, s.hulls.data());
   walker.begin(texels.first - 1, texels.count + 1);
+  if (sweep.far) walker.seedFar(*sweep.far, firstStep, s.farDistance, s.farHeight);
   float tanHorizon[HorizonBlock::kLines];
   BlockSlopes slopes;
   for (int step = firstStep; step < endStep; ++step) {
@@ -140,11 +147,11 @@ void sweepBlocks(const BlockSweep& sweep, const HorizonBlockVisitor& visit) {
       });
 }
 
-// sweepBlocks for a partial window without a distance limit (the near
-// sweep of a far-field bake, far_horizon.h): the window's lines walked from
-// layout.firstStep (options.windowReachM before the window), blocks only of
-// the window's texels, indexed as BakeTerrain::windowIndex. Open edges
-// only: the walker takes a line's first point for the field's edge.
+// sweepBlocks for a partial window without a distance limit (a far-field
+// bake, far_horizon.h): the window's lines walked from layout.firstStep
+// (options.windowReachM before the window), starting with the far field's
+// samples where sweep.far is given, blocks only of the window's texels,
+// indexed as BakeTerrain::windowIndex.
 template <bool kMajorIsColumn>
 void sweepWindowBlocks(const BlockSweep& sweep, const HorizonBlockVisitor& visit) {
   const SweepLayout& layout = sweep.layout;
@@ -288,10 +295,16 @@ void sweepHorizonBlocks(const BakeTerrain& terrain, double phi, const HorizonSwe
 }
 
 void sweepWindowHorizonBlocks(const BakeTerrain& terrain, double phi,
-                              const HorizonSweepOptions& options, HorizonBlockVisitor visit) {
+                              const HorizonSweepOptions& options, HorizonBlockVisitor visit,
+                              const FarField* far) {
+  if (options.clampEdge && !far) {
+    throw std::invalid_argument("sweepWindowHorizonBlocks: clamped edges need the far field");
+  }
   const double ux = std::cos(phi), uy = std::sin(phi);
   const detail::SweepLayout layout = detail::makeSweepLayout(terrain, ux, uy, options.windowReachM);
-  const detail::BlockSweep sweep{terrain, layout, ux, uy, options};
+  std::optional<FarLineMarch> farMarch;
+  if (far) farMarch.emplace(*far, terrain, phi);
+  const detail::BlockSweep sweep{terrain, layout, ux, uy, options, farMarch ? &*farMarch : nullptr};
   if (layout.majorIsColumn) {
     detail::sweepWindowBlocks<true>(sweep, visit);
   } else {

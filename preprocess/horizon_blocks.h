@@ -34,6 +34,8 @@
 
 namespace aal {
 
+struct FarField;
+
 // The texels of one sweep step of one group of lines: texel j (0 <= j <
 // count) is firstTexel + j * stride in the heightfield, with horizon
 // tangent tanHorizon[j] (kNoHorizonTangent when no terrain lies ahead).
@@ -110,11 +112,17 @@ void sweepHorizonBlocks(const BakeTerrain& terrain, double phi, const HorizonSwe
 // The texels of a partial window (terrain.window) for azimuth phi, its
 // lines walked with the unlimited hull from options.windowReachM before it:
 // sweepHorizons() with windowReachM, in blocks whose texels are window
-// indices (BakeTerrain::windowIndex). Open edges only (options.clampEdge
-// must be false): the walk of a line that begins inside the field would
-// take its first point for the edge.
+// indices (BakeTerrain::windowIndex).
+// With `far` (a far field's pyramid and options; docs/baking.md, "Far
+// field"), each line starts with the pyramid's block maxima beyond its
+// first point in its hull (FarLineMarch), so the tangents cover the whole
+// DEM; with clamped edges the ground beyond the DEM goes on flat from the
+// last of them. Without, edges must be open (options.clampEdge false): the
+// walk of a line that begins inside the field would take its first point
+// for the edge.
 void sweepWindowHorizonBlocks(const BakeTerrain& terrain, double phi,
-                              const HorizonSweepOptions& options, HorizonBlockVisitor visit);
+                              const HorizonSweepOptions& options, HorizonBlockVisitor visit,
+                              const FarField* far = nullptr);
 
 // The same for two opposite azimuths phi and phiOpposite (phi + pi, as the
 // caller computes it) in one pass: each block holds both azimuths'

@@ -92,10 +92,9 @@ void checkTiledBakeOptions(const BakeOptions& bake, const TiledBakeOptions& tile
     throw std::invalid_argument("a tiled bake needs the sweep method");
   }
   const FarFieldOptions& far = tiled.farField;
-  if (far.spacing < 1 || far.spacing > 256 || far.resolution < 1 || far.resolution > 1024 ||
-      !(far.nearReachM >= 0.0) || !std::isfinite(far.nearReachM)) {
-    throw std::invalid_argument(
-        "far field: lattice spacing, resolution or near reach out of range");
+  if (far.resolution < 1 || far.resolution > 1024 || !(far.nearReachM >= 0.0) ||
+      !std::isfinite(far.nearReachM)) {
+    throw std::invalid_argument("far field: resolution or near reach out of range");
   }
 }
 
@@ -380,12 +379,12 @@ std::pair<double, double> cellRange(const Heightfield& field) {
 }  // namespace
 
 int tiledBakePyramidShift(const Heightfield& geometry, const TiledBakeOptions& tiled) {
-  const auto [smallest, largest] = cellRange(geometry);
-  return farFieldBaseShift(resolvedFarField(geometry, tiled), smallest, largest);
+  const double largest = cellRange(geometry).second;
+  return farFieldBaseShift(resolvedFarField(geometry, tiled), largest);
 }
 
 double minimumNearReachM(const Heightfield& geometry, const FarFieldOptions& far) {
-  return kMinFarFieldReachSpacings * far.spacing * cellRange(geometry).first;
+  return far.resolution * cellRange(geometry).first;
 }
 
 void checkNearReach(const Heightfield& geometry, const TiledBakeOptions& tiled) {
@@ -394,10 +393,12 @@ void checkNearReach(const Heightfield& geometry, const TiledBakeOptions& tiled) 
   if (!(reach > 0.0) || reach >= minimum * (1.0 - 1e-9)) return;
   std::ostringstream message;
   message << "--near-reach " << reach << " m is shorter than the far field allows: at least "
-          << minimum << " m (" << kMinFarFieldReachSpacings << " lattice spacings of "
-          << tiled.farField.spacing << " cells of " << cellRange(geometry).first
-          << " m, docs/baking.md, \"Far field\"); give at least " << minimum
-          << ", or leave the option out (the default is that minimum)";
+          << minimum << " m (" << tiled.farField.resolution << " cells of "
+          << cellRange(geometry).first
+          << " m, where the far field's blocks are one cell, docs/baking.md, \"Far field\"); "
+             "give at least "
+          << minimum << ", or leave the option out (the default: "
+          << kFarFieldReachCells * cellRange(geometry).first << " m)";
   throw InputError(message.str());
 }
 

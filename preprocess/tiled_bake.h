@@ -78,13 +78,10 @@ constexpr int kMinTileSize = 16, kMaxTileSize = 16384;
 
 // The near sweep's reach of a far-field tiled bake by default, in cells.
 constexpr int kFarFieldReachCells = 128;
-// The shortest near reach R the far field takes, in lattice spacings
-// (FarFieldOptions::spacing texels): its horizons are blended from lattice
-// points up to spacing * sqrt 2 cells away, which must stay small against R
-// (docs/baking.md, "Far field": at R = 2 spacings jacksboro's mean error
-// was 0.019; --near-reach 1 gave a mean |delta visible| of 0.051). With the
-// default spacing of 16 it is the default reach, kFarFieldReachCells.
-constexpr int kMinFarFieldReachSpacings = 8;
+// The shortest near reach R the far field takes is FarFieldOptions::
+// resolution cells of the field's smallest cell: there its nearest blocks
+// are one cell, and a shorter R would need blocks smaller than a cell
+// (docs/baking.md, "Far field").
 
 struct TiledBakeOptions {
   int tileSize = kDefaultTileSize;
@@ -102,7 +99,8 @@ struct TiledBakeOptions {
   RasterWriteOptions skyViewFactorRaster;
 };
 
-// That minimum in metres for `geometry` (of its smallest cell).
+// The shortest near reach in metres for `geometry`: far.resolution of its
+// smallest cells.
 double minimumNearReachM(const Heightfield& geometry, const FarFieldOptions& far);
 // Throws InputError, naming --near-reach and the minimum, when
 // tiled.farField.nearReachM is given (> 0) and shorter than

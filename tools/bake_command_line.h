@@ -61,8 +61,8 @@ inline void addSweepOptions(CLI::App& app, SweepCommandLine& o) {
 inline void addNearReachOption(CLI::App& app, SweepCommandLine& o) {
   app.add_option("--near-reach", o.nearReach,
                  "tiled, without --max-distance: metres the near sweep covers before the far "
-                 "field's pyramid takes over (default and minimum 128 cells of the DEM's "
-                 "smallest cell, 8 spacings of the far field's lattice; each doubling divides "
+                 "field's pyramid takes over (default 128 cells of the DEM's smallest cell, "
+                 "minimum 16, where the pyramid's blocks are one cell; each doubling divides "
                  "the pyramid's memory by 4 and adds that many steps to every tile's lines)")
       ->check(kPositive);
 }

@@ -6,9 +6,7 @@
 
 #include <algorithm>
 #include <atomic>
-#include <bit>
 #include <cmath>
-#include <cstdint>
 #include <filesystem>
 #include <limits>
 #include <numbers>
@@ -238,67 +236,83 @@ TEST(FarField, WindowBlocksEqualTheWindowSweep) {
   setHorizonAvx2Allowed(true);
 }
 
-// A window's far field merged a block at a time (single precision, 8
-// texels at once with AVX2) against the per-texel merge in double
-// precision (FarHorizons::mergedTangent), on the window's blocks of every
-// azimuth: within float rounding, and the AVX2 and scalar paths the same
-// bit for bit.
-TEST(FarField, MergedBlocksAgreeWithTheTexelMergeOnEveryPath) {
+// A window's lines seeded with the far field (sweepWindowHorizonBlocks
+// with a FarField) against the same lines walked over the whole DEM
+// (sweepHorizonBlocks), at the window's texels: block maxima lower a
+// horizon rarely and little, and the far field recovers nearly all of what
+// the near sweep alone misses. Open edges flat and curved, clamped
+// edges curved, the AVX2 and scalar walks.
+TEST(FarField, SeededLinesSeeNearlyAllTheNearSweepMisses) {
   const Heightfield field = fbm(300, 220, 900);
   const TexelWindow window{120, 70, 90, 75};
+  const BakeTerrain whole = prepareBakeTerrain(field);
   const BakeTerrain part = prepareBakeTerrain(field, window);
   FarFieldOptions options;
   options.nearReachM = 40 * 30.0;
-  options.spacing = 4;
   const HeightPyramid pyramid =
-      buildHeightPyramid(field, farFieldBaseShift(options, field.cellSizeYM, field.cellSizeXM));
+      buildHeightPyramid(field, farFieldBaseShift(options, field.cellSizeXM));
   const FarField far{&pyramid, options};
-  HorizonSweepOptions o;
-  o.windowReachM = options.nearReachM;
-  size_t raised = 0, texels = 0;
-  for (const double curvature : {0.0, 1e-6}) {
-    o.curvature = curvature;
-    for (int a = 0; a < 16; ++a) {
-      const double phi = (a + 0.3) * 2 * std::numbers::pi / 16;
-      const FarHorizons horizons(far, part, phi, curvature, false);
-      std::vector<float> merged[2];
-      for (const bool avx2 : {true, false}) {
-        setHorizonAvx2Allowed(avx2);
-        std::vector<float>& out = merged[avx2 ? 0 : 1];
-        out.assign(window.texelCount(), NAN);
-        sweepWindowHorizonBlocks(part, phi, o, [&](const HorizonBlock& b) {
-          alignas(32) float block[HorizonBlock::kPaddedTexels];
-          horizons.mergeBlock(b, block);
+  for (const bool avx2 : {true, false}) {
+    setHorizonAvx2Allowed(avx2);
+    for (const auto& [curvature, clampEdge] :
+         {std::pair{0.0, false}, std::pair{1e-6, false}, std::pair{1e-6, true}}) {
+      HorizonSweepOptions o;
+      o.curvature = curvature;
+      o.clampEdge = clampEdge;
+      double seededError = 0, nearError = 0, largestUnder = 0;
+      size_t counted = 0, lower = 0;
+      for (int a = 0; a < 16; ++a) {
+        const double phi = (a + 0.3) * 2 * std::numbers::pi / 16;
+        std::vector<float> reference(window.texelCount()), seeded(window.texelCount()),
+            nearOnly(window.texelCount());
+        sweepHorizonBlocks(whole, phi, o, [&](const HorizonBlock& b) {
           for (int j = 0; j < b.count; ++j) {
             const size_t i = b.firstTexel + j * b.stride;
-            out[i] = block[j];
-            const int col = window.col + static_cast<int>(i % window.width);
-            const int row = window.row + static_cast<int>(i / window.width);
-            const double expected =
-                horizons.mergedTangent(col, row, field.at(col, row), b.tanHorizon[j]);
-            if (expected <= kNoHorizonTangent) {
-              EXPECT_LE(block[j], kNoHorizonTangent);
-            } else {
-              EXPECT_NEAR(block[j], expected, 2e-5 * (1 + std::abs(expected)))
-                  << "texel " << i << " azimuth " << a;
-            }
-            if (avx2) {
-              ++texels;
-              if (block[j] > b.tanHorizon[j]) ++raised;
+            const int col = static_cast<int>(i % field.width),
+                      row = static_cast<int>(i / field.width);
+            if (window.containsColumn(col) && window.containsRow(row)) {
+              reference[window.index(col, row)] = b.tanHorizon[j];
             }
           }
         });
+        HorizonSweepOptions windowed = o;
+        windowed.windowReachM = options.nearReachM;
+        const auto keep = [](std::vector<float>& out) {
+          return [&out](const HorizonBlock& b) {
+            for (int j = 0; j < b.count; ++j) out[b.firstTexel + j * b.stride] = b.tanHorizon[j];
+          };
+        };
+        sweepWindowHorizonBlocks(part, phi, windowed, keep(seeded), &far);
+        HorizonSweepOptions open = windowed;
+        open.clampEdge = false;
+        sweepWindowHorizonBlocks(part, phi, open, keep(nearOnly));
+        for (size_t i = 0; i < reference.size(); ++i) {
+          if (reference[i] <= kNoHorizonTangent) continue;
+          const double under = reference[i] - seeded[i];
+          if (under > 1e-4 * (1 + std::abs(reference[i]))) ++lower;
+          largestUnder = std::max(largestUnder, under);
+          seededError += seeded[i] - reference[i];
+          nearError += reference[i] - std::max(nearOnly[i], kNoHorizonTangent);
+          ++counted;
+        }
       }
-      for (size_t i = 0; i < merged[0].size(); ++i) {
-        ASSERT_EQ(std::bit_cast<uint32_t>(merged[0][i]), std::bit_cast<uint32_t>(merged[1][i]))
-            << "texel " << i << " azimuth " << a << ": " << merged[0][i] << " with AVX2, "
-            << merged[1][i] << " without";
-      }
+      SCOPED_TRACE(::testing::Message()
+                   << "curvature " << curvature << ", clamped " << clampEdge << ": seeded "
+                   << seededError / counted << ", near only " << nearError / counted
+                   << ", lower at " << lower << " of " << counted << " by up to " << largestUnder);
+      // The near sweep alone misses far terrain at this reach; the far
+      // field's blocks overshoot by less than 15 % of that (0.07-0.09 here).
+      EXPECT_GT(nearError / counted, 1e-3);
+      EXPECT_LT(seededError, 0.15 * nearError);
+      // Samples every half block may pass by a block's corner, or miss the
+      // neighbour across the line that the line's height blends in: a
+      // horizon comes out lower at a few texels, by little (0.1-0.2 % of
+      // them, by up to 0.0027 here).
+      EXPECT_LT(lower, counted / 200);
+      EXPECT_LT(largestUnder, 0.005);
     }
   }
   setHorizonAvx2Allowed(true);
-  // The far field decides a good share of the texels: the test exercises it.
-  EXPECT_GT(raised, texels / 10) << raised << " of " << texels;
 }
 
 // Mean and 99th percentile of |visible fraction difference| and mean
@@ -351,14 +365,13 @@ Heightfield ridgeField() {
   return field;
 }
 
-// The default far field's proportions (near reach 8 lattice spacings,
-// blocks 1/16 of their distance) at a smaller scale, on tiles of 64.
+// The default far field's proportions (a near reach of 128 cells, blocks
+// 1/16 of their distance) at a smaller scale, on tiles of 64.
 TiledBakeOptions farTiles() {
   TiledBakeOptions t;
   t.tileSize = 64;
   t.halfFloat = false;  // compared with the in-memory bake's floats
   t.farField.nearReachM = 64 * 30.0;
-  t.farField.spacing = 8;
   return t;
 }
 
@@ -411,17 +424,15 @@ TEST(FarField, TiledBakeSeesADistantRidgeBeyondTheHalo) {
   }
 }
 
-// Block maxima never put the far horizon below the terrain's: with the
-// lattice's largest-of-corners blend the far-field bake sees no more sky
-// than the in-memory one anywhere but within float noise.
+// Block maxima never put the far horizon below the terrain's: the
+// far-field bake sees no more sky than the in-memory one anywhere but
+// within float noise.
 TEST(FarField, MaximaNeverSeeMoreSkyThanTheTerrainAllows) {
   test::TempDir dir;
   const Heightfield field = ridgeField();
   const BakeOptions o = unlimited();
   const ApertureMap reference = bakeApertures(field, o).aperture;
-  TiledBakeOptions t = farTiles();
-  t.farField.maxOfCorners = true;
-  bakeTiled(field, o, t, (dir.path() / "tiles").string());
+  bakeTiled(field, o, farTiles(), (dir.path() / "tiles").string());
   const ApertureMap tiled = readApertureMap((dir.path() / "tiles").string());
   size_t moreSky = 0;
   for (size_t i = 0; i < reference.texelCount(); ++i) {
@@ -441,11 +452,11 @@ TEST(FarField, FoldersRecordTheFarFieldAndRefuseOtherBakes) {
   const ApertureTileIndex index = readApertureTileIndex(folder);
   EXPECT_EQ(index.map.info.method, farFieldMethod(t.farField));
   EXPECT_EQ(index.map.info.maxDistanceM, 0.0);
-  EXPECT_NE(index.map.info.method.find("far-field(max, reach 1920 m, lattice 8, blocks 1/16)"),
+  EXPECT_NE(index.map.info.method.find("far-field(max, reach 1920 m, lines, blocks 1/16)"),
             std::string::npos)
       << index.map.info.method;
   // Other far-field options or a max distance: another bake.
-  t.farField.spacing = 4;
+  t.farField.resolution = 8;
   EXPECT_THROW(bakeTiled(field, unlimited(), t, folder), InputError);
   BakeOptions limited = unlimited();
   limited.maxDistanceM = 300;

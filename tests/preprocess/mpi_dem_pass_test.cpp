@@ -94,9 +94,9 @@ TEST(MpiDemPass, AnySharesGiveTheWholeDemsPyramidAndChecksum) {
   bake.azimuths = 8;
   TiledBakeOptions tiled;
   tiled.tileSize = 32;
-  // The default near reach: blocks of 4 rows, of which 123 is no multiple.
+  // The default near reach: blocks of 8 rows, of which 123 is no multiple.
   const int shift = tiledBakePyramidShift(dem.geometry, tiled);
-  ASSERT_EQ(shift, 2);
+  ASSERT_EQ(shift, 3);
   const HeightPyramid want = buildHeightPyramid(whole, shift);
   const std::vector<std::pair<std::string, DemChunkOwner>> owners = {
       {"even", evenDemChunkOwner},

@@ -398,7 +398,7 @@ TEST(TiledBake, RejectsWhatItCannotBake) {
   EXPECT_NO_THROW(checkTiledBakeOptions(o, t));
   o.maxDistanceM = 0;  // the far field completes the horizons
   EXPECT_NO_THROW(checkTiledBakeOptions(o, t));
-  t.farField.spacing = 0;
+  t.farField.resolution = 0;
   EXPECT_THROW(checkTiledBakeOptions(o, t), std::invalid_argument);
   t.farField = {};
   // A partial window without a distance limit or a far field would need

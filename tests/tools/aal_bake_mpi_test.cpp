@@ -208,7 +208,7 @@ TEST(AalBakeMpi, ANearReachBelowTheFarFieldsMinimumIsRefusedOnce) {
       runMpi(2, quoted(dem) + " -o " + quoted(folder) + " --tile-size 16 --near-reach 1");
   EXPECT_EQ(reach.exitCode, 2) << reach.out;
   EXPECT_NE(reach.out.find("--near-reach 1 m is shorter than the far field allows: at least "
-                           "3840 m"),
+                           "480 m"),
             std::string::npos)
       << reach.out;
   EXPECT_EQ(reach.out.find("aal-bake-mpi", reach.out.find("aal-bake-mpi") + 1), std::string::npos)

@@ -788,28 +788,29 @@ TEST(HostileInput, CamerasOutsideTheirRangesAreRefusedBeforeTheBake) {
   EXPECT_FALSE(fs::exists(dir.path() / "x.png"));
 }
 
-// The far field's lattice needs a near reach of at least 8 of its spacings
-// (docs/baking.md): --near-reach 1 gave a mean |delta visible| of 0.051
-// without a word.
+// The far field needs a near reach of at least 16 cells, where its blocks
+// are one cell (docs/baking.md, "Far field"): a shorter one is refused
+// with the minimum rather than baked with blocks too coarse for it.
 TEST(HostileInput, ANearReachBelowTheFarFieldsMinimumIsRefused) {
   TempDir dir;
   const fs::path dem = dir.path() / "d.tif", tiles = dir.path() / "tiles";
-  writeDemAt(dem, 40, 40);  // 30 m cells: at least 8 x 16 x 30 = 3840 m
-  for (const std::string reach : {"1", "3000"}) {
+  writeDemAt(dem, 40, 40);  // 30 m cells: at least 16 x 30 = 480 m
+  for (const std::string reach : {"1", "450"}) {
     const auto r = runTool("aal-bake", quoted(dem) + " --tile-size 16 -q --near-reach " + reach +
                                            " -o " + quoted(tiles));
     EXPECT_EQ(r.exitCode, 2) << r.out;
     EXPECT_NE(r.out.find("--near-reach " + reach +
-                         " m is shorter than the far field allows: at least 3840 m (8 lattice "
-                         "spacings of 16 cells of 30 m"),
+                         " m is shorter than the far field allows: at least 480 m (16 cells of "
+                         "30 m, where the far field's blocks are one cell"),
               std::string::npos)
         << r.out;
-    EXPECT_NE(r.out.find("give at least 3840, or leave the option out"), std::string::npos)
+    EXPECT_NE(r.out.find("give at least 480, or leave the option out (the default: 3840 m)"),
+              std::string::npos)
         << r.out;
   }
   EXPECT_EQ(entriesOf(dir.path()), std::vector<std::string>{"d.tif"});
   EXPECT_EQ(runTool("aal-bake", quoted(dem) +
-                                    " --tile-size 16 --azimuths 4 -q --near-reach 3840 "
+                                    " --tile-size 16 --azimuths 4 -q --near-reach 480 "
                                     "-o " +
                                     quoted(tiles))
                 .exitCode,
