@@ -148,14 +148,7 @@ class BlockLineWalker {
   // A line's place along u (m) where it crosses major coordinate `major` at
   // minor coordinate `minor`: the distance the hull points are placed by.
   double lineT(int major, double minor) const {
-    if constexpr (kMajorIsColumn) {
-      const int nearRow = std::min(static_cast<int>(minor + 0.5), minorMax_);
-      return (major - terrain_.centreCol) * terrain_.rowCellX[nearRow] * ux_ +
-             (rowCentre_ - minor) * terrain_.cellY * uy_;
-    } else {
-      return (minor - terrain_.centreCol) * terrain_.rowCellX[major] * ux_ +
-             terrain_.y(major) * uy_;
-    }
+    return placeAlongU<kMajorIsColumn>(terrain_, major, minor, ux_, uy_);
   }
 
   // HeightView::at over the heights held, from the walker's own copy of

@@ -153,6 +153,21 @@ inline double clampedEdgeSlope(double rise, double toEdge, double curvature) {
 // A finite sentinel keeps the inner loops free of NaN/inf tests.
 constexpr double kNoHorizon = -1e300;
 
+// Metric position of a sweep's grid point (major, minor) projected on
+// u = (ux, uy): a line's place along u, which its hull points are placed by
+// (LineWalker, BlockLineWalker). Columns' x from the row nearest `minor`.
+template <bool kMajorIsColumn>
+inline double placeAlongU(const BakeTerrain& terrain, int major, double minor, double ux,
+                          double uy) {
+  if constexpr (kMajorIsColumn) {
+    const int nearRow = std::min(static_cast<int>(minor + 0.5), terrain.height - 1);
+    return (major - terrain.centreCol) * terrain.rowCellX[nearRow] * ux +
+           (0.5 * (terrain.height - 1) - minor) * terrain.cellY * uy;
+  } else {
+    return (minor - terrain.centreCol) * terrain.rowCellX[major] * ux + terrain.y(major) * uy;
+  }
+}
+
 // Walks the lines of one azimuth. Lines are stepped in lockstep in groups of
 // neighbours so that the texels touched at one step sit together in memory
 // whatever the azimuth. kMajorIsColumn: lines advance column by column.
@@ -182,8 +197,7 @@ class LineWalker {
         dRow_(uy > 0 ? -1 : 1),  // rows grow south
         wx_(std::abs(ux) > 1e-12 ? std::abs(ux) : 0.0),
         wy_(std::abs(uy) > 1e-12 ? std::abs(uy) : 0.0),
-        invCellY_(1.0 / terrain.cellY),
-        rowCentre_(0.5 * (terrain.height - 1)) {}
+        invCellY_(1.0 / terrain.cellY) {}
 
   void reset(Line& line) const {
     line.hull.resize(static_cast<size_t>(layout_.majorLength));
@@ -255,14 +269,7 @@ class LineWalker {
 
   // Metric position of the grid point (major, minor) projected on u.
   double along(int major, double minor) const {
-    if constexpr (kMajorIsColumn) {
-      const int nearRow = std::min(static_cast<int>(minor + 0.5), minorMax_);
-      return (major - terrain_.centreCol) * terrain_.rowCellX[nearRow] * ux_ +
-             (rowCentre_ - minor) * terrain_.cellY * uy_;
-    } else {
-      return (minor - terrain_.centreCol) * terrain_.rowCellX[major] * ux_ +
-             terrain_.y(major) * uy_;
-    }
+    return placeAlongU<kMajorIsColumn>(terrain_, major, minor, ux_, uy_);
   }
 
   // Horizon of the point just pushed (true height z): with a distance limit,
@@ -297,7 +304,7 @@ class LineWalker {
   const double ux_, uy_, curvature_, maxDistance_;
   const bool clampEdge_;
   const int minorMax_, dCol_, dRow_;
-  const double wx_, wy_, invCellY_, rowCentre_;
+  const double wx_, wy_, invCellY_;
 };
 
 // Tangent at a texel between two lines, weighted by distance; a line with
