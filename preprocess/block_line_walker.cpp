@@ -80,10 +80,7 @@ void BlockLineWalker<kMajorIsColumn>::seedFar(const FarLineMarch& far, int step,
     for (int k = count - 1; k >= 0; --k) {
       const float pointT = static_cast<float>(t + distance[k]);
       const float z = height[k] - curvature_ * pointT * pointT;
-      while (n >= 2 && (hull[n - 2].z - z) * (hull[n - 1].t - pointT) >=
-                           (hull[n - 1].z - z) * (hull[n - 2].t - pointT)) {
-        --n;
-      }
+      while (n >= 2 && hullTopUnder(hull, n, pointT, z)) --n;
       hull[n++] = {pointT, z};
     }
     size_[i] = n;
@@ -158,9 +155,7 @@ void BlockLineWalker<kMajorIsColumn>::updateHulls(const StepSlice& slice, LineVa
     }
     // Pops are rare beyond two per step: the first two are tested without
     // branches (which mispredict here), the loop takes the rest.
-    const auto under = [&](int m) {
-      return (hull[m - 2].z - z) * (hull[m - 1].t - t) >= (hull[m - 1].z - z) * (hull[m - 2].t - t);
-    };
+    const auto under = [&](int m) { return hullTopUnder(hull, m, t, z); };
     int n = size_[i];
     n -= (n >= 2 && under(n)) ? 1 : 0;
     n -= (n >= 2 && under(n)) ? 1 : 0;

@@ -20,6 +20,12 @@ struct HullPointF {
   float t, z;  // distance along u (m), height with the curvature drop (m)
 };
 
+// Whether the top of a hull of m >= 2 points falls under the line from the
+// point below it to a new point (t, z) nearer along the walk: it is popped.
+inline bool hullTopUnder(const HullPointF* hull, int m, float t, float z) {
+  return (hull[m - 2].z - z) * (hull[m - 1].t - t) >= (hull[m - 1].z - z) * (hull[m - 2].t - t);
+}
+
 // clampedEdgeSlope() in single precision, written with selects.
 inline float clampedEdgeSlopeF(float rise, float toEdge, float curvature) {
   const float tangentDistance = std::sqrt(std::max(0.0f, -rise) / std::max(curvature, 1e-30f));
