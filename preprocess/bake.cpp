@@ -4,6 +4,7 @@
 #include <cmath>
 #include <limits>
 #include <numbers>
+#include <optional>
 #include <string>
 
 #include <tbb/parallel_for.h>
@@ -95,7 +96,11 @@ class AzimuthSweeps {
     sweep_.clampEdge = o.clampEdge;
     sweep_.curvature = o.curvature ? (1.0 - o.refraction) / (2.0 * kEarthRadiusM) : 0.0;
     sweep_.maxDistanceM = o.maxDistanceM;
-    if (o.farField && o.maxDistanceM <= 0.0) sweep_.windowReachM = o.farField->options.nearReachM;
+    if (o.farField && o.maxDistanceM <= 0.0) {
+      sweep_.windowReachM = o.farField->options.nearReachM;
+      // The blocks of the pyramid this window's lines read, once per bake.
+      if (o.farField->pyramid) farWindow_.emplace(*o.farField, terrain);
+    }
   }
 
   void run() const {
@@ -171,7 +176,7 @@ class AzimuthSweeps {
   void sweepNearAndFar(const AzimuthSlice& s) const {
     sweepWindowHorizonBlocks(
         terrain_, s.phi, sweep_, [&](const HorizonBlock& b) { sums_.addBlock(b, s, nullptr); },
-        &*o_.farField);
+        &*farWindow_);
   }
 
   // The sums of the (weighted) SVF terms to the sky-view factor: 1 minus
@@ -187,6 +192,7 @@ class AzimuthSweeps {
   const SliceAccumulator sums_;
   const double dPhi_;
   HorizonSweepOptions sweep_;
+  std::optional<FarFieldWindow> farWindow_;
 };
 
 // Turns the sums into unit bent normals and arc lengths, in place.

@@ -34,8 +34,47 @@ int farFieldBaseShift(const FarFieldOptions& options, double largestCellM);
 std::string farFieldMethod(const FarFieldOptions& options);
 
 struct FarField {
-  const HeightPyramid* pyramid = nullptr;
+  const HeightPyramid* pyramid = nullptr;  // the whole DEM's
   FarFieldOptions options;
+};
+
+// The blocks of each pyramid level that the lines of one window's sweep
+// read, copied out of the pyramid: a sample d beyond a line's start comes
+// from a level of blocks no finer than (R + d) / resolution, so a level of
+// blocks of b cells is read no farther than about 2 b resolution from the
+// window. The finest levels are read only around the window and every
+// level holds some 64 x 64 blocks beyond it: the resident part stays small
+// however large the DEM (docs/baking.md, "Far field").
+class FarFieldWindow {
+ public:
+  // For the sweep of terrain.window (a tile) from the heights terrain holds.
+  FarFieldWindow(const FarField& far, const BakeTerrain& terrain);
+
+  struct Level {
+    int shift = 0;
+    int x0 = 0, y0 = 0, width = 0, height = 0;  // blocks held
+    std::vector<float> max;
+
+    // The maximum of block (bx, by) of the level; a block outside those
+    // held is a logic_error.
+    float maxAt(int bx, int by) const {
+      const unsigned x = static_cast<unsigned>(bx - x0), y = static_cast<unsigned>(by - y0);
+      if (x >= static_cast<unsigned>(width) || y >= static_cast<unsigned>(height)) outside(bx, by);
+      return max[static_cast<size_t>(y) * static_cast<size_t>(width) + x];
+    }
+    [[noreturn]] void outside(int bx, int by) const;
+  };
+
+  const FarFieldOptions& options() const { return options_; }
+  int baseShift() const { return levels_.front().shift; }
+  int coarsestShift() const { return levels_.back().shift; }
+  // The level of blocks of 2^shift, shift in [baseShift, coarsestShift].
+  const Level& level(int shift) const { return levels_[static_cast<size_t>(shift - baseShift())]; }
+  size_t bytes() const;
+
+ private:
+  FarFieldOptions options_;
+  std::vector<Level> levels_;
 };
 
 // The far samples of the lines of azimuth phi (radians from east,
@@ -46,7 +85,7 @@ struct FarField {
 // level coarser at each doubling, every half block, to the DEM's edge.
 class FarLineMarch {
  public:
-  FarLineMarch(const FarField& far, const BakeTerrain& terrain, double phi);
+  FarLineMarch(const FarFieldWindow& far, const BakeTerrain& terrain, double phi);
 
   // The samples beyond the point at field column colF, row rowF (texel
   // units, inside the DEM), nearest first: the distance beyond the point
@@ -56,7 +95,7 @@ class FarLineMarch {
              std::vector<float>& height) const;
 
  private:
-  const FarField& far_;
+  const FarFieldWindow& far_;
   const BakeTerrain& terrain_;
   double ux_, uy_, smallestCell_, largestCell_;
 };

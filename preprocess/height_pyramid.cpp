@@ -1,11 +1,17 @@
 #include "aperture/preprocess/height_pyramid.h"
 
+#include <fcntl.h>
+#include <unistd.h>
+
 #include <algorithm>
+#include <cerrno>
 #include <cmath>
 #include <cstddef>
+#include <cstring>
 #include <limits>
 #include <stdexcept>
 #include <string>
+#include <utility>
 
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
@@ -13,6 +19,8 @@
 namespace aal {
 
 namespace {
+
+constexpr float kNoHeight = -std::numeric_limits<float>::infinity();
 
 int blocks(int texels, int shift) {
   return ((texels - 1) >> shift) + 1;
@@ -23,9 +31,40 @@ int blockSpan(int b, int shift, int texels) {
   return std::min(texels, (b + 1) << shift) - (b << shift);
 }
 
+std::string systemError(const std::string& what, const std::string& folder) {
+  return "far-field pyramid file in " + folder + ": " + what + ": " + std::strerror(errno);
+}
+
+// A file in `folder` that no directory names: O_TMPFILE where the file
+// system has it, else a named one unlinked at once.
+int openUnnamedFile(const std::string& folder) {
+#ifdef O_TMPFILE
+  const int fd = ::open(folder.c_str(), O_TMPFILE | O_RDWR | O_CLOEXEC, 0600);
+  if (fd >= 0) return fd;
+#endif
+  std::string path = folder + "/.aal-pyramid-XXXXXX";
+  const int named = ::mkstemp(path.data());
+  if (named < 0) throw std::runtime_error(systemError("cannot create it", folder));
+  ::unlink(path.c_str());
+  return named;
+}
+
+// Blocks of 2^shift along one base-level block row: the maxima of `spanY`
+// rows of `width` texels.
+void blockRowMax(const float* rows, int spanY, int width, int shift, float* max) {
+  std::fill(max, max + blocks(width, shift), kNoHeight);
+  for (int i = 0; i < spanY; ++i) {
+    const float* z = rows + static_cast<size_t>(i) * width;
+    for (int col = 0; col < width; ++col) {
+      const int bx = col >> shift;
+      max[bx] = std::max(max[bx], z[col]);
+    }
+  }
+}
+
 }  // namespace
 
-HeightPyramid::HeightPyramid(int width, int height, int baseShift)
+HeightPyramid::HeightPyramid(int width, int height, int baseShift, const std::string& fileFolder)
     : width_(width), height_(height) {
   if (width < 1 || height < 1 || baseShift < 0 || baseShift > 30) {
     throw std::invalid_argument("height pyramid: bad size or base shift");
@@ -35,15 +74,98 @@ HeightPyramid::HeightPyramid(int width, int height, int baseShift)
     level.shift = shift;
     level.width = blocks(width, shift);
     level.height = blocks(height, shift);
-    levels_.push_back(std::move(level));
-    if (levels_.back().width == 1 && levels_.back().height == 1) break;
+    level.offset = floats_;
+    floats_ += static_cast<size_t>(level.width) * level.height;
+    levels_.push_back(level);
+    if (level.width == 1 && level.height == 1) break;
   }
-  Level& base = levels_.front();
-  base.max.assign(static_cast<size_t>(base.width) * base.height,
-                  -std::numeric_limits<float>::infinity());
-  base.mean.assign(base.max.size(), 0.0f);
-  rowSums_.assign(static_cast<size_t>(base.width), 0.0);
-  filled_.assign(static_cast<size_t>(base.height), 0);
+  filled_.assign(static_cast<size_t>(levels_.front().height), 0);
+  if (fileFolder.empty()) {
+    memory_.assign(floats_, kNoHeight);
+    return;
+  }
+  fd_ = openUnnamedFile(fileFolder);
+  if (::ftruncate(fd_, static_cast<off_t>(bytes())) != 0) {
+    const std::string message = systemError("cannot size it", fileFolder);
+    ::close(fd_);
+    throw std::runtime_error(message);
+  }
+}
+
+HeightPyramid::~HeightPyramid() {
+  if (fd_ >= 0) ::close(fd_);
+}
+
+HeightPyramid::HeightPyramid(HeightPyramid&& other) noexcept
+    : width_(other.width_),
+      height_(other.height_),
+      floats_(other.floats_),
+      fd_(std::exchange(other.fd_, -1)),
+      memory_(std::move(other.memory_)),
+      rowsAdded_(other.rowsAdded_),
+      filledBlockRows_(other.filledBlockRows_),
+      filled_(std::move(other.filled_)),
+      levels_(std::move(other.levels_)),
+      rowMax_(std::move(other.rowMax_)) {}
+
+HeightPyramid& HeightPyramid::operator=(HeightPyramid&& other) noexcept {
+  if (this == &other) return *this;
+  if (fd_ >= 0) ::close(fd_);
+  width_ = other.width_;
+  height_ = other.height_;
+  floats_ = other.floats_;
+  fd_ = std::exchange(other.fd_, -1);
+  memory_ = std::move(other.memory_);
+  rowsAdded_ = other.rowsAdded_;
+  filledBlockRows_ = other.filledBlockRows_;
+  filled_ = std::move(other.filled_);
+  levels_ = std::move(other.levels_);
+  rowMax_ = std::move(other.rowMax_);
+  return *this;
+}
+
+void HeightPyramid::writeFloats(size_t offset, const float* values, size_t count) {
+  if (fd_ < 0) {
+    std::copy(values, values + count, memory_.begin() + static_cast<std::ptrdiff_t>(offset));
+    return;
+  }
+  const char* bytes = reinterpret_cast<const char*>(values);
+  size_t left = count * sizeof(float);
+  off_t at = static_cast<off_t>(offset * sizeof(float));
+  while (left > 0) {
+    const ssize_t n = ::pwrite(fd_, bytes, left, at);
+    if (n < 0 && errno == EINTR) continue;
+    if (n <= 0) {
+      throw std::runtime_error(std::string("far-field pyramid file: cannot write ") +
+                               std::to_string(this->bytes()) + " bytes: " +
+                               std::strerror(n < 0 ? errno : ENOSPC));
+    }
+    bytes += n;
+    left -= static_cast<size_t>(n);
+    at += n;
+  }
+}
+
+void HeightPyramid::readFloats(size_t offset, float* values, size_t count) const {
+  if (fd_ < 0) {
+    const auto first = memory_.begin() + static_cast<std::ptrdiff_t>(offset);
+    std::copy(first, first + static_cast<std::ptrdiff_t>(count), values);
+    return;
+  }
+  char* bytes = reinterpret_cast<char*>(values);
+  size_t left = count * sizeof(float);
+  off_t at = static_cast<off_t>(offset * sizeof(float));
+  while (left > 0) {
+    const ssize_t n = ::pread(fd_, bytes, left, at);
+    if (n < 0 && errno == EINTR) continue;
+    if (n <= 0) {
+      throw std::runtime_error(std::string("far-field pyramid file: cannot read it back: ") +
+                               (n < 0 ? std::strerror(errno) : "it is shorter than written"));
+    }
+    bytes += n;
+    left -= static_cast<size_t>(n);
+    at += n;
+  }
 }
 
 void HeightPyramid::addRows(const float* rows, int count) {
@@ -53,25 +175,29 @@ void HeightPyramid::addRows(const float* rows, int count) {
   if (rowsAdded_ == 0 && filledBlockRows_ > 0) {
     throw std::invalid_argument("height pyramid: rows in order after block rows");
   }
-  Level& base = levels_.front();
+  const Level& base = levels_.front();
+  if (rowMax_.empty()) rowMax_.assign(static_cast<size_t>(base.width), kNoHeight);
   for (int i = 0; i < count; ++i) {
     const int row = rowsAdded_ + i;
-    const int blockRow = row >> base.shift;
     const float* z = rows + static_cast<size_t>(i) * width_;
-    float* max = base.max.data() + static_cast<size_t>(blockRow) * base.width;
     for (int col = 0; col < width_; ++col) {
-      const int bx = col >> base.shift;
-      max[bx] = std::max(max[bx], z[col]);
-      rowSums_[bx] += z[col];
+      float& max = rowMax_[static_cast<size_t>(col >> base.shift)];
+      max = std::max(max, z[col]);
     }
-    if (row + 1 == height_ || ((row + 1) & ((1 << base.shift) - 1)) == 0) finishBlockRow(blockRow);
+    if (row + 1 == height_ || ((row + 1) & ((1 << base.shift) - 1)) == 0) {
+      const int blockRow = row >> base.shift;
+      markFilled(blockRow, 1);
+      writeFloats(base.offset + static_cast<size_t>(blockRow) * base.width, rowMax_.data(),
+                  rowMax_.size());
+      std::fill(rowMax_.begin(), rowMax_.end(), kNoHeight);
+    }
   }
   rowsAdded_ += count;
   if (complete()) buildCoarserLevels();
 }
 
 void HeightPyramid::addBlockRows(int firstRow, const float* rows, int count) {
-  Level& base = levels_.front();
+  const Level& base = levels_.front();
   const int blockTexels = 1 << base.shift;
   if (rowsAdded_ != 0 || firstRow < 0 || count < 1 || firstRow + count > height_ ||
       firstRow % blockTexels != 0 || (count % blockTexels != 0 && firstRow + count != height_)) {
@@ -81,43 +207,51 @@ void HeightPyramid::addBlockRows(int firstRow, const float* rows, int count) {
   const int firstBlock = firstRow >> base.shift;
   const int blockRows = blocks(count, base.shift);
   markFilled(firstBlock, blockRows);
-  // Each block row as addRows makes it: rows in order, columns in order,
-  // the sums in doubles, so the means are the same floats.
+  // Each block row's maxima as addRows makes them, then written in one go.
+  std::vector<float> max(static_cast<size_t>(blockRows) * base.width);
   tbb::parallel_for(tbb::blocked_range<int>(0, blockRows), [&](const tbb::blocked_range<int>& r) {
-    std::vector<double> sums(static_cast<size_t>(base.width));
     for (int b = r.begin(); b < r.end(); ++b) {
-      const int blockRow = firstBlock + b;
-      const int spanY = blockSpan(blockRow, base.shift, height_);
-      float* max = base.max.data() + static_cast<size_t>(blockRow) * base.width;
-      std::fill(sums.begin(), sums.end(), 0.0);
-      for (int i = 0; i < spanY; ++i) {
-        const float* z = rows + static_cast<size_t>(b * blockTexels + i) * width_;
-        for (int col = 0; col < width_; ++col) {
-          const int bx = col >> base.shift;
-          max[bx] = std::max(max[bx], z[col]);
-          sums[static_cast<size_t>(bx)] += z[col];
-        }
-      }
-      float* mean = base.mean.data() + static_cast<size_t>(blockRow) * base.width;
-      for (int bx = 0; bx < base.width; ++bx) {
-        const double texels = double(blockSpan(bx, base.shift, width_)) * spanY;
-        mean[bx] = static_cast<float>(sums[static_cast<size_t>(bx)] / texels);
-      }
+      blockRowMax(rows + static_cast<size_t>(b) * blockTexels * width_,
+                  blockSpan(firstBlock + b, base.shift, height_), width_, base.shift,
+                  max.data() + static_cast<size_t>(b) * base.width);
     }
   });
+  writeFloats(base.offset + static_cast<size_t>(firstBlock) * base.width, max.data(), max.size());
   if (complete()) buildCoarserLevels();
 }
 
-void HeightPyramid::setBaseBlockRows(int firstBlockRow, int count, const float* max,
-                                     const float* mean) {
+void HeightPyramid::setBaseBlockRows(int firstBlockRow, int count, const float* max) {
   if (rowsAdded_ != 0) throw std::invalid_argument("height pyramid: rows were added already");
-  Level& base = levels_.front();
+  const Level& base = levels_.front();
   markFilled(firstBlockRow, count);
-  const size_t first = static_cast<size_t>(firstBlockRow) * base.width;
-  const size_t floats = static_cast<size_t>(count) * base.width;
-  std::copy(max, max + floats, base.max.begin() + static_cast<std::ptrdiff_t>(first));
-  std::copy(mean, mean + floats, base.mean.begin() + static_cast<std::ptrdiff_t>(first));
+  writeFloats(base.offset + static_cast<size_t>(firstBlockRow) * base.width, max,
+              static_cast<size_t>(count) * base.width);
   if (complete()) buildCoarserLevels();
+}
+
+void HeightPyramid::readBlocks(int shift, int bx, int by, int w, int h, float* out) const {
+  if (shift < baseShift() || shift > coarsestShift()) {
+    throw std::out_of_range("height pyramid: no level of blocks of 2^" + std::to_string(shift));
+  }
+  const Level& l = level(shift);
+  if (bx < 0 || by < 0 || w < 0 || h < 0 || bx + w > l.width || by + h > l.height) {
+    throw std::out_of_range("height pyramid: blocks outside the level");
+  }
+  if (w == l.width) {  // whole rows: one read
+    readFloats(l.offset + static_cast<size_t>(by) * l.width, out, static_cast<size_t>(w) * h);
+    return;
+  }
+  for (int y = 0; y < h; ++y) {
+    readFloats(l.offset + static_cast<size_t>(by + y) * l.width + bx,
+               out + static_cast<size_t>(y) * w, static_cast<size_t>(w));
+  }
+}
+
+std::vector<float> HeightPyramid::levelMax(int shift) const {
+  const Level& l = level(shift);
+  std::vector<float> max(static_cast<size_t>(l.width) * l.height);
+  readBlocks(shift, 0, 0, l.width, l.height, max.data());
+  return max;
 }
 
 void HeightPyramid::markFilled(int first, int count) {
@@ -136,51 +270,32 @@ void HeightPyramid::markFilled(int first, int count) {
   filledBlockRows_ += count;
 }
 
-void HeightPyramid::finishBlockRow(int blockRow) {
-  markFilled(blockRow, 1);
-  Level& base = levels_.front();
-  const int spanY = blockSpan(blockRow, base.shift, height_);
-  for (int bx = 0; bx < base.width; ++bx) {
-    const double texels = double(blockSpan(bx, base.shift, width_)) * spanY;
-    base.mean[static_cast<size_t>(blockRow) * base.width + bx] =
-        static_cast<float>(rowSums_[bx] / texels);
-    rowSums_[bx] = 0.0;
-  }
-}
-
 void HeightPyramid::buildCoarserLevels() {
-  rowSums_ = {};
+  rowMax_ = {};
   filled_ = {};
+  // Row by row, two rows of the finer level to one of the coarser: a few
+  // rows resident whether the levels are in memory or in the file.
+  std::vector<float> fine, coarse;
   for (size_t l = 1; l < levels_.size(); ++l) {
-    const Level& fine = levels_[l - 1];
-    Level& coarse = levels_[l];
-    coarse.max.assign(static_cast<size_t>(coarse.width) * coarse.height, 0.0f);
-    coarse.mean.assign(coarse.max.size(), 0.0f);
-    for (int by = 0; by < coarse.height; ++by) {
-      for (int bx = 0; bx < coarse.width; ++bx) {
-        float max = -std::numeric_limits<float>::infinity();
-        double sum = 0.0, texels = 0.0;
-        for (int fy = 2 * by; fy < std::min(2 * by + 2, fine.height); ++fy) {
-          for (int fx = 2 * bx; fx < std::min(2 * bx + 2, fine.width); ++fx) {
-            const double n =
-                double(blockSpan(fx, fine.shift, width_)) * blockSpan(fy, fine.shift, height_);
-            max = std::max(max, fine.maxAt(fx, fy));
-            sum += n * fine.meanAt(fx, fy);
-            texels += n;
+    const Level& f = levels_[l - 1];
+    const Level& c = levels_[l];
+    fine.resize(2 * static_cast<size_t>(f.width));
+    coarse.resize(static_cast<size_t>(c.width));
+    for (int by = 0; by < c.height; ++by) {
+      const int rows = std::min(2, f.height - 2 * by);
+      readBlocks(f.shift, 0, 2 * by, f.width, rows, fine.data());
+      for (int bx = 0; bx < c.width; ++bx) {
+        float max = kNoHeight;
+        for (int fy = 0; fy < rows; ++fy) {
+          for (int fx = 2 * bx; fx < std::min(2 * bx + 2, f.width); ++fx) {
+            max = std::max(max, fine[static_cast<size_t>(fy) * f.width + fx]);
           }
         }
-        coarse.max[static_cast<size_t>(by) * coarse.width + bx] = max;
-        coarse.mean[static_cast<size_t>(by) * coarse.width + bx] = static_cast<float>(sum / texels);
+        coarse[static_cast<size_t>(bx)] = max;
       }
+      writeFloats(c.offset + static_cast<size_t>(by) * c.width, coarse.data(), coarse.size());
     }
   }
-}
-
-size_t HeightPyramid::bytes() const {
-  size_t total = 0;
-  for (const Level& level : levels_)
-    total += (level.max.size() + level.mean.size()) * sizeof(float);
-  return total;
 }
 
 HeightPyramid buildHeightPyramid(const Heightfield& field, int baseShift) {

@@ -296,7 +296,7 @@ void sweepHorizonBlocks(const BakeTerrain& terrain, double phi, const HorizonSwe
 
 void sweepWindowHorizonBlocks(const BakeTerrain& terrain, double phi,
                               const HorizonSweepOptions& options, HorizonBlockVisitor visit,
-                              const FarField* far) {
+                              const FarFieldWindow* far) {
   if (options.clampEdge && !far) {
     throw std::invalid_argument("sweepWindowHorizonBlocks: clamped edges need the far field");
   }

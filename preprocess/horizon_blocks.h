@@ -34,7 +34,7 @@
 
 namespace aal {
 
-struct FarField;
+class FarFieldWindow;
 
 // The texels of one sweep step of one group of lines: texel j (0 <= j <
 // count) is firstTexel + j * stride in the heightfield, with horizon
@@ -113,8 +113,8 @@ void sweepHorizonBlocks(const BakeTerrain& terrain, double phi, const HorizonSwe
 // lines walked with the unlimited hull from options.windowReachM before it:
 // sweepHorizons() with windowReachM, in blocks whose texels are window
 // indices (BakeTerrain::windowIndex).
-// With `far` (a far field's pyramid and options; docs/baking.md, "Far
-// field"), each line starts with the pyramid's block maxima beyond its
+// With `far` (the blocks of a far field's pyramid this window reads;
+// docs/baking.md, "Far field"), each line starts with the block maxima beyond its
 // first point in its hull (FarLineMarch), so the tangents cover the whole
 // DEM; with clamped edges the ground beyond the DEM goes on flat from the
 // last of them. Without, edges must be open (options.clampEdge false): the
@@ -122,7 +122,7 @@ void sweepHorizonBlocks(const BakeTerrain& terrain, double phi, const HorizonSwe
 // for the edge.
 void sweepWindowHorizonBlocks(const BakeTerrain& terrain, double phi,
                               const HorizonSweepOptions& options, HorizonBlockVisitor visit,
-                              const FarField* far = nullptr);
+                              const FarFieldWindow* far = nullptr);
 
 // The same for two opposite azimuths phi and phiOpposite (phi + pi, as the
 // caller computes it) in one pass: each block holds both azimuths'

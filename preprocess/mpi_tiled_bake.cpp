@@ -300,12 +300,12 @@ int evenDemChunkOwner(int chunk, int chunks, int ranks) {
 
 TiledBakeDemPass sharedDemPass(MPI_Comm comm, const DemSource& source, const Heightfield& geometry,
                                const BakeOptions& bake, const TiledBakeOptions& tiled,
-                               const DemPassShares& shares) {
+                               const DemPassShares& shares, const std::string& pyramidFolder) {
   int rank = 0, ranks = 1;
   MPI_Comm_rank(comm, &rank);
   MPI_Comm_size(comm, &ranks);
   TiledBakeDemPass pass;
-  pass.pyramid = emptyTiledBakePyramid(geometry, bake, tiled);
+  pass.pyramid = emptyTiledBakePyramid(geometry, bake, tiled, pyramidFolder);
   HeightPyramid* pyramid = pass.pyramid ? &*pass.pyramid : nullptr;
   const int blockTexels = pyramid ? 1 << pyramid->baseShift() : 1;
   const int chunkRows = shares.chunkRows > 0
@@ -351,25 +351,16 @@ TiledBakeDemPass sharedDemPass(MPI_Comm comm, const DemSource& source, const Hei
   // Every chunk's block rows from its owner to the others.
   if (pyramid) {
     const int shift = pyramid->baseShift();
-    const HeightPyramid::Level& base = pyramid->level(shift);
-    std::vector<float> max, mean;
+    const int width = pyramid->level(shift).width;
+    std::vector<float> max;  // one chunk's block rows
     for (int chunk = 0; chunk < chunks; ++chunk) {
       const int from = owners[static_cast<size_t>(chunk)];
       const int firstBlockRow = (chunk * chunkRows) >> shift;
       const int blockRows = ((rowsOf(chunk) - 1) >> shift) + 1;
-      const size_t count = static_cast<size_t>(blockRows) * base.width;
-      if (rank == from) {
-        // MPI_Bcast takes the root's buffer as non-const; it only reads it.
-        const size_t first = static_cast<size_t>(firstBlockRow) * base.width;
-        broadcastFloats(const_cast<float*>(base.max.data() + first), count, from, comm);
-        broadcastFloats(const_cast<float*>(base.mean.data() + first), count, from, comm);
-      } else {
-        max.resize(count);
-        mean.resize(count);
-        broadcastFloats(max.data(), count, from, comm);
-        broadcastFloats(mean.data(), count, from, comm);
-        pyramid->setBaseBlockRows(firstBlockRow, blockRows, max.data(), mean.data());
-      }
+      max.resize(static_cast<size_t>(blockRows) * width);
+      if (rank == from) pyramid->readBlocks(shift, 0, firstBlockRow, width, blockRows, max.data());
+      broadcastFloats(max.data(), max.size(), from, comm);
+      if (rank != from) pyramid->setBaseBlockRows(firstBlockRow, blockRows, max.data());
     }
   }
   return pass;
@@ -405,7 +396,8 @@ MpiTiledBakeSummary bakeTiledMpi(MPI_Comm comm, const DemSource& source,
   agreeBeforeHandout(comm, rank, ranks, error);
 
   // Every rank: its share of the pass; the whole pyramid.
-  TiledBakeDemPass pass = sharedDemPass(comm, source, geometry, bake, tiled);
+  TiledBakeDemPass pass =
+      sharedDemPass(comm, source, geometry, bake, tiled, {}, tiledBakePyramidFolder(tiled, folder));
   const bool farField = !(bake.maxDistanceM > 0.0);
 
   // Rank 0: the folder, then the checksum to every rank.

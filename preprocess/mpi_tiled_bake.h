@@ -94,13 +94,15 @@ struct DemPassShares {
 // chunks' rows and fills their block rows of the pyramid's finest level;
 // the hashes are summed into rank 0, which alone returns the checksum, and
 // each chunk's block rows are broadcast from its owner, so that every rank
-// returns the whole pyramid (without a max distance), the same floats as
-// one process's pass. bake.cancel is polled between chunks. An error on
+// returns the whole pyramid (without a max distance; in a file in
+// `pyramidFolder`, in memory if that is empty), the same floats as one
+// process's pass. bake.cancel is polled between chunks. An error on
 // any rank (voids are an InputError; BakeCancelled) is thrown on rank 0,
 // the lowest failing rank's, and MpiPeerFailed on the others.
 TiledBakeDemPass sharedDemPass(MPI_Comm comm, const DemSource& source, const Heightfield& geometry,
                                const BakeOptions& bake, const TiledBakeOptions& tiled,
-                               const DemPassShares& shares = {});
+                               const DemPassShares& shares = {},
+                               const std::string& pyramidFolder = {});
 
 // Collective over `comm`: every rank calls it with the same arguments
 // (`geometry` is demGeometry of `source` on every rank). Returns the same
@@ -110,9 +112,11 @@ TiledBakeDemPass sharedDemPass(MPI_Comm comm, const DemSource& source, const Hei
 // is thrown as MpiTileFailed on the rank it happened on.
 // Memory per rank: two windows (4 bytes per texel of the tile and tileHalo
 // around it: (3 T + 2 S)^2 for tiles of T and S steps of the near reach or
-// max distance, whatever the DEM's width), one tile's sums and the pyramid
-// (~0.67 bytes per DEM texel); during the pass one 64 MB chunk of rows and
-// 8 bytes per DEM row.
+// max distance, whatever the DEM's width), one tile's sums and the blocks of
+// the pyramid its far field reads (FarFieldWindow; the pyramid itself,
+// ~0.083 bytes per DEM texel, in a file per rank in
+// tiledBakePyramidFolder); during the pass one 64 MB chunk of rows and 8
+// bytes per DEM row.
 MpiTiledBakeSummary bakeTiledMpi(MPI_Comm comm, const DemSource& source,
                                  const Heightfield& geometry, const BakeOptions& bake,
                                  const TiledBakeOptions& tiled, const std::string& folder,

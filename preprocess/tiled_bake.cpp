@@ -441,9 +441,17 @@ int tileHalo(const Heightfield& geometry, const BakeOptions& bake, const TiledBa
 
 std::optional<HeightPyramid> emptyTiledBakePyramid(const Heightfield& geometry,
                                                    const BakeOptions& bake,
-                                                   const TiledBakeOptions& tiled) {
+                                                   const TiledBakeOptions& tiled,
+                                                   const std::string& fileFolder) {
   if (bake.maxDistanceM > 0.0) return std::nullopt;
-  return HeightPyramid(geometry.width, geometry.height, tiledBakePyramidShift(geometry, tiled));
+  return HeightPyramid(geometry.width, geometry.height, tiledBakePyramidShift(geometry, tiled),
+                       fileFolder);
+}
+
+std::string tiledBakePyramidFolder(const TiledBakeOptions& tiled, const std::string& folder) {
+  if (!tiled.pyramidFolder.empty()) return tiled.pyramidFolder;
+  const fs::path parent = fs::absolute(fs::path(folder)).lexically_normal().parent_path();
+  return parent.empty() ? std::string(".") : parent.string();
 }
 
 int demPassChunkRows(const Heightfield& geometry, const HeightPyramid* pyramid) {
@@ -472,9 +480,10 @@ void scanDemChunk(const DemSource& source, const Heightfield& geometry, int firs
 }
 
 TiledBakeDemPass scanDemForTiledBake(const DemSource& source, const Heightfield& geometry,
-                                     const BakeOptions& bake, const TiledBakeOptions& tiled) {
+                                     const BakeOptions& bake, const TiledBakeOptions& tiled,
+                                     const std::string& pyramidFolder) {
   TiledBakeDemPass pass;
-  pass.pyramid = emptyTiledBakePyramid(geometry, bake, tiled);
+  pass.pyramid = emptyTiledBakePyramid(geometry, bake, tiled, pyramidFolder);
   HeightPyramid* pyramid = pass.pyramid ? &*pass.pyramid : nullptr;
   std::vector<uint64_t> rowHashes(static_cast<size_t>(geometry.height));
   const int chunk = demPassChunkRows(geometry, pyramid);
@@ -515,25 +524,46 @@ std::string tiledBakeChecksum(const std::string& folder, const std::string& chec
   return checksum;
 }
 
+namespace {
+
+// About what FarFieldWindow holds for a tile whose sweeps read `side`
+// texels square: on each level, the window's blocks and those within the
+// distance the level is read to (its bound without the skew of geographic
+// rows).
+double farFieldWindowBytes(const Heightfield& geometry, const TiledBakeOptions& tiled, double side) {
+  const FarFieldOptions far = resolvedFarField(geometry, tiled);
+  const auto [smallest, largest] = cellRange(geometry);
+  const double blockUnit = far.resolution * largest;
+  const int base = tiledBakePyramidShift(geometry, tiled);
+  double bytes = 0.0;
+  for (int shift = base;; ++shift) {
+    const double block = std::ldexp(1.0, shift);
+    const double levelW = std::ceil(geometry.width / block), levelH = std::ceil(geometry.height / block);
+    const double reachM = blockUnit * 2.0 * block - far.nearReachM;
+    if (reachM > 0.0) {
+      const double blocks = (side + 2.0 * reachM / smallest) / block + 3.0;
+      bytes += sizeof(float) * std::min(levelW, blocks) * std::min(levelH, blocks);
+    }
+    if (levelW <= 1.0 && levelH <= 1.0) break;
+  }
+  return bytes;
+}
+
+}  // namespace
+
 double tiledBakeInBandsPeakBytes(const Heightfield& geometry, const BakeOptions& bake,
                                  const TiledBakeOptions& tiled) {
   const double width = geometry.width, height = geometry.height;
-  double pyramid = 0.0;
-  if (bake.maxDistanceM <= 0.0) {
-    // Max and mean floats per block of the finest level, a third more for
-    // the coarser ones.
-    const double block = std::ldexp(1.0, tiledBakePyramidShift(geometry, tiled));
-    pyramid = 8.0 * std::ceil(width / block) * std::ceil(height / block) * 4.0 / 3.0;
-  }
   const double rowHashes = sizeof(uint64_t) * height;
   // A chunk is read as samples and void mask, then held as heights.
   const double chunkRows = demPassChunkRows(geometry, nullptr);
   const double chunk = chunkRows * width * (2 * sizeof(float) + 1);
   const double side =
       std::min(width, double(tiled.tileSize) + 2.0 * tileHalo(geometry, bake, tiled));
-  const double window =
-      side * std::min(height, side) * (sizeof(float) + 1 + kInMemoryBakeBytesPerTexel);
-  return rowHashes + pyramid + std::max(chunk, window);
+  double window = side * std::min(height, side) * (sizeof(float) + 1 + kInMemoryBakeBytesPerTexel);
+  // The far field's pyramid is in a file; a tile holds the blocks it reads.
+  if (!(bake.maxDistanceM > 0.0)) window += farFieldWindowBytes(geometry, tiled, side);
+  return rowHashes + std::max(chunk, window);
 }
 
 TiledBakeSummary bakeTiledInBands(const DemSource& source, const Heightfield& geometry,
@@ -552,7 +582,8 @@ TiledBakeSummary bakeTiledInBands(const DemSource& source, const Heightfield& ge
   std::optional<TiledBakeLock> ownLock;
   TiledBakeOptions locked = tiled;
   if (!locked.lock && fs::is_directory(folder)) locked.lock = &ownLock.emplace(folder);
-  TiledBakeDemPass pass = scanDemForTiledBake(source, geometry, bake, tiled);
+  TiledBakeDemPass pass =
+      scanDemForTiledBake(source, geometry, bake, tiled, tiledBakePyramidFolder(tiled, folder));
   TileWindowReader reader(source, geometry, tileHalo(geometry, bake, tiled));
   TiledBakeSummary summary = bakeTiles(
       geometry, pass.checksum, [&] { return legacyDemChecksum(source, geometry); },

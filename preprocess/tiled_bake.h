@@ -91,6 +91,11 @@ struct TiledBakeOptions {
   // Without a max distance: the far field (far_horizon.h). nearReachM 0:
   // kFarFieldReachCells of the field's smallest cell.
   FarFieldOptions farField;
+  // Where a bake that reads the DEM in windows keeps the far field's
+  // pyramid, in a file no folder names (HeightPyramid): empty, the output
+  // folder's parent (on the output's file system, which has room for the
+  // tiles; the pyramid is 0.083 bytes per DEM texel at the default reach).
+  std::string pyramidFolder;
   // The folder's lock when the caller took it already (aal-bake does, before
   // loading the DEM); else the bake takes it.
   const TiledBakeLock* lock = nullptr;
@@ -138,7 +143,8 @@ void checkTiledBakeOptions(const BakeOptions& bake, const TiledBakeOptions& tile
 // over all tiles; bake.cancel stops between azimuths (BakeCancelled),
 // keeping the finished tiles.
 // Memory: the DEM (held by the caller) plus ~16 bytes per texel of one tile
-// (and, without a max distance, the pyramid: ~0.67 bytes per DEM texel).
+// (and, without a max distance, the pyramid: ~0.083 bytes per DEM texel
+// at the default reach).
 TiledBakeSummary bakeTiled(const Heightfield& field, const BakeOptions& bake,
                            const TiledBakeOptions& tiled, const std::string& folder);
 
@@ -151,7 +157,8 @@ class DemSource;
 // of each DEM texel in all). Memory: two windows (4 bytes per texel of
 // about (3 tiles)^2) plus one tile, whatever the DEM's size; the DEM is
 // read once more for its checksum (and, without a max distance, its
-// pyramid). `geometry` is demGeometry of the source. The DEM must have no voids (filling them needs
+// pyramid, kept in a file: only the blocks each tile's far field reads are
+// in memory, FarFieldWindow). `geometry` is demGeometry of the source. The DEM must have no voids (filling them needs
 // all of it): InputError naming gdal_fillnodata.py otherwise, before any tile. An existing folder
 // is locked before the checksum pass.
 TiledBakeSummary bakeTiledInBands(const DemSource& source, const Heightfield& geometry,
@@ -159,8 +166,8 @@ TiledBakeSummary bakeTiledInBands(const DemSource& source, const Heightfield& ge
                                   const std::string& folder);
 
 // What bakeTiledInBands holds at its peak, in bytes: the checksum pass's
-// row hashes and far-field pyramid, then the larger of a pass's chunk of
-// rows and one tile's window with its bake (kInMemoryBakeBytesPerTexel per
+// row hashes, then the larger of a pass's chunk of rows and one tile's
+// window with its bake and far-field blocks (kInMemoryBakeBytesPerTexel per
 // window texel). bakeTiledInBands refuses (InputError) before the pass when
 // it exceeds the memory available.
 double tiledBakeInBandsPeakBytes(const Heightfield& geometry, const BakeOptions& bake,
@@ -189,14 +196,21 @@ struct TiledBakeDemPass {
 };
 // The pass, reading `source` in chunks of demPassChunkRows rows, each
 // hashed and added to the pyramid on all cores. Voids are an InputError
-// (readDemRows); bake.cancel is polled between chunks.
+// (readDemRows); bake.cancel is polled between chunks. The pyramid is kept
+// in a file in `pyramidFolder`, in memory if that is empty.
 TiledBakeDemPass scanDemForTiledBake(const DemSource& source, const Heightfield& geometry,
-                                     const BakeOptions& bake, const TiledBakeOptions& tiled);
+                                     const BakeOptions& bake, const TiledBakeOptions& tiled,
+                                     const std::string& pyramidFolder = {});
 // The parts of the pass, which an MPI bake shares among its ranks.
-// The pass's pyramid, empty; nothing for a bake with a max distance.
+// The pass's pyramid, empty, in a file in `fileFolder` (in memory if
+// empty); nothing for a bake with a max distance.
 std::optional<HeightPyramid> emptyTiledBakePyramid(const Heightfield& geometry,
                                                    const BakeOptions& bake,
-                                                   const TiledBakeOptions& tiled);
+                                                   const TiledBakeOptions& tiled,
+                                                   const std::string& fileFolder = {});
+// Where a bake into `folder` keeps its pyramid's file: tiled.pyramidFolder,
+// else the folder's parent.
+std::string tiledBakePyramidFolder(const TiledBakeOptions& tiled, const std::string& folder);
 // Rows per chunk: about 64 MB, whole block rows of `pyramid`'s finest level
 // (when there is one), so that chunks can be read in any order and by any
 // process.

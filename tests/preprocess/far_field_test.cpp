@@ -41,40 +41,81 @@ Heightfield fbm(int width, int height, double amplitudeM, uint64_t seed = 5) {
   return makeSyntheticTerrain(s);
 }
 
+// Where a pyramid's levels live: memory, or a file no folder names (empty:
+// memory).
+std::vector<std::string> storages() {
+  return {std::string(), fs::temp_directory_path().string()};
+}
+
 // Every level's maximum is the largest texel of its block (so never below
-// any texel it covers) and its mean their mean: brute force over the
-// blocks, on a size that leaves partial blocks at both edges.
-TEST(HeightPyramid, MaximaAndMeansOfEveryBlock) {
+// any texel it covers): brute force over the blocks, on a size that leaves
+// partial blocks at both edges, in memory and in a file.
+TEST(HeightPyramid, MaximaOfEveryBlock) {
   const Heightfield field = fbm(75, 46, 800);
-  for (const int baseShift : {0, 2}) {
-    const HeightPyramid pyramid = buildHeightPyramid(field, baseShift);
-    EXPECT_EQ(pyramid.baseShift(), baseShift);
-    const HeightPyramid::Level& top = pyramid.level(pyramid.coarsestShift());
-    EXPECT_EQ(top.width, 1);
-    EXPECT_EQ(top.height, 1);
-    for (int shift = pyramid.baseShift(); shift <= pyramid.coarsestShift(); ++shift) {
-      const HeightPyramid::Level& level = pyramid.level(shift);
-      const int size = 1 << shift;
-      ASSERT_EQ(level.width, (field.width + size - 1) / size);
-      ASSERT_EQ(level.height, (field.height + size - 1) / size);
-      for (int by = 0; by < level.height; ++by) {
-        for (int bx = 0; bx < level.width; ++bx) {
-          float max = -std::numeric_limits<float>::infinity();
-          double sum = 0.0;
-          int texels = 0;
-          for (int row = by * size; row < std::min(field.height, (by + 1) * size); ++row) {
-            for (int col = bx * size; col < std::min(field.width, (bx + 1) * size); ++col) {
-              max = std::max(max, field.at(col, row));
-              sum += field.at(col, row);
-              ++texels;
+  for (const std::string& folder : storages()) {
+    for (const int baseShift : {0, 2}) {
+      HeightPyramid pyramid(field.width, field.height, baseShift, folder);
+      pyramid.addRows(field.z.data(), field.height);
+      EXPECT_EQ(pyramid.inFile(), !folder.empty());
+      EXPECT_EQ(pyramid.baseShift(), baseShift);
+      const HeightPyramid::Level& top = pyramid.level(pyramid.coarsestShift());
+      EXPECT_EQ(top.width, 1);
+      EXPECT_EQ(top.height, 1);
+      for (int shift = pyramid.baseShift(); shift <= pyramid.coarsestShift(); ++shift) {
+        const HeightPyramid::Level& level = pyramid.level(shift);
+        const std::vector<float> maxima = pyramid.levelMax(shift);
+        const int size = 1 << shift;
+        ASSERT_EQ(level.width, (field.width + size - 1) / size);
+        ASSERT_EQ(level.height, (field.height + size - 1) / size);
+        for (int by = 0; by < level.height; ++by) {
+          for (int bx = 0; bx < level.width; ++bx) {
+            float max = -std::numeric_limits<float>::infinity();
+            for (int row = by * size; row < std::min(field.height, (by + 1) * size); ++row) {
+              for (int col = bx * size; col < std::min(field.width, (bx + 1) * size); ++col) {
+                max = std::max(max, field.at(col, row));
+              }
             }
+            ASSERT_EQ(maxima[static_cast<size_t>(by) * level.width + bx], max)
+                << "shift " << shift << " block " << bx << "," << by << " in '" << folder << "'";
           }
-          ASSERT_EQ(level.maxAt(bx, by), max) << "shift " << shift << " block " << bx << "," << by;
-          ASSERT_NEAR(level.meanAt(bx, by), sum / texels, 1e-3)
-              << "shift " << shift << " block " << bx << "," << by;
+        }
+        // A rectangle of a level is the level's blocks.
+        if (level.width > 2 && level.height > 2) {
+          std::vector<float> part(static_cast<size_t>(level.width - 2) * 2);
+          pyramid.readBlocks(shift, 1, 1, level.width - 2, 2, part.data());
+          for (int y = 0; y < 2; ++y)
+            for (int x = 0; x < level.width - 2; ++x)
+              EXPECT_EQ(part[static_cast<size_t>(y) * (level.width - 2) + x],
+                        maxima[static_cast<size_t>(1 + y) * level.width + 1 + x]);
         }
       }
+      std::vector<float> one(1);
+      EXPECT_THROW(pyramid.readBlocks(baseShift, pyramid.level(baseShift).width, 0, 1, 1,
+                                      one.data()),
+                   std::out_of_range);
     }
+  }
+}
+
+// The file has no name: nothing is left in its folder, during or after.
+TEST(HeightPyramid, TheFileLeavesNothingInItsFolder) {
+  const Heightfield field = fbm(75, 46, 800);
+  test::TempDir dir;
+  {
+    HeightPyramid pyramid(field.width, field.height, 1, dir.path().string());
+    pyramid.addRows(field.z.data(), field.height);
+    EXPECT_TRUE(fs::is_empty(dir.path()));
+  }
+  EXPECT_TRUE(fs::is_empty(dir.path()));
+  EXPECT_THROW(HeightPyramid(field.width, field.height, 1, (dir.path() / "missing").string()),
+               std::runtime_error);
+}
+
+void expectSamePyramid(const HeightPyramid& have, const HeightPyramid& want) {
+  ASSERT_TRUE(have.complete());
+  ASSERT_EQ(have.coarsestShift(), want.coarsestShift());
+  for (int shift = want.baseShift(); shift <= want.coarsestShift(); ++shift) {
+    EXPECT_EQ(have.levelMax(shift), want.levelMax(shift)) << "shift " << shift;
   }
 }
 
@@ -82,27 +123,16 @@ TEST(HeightPyramid, MaximaAndMeansOfEveryBlock) {
 TEST(HeightPyramid, BandsOfRowsBuildTheSamePyramid) {
   const Heightfield field = fbm(75, 46, 800);
   const HeightPyramid whole = buildHeightPyramid(field, 1);
-  HeightPyramid bands(field.width, field.height, 1);
-  for (int row = 0; row < field.height;) {
-    const int rows = std::min(field.height - row, 1 + row % 7);
-    EXPECT_FALSE(bands.complete());
-    bands.addRows(field.z.data() + static_cast<size_t>(row) * field.width, rows);
-    row += rows;
-  }
-  ASSERT_TRUE(bands.complete());
-  for (int shift = whole.baseShift(); shift <= whole.coarsestShift(); ++shift) {
-    EXPECT_EQ(bands.level(shift).max, whole.level(shift).max);
-    EXPECT_EQ(bands.level(shift).mean, whole.level(shift).mean);
-  }
-  EXPECT_THROW(bands.addRows(field.z.data(), 1), std::invalid_argument);
-}
-
-void expectSamePyramid(const HeightPyramid& have, const HeightPyramid& want) {
-  ASSERT_TRUE(have.complete());
-  ASSERT_EQ(have.coarsestShift(), want.coarsestShift());
-  for (int shift = want.baseShift(); shift <= want.coarsestShift(); ++shift) {
-    EXPECT_EQ(have.level(shift).max, want.level(shift).max) << "shift " << shift;
-    EXPECT_EQ(have.level(shift).mean, want.level(shift).mean) << "shift " << shift;
+  for (const std::string& folder : storages()) {
+    HeightPyramid bands(field.width, field.height, 1, folder);
+    for (int row = 0; row < field.height;) {
+      const int rows = std::min(field.height - row, 1 + row % 7);
+      EXPECT_FALSE(bands.complete());
+      bands.addRows(field.z.data() + static_cast<size_t>(row) * field.width, rows);
+      row += rows;
+    }
+    expectSamePyramid(bands, whole);
+    EXPECT_THROW(bands.addRows(field.z.data(), 1), std::invalid_argument);
   }
 }
 
@@ -112,29 +142,31 @@ void expectSamePyramid(const HeightPyramid& have, const HeightPyramid& want) {
 // 8: a last block row of 2 and 6 rows).
 TEST(HeightPyramid, BlockRowsInAnyOrderBuildTheSamePyramid) {
   const Heightfield field = fbm(75, 46, 800);
-  for (int shift : {2, 3}) {
-    SCOPED_TRACE(shift);
-    const HeightPyramid whole = buildHeightPyramid(field, shift);
-    const int block = 1 << shift;
-    // Chunks of 1, 2 and 3 block rows, last chunk first.
-    std::vector<std::pair<int, int>> chunks;  // first row, rows
-    for (int row = 0, n = 1; row < field.height; row += n * block, n = n % 3 + 1) {
-      chunks.emplace_back(row, std::min(n * block, field.height - row));
+  for (const std::string& folder : storages()) {
+    for (int shift : {2, 3}) {
+      SCOPED_TRACE(::testing::Message() << "shift " << shift << " in '" << folder << "'");
+      const HeightPyramid whole = buildHeightPyramid(field, shift);
+      const int block = 1 << shift;
+      // Chunks of 1, 2 and 3 block rows, last chunk first.
+      std::vector<std::pair<int, int>> chunks;  // first row, rows
+      for (int row = 0, n = 1; row < field.height; row += n * block, n = n % 3 + 1) {
+        chunks.emplace_back(row, std::min(n * block, field.height - row));
+      }
+      std::reverse(chunks.begin(), chunks.end());
+      HeightPyramid parts(field.width, field.height, shift, folder);
+      for (const auto& [row, rows] : chunks) {
+        EXPECT_FALSE(parts.complete());
+        parts.addBlockRows(row, field.z.data() + static_cast<size_t>(row) * field.width, rows);
+      }
+      expectSamePyramid(parts, whole);
+      // Not whole block rows, or twice.
+      HeightPyramid bad(field.width, field.height, shift, folder);
+      EXPECT_THROW(bad.addBlockRows(1, field.z.data(), block), std::invalid_argument);
+      EXPECT_THROW(bad.addBlockRows(0, field.z.data(), block + 1), std::invalid_argument);
+      bad.addBlockRows(0, field.z.data(), block);
+      EXPECT_THROW(bad.addBlockRows(0, field.z.data(), block), std::invalid_argument);
+      EXPECT_THROW(bad.addRows(field.z.data(), 1), std::invalid_argument);
     }
-    std::reverse(chunks.begin(), chunks.end());
-    HeightPyramid parts(field.width, field.height, shift);
-    for (const auto& [row, rows] : chunks) {
-      EXPECT_FALSE(parts.complete());
-      parts.addBlockRows(row, field.z.data() + static_cast<size_t>(row) * field.width, rows);
-    }
-    expectSamePyramid(parts, whole);
-    // Not whole block rows, or twice.
-    HeightPyramid bad(field.width, field.height, shift);
-    EXPECT_THROW(bad.addBlockRows(1, field.z.data(), block), std::invalid_argument);
-    EXPECT_THROW(bad.addBlockRows(0, field.z.data(), block + 1), std::invalid_argument);
-    bad.addBlockRows(0, field.z.data(), block);
-    EXPECT_THROW(bad.addBlockRows(0, field.z.data(), block), std::invalid_argument);
-    EXPECT_THROW(bad.addRows(field.z.data(), 1), std::invalid_argument);
   }
 }
 
@@ -143,18 +175,76 @@ TEST(HeightPyramid, BlockRowsInAnyOrderBuildTheSamePyramid) {
 TEST(HeightPyramid, BlockRowsFromAnotherPyramidAreTheSame) {
   const Heightfield field = fbm(75, 46, 800);
   const HeightPyramid whole = buildHeightPyramid(field, 1);
-  const HeightPyramid::Level& base = whole.level(1);
-  ASSERT_EQ(base.height, 23);
-  HeightPyramid copy(field.width, field.height, 1);
-  // Block rows 10-22 given, 0-9 made from their rows.
-  const size_t given = static_cast<size_t>(10) * base.width;
-  copy.setBaseBlockRows(10, 13, base.max.data() + given, base.mean.data() + given);
-  EXPECT_FALSE(copy.complete());
-  copy.addBlockRows(0, field.z.data(), 20);
-  expectSamePyramid(copy, whole);
-  // Filled once.
-  EXPECT_THROW(copy.setBaseBlockRows(0, 1, base.max.data(), base.mean.data()),
-               std::invalid_argument);
+  const std::vector<float> base = whole.levelMax(1);
+  const int width = whole.level(1).width;
+  ASSERT_EQ(whole.level(1).height, 23);
+  for (const std::string& folder : storages()) {
+    HeightPyramid copy(field.width, field.height, 1, folder);
+    // Block rows 10-22 given, 0-9 made from their rows.
+    copy.setBaseBlockRows(10, 13, base.data() + static_cast<size_t>(10) * width);
+    EXPECT_FALSE(copy.complete());
+    copy.addBlockRows(0, field.z.data(), 20);
+    expectSamePyramid(copy, whole);
+    // Filled once.
+    EXPECT_THROW(copy.setBaseBlockRows(0, 1, base.data()), std::invalid_argument);
+  }
+}
+
+// The march of a window's lines reads only blocks FarFieldWindow holds, and
+// the same maxima as from the whole pyramid: from every start point where
+// a line that reaches the tile can start (the tile and tileHalo around
+// it), every azimuth, on a metric and a geographic grid (rows' cells from
+// 21 to 37 m, so that columns drift with the row), for reaches that start
+// on the base level and above it. A small tile at a short reach holds a
+// small part of the pyramid.
+TEST(FarField, WindowsHoldWhatTheLinesReadAndLittleMore) {
+  Heightfield field = fbm(900, 700, 900);
+  for (const bool geographic : {false, true}) {
+    if (geographic) {
+      field.rowCellSizeXM.resize(static_cast<size_t>(field.height));
+      for (int row = 0; row < field.height; ++row)
+        field.rowCellSizeXM[static_cast<size_t>(row)] = 21.0 + 16.0 * row / (field.height - 1);
+      field.cellSizeXM = field.rowCellSizeXM[static_cast<size_t>(field.height / 2)];
+    }
+    for (const double reachCells : {16.0, 40.0, 130.0}) {
+      FarFieldOptions options;
+      options.nearReachM = reachCells * 30.0;
+      double largest = field.cellSizeYM;
+      for (int row = 0; row < field.height; ++row)
+        largest = std::max(largest, field.cellSizeXAtRow(row));
+      const HeightPyramid pyramid = buildHeightPyramid(field, farFieldBaseShift(options, largest));
+      const FarField far{&pyramid, options};
+      const BakeTerrain whole = prepareBakeTerrain(field);
+      const FarFieldWindow all(far, whole);
+      for (const TexelWindow& tile :
+           {TexelWindow{0, 0, 40, 40}, TexelWindow{430, 300, 40, 40}, TexelWindow{860, 640, 40, 60}}) {
+        SCOPED_TRACE(::testing::Message() << "geographic " << geographic << ", reach "
+                                          << reachCells << " cells, tile at " << tile.col << ","
+                                          << tile.row);
+        const BakeTerrain part = prepareBakeTerrain(field, tile);
+        const FarFieldWindow held(far, part);
+        EXPECT_LE(held.bytes(), all.bytes());
+        if (reachCells == 16.0) {
+          EXPECT_LT(held.bytes(), all.bytes() / 4);
+        }
+        const int halo = detail::stepsCovering(part, options.nearReachM) + 40 + 3;
+        for (int a = 0; a < 16; ++a) {
+          const double phi = (a + 0.3) * 2 * std::numbers::pi / 16;
+          const FarLineMarch fromHeld(held, part, phi), fromAll(all, whole, phi);
+          std::vector<float> d1, h1, d2, h2;
+          for (int row = tile.row - halo; row < tile.row + tile.height + halo; row += 7) {
+            for (int col = tile.col - halo; col < tile.col + tile.width + halo; col += 7) {
+              if (col < 0 || row < 0 || col >= field.width || row >= field.height) continue;
+              ASSERT_NO_THROW(fromHeld.march(col + 0.4, row - 0.3, d1, h1));
+              fromAll.march(col + 0.4, row - 0.3, d2, h2);
+              ASSERT_EQ(d1, d2);
+              ASSERT_EQ(h1, h2);
+            }
+          }
+        }
+      }
+    }
+  }
 }
 
 // A window's lines walked from windowReachM before it: each texel's horizon
@@ -252,6 +342,7 @@ TEST(FarField, SeededLinesSeeNearlyAllTheNearSweepMisses) {
   const HeightPyramid pyramid =
       buildHeightPyramid(field, farFieldBaseShift(options, field.cellSizeXM));
   const FarField far{&pyramid, options};
+  const FarFieldWindow farWindow(far, part);
   for (const bool avx2 : {true, false}) {
     setHorizonAvx2Allowed(avx2);
     for (const auto& [curvature, clampEdge] :
@@ -282,7 +373,7 @@ TEST(FarField, SeededLinesSeeNearlyAllTheNearSweepMisses) {
             for (int j = 0; j < b.count; ++j) out[b.firstTexel + j * b.stride] = b.tanHorizon[j];
           };
         };
-        sweepWindowHorizonBlocks(part, phi, windowed, keep(seeded), &far);
+        sweepWindowHorizonBlocks(part, phi, windowed, keep(seeded), &farWindow);
         HorizonSweepOptions open = windowed;
         open.clampEdge = false;
         sweepWindowHorizonBlocks(part, phi, open, keep(nearOnly));
