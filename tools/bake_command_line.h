@@ -63,7 +63,7 @@ inline void addNearReachOption(CLI::App& app, SweepCommandLine& o) {
                  "tiled, without --max-distance: metres the near sweep covers before the far "
                  "field's pyramid takes over (default 128 cells of the DEM's smallest cell, "
                  "minimum 16, where the pyramid's blocks are one cell; each doubling divides "
-                 "the pyramid's memory by 4 and adds that many steps to every tile's lines)")
+                 "the pyramid's size by 4 and adds that many steps to every tile's lines)")
       ->check(kPositive);
 }
 
