@@ -450,8 +450,18 @@ std::optional<HeightPyramid> emptyTiledBakePyramid(const Heightfield& geometry,
 
 std::string tiledBakePyramidFolder(const TiledBakeOptions& tiled, const std::string& folder) {
   if (!tiled.pyramidFolder.empty()) return tiled.pyramidFolder;
-  const fs::path parent = fs::absolute(fs::path(folder)).lexically_normal().parent_path();
-  return parent.empty() ? std::string(".") : parent.string();
+  // The output's file system has room for the tiles; the folder itself once
+  // it exists, else its parent (a new folder is made after the pass), else
+  // the system's temporary folder where neither can be written.
+  const fs::path out = fs::absolute(fs::path(folder)).lexically_normal();
+  std::error_code error;
+  for (const fs::path& candidate : {out, out.parent_path()}) {
+    if (!candidate.empty() && fs::is_directory(candidate, error) &&
+        ::access(candidate.c_str(), W_OK | X_OK) == 0) {
+      return candidate.string();
+    }
+  }
+  return fs::temp_directory_path(error).string();
 }
 
 int demPassChunkRows(const Heightfield& geometry, const HeightPyramid* pyramid) {

@@ -92,9 +92,9 @@ struct TiledBakeOptions {
   // kFarFieldReachCells of the field's smallest cell.
   FarFieldOptions farField;
   // Where a bake that reads the DEM in windows keeps the far field's
-  // pyramid, in a file no folder names (HeightPyramid): empty, the output
-  // folder's parent (on the output's file system, which has room for the
-  // tiles; the pyramid is 0.083 bytes per DEM texel at the default reach).
+  // pyramid, in a file no folder names (HeightPyramid): empty, on the
+  // output's file system, which has room for the tiles (the pyramid is
+  // 0.083 bytes per DEM texel at the default reach): tiledBakePyramidFolder.
   std::string pyramidFolder;
   // The folder's lock when the caller took it already (aal-bake does, before
   // loading the DEM); else the bake takes it.
@@ -209,7 +209,8 @@ std::optional<HeightPyramid> emptyTiledBakePyramid(const Heightfield& geometry,
                                                    const TiledBakeOptions& tiled,
                                                    const std::string& fileFolder = {});
 // Where a bake into `folder` keeps its pyramid's file: tiled.pyramidFolder,
-// else the folder's parent.
+// else the folder if it exists and can be written, else its parent if it
+// can, else the system's temporary folder.
 std::string tiledBakePyramidFolder(const TiledBakeOptions& tiled, const std::string& folder);
 // Rows per chunk: about 64 MB, whole block rows of `pyramid`'s finest level
 // (when there is one), so that chunks can be read in any order and by any

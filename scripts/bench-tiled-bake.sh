@@ -7,7 +7,9 @@
 # per texel-azimuth and the tiled/in-memory ratio.
 #   scripts/bench-tiled-bake.sh [SIZE] [TILE] [ROUNDS]   default 4096 2048 3
 # Environment: AZIMUTHS (32), WORK (scratch, default /tmp/aal-bench-tiled),
-# AAL_BUILD_DIR (build).
+# AAL_BUILD_DIR (build), REFERENCE_SIZE (the in-memory bake's DEM, default
+# SIZE: e.g. 1024 to set a 16384² tiled bake against a 1024² in-memory one),
+# LOW_MEMORY=1 (the tiled bake reads the DEM in windows, --low-memory).
 set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
 size=${1:-4096}
@@ -19,19 +21,26 @@ bin=${AAL_BUILD_DIR:-$root/build}/bin
 [ -x "$bin/aal-bake" ] || { echo "bench-tiled-bake: no $bin/aal-bake (build first)" >&2; exit 2; }
 command -v /usr/bin/time >/dev/null || sudo apt-get install -y -qq time
 mkdir -p "$work"
-dem="$work/fbm-$size.tif"
-[ -f "$dem" ] || "$bin/aal-synth" -o "$dem" --size "$size" --cell-size 30 --seed 1 >/dev/null
+reference=${REFERENCE_SIZE:-$size}
+for n in "$size" "$reference"; do
+  [ -f "$work/fbm-$n.tif" ] ||
+    "$bin/aal-synth" -o "$work/fbm-$n.tif" --size "$n" --cell-size 30 --seed 1 >/dev/null
+done
 
 run() {  # KIND: prints "KIND CPU-SECONDS PEAK-KB"
   rm -rf "$work/tiles" "$work/map.exr"
-  local target=("$work/map.exr")
-  [ "$1" = tiled ] && target=("$work/tiles" --tile-size "$tile")
+  local dem="$work/fbm-$reference.tif" target=("$work/map.exr")
+  if [ "$1" = tiled ]; then
+    dem="$work/fbm-$size.tif"
+    target=("$work/tiles" --tile-size "$tile")
+    [ "${LOW_MEMORY:-0}" = 1 ] && target+=(--low-memory)
+  fi
   /usr/bin/time -f "$1 %U %S %M" -o "$work/time.txt" \
     "$bin/aal-bake" "$dem" -o "${target[@]}" --azimuths "$azimuths" -q
   awk '{printf "%s %.2f %d\n", $1, $2 + $3, $4}' "$work/time.txt"
 }
 
-echo "DEM ${size}², tiles of $tile, $azimuths azimuths, $rounds rounds"
+echo "DEM ${size}² in tiles of $tile against ${reference}² in memory, $azimuths azimuths, $rounds rounds"
 results=()
 for ((r = 1; r <= rounds; r++)); do
   for kind in in-memory tiled; do
@@ -40,14 +49,16 @@ for ((r = 1; r <= rounds; r++)); do
     results+=("$line")
   done
 done
-printf '%s\n' "${results[@]}" | awk -v n="$size" -v a="$azimuths" '
+printf '%s\n' "${results[@]}" | awk -v n="$size" -v r="$reference" -v a="$azimuths" '
   { cpu[$1] = cpu[$1] " " $2 }
   END {
     for (k in cpu) {
       m = split(substr(cpu[k], 2), v, " ")
       for (i = 1; i <= m; ++i) for (j = i + 1; j <= m; ++j) if (v[j] < v[i]) { t = v[i]; v[i] = v[j]; v[j] = t }
       med[k] = v[int((m + 1) / 2)]
-      printf "%-9s median CPU %.2f s, %.1f ns per texel-azimuth\n", k, med[k], med[k] * 1e9 / (n * n * a)
+      side[k] = (k == "tiled") ? n : r
+      ns[k] = med[k] * 1e9 / (side[k] * side[k] * a)
+      printf "%-9s median CPU %.2f s, %.1f ns per texel-azimuth\n", k, med[k], ns[k]
     }
-    printf "tiled / in-memory: %.2f\n", med["tiled"] / med["in-memory"]
+    printf "tiled / in-memory, per texel-azimuth: %.2f\n", ns["tiled"] / ns["in-memory"]
   }'

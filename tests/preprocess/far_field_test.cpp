@@ -111,6 +111,19 @@ TEST(HeightPyramid, TheFileLeavesNothingInItsFolder) {
                std::runtime_error);
 }
 
+// A bake reading windows keeps the pyramid on the output's file system: in
+// the folder once it exists, before that in its parent; where asked.
+TEST(HeightPyramid, TheFileGoesBesideTheTiles) {
+  test::TempDir dir;
+  const std::string folder = (dir.path() / "tiles").string();
+  TiledBakeOptions tiled;
+  EXPECT_EQ(fs::path(tiledBakePyramidFolder(tiled, folder)), dir.path());
+  fs::create_directory(folder);
+  EXPECT_EQ(fs::path(tiledBakePyramidFolder(tiled, folder)), fs::path(folder));
+  tiled.pyramidFolder = "/somewhere/else";
+  EXPECT_EQ(tiledBakePyramidFolder(tiled, folder), "/somewhere/else");
+}
+
 void expectSamePyramid(const HeightPyramid& have, const HeightPyramid& want) {
   ASSERT_TRUE(have.complete());
   ASSERT_EQ(have.coarsestShift(), want.coarsestShift());
