@@ -15,6 +15,7 @@
 #include <vector>
 
 #include <tbb/global_control.h>
+#include <tbb/task_group.h>
 #include <CLI/CLI.hpp>
 
 #include "aperture/preprocess/bake.h"
@@ -390,55 +391,55 @@ std::optional<Baked> bakeOrInterrupted(const Options& o, const aal::DemSource& d
   return baked;
 }
 
-// The map of a bake in one piece and the extra rasters; false when
-// interrupted (said on stderr). The writers poll the interrupt too: each
-// output is whole or absent.
+// The map of a bake in one piece and the extra rasters, each file on its
+// own thread (they are independent, and a file's compression runs on one
+// core); false when interrupted (said on stderr). The writers poll the
+// interrupt too: each output is whole or absent.
 bool writeOutputs(const Options& o, bool tiled, Baked& baked, const aal::Heightfield& field,
                   const std::string& source) {
   aal::BakeResult& result = baked.result;
+  tbb::task_group writers;
+  const auto raster = [&](const std::string& path, std::vector<float>& values,
+                          const aal::RasterBandLabel& label) {
+    if (!path.empty()) {
+      writers.run([&, label] { writeGisRaster(path, std::move(values), field, o.raster, label); });
+    }
+  };
+  std::vector<float> visible;
   try {
     if (!tiled && !o.output.empty()) {
       result.aperture.info.source = source;
-      if (aal::isGeoTiffPath(o.output)) {
-        aal::writeApertureGeoTiff(o.output, result.aperture, field.geo, o.raster);
-      } else {
-        aal::writeApertureMap(o.output, result.aperture, !o.fullFloat, aal::mapCompression(o));
-      }
+      writers.run([&] {
+        if (aal::isGeoTiffPath(o.output)) {
+          aal::writeApertureGeoTiff(o.output, result.aperture, field.geo, o.raster);
+        } else {
+          aal::writeApertureMap(o.output, result.aperture, !o.fullFloat, aal::mapCompression(o));
+        }
+      });
     }
-    if (!o.svfPath.empty()) {
-      writeGisRaster(o.svfPath, std::move(result.skyViewFactor), field, o.raster,
-                     aal::skyViewFactorBandLabel());
+    if (!o.visiblePath.empty()) visible = visibleFractions(result.aperture);
+    raster(o.svfPath, result.skyViewFactor, aal::skyViewFactorBandLabel());
+    raster(o.visiblePath, visible, aal::visibleFractionBandLabel());
+    if (!o.horizonsPath.empty()) {
+      writers.run([&] { aal::writeHorizonMap(o.horizonsPath, result.horizons); });
     }
-    if (!o.visiblePath.empty()) {
-      writeGisRaster(o.visiblePath, visibleFractions(result.aperture), field, o.raster,
-                     aal::visibleFractionBandLabel());
-    }
-    if (!o.horizonsPath.empty()) aal::writeHorizonMap(o.horizonsPath, result.horizons);
-    if (!o.positiveOpennessPath.empty()) {
-      writeGisRaster(o.positiveOpennessPath, std::move(result.positiveOpenness), field, o.raster,
-                     aal::positiveOpennessBandLabel());
-    }
-    if (!o.negativeOpennessPath.empty()) {
-      writeGisRaster(o.negativeOpennessPath, std::move(result.negativeOpenness), field, o.raster,
-                     aal::negativeOpennessBandLabel());
-    }
-    if (!o.anisotropicSvfPath.empty()) {
-      writeGisRaster(o.anisotropicSvfPath, std::move(result.anisotropicSkyViewFactor), field,
-                     o.raster, aal::anisotropicSkyViewFactorBandLabel());
-    }
-    if (!o.skyIlluminationPath.empty()) {
-      writeGisRaster(o.skyIlluminationPath, std::move(result.skyIllumination), field, o.raster,
-                     aal::skyIlluminationBandLabel(o.skyModel == "overcast"));
-    }
-    if (!o.localDominancePath.empty()) {
-      writeGisRaster(o.localDominancePath, std::move(baked.localDominance), field, o.raster,
-                     aal::localDominanceBandLabel());
-    }
+    raster(o.positiveOpennessPath, result.positiveOpenness, aal::positiveOpennessBandLabel());
+    raster(o.negativeOpennessPath, result.negativeOpenness, aal::negativeOpennessBandLabel());
+    raster(o.anisotropicSvfPath, result.anisotropicSkyViewFactor,
+           aal::anisotropicSkyViewFactorBandLabel());
+    raster(o.skyIlluminationPath, result.skyIllumination,
+           aal::skyIlluminationBandLabel(o.skyModel == "overcast"));
+    raster(o.localDominancePath, baked.localDominance, aal::localDominanceBandLabel());
+    writers.wait();
   } catch (const aal::Interrupted&) {
+    writers.wait();
     std::fprintf(stderr,
-                 "aal-bake: interrupted while writing; the outputs written before are kept, the "
-                 "one being written was removed\n");
+                 "aal-bake: interrupted while writing; the outputs written before are kept, those "
+                 "being written were removed\n");
     return false;
+  } catch (...) {
+    writers.wait();  // the others finish before their buffers go
+    throw;
   }
   return true;
 }
