@@ -106,8 +106,8 @@ class AzimuthSweeps {
   void run() const {
     // Without a distance limit azimuths a and a + n/2 are swept together
     // (sweepOpposedHorizonBlocks): one pass over the sums for both.
-    const bool opposed =
-        sweep_.maxDistanceM <= 0.0 && sweep_.windowReachM <= 0.0 && o_.azimuths % 2 == 0;
+    // A far-field window's lines too, each azimuth from its own side.
+    const bool opposed = sweep_.maxDistanceM <= 0.0 && o_.azimuths % 2 == 0;
     const int passes = opposed ? o_.azimuths / 2 : o_.azimuths;
     for (int pass = 0; pass < passes; ++pass) {
       checkCancel(o_);
@@ -156,7 +156,8 @@ class AzimuthSweeps {
   bool sweepOpposed(const AzimuthSlice& s, const AzimuthSlice& opposite) const {
     return sweepOpposedHorizonBlocks(
         terrain_, s.phi, opposite.phi, sweep_,
-        [&](const HorizonBlock& b) { sums_.addBlock(b, s, &opposite); });
+        [&](const HorizonBlock& b) { sums_.addBlock(b, s, &opposite); },
+        farWindow_ ? &*farWindow_ : nullptr);
   }
 
   void sweepOne(const AzimuthSlice& s) const {

@@ -147,6 +147,51 @@ void sweepBlocks(const BlockSweep& sweep, const HorizonBlockVisitor& visit) {
       });
 }
 
+// A group's texels inside a partial window at each step: empty before the
+// window's first step (those steps only fill the hulls).
+template <bool kMajorIsColumn>
+struct WindowTexels {
+  const SweepLayout& layout;
+  const GroupTexels<kMajorIsColumn>& texels;
+
+  std::pair<int, int> at(int step) const {
+    auto [lo, hi] = texels.at(step);
+    if (step < layout.visitStep) hi = lo - 1;
+    return {std::max(lo, layout.minorBegin), std::min(hi, layout.minorEnd - 1)};
+  }
+};
+
+// The block of window texels lo .. hi at `step`, indexed as
+// BakeTerrain::windowIndex, with the texels kAheadSteps on.
+template <bool kMajorIsColumn>
+HorizonBlock windowBlock(const BlockSweep& sweep, const WindowTexels<kMajorIsColumn>& window,
+                         int step, int lo, int hi, const float* tanHorizon,
+                         const BlockSlopes& slopes) {
+  const SweepLayout& layout = sweep.layout;
+  const BakeTerrain& terrain = sweep.terrain;
+  const int major = layout.start + step * layout.step;
+  HorizonBlock b;
+  b.firstTexel = kMajorIsColumn ? terrain.windowIndex(major, lo) : terrain.windowIndex(lo, major);
+  b.stride = kMajorIsColumn ? terrain.window.width : 1;
+  b.count = hi - lo + 1;
+  b.tanHorizon = tanHorizon;
+  b.slopeEast = slopes.east;
+  b.slopeNorth = slopes.north;
+  // The texels kAheadSteps on, for the visitor's prefetches: without them
+  // a tile's column passes wait on memory.
+  const int ahead = step + HorizonBlock::kAheadSteps;
+  if (ahead < layout.endStep) {
+    const auto [aheadLo, aheadHi] = window.at(ahead);
+    if (aheadLo <= aheadHi) {
+      const int aheadMajor = layout.start + ahead * layout.step;
+      b.aheadFirstTexel = kMajorIsColumn ? terrain.windowIndex(aheadMajor, aheadLo)
+                                         : terrain.windowIndex(aheadLo, aheadMajor);
+      b.aheadCount = aheadHi - aheadLo + 1;
+    }
+  }
+  return b;
+}
+
 // sweepBlocks for a partial window without a distance limit (a far-field
 // bake, far_horizon.h): the window's lines walked from layout.firstStep
 // (options.windowReachM before the window), starting with the far field's
@@ -155,39 +200,14 @@ void sweepBlocks(const BlockSweep& sweep, const HorizonBlockVisitor& visit) {
 template <bool kMajorIsColumn>
 void sweepWindowBlocks(const BlockSweep& sweep, const HorizonBlockVisitor& visit) {
   const SweepLayout& layout = sweep.layout;
-  const BakeTerrain& terrain = sweep.terrain;
   forEachGroup<kMajorIsColumn>(
       sweep, HorizonBlock::kLines, [&](const auto& texels, BlockScratch& s) {
-        const auto windowTexelsAt = [&](int step) {
-          auto [lo, hi] = texels.at(step);
-          if (step < layout.visitStep) hi = lo - 1;  // only fills the hulls
-          return std::pair{std::max(lo, layout.minorBegin), std::min(hi, layout.minorEnd - 1)};
-        };
+        const WindowTexels<kMajorIsColumn> window{layout, texels};
         walkGroup(
-            sweep, texels, s, layout.firstStep, layout.endStep, windowTexelsAt,
+            sweep, texels, s, layout.firstStep, layout.endStep,
+            [&](int step) { return window.at(step); },
             [&](int step, int lo, int hi, const float* tanHorizon, const BlockSlopes& slopes) {
-              const int major = layout.start + step * layout.step;
-              HorizonBlock b;
-              b.firstTexel =
-                  kMajorIsColumn ? terrain.windowIndex(major, lo) : terrain.windowIndex(lo, major);
-              b.stride = kMajorIsColumn ? terrain.window.width : 1;
-              b.count = hi - lo + 1;
-              b.tanHorizon = tanHorizon;
-              b.slopeEast = slopes.east;
-              b.slopeNorth = slopes.north;
-              // The texels kAheadSteps on, for the visitor's prefetches:
-              // without them a tile's column passes wait on memory.
-              const int ahead = step + HorizonBlock::kAheadSteps;
-              if (ahead < layout.endStep) {
-                const auto [aheadLo, aheadHi] = windowTexelsAt(ahead);
-                if (aheadLo <= aheadHi) {
-                  const int aheadMajor = layout.start + ahead * layout.step;
-                  b.aheadFirstTexel = kMajorIsColumn ? terrain.windowIndex(aheadMajor, aheadLo)
-                                                     : terrain.windowIndex(aheadLo, aheadMajor);
-                  b.aheadCount = aheadHi - aheadLo + 1;
-                }
-              }
-              visit(b);
+              visit(windowBlock(sweep, window, step, lo, hi, tanHorizon, slopes));
             });
       });
 }
@@ -242,6 +262,55 @@ void sweepOpposedBlocks(const BlockSweep& sweep, const BlockSweep& opposite, int
           HorizonBlock block = texels.block(step, tanHorizon, slopes);
           block.tanOpposite = s.opposite.data() + static_cast<size_t>(step) * HorizonBlock::kLines;
           visit(block);
+        });
+  });
+}
+
+// sweepOpposedBlocks for a partial window (sweepWindowBlocks): for each
+// group the opposite lines beside its window texels are walked first, from
+// the opposite layout's firstStep (the near reach beyond the window's far
+// side) with their own far samples, their tangents kept per step; then the
+// group's lines, and each block carries both.
+template <bool kMajorIsColumn>
+void sweepOpposedWindowBlocks(const BlockSweep& sweep, const BlockSweep& opposite, int groupLines,
+                              const HorizonBlockVisitor& visit) {
+  const SweepLayout& layout = sweep.layout;
+  const SweepLayout& oppositeLayout = opposite.layout;
+  const int majorLength = layout.majorLength;
+  forEachGroup<kMajorIsColumn>(sweep, groupLines, [&](const auto& texels, BlockScratch& s) {
+    const WindowTexels<kMajorIsColumn> window{layout, texels};
+    int oppositeFirst = std::numeric_limits<int>::max();
+    int oppositeLast = std::numeric_limits<int>::min();
+    for (int k = layout.visitStep; k < layout.endStep; ++k) {
+      const auto [lo, hi] = window.at(k);
+      if (lo > hi) continue;
+      const int offset = oppositeLayout.floorOffset[majorLength - 1 - k];
+      oppositeFirst = std::min(oppositeFirst, lo - offset - 1);
+      oppositeLast = std::max(oppositeLast, hi - offset);
+    }
+    if (oppositeFirst > oppositeLast) return;  // no texel of the window
+    s.opposite.resize(static_cast<size_t>(HorizonBlock::kLines) * majorLength);
+    BlockLineWalker<kMajorIsColumn> backward(opposite.terrain, oppositeLayout, opposite.ux,
+                                             opposite.uy, opposite.options, s.hulls.data());
+    backward.begin(oppositeFirst, oppositeLast - oppositeFirst + 1);
+    if (opposite.far) {
+      backward.seedFar(*opposite.far, oppositeLayout.firstStep, s.farDistance, s.farHeight);
+    }
+    // Opposite step j is step majorLength - 1 - j here: the walk ends after
+    // the window's first step.
+    for (int j = oppositeLayout.firstStep; j < majorLength - layout.visitStep; ++j) {
+      if (!backward.anyLineOnGrid(j)) continue;
+      const int k = majorLength - 1 - j;
+      const auto [lo, hi] = k < layout.endStep ? window.at(k) : std::pair{1, 0};
+      backward.step(j, lo, hi, s.opposite.data() + static_cast<size_t>(k) * HorizonBlock::kLines);
+    }
+    walkGroup(
+        sweep, texels, s, layout.firstStep, layout.endStep,
+        [&](int step) { return window.at(step); },
+        [&](int step, int lo, int hi, const float* tanHorizon, const BlockSlopes& slopes) {
+          HorizonBlock b = windowBlock(sweep, window, step, lo, hi, tanHorizon, slopes);
+          b.tanOpposite = s.opposite.data() + static_cast<size_t>(step) * HorizonBlock::kLines;
+          visit(b);
         });
   });
 }
@@ -313,20 +382,37 @@ void sweepWindowHorizonBlocks(const BakeTerrain& terrain, double phi,
 }
 
 bool sweepOpposedHorizonBlocks(const BakeTerrain& terrain, double phi, double phiOpposite,
-                               const HorizonSweepOptions& options, HorizonBlockVisitor visit) {
+                               const HorizonSweepOptions& options, HorizonBlockVisitor visit,
+                               const FarFieldWindow* far) {
+  const bool window = options.windowReachM > 0.0;
+  if (options.clampEdge && window && !far) {
+    throw std::invalid_argument("sweepOpposedHorizonBlocks: clamped edges need the far field");
+  }
   const double ux = std::cos(phi), uy = std::sin(phi);
   const double oppositeUx = std::cos(phiOpposite), oppositeUy = std::sin(phiOpposite);
-  const detail::SweepLayout layout = detail::makeSweepLayout(terrain, ux, uy);
+  const detail::SweepLayout layout = detail::makeSweepLayout(terrain, ux, uy, options.windowReachM);
   const detail::SweepLayout oppositeLayout =
-      detail::makeSweepLayout(terrain, oppositeUx, oppositeUy);
+      detail::makeSweepLayout(terrain, oppositeUx, oppositeUy, options.windowReachM);
   const int lines = detail::oppositeLines(layout, oppositeLayout);
   if (lines < 1 || lines > detail::BlockLineWalker<true>::kMaxLines) return false;
   // Where oblique lines spread (lines > kLines + 1), smaller groups keep the
   // opposite walk at kLines + 1 lines: 5 vectors of 8 rather than 6.
   const int groupLines = HorizonBlock::kLines - (lines - (HorizonBlock::kLines + 1));
-  const detail::BlockSweep sweep{terrain, layout, ux, uy, options};
-  const detail::BlockSweep opposite{terrain, oppositeLayout, oppositeUx, oppositeUy, options};
-  if (layout.majorIsColumn) {
+  std::optional<FarLineMarch> farMarch, oppositeFarMarch;
+  if (window && far) {
+    farMarch.emplace(*far, terrain, phi);
+    oppositeFarMarch.emplace(*far, terrain, phiOpposite);
+  }
+  const detail::BlockSweep sweep{terrain, layout, ux, uy, options, farMarch ? &*farMarch : nullptr};
+  const detail::BlockSweep opposite{terrain, oppositeLayout, oppositeUx, oppositeUy, options,
+                                    oppositeFarMarch ? &*oppositeFarMarch : nullptr};
+  if (window) {
+    if (layout.majorIsColumn) {
+      detail::sweepOpposedWindowBlocks<true>(sweep, opposite, groupLines, visit);
+    } else {
+      detail::sweepOpposedWindowBlocks<false>(sweep, opposite, groupLines, visit);
+    }
+  } else if (layout.majorIsColumn) {
     detail::sweepOpposedBlocks<true>(sweep, opposite, groupLines, visit);
   } else {
     detail::sweepOpposedBlocks<false>(sweep, opposite, groupLines, visit);

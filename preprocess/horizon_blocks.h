@@ -133,7 +133,11 @@ void sweepWindowHorizonBlocks(const BakeTerrain& terrain, double phi,
 // step and line. Returns false, having visited nothing, where the two
 // sweeps' lines do not pair up (their major axes differ, at exactly 45
 // degrees): then sweep each azimuth on its own.
+// With options.windowReachM, a partial window's lines as
+// sweepWindowHorizonBlocks walks them, each azimuth's lines from the near
+// reach before the window on its own side, with `far` as there.
 bool sweepOpposedHorizonBlocks(const BakeTerrain& terrain, double phi, double phiOpposite,
-                               const HorizonSweepOptions& options, HorizonBlockVisitor visit);
+                               const HorizonSweepOptions& options, HorizonBlockVisitor visit,
+                               const FarFieldWindow* far = nullptr);
 
 }  // namespace aal

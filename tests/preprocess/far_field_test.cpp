@@ -339,6 +339,75 @@ TEST(FarField, WindowBlocksEqualTheWindowSweep) {
   setHorizonAvx2Allowed(true);
 }
 
+// Both azimuths of a window in one pass (sweepOpposedHorizonBlocks with
+// windowReachM): each texel visited once, with the tangents of each
+// azimuth's own window sweep bit for bit, far field or not, open and
+// clamped edges, on a metric and a geographic grid, the AVX2 and scalar
+// walks; every azimuth pair of 24 (at 45 degrees the lines do not pair).
+TEST(FarField, OpposedWindowSweepEqualsTheTwoWindowSweeps) {
+  Heightfield field = fbm(160, 120, 900);
+  const TexelWindow window{57, 31, 45, 37};
+  FarFieldOptions options;
+  options.nearReachM = 17 * 30.0;
+  for (const bool geographic : {false, true}) {
+    if (geographic) {
+      field.rowCellSizeXM.resize(static_cast<size_t>(field.height));
+      for (int row = 0; row < field.height; ++row)
+        field.rowCellSizeXM[static_cast<size_t>(row)] = 24.0 + 9.0 * row / (field.height - 1);
+      field.cellSizeXM = field.rowCellSizeXM[static_cast<size_t>(field.height / 2)];
+    }
+    const BakeTerrain part = prepareBakeTerrain(field, window);
+    const HeightPyramid pyramid = buildHeightPyramid(field, 0);
+    const FarFieldWindow far(FarField{&pyramid, options}, part);
+    for (const bool avx2 : {true, false}) {
+      setHorizonAvx2Allowed(avx2);
+      for (const auto& [withFar, clampEdge] :
+           {std::pair{false, false}, std::pair{true, false}, std::pair{true, true}}) {
+        HorizonSweepOptions o;
+        o.windowReachM = options.nearReachM;
+        o.curvature = 1e-6;
+        o.clampEdge = clampEdge;
+        const FarFieldWindow* farWindow = withFar ? &far : nullptr;
+        int paired = 0;
+        for (int a = 0; a < 12; ++a) {
+          SCOPED_TRACE(::testing::Message() << "geographic " << geographic << ", avx2 " << avx2
+                                            << ", far " << withFar << ", clamped " << clampEdge
+                                            << ", azimuth " << a);
+          const double phi = a * 2 * std::numbers::pi / 24, opposite = phi + std::numbers::pi;
+          std::vector<float> one(window.texelCount(), NAN), other(window.texelCount(), NAN);
+          sweepWindowHorizonBlocks(part, phi, o, [&](const HorizonBlock& b) {
+            for (int j = 0; j < b.count; ++j) one[b.firstTexel + j * b.stride] = b.tanHorizon[j];
+          }, farWindow);
+          sweepWindowHorizonBlocks(part, opposite, o, [&](const HorizonBlock& b) {
+            for (int j = 0; j < b.count; ++j) other[b.firstTexel + j * b.stride] = b.tanHorizon[j];
+          }, farWindow);
+          std::vector<float> both(window.texelCount(), NAN), bothOther(window.texelCount(), NAN);
+          std::vector<int> visits(window.texelCount(), 0);
+          if (!sweepOpposedHorizonBlocks(part, phi, opposite, o, [&](const HorizonBlock& b) {
+                for (int j = 0; j < b.count; ++j) {
+                  const size_t i = b.firstTexel + j * b.stride;
+                  ASSERT_LT(i, both.size());
+                  both[i] = b.tanHorizon[j];
+                  bothOther[i] = b.tanOpposite[j];
+                  ++visits[i];
+                }
+              }, farWindow)) {
+            continue;
+          }
+          ++paired;
+          for (size_t i = 0; i < both.size(); ++i) {
+            ASSERT_EQ(visits[i], 1) << "texel " << i;
+            ASSERT_EQ(both[i], one[i]) << "texel " << i;
+            ASSERT_EQ(bothOther[i], other[i]) << "texel " << i;
+          }
+        }
+        EXPECT_GE(paired, 8);
+      }
+    }
+  }
+  setHorizonAvx2Allowed(true);
+}
+
 // A window's lines seeded with the far field (sweepWindowHorizonBlocks
 // with a FarField) against the same lines walked over the whole DEM
 // (sweepHorizonBlocks), at the window's texels: block maxima lower a
