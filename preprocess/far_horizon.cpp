@@ -83,12 +83,14 @@ FarFieldWindow::FarFieldWindow(const FarField& far, const BakeTerrain& terrain)
       // Samples on this level lie less than reach + d < blockUnit 2^(shift+1) ahead.
       const double reachM = blockUnit * double(2L << shift) - options_.nearReachM;
       const long rows = static_cast<long>(std::ceil(reachM / terrain.cellY)) + 1;
-      const long rowLo = std::max(0L, r0 - rows), rowHi = std::min(long(terrain.height - 1), r1 + rows);
+      const long rowLo = std::max(0L, r0 - rows),
+                 rowHi = std::min(long(terrain.height - 1), r1 + rows);
       const auto [smallest, largest] = cellRange(terrain, rowLo, rowHi);
       const double xLo = x0 - reachM, xHi = x1 + reachM;
       const double colLo = terrain.centreCol + xLo / (xLo < 0 ? smallest : largest) - 1;
       const double colHi = terrain.centreCol + xHi / (xHi < 0 ? largest : smallest) + 1;
-      const long cLo = std::clamp(static_cast<long>(std::floor(colLo)), 0L, long(terrain.width - 1));
+      const long cLo =
+          std::clamp(static_cast<long>(std::floor(colLo)), 0L, long(terrain.width - 1));
       const long cHi = std::clamp(static_cast<long>(std::ceil(colHi)), 0L, long(terrain.width - 1));
       level.x0 = static_cast<int>(cLo >> shift);
       level.y0 = static_cast<int>(rowLo >> shift);

@@ -137,8 +137,8 @@ void HeightPyramid::writeFloats(size_t offset, const float* values, size_t count
     if (n < 0 && errno == EINTR) continue;
     if (n <= 0) {
       throw std::runtime_error(std::string("far-field pyramid file: cannot write ") +
-                               std::to_string(this->bytes()) + " bytes: " +
-                               std::strerror(n < 0 ? errno : ENOSPC));
+                               std::to_string(this->bytes()) +
+                               " bytes: " + std::strerror(n < 0 ? errno : ENOSPC));
     }
     bytes += n;
     left -= static_cast<size_t>(n);

@@ -82,7 +82,7 @@ class HeightPyramid {
   std::vector<float> memory_;  // without a file
   int rowsAdded_ = 0;          // by addRows
   int filledBlockRows_ = 0;
-  std::vector<char> filled_;      // per block row of the finest level
+  std::vector<char> filled_;  // per block row of the finest level
   std::vector<Level> levels_;
   std::vector<float> rowMax_;  // addRows: the base level's block row being filled
 };

@@ -404,8 +404,9 @@ bool sweepOpposedHorizonBlocks(const BakeTerrain& terrain, double phi, double ph
     oppositeFarMarch.emplace(*far, terrain, phiOpposite);
   }
   const detail::BlockSweep sweep{terrain, layout, ux, uy, options, farMarch ? &*farMarch : nullptr};
-  const detail::BlockSweep opposite{terrain, oppositeLayout, oppositeUx, oppositeUy, options,
-                                    oppositeFarMarch ? &*oppositeFarMarch : nullptr};
+  const detail::BlockSweep opposite{terrain,    oppositeLayout,
+                                    oppositeUx, oppositeUy,
+                                    options,    oppositeFarMarch ? &*oppositeFarMarch : nullptr};
   if (window) {
     if (layout.majorIsColumn) {
       detail::sweepOpposedWindowBlocks<true>(sweep, opposite, groupLines, visit);

@@ -540,7 +540,8 @@ namespace {
 // texels square: on each level, the window's blocks and those within the
 // distance the level is read to (its bound without the skew of geographic
 // rows).
-double farFieldWindowBytes(const Heightfield& geometry, const TiledBakeOptions& tiled, double side) {
+double farFieldWindowBytes(const Heightfield& geometry, const TiledBakeOptions& tiled,
+                           double side) {
   const FarFieldOptions far = resolvedFarField(geometry, tiled);
   const auto [smallest, largest] = cellRange(geometry);
   const double blockUnit = far.resolution * largest;
@@ -548,7 +549,8 @@ double farFieldWindowBytes(const Heightfield& geometry, const TiledBakeOptions& 
   double bytes = 0.0;
   for (int shift = base;; ++shift) {
     const double block = std::ldexp(1.0, shift);
-    const double levelW = std::ceil(geometry.width / block), levelH = std::ceil(geometry.height / block);
+    const double levelW = std::ceil(geometry.width / block),
+                 levelH = std::ceil(geometry.height / block);
     const double reachM = blockUnit * 2.0 * block - far.nearReachM;
     if (reachM > 0.0) {
       const double blocks = (side + 2.0 * reachM / smallest) / block + 3.0;

@@ -158,9 +158,9 @@ class DemSource;
 // about (3 tiles)^2) plus one tile, whatever the DEM's size; the DEM is
 // read once more for its checksum (and, without a max distance, its
 // pyramid, kept in a file: only the blocks each tile's far field reads are
-// in memory, FarFieldWindow). `geometry` is demGeometry of the source. The DEM must have no voids (filling them needs
-// all of it): InputError naming gdal_fillnodata.py otherwise, before any tile. An existing folder
-// is locked before the checksum pass.
+// in memory, FarFieldWindow). `geometry` is demGeometry of the source. The DEM must have no voids
+// (filling them needs all of it): InputError naming gdal_fillnodata.py otherwise, before any tile.
+// An existing folder is locked before the checksum pass.
 TiledBakeSummary bakeTiledInBands(const DemSource& source, const Heightfield& geometry,
                                   const BakeOptions& bake, const TiledBakeOptions& tiled,
                                   const std::string& folder);

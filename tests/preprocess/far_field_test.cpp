@@ -90,9 +90,9 @@ TEST(HeightPyramid, MaximaOfEveryBlock) {
         }
       }
       std::vector<float> one(1);
-      EXPECT_THROW(pyramid.readBlocks(baseShift, pyramid.level(baseShift).width, 0, 1, 1,
-                                      one.data()),
-                   std::out_of_range);
+      EXPECT_THROW(
+          pyramid.readBlocks(baseShift, pyramid.level(baseShift).width, 0, 1, 1, one.data()),
+          std::out_of_range);
     }
   }
 }
@@ -229,11 +229,10 @@ TEST(FarField, WindowsHoldWhatTheLinesReadAndLittleMore) {
       const FarField far{&pyramid, options};
       const BakeTerrain whole = prepareBakeTerrain(field);
       const FarFieldWindow all(far, whole);
-      for (const TexelWindow& tile :
-           {TexelWindow{0, 0, 40, 40}, TexelWindow{430, 300, 40, 40}, TexelWindow{860, 640, 40, 60}}) {
-        SCOPED_TRACE(::testing::Message() << "geographic " << geographic << ", reach "
-                                          << reachCells << " cells, tile at " << tile.col << ","
-                                          << tile.row);
+      for (const TexelWindow& tile : {TexelWindow{0, 0, 40, 40}, TexelWindow{430, 300, 40, 40},
+                                      TexelWindow{860, 640, 40, 60}}) {
+        SCOPED_TRACE(::testing::Message() << "geographic " << geographic << ", reach " << reachCells
+                                          << " cells, tile at " << tile.col << "," << tile.row);
         const BakeTerrain part = prepareBakeTerrain(field, tile);
         const FarFieldWindow held(far, part);
         EXPECT_LE(held.bytes(), all.bytes());
@@ -370,28 +369,39 @@ TEST(FarField, OpposedWindowSweepEqualsTheTwoWindowSweeps) {
         const FarFieldWindow* farWindow = withFar ? &far : nullptr;
         int paired = 0;
         for (int a = 0; a < 12; ++a) {
-          SCOPED_TRACE(::testing::Message() << "geographic " << geographic << ", avx2 " << avx2
-                                            << ", far " << withFar << ", clamped " << clampEdge
-                                            << ", azimuth " << a);
+          SCOPED_TRACE(::testing::Message()
+                       << "geographic " << geographic << ", avx2 " << avx2 << ", far " << withFar
+                       << ", clamped " << clampEdge << ", azimuth " << a);
           const double phi = a * 2 * std::numbers::pi / 24, opposite = phi + std::numbers::pi;
           std::vector<float> one(window.texelCount(), NAN), other(window.texelCount(), NAN);
-          sweepWindowHorizonBlocks(part, phi, o, [&](const HorizonBlock& b) {
-            for (int j = 0; j < b.count; ++j) one[b.firstTexel + j * b.stride] = b.tanHorizon[j];
-          }, farWindow);
-          sweepWindowHorizonBlocks(part, opposite, o, [&](const HorizonBlock& b) {
-            for (int j = 0; j < b.count; ++j) other[b.firstTexel + j * b.stride] = b.tanHorizon[j];
-          }, farWindow);
+          sweepWindowHorizonBlocks(
+              part, phi, o,
+              [&](const HorizonBlock& b) {
+                for (int j = 0; j < b.count; ++j)
+                  one[b.firstTexel + j * b.stride] = b.tanHorizon[j];
+              },
+              farWindow);
+          sweepWindowHorizonBlocks(
+              part, opposite, o,
+              [&](const HorizonBlock& b) {
+                for (int j = 0; j < b.count; ++j)
+                  other[b.firstTexel + j * b.stride] = b.tanHorizon[j];
+              },
+              farWindow);
           std::vector<float> both(window.texelCount(), NAN), bothOther(window.texelCount(), NAN);
           std::vector<int> visits(window.texelCount(), 0);
-          if (!sweepOpposedHorizonBlocks(part, phi, opposite, o, [&](const HorizonBlock& b) {
-                for (int j = 0; j < b.count; ++j) {
-                  const size_t i = b.firstTexel + j * b.stride;
-                  ASSERT_LT(i, both.size());
-                  both[i] = b.tanHorizon[j];
-                  bothOther[i] = b.tanOpposite[j];
-                  ++visits[i];
-                }
-              }, farWindow)) {
+          if (!sweepOpposedHorizonBlocks(
+                  part, phi, opposite, o,
+                  [&](const HorizonBlock& b) {
+                    for (int j = 0; j < b.count; ++j) {
+                      const size_t i = b.firstTexel + j * b.stride;
+                      ASSERT_LT(i, both.size());
+                      both[i] = b.tanHorizon[j];
+                      bothOther[i] = b.tanOpposite[j];
+                      ++visits[i];
+                    }
+                  },
+                  farWindow)) {
             continue;
           }
           ++paired;
