@@ -124,25 +124,37 @@ HeightPyramid& HeightPyramid::operator=(HeightPyramid&& other) noexcept {
   return *this;
 }
 
+namespace {
+
+// Moves `count` floats between `values` and the file at float `offset`
+// with pread or pwrite, through short transfers and EINTR. Returns the
+// bytes left unmoved: 0, or with errno set (0 at the file's end).
+template <class Transfer, class Bytes>
+size_t transferFloats(Transfer transfer, int fd, Bytes bytes, size_t offset, size_t count) {
+  size_t left = count * sizeof(float);
+  off_t at = static_cast<off_t>(offset * sizeof(float));
+  errno = 0;
+  while (left > 0) {
+    const ssize_t n = transfer(fd, bytes, left, at);
+    if (n < 0 && errno == EINTR) continue;
+    if (n <= 0) break;
+    bytes += n;
+    left -= static_cast<size_t>(n);
+    at += n;
+  }
+  return left;
+}
+
+}  // namespace
+
 void HeightPyramid::writeFloats(size_t offset, const float* values, size_t count) {
   if (fd_ < 0) {
     std::copy(values, values + count, memory_.begin() + static_cast<std::ptrdiff_t>(offset));
     return;
   }
-  const char* bytes = reinterpret_cast<const char*>(values);
-  size_t left = count * sizeof(float);
-  off_t at = static_cast<off_t>(offset * sizeof(float));
-  while (left > 0) {
-    const ssize_t n = ::pwrite(fd_, bytes, left, at);
-    if (n < 0 && errno == EINTR) continue;
-    if (n <= 0) {
-      throw std::runtime_error(std::string("far-field pyramid file: cannot write ") +
-                               std::to_string(this->bytes()) +
-                               " bytes: " + std::strerror(n < 0 ? errno : ENOSPC));
-    }
-    bytes += n;
-    left -= static_cast<size_t>(n);
-    at += n;
+  if (transferFloats(::pwrite, fd_, reinterpret_cast<const char*>(values), offset, count) > 0) {
+    throw std::runtime_error("far-field pyramid file: cannot write " + std::to_string(bytes()) +
+                             " bytes: " + std::strerror(errno != 0 ? errno : ENOSPC));
   }
 }
 
@@ -152,19 +164,9 @@ void HeightPyramid::readFloats(size_t offset, float* values, size_t count) const
     std::copy(first, first + static_cast<std::ptrdiff_t>(count), values);
     return;
   }
-  char* bytes = reinterpret_cast<char*>(values);
-  size_t left = count * sizeof(float);
-  off_t at = static_cast<off_t>(offset * sizeof(float));
-  while (left > 0) {
-    const ssize_t n = ::pread(fd_, bytes, left, at);
-    if (n < 0 && errno == EINTR) continue;
-    if (n <= 0) {
-      throw std::runtime_error(std::string("far-field pyramid file: cannot read it back: ") +
-                               (n < 0 ? std::strerror(errno) : "it is shorter than written"));
-    }
-    bytes += n;
-    left -= static_cast<size_t>(n);
-    at += n;
+  if (transferFloats(::pread, fd_, reinterpret_cast<char*>(values), offset, count) > 0) {
+    throw std::runtime_error(std::string("far-field pyramid file: cannot read it back: ") +
+                             (errno != 0 ? std::strerror(errno) : "it is shorter than written"));
   }
 }
 
