@@ -39,6 +39,10 @@ int farFieldBaseShift(const FarFieldOptions& options, double largestCellM) {
   return pyramidBaseShift(options.nearReachM, largestCellM, options.resolution);
 }
 
+double farLevelReachM(const FarFieldOptions& options, double largestCellM, int shift) {
+  return options.resolution * largestCellM * std::ldexp(2.0, shift) - options.nearReachM;
+}
+
 std::string farFieldMethod(const FarFieldOptions& options) {
   char text[160];
   std::snprintf(text, sizeof text, "sweep+far-field(max, reach %.6g m, lines, blocks 1/%d)",
@@ -63,7 +67,8 @@ FarFieldWindow::FarFieldWindow(const FarField& far, const BakeTerrain& terrain)
   const long r0 = std::max(long(held.row) - 1, long(tile.row) - halo);
   const long r1 = std::min(long(held.row + held.height), long(tile.row + tile.height - 1) + halo);
 
-  const double blockUnit = options_.resolution * cellRange(terrain, 0, terrain.height - 1).second;
+  const double largestCell = cellRange(terrain, 0, terrain.height - 1).second;
+  const double blockUnit = options_.resolution * largestCell;
   const auto [startSmallest, startLargest] = cellRange(terrain, r0, r1);
   // x of the start points (FarLineMarch::march): (col - centre) x the start row's cell.
   const auto xAt = [&](long col, bool least) {
@@ -80,8 +85,7 @@ FarFieldWindow::FarFieldWindow(const FarField& far, const BakeTerrain& terrain)
       level.width = whole.width;
       level.height = whole.height;
     } else {
-      // Samples on this level lie less than reach + d < blockUnit 2^(shift+1) ahead.
-      const double reachM = blockUnit * double(2L << shift) - options_.nearReachM;
+      const double reachM = farLevelReachM(options_, largestCell, shift);
       const long rows = static_cast<long>(std::ceil(reachM / terrain.cellY)) + 1;
       const long rowLo = std::max(0L, r0 - rows),
                  rowHi = std::min(long(terrain.height - 1), r1 + rows);
@@ -139,8 +143,7 @@ void FarLineMarch::march(double colF, double rowF, std::vector<float>& distance,
   const double y0 = terrain.rowY[0] - rowF * terrain.cellY;
   const double reach = far_.options().nearReachM;
   const double blockUnit = far_.options().resolution * largestCell_;  // where blocks of 1 cell end
-  int shift = std::clamp(static_cast<int>(std::floor(std::log2(std::max(reach / blockUnit, 1.0)))),
-                         far_.baseShift(), far_.coarsestShift());
+  int shift = far_.baseShift();  // the level the march starts at
   double d = 0.5 * double(1 << shift) * smallestCell_;
   const FarFieldWindow::Level* level = &far_.level(shift);
   for (;;) {

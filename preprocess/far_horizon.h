@@ -33,6 +33,12 @@ int farFieldBaseShift(const FarFieldOptions& options, double largestCellM);
 // refused as a bake with other options.
 std::string farFieldMethod(const FarFieldOptions& options);
 
+// How far beyond a line's start (m) FarLineMarch reads the level of
+// blocks of 2^shift (below the coarsest) on a DEM whose largest cell is
+// largestCellM: a sample d beyond it comes from that level while
+// R + d < 2^(shift+1) x resolution cells. Not above 0: never read.
+double farLevelReachM(const FarFieldOptions& options, double largestCellM, int shift);
+
 struct FarField {
   const HeightPyramid* pyramid = nullptr;  // the whole DEM's
   FarFieldOptions options;

@@ -544,14 +544,13 @@ double farFieldWindowBytes(const Heightfield& geometry, const TiledBakeOptions& 
                            double side) {
   const FarFieldOptions far = resolvedFarField(geometry, tiled);
   const auto [smallest, largest] = cellRange(geometry);
-  const double blockUnit = far.resolution * largest;
   const int base = tiledBakePyramidShift(geometry, tiled);
   double bytes = 0.0;
   for (int shift = base;; ++shift) {
     const double block = std::ldexp(1.0, shift);
     const double levelW = std::ceil(geometry.width / block),
                  levelH = std::ceil(geometry.height / block);
-    const double reachM = blockUnit * 2.0 * block - far.nearReachM;
+    const double reachM = farLevelReachM(far, largest, shift);
     if (reachM > 0.0) {
       const double blocks = (side + 2.0 * reachM / smallest) / block + 3.0;
       bytes += sizeof(float) * std::min(levelW, blocks) * std::min(levelH, blocks);
