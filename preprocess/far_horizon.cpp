@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstdio>
 #include <stdexcept>
+#include <tuple>
 #include <utility>
 
 #include "aperture/preprocess/horizon_sweep.h"
@@ -67,8 +68,8 @@ FarFieldWindow::FarFieldWindow(const FarField& far, const BakeTerrain& terrain)
   const long r0 = std::max(long(held.row) - 1, long(tile.row) - halo);
   const long r1 = std::min(long(held.row + held.height), long(tile.row + tile.height - 1) + halo);
 
-  const double largestCell = cellRange(terrain, 0, terrain.height - 1).second;
-  const double blockUnit = options_.resolution * largestCell;
+  std::tie(smallestCell_, largestCell_) = cellRange(terrain, 0, terrain.height - 1);
+  const double blockUnit = options_.resolution * largestCell_;
   const auto [startSmallest, startLargest] = cellRange(terrain, r0, r1);
   // x of the start points (FarLineMarch::march): (col - centre) x the start row's cell.
   const auto xAt = [&](long col, bool least) {
@@ -85,7 +86,7 @@ FarFieldWindow::FarFieldWindow(const FarField& far, const BakeTerrain& terrain)
       level.width = whole.width;
       level.height = whole.height;
     } else {
-      const double reachM = farLevelReachM(options_, largestCell, shift);
+      const double reachM = farLevelReachM(options_, largestCell_, shift);
       const long rows = static_cast<long>(std::ceil(reachM / terrain.cellY)) + 1;
       const long rowLo = std::max(0L, r0 - rows),
                  rowHi = std::min(long(terrain.height - 1), r1 + rows);
@@ -120,18 +121,7 @@ size_t FarFieldWindow::bytes() const {
 }
 
 FarLineMarch::FarLineMarch(const FarFieldWindow& far, const BakeTerrain& terrain, double phi)
-    : far_(far),
-      terrain_(terrain),
-      ux_(std::cos(phi)),
-      uy_(std::sin(phi)),
-      smallestCell_(terrain.cellY),
-      largestCell_(terrain.cellY) {
-  // Once per azimuth: a row's cell per DEM row.
-  for (double cellX : terrain.rowCellX) {
-    smallestCell_ = std::min(smallestCell_, cellX);
-    largestCell_ = std::max(largestCell_, cellX);
-  }
-}
+    : far_(far), terrain_(terrain), ux_(std::cos(phi)), uy_(std::sin(phi)) {}
 
 void FarLineMarch::march(double colF, double rowF, std::vector<float>& distance,
                          std::vector<float>& height) const {
@@ -142,9 +132,10 @@ void FarLineMarch::march(double colF, double rowF, std::vector<float>& distance,
   const double x0 = (colF - terrain.centreCol) * terrain.rowCellX[startRow];
   const double y0 = terrain.rowY[0] - rowF * terrain.cellY;
   const double reach = far_.options().nearReachM;
-  const double blockUnit = far_.options().resolution * largestCell_;  // where blocks of 1 cell end
+  const double smallestCell = far_.smallestCellM();
+  const double blockUnit = far_.options().resolution * far_.largestCellM();  // blocks of 1 cell end
   int shift = far_.baseShift();  // the level the march starts at
-  double d = 0.5 * double(1 << shift) * smallestCell_;
+  double d = 0.5 * double(1 << shift) * smallestCell;
   const FarFieldWindow::Level* level = &far_.level(shift);
   for (;;) {
     while (shift < far_.coarsestShift() && reach + d >= blockUnit * double(2 << shift)) {
@@ -157,7 +148,7 @@ void FarLineMarch::march(double colF, double rowF, std::vector<float>& distance,
     if (c < 0 || c >= terrain.width) break;
     distance.push_back(static_cast<float>(d));
     height.push_back(level->maxAt(static_cast<int>(c >> shift), static_cast<int>(r >> shift)));
-    d += 0.5 * double(1 << shift) * smallestCell_;
+    d += 0.5 * double(1 << shift) * smallestCell;
   }
 }
 

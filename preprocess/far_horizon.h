@@ -77,9 +77,13 @@ class FarFieldWindow {
   // The level of blocks of 2^shift, shift in [baseShift, coarsestShift].
   const Level& level(int shift) const { return levels_[static_cast<size_t>(shift - baseShift())]; }
   size_t bytes() const;
+  // The DEM's smallest and largest cell (m), north-south included.
+  double smallestCellM() const { return smallestCell_; }
+  double largestCellM() const { return largestCell_; }
 
  private:
   FarFieldOptions options_;
+  double smallestCell_ = 0, largestCell_ = 0;
   std::vector<Level> levels_;
 };
 
@@ -103,7 +107,7 @@ class FarLineMarch {
  private:
   const FarFieldWindow& far_;
   const BakeTerrain& terrain_;
-  double ux_, uy_, smallestCell_, largestCell_;
+  double ux_, uy_;
 };
 
 }  // namespace aal
