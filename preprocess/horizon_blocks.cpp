@@ -214,33 +214,37 @@ void sweepWindowBlocks(const BlockSweep& sweep, const HorizonBlockVisitor& visit
 
 // Step k of `sweep` is step majorLength - 1 - k of the opposite sweep (the
 // same slice): walks the opposite lines that pass beside a group's texels
-// backwards over the steps and leaves their tangents in s.opposite, kLines
-// per step k. Texel minor m lies between opposite lines m - floorOffset - 1
-// and m - floorOffset there. False: the group has no texels.
-template <bool kMajorIsColumn>
-bool walkOpposite(const BlockSweep& opposite, const GroupTexels<kMajorIsColumn>& texels,
+// at steps [visitFirst, visitEnd) (texelsAt(k), as the group's walk visits
+// them) backwards over the steps, from the opposite layout's firstStep
+// (with its far samples where opposite.far is given) to the last of those,
+// and leaves their tangents in s.opposite, kLines per step k. Texel minor m
+// lies between opposite lines m - floorOffset - 1 and m - floorOffset
+// there. False: the group has no texels.
+template <bool kMajorIsColumn, class TexelsAt>
+bool walkOpposite(const BlockSweep& opposite, int visitFirst, int visitEnd, TexelsAt&& texelsAt,
                   BlockScratch& s) {
   const SweepLayout& layout = opposite.layout;
   const int majorLength = layout.majorLength;
-  s.opposite.resize(static_cast<size_t>(HorizonBlock::kLines) * majorLength);
   int oppositeFirst = std::numeric_limits<int>::max();
   int oppositeLast = std::numeric_limits<int>::min();
-  for (int k = 0; k < majorLength; ++k) {
-    const auto [lo, hi] = texels.at(k);
+  for (int k = visitFirst; k < visitEnd; ++k) {
+    const auto [lo, hi] = texelsAt(k);
     if (lo > hi) continue;
     const int offset = layout.floorOffset[majorLength - 1 - k];
     oppositeFirst = std::min(oppositeFirst, lo - offset - 1);
     oppositeLast = std::max(oppositeLast, hi - offset);
   }
   if (oppositeFirst > oppositeLast) return false;
+  s.opposite.resize(static_cast<size_t>(HorizonBlock::kLines) * majorLength);
   BlockLineWalker<kMajorIsColumn> backward(opposite.terrain, layout, opposite.ux, opposite.uy,
                                            opposite.options, s.hulls.data());
   backward.begin(oppositeFirst, oppositeLast - oppositeFirst + 1);
-  for (int k = majorLength - 1; k >= 0; --k) {
-    if (!backward.anyLineOnGrid(majorLength - 1 - k)) continue;
-    const auto [lo, hi] = texels.at(k);
-    backward.step(majorLength - 1 - k, lo, hi,
-                  s.opposite.data() + static_cast<size_t>(k) * HorizonBlock::kLines);
+  if (opposite.far) backward.seedFar(*opposite.far, layout.firstStep, s.farDistance, s.farHeight);
+  for (int j = layout.firstStep; j < majorLength - visitFirst; ++j) {
+    if (!backward.anyLineOnGrid(j)) continue;
+    const int k = majorLength - 1 - j;
+    const auto [lo, hi] = k < visitEnd ? texelsAt(k) : std::pair{1, 0};
+    backward.step(j, lo, hi, s.opposite.data() + static_cast<size_t>(k) * HorizonBlock::kLines);
   }
   return true;
 }
@@ -255,14 +259,15 @@ template <bool kMajorIsColumn>
 void sweepOpposedBlocks(const BlockSweep& sweep, const BlockSweep& opposite, int groupLines,
                         const HorizonBlockVisitor& visit) {
   forEachGroup<kMajorIsColumn>(sweep, groupLines, [&](const auto& texels, BlockScratch& s) {
-    if (!walkOpposite(opposite, texels, s)) return;
-    walkGroup(
-        sweep, texels, s, 0, sweep.layout.majorLength, [&](int step) { return texels.at(step); },
-        [&](int step, int, int, const float* tanHorizon, const BlockSlopes& slopes) {
-          HorizonBlock block = texels.block(step, tanHorizon, slopes);
-          block.tanOpposite = s.opposite.data() + static_cast<size_t>(step) * HorizonBlock::kLines;
-          visit(block);
-        });
+    const auto texelsAt = [&](int step) { return texels.at(step); };
+    if (!walkOpposite<kMajorIsColumn>(opposite, 0, sweep.layout.majorLength, texelsAt, s)) return;
+    walkGroup(sweep, texels, s, 0, sweep.layout.majorLength, texelsAt,
+              [&](int step, int, int, const float* tanHorizon, const BlockSlopes& slopes) {
+                HorizonBlock block = texels.block(step, tanHorizon, slopes);
+                block.tanOpposite =
+                    s.opposite.data() + static_cast<size_t>(step) * HorizonBlock::kLines;
+                visit(block);
+              });
   });
 }
 
@@ -275,43 +280,19 @@ template <bool kMajorIsColumn>
 void sweepOpposedWindowBlocks(const BlockSweep& sweep, const BlockSweep& opposite, int groupLines,
                               const HorizonBlockVisitor& visit) {
   const SweepLayout& layout = sweep.layout;
-  const SweepLayout& oppositeLayout = opposite.layout;
-  const int majorLength = layout.majorLength;
   forEachGroup<kMajorIsColumn>(sweep, groupLines, [&](const auto& texels, BlockScratch& s) {
     const WindowTexels<kMajorIsColumn> window{layout, texels};
-    int oppositeFirst = std::numeric_limits<int>::max();
-    int oppositeLast = std::numeric_limits<int>::min();
-    for (int k = layout.visitStep; k < layout.endStep; ++k) {
-      const auto [lo, hi] = window.at(k);
-      if (lo > hi) continue;
-      const int offset = oppositeLayout.floorOffset[majorLength - 1 - k];
-      oppositeFirst = std::min(oppositeFirst, lo - offset - 1);
-      oppositeLast = std::max(oppositeLast, hi - offset);
+    const auto texelsAt = [&](int step) { return window.at(step); };
+    if (!walkOpposite<kMajorIsColumn>(opposite, layout.visitStep, layout.endStep, texelsAt, s)) {
+      return;  // no texel of the window
     }
-    if (oppositeFirst > oppositeLast) return;  // no texel of the window
-    s.opposite.resize(static_cast<size_t>(HorizonBlock::kLines) * majorLength);
-    BlockLineWalker<kMajorIsColumn> backward(opposite.terrain, oppositeLayout, opposite.ux,
-                                             opposite.uy, opposite.options, s.hulls.data());
-    backward.begin(oppositeFirst, oppositeLast - oppositeFirst + 1);
-    if (opposite.far) {
-      backward.seedFar(*opposite.far, oppositeLayout.firstStep, s.farDistance, s.farHeight);
-    }
-    // Opposite step j is step majorLength - 1 - j here: the walk ends after
-    // the window's first step.
-    for (int j = oppositeLayout.firstStep; j < majorLength - layout.visitStep; ++j) {
-      if (!backward.anyLineOnGrid(j)) continue;
-      const int k = majorLength - 1 - j;
-      const auto [lo, hi] = k < layout.endStep ? window.at(k) : std::pair{1, 0};
-      backward.step(j, lo, hi, s.opposite.data() + static_cast<size_t>(k) * HorizonBlock::kLines);
-    }
-    walkGroup(
-        sweep, texels, s, layout.firstStep, layout.endStep,
-        [&](int step) { return window.at(step); },
-        [&](int step, int lo, int hi, const float* tanHorizon, const BlockSlopes& slopes) {
-          HorizonBlock b = windowBlock(sweep, window, step, lo, hi, tanHorizon, slopes);
-          b.tanOpposite = s.opposite.data() + static_cast<size_t>(step) * HorizonBlock::kLines;
-          visit(b);
-        });
+    walkGroup(sweep, texels, s, layout.firstStep, layout.endStep, texelsAt,
+              [&](int step, int lo, int hi, const float* tanHorizon, const BlockSlopes& slopes) {
+                HorizonBlock b = windowBlock(sweep, window, step, lo, hi, tanHorizon, slopes);
+                b.tanOpposite =
+                    s.opposite.data() + static_cast<size_t>(step) * HorizonBlock::kLines;
+                visit(b);
+              });
   });
 }
 
