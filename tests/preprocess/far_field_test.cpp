@@ -41,6 +41,24 @@ Heightfield fbm(int width, int height, double amplitudeM, uint64_t seed = 5) {
   return makeSyntheticTerrain(s);
 }
 
+// Makes `field` a geographic grid: its rows' east-west cells grow evenly
+// from `northM` (first row) to `southM` (last), so columns drift with the row.
+void makeGeographic(Heightfield& field, double northM, double southM) {
+  field.rowCellSizeXM.resize(static_cast<size_t>(field.height));
+  for (int row = 0; row < field.height; ++row) {
+    field.rowCellSizeXM[static_cast<size_t>(row)] =
+        northM + (southM - northM) * row / (field.height - 1);
+  }
+  field.cellSizeXM = field.rowCellSizeXM[static_cast<size_t>(field.height / 2)];
+}
+
+// A block visitor that keeps each texel's tangent in `out` (window indices).
+auto keepTangents(std::vector<float>& out) {
+  return [&out](const HorizonBlock& b) {
+    for (int j = 0; j < b.count; ++j) out[b.firstTexel + j * b.stride] = b.tanHorizon[j];
+  };
+}
+
 // Where a pyramid's levels live: memory, or a file no folder names (empty:
 // memory).
 std::vector<std::string> storages() {
@@ -213,12 +231,7 @@ TEST(HeightPyramid, BlockRowsFromAnotherPyramidAreTheSame) {
 TEST(FarField, WindowsHoldWhatTheLinesReadAndLittleMore) {
   Heightfield field = fbm(900, 700, 900);
   for (const bool geographic : {false, true}) {
-    if (geographic) {
-      field.rowCellSizeXM.resize(static_cast<size_t>(field.height));
-      for (int row = 0; row < field.height; ++row)
-        field.rowCellSizeXM[static_cast<size_t>(row)] = 21.0 + 16.0 * row / (field.height - 1);
-      field.cellSizeXM = field.rowCellSizeXM[static_cast<size_t>(field.height / 2)];
-    }
+    if (geographic) makeGeographic(field, 21.0, 37.0);
     for (const double reachCells : {16.0, 40.0, 130.0}) {
       FarFieldOptions options;
       options.nearReachM = reachCells * 30.0;
@@ -349,12 +362,7 @@ TEST(FarField, OpposedWindowSweepEqualsTheTwoWindowSweeps) {
   FarFieldOptions options;
   options.nearReachM = 17 * 30.0;
   for (const bool geographic : {false, true}) {
-    if (geographic) {
-      field.rowCellSizeXM.resize(static_cast<size_t>(field.height));
-      for (int row = 0; row < field.height; ++row)
-        field.rowCellSizeXM[static_cast<size_t>(row)] = 24.0 + 9.0 * row / (field.height - 1);
-      field.cellSizeXM = field.rowCellSizeXM[static_cast<size_t>(field.height / 2)];
-    }
+    if (geographic) makeGeographic(field, 24.0, 33.0);
     const BakeTerrain part = prepareBakeTerrain(field, window);
     const HeightPyramid pyramid = buildHeightPyramid(field, 0);
     const FarFieldWindow far(FarField{&pyramid, options}, part);
@@ -374,20 +382,8 @@ TEST(FarField, OpposedWindowSweepEqualsTheTwoWindowSweeps) {
                        << ", clamped " << clampEdge << ", azimuth " << a);
           const double phi = a * 2 * std::numbers::pi / 24, opposite = phi + std::numbers::pi;
           std::vector<float> one(window.texelCount(), NAN), other(window.texelCount(), NAN);
-          sweepWindowHorizonBlocks(
-              part, phi, o,
-              [&](const HorizonBlock& b) {
-                for (int j = 0; j < b.count; ++j)
-                  one[b.firstTexel + j * b.stride] = b.tanHorizon[j];
-              },
-              farWindow);
-          sweepWindowHorizonBlocks(
-              part, opposite, o,
-              [&](const HorizonBlock& b) {
-                for (int j = 0; j < b.count; ++j)
-                  other[b.firstTexel + j * b.stride] = b.tanHorizon[j];
-              },
-              farWindow);
+          sweepWindowHorizonBlocks(part, phi, o, keepTangents(one), farWindow);
+          sweepWindowHorizonBlocks(part, opposite, o, keepTangents(other), farWindow);
           std::vector<float> both(window.texelCount(), NAN), bothOther(window.texelCount(), NAN);
           std::vector<int> visits(window.texelCount(), 0);
           if (!sweepOpposedHorizonBlocks(
@@ -460,15 +456,10 @@ TEST(FarField, SeededLinesSeeNearlyAllTheNearSweepMisses) {
         });
         HorizonSweepOptions windowed = o;
         windowed.windowReachM = options.nearReachM;
-        const auto keep = [](std::vector<float>& out) {
-          return [&out](const HorizonBlock& b) {
-            for (int j = 0; j < b.count; ++j) out[b.firstTexel + j * b.stride] = b.tanHorizon[j];
-          };
-        };
-        sweepWindowHorizonBlocks(part, phi, windowed, keep(seeded), &farWindow);
+        sweepWindowHorizonBlocks(part, phi, windowed, keepTangents(seeded), &farWindow);
         HorizonSweepOptions open = windowed;
         open.clampEdge = false;
-        sweepWindowHorizonBlocks(part, phi, open, keep(nearOnly));
+        sweepWindowHorizonBlocks(part, phi, open, keepTangents(nearOnly));
         for (size_t i = 0; i < reference.size(); ++i) {
           if (reference[i] <= kNoHorizonTangent) continue;
           const double under = reference[i] - seeded[i];
