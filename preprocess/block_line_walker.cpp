@@ -59,43 +59,58 @@ template <bool kMajorIsColumn>
 void BlockLineWalker<kMajorIsColumn>::seedFar(const FarLineMarch& far, int step,
                                               std::vector<float>& distance,
                                               std::vector<float>& height) {
+  for (int i = 0; i < lines_; ++i) seedLine(i, far, step, distance, height);
+}
+
+template <bool kMajorIsColumn>
+void BlockLineWalker<kMajorIsColumn>::restart(int i, int step, const FarLineMarch* far,
+                                              std::vector<float>& distance,
+                                              std::vector<float>& height) {
+  // As begin() leaves a line, then as seedFar() seeds it.
+  size_[i] = 0;
+  for (float* a : {edgeT_, edgeZ_, topT_, topZ_, belowT_, belowZ_, thirdT_, thirdZ_}) a[i] = 0.0f;
+  if (far) seedLine(i, *far, step, distance, height);
+}
+
+template <bool kMajorIsColumn>
+void BlockLineWalker<kMajorIsColumn>::seedLine(int i, const FarLineMarch& far, int step,
+                                               std::vector<float>& distance,
+                                               std::vector<float>& height) {
   const int majorLength = layout_.majorLength;
   const int major = layout_.start + step * layout_.step;
   // The walk pushes at most one point per step from here: the far field
   // keeps to the room left (its hull is far smaller in practice).
   const int room = majorLength - (layout_.endStep - step) - 1;
-  for (int i = 0; i < lines_; ++i) {
-    const double minor = (firstLine_ + i) + step * layout_.minorPerStep;
-    if (minor < 0.0 || minor > minorMax_) continue;
-    // The samples beyond the line's first point, at (column, row).
-    const double t = lineT(major, minor);
-    if constexpr (kMajorIsColumn) {
-      far.march(major, minor, distance, height);
-    } else {
-      far.march(minor, major, distance, height);
-    }
-    HullPointF* hull = hulls_ + static_cast<size_t>(i) * majorLength;
-    int n = 0;
-    const int count = std::min(static_cast<int>(distance.size()), std::max(room, 0));
-    for (int k = count - 1; k >= 0; --k) {
-      const float pointT = static_cast<float>(t + distance[k]);
-      const float z = height[k] - curvature_ * pointT * pointT;
-      while (n >= 2 && hullTopUnder(hull, n, pointT, z)) --n;
-      hull[n++] = {pointT, z};
-    }
-    size_[i] = n;
-    // Clamped edges: the ground goes on flat from the last sample in the
-    // DEM (else, as for a line that starts at the edge, from the first
-    // point walked).
-    if (!distance.empty()) {
-      edgeT_[i] = static_cast<float>(t + distance.back());
-      edgeZ_[i] = height.back();
-    }
-    // The AVX2 walk's copies of the top three points.
-    if (n >= 1) topT_[i] = hull[n - 1].t, topZ_[i] = hull[n - 1].z;
-    if (n >= 2) belowT_[i] = hull[n - 2].t, belowZ_[i] = hull[n - 2].z;
-    if (n >= 3) thirdT_[i] = hull[n - 3].t, thirdZ_[i] = hull[n - 3].z;
+  const double minor = (firstLine_ + i) + step * layout_.minorPerStep;
+  if (minor < 0.0 || minor > minorMax_) return;
+  // The samples beyond the line's first point, at (column, row).
+  const double t = lineT(major, minor);
+  if constexpr (kMajorIsColumn) {
+    far.march(major, minor, distance, height);
+  } else {
+    far.march(minor, major, distance, height);
   }
+  HullPointF* hull = hulls_ + static_cast<size_t>(i) * majorLength;
+  int n = 0;
+  const int count = std::min(static_cast<int>(distance.size()), std::max(room, 0));
+  for (int k = count - 1; k >= 0; --k) {
+    const float pointT = static_cast<float>(t + distance[k]);
+    const float z = height[k] - curvature_ * pointT * pointT;
+    while (n >= 2 && hullTopUnder(hull, n, pointT, z)) --n;
+    hull[n++] = {pointT, z};
+  }
+  size_[i] = n;
+  // Clamped edges: the ground goes on flat from the last sample in the
+  // DEM (else, as for a line that starts at the edge, from the first
+  // point walked).
+  if (!distance.empty()) {
+    edgeT_[i] = static_cast<float>(t + distance.back());
+    edgeZ_[i] = height.back();
+  }
+  // The AVX2 walk's copies of the top three points.
+  if (n >= 1) topT_[i] = hull[n - 1].t, topZ_[i] = hull[n - 1].z;
+  if (n >= 2) belowT_[i] = hull[n - 2].t, belowZ_[i] = hull[n - 2].z;
+  if (n >= 3) thirdT_[i] = hull[n - 3].t, thirdZ_[i] = hull[n - 3].z;
 }
 
 template <bool kMajorIsColumn>

@@ -59,6 +59,11 @@ class BlockLineWalker {
   // `distance` and `height`), pushed farthest first as though walked.
   void seedFar(const FarLineMarch& far, int step, std::vector<float>& distance,
                std::vector<float>& height);
+  // Walked line i starts afresh at sweep step `step`, before that step is
+  // taken: its hull emptied and, where far is given, seeded as seedFar()
+  // seeds it (SweepLayout::lineStart).
+  void restart(int i, int step, const FarLineMarch* far, std::vector<float>& distance,
+               std::vector<float>& height);
 
   // Whether any walked line may be on the grid at `step` (with a texel of
   // margin against rounding; a step's texels lie between walked lines, so
@@ -114,6 +119,9 @@ class BlockLineWalker {
     float riseToNear[kPaddedLines], runToNear[kPaddedLines], horizon[kPaddedLines];
   };
 
+  // seedFar() for walked line i.
+  void seedLine(int i, const FarLineMarch& far, int step, std::vector<float>& distance,
+                std::vector<float>& height);
   // Both walks: the heights a few steps ahead into the cache.
   [[gnu::always_inline]] inline void prefetchAhead(int step) const;
   // Both walks: the step's slice of the grid, its heights and the slopes'

@@ -112,21 +112,53 @@ void forEachGroup(const BlockSweep& sweep, int groupLines, WalkGroup&& walkGroup
   });
 }
 
-// Walks a group's own lines (and the one before them) over steps
-// [firstStep, endStep): where texelsAt(step) is a range lo .. hi that is
+// Where a walk's lines start (SweepLayout::lineStart): the walk at the
+// earliest, the others afresh at their own (BlockLineWalker::restart), so
+// that a line's tangents do not depend on the lines walked with it.
+struct LineStarts {
+  static constexpr int kMaxLines = BlockLineWalker<true>::kMaxLines;
+  int first = 0;
+  int count = 0, next = 0;
+  std::pair<int, int> later[kMaxLines];  // (step, walked line), by step
+
+  LineStarts(const SweepLayout& layout, int firstLine, int lines) {
+    int step[kMaxLines] = {};
+    for (int i = 0; i < lines; ++i) step[i] = layout.startOf(firstLine + i);
+    first = *std::min_element(step, step + lines);
+    for (int i = 0; i < lines; ++i) {
+      if (step[i] > first) later[count++] = {step[i], i};
+    }
+    std::sort(later, later + count);
+  }
+
+  // Restarts the lines that start at `step` (every step in order, whether
+  // taken or not).
+  template <bool kMajorIsColumn>
+  void restart(int step, BlockLineWalker<kMajorIsColumn>& walker, const FarLineMarch* far,
+               BlockScratch& s) {
+    for (; next < count && later[next].first == step; ++next) {
+      walker.restart(later[next].second, step, far, s.farDistance, s.farHeight);
+    }
+  }
+};
+
+// Walks a group's own lines (and the one before them) from their starts
+// (LineStarts) to endStep: where texelsAt(step) is a range lo .. hi that is
 // not empty, the step's texels' tangents and slopes go to
 // visitStep(step, lo, hi, tanHorizon, slopes); elsewhere the step only
 // fills the hulls.
 template <bool kMajorIsColumn, class TexelsAt, class VisitStep>
 void walkGroup(const BlockSweep& sweep, const GroupTexels<kMajorIsColumn>& texels, BlockScratch& s,
-               int firstStep, int endStep, TexelsAt&& texelsAt, VisitStep&& visitStep) {
+               int endStep, TexelsAt&& texelsAt, VisitStep&& visitStep) {
   BlockLineWalker<kMajorIsColumn> walker(sweep.terrain, sweep.layout, sweep.ux, sweep.uy,
                                          sweep.options, s.hulls.data());
   walker.begin(texels.first - 1, texels.count + 1);
-  if (sweep.far) walker.seedFar(*sweep.far, firstStep, s.farDistance, s.farHeight);
+  LineStarts starts(sweep.layout, texels.first - 1, texels.count + 1);
+  if (sweep.far) walker.seedFar(*sweep.far, starts.first, s.farDistance, s.farHeight);
   float tanHorizon[HorizonBlock::kLines];
   BlockSlopes slopes;
-  for (int step = firstStep; step < endStep; ++step) {
+  for (int step = starts.first; step < endStep; ++step) {
+    starts.restart(step, walker, sweep.far, s);
     if (!walker.anyLineOnGrid(step)) continue;
     const auto [lo, hi] = texelsAt(step);
     walker.step(step, lo, hi, tanHorizon, slopes.east, slopes.north);
@@ -139,8 +171,7 @@ void sweepBlocks(const BlockSweep& sweep, const HorizonBlockVisitor& visit) {
   forEachGroup<kMajorIsColumn>(
       sweep, HorizonBlock::kLines, [&](const auto& texels, BlockScratch& s) {
         walkGroup(
-            sweep, texels, s, 0, sweep.layout.majorLength,
-            [&](int step) { return texels.at(step); },
+            sweep, texels, s, sweep.layout.majorLength, [&](int step) { return texels.at(step); },
             [&](int step, int, int, const float* tanHorizon, const BlockSlopes& slopes) {
               visit(texels.block(step, tanHorizon, slopes));
             });
@@ -160,6 +191,22 @@ struct WindowTexels {
     return {std::max(lo, layout.minorBegin), std::min(hi, layout.minorEnd - 1)};
   }
 };
+
+// The first and last of steps [from, to) where texelsAt(step) is not empty
+// (first > last: none). A group's window texels lie on consecutive steps
+// (a band of lines across a rectangle): its walks end at the last, and the
+// opposite walk at the first, since the steps past them visit nothing.
+template <class TexelsAt>
+std::pair<int, int> visitedSteps(int from, int to, TexelsAt&& texelsAt) {
+  int first = to, last = from - 1;
+  for (int step = from; step < to; ++step) {
+    const auto [lo, hi] = texelsAt(step);
+    if (lo > hi) continue;
+    first = std::min(first, step);
+    last = step;
+  }
+  return {first, last};
+}
 
 // The block of window texels lo .. hi at `step`, indexed as
 // BakeTerrain::windowIndex, with the texels kAheadSteps on.
@@ -193,19 +240,22 @@ HorizonBlock windowBlock(const BlockSweep& sweep, const WindowTexels<kMajorIsCol
 }
 
 // sweepBlocks for a partial window without a distance limit (a far-field
-// bake, far_horizon.h): the window's lines walked from layout.firstStep
-// (options.windowReachM before the window), starting with the far field's
-// samples where sweep.far is given, blocks only of the window's texels,
-// indexed as BakeTerrain::windowIndex.
+// bake, far_horizon.h): each of the window's lines walked from
+// options.windowReachM before the first window texel it passes beside
+// (SweepLayout::lineStart), starting with the far field's samples where
+// sweep.far is given, to the last step with a texel of its group; blocks
+// only of the window's texels, indexed as BakeTerrain::windowIndex.
 template <bool kMajorIsColumn>
 void sweepWindowBlocks(const BlockSweep& sweep, const HorizonBlockVisitor& visit) {
   const SweepLayout& layout = sweep.layout;
   forEachGroup<kMajorIsColumn>(
       sweep, HorizonBlock::kLines, [&](const auto& texels, BlockScratch& s) {
         const WindowTexels<kMajorIsColumn> window{layout, texels};
+        const auto texelsAt = [&](int step) { return window.at(step); };
+        const auto [first, last] = visitedSteps(layout.visitStep, layout.endStep, texelsAt);
+        if (first > last) return;
         walkGroup(
-            sweep, texels, s, layout.firstStep, layout.endStep,
-            [&](int step) { return window.at(step); },
+            sweep, texels, s, last + 1, texelsAt,
             [&](int step, int lo, int hi, const float* tanHorizon, const BlockSlopes& slopes) {
               visit(windowBlock(sweep, window, step, lo, hi, tanHorizon, slopes));
             });
@@ -215,8 +265,9 @@ void sweepWindowBlocks(const BlockSweep& sweep, const HorizonBlockVisitor& visit
 // Step k of `sweep` is step majorLength - 1 - k of the opposite sweep (the
 // same slice): walks the opposite lines that pass beside a group's texels
 // at steps [visitFirst, visitEnd) (texelsAt(k), as the group's walk visits
-// them) backwards over the steps, from the opposite layout's firstStep
-// (with its far samples where opposite.far is given) to the last of those,
+// them) backwards over the steps, each from its start in the opposite
+// layout (with its far samples where opposite.far is given) to the last of
+// those,
 // and leaves their tangents in s.opposite, kLines per step k. Texel minor m
 // lies between opposite lines m - floorOffset - 1 and m - floorOffset
 // there. False: the group has no texels.
@@ -239,8 +290,10 @@ bool walkOpposite(const BlockSweep& opposite, int visitFirst, int visitEnd, Texe
   BlockLineWalker<kMajorIsColumn> backward(opposite.terrain, layout, opposite.ux, opposite.uy,
                                            opposite.options, s.hulls.data());
   backward.begin(oppositeFirst, oppositeLast - oppositeFirst + 1);
-  if (opposite.far) backward.seedFar(*opposite.far, layout.firstStep, s.farDistance, s.farHeight);
-  for (int j = layout.firstStep; j < majorLength - visitFirst; ++j) {
+  LineStarts starts(layout, oppositeFirst, oppositeLast - oppositeFirst + 1);
+  if (opposite.far) backward.seedFar(*opposite.far, starts.first, s.farDistance, s.farHeight);
+  for (int j = starts.first; j < majorLength - visitFirst; ++j) {
+    starts.restart(j, backward, opposite.far, s);
     if (!backward.anyLineOnGrid(j)) continue;
     const int k = majorLength - 1 - j;
     const auto [lo, hi] = k < visitEnd ? texelsAt(k) : std::pair{1, 0};
@@ -261,7 +314,7 @@ void sweepOpposedBlocks(const BlockSweep& sweep, const BlockSweep& opposite, int
   forEachGroup<kMajorIsColumn>(sweep, groupLines, [&](const auto& texels, BlockScratch& s) {
     const auto texelsAt = [&](int step) { return texels.at(step); };
     if (!walkOpposite<kMajorIsColumn>(opposite, 0, sweep.layout.majorLength, texelsAt, s)) return;
-    walkGroup(sweep, texels, s, 0, sweep.layout.majorLength, texelsAt,
+    walkGroup(sweep, texels, s, sweep.layout.majorLength, texelsAt,
               [&](int step, int, int, const float* tanHorizon, const BlockSlopes& slopes) {
                 HorizonBlock block = texels.block(step, tanHorizon, slopes);
                 block.tanOpposite =
@@ -272,10 +325,10 @@ void sweepOpposedBlocks(const BlockSweep& sweep, const BlockSweep& opposite, int
 }
 
 // sweepOpposedBlocks for a partial window (sweepWindowBlocks): for each
-// group the opposite lines beside its window texels are walked first, from
-// the opposite layout's firstStep (the near reach beyond the window's far
-// side) with their own far samples, their tangents kept per step; then the
-// group's lines, and each block carries both.
+// group the opposite lines beside its window texels are walked first, each
+// from its start in the opposite layout (the near reach beyond the first
+// window texel it passes beside) with its own far samples, their tangents
+// kept per step; then the group's lines, and each block carries both.
 template <bool kMajorIsColumn>
 void sweepOpposedWindowBlocks(const BlockSweep& sweep, const BlockSweep& opposite, int groupLines,
                               const HorizonBlockVisitor& visit) {
@@ -283,10 +336,11 @@ void sweepOpposedWindowBlocks(const BlockSweep& sweep, const BlockSweep& opposit
   forEachGroup<kMajorIsColumn>(sweep, groupLines, [&](const auto& texels, BlockScratch& s) {
     const WindowTexels<kMajorIsColumn> window{layout, texels};
     const auto texelsAt = [&](int step) { return window.at(step); };
-    if (!walkOpposite<kMajorIsColumn>(opposite, layout.visitStep, layout.endStep, texelsAt, s)) {
+    const auto [first, last] = visitedSteps(layout.visitStep, layout.endStep, texelsAt);
+    if (first > last || !walkOpposite<kMajorIsColumn>(opposite, first, last + 1, texelsAt, s)) {
       return;  // no texel of the window
     }
-    walkGroup(sweep, texels, s, layout.firstStep, layout.endStep, texelsAt,
+    walkGroup(sweep, texels, s, last + 1, texelsAt,
               [&](int step, int lo, int hi, const float* tanHorizon, const BlockSlopes& slopes) {
                 HorizonBlock b = windowBlock(sweep, window, step, lo, hi, tanHorizon, slopes);
                 b.tanOpposite =

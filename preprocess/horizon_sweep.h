@@ -77,6 +77,17 @@ struct SweepLayout {
   // coordinates in [minorBegin, minorEnd): the window's.
   int firstStep = 0, visitStep = 0, endStep = 0;
   int minorBegin = 0, minorEnd = 0;
+  // A partial window's lines with a reach: where each line, firstLine ..
+  // lastLine, starts, the reach before the first step at which it passes
+  // beside a window texel (never before firstStep). A line that passes
+  // beside the window's side starts there, not the reach before the
+  // window's first step: oblique passes of a tile walked up to twice the
+  // steps they visit. Empty: every line starts at firstStep.
+  std::vector<int> lineStart;
+  int startOf(int line) const {
+    const size_t i = static_cast<size_t>(line - firstLine);
+    return line >= firstLine && i < lineStart.size() ? lineStart[i] : firstStep;
+  }
 };
 
 // Sweep steps that cover `distance` metres along any line: a step advances
@@ -123,8 +134,8 @@ inline SweepLayout makeSweepLayout(const BakeTerrain& terrain, double ux, double
   s.minorEnd = s.minorBegin + (s.majorIsColumn ? w.height : w.width);
   s.visitStep = s.step < 0 ? s.majorLength - majorEnd : majorBegin;
   s.endStep = s.step < 0 ? s.majorLength - majorBegin : majorEnd;
-  s.firstStep =
-      maxDistanceM > 0.0 ? std::max(0, s.visitStep - stepsCovering(terrain, maxDistanceM)) : 0;
+  const int reach = maxDistanceM > 0.0 ? stepsCovering(terrain, maxDistanceM) : 0;
+  s.firstStep = maxDistanceM > 0.0 ? std::max(0, s.visitStep - reach) : 0;
   int lo = s.floorOffset[s.visitStep], hi = lo;
   for (int k = s.visitStep; k < s.endStep; ++k) {
     lo = std::min(lo, s.floorOffset[k]);
@@ -133,6 +144,28 @@ inline SweepLayout makeSweepLayout(const BakeTerrain& terrain, double ux, double
   // Texel (k, j) lies between lines j - floorOffset[k] - 1 and j - floorOffset[k].
   s.firstLine = s.minorBegin - hi - 1;
   s.lastLine = s.minorEnd - 1 - lo;
+  if (maxDistanceM > 0.0) {
+    // The lines beside the window's texels at step k are minorBegin - 1 -
+    // floorOffset[k] .. minorEnd - 1 - floorOffset[k]: a run that moves by
+    // at most one line a step, so those met so far are one run too.
+    s.lineStart.assign(static_cast<size_t>(s.lastLine - s.firstLine + 1), s.endStep);
+    int metLo = 0, metHi = -1;  // no line yet
+    for (int k = s.visitStep; k < s.endStep; ++k) {
+      const int a = s.minorBegin - 1 - s.floorOffset[k], b = s.minorEnd - 1 - s.floorOffset[k];
+      for (int line = a; line <= b; ++line) {
+        if (line >= metLo && line <= metHi) {
+          line = metHi;  // skip the run already met
+          continue;
+        }
+        s.lineStart[static_cast<size_t>(line - s.firstLine)] = std::max(s.firstStep, k - reach);
+      }
+      if (metLo > metHi) {
+        metLo = a, metHi = b;
+      } else {
+        metLo = std::min(metLo, a), metHi = std::max(metHi, b);
+      }
+    }
+  }
   return s;
 }
 
@@ -336,17 +369,26 @@ void sweepLines(const BakeTerrain& terrain, const SweepLayout& layout, double ux
     Scratch& s = scratch.local();
     const int first = firstLine + group * kGroup;
     const int count = std::min(kGroup, layout.lastLine + 1 - first);
-    for (int i = 0; i <= count; ++i) walker.reset(s.lines[i]);
+    // Each line from its own start (SweepLayout::lineStart).
+    int start[kGroup + 1];
+    for (int i = 0; i <= count; ++i) {
+      walker.reset(s.lines[i]);
+      start[i] = layout.startOf(first - 1 + i);
+    }
     for (int step = layout.firstStep; step < layout.visitStep; ++step) {
-      for (int i = 0; i <= count; ++i) walker.step(s.lines[i], first - 1 + i, step, false);
+      for (int i = 0; i <= count; ++i) {
+        if (step >= start[i]) walker.step(s.lines[i], first - 1 + i, step, false);
+      }
     }
     for (int step = layout.visitStep; step < layout.endStep; ++step) {
       for (int i = 0; i <= count; ++i) {
         // Line c serves texels c + floorOffset and the one above it: a
-        // window's lines skip the horizon scan where both lie outside it.
+        // window's lines skip the horizon scan where both lie outside it
+        // (a line not started yet serves none).
         const int beside = first - 1 + i + layout.floorOffset[step];
         const bool used = beside >= layout.minorBegin - 1 && beside < layout.minorEnd;
-        s.horizon[i] = walker.step(s.lines[i], first - 1 + i, step, used);
+        s.horizon[i] =
+            step >= start[i] ? walker.step(s.lines[i], first - 1 + i, step, used) : kNoHorizon;
       }
       const int major = layout.start + step * layout.step;
       const double fraction = layout.fraction[step];
