@@ -7,6 +7,7 @@
 #include <tuple>
 #include <utility>
 
+#include "aperture/preprocess/horizon_blocks.h"
 #include "aperture/preprocess/horizon_sweep.h"
 
 namespace aal {
@@ -57,12 +58,11 @@ FarFieldWindow::FarFieldWindow(const FarField& far, const BakeTerrain& terrain)
   if (pyramid.width() != terrain.width || pyramid.height() != terrain.height) {
     throw std::invalid_argument("far field: the pyramid is of another DEM's size");
   }
-  // Where the lines that reach the tile start (tileHalo's bound, tiled_bake.h),
-  // inside the heights held, and a texel more for a start between texels.
+  // Where the lines that reach the tile start (windowSweepHalo), inside the
+  // heights held, and a texel more for a start between texels.
   const TexelWindow& tile = terrain.window;
   const TexelWindow& held = terrain.heights.texels;
-  const long halo = detail::stepsCovering(terrain, options_.nearReachM) +
-                    std::max(tile.width, tile.height) + 3 + 1;
+  const long halo = windowSweepHalo(terrain, options_.nearReachM) + 1;
   const long c0 = std::max(long(held.col) - 1, long(tile.col) - halo);
   const long c1 = std::min(long(held.col + held.width), long(tile.col + tile.width - 1) + halo);
   const long r0 = std::max(long(held.row) - 1, long(tile.row) - halo);

@@ -382,6 +382,10 @@ bool horizonAvx2() {
 
 }  // namespace detail
 
+int windowSweepHalo(const BakeTerrain& terrain, double reachM) {
+  return detail::stepsCovering(terrain, reachM) + detail::BlockLineWalker<true>::kMaxLines + 3;
+}
+
 void setHorizonAvx2Allowed(bool allowed) {
   detail::horizonAvx2Allowed.store(allowed, std::memory_order_relaxed);
 }

@@ -124,6 +124,18 @@ void sweepWindowHorizonBlocks(const BakeTerrain& terrain, double phi,
                               const HorizonSweepOptions& options, HorizonBlockVisitor visit,
                               const FarFieldWindow* far = nullptr);
 
+// Texels around a window that its sweeps with reach `reachM` (a max
+// distance or options.windowReachM) read, in rows and in columns alike.
+// Each line starts S = stepsCovering(reachM) steps before the first window
+// texel it passes beside (SweepLayout::lineStart) and moves by up to one
+// texel across a step; the block sweeps walk it with up to kMaxLines - 1
+// neighbours, which may have started later and are read from its start on,
+// and read one texel either side of them and one slice either side along
+// (the slopes, the leaving slope). Lines advancing by rows drift in
+// columns as far as lines advancing by columns drift in rows, so one halo
+// serves both (TileWindow.TheHaloHoldsEveryReadInRowsAndInColumnsAlike).
+int windowSweepHalo(const BakeTerrain& terrain, double reachM);
+
 // The same for two opposite azimuths phi and phiOpposite (phi + pi, as the
 // caller computes it) in one pass: each block holds both azimuths'
 // tangents of its texels (tanHorizon for phi, tanOpposite for phiOpposite),

@@ -26,6 +26,7 @@
 
 #include "aperture/preprocess/bake_terrain.h"
 #include "aperture/preprocess/height_pyramid.h"
+#include "aperture/preprocess/horizon_blocks.h"
 #include "aperture/preprocess/horizon_sweep.h"
 #include "aperture/preprocess/sky_view_factor_tiles.h"
 #include "aperture/preprocess/tile_window_reader.h"
@@ -422,21 +423,13 @@ TiledBakeSummary bakeTiled(const Heightfield& field, const BakeOptions& bake,
 }
 
 int tileHalo(const Heightfield& geometry, const BakeOptions& bake, const TiledBakeOptions& tiled) {
-  // Every line that reaches the tile is walked from S = stepsCovering(max
-  // distance) steps before the tile to its far side (horizon_sweep.h,
-  // makeSweepLayout). Along its major axis it reads the tile, the S steps
-  // before it and the neighbouring slice either side (the slopes). Across
-  // it, it moves by up to one texel a step (|minorPerStep| <= 1): the lines
-  // that reach the tile's texels drift up to the tile's side plus S, and
-  // the walk reads one texel either side of them (interpolation, slopes).
-  // The sweep is the same with rows and columns swapped, so lines advancing
-  // by rows drift as far in columns as lines advancing by columns drift in
-  // rows, and one halo serves both directions (the points beyond the max
-  // distance are read, then ignored; TileWindow.* tests the bound).
+  // The lines that reach the tile start within the reach of it
+  // (windowSweepHalo; the points beyond a max distance are read, then
+  // ignored; TileWindow.* tests the bound).
   const double reach =
       bake.maxDistanceM > 0.0 ? bake.maxDistanceM : resolvedFarField(geometry, tiled).nearReachM;
   // (Only the positions of the terrain are used: geometry may hold no heights.)
-  return detail::stepsCovering(prepareBakeTerrain(geometry), reach) + tiled.tileSize + 3;
+  return windowSweepHalo(prepareBakeTerrain(geometry), reach);
 }
 
 std::optional<HeightPyramid> emptyTiledBakePyramid(const Heightfield& geometry,
