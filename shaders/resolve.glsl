@@ -74,6 +74,22 @@ vec4 historyCatmullRom(vec2 at) {
   return sum / total;
 }
 
+// The drawn picture's value at a texel, in the values the history
+// blends: display values squared, close to linear light (the sRGB curve is
+// near a power of 2.2), so that a rebuilt pixel is nearly the mean of its
+// samples' light, as a pixel of more points is; the output is the square
+// root, the exact inverse. (The exact sRGB curve both ways read 2.29 %
+// against 2.30 % on FrameOutputTest's flight, and its pow() calls made
+// lavapipe's frame 12-15 ms longer at 1280x720.) Linear radiance as it is.
+vec4 drawnValue(vec4 v) {
+#ifdef AAL_RESOLVE_LINEAR
+  return v;
+#else
+  vec3 c = clamp(v.rgb, 0.0, 1.0);
+  return vec4(c * c, v.a);
+#endif
+}
+
 void main() {
   vec2 extent = vec2(frame.extent);
   vec2 size = vec2(textureSize(drawn, 0));
@@ -84,7 +100,7 @@ void main() {
   // i + 0.5 - jitter lies: the texel nearest to p, and how far its sample
   // lies from p in output pixels.
   ivec2 texel = clamp(ivec2(floor(p + resolve.jitter)), ivec2(0), last);
-  vec4 sampled = texelFetch(drawn, texel, 0);
+  vec4 sampled = drawnValue(texelFetch(drawn, texel, 0));
   vec2 offset = (vec2(texel) + 0.5 - resolve.jitter - p) * vec2(textureSize(history, 0)) / size;
   vec4 result;
   bool reprojected = false;
@@ -101,7 +117,7 @@ void main() {
       vec4 lo = sampled, hi = sampled;
       for (int k = 0; k < 4; ++k) {
         ivec2 step = ivec2(k == 0 ? -1 : k == 1 ? 1 : 0, k == 2 ? -1 : k == 3 ? 1 : 0);
-        vec4 t = texelFetch(drawn, clamp(texel + step, ivec2(0), last), 0);
+        vec4 t = drawnValue(texelFetch(drawn, clamp(texel + step, ivec2(0), last), 0));
         lo = min(lo, t);
         hi = max(hi, t);
       }
@@ -117,11 +133,11 @@ void main() {
 #else
     // No history here: the smaller picture scaled up.
     vec2 at = clamp(p + resolve.jitter, vec2(0.5), extent - 0.5);
-    result = textureLod(drawn, at / size, 0.0);
+    result = drawnValue(textureLod(drawn, at / size, 0.0));
 #endif
   }
 #ifndef AAL_RESOLVE_LINEAR
-  color = result;
+  color = vec4(sqrt(max(result.rgb, 0.0)), result.a);
 #endif
   kept = result;
 }

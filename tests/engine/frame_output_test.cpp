@@ -314,9 +314,9 @@ double relativeLinearRmse(const std::vector<uint8_t>& a, const std::vector<uint8
 // Temporal reconstruction (FrameOutput::temporal, shaders/resolve.glsl):
 // along a slow flight drawn at half the size, once the history has filled
 // in, the rebuilt frames are closer to the converged picture (2 x 2 points
-// per pixel) than a frame drawn at full resolution is (2.43 against 2.74 %),
+// per pixel) than a frame drawn at full resolution is (2.30 against 2.74 %),
 // and closer to the full-resolution frames than the smaller picture scaled
-// up (3.32 against 4.85 %; the full-resolution frame's single point per
+// up (3.28 against 4.85 %; the full-resolution frame's single point per
 // pixel is itself 2.74 % from the converged picture).
 TEST_F(FrameOutputTest, TemporalReconstructionRebuildsTheFullResolutionInMotion) {
   const Heightfield f = fbm(256, 32, 400);
@@ -361,7 +361,9 @@ TEST_F(FrameOutputTest, TemporalReconstructionRebuildsTheFullResolutionInMotion)
       "%.2f %%; to the full-resolution frame rebuilt %.2f %%, scaled up %.2f %%\n",
       kFilled, kFrames - 1, 100 * rebuiltToConverged, 100 * fullToConverged, 100 * rebuiltToFull,
       100 * scaledToFull);
-  EXPECT_LT(rebuiltToConverged, fullToConverged);
+  // Blending display values instead of linear ones reads 0.89 of the full
+  // resolution's error here.
+  EXPECT_LT(rebuiltToConverged, 0.86 * fullToConverged);
   EXPECT_LT(rebuiltToFull, 0.75 * scaledToFull);
 }
 
