@@ -99,7 +99,10 @@ class AzimuthSweeps {
     if (o.farField && o.maxDistanceM <= 0.0) {
       sweep_.windowReachM = o.farField->options.nearReachM;
       // The blocks of the pyramid this window's lines read, once per bake.
-      if (o.farField->pyramid) farWindow_.emplace(*o.farField, terrain);
+      if (o.farField->pyramid) {
+        farWindow_.emplace(*o.farField, terrain);
+        sweep_.windowReachM = farWindow_->walkReachM();
+      }
     }
   }
 

@@ -41,6 +41,11 @@ int farFieldBaseShift(const FarFieldOptions& options, double largestCellM) {
   return pyramidBaseShift(options.nearReachM, largestCellM, options.resolution);
 }
 
+double farFieldWalkReachM(const FarFieldOptions& options, double largestCellM) {
+  return options.nearReachM +
+         2.0 * std::ldexp(largestCellM, farFieldBaseShift(options, largestCellM));
+}
+
 double farLevelReachM(const FarFieldOptions& options, double largestCellM, int shift) {
   return options.resolution * largestCellM * std::ldexp(2.0, shift) - options.nearReachM;
 }
@@ -62,13 +67,13 @@ FarFieldWindow::FarFieldWindow(const FarField& far, const BakeTerrain& terrain)
   // heights held, and a texel more for a start between texels.
   const TexelWindow& tile = terrain.window;
   const TexelWindow& held = terrain.heights.texels;
-  const long halo = windowSweepHalo(terrain, options_.nearReachM) + 1;
+  std::tie(smallestCell_, largestCell_) = cellRange(terrain, 0, terrain.height - 1);
+  const long halo = windowSweepHalo(terrain, walkReachM()) + 1;
   const long c0 = std::max(long(held.col) - 1, long(tile.col) - halo);
   const long c1 = std::min(long(held.col + held.width), long(tile.col + tile.width - 1) + halo);
   const long r0 = std::max(long(held.row) - 1, long(tile.row) - halo);
   const long r1 = std::min(long(held.row + held.height), long(tile.row + tile.height - 1) + halo);
 
-  std::tie(smallestCell_, largestCell_) = cellRange(terrain, 0, terrain.height - 1);
   const double blockUnit = options_.resolution * largestCell_;
   const auto [startSmallest, startLargest] = cellRange(terrain, r0, r1);
   // x of the start points (FarLineMarch::march): (col - centre) x the start row's cell.

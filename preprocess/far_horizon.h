@@ -27,6 +27,16 @@ struct FarFieldOptions {
 // shift): blocks of at most nearReachM / resolution. largestCellM: the
 // field's largest cell.
 int farFieldBaseShift(const FarFieldOptions& options, double largestCellM);
+// How far before the first texel it passes beside a far-field bake walks
+// each line (the window sweeps' HorizonSweepOptions::windowReachM): the
+// near reach and two blocks of the pyramid's finest level. The block under
+// a line's first far sample, half a block beyond the line's start, reaches
+// up to sqrt(2) blocks back from that sample, so without the two blocks it
+// could hold terrain inside the near reach of the line's first texel,
+// placed farther than it lies (its maximum at the sample's distance): a
+// horizon there came out lower than the in-memory bake's
+// (FarField.MaximaNeverSeeMoreSkyThanTheTerrainAllows).
+double farFieldWalkReachM(const FarFieldOptions& options, double largestCellM);
 // The bake's aal:method with this far field, e.g. "sweep+far-field(max,
 // reach 3840 m, lines, blocks 1/16)": resuming a folder with other
 // far-field options (or a folder of the lattice far field, "lattice 16") is
@@ -80,6 +90,9 @@ class FarFieldWindow {
   // The DEM's smallest and largest cell (m), north-south included.
   double smallestCellM() const { return smallestCell_; }
   double largestCellM() const { return largestCell_; }
+  // How far before its first texel the window's sweep walks each line
+  // (farFieldWalkReachM).
+  double walkReachM() const { return farFieldWalkReachM(options_, largestCell_); }
 
  private:
   FarFieldOptions options_;

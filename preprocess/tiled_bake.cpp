@@ -427,7 +427,9 @@ int tileHalo(const Heightfield& geometry, const BakeOptions& bake, const TiledBa
   // (windowSweepHalo; the points beyond a max distance are read, then
   // ignored; TileWindow.* tests the bound).
   const double reach =
-      bake.maxDistanceM > 0.0 ? bake.maxDistanceM : resolvedFarField(geometry, tiled).nearReachM;
+      bake.maxDistanceM > 0.0
+          ? bake.maxDistanceM
+          : farFieldWalkReachM(resolvedFarField(geometry, tiled), cellRange(geometry).second);
   // (Only the positions of the terrain are used: geometry may hold no heights.)
   return windowSweepHalo(prepareBakeTerrain(geometry), reach);
 }

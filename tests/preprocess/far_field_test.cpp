@@ -629,13 +629,11 @@ TEST(FarField, TiledBakeSeesADistantRidgeBeyondTheHalo) {
   }
 }
 
-// Block maxima over-estimate the far horizon, except where a sample
-// passes by a block's corner and a horizon comes out a little lower
-// (docs/baking.md, "Far field"): the far-field bake sees more sky than the
-// in-memory one nowhere by the accuracy tables' "more sky" margin (0.001),
-// and by more than 0.0002 at a few texels only (2 of 65536 here, by
-// 0.00024, on the ridge's crest at a tile's edge, where its lines hand
-// over to the far field exactly the near reach away).
+// Block maxima never put the far horizon below the terrain's: the
+// far-field bake sees no more sky than the in-memory one anywhere, but for
+// 0.0002. (Without the two blocks that each line's walk adds to the near
+// reach, farFieldWalkReachM, 2 texels of the ridge's crest read 0.00024
+// more: a first far block reaching back inside the near reach.)
 TEST(FarField, MaximaNeverSeeMoreSkyThanTheTerrainAllows) {
   test::TempDir dir;
   const Heightfield field = ridgeField();
@@ -643,13 +641,11 @@ TEST(FarField, MaximaNeverSeeMoreSkyThanTheTerrainAllows) {
   const ApertureMap reference = bakeApertures(field, o).aperture;
   bakeTiled(field, o, farTiles(), (dir.path() / "tiles").string());
   const ApertureMap tiled = readApertureMap((dir.path() / "tiles").string());
-  size_t moreSky = 0, aLittleMore = 0;
+  size_t moreSky = 0;
   for (size_t i = 0; i < reference.texelCount(); ++i) {
-    if (tiled.visibleFraction(i) > reference.visibleFraction(i) + 1e-3) ++moreSky;
-    if (tiled.visibleFraction(i) > reference.visibleFraction(i) + 2e-4) ++aLittleMore;
+    if (tiled.visibleFraction(i) > reference.visibleFraction(i) + 2e-4) ++moreSky;
   }
   EXPECT_EQ(moreSky, 0u);
-  EXPECT_LE(aLittleMore, reference.texelCount() / 10000);
 }
 
 // The far-field bake records its method; a folder of a bake with a max

@@ -187,14 +187,13 @@ TEST(AalBakeTiledSvf, FarFieldMosaicIsCloseToTheWholeDemSvf) {
   auto r = runTool("aal-bake", quoted(dem) + " -o " + quoted(single) + " --svf " + quoted(svf) +
                                    " --azimuths 16 -q");
   ASSERT_EQ(r.exitCode, 0) << r.out;
-  r = runTool("aal-bake",
-              quoted(dem) + " -o " + quoted(memory) + " --tile-size 16 --svf --azimuths 16 -q",
-              fixedDate);
+  // A near reach of 32 cells: the default's 128 and two blocks would walk
+  // every line across the whole 150 columns, leaving nothing to the far field.
+  const std::string tiled = " --tile-size 16 --near-reach 960 --svf --azimuths 16 -q";
+  r = runTool("aal-bake", quoted(dem) + " -o " + quoted(memory) + tiled, fixedDate);
   ASSERT_EQ(r.exitCode, 0) << r.out;
-  r = runTool(
-      "aal-bake",
-      quoted(dem) + " -o " + quoted(bands) + " --tile-size 16 --svf --azimuths 16 --low-memory -q",
-      fixedDate);
+  r = runTool("aal-bake", quoted(dem) + " -o " + quoted(bands) + tiled + " --low-memory",
+              fixedDate);
   ASSERT_EQ(r.exitCode, 0) << r.out;
   EXPECT_TRUE(bakeFiles(memory) == bakeFiles(bands));
   EXPECT_EQ(bakeFiles(memory).size(), 80u + 80u + 3u);  // EXRs, GeoTIFFs, VRT, index, manifest
