@@ -105,10 +105,9 @@ glm::mat4 jitteredViewProj(const glm::mat4& viewProj, glm::vec2 jitter, VkExtent
 // Measured on FrameOutputTest's flight (relative RMSE from 2 x 2 points per
 // pixel), blending linear values (decoded exactly; squared, as now: 2.30 %):
 // 2.29 % (2.27 % with 0.6 and 32, 2.32 % with 0.4 and 16, 2.37 % with 0.5
-// and 8); blending display
-// values, before: 2.43 % against 2.89 % with 1 and 8 (the sample replacing
-// the history), 2.50 % with 0.5 and 8, 2.59 % with 1 and 16, 2.62 % with
-// 0.25 and 16, 2.46 % with 0.5 and 32.
+// and 8); blending display values, before: 2.43 % against 2.89 % with 1
+// and 8 (the sample replacing the history), 2.50 % with 0.5 and 8, 2.59 %
+// with 1 and 16, 2.62 % with 0.25 and 16, 2.46 % with 0.5 and 32.
 constexpr float kRebuildCurrentWeight = 0.5f;
 constexpr float kRebuildCentreFalloff = 16.0f;
 // Accumulating at full resolution every point weighs the same (the pixel's

@@ -56,17 +56,10 @@ void BlockLineWalker<kMajorIsColumn>::begin(int firstLine, int lines) {
 }
 
 template <bool kMajorIsColumn>
-void BlockLineWalker<kMajorIsColumn>::seedFar(const FarLineMarch& far, int step,
-                                              std::vector<float>& distance,
-                                              std::vector<float>& height) {
-  for (int i = 0; i < lines_; ++i) seedLine(i, far, step, distance, height);
-}
-
-template <bool kMajorIsColumn>
 void BlockLineWalker<kMajorIsColumn>::restart(int i, int step, const FarLineMarch* far,
                                               std::vector<float>& distance,
                                               std::vector<float>& height) {
-  // As begin() leaves a line, then as seedFar() seeds it.
+  // As begin() leaves a line, then the far samples.
   size_[i] = 0;
   for (float* a : {edgeT_, edgeZ_, topT_, topZ_, belowT_, belowZ_, thirdT_, thirdZ_}) a[i] = 0.0f;
   if (far) seedLine(i, *far, step, distance, height);

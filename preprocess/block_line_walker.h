@@ -53,15 +53,11 @@ class BlockLineWalker {
   // Starts walking lines firstLine .. firstLine + lines - 1 (lines <=
   // kMaxLines) from the sweep's first step.
   void begin(int firstLine, int lines);
-  // After begin(), before the first step: each line on the grid at sweep
-  // step `step` (the first the walk takes) starts with the far field's
-  // samples beyond that point in its hull (FarLineMarch::march, into
+  // Walked line i starts afresh at sweep step `step` (its start,
+  // SweepLayout::lineStart), before that step is taken: its hull emptied
+  // and, where far is given and the line is on the grid there, filled with
+  // the far field's samples beyond that point (FarLineMarch::march, into
   // `distance` and `height`), pushed farthest first as though walked.
-  void seedFar(const FarLineMarch& far, int step, std::vector<float>& distance,
-               std::vector<float>& height);
-  // Walked line i starts afresh at sweep step `step`, before that step is
-  // taken: its hull emptied and, where far is given, seeded as seedFar()
-  // seeds it (SweepLayout::lineStart).
   void restart(int i, int step, const FarLineMarch* far, std::vector<float>& distance,
                std::vector<float>& height);
 
@@ -119,7 +115,7 @@ class BlockLineWalker {
     float riseToNear[kPaddedLines], runToNear[kPaddedLines], horizon[kPaddedLines];
   };
 
-  // seedFar() for walked line i.
+  // restart()'s far samples for walked line i.
   void seedLine(int i, const FarLineMarch& far, int step, std::vector<float>& distance,
                 std::vector<float>& height);
   // Both walks: the heights a few steps ahead into the cache.

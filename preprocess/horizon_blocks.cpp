@@ -39,8 +39,22 @@ struct BlockSlopes {
 struct BlockScratch {
   std::vector<HullPointF> hulls;              // kMaxLines stacks of majorLength points
   std::vector<float> opposite;                // kLines tangents per step
-  std::vector<float> farDistance, farHeight;  // a line's far samples (seedFar)
+  std::vector<float> farDistance, farHeight;  // a line's far samples (restart)
 };
+
+// A step's block: count texels from firstTexel, stride apart, with the
+// step's tangents and slopes (and no texels ahead yet).
+HorizonBlock stepBlock(size_t firstTexel, ptrdiff_t stride, int count, const float* tanHorizon,
+                       const BlockSlopes& slopes) {
+  HorizonBlock b;
+  b.firstTexel = firstTexel;
+  b.stride = stride;
+  b.count = count;
+  b.tanHorizon = tanHorizon;
+  b.slopeEast = slopes.east;
+  b.slopeNorth = slopes.north;
+  return b;
+}
 
 // The sweep of one azimuth: its layout and direction u = (ux, uy).
 struct BlockSweep {
@@ -73,13 +87,8 @@ struct GroupTexels {
   // The block of `step`, with its texels kAheadSteps later.
   HorizonBlock block(int step, const float* tanHorizon, const BlockSlopes& slopes) const {
     const auto [lo, hi] = at(step);
-    HorizonBlock b;
-    b.firstTexel = texel(step, lo);
-    b.stride = kMajorIsColumn ? width : 1;
-    b.count = hi - lo + 1;
-    b.tanHorizon = tanHorizon;
-    b.slopeEast = slopes.east;
-    b.slopeNorth = slopes.north;
+    HorizonBlock b =
+        stepBlock(texel(step, lo), kMajorIsColumn ? width : 1, hi - lo + 1, tanHorizon, slopes);
     const int ahead = step + HorizonBlock::kAheadSteps;
     if (ahead < layout.majorLength) {
       const auto [aheadLo, aheadHi] = at(ahead);
@@ -113,31 +122,27 @@ void forEachGroup(const BlockSweep& sweep, int groupLines, WalkGroup&& walkGroup
 }
 
 // Where a walk's lines start (SweepLayout::lineStart): the walk at the
-// earliest, the others afresh at their own (BlockLineWalker::restart), so
-// that a line's tangents do not depend on the lines walked with it.
+// earliest, and each line afresh at its own, with its far samples
+// (BlockLineWalker::restart), so that a line's tangents do not depend on the
+// lines walked with it.
 struct LineStarts {
   static constexpr int kMaxLines = BlockLineWalker<true>::kMaxLines;
-  int first = 0;
   int count = 0, next = 0;
-  std::pair<int, int> later[kMaxLines];  // (step, walked line), by step
+  std::pair<int, int> line[kMaxLines];  // (step, walked line), by step
 
-  LineStarts(const SweepLayout& layout, int firstLine, int lines) {
-    int step[kMaxLines] = {};
-    for (int i = 0; i < lines; ++i) step[i] = layout.startOf(firstLine + i);
-    first = *std::min_element(step, step + lines);
-    for (int i = 0; i < lines; ++i) {
-      if (step[i] > first) later[count++] = {step[i], i};
-    }
-    std::sort(later, later + count);
+  LineStarts(const SweepLayout& layout, int firstLine, int lines) : count(lines) {
+    for (int i = 0; i < lines; ++i) line[i] = {layout.startOf(firstLine + i), i};
+    std::sort(line, line + count);
   }
+  int first() const { return line[0].first; }
 
-  // Restarts the lines that start at `step` (every step in order, whether
-  // taken or not).
+  // Starts the lines that start at `step` (every step in order from
+  // first(), whether taken or not).
   template <bool kMajorIsColumn>
-  void restart(int step, BlockLineWalker<kMajorIsColumn>& walker, const FarLineMarch* far,
-               BlockScratch& s) {
-    for (; next < count && later[next].first == step; ++next) {
-      walker.restart(later[next].second, step, far, s.farDistance, s.farHeight);
+  void start(int step, BlockLineWalker<kMajorIsColumn>& walker, const FarLineMarch* far,
+             BlockScratch& s) {
+    for (; next < count && line[next].first == step; ++next) {
+      walker.restart(line[next].second, step, far, s.farDistance, s.farHeight);
     }
   }
 };
@@ -154,11 +159,10 @@ void walkGroup(const BlockSweep& sweep, const GroupTexels<kMajorIsColumn>& texel
                                          sweep.options, s.hulls.data());
   walker.begin(texels.first - 1, texels.count + 1);
   LineStarts starts(sweep.layout, texels.first - 1, texels.count + 1);
-  if (sweep.far) walker.seedFar(*sweep.far, starts.first, s.farDistance, s.farHeight);
   float tanHorizon[HorizonBlock::kLines];
   BlockSlopes slopes;
-  for (int step = starts.first; step < endStep; ++step) {
-    starts.restart(step, walker, sweep.far, s);
+  for (int step = starts.first(); step < endStep; ++step) {
+    starts.start(step, walker, sweep.far, s);
     if (!walker.anyLineOnGrid(step)) continue;
     const auto [lo, hi] = texelsAt(step);
     walker.step(step, lo, hi, tanHorizon, slopes.east, slopes.north);
@@ -193,9 +197,9 @@ struct WindowTexels {
 };
 
 // The first and last of steps [from, to) where texelsAt(step) is not empty
-// (first > last: none). A group's window texels lie on consecutive steps
-// (a band of lines across a rectangle): its walks end at the last, and the
-// opposite walk at the first, since the steps past them visit nothing.
+// (first > last: none), as walkOpposite finds them. A group's window texels
+// lie on consecutive steps (a band of lines across a rectangle): its walk
+// ends at the last, since the steps past it visit nothing.
 template <class TexelsAt>
 std::pair<int, int> visitedSteps(int from, int to, TexelsAt&& texelsAt) {
   int first = to, last = from - 1;
@@ -217,13 +221,9 @@ HorizonBlock windowBlock(const BlockSweep& sweep, const WindowTexels<kMajorIsCol
   const SweepLayout& layout = sweep.layout;
   const BakeTerrain& terrain = sweep.terrain;
   const int major = layout.start + step * layout.step;
-  HorizonBlock b;
-  b.firstTexel = kMajorIsColumn ? terrain.windowIndex(major, lo) : terrain.windowIndex(lo, major);
-  b.stride = kMajorIsColumn ? terrain.window.width : 1;
-  b.count = hi - lo + 1;
-  b.tanHorizon = tanHorizon;
-  b.slopeEast = slopes.east;
-  b.slopeNorth = slopes.north;
+  HorizonBlock b =
+      stepBlock(kMajorIsColumn ? terrain.windowIndex(major, lo) : terrain.windowIndex(lo, major),
+                kMajorIsColumn ? terrain.window.width : 1, hi - lo + 1, tanHorizon, slopes);
   // The texels kAheadSteps on, for the visitor's prefetches: without them
   // a tile's column passes wait on memory.
   const int ahead = step + HorizonBlock::kAheadSteps;
@@ -266,40 +266,43 @@ void sweepWindowBlocks(const BlockSweep& sweep, const HorizonBlockVisitor& visit
 // same slice): walks the opposite lines that pass beside a group's texels
 // at steps [visitFirst, visitEnd) (texelsAt(k), as the group's walk visits
 // them) backwards over the steps, each from its start in the opposite
-// layout (with its far samples where opposite.far is given) to the last of
-// those,
-// and leaves their tangents in s.opposite, kLines per step k. Texel minor m
-// lies between opposite lines m - floorOffset - 1 and m - floorOffset
-// there. False: the group has no texels.
+// layout (with its far samples where opposite.far is given) to the first
+// of those steps with texels, and leaves their tangents in s.opposite,
+// kLines per step k. Texel minor m lies between opposite lines
+// m - floorOffset - 1 and m - floorOffset there. Returns the first and last
+// step k with texels (first > last: none, nothing walked): the group's own
+// walk ends there too (visitedSteps).
 template <bool kMajorIsColumn, class TexelsAt>
-bool walkOpposite(const BlockSweep& opposite, int visitFirst, int visitEnd, TexelsAt&& texelsAt,
-                  BlockScratch& s) {
+std::pair<int, int> walkOpposite(const BlockSweep& opposite, int visitFirst, int visitEnd,
+                                 TexelsAt&& texelsAt, BlockScratch& s) {
   const SweepLayout& layout = opposite.layout;
   const int majorLength = layout.majorLength;
   int oppositeFirst = std::numeric_limits<int>::max();
   int oppositeLast = std::numeric_limits<int>::min();
+  int first = visitEnd, last = visitFirst - 1;
   for (int k = visitFirst; k < visitEnd; ++k) {
     const auto [lo, hi] = texelsAt(k);
     if (lo > hi) continue;
     const int offset = layout.floorOffset[majorLength - 1 - k];
     oppositeFirst = std::min(oppositeFirst, lo - offset - 1);
     oppositeLast = std::max(oppositeLast, hi - offset);
+    first = std::min(first, k);
+    last = k;
   }
-  if (oppositeFirst > oppositeLast) return false;
+  if (first > last) return {first, last};
   s.opposite.resize(static_cast<size_t>(HorizonBlock::kLines) * majorLength);
   BlockLineWalker<kMajorIsColumn> backward(opposite.terrain, layout, opposite.ux, opposite.uy,
                                            opposite.options, s.hulls.data());
   backward.begin(oppositeFirst, oppositeLast - oppositeFirst + 1);
   LineStarts starts(layout, oppositeFirst, oppositeLast - oppositeFirst + 1);
-  if (opposite.far) backward.seedFar(*opposite.far, starts.first, s.farDistance, s.farHeight);
-  for (int j = starts.first; j < majorLength - visitFirst; ++j) {
-    starts.restart(j, backward, opposite.far, s);
+  for (int j = starts.first(); j < majorLength - first; ++j) {
+    starts.start(j, backward, opposite.far, s);
     if (!backward.anyLineOnGrid(j)) continue;
     const int k = majorLength - 1 - j;
     const auto [lo, hi] = k < visitEnd ? texelsAt(k) : std::pair{1, 0};
     backward.step(j, lo, hi, s.opposite.data() + static_cast<size_t>(k) * HorizonBlock::kLines);
   }
-  return true;
+  return {first, last};
 }
 
 // Both azimuths at once: lines of `sweep` in groups as in sweepBlocks, and
@@ -313,8 +316,10 @@ void sweepOpposedBlocks(const BlockSweep& sweep, const BlockSweep& opposite, int
                         const HorizonBlockVisitor& visit) {
   forEachGroup<kMajorIsColumn>(sweep, groupLines, [&](const auto& texels, BlockScratch& s) {
     const auto texelsAt = [&](int step) { return texels.at(step); };
-    if (!walkOpposite<kMajorIsColumn>(opposite, 0, sweep.layout.majorLength, texelsAt, s)) return;
-    walkGroup(sweep, texels, s, sweep.layout.majorLength, texelsAt,
+    const auto [first, last] =
+        walkOpposite<kMajorIsColumn>(opposite, 0, sweep.layout.majorLength, texelsAt, s);
+    if (first > last) return;
+    walkGroup(sweep, texels, s, last + 1, texelsAt,
               [&](int step, int, int, const float* tanHorizon, const BlockSlopes& slopes) {
                 HorizonBlock block = texels.block(step, tanHorizon, slopes);
                 block.tanOpposite =
@@ -336,10 +341,9 @@ void sweepOpposedWindowBlocks(const BlockSweep& sweep, const BlockSweep& opposit
   forEachGroup<kMajorIsColumn>(sweep, groupLines, [&](const auto& texels, BlockScratch& s) {
     const WindowTexels<kMajorIsColumn> window{layout, texels};
     const auto texelsAt = [&](int step) { return window.at(step); };
-    const auto [first, last] = visitedSteps(layout.visitStep, layout.endStep, texelsAt);
-    if (first > last || !walkOpposite<kMajorIsColumn>(opposite, first, last + 1, texelsAt, s)) {
-      return;  // no texel of the window
-    }
+    const auto [first, last] =
+        walkOpposite<kMajorIsColumn>(opposite, layout.visitStep, layout.endStep, texelsAt, s);
+    if (first > last) return;  // no texel of the window
     walkGroup(sweep, texels, s, last + 1, texelsAt,
               [&](int step, int lo, int hi, const float* tanHorizon, const BlockSlopes& slopes) {
                 HorizonBlock b = windowBlock(sweep, window, step, lo, hi, tanHorizon, slopes);

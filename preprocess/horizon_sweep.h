@@ -149,21 +149,18 @@ inline SweepLayout makeSweepLayout(const BakeTerrain& terrain, double ux, double
     // floorOffset[k] .. minorEnd - 1 - floorOffset[k]: a run that moves by
     // at most one line a step, so those met so far are one run too.
     s.lineStart.assign(static_cast<size_t>(s.lastLine - s.firstLine + 1), s.endStep);
-    int metLo = 0, metHi = -1;  // no line yet
-    for (int k = s.visitStep; k < s.endStep; ++k) {
-      const int a = s.minorBegin - 1 - s.floorOffset[k], b = s.minorEnd - 1 - s.floorOffset[k];
-      for (int line = a; line <= b; ++line) {
-        if (line >= metLo && line <= metHi) {
-          line = metHi;  // skip the run already met
-          continue;
-        }
+    const auto meet = [&](int from, int to, int k) {  // lines from .. to, first met at step k
+      for (int line = from; line <= to; ++line) {
         s.lineStart[static_cast<size_t>(line - s.firstLine)] = std::max(s.firstStep, k - reach);
       }
-      if (metLo > metHi) {
-        metLo = a, metHi = b;
-      } else {
-        metLo = std::min(metLo, a), metHi = std::max(metHi, b);
-      }
+    };
+    int metLo = s.minorBegin - 1 - s.floorOffset[s.visitStep], metHi = metLo - 1;  // none yet
+    for (int k = s.visitStep; k < s.endStep; ++k) {
+      const int a = s.minorBegin - 1 - s.floorOffset[k], b = s.minorEnd - 1 - s.floorOffset[k];
+      meet(a, std::min(b, metLo - 1), k);
+      meet(std::max(a, metHi + 1), b, k);
+      metLo = std::min(metLo, a);
+      metHi = std::max(metHi, b);
     }
   }
   return s;
