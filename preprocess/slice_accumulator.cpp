@@ -81,6 +81,12 @@ inline void SliceAccumulator::prefetchAhead(const HorizonBlock& b) const {
     for (int j = 0; j < b.aheadCount; ++j) {
       __builtin_prefetch(sums_ + 4 * (b.aheadFirstTexel + j * b.stride), 1);
     }
+    // The sky-view factor's sums likewise (one cache line per texel here).
+    if (!gis_.svf.empty()) {
+      for (int j = 0; j < b.aheadCount; ++j) {
+        __builtin_prefetch(gis_.svf.data() + b.aheadFirstTexel + j * b.stride, 1);
+      }
+    }
   }
 }
 
@@ -123,12 +129,19 @@ inline void SliceAccumulator::addOpenness(const HorizonBlock& b, const float* ta
 }
 
 // The sine of the horizon's elevation above the horizontal, times weight.
+// The terms first, without a branch (a horizon below the horizontal adds
+// 0), so that they compile to vector code; then added at the texels'
+// stride. The branch on each tangent's sign cost about a tenth of a 1024²
+// --svf bake (docs/performance.md).
 inline void SliceAccumulator::addSkyViewFactor(const HorizonBlock& b, const float* tanHorizon,
                                                std::vector<float>& sums, float weight) const {
+  float terms[HorizonBlock::kLines];
   for (int j = 0; j < b.count; ++j) {
     const float t = tanHorizon[j];
-    if (t > 0.0f) sums[b.firstTexel + j * b.stride] += weight * t / std::sqrt(1.0f + t * t);
+    terms[j] = weight * std::max(t, 0.0f) / std::sqrt(1.0f + t * t);
   }
+  float* sum = sums.data() + b.firstTexel;
+  for (int j = 0; j < b.count; ++j) sum[j * b.stride] += terms[j];
 }
 
 // The sky above the horizontal, the horizon and the tangent plane.
