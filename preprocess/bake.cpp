@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <limits>
 #include <numbers>
 #include <optional>
@@ -126,11 +127,16 @@ class AzimuthSweeps {
       }
       if (o_.progress) o_.progress(static_cast<double>(pass + 1) / passes);
     }
+  }
+
+  // Turns the GIS sums into their rasters, once they are packed at the
+  // width of `window` (the terrain swept, at the window's own pitch).
+  void finish(const BakeTerrain& window) const {
     if (!gis_.svf.empty()) finishSkyViewFactor(gis_.svf, o_.azimuths);
     if (!gis_.openness.empty()) finishOpenness(gis_.openness, o_.azimuths);
     if (!gis_.anisotropicSvf.empty()) finishSkyViewFactor(gis_.anisotropicSvf, weightSum());
     if (!gis_.skyIllumination.empty()) {
-      finishSkyIllumination(terrain_, gis_.skyIllumination, o_.azimuths, o_.skyModel);
+      finishSkyIllumination(window, gis_.skyIllumination, o_.azimuths, o_.skyModel);
     }
   }
 
@@ -224,26 +230,45 @@ void finishApertures(const BakeTerrain& terrain, std::vector<float>& texels) {
   });
 }
 
+// Moves the rows of `v`, `rows` of `width` entries each, from `pitch`
+// entries apart to `width` apart, in place, and drops the rest.
+template <class T>
+void packRows(std::vector<T>& v, size_t rows, size_t pitch, size_t width) {
+  if (pitch == width || v.empty()) return;
+  // Row r moves to before where row r + 1 lies: in order, no row is
+  // overwritten before it has moved.
+  for (size_t r = 1; r < rows; ++r) {
+    std::memmove(v.data() + r * width, v.data() + r * pitch, width * sizeof(T));
+  }
+  v.resize(rows * width);
+}
+
 // Bakes the texels of the terrain's window; info.sourceChecksum is left to
 // the caller.
 BakeResult bakeWindow(const BakeTerrain& terrain, const BakeOptions& o) {
   // The running sums live in the output's own storage: 16 bytes per texel.
+  // The sweep's rows of sums lie a few texels further apart than the
+  // window's width where that width would make them share the cache's sets
+  // (sumsPitch); they are packed to the width once summed.
+  BakeTerrain summed = terrain;
+  if (o.method == BakeMethod::Sweep) summed.pitch = sumsPitch(terrain.window.width);
+  const size_t sums = summed.pitchedTexelCount();
   BakeResult result;
   ApertureMap& map = result.aperture;
   map.width = terrain.window.width;
   map.height = terrain.window.height;
-  assignOnHugePages(map.texels, map.texelCount() * 4, 0.0f);
+  assignOnHugePages(map.texels, sums * 4, 0.0f);
   GisSums gis;
-  if (o.skyViewFactor) gis.svf.assign(map.texelCount(), 0.0f);
-  if (o.positiveOpenness) gis.openness.assign(map.texelCount(), 0.0f);
-  if (o.anisotropicSkyViewFactor) gis.anisotropicSvf.assign(map.texelCount(), 0.0f);
-  if (o.skyIllumination) gis.skyIllumination.assign(map.texelCount(), 0.0f);
+  if (o.skyViewFactor) gis.svf.assign(sums, 0.0f);
+  if (o.positiveOpenness) gis.openness.assign(sums, 0.0f);
+  if (o.anisotropicSkyViewFactor) gis.anisotropicSvf.assign(sums, 0.0f);
+  if (o.skyIllumination) gis.skyIllumination.assign(sums, 0.0f);
   if (o.horizons) {
     result.horizons.width = map.width;
     result.horizons.height = map.height;
     result.horizons.directions = o.horizonDirections;
     result.horizons.bits = o.horizonBits;
-    result.horizons.codes.assign(map.texelCount() * size_t(o.horizonDirections), 0);
+    result.horizons.codes.assign(sums * size_t(o.horizonDirections), 0);
   }
 
   if (o.method == BakeMethod::Sweep) {
@@ -251,9 +276,18 @@ BakeResult bakeWindow(const BakeTerrain& terrain, const BakeOptions& o) {
     // progress.
     BakeOptions first = o;
     if (o.negativeOpenness && o.progress) first.progress = [&](double f) { o.progress(0.5 * f); };
-    AzimuthSweeps(terrain, first, map.texels.data(), gis,
-                  o.horizons ? result.horizons.codes.data() : nullptr)
-        .run();
+    const AzimuthSweeps sweeps(summed, first, map.texels.data(), gis,
+                               o.horizons ? result.horizons.codes.data() : nullptr);
+    sweeps.run();
+    const size_t rows = size_t(map.height), pitch = size_t(summed.pitch), width = size_t(map.width);
+    packRows(map.texels, rows, 4 * pitch, 4 * width);
+    for (std::vector<float>* g :
+         {&gis.svf, &gis.openness, &gis.anisotropicSvf, &gis.skyIllumination}) {
+      packRows(*g, rows, pitch, width);
+    }
+    const size_t directions = size_t(o.horizonDirections);
+    packRows(result.horizons.codes, rows, directions * pitch, directions * width);
+    sweeps.finish(terrain);
     result.positiveOpenness = std::move(gis.openness);
     result.anisotropicSkyViewFactor = std::move(gis.anisotropicSvf);
     result.skyIllumination = std::move(gis.skyIllumination);

@@ -31,7 +31,12 @@ BakeTerrain prepareBakeTerrain(HeightView heights, const TexelWindow& window) {
   }
 
   t.window = window;
+  t.pitch = window.width;
   return t;
+}
+
+int sumsPitch(int width) {
+  return width % 64 == 0 ? width + 4 : width;
 }
 
 }  // namespace aal

@@ -28,6 +28,10 @@ struct BakeTerrain {
   // heights and horizons are always the whole field's; the sweep's visits
   // and the bake's sums are indexed within the window (windowIndex).
   TexelWindow window;
+  // The row pitch, in texels, of the arrays indexed by windowIndex: the
+  // window's width (prepareBakeTerrain), or a few texels more for the
+  // sweep's sums (sumsPitch).
+  int pitch = 0;
 
   // Height gradient at field texel (col, row) in metres per metre, dz/dx
   // (east) and dz/dy (north): central differences inside, one-sided at the
@@ -48,12 +52,12 @@ struct BakeTerrain {
   }
   // The same at window texel i (windowIndex).
   float slopeEast(size_t texel) const {
-    return slopeEastAt(window.col + static_cast<int>(texel % window.width),
-                       window.row + static_cast<int>(texel / window.width));
+    return slopeEastAt(window.col + static_cast<int>(texel % size_t(pitch)),
+                       window.row + static_cast<int>(texel / size_t(pitch)));
   }
   float slopeNorth(size_t texel) const {
-    return slopeNorthAt(window.col + static_cast<int>(texel % window.width),
-                        window.row + static_cast<int>(texel / window.width));
+    return slopeNorthAt(window.col + static_cast<int>(texel % size_t(pitch)),
+                        window.row + static_cast<int>(texel / size_t(pitch)));
   }
   // The factor of a difference between neighbours lo and hi (lo <= hi, at
   // most two texels apart) that makes it one per texel.
@@ -63,8 +67,23 @@ struct BakeTerrain {
   float invCellYF() const { return static_cast<float>(1.0 / cellY); }
   double x(int col, int row) const { return (col - centreCol) * rowCellX[row]; }
   double y(int row) const { return rowY[row]; }
-  size_t windowIndex(int col, int row) const { return window.index(col, row); }
+  size_t windowIndex(int col, int row) const {
+    return static_cast<size_t>(row - window.row) * static_cast<size_t>(pitch) +
+           static_cast<size_t>(col - window.col);
+  }
+  // How many entries an array indexed by windowIndex holds.
+  size_t pitchedTexelCount() const { return static_cast<size_t>(pitch) * window.height; }
 };
+
+// A row pitch for the sweep's sums of a window `width` texels wide: the
+// width, or 4 texels more where the width is a multiple of 64. A group of
+// lines walked across rows adds to one texel of each of some 40 rows per
+// step; at such widths the rows of 16-byte sums lie a multiple of 1 KiB
+// apart and fall into at most 4 of the L1 cache's 64 sets, which hold 8
+// lines each, so every step missed the cache. With the pitch a multiple
+// of 4 texels but not of 8, consecutive rows fall into different sets
+// (docs/performance.md, "Power-of-two widths").
+int sumsPitch(int width);
 
 // zScale and cell sizes are taken as already applied to the heights. The
 // terrain views `heights`, which must outlive it.

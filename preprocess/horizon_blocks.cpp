@@ -71,7 +71,7 @@ struct BlockSweep {
 template <bool kMajorIsColumn>
 struct GroupTexels {
   const SweepLayout& layout;
-  ptrdiff_t width;   // of the field
+  ptrdiff_t pitch;   // of the field's sums (BakeTerrain::windowIndex)
   int first, count;  // the group's lines first .. first + count - 1
 
   // Minor range of the group's texels at `step` (empty: lo > hi): those
@@ -82,13 +82,13 @@ struct GroupTexels {
   }
   size_t texel(int step, int minor) const {
     const ptrdiff_t major = layout.start + step * layout.step;
-    return static_cast<size_t>(kMajorIsColumn ? minor * width + major : major * width + minor);
+    return static_cast<size_t>(kMajorIsColumn ? minor * pitch + major : major * pitch + minor);
   }
   // The block of `step`, with its texels kAheadSteps later.
   HorizonBlock block(int step, const float* tanHorizon, const BlockSlopes& slopes) const {
     const auto [lo, hi] = at(step);
     HorizonBlock b =
-        stepBlock(texel(step, lo), kMajorIsColumn ? width : 1, hi - lo + 1, tanHorizon, slopes);
+        stepBlock(texel(step, lo), kMajorIsColumn ? pitch : 1, hi - lo + 1, tanHorizon, slopes);
     const int ahead = step + HorizonBlock::kAheadSteps;
     if (ahead < layout.majorLength) {
       const auto [aheadLo, aheadHi] = at(ahead);
@@ -115,7 +115,7 @@ void forEachGroup(const BlockSweep& sweep, int groupLines, WalkGroup&& walkGroup
     s.hulls.resize(static_cast<size_t>(BlockLineWalker<kMajorIsColumn>::kMaxLines) *
                    layout.majorLength);
     const int first = firstLine + group * groupLines;
-    const GroupTexels<kMajorIsColumn> texels{layout, sweep.terrain.width, first,
+    const GroupTexels<kMajorIsColumn> texels{layout, sweep.terrain.pitch, first,
                                              std::min(groupLines, layout.lastLine + 1 - first)};
     walkGroup(texels, s);
   });
@@ -223,7 +223,7 @@ HorizonBlock windowBlock(const BlockSweep& sweep, const WindowTexels<kMajorIsCol
   const int major = layout.start + step * layout.step;
   HorizonBlock b =
       stepBlock(kMajorIsColumn ? terrain.windowIndex(major, lo) : terrain.windowIndex(lo, major),
-                kMajorIsColumn ? terrain.window.width : 1, hi - lo + 1, tanHorizon, slopes);
+                kMajorIsColumn ? terrain.pitch : 1, hi - lo + 1, tanHorizon, slopes);
   // The texels kAheadSteps on, for the visitor's prefetches: without them
   // a tile's column passes wait on memory.
   const int ahead = step + HorizonBlock::kAheadSteps;
