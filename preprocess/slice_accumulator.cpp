@@ -131,8 +131,8 @@ inline void SliceAccumulator::addOpenness(const HorizonBlock& b, const float* ta
 // The sine of the horizon's elevation above the horizontal, times weight.
 // The terms first, without a branch (a horizon below the horizontal adds
 // 0), so that they compile to vector code; then added at the texels'
-// stride. The branch on each tangent's sign cost about a tenth of a 1024²
-// --svf bake (docs/performance.md).
+// stride. (With the prefetch in prefetchAhead and the sums' padded pitch,
+// sumsPitch: a 2048² --svf bake 10 % faster, docs/performance.md.)
 inline void SliceAccumulator::addSkyViewFactor(const HorizonBlock& b, const float* tanHorizon,
                                                std::vector<float>& sums, float weight) const {
   float terms[HorizonBlock::kLines];
