@@ -173,8 +173,8 @@ class AzimuthSweeps {
     if (sweep_.windowReachM > 0.0) {
       sweepNearAndFar(s);
     } else if (sweep_.maxDistanceM > 0.0) {
-      sweepHorizons(terrain_, s.phi, sweep_,
-                    [&](size_t texel, double tanHorizon) { sums_.addTexel(texel, tanHorizon, s); });
+      sweepHorizonRuns(terrain_, s.phi, sweep_,
+                       [&](const HorizonRun& run) { sums_.addRun(run, s); });
     } else {
       sweepHorizonBlocks(terrain_, s.phi, sweep_,
                          [&](const HorizonBlock& b) { sums_.addBlock(b, s, nullptr); });

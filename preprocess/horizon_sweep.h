@@ -32,6 +32,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <utility>
 #include <vector>
 
 #include <tbb/enumerable_thread_specific.h>
@@ -55,6 +56,18 @@ struct HorizonSweepOptions {
   // least this distance of its line (the far field, far_horizon.h, adds
   // what lies beyond).
   double windowReachM = 0.0;
+};
+
+// Texels side by side along the minor axis of a sweep: texel j (0 <= j <
+// count) is at (major, minorFirst + j) as (column, row) where majorIsColumn,
+// else (minorFirst + j, major), with horizon tangent tanHorizon[j] (-inf
+// when no terrain lies ahead).
+struct HorizonRun {
+  bool majorIsColumn;
+  int major;
+  int minorFirst;
+  int count;
+  const double* tanHorizon;
 };
 
 namespace detail {
@@ -462,14 +475,15 @@ inline double blendHorizons(double near, double far, double farWeight) {
   return near + farWeight * (far - near);
 }
 
-template <bool kMajorIsColumn, class Visit>
+template <bool kMajorIsColumn, class VisitRun>
 void sweepLines(const BakeTerrain& terrain, const SweepLayout& layout, double ux, double uy,
-                const HorizonSweepOptions& options, Visit& visit) {
+                const HorizonSweepOptions& options, VisitRun& visitRun) {
   const LineWalker<kMajorIsColumn> walker(terrain, layout, ux, uy, options);
   constexpr int kGroup = 16;
   struct Scratch {
     std::vector<typename LineWalker<kMajorIsColumn>::Line> lines{kGroup + 1};
     double horizon[kGroup + 1];
+    double run[kGroup];
   };
   tbb::enumerable_thread_specific<Scratch> scratch;
   // Texel (k, line + floorOffset[k]) lies between lines c - 1 and c: it
@@ -505,6 +519,9 @@ void sweepLines(const BakeTerrain& terrain, const SweepLayout& layout, double ux
       }
       const int major = layout.start + step * layout.step;
       const double fraction = layout.fraction[step];
+      // The group's texels in the window at this step: consecutive minor
+      // coordinates, one run.
+      HorizonRun run{kMajorIsColumn, major, 0, 0, s.run};
       for (int i = 1; i <= count; ++i) {
         const int minor = first - 1 + i + layout.floorOffset[step];
         if (minor < layout.minorBegin || minor >= layout.minorEnd) continue;
@@ -512,14 +529,32 @@ void sweepLines(const BakeTerrain& terrain, const SweepLayout& layout, double ux
         const int row = kMajorIsColumn ? minor : major;
         const double lines = blendHorizons(s.horizon[i], s.horizon[i - 1], fraction);
         const double best = std::max(lines, walker.leavingSlope(col, row));
-        visit(terrain.windowIndex(col, row),
-              best <= kNoHorizon ? -std::numeric_limits<double>::infinity() : best);
+        if (run.count == 0) run.minorFirst = minor;
+        s.run[run.count++] = best <= kNoHorizon ? -std::numeric_limits<double>::infinity() : best;
       }
+      if (run.count > 0) visitRun(std::as_const(run));
     }
   });
 }
 
 }  // namespace detail
+
+// Calls visitRun(run) with the horizons of every texel of the terrain's
+// window for the azimuth phi, as sweepHorizons (below) does, a run at a
+// time: the texels of a group of lines at one step, which lie side by side
+// (HorizonRun). Runs are visited concurrently, none twice.
+template <class VisitRun>
+void sweepHorizonRuns(const BakeTerrain& terrain, double phi, const HorizonSweepOptions& options,
+                      VisitRun&& visitRun) {
+  const double ux = std::cos(phi), uy = std::sin(phi);
+  const detail::SweepLayout layout = detail::makeSweepLayout(
+      terrain, ux, uy, options.maxDistanceM > 0.0 ? options.maxDistanceM : options.windowReachM);
+  if (layout.majorIsColumn) {
+    detail::sweepLines<true>(terrain, layout, ux, uy, options, visitRun);
+  } else {
+    detail::sweepLines<false>(terrain, layout, ux, uy, options, visitRun);
+  }
+}
 
 // Calls visit(windowIndex, tanHorizon) once for every texel of the
 // terrain's window (BakeTerrain::windowIndex) for the azimuth phi (radians,
@@ -530,14 +565,14 @@ void sweepLines(const BakeTerrain& terrain, const SweepLayout& layout, double ux
 template <class Visit>
 void sweepHorizons(const BakeTerrain& terrain, double phi, const HorizonSweepOptions& options,
                    Visit&& visit) {
-  const double ux = std::cos(phi), uy = std::sin(phi);
-  const detail::SweepLayout layout = detail::makeSweepLayout(
-      terrain, ux, uy, options.maxDistanceM > 0.0 ? options.maxDistanceM : options.windowReachM);
-  if (layout.majorIsColumn) {
-    detail::sweepLines<true>(terrain, layout, ux, uy, options, visit);
-  } else {
-    detail::sweepLines<false>(terrain, layout, ux, uy, options, visit);
-  }
+  sweepHorizonRuns(terrain, phi, options, [&](const HorizonRun& run) {
+    for (int j = 0; j < run.count; ++j) {
+      const int minor = run.minorFirst + j;
+      visit(run.majorIsColumn ? terrain.windowIndex(run.major, minor)
+                              : terrain.windowIndex(minor, run.major),
+            run.tanHorizon[j]);
+    }
+  });
 }
 
 }  // namespace aal

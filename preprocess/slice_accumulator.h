@@ -12,6 +12,7 @@
 #include "aperture/preprocess/bake.h"
 #include "aperture/preprocess/bake_terrain.h"
 #include "aperture/preprocess/horizon_blocks.h"
+#include "aperture/preprocess/horizon_sweep.h"
 
 namespace aal {
 
@@ -44,13 +45,12 @@ class SliceAccumulator {
   // BakeCancelled when o.cancel is set. Safe to call concurrently for
   // blocks of different texels.
   void addBlock(const HorizonBlock& b, const AzimuthSlice& s, const AzimuthSlice* opposite) const;
-  // The same for one texel (window index), from the texel-by-texel sweeps.
-  void addTexel(size_t texel, double tanHorizon, const AzimuthSlice& s) const;
+  // The same for a run of texels of the distance-limited sweep
+  // (sweepHorizonRuns), with their slopes found from the heights.
+  void addRun(const HorizonRun& run, const AzimuthSlice& s) const;
 
  private:
-  // The body of addBlock and addTexel, inlined into both: for addTexel's
-  // blocks of one it folds to straight-line code (the distance-limited
-  // sweep calls it once per texel and azimuth).
+  // The body of addBlock and addRun, inlined into both.
   [[gnu::always_inline]] inline void addSlices(const HorizonBlock& b, const AzimuthSlice& s,
                                                const AzimuthSlice* opposite) const;
   [[gnu::always_inline]] inline void prefetchAhead(const HorizonBlock& b) const;
