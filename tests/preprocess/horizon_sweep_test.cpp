@@ -62,66 +62,14 @@ double bruteForceHorizon(const Heightfield& f, int col, int row, int dc, int dr,
   return best;
 }
 
-TEST(HorizonSweep, EqualsBruteForceAlongAxisAndDiagonalLines) {
-  SyntheticTerrainOptions s;
-  s.width = 37;
-  s.height = 37;
-  s.cellSizeM = 500;
-  s.amplitudeM = 2000;
-  s.featureSizeTexels = 12;
+// The sweep's horizon at every texel of `s`'s field, for each of the
+// variants, along the 8 axis and diagonal directions, against the brute
+// force.
+void expectBruteForceHorizons(const SyntheticTerrainOptions& s,
+                              const std::vector<HorizonSweepOptions>& variants) {
   const Heightfield field = makeSyntheticTerrain(s);
   const BakeTerrain terrain = prepareBakeTerrain(field);
-
-  const double kCurve = (1 - 0.13) / (2 * 6371000.0);
-  const std::vector<HorizonSweepOptions> variants = {{false, 0.0, 0.0},    {false, kCurve, 0.0},
-                                                     {true, 0.0, 0.0},     {true, kCurve, 0.0},
-                                                     {false, 0.0, 4100.0}, {true, kCurve, 6100.0}};
   // phi -> grid step (dc, dr): east, north-east, north, ... (rows grow south).
-  const std::map<int, std::pair<int, int>> directions = {{0, {1, 0}},   {1, {1, -1}}, {2, {0, -1}},
-                                                         {3, {-1, -1}}, {4, {-1, 0}}, {5, {-1, 1}},
-                                                         {6, {0, 1}},   {7, {1, 1}}};
-  for (const HorizonSweepOptions& o : variants) {
-    for (const auto& [eighth, step] : directions) {
-      std::vector<double> horizon(field.texelCount(), std::nan(""));
-      sweepHorizons(terrain, eighth * kPi / 4, o,
-                    [&](size_t i, double tanH) { horizon[i] = tanH; });
-      for (int row = 0; row < field.height; ++row) {
-        for (int col = 0; col < field.width; ++col) {
-          const double expected =
-              bruteForceHorizon(field, col, row, step.first, step.second, s.cellSizeM, o);
-          const double got = horizon[field.index(col, row)];
-          ASSERT_FALSE(std::isnan(got)) << "texel not visited";
-          if (std::isinf(expected)) {
-            EXPECT_TRUE(std::isinf(got) && got < 0) << col << "," << row;
-          } else {
-            EXPECT_NEAR(got, expected, 1e-9 + 1e-9 * std::abs(expected))
-                << "phi=" << eighth << "/8 turn, texel " << col << "," << row
-                << " clamp=" << o.clampEdge << " curvature=" << o.curvature
-                << " maxDistance=" << o.maxDistanceM;
-          }
-        }
-      }
-    }
-  }
-}
-
-// Limits of more than 40 steps are not scanned point by point: each line
-// keeps the upper hulls of its last two chunks (LineWalker::pushWithin).
-// The same brute force, over limits that cut the lines into chunks of
-// different lengths and phases.
-TEST(HorizonSweep, LongLimitsEqualBruteForceAlongAxisAndDiagonalLines) {
-  SyntheticTerrainOptions s;
-  s.width = 131;
-  s.height = 97;
-  s.cellSizeM = 100;
-  s.amplitudeM = 1500;
-  s.featureSizeTexels = 8;
-  const Heightfield field = makeSyntheticTerrain(s);
-  const BakeTerrain terrain = prepareBakeTerrain(field);
-  ASSERT_GT(detail::stepsCovering(terrain, 4700.0), 40);
-  const double kCurve = (1 - 0.13) / (2 * 6371000.0);
-  const std::vector<HorizonSweepOptions> variants = {
-      {false, 0.0, 4700.0}, {true, kCurve, 6350.0}, {false, kCurve, 9100.0}, {true, 0.0, 20000.0}};
   const std::map<int, std::pair<int, int>> directions = {{0, {1, 0}},   {1, {1, -1}}, {2, {0, -1}},
                                                          {3, {-1, -1}}, {4, {-1, 0}}, {5, {-1, 1}},
                                                          {6, {0, 1}},   {7, {1, 1}}};
@@ -148,6 +96,42 @@ TEST(HorizonSweep, LongLimitsEqualBruteForceAlongAxisAndDiagonalLines) {
       }
     }
   }
+}
+
+constexpr double kCurve = (1 - 0.13) / (2 * 6371000.0);
+
+TEST(HorizonSweep, EqualsBruteForceAlongAxisAndDiagonalLines) {
+  SyntheticTerrainOptions s;
+  s.width = 37;
+  s.height = 37;
+  s.cellSizeM = 500;
+  s.amplitudeM = 2000;
+  s.featureSizeTexels = 12;
+  expectBruteForceHorizons(s, {{false, 0.0, 0.0},
+                               {false, kCurve, 0.0},
+                               {true, 0.0, 0.0},
+                               {true, kCurve, 0.0},
+                               {false, 0.0, 4100.0},
+                               {true, kCurve, 6100.0}});
+}
+
+// Limits of more than 40 steps are not scanned point by point: each line
+// keeps the upper hulls of its last two chunks (LineWalker::pushWithin).
+// The same brute force, over limits that cut the lines into chunks of
+// different lengths and phases.
+TEST(HorizonSweep, LongLimitsEqualBruteForceAlongAxisAndDiagonalLines) {
+  SyntheticTerrainOptions s;
+  s.width = 131;
+  s.height = 97;
+  s.cellSizeM = 100;
+  s.amplitudeM = 1500;
+  s.featureSizeTexels = 8;
+  const Heightfield field = makeSyntheticTerrain(s);
+  ASSERT_GT(detail::stepsCovering(prepareBakeTerrain(field), 4700.0), 40);
+  expectBruteForceHorizons(s, {{false, 0.0, 4700.0},
+                               {true, kCurve, 6350.0},
+                               {false, kCurve, 9100.0},
+                               {true, 0.0, 20000.0}});
 }
 
 TEST(HorizonSweep, VisitsEveryTexelOnceForAnyAzimuth) {
