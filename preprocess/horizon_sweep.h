@@ -63,6 +63,10 @@ struct HorizonSweepOptions {
 // else (minorFirst + j, major), with horizon tangent tanHorizon[j] (-inf
 // when no terrain lies ahead).
 struct HorizonRun {
+  // The lines a sweep walks together, so the most texels in a run: 32
+  // walked a 1024² fBm with a limit 8-9 % faster than 16 (300 m and 3 km,
+  // the sums taking a run as a block), 39 the same as 32.
+  static constexpr int kMaxCount = 32;
   bool majorIsColumn;
   int major;
   int minorFirst;
@@ -479,7 +483,7 @@ template <bool kMajorIsColumn, class VisitRun>
 void sweepLines(const BakeTerrain& terrain, const SweepLayout& layout, double ux, double uy,
                 const HorizonSweepOptions& options, VisitRun& visitRun) {
   const LineWalker<kMajorIsColumn> walker(terrain, layout, ux, uy, options);
-  constexpr int kGroup = 16;
+  constexpr int kGroup = HorizonRun::kMaxCount;
   struct Scratch {
     std::vector<typename LineWalker<kMajorIsColumn>::Line> lines{kGroup + 1};
     double horizon[kGroup + 1];

@@ -25,6 +25,7 @@ void SliceAccumulator::addBlock(const HorizonBlock& b, const AzimuthSlice& s,
 }
 
 void SliceAccumulator::addRun(const HorizonRun& run, const AzimuthSlice& s) const {
+  static_assert(HorizonRun::kMaxCount <= HorizonBlock::kLines);
   // A block: the run's tangents in single precision, and its slopes, in
   // whole vectors of 8 for addSlicesAvx2. (One texel at a time took 3 times
   // as long as the sums of a block.)
