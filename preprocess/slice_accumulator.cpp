@@ -96,10 +96,12 @@ inline void SliceAccumulator::prefetchAhead(const HorizonBlock& b) const {
     for (int j = 0; j < b.aheadCount; ++j) {
       __builtin_prefetch(sums_ + 4 * (b.aheadFirstTexel + j * b.stride), 1);
     }
-    // The sky-view factor's sums likewise (one cache line per texel here).
-    if (!gis_.svf.empty()) {
+    // The GIS rasters' sums likewise (one cache line per texel here).
+    for (const std::vector<float>* g :
+         {&gis_.svf, &gis_.openness, &gis_.anisotropicSvf, &gis_.skyIllumination}) {
+      if (g->empty()) continue;
       for (int j = 0; j < b.aheadCount; ++j) {
-        __builtin_prefetch(gis_.svf.data() + b.aheadFirstTexel + j * b.stride, 1);
+        __builtin_prefetch(g->data() + b.aheadFirstTexel + j * b.stride, 1);
       }
     }
   }
