@@ -221,9 +221,10 @@ inline double placeAlongU(const BakeTerrain& terrain, int major, double minor, d
 template <bool kMajorIsColumn>
 class LineWalker {
  public:
-  // What a distance-limited walk undoes of a push onto Line::before.
+  // What a distance-limited walk undoes of a push onto Line::before: the
+  // hull after push k ends at pushes[k].at, so it holds pushes[k].at + 1
+  // points.
   struct Push {
-    size_t size;               // before's size before the push
     size_t at;                 // where the point went
     ProfilePoint overwritten;  // what lay there
   };
@@ -244,10 +245,9 @@ class LineWalker {
     std::vector<ProfilePoint> chunk;  // the chunk's upper hull, farthest first
     size_t chunkSize = 0;
     std::vector<ProfilePoint> before;  // the chunk before: the hull of its part, nearest first
-    size_t beforeSize = 0;
-    size_t beforeEnd = 0;      // hull[] index after that chunk's last point
-    std::vector<Push> pushes;  // the pushes that built `before`, nearest point first
-    size_t pushCount = 0;      // of which the first pushCount stand: the part's points
+    size_t beforeEnd = 0;              // hull[] index after that chunk's last point
+    std::vector<Push> pushes;          // the pushes that built `before`, nearest point first
+    size_t pushCount = 0;              // of which the first pushCount stand: the part's points
   };
 
   LineWalker(const BakeTerrain& terrain, const SweepLayout& layout, double ux, double uy,
@@ -273,7 +273,7 @@ class LineWalker {
     line.hull.resize(static_cast<size_t>(layout_.majorLength));
     line.size = 0;
     line.started = false;
-    line.chunkFirst = line.chunkSize = line.beforeSize = line.beforeEnd = line.pushCount = 0;
+    line.chunkFirst = line.chunkSize = line.beforeEnd = line.pushCount = 0;
   }
 
   // Advances `line` (state `state`) by sweep step `step` and returns the
@@ -379,17 +379,15 @@ class LineWalker {
     size_t n = 0, k = 0;
     for (size_t i = end; i-- > first;) {
       const ProfilePoint& c = s.hull[i];
-      const size_t size = n;
       // t grows along b: pop the last point where it lies on or under the
       // segment from the one before it to c.
       while (n >= 2 && (b[n - 1].t - b[n - 2].t) * (c.z - b[n - 2].z) >=
                            (b[n - 1].z - b[n - 2].z) * (c.t - b[n - 2].t)) {
         --n;
       }
-      s.pushes[k++] = Push{size, n, b[n]};
+      s.pushes[k++] = Push{n, b[n]};
       b[n++] = c;
     }
-    s.beforeSize = n;
     s.beforeEnd = end;
     s.pushCount = k;
   }
@@ -407,13 +405,12 @@ class LineWalker {
     while (s.pushCount > 0 && s.hull[s.beforeEnd - s.pushCount].t - q.t > maxDistance_) {
       const Push& undo = s.pushes[--s.pushCount];
       s.before[undo.at] = undo.overwritten;
-      s.beforeSize = undo.size;
     }
     if (s.pushCount == 0) return best;
     // The slopes from q along the hull rise to the tangent and then fall:
     // find the first point the next one does not rise above.
     const ProfilePoint* b = s.before.data();
-    size_t lo = 0, hi = s.beforeSize - 1;
+    size_t lo = 0, hi = s.pushes[s.pushCount - 1].at;
     while (lo < hi) {
       const size_t mid = (lo + hi) / 2;
       if ((b[mid + 1].z - q.z) * (b[mid].t - q.t) > (b[mid].z - q.z) * (b[mid + 1].t - q.t)) {

@@ -4,6 +4,7 @@
 #include <atomic>
 #include <cmath>
 
+#include "aperture/preprocess/horizon_sweep.h"
 #include "aperture/preprocess/openness.h"
 #include "aperture/preprocess/sky_illumination.h"
 #include "aperture/preprocess/sky_slice.h"
@@ -61,7 +62,7 @@ inline void SliceAccumulator::addSlices(const HorizonBlock& b, const AzimuthSlic
   prefetchAhead(b);
   addGisTerms(b, s, opposite);
 #if AAL_HORIZON_AVX2
-  // Not for the distance-limited sweep's blocks of one: 20 % slower there.
+  // Not for blocks of one: 20 % slower there.
   if (avx2_ && b.count > 1) {
     detail::addSlicesAvx2(sums_, b, s, opposite);
     return;

@@ -12,9 +12,10 @@
 #include "aperture/preprocess/bake.h"
 #include "aperture/preprocess/bake_terrain.h"
 #include "aperture/preprocess/horizon_blocks.h"
-#include "aperture/preprocess/horizon_sweep.h"
 
 namespace aal {
+
+struct HorizonRun;  // horizon_sweep.h
 
 // One azimuth's constants, in the single precision the slices are summed
 // in (sky_slice.h).

@@ -279,8 +279,8 @@ TEST(Bake, SumsSweptAtAPaddedPitchArePackedToTheWidth) {
       turned.z[turned.index(row, field.width - 1 - col)] = field.at(col, row);
     }
   }
-  // Unlimited (blocks of texels) and within a distance (one texel at a
-  // time, its slopes found from its index).
+  // Unlimited (the block sweep) and within a distance (the line sweep's
+  // runs, placed in the sums at the pitch).
   for (const double maxDistanceM : {0.0, 900.0}) {
     BakeOptions o = sweepOptions(64);
     o.maxDistanceM = maxDistanceM;
@@ -289,8 +289,8 @@ TEST(Bake, SumsSweptAtAPaddedPitchArePackedToTheWidth) {
     const BakeResult b = bakeApertures(turned, o);
     // Within a distance the sweep is not quite the same turned (3e-4 of
     // arc length and 0.08 degrees of bent normal at worst, at the width's
-    // own pitch as well); rows packed wrong, or a texel's slopes taken from
-    // the wrong row, miss by 0.04 of arc length.
+    // own pitch as well); rows packed wrong, or runs placed a row's width
+    // apart instead of the pitch, miss by 0.04-0.08 of arc length.
     const double tolerance = maxDistanceM > 0.0 ? 1e-3 : 1e-4;
     const double toleranceDeg = maxDistanceM > 0.0 ? 0.2 : 0.01;
     ASSERT_EQ(a.aperture.texels.size(), 4 * field.texelCount());
