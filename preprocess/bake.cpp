@@ -111,7 +111,10 @@ class AzimuthSweeps {
     // Without a distance limit azimuths a and a + n/2 are swept together
     // (sweepOpposedHorizonBlocks): one pass over the sums for both.
     // A far-field window's lines too, each azimuth from its own side.
-    const bool opposed = sweep_.maxDistanceM <= 0.0 && o_.azimuths % 2 == 0;
+    // So are a short limit's, which the block walk scans.
+    const bool opposed =
+        (sweep_.maxDistanceM <= 0.0 || detail::scansWithinLimit(terrain_, sweep_)) &&
+        o_.azimuths % 2 == 0;
     const int passes = opposed ? o_.azimuths / 2 : o_.azimuths;
     for (int pass = 0; pass < passes; ++pass) {
       checkCancel(o_);
@@ -172,7 +175,7 @@ class AzimuthSweeps {
   void sweepOne(const AzimuthSlice& s) const {
     if (sweep_.windowReachM > 0.0) {
       sweepNearAndFar(s);
-    } else if (sweep_.maxDistanceM > 0.0) {
+    } else if (sweep_.maxDistanceM > 0.0 && !detail::scansWithinLimit(terrain_, sweep_)) {
       sweepHorizonRuns(terrain_, s.phi, sweep_,
                        [&](const HorizonRun& run) { sums_.addRun(run, s); });
     } else {

@@ -223,7 +223,13 @@ __attribute__((target("avx2"))) void BlockLineWalker<kMajorIsColumn>::stepAvx2(
   lineSamplesAvx2(step, slice);
   const bool texels = minorLo <= minorHi;
   alignas(32) float lineHorizon[kPaddedLines + 8];
-  updateHullsAvx2(slice, texels, lineHorizon);
+  if (scan_) {
+    alignas(32) float z[kPaddedLines] = {};
+    scanPush(step, slice, z);
+    if (texels) scanHorizonsAvx2(step, slice, z, lineHorizon);
+  } else {
+    updateHullsAvx2(slice, texels, lineHorizon);
+  }
   if (texels) texelTangentsAvx2(slice, lineHorizon, minorLo, minorHi, out);
 }
 
@@ -270,6 +276,7 @@ __attribute__((target("avx2"))) inline void BlockLineWalker<kMajorIsColumn>::lin
                                       ux),
                         _mm256_set1_pd(terrain_.y(major) * uy_));
     }
+    _mm256_store_pd(slice.lineTD + i, t);
     _mm_storeu_ps(lineT + i, _mm256_cvtpd_ps(t));
   }
   validBits &= lines_ >= 64 ? ~0ull : (1ull << lines_) - 1;
@@ -354,6 +361,52 @@ __attribute__((target("avx2"))) inline void BlockLineWalker<kMajorIsColumn>::upd
   }
   for (int i = slice.lineFirst; i <= slice.lineLast; ++i) {
     hulls_[static_cast<size_t>(i) * majorLength + size_[i] - 1] = {slice.lineT[i], lineCurvedZ[i]};
+  }
+}
+
+// scanHorizons 8 lines at a time: each k-th point back of 8 lines is one
+// row of the ring; lanes with fewer points within the limit are masked.
+template <bool kMajorIsColumn>
+__attribute__((target("avx2"))) inline void BlockLineWalker<kMajorIsColumn>::scanHorizonsAvx2(
+    int step, const StepSlice& slice, const float* z, float* lineHorizon) const {
+  const ScanRing& ring = *ring_;
+  const __m256 noHorizon = _mm256_set1_ps(kNoHorizonTangent);
+  const __m256 curvature = _mm256_set1_ps(curvature_);
+  const __m256i iota = _mm256_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7);
+  for (int c = 0; c < lines_; c += 8) {
+    const __m256i line = _mm256_add_epi32(_mm256_set1_epi32(c), iota);
+    const __m256i valid =
+        _mm256_and_si256(_mm256_cmpgt_epi32(line, _mm256_set1_epi32(slice.lineFirst - 1)),
+                         _mm256_cmpgt_epi32(_mm256_set1_epi32(slice.lineLast + 1), line));
+    if (_mm256_testz_si256(valid, valid)) {
+      _mm256_store_ps(lineHorizon + c, noHorizon);
+      continue;
+    }
+    const __m256 zq = _mm256_load_ps(z + c);
+    const __m256d tLow = _mm256_load_pd(slice.lineTD + c),
+                  tHigh = _mm256_load_pd(slice.lineTD + c + 4);
+    const __m256i within = _mm256_load_si256(reinterpret_cast<const __m256i*>(within_ + c));
+    __m256 best = noHorizon;
+    for (int k = 1; k <= withinMax_[c / 8]; ++k) {
+      const int slot = (step - k) & (kScanRing - 1);
+      const __m256 d = _mm256_set_m128(
+          _mm256_cvtpd_ps(_mm256_sub_pd(_mm256_load_pd(ring.t[slot] + c + 4), tHigh)),
+          _mm256_cvtpd_ps(_mm256_sub_pd(_mm256_load_pd(ring.t[slot] + c), tLow)));
+      const __m256 slope =
+          _mm256_sub_ps(_mm256_div_ps(_mm256_sub_ps(_mm256_load_ps(ring.z[slot] + c), zq), d),
+                        _mm256_mul_ps(curvature, d));
+      const __m256 active =
+          _mm256_castsi256_ps(_mm256_cmpgt_epi32(within, _mm256_set1_epi32(k - 1)));
+      best = _mm256_max_ps(_mm256_blendv_ps(noHorizon, slope, active), best);
+    }
+    if (clampEdge_) {
+      const __m256 edge = clampedEdgeSlopeAvx2(_mm256_sub_ps(_mm256_load_ps(edgeZ_ + c), zq),
+                                               _mm256_load_ps(toEdge_ + c), curvature_);
+      const __m256 edgeWithin =
+          _mm256_castsi256_ps(_mm256_load_si256(reinterpret_cast<const __m256i*>(edgeWithin_ + c)));
+      best = _mm256_max_ps(_mm256_blendv_ps(noHorizon, edge, edgeWithin), best);
+    }
+    _mm256_store_ps(lineHorizon + c, _mm256_blendv_ps(noHorizon, best, _mm256_castsi256_ps(valid)));
   }
 }
 

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstddef>
+#include <stdexcept>
 
 namespace aal::detail {
 
@@ -12,7 +13,7 @@ template <bool kMajorIsColumn>
 BlockLineWalker<kMajorIsColumn>::BlockLineWalker(const BakeTerrain& terrain,
                                                  const SweepLayout& layout, double ux, double uy,
                                                  const HorizonSweepOptions& options,
-                                                 HullPointF* hulls)
+                                                 HullPointF* hulls, ScanRing* ring)
     : terrain_(terrain),
       layout_(layout),
       ux_(ux),
@@ -20,9 +21,13 @@ BlockLineWalker<kMajorIsColumn>::BlockLineWalker(const BakeTerrain& terrain,
       hulls_(hulls),
       curvature_(static_cast<float>(options.curvature)),
       clampEdge_(options.clampEdge),
+      maxDistance_(options.maxDistanceM),
+      scan_(scansWithinLimit(terrain, options)),
       minorMax_(layout.minorLength - 1),
       rowCentre_(0.5f * static_cast<float>(terrain.height - 1)),
-      avx2_(horizonAvx2()) {
+      avx2_(horizonAvx2()),
+      ring_(ring) {
+  if (scan_ && !ring_) throw std::logic_error("BlockLineWalker: a scanned limit needs a ScanRing");
   // The bilinear surface leaving a texel (LineWalker::leavingSlope): one
   // neighbour lies on the next major slice, the other beside it on the
   // same slice.
@@ -123,6 +128,14 @@ void BlockLineWalker<kMajorIsColumn>::stepScalar(int step, int minorLo, int mino
   loadSlice<false>(step, east, north, slice);
   lineSamples(step, slice);
   LineValues lines;
+  if (scan_) {
+    alignas(32) float z[kPaddedLines] = {};
+    scanPush(step, slice, z);
+    if (minorLo > minorHi) return;
+    scanHorizons(step, slice, z, lines.horizon);
+    texelTangents(slice, lines, minorLo, minorHi, out);
+    return;
+  }
   updateHulls(slice, lines);
   if (minorLo > minorHi) return;  // the step only fills the hulls
   lineHorizons(slice, lines);
@@ -140,7 +153,35 @@ void BlockLineWalker<kMajorIsColumn>::lineSamples(int step, StepSlice& slice) co
     if (minor < 0.0 || minor > minorMax) continue;
     slice.lineFirst = std::min(slice.lineFirst, i);
     slice.lineLast = i;
-    slice.lineT[i] = static_cast<float>(lineT(major, minor));
+    slice.lineTD[i] = lineT(major, minor);
+    slice.lineT[i] = static_cast<float>(slice.lineTD[i]);
+  }
+}
+
+// The steepest slope from each line's new point (true height z[i]) to its
+// points within the limit, the Earth's drop over the distance d taken
+// off: (z' - z) / d - k d, as LineWalker's scan finds it from the dropped
+// heights; the clamped edge's where within the limit too. The AVX2 scan
+// does the same operations (a max as max_ps takes it).
+template <bool kMajorIsColumn>
+inline void BlockLineWalker<kMajorIsColumn>::scanHorizons(int step, const StepSlice& slice,
+                                                          const float* z, float* horizon) const {
+  const ScanRing& ring = *ring_;
+  const float curvature = curvature_;
+  std::fill(horizon, horizon + lines_, kNoHorizonTangent);
+  for (int i = slice.lineFirst; i <= slice.lineLast; ++i) {
+    float best = kNoHorizonTangent;
+    for (int k = 1; k <= within_[i]; ++k) {
+      const int slot = (step - k) & (kScanRing - 1);
+      const float d = static_cast<float>(ring.t[slot][i] - slice.lineTD[i]);
+      const float slope = (ring.z[slot][i] - z[i]) / d - curvature * d;
+      best = slope > best ? slope : best;
+    }
+    if (clampEdge_ && edgeWithin_[i]) {
+      const float edge = clampedEdgeSlopeF(edgeZ_[i] - z[i], toEdge_[i], curvature);
+      best = edge > best ? edge : best;
+    }
+    horizon[i] = best;
   }
 }
 

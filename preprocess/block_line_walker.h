@@ -1,5 +1,8 @@
 // One group of lines of the block sweep (horizon_blocks.h), walked in
-// lockstep. Instantiated for both layouts in block_line_walker.cpp (the
+// lockstep. Without a distance limit each line keeps the upper hull of its
+// points; with a short one (scansWithinLimit) it keeps the points of its
+// last kScanRing steps, and each new point's horizon is the steepest slope
+// to those within the limit. Instantiated for both layouts in block_line_walker.cpp (the
 // scalar walk) and bake_avx2.cpp (the AVX2 walk); the parts both walks
 // share are here.
 #pragma once
@@ -35,11 +38,26 @@ inline float clampedEdgeSlopeF(float rise, float toEdge, float curvature) {
   return toEdge <= 0.0f ? 0.0f : beyond;
 }
 
+// With a short distance limit (scansWithinLimit), a walk's points of its
+// last kSteps steps, at [step % kSteps][walked line]: their true heights
+// and distances along u (double: the scan's distances are differences of
+// them). Such a limit covers at most kBlockScanSteps steps, so the ring
+// holds every point within it. Caller-owned, like the hulls: one per
+// thread, whatever it held before.
+struct ScanRing {
+  static constexpr int kSteps = 256;
+  static constexpr int kLines = 48;  // BlockLineWalker::kPaddedLines
+  static_assert(kSteps > kBlockScanSteps, "the ring holds every point within the limit");
+  alignas(32) float z[kSteps][kLines];
+  alignas(32) double t[kSteps][kLines];
+};
+
 // A run of neighbouring lines of one layout, walked in lockstep: per sweep
 // step, the texels between consecutive walked lines get their horizon
 // tangents (blended between the two lines, at least the leaving slope).
 // kMajorIsColumn: lines advance column by column. The hull stacks live in
-// caller-owned storage of kMaxLines * majorLength points.
+// caller-owned storage of kMaxLines * majorLength points, and with a
+// scanned limit the points in a caller-owned ScanRing.
 template <bool kMajorIsColumn>
 class BlockLineWalker {
  public:
@@ -48,7 +66,7 @@ class BlockLineWalker {
   static constexpr int kMaxLines = HorizonBlock::kLines + 4;
 
   BlockLineWalker(const BakeTerrain& terrain, const SweepLayout& layout, double ux, double uy,
-                  const HorizonSweepOptions& options, HullPointF* hulls);
+                  const HorizonSweepOptions& options, HullPointF* hulls, ScanRing* ring = nullptr);
 
   // Starts walking lines firstLine .. firstLine + lines - 1 (lines <=
   // kMaxLines) from the sweep's first step.
@@ -86,6 +104,7 @@ class BlockLineWalker {
  private:
   // Per-line arrays run to whole vectors of 8 lines.
   static constexpr int kPaddedLines = (kMaxLines + 7) / 8 * 8;
+  static_assert(kPaddedLines == ScanRing::kLines);
 
   // What a step reads before the hull updates. Index j of the height
   // arrays holds minor coordinate base - 1 + j; index i of lineT, walked
@@ -102,6 +121,8 @@ class BlockLineWalker {
     float heights[kPaddedLines + 2], nextSlice[kPaddedLines + 2], backSlice[kPaddedLines + 2];
     float invCellX[kPaddedLines + 2];
     float lineT[kPaddedLines];  // the lines' distances along u
+    // In double, as computed: the scan's distances and its limit.
+    alignas(32) double lineTD[kPaddedLines];
     // The slopes' neighbours: the slices at major - 1 and major + 1
     // (heights where off the grid) and their difference's scale.
     const float *majorLow, *majorHigh;
@@ -132,6 +153,13 @@ class BlockLineWalker {
   // arrays then stay local to one function, so the compiler knows that no
   // store to them changes the grid or the walker.
   void stepScalar(int step, int minorLo, int minorHi, float* out, float* east, float* north);
+  // The scan's part of a step, both walks: each line's new point into the
+  // ring, and which earlier points lie within the limit (within_,
+  // edgeWithin_, toEdge_); z gets the lines' heights.
+  [[gnu::always_inline]] inline void scanPush(int step, const StepSlice& slice, float* z);
+  // The scalar scan: the lines' horizons from their points within the limit.
+  [[gnu::always_inline]] inline void scanHorizons(int step, const StepSlice& slice, const float* z,
+                                                  float* horizon) const;
   [[gnu::always_inline]] inline void lineSamples(int step, StepSlice& slice) const;
   [[gnu::always_inline]] inline void updateHulls(const StepSlice& slice, LineValues& lines);
   [[gnu::always_inline]] inline void lineHorizons(const StepSlice& slice, LineValues& lines) const;
@@ -149,6 +177,8 @@ class BlockLineWalker {
   __attribute__((target("avx2"), always_inline)) inline void updateHullsAvx2(const StepSlice& slice,
                                                                              bool texels,
                                                                              float* lineHorizon);
+  __attribute__((target("avx2"), always_inline)) inline void scanHorizonsAvx2(
+      int step, const StepSlice& slice, const float* z, float* lineHorizon) const;
   __attribute__((target("avx2"), always_inline)) inline void texelTangentsAvx2(
       const StepSlice& slice, const float* lineHorizon, int minorLo, int minorHi, float* out) const;
   __attribute__((target("avx2"), always_inline)) inline void texelSlopesAvx2(const StepSlice& slice,
@@ -178,6 +208,8 @@ class BlockLineWalker {
   HullPointF* const hulls_;
   const float curvature_;
   const bool clampEdge_;
+  const double maxDistance_;
+  const bool scan_;  // scansWithinLimit
   const int minorMax_;
   const float rowCentre_;
   const bool avx2_;
@@ -200,6 +232,19 @@ class BlockLineWalker {
   alignas(32) float topT_[kPaddedLines], topZ_[kPaddedLines];
   alignas(32) float belowT_[kPaddedLines], belowZ_[kPaddedLines];
   alignas(32) float thirdT_[kPaddedLines], thirdZ_[kPaddedLines];
+
+  // The scan (scan_): each line's last points.
+  static constexpr int kScanRing = ScanRing::kSteps;
+  ScanRing* const ring_;
+  // Per line: the step of its farthest point within the limit, how many of
+  // its earlier points are within it, whether its first point (the DEM
+  // edge ahead, with clamped edges) is, and how far ahead that point lies.
+  int firstWithin_[kPaddedLines];
+  alignas(32) int within_[kPaddedLines];
+  int withinMax_[kPaddedLines / 8];           // the most of each 8 lines
+  alignas(32) int edgeWithin_[kPaddedLines];  // -1 or 0, a lane mask
+  alignas(32) float toEdge_[kPaddedLines];
+  double edgeTD_[kPaddedLines];
 };
 
 template <bool kMajorIsColumn>
@@ -234,6 +279,39 @@ inline void BlockLineWalker<kMajorIsColumn>::prefetchAhead(int step) const {
       for (int j = 0; j < hi - lo; j += 16) __builtin_prefetch(row + j);
       __builtin_prefetch(row + (hi - lo));
     }
+  }
+}
+
+template <bool kMajorIsColumn>
+inline void BlockLineWalker<kMajorIsColumn>::scanPush(int step, const StepSlice& slice, float* z) {
+  ScanRing& ring = *ring_;
+  const int slot = step & (kScanRing - 1);
+  const float w = slice.w;
+  std::fill(within_, within_ + kPaddedLines, 0);
+  std::fill(withinMax_, withinMax_ + kPaddedLines / 8, 0);
+  std::fill(edgeWithin_, edgeWithin_ + kPaddedLines, 0);
+  for (int i = slice.lineFirst; i <= slice.lineLast; ++i) {
+    z[i] = (1.0f - w) * slice.heights[i + 1] + w * slice.heights[i + 2];
+    const double t = slice.lineTD[i];
+    if (size_[i] == 0) {  // the line's first point: its edge ahead
+      edgeTD_[i] = t;
+      edgeZ_[i] = z[i];
+      firstWithin_[i] = step;
+    }
+    // Points lie farther along u the earlier they were walked (a step
+    // advances at least a cell), so those within the limit are the last
+    // few: the farthest moves on as the walk does.
+    int first = firstWithin_[i];
+    while (first < step && ring.t[first & (kScanRing - 1)][i] - t > maxDistance_) ++first;
+    firstWithin_[i] = first;
+    within_[i] = step - first;
+    withinMax_[i / 8] = std::max(withinMax_[i / 8], within_[i]);
+    const double toEdge = edgeTD_[i] - t;
+    edgeWithin_[i] = toEdge <= maxDistance_ ? -1 : 0;
+    toEdge_[i] = static_cast<float>(toEdge);
+    ring.z[slot][i] = z[i];
+    ring.t[slot][i] = t;
+    ++size_[i];
   }
 }
 

@@ -40,6 +40,7 @@ struct BlockScratch {
   std::vector<HullPointF> hulls;              // kMaxLines stacks of majorLength points
   std::vector<float> opposite;                // kLines tangents per step
   std::vector<float> farDistance, farHeight;  // a line's far samples (restart)
+  std::unique_ptr<ScanRing> ring;             // a scanned limit's points
 };
 
 // A step's block: count texels from firstTexel, stride apart, with the
@@ -114,6 +115,9 @@ void forEachGroup(const BlockSweep& sweep, int groupLines, WalkGroup&& walkGroup
     BlockScratch& s = scratch.local();
     s.hulls.resize(static_cast<size_t>(BlockLineWalker<kMajorIsColumn>::kMaxLines) *
                    layout.majorLength);
+    if (!s.ring && scansWithinLimit(sweep.terrain, sweep.options)) {
+      s.ring = std::make_unique<ScanRing>();
+    }
     const int first = firstLine + group * groupLines;
     const GroupTexels<kMajorIsColumn> texels{layout, sweep.terrain.pitch, first,
                                              std::min(groupLines, layout.lastLine + 1 - first)};
@@ -156,7 +160,7 @@ template <bool kMajorIsColumn, class TexelsAt, class VisitStep>
 void walkGroup(const BlockSweep& sweep, const GroupTexels<kMajorIsColumn>& texels, BlockScratch& s,
                int endStep, TexelsAt&& texelsAt, VisitStep&& visitStep) {
   BlockLineWalker<kMajorIsColumn> walker(sweep.terrain, sweep.layout, sweep.ux, sweep.uy,
-                                         sweep.options, s.hulls.data());
+                                         sweep.options, s.hulls.data(), s.ring.get());
   walker.begin(texels.first - 1, texels.count + 1);
   LineStarts starts(sweep.layout, texels.first - 1, texels.count + 1);
   float tanHorizon[HorizonBlock::kLines];
@@ -292,7 +296,7 @@ std::pair<int, int> walkOpposite(const BlockSweep& opposite, int visitFirst, int
   if (first > last) return {first, last};
   s.opposite.resize(static_cast<size_t>(HorizonBlock::kLines) * majorLength);
   BlockLineWalker<kMajorIsColumn> backward(opposite.terrain, layout, opposite.ux, opposite.uy,
-                                           opposite.options, s.hulls.data());
+                                           opposite.options, s.hulls.data(), s.ring.get());
   backward.begin(oppositeFirst, oppositeLast - oppositeFirst + 1);
   LineStarts starts(layout, oppositeFirst, oppositeLast - oppositeFirst + 1);
   for (int j = starts.first(); j < majorLength - first; ++j) {
@@ -373,6 +377,19 @@ int oppositeLines(const SweepLayout& layout, const SweepLayout& opposite) {
   return HorizonBlock::kLines + 1 + (hi - lo);
 }
 
+// How far before a window (or a whole field with a distance limit) the
+// lines start: the limit, else the window's reach (0: at the field's edge).
+double sweepReach(const BakeTerrain& terrain, const HorizonSweepOptions& options) {
+  if (options.maxDistanceM > 0.0) {
+    if (!scansWithinLimit(terrain, options)) {
+      throw std::invalid_argument(
+          "the block sweeps take only a distance limit they scan (scansWithinLimit)");
+    }
+    return options.maxDistanceM;
+  }
+  return options.windowReachM;
+}
+
 }  // namespace
 
 bool horizonAvx2() {
@@ -396,6 +413,8 @@ void setHorizonAvx2Allowed(bool allowed) {
 
 void sweepHorizonBlocks(const BakeTerrain& terrain, double phi, const HorizonSweepOptions& options,
                         HorizonBlockVisitor visit) {
+  // A limit's lines start where they first come within it of a texel.
+  if (options.maxDistanceM > 0.0) return sweepWindowHorizonBlocks(terrain, phi, options, visit);
   const double ux = std::cos(phi), uy = std::sin(phi);
   const detail::SweepLayout layout = detail::makeSweepLayout(terrain, ux, uy);
   const detail::BlockSweep sweep{terrain, layout, ux, uy, options};
@@ -409,11 +428,12 @@ void sweepHorizonBlocks(const BakeTerrain& terrain, double phi, const HorizonSwe
 void sweepWindowHorizonBlocks(const BakeTerrain& terrain, double phi,
                               const HorizonSweepOptions& options, HorizonBlockVisitor visit,
                               const FarFieldWindow* far) {
-  if (options.clampEdge && !far) {
+  const double reach = detail::sweepReach(terrain, options);
+  if (options.clampEdge && !far && options.maxDistanceM <= 0.0) {
     throw std::invalid_argument("sweepWindowHorizonBlocks: clamped edges need the far field");
   }
   const double ux = std::cos(phi), uy = std::sin(phi);
-  const detail::SweepLayout layout = detail::makeSweepLayout(terrain, ux, uy, options.windowReachM);
+  const detail::SweepLayout layout = detail::makeSweepLayout(terrain, ux, uy, reach);
   std::optional<FarLineMarch> farMarch;
   if (far) farMarch.emplace(*far, terrain, phi);
   const detail::BlockSweep sweep{terrain, layout, ux, uy, options, farMarch ? &*farMarch : nullptr};
@@ -427,15 +447,16 @@ void sweepWindowHorizonBlocks(const BakeTerrain& terrain, double phi,
 bool sweepOpposedHorizonBlocks(const BakeTerrain& terrain, double phi, double phiOpposite,
                                const HorizonSweepOptions& options, HorizonBlockVisitor visit,
                                const FarFieldWindow* far) {
-  const bool window = options.windowReachM > 0.0;
-  if (options.clampEdge && window && !far) {
+  const double reach = detail::sweepReach(terrain, options);
+  const bool window = reach > 0.0;
+  if (options.clampEdge && window && !far && options.maxDistanceM <= 0.0) {
     throw std::invalid_argument("sweepOpposedHorizonBlocks: clamped edges need the far field");
   }
   const double ux = std::cos(phi), uy = std::sin(phi);
   const double oppositeUx = std::cos(phiOpposite), oppositeUy = std::sin(phiOpposite);
-  const detail::SweepLayout layout = detail::makeSweepLayout(terrain, ux, uy, options.windowReachM);
+  const detail::SweepLayout layout = detail::makeSweepLayout(terrain, ux, uy, reach);
   const detail::SweepLayout oppositeLayout =
-      detail::makeSweepLayout(terrain, oppositeUx, oppositeUy, options.windowReachM);
+      detail::makeSweepLayout(terrain, oppositeUx, oppositeUy, reach);
   const int lines = detail::oppositeLines(layout, oppositeLayout);
   if (lines < 1 || lines > detail::BlockLineWalker<true>::kMaxLines) return false;
   // Where oblique lines spread (lines > kLines + 1), smaller groups keep the

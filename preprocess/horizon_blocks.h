@@ -5,8 +5,10 @@
 // code. The hull update (a stack pop loop per line) is scalar, except on
 // CPUs with AVX2, where it runs 8 lines at a time (bake_avx2.cpp, chosen at
 // run time; the same results bit for bit).
-// Without a distance limit only: sweepHorizons() remains the general path
-// and the reference this one is tested against. sweepOpposedHorizonBlocks()
+// Without a distance limit, or with one short enough to scan
+// (scansWithinLimit: each line then keeps its last points instead of a
+// hull): sweepHorizons() remains the general path and the reference this
+// one is tested against. sweepOpposedHorizonBlocks()
 // hands over azimuths phi and phi + pi together, so that a bake touches a
 // texel's sums once for both.
 //
@@ -105,12 +107,15 @@ bool horizonAvx2();
 
 // Calls visit(const HorizonBlock&) for the texels of every step of every
 // group of lines of azimuth phi (as sweepHorizons(): each texel exactly once,
-// blocks concurrently). No distance limit: options.maxDistanceM must be 0.
+// blocks concurrently). A distance limit must be one the walk scans
+// (scansWithinLimit; else std::invalid_argument): its lines then start as
+// a window's do (sweepWindowHorizonBlocks, with the limit as the reach).
 void sweepHorizonBlocks(const BakeTerrain& terrain, double phi, const HorizonSweepOptions& options,
                         HorizonBlockVisitor visit);
 
 // The texels of a partial window (terrain.window) for azimuth phi, its
-// lines walked with the unlimited hull from options.windowReachM before it:
+// lines walked with the unlimited hull from options.windowReachM before it
+// (with a distance limit, scanned: from the limit before it):
 // sweepHorizons() with windowReachM, in blocks whose texels are window
 // indices (BakeTerrain::windowIndex).
 // With `far` (the blocks of a far field's pyramid this window reads;
@@ -119,7 +124,7 @@ void sweepHorizonBlocks(const BakeTerrain& terrain, double phi, const HorizonSwe
 // DEM; with clamped edges the ground beyond the DEM goes on flat from the
 // last of them. Without, edges must be open (options.clampEdge false): the
 // walk of a line that begins inside the field would take its first point
-// for the edge.
+// for the edge (with a limit they may be clamped: that point lies beyond it).
 void sweepWindowHorizonBlocks(const BakeTerrain& terrain, double phi,
                               const HorizonSweepOptions& options, HorizonBlockVisitor visit,
                               const FarFieldWindow* far = nullptr);

@@ -10,6 +10,7 @@
 #include <cstring>
 #include <limits>
 #include <numbers>
+#include <stdexcept>
 #include <tuple>
 #include <utility>
 #include <vector>
@@ -44,7 +45,8 @@ Heightfield roughTerrain(int width, int height, bool geographic) {
 
 // Largest |a - b| relative to max(1, |b|) over the texels, with both "no
 // horizon" markers taken as equal; fails on a texel visited other than once.
-void expectSameHorizons(const BakeTerrain& terrain, double phi, const HorizonSweepOptions& o) {
+void expectSameHorizons(const BakeTerrain& terrain, double phi, const HorizonSweepOptions& o,
+                        double tolerance = 2e-4) {
   const size_t texels = terrain.heights.dem->texelCount();
   std::vector<double> reference(texels, std::nan(""));
   sweepHorizons(terrain, phi, o, [&](size_t i, double tanH) { reference[i] = tanH; });
@@ -69,14 +71,14 @@ void expectSameHorizons(const BakeTerrain& terrain, double phi, const HorizonSwe
                        std::abs(blocks[i] - reference[i]) / std::max(1.0, std::abs(reference[i])));
     }
   }
-  EXPECT_LT(worst, 2e-4) << "phi " << phi << " clamp " << o.clampEdge << " curvature "
-                         << o.curvature;
+  EXPECT_LT(worst, tolerance) << "phi " << phi << " clamp " << o.clampEdge << " curvature "
+                              << o.curvature << " limit " << o.maxDistanceM;
 }
 
 // The opposed sweep hands over both azimuths' tangents of every texel once;
 // each must match its own reference sweep. Returns whether it paired.
 bool expectSameOpposedHorizons(const BakeTerrain& terrain, double phi, double phiOpposite,
-                               const HorizonSweepOptions& o) {
+                               const HorizonSweepOptions& o, double tolerance = 2e-4) {
   const size_t texels = terrain.heights.dem->texelCount();
   std::vector<double> reference(texels), referenceOpposite(texels);
   sweepHorizons(terrain, phi, o, [&](size_t i, double tanH) { reference[i] = tanH; });
@@ -110,8 +112,8 @@ bool expectSameOpposedHorizons(const BakeTerrain& terrain, double phi, double ph
       }
     }
   }
-  EXPECT_LT(worst, 2e-4) << "phi " << phi << " clamp " << o.clampEdge << " curvature "
-                         << o.curvature;
+  EXPECT_LT(worst, tolerance) << "phi " << phi << " clamp " << o.clampEdge << " curvature "
+                              << o.curvature << " limit " << o.maxDistanceM;
   return paired;
 }
 
@@ -171,6 +173,50 @@ TEST(HorizonBlocks, OpposedSweepMatchesTheReferenceSweepsOfBothAzimuths) {
   }
 }
 
+// Distance limits of up to kBlockScanSteps steps are scanned by the block
+// walk (scansWithinLimit): each texel's tangent is the reference sweep's
+// to single precision, for limits of one to 193 steps of 48-90 m cells
+// (the reference scans up to 40 steps in double precision and takes the
+// longer ones from its chunks' hulls), with clamped edges and curvature, on
+// a geographic grid, along lines longer than the scan's ring of steps, for
+// both sweeps. The tolerance is tighter than the hull walk's: the scan's
+// distances are differences of double positions, so a wrong Earth drop
+// (k d: 7e-5 at 1 km) would show.
+TEST(HorizonBlocks, LimitsAreScannedAsTheReferenceSweepFindsThem) {
+  const double kCurve = (1 - 0.13) / (2 * 6371000.0);
+  constexpr double kTolerance = 1e-5;
+  for (auto [w, h, geographic] : {std::tuple{45, 38, false}, std::tuple{40, 40, true},
+                                  std::tuple{1, 7, false}, std::tuple{300, 12, false}}) {
+    const Heightfield field = roughTerrain(w, h, geographic);
+    const BakeTerrain terrain = prepareBakeTerrain(field);
+    for (double limit : {90.0, 200.0, 450.0, 1000.0, 1500.0, 4000.0, 9000.0}) {
+      for (bool clamp : {false, true}) {
+        for (double curvature : {0.0, kCurve}) {
+          const HorizonSweepOptions o{clamp, curvature, limit};
+          ASSERT_TRUE(detail::scansWithinLimit(terrain, o)) << limit;
+          for (int a = 0; a < 16; ++a) {
+            const double phi = (a + (clamp ? 0.37 : 0.0)) * 2 * kPi / 16;
+            expectSameHorizons(terrain, phi, o, kTolerance);
+            expectSameOpposedHorizons(terrain, phi, phi + kPi, o, kTolerance);
+          }
+        }
+      }
+    }
+  }
+}
+
+// Longer limits are the general sweep's (LineWalker's chunks): the block
+// sweeps refuse them rather than scan them slowly.
+TEST(HorizonBlocks, RefuseLimitsTooLongToScan) {
+  const Heightfield field = roughTerrain(45, 38, false);
+  const BakeTerrain terrain = prepareBakeTerrain(field);
+  const HorizonSweepOptions o{false, 0.0, 20000.0};
+  ASSERT_FALSE(detail::scansWithinLimit(terrain, o));
+  const auto none = [](const HorizonBlock&) {};
+  EXPECT_THROW(sweepHorizonBlocks(terrain, 0.3, o, none), std::invalid_argument);
+  EXPECT_THROW(sweepOpposedHorizonBlocks(terrain, 0.3, 0.3 + kPi, o, none), std::invalid_argument);
+}
+
 // Runs the sweeps and bakes of its scope on the scalar path or, where the CPU
 // has AVX2, the AVX2 path; AVX2 is allowed again after.
 class Avx2Allowed {
@@ -210,7 +256,8 @@ std::vector<float> blockTangents(const BakeTerrain& terrain, double phi,
 
 // The AVX2 walk (8 lines at a time, gathers, masked edge lanes) gives the
 // scalar walk's tangents bit for bit: along rows and columns, at the
-// diagonals and between, with clamped edges and curvature, on grids of one
+// diagonals and between, with clamped edges, curvature and short distance
+// limits (the scan), on grids of one
 // and of several groups of lines, and where cells narrow row by row.
 TEST(HorizonBlocks, Avx2AndScalarWalksGiveTheSameTangents) {
   if (!cpuHasAvx2()) GTEST_SKIP() << "no AVX2 on this CPU";
@@ -224,7 +271,8 @@ TEST(HorizonBlocks, Avx2AndScalarWalksGiveTheSameTangents) {
     const BakeTerrain terrain = prepareBakeTerrain(field);
     for (const HorizonSweepOptions& o :
          {HorizonSweepOptions{false, 0.0, 0.0}, HorizonSweepOptions{true, 0.0, 0.0},
-          HorizonSweepOptions{false, kCurve, 0.0}, HorizonSweepOptions{true, kCurve, 0.0}}) {
+          HorizonSweepOptions{false, kCurve, 0.0}, HorizonSweepOptions{true, kCurve, 0.0},
+          HorizonSweepOptions{false, 0.0, 450.0}, HorizonSweepOptions{true, kCurve, 1000.0}}) {
       for (double phi : azimuths) {
         std::vector<float> scalar, avx2;
         {
@@ -310,7 +358,7 @@ TEST(HorizonBlocks, TerrainSlopesAreCentralDifferences) {
 }
 
 // The same for whole bakes: opposed and single azimuths, with the sky view
-// factor, clamped edges and curvature.
+// factor, clamped edges and curvature, and within a short distance limit.
 TEST(HorizonBlocks, Avx2AndScalarBakesAgree) {
   if (!cpuHasAvx2()) GTEST_SKIP() << "no AVX2 on this CPU";
   const Heightfield field = roughTerrain(70, 53, true);
@@ -321,7 +369,10 @@ TEST(HorizonBlocks, Avx2AndScalarBakesAgree) {
   single.clampEdge = true;
   single.curvature = true;
   single.skyViewFactor = true;
-  for (const BakeOptions& o : {opposed, single}) {
+  BakeOptions limited = single;
+  limited.azimuths = 32;
+  limited.maxDistanceM = 700;
+  for (const BakeOptions& o : {opposed, single, limited}) {
     BakeResult scalar, avx2;
     {
       const Avx2Allowed allowed(false);
