@@ -52,8 +52,9 @@ inline void addSweepOptions(CLI::App& app, SweepCommandLine& o) {
       ->check(CLI::Range(0.0, 0.99))
       ->capture_default_str();
   app.add_option("--max-distance", o.maxDistance,
-                 "only terrain within this many metres counts (0 = all; slower when set; a "
-                 "tiled bake without it takes its far horizons from a pyramid)")
+                 "only terrain within this many metres counts (0 = all; the longer the "
+                 "limit, the slower: about 1.1x no limit at 10 cells, 2.7x at 100, 4.3x "
+                 "beyond 200; a tiled bake without it takes its far horizons from a pyramid)")
       ->check(kNonNegative);
 }
 
