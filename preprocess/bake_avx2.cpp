@@ -211,6 +211,18 @@ __attribute__((target("avx2"), always_inline)) inline void popUnderAvx2(
   top = {aT, aZ, bT, bZ, n};
 }
 
+// The scan's slope to the k-th points back of 8 lines (their heights at
+// z), as scanHorizons takes it with uniform steps; kNoHorizonTangent in
+// lanes with fewer points within the limit.
+__attribute__((target("avx2"), always_inline)) inline __m256 scannedSlopeAvx2(
+    const float* z, __m256 zq, float inverse, float drop, __m256i within, int k) {
+  const __m256 slope =
+      _mm256_sub_ps(_mm256_mul_ps(_mm256_sub_ps(_mm256_load_ps(z), zq), _mm256_set1_ps(inverse)),
+                    _mm256_set1_ps(drop));
+  const __m256 active = _mm256_castsi256_ps(_mm256_cmpgt_epi32(within, _mm256_set1_epi32(k - 1)));
+  return _mm256_blendv_ps(_mm256_set1_ps(kNoHorizonTangent), slope, active);
+}
+
 }  // namespace
 
 // step() for CPUs with AVX2: the scalar walk's steps in vector code.
@@ -387,7 +399,29 @@ __attribute__((target("avx2"))) inline void BlockLineWalker<kMajorIsColumn>::sca
                   tHigh = _mm256_load_pd(slice.lineTD + c + 4);
     const __m256i within = _mm256_load_si256(reinterpret_cast<const __m256i*>(within_ + c));
     __m256 best = noHorizon;
-    for (int k = 1; k <= withinMax_[c / 8]; ++k) {
+    const int most = withinMax_[c / 8];
+    if (uniformSteps_) {
+      // Two running maxima, so that the loop is not one max's latency a
+      // point (the maximum is the same whichever takes a point).
+      __m256 other = noHorizon;
+      int k = 1;
+      for (; k < most; k += 2) {
+        best = _mm256_max_ps(scannedSlopeAvx2(ring.z[(step - k) & (kScanRing - 1)] + c, zq,
+                                              scanInverse_[k], scanDrop_[k], within, k),
+                             best);
+        other =
+            _mm256_max_ps(scannedSlopeAvx2(ring.z[(step - k - 1) & (kScanRing - 1)] + c, zq,
+                                           scanInverse_[k + 1], scanDrop_[k + 1], within, k + 1),
+                          other);
+      }
+      if (k == most) {
+        best = _mm256_max_ps(scannedSlopeAvx2(ring.z[(step - k) & (kScanRing - 1)] + c, zq,
+                                              scanInverse_[k], scanDrop_[k], within, k),
+                             best);
+      }
+      best = _mm256_max_ps(other, best);
+    }
+    for (int k = 1; !uniformSteps_ && k <= most; ++k) {
       const int slot = (step - k) & (kScanRing - 1);
       const __m256 d = _mm256_set_m128(
           _mm256_cvtpd_ps(_mm256_sub_pd(_mm256_load_pd(ring.t[slot] + c + 4), tHigh)),

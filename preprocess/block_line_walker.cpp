@@ -28,6 +28,17 @@ BlockLineWalker<kMajorIsColumn>::BlockLineWalker(const BakeTerrain& terrain,
       avx2_(horizonAvx2()),
       ring_(ring) {
   if (scan_ && !ring_) throw std::logic_error("BlockLineWalker: a scanned limit needs a ScanRing");
+  if (scan_ && terrain.uniformCellX) {
+    // Points walked earlier lie farther along u: one step back is this far.
+    const double stepT =
+        lineT(layout.start, 0.0) - lineT(layout.start + layout.step, layout.minorPerStep);
+    uniformSteps_ = true;
+    for (int k = 1; k < kScanRing; ++k) {
+      scanDistance_[k] = static_cast<float>(k * stepT);
+      scanInverse_[k] = 1.0f / scanDistance_[k];
+      scanDrop_[k] = curvature_ * scanDistance_[k];
+    }
+  }
   // The bilinear surface leaving a texel (LineWalker::leavingSlope): one
   // neighbour lies on the next major slice, the other beside it on the
   // same slice.
@@ -173,8 +184,13 @@ inline void BlockLineWalker<kMajorIsColumn>::scanHorizons(int step, const StepSl
     float best = kNoHorizonTangent;
     for (int k = 1; k <= within_[i]; ++k) {
       const int slot = (step - k) & (kScanRing - 1);
-      const float d = static_cast<float>(ring.t[slot][i] - slice.lineTD[i]);
-      const float slope = (ring.z[slot][i] - z[i]) / d - curvature * d;
+      float slope;
+      if (uniformSteps_) {
+        slope = (ring.z[slot][i] - z[i]) * scanInverse_[k] - scanDrop_[k];
+      } else {
+        const float d = static_cast<float>(ring.t[slot][i] - slice.lineTD[i]);
+        slope = (ring.z[slot][i] - z[i]) / d - curvature * d;
+      }
       best = slope > best ? slope : best;
     }
     if (clampEdge_ && edgeWithin_[i]) {
