@@ -30,7 +30,8 @@ struct RasterWriteOptions {
   // GeoTIFF: COMPRESS=DEFLATE, PREDICTOR=3 for floats or 2 for bytes,
   // TILED=YES, BIGTIFF=IF_SAFER, NUM_THREADS, INTERLEAVE=BAND for several
   // float bands; a COG: COMPRESS=DEFLATE,
-  // PREDICTOR=YES, RESAMPLING=AVERAGE, BIGTIFF=IF_SAFER, NUM_THREADS).
+  // PREDICTOR=YES, RESAMPLING=AVERAGE, BIGTIFF=IF_SAFER, NUM_THREADS; and
+  // for floats compressed with DEFLATE, ZLEVEL=1, a COG's LEVEL=1).
   // checkCreationOptions tells which the driver does not know.
   std::vector<std::string> creationOptions;
   // Internal overviews in a plain GeoTIFF, averaged (a COG always has

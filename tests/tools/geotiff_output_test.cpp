@@ -132,6 +132,33 @@ TEST(GeoTiffOutputs, BakeOutputsFollowGdalConventions) {
   EXPECT_EQ(descriptionOf(map, 4), "aperture arc length (rad)");
 }
 
+// Float rasters are deflated at level 1 (their mantissas' low bits are
+// noise that higher levels do not squeeze) unless -co sets a level: the
+// default writes the file -co ZLEVEL=1 writes, not the one level 6 does.
+TEST(GeoTiffOutputs, FloatsAreDeflatedAtTheFastestLevelUnlessAsked) {
+  TempDir dir;
+  constexpr int kWidth = 300, kHeight = 270;
+  std::vector<float> z(static_cast<size_t>(kWidth) * kHeight);
+  for (size_t i = 0; i < z.size(); ++i) {
+    z[i] = static_cast<float>(0.8 + 0.1 * std::sin(0.013 * i) + 1e-4 * std::sin(7.1 * i));
+  }
+  GeoReference geo;
+  geo.crs = CrsKind::Projected;
+  geo.epsg = 32616;
+  geo.stepX = geo.stepY = 10;
+  const auto written = [&](const std::string& name, std::vector<std::string> creationOptions) {
+    RasterWriteOptions options;
+    options.creationOptions = std::move(creationOptions);
+    const fs::path path = dir.path() / name;
+    writeFloatGeoTiff(path.string(), kWidth, kHeight, z.data(), geo, options);
+    return fs::file_size(path);
+  };
+  const uintmax_t byDefault = written("default.tif", {});
+  EXPECT_EQ(byDefault, written("level1.tif", {"ZLEVEL=1"}));
+  EXPECT_NE(byDefault, written("level6.tif", {"ZLEVEL=6"}));
+  EXPECT_EQ(compressionOf(dir.path() / "default.tif"), "DEFLATE");
+}
+
 TEST(GeoTiffOutputs, CogOutputsHaveOverviews) {
   TempDir dir;
   const fs::path dem = writeDem(dir, 600, 280, 0);

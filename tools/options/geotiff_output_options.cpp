@@ -32,7 +32,8 @@ void addGeoTiffOutputOptions(CLI::App& app, GeoTiffOutputOptions& output,
   app.add_option("--co", output.creationOptions,
                  "-co: a GDAL creation option KEY=VALUE for " + outputs +
                      ", repeatable, as gdal_translate -co; it overrides ours (COMPRESS=DEFLATE, "
-                     "PREDICTOR, TILED=YES, BIGTIFF=IF_SAFER; the keys: `gdalinfo --format "
+                     "ZLEVEL=1 for floats, PREDICTOR, TILED=YES, BIGTIFF=IF_SAFER; the keys: "
+                     "`gdalinfo --format "
                      "GTiff`" +
                      (formats ? std::string(", or COG") : std::string()) +
                      "), e.g. -co COMPRESS=LZW; checked before any work")
