@@ -154,14 +154,20 @@ class TileDispenser {
   int firstUnstarted_ = 0;
 };
 
-// What the ranks did, as rank 0 hears it.
+// What the ranks did, as rank 0 hears it; with `progress`, the share of
+// the `tiles` finished (baked or resumed) after each.
 class Tally {
  public:
-  explicit Tally(int ranks) : baked_(static_cast<size_t>(ranks), 0) {}
+  Tally(int ranks, int tiles, std::function<void(double)> progress)
+      : baked_(static_cast<size_t>(ranks), 0), tiles_(tiles), progress_(std::move(progress)) {}
   void add(int rank, int outcome) {
     const std::lock_guard<std::mutex> guard(mutex_);
     if (outcome == kBaked) ++baked_[static_cast<size_t>(rank)];
     if (outcome == kResumed) ++resumed_;
+    if (outcome != kNoOutcome) ++finished_;
+    if (outcome != kNoOutcome && progress_) {
+      progress_(static_cast<double>(finished_) / std::max(tiles_, 1));
+    }
   }
   const std::vector<int>& baked() const { return baked_; }
   int resumed() const { return resumed_; }
@@ -169,12 +175,15 @@ class Tally {
  private:
   std::mutex mutex_;
   std::vector<int> baked_;
-  int resumed_ = 0;
+  int resumed_ = 0, finished_ = 0;
+  const int tiles_;
+  const std::function<void(double)> progress_;
 };
 
 // One rank's tiles: skips the finished ones, bakes the others from their
 // windows of the DEM (TileWindowReader), slid along a tile row while its
-// tiles stay in that row.
+// tiles stay in that row. A tile's own progress is not reported: rank 0
+// reports the tiles finished (Tally).
 class TileWorker {
  public:
   TileWorker(const DemSource& source, const Heightfield& geometry, const ApertureTileIndex& index,
@@ -182,7 +191,7 @@ class TileWorker {
              const std::string& folder, const MpiTiledBakeHooks& hooks)
       : index_(index),
         far_(far),
-        bake_(bake),
+        bake_(withoutProgress(bake)),
         tiled_(tiled),
         folder_(folder),
         hooks_(hooks),
@@ -203,9 +212,14 @@ class TileWorker {
   uint64_t texelsRead() const { return reader_.texelsRead(); }
 
  private:
+  static BakeOptions withoutProgress(BakeOptions bake) {
+    bake.progress = nullptr;
+    return bake;
+  }
+
   const ApertureTileIndex& index_;
   const FarField* far_;
-  const BakeOptions& bake_;
+  const BakeOptions bake_;
   const TiledBakeOptions& tiled_;
   const std::string& folder_;
   const MpiTiledBakeHooks& hooks_;
@@ -251,9 +265,11 @@ void askForTiles(MPI_Comm comm, TileWorker& worker) {
 }
 
 // The tile phase: rank 0 hands the tiles out (and bakes), the others bake
-// what they are given. On rank 0 `counts` gets the tally.
+// what they are given. On rank 0 `counts` gets the tally, and `progress`
+// the share of tiles finished after each.
 void handOutAndBake(MPI_Comm comm, int rank, int ranks, const ApertureTileIndex& index,
-                    const std::string& folder, TileWorker& worker, std::vector<int>& counts) {
+                    const std::string& folder, TileWorker& worker, std::vector<int>& counts,
+                    const std::function<void(double)>& progress) {
   if (rank != 0) {
     askForTiles(comm, worker);
     return;
@@ -261,7 +277,7 @@ void handOutAndBake(MPI_Comm comm, int rank, int ranks, const ApertureTileIndex&
   // Shared with the answering thread, which outlives this call when the
   // bake here fails (detached; the job is then aborted).
   const auto dispenser = std::make_shared<TileDispenser>(index.rows(), index.columns());
-  const auto tally = std::make_shared<Tally>(ranks);
+  const auto tally = std::make_shared<Tally>(ranks, index.rows() * index.columns(), progress);
   int threading = MPI_THREAD_SINGLE;
   MPI_Query_thread(&threading);
   const bool rootBakes = ranks == 1 || threading == MPI_THREAD_MULTIPLE;
@@ -429,7 +445,7 @@ MpiTiledBakeSummary bakeTiledMpi(MPI_Comm comm, const DemSource& source,
   // Baked per rank, then resumed, then whether rank 0 baked.
   std::vector<int> counts(static_cast<size_t>(ranks) + 2, 0);
   try {
-    handOutAndBake(comm, rank, ranks, index, folder, worker, counts);
+    handOutAndBake(comm, rank, ranks, index, folder, worker, counts, bake.progress);
   } catch (const BakeCancelled&) {
     throw MpiTileFailed(1, "interrupted; the finished tiles are kept in " + folder +
                                ": run the same command again to resume");

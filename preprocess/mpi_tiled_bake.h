@@ -109,7 +109,11 @@ TiledBakeDemPass sharedDemPass(MPI_Comm comm, const DemSource& source, const Hei
 // summary on every rank. Errors before the tiles are handed out (bad
 // options, another bake's folder, a busy folder, voids) are thrown on rank
 // 0 and MpiPeerFailed on the others; an error or an interrupt while baking
-// is thrown as MpiTileFailed on the rank it happened on.
+// is thrown as MpiTileFailed on the rank it happened on. bake.progress
+// gets 0 during the pass over the DEM (on the ranks that read a part), then
+// on rank 0 alone the share of the tiles finished (baked by any rank, or
+// found finished) after each, from any of rank 0's threads; a tile's own
+// progress is not reported.
 // Memory per rank: two windows (4 bytes per texel of the tile and tileHalo
 // around it: (3 T + 2 S)^2 for tiles of T and S steps of the near reach or
 // max distance, whatever the DEM's width), one tile's sums and the blocks of

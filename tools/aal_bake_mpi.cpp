@@ -19,6 +19,7 @@
 #include <CLI/CLI.hpp>
 
 #include "aperture/preprocess/mpi_tiled_bake.h"
+#include "aperture/preprocess/progress_reporter.h"
 #include "aperture/preprocess/sky_view_factor_tiles.h"
 #include "aperture/terrain/errors.h"
 #include "aperture/terrain/interrupt.h"
@@ -40,7 +41,7 @@ struct Options : aal::SweepCommandLine {
   bool svf = false;
   aal::GeoTiffOutputOptions geotiff;  // -co, --overviews of the SVF tiles
   int threads = 0;
-  bool quiet = false;
+  aal::ProgressOptions report;  // -q, --progress (rank 0's)
 };
 
 // Ranks of this job on this host: a node's cores are shared among them.
@@ -137,6 +138,12 @@ int run(const Options& o) {
   tbb::global_control parallelism(tbb::global_control::max_allowed_parallelism,
                                   static_cast<size_t>(threads));
 
+  // Rank 0 reports the share of tiles finished, whoever baked them.
+  std::optional<aal::ProgressReporter> progress;
+  if (rank == 0) {
+    progress.emplace(o.report.style(), "baking", "baking tiles");
+    bake.progress = [&progress](double fraction) { progress->update(fraction); };
+  }
   const auto start = std::chrono::steady_clock::now();
   aal::MpiTiledBakeSummary summary;
   try {
@@ -156,7 +163,8 @@ int run(const Options& o) {
   }
   const double seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  if (rank == 0 && !o.quiet) {
+  if (progress) progress->finish();
+  if (rank == 0 && !o.report.quiet) {
     std::string perRank;
     for (int baked : summary.bakedByRank)
       perRank += (perRank.empty() ? "" : ", ") + std::to_string(baked);
@@ -224,7 +232,7 @@ int main(int argc, char** argv) {
                  "worker threads per rank (default: the host's cores shared among its ranks)")
       ->check(CLI::Range(1, 1024));
   aal::addMapStorageOptions(app, o);
-  aal::addQuietFlag(app, o.quiet, /*progress=*/false);
+  aal::addProgressOptions(app, o.report);
 
   aal::installInterruptHandler();
   // Every rank parses the same command line; only rank 0 says what is wrong.

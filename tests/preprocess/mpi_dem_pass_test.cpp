@@ -2,7 +2,8 @@
 // -DAAL_MPI=ON), run by ctest under mpirun with 3 ranks: whatever rows each
 // rank reads, every rank ends with the pyramid HeightPyramid builds from
 // the whole DEM (exact floats) and rank 0 with the whole DEM's checksum; a
-// void in another rank's rows is rank 0's InputError.
+// void in another rank's rows is rank 0's InputError. And the bake across
+// the ranks: rank 0 hears of every tile finished.
 #include <gtest/gtest.h>
 #include <mpi.h>
 
@@ -10,6 +11,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <limits>
+#include <mutex>
 #include <optional>
 #include <string>
 #include <utility>
@@ -158,6 +160,35 @@ TEST(MpiDemPass, AVoidInAnyRanksRowsIsRankZerosInputError) {
     EXPECT_NE(rankOf(), 0);
     EXPECT_EQ(e.exitCode(), 2);
   }
+}
+
+// The whole bake across the ranks: rank 0's bake.progress hears of every
+// tile finished, whichever rank baked it, one tile at a time (k of the
+// tiles, k = 1, 2, ... in order: a tile's own progress is not mixed in); the
+// other ranks hear only the pass's zeros.
+TEST(MpiTiledBake, RankZeroHearsEveryTileFinishedOnce) {
+  const SharedDir dir;
+  const Dem dem(writeDem(dir));
+  std::mutex mutex;
+  std::vector<double> heard;
+  BakeOptions bake;
+  bake.azimuths = 6;  // a tile's own passes would report thirds
+  bake.progress = [&](double fraction) {
+    const std::lock_guard<std::mutex> guard(mutex);
+    if (fraction > 0.0) heard.push_back(fraction);
+  };
+  TiledBakeOptions tiled;
+  tiled.tileSize = 32;  // 5 x 4 tiles
+  const MpiTiledBakeSummary summary = bakeTiledMpi(MPI_COMM_WORLD, dem.source, dem.geometry, bake,
+                                                   tiled, (dir.path() / "tiles").string());
+  ASSERT_EQ(summary.tiles.tiles, 20);
+  EXPECT_EQ(summary.tiles.baked, 20);
+  if (rankOf() != 0) {
+    EXPECT_TRUE(heard.empty());
+    return;
+  }
+  ASSERT_EQ(heard.size(), 20u);
+  for (size_t k = 0; k < heard.size(); ++k) EXPECT_EQ(heard[k], (k + 1) / 20.0) << k;
 }
 
 }  // namespace

@@ -4,9 +4,12 @@
 #include <gtest/gtest.h>
 
 #include <filesystem>
+#include <sstream>
 #include <string>
+#include <vector>
 
 #include "aperture/terrain/io/aperture_map.h"
+#include "aperture/tests/tools/progress_lines.h"
 #include "aperture/tests/tools/run_tool.h"
 #include "aperture/tests/tools/synthetic_dem_file.h"
 
@@ -106,6 +109,42 @@ TEST(AalBakeMpi, ThreeRanksWriteTheSingleProcessFolderByteForByte) {
   const std::string checksum = ApertureMapReader(one.string()).header().info.sourceChecksum;
   EXPECT_EQ(checksum.rfind(kRowHashChecksumPrefix, 0), 0u) << checksum;
   EXPECT_EQ(readApertureTileIndex((dir.path() / "mpi").string()).map.info.sourceChecksum, checksum);
+}
+
+// Rank 0 reports the share of the tiles finished, whichever rank baked
+// them: --progress json's lines on stdout go from 0 to the whole in steps
+// of whole tiles (20 tiles: 50 thousandths each), never back; a tile's own
+// progress is not mixed in. Run again on the finished folder, every tile
+// counts as finished.
+TEST(AalBakeMpi, RankZeroReportsTheTilesFinishedByEveryRank) {
+  TempDir dir;
+  const fs::path dem = writeDem(dir, 150, 120);
+  const fs::path mpi = dir.path() / "mpi", lines = dir.path() / "progress.txt";
+  for (const char* run : {"bakes", "resumes"}) {
+    SCOPED_TRACE(run);
+    const auto m =
+        runMpi(3, quoted(dem) + " -o " + quoted(mpi) +
+                      " --tile-size 32 --azimuths 8 --progress json -q >" + quoted(lines));
+    ASSERT_EQ(m.exitCode, 0) << m.out;
+    std::istringstream text(test::fileText(lines));
+    std::vector<test::JsonLine> reports;
+    for (std::string line; std::getline(text, line);) {
+      test::JsonLine j;
+      ASSERT_TRUE(test::parseJsonLine(line, j)) << "not a progress line: '" << line << "'";
+      reports.push_back(j);
+    }
+    ASSERT_GE(reports.size(), 2u);
+    EXPECT_EQ(reports.front().done, 0u);
+    EXPECT_EQ(reports.back().done, reports.back().total);
+    for (size_t i = 0; i < reports.size(); ++i) {
+      EXPECT_EQ(reports[i].stage, "baking");
+      EXPECT_EQ(reports[i].total, 1000u);
+      EXPECT_EQ(reports[i].done % 50, 0u) << reports[i].done;
+      if (i > 0) {
+        EXPECT_GE(reports[i].done, reports[i - 1].done);
+      }
+    }
+  }
 }
 
 // A rank killed with SIGKILL holding a tile ends the job (Open MPI aborts
