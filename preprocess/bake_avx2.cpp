@@ -211,6 +211,15 @@ __attribute__((target("avx2"), always_inline)) inline void popUnderAvx2(
   top = {aT, aZ, bT, bZ, n};
 }
 
+// The lanes of walked lines `line` (8 indices) that are on the grid at a
+// step: lineFirst .. lineLast.
+__attribute__((target("avx2"), always_inline)) inline __m256i linesOnGridAvx2(__m256i line,
+                                                                              int lineFirst,
+                                                                              int lineLast) {
+  return _mm256_and_si256(_mm256_cmpgt_epi32(line, _mm256_set1_epi32(lineFirst - 1)),
+                          _mm256_cmpgt_epi32(_mm256_set1_epi32(lineLast + 1), line));
+}
+
 // The scan's slope to the k-th points back of 8 lines (their heights at
 // z), as scanHorizons takes it with uniform steps; kNoHorizonTangent in
 // lanes with fewer points within the limit.
@@ -317,9 +326,7 @@ __attribute__((target("avx2"))) inline void BlockLineWalker<kMajorIsColumn>::upd
   const __m256i one = _mm256_set1_epi32(1);
   for (int c = 0; c < lines; c += 8) {
     const __m256i line = _mm256_add_epi32(_mm256_set1_epi32(c), iota);
-    const __m256i valid =
-        _mm256_and_si256(_mm256_cmpgt_epi32(line, _mm256_set1_epi32(slice.lineFirst - 1)),
-                         _mm256_cmpgt_epi32(_mm256_set1_epi32(slice.lineLast + 1), line));
+    const __m256i valid = linesOnGridAvx2(line, slice.lineFirst, slice.lineLast);
     if (_mm256_testz_si256(valid, valid)) {
       _mm256_store_ps(lineHorizon + c, noHorizon);
       continue;
@@ -387,9 +394,7 @@ __attribute__((target("avx2"))) inline void BlockLineWalker<kMajorIsColumn>::sca
   const __m256i iota = _mm256_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7);
   for (int c = 0; c < lines_; c += 8) {
     const __m256i line = _mm256_add_epi32(_mm256_set1_epi32(c), iota);
-    const __m256i valid =
-        _mm256_and_si256(_mm256_cmpgt_epi32(line, _mm256_set1_epi32(slice.lineFirst - 1)),
-                         _mm256_cmpgt_epi32(_mm256_set1_epi32(slice.lineLast + 1), line));
+    const __m256i valid = linesOnGridAvx2(line, slice.lineFirst, slice.lineLast);
     if (_mm256_testz_si256(valid, valid)) {
       _mm256_store_ps(lineHorizon + c, noHorizon);
       continue;
