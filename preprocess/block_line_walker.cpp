@@ -34,9 +34,9 @@ BlockLineWalker<kMajorIsColumn>::BlockLineWalker(const BakeTerrain& terrain,
         lineT(layout.start, 0.0) - lineT(layout.start + layout.step, layout.minorPerStep);
     uniformSteps_ = true;
     for (int k = 1; k < kScanRing; ++k) {
-      scanDistance_[k] = static_cast<float>(k * stepT);
-      scanInverse_[k] = 1.0f / scanDistance_[k];
-      scanDrop_[k] = curvature_ * scanDistance_[k];
+      const float distance = static_cast<float>(k * stepT);
+      scanInverse_[k] = 1.0f / distance;
+      scanDrop_[k] = curvature_ * distance;
     }
   }
   // The bilinear surface leaving a texel (LineWalker::leavingSlope): one

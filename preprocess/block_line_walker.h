@@ -1,10 +1,10 @@
 // One group of lines of the block sweep (horizon_blocks.h), walked in
 // lockstep. Without a distance limit each line keeps the upper hull of its
 // points; with a short one (scansWithinLimit) it keeps the points of its
-// last kScanRing steps, and each new point's horizon is the steepest slope
-// to those within the limit. Instantiated for both layouts in block_line_walker.cpp (the
-// scalar walk) and bake_avx2.cpp (the AVX2 walk); the parts both walks
-// share are here.
+// last ScanRing::kSteps steps, and each new point's horizon is the steepest
+// slope to those within the limit. Instantiated for both layouts in
+// block_line_walker.cpp (the scalar walk) and bake_avx2.cpp (the AVX2
+// walk); the parts both walks share are here.
 #pragma once
 
 #include <algorithm>
@@ -237,13 +237,13 @@ class BlockLineWalker {
   static constexpr int kScanRing = ScanRing::kSteps;
   ScanRing* const ring_;
   // Where every row's cells are alike, the k-th point back of any line lies
-  // k steps' length away: per k, that distance in single precision, its
-  // inverse and the Earth's drop over it, so that the scan multiplies
+  // k steps' length away: per k, the inverse of that distance (in single
+  // precision) and the Earth's drop over it, so that the scan multiplies
   // where it would divide (a division per point and 8 lines was its
   // bottleneck). Elsewhere (geographic grids) the distances come from the
   // ring's positions.
   bool uniformSteps_ = false;
-  float scanDistance_[kScanRing], scanInverse_[kScanRing], scanDrop_[kScanRing];
+  float scanInverse_[kScanRing], scanDrop_[kScanRing];
   // Per line: the step of its farthest point within the limit, how many of
   // its earlier points are within it, whether its first point (the DEM
   // edge ahead, with clamped edges) is, and how far ahead that point lies.
