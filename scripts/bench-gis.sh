@@ -32,6 +32,9 @@ t_aal=$(seconds "$bin/aal-bake" "$dem" --svf "$work/svf.tif" --visible "$work/vi
 # And within SAGA's radius, as a user matching its settings would.
 t_aal_10k=$(seconds "$bin/aal-bake" "$dem" --svf "$work/svf_10k.tif" --visible "$work/vis_10k.tif" \
   --azimuths 32 --max-distance 10000 -q)
+# And within RVT's default radius of 10 cells.
+t_aal_rvt=$(seconds "$bin/aal-bake" "$dem" --svf "$work/svf_rvt.tif" --visible "$work/vis_rvt.tif" \
+  --azimuths 32 --max-distance 300 -q)
 t_saga_ms=$(seconds saga_cmd ta_lighting 3 -DEM "$dem" -SVF "$work/svf_ms.sdat" \
   -VISIBLE "$work/vis_ms.sdat" -NDIRS 32 -METHOD 1)
 t_saga_cs=$(seconds saga_cmd ta_lighting 3 -DEM "$dem" -SVF "$work/svf_cs.sdat" \
@@ -46,6 +49,7 @@ t_grass=$(seconds grass "$work/grassdb/bench/PERMANENT" --exec bash -c \
 printf "%dx%d DEM, 32 directions\n" "$size" "$size"
 printf "  %-34s %8s s\n" "aal-bake --svf --visible (whole DEM)" "$t_aal"
 printf "  %-34s %8s s\n" "aal-bake --max-distance 10000" "$t_aal_10k"
+printf "  %-34s %8s s\n" "aal-bake --max-distance 300 (10 px)" "$t_aal_rvt"
 printf "  %-34s %8s s  (%.0fx aal-bake, %.0fx within 10 km)\n" "SAGA SVF multi-scale (10 km)" \
   "$t_saga_ms" "$(echo "$t_saga_ms / $t_aal" | bc -l)" "$(echo "$t_saga_ms / $t_aal_10k" | bc -l)"
 printf "  %-34s %8s s  (%.0fx aal-bake)\n" "SAGA SVF cell size (10 km)" "$t_saga_cs" \
