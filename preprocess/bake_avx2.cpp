@@ -221,15 +221,22 @@ __attribute__((target("avx2"), always_inline)) inline __m256i linesOnGridAvx2(__
 }
 
 // The scan's slope to the k-th points back of 8 lines (their heights at
-// z), as scanHorizons takes it with uniform steps; kNoHorizonTangent in
-// lanes with fewer points within the limit.
+// z), as scanHorizons takes it with uniform steps.
+__attribute__((target("avx2"), always_inline)) inline __m256 scannedSlopeAvx2(const float* z,
+                                                                              __m256 zq,
+                                                                              float inverse,
+                                                                              float drop) {
+  return _mm256_sub_ps(_mm256_mul_ps(_mm256_sub_ps(_mm256_load_ps(z), zq), _mm256_set1_ps(inverse)),
+                       _mm256_set1_ps(drop));
+}
+
+// The same, kNoHorizonTangent in lanes with fewer than k points within the
+// limit.
 __attribute__((target("avx2"), always_inline)) inline __m256 scannedSlopeAvx2(
     const float* z, __m256 zq, float inverse, float drop, __m256i within, int k) {
-  const __m256 slope =
-      _mm256_sub_ps(_mm256_mul_ps(_mm256_sub_ps(_mm256_load_ps(z), zq), _mm256_set1_ps(inverse)),
-                    _mm256_set1_ps(drop));
   const __m256 active = _mm256_castsi256_ps(_mm256_cmpgt_epi32(within, _mm256_set1_epi32(k - 1)));
-  return _mm256_blendv_ps(_mm256_set1_ps(kNoHorizonTangent), slope, active);
+  return _mm256_blendv_ps(_mm256_set1_ps(kNoHorizonTangent), scannedSlopeAvx2(z, zq, inverse, drop),
+                          active);
 }
 
 }  // namespace
@@ -407,9 +414,20 @@ __attribute__((target("avx2"))) inline void BlockLineWalker<kMajorIsColumn>::sca
     const int most = withinMax_[c / 8];
     if (uniformSteps_) {
       // Two running maxima, so that the loop is not one max's latency a
-      // point (the maximum is the same whichever takes a point).
+      // point (the maximum is the same whichever takes a point). Up to
+      // the fewest points any line on the grid has within the limit no
+      // lane is masked (lanes off the grid are dropped below).
       __m256 other = noHorizon;
+      const int fewest = std::min(withinFewest_[c / 8], most);
       int k = 1;
+      for (; k < fewest; k += 2) {
+        best = _mm256_max_ps(scannedSlopeAvx2(ring.z[(step - k) & (kScanRing - 1)] + c, zq,
+                                              scanInverse_[k], scanDrop_[k]),
+                             best);
+        other = _mm256_max_ps(scannedSlopeAvx2(ring.z[(step - k - 1) & (kScanRing - 1)] + c, zq,
+                                               scanInverse_[k + 1], scanDrop_[k + 1]),
+                              other);
+      }
       for (; k < most; k += 2) {
         best = _mm256_max_ps(scannedSlopeAvx2(ring.z[(step - k) & (kScanRing - 1)] + c, zq,
                                               scanInverse_[k], scanDrop_[k], within, k),

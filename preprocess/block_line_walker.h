@@ -250,6 +250,7 @@ class BlockLineWalker {
   int firstWithin_[kPaddedLines];
   alignas(32) int within_[kPaddedLines];
   int withinMax_[kPaddedLines / 8];           // the most of each 8 lines
+  int withinFewest_[kPaddedLines / 8];        // the fewest of each 8's lines on the grid
   alignas(32) int edgeWithin_[kPaddedLines];  // -1 or 0, a lane mask
   alignas(32) float toEdge_[kPaddedLines];
   double edgeTD_[kPaddedLines];
@@ -297,6 +298,7 @@ inline void BlockLineWalker<kMajorIsColumn>::scanPush(int step, const StepSlice&
   const float w = slice.w;
   std::fill(within_, within_ + kPaddedLines, 0);
   std::fill(withinMax_, withinMax_ + kPaddedLines / 8, 0);
+  std::fill(withinFewest_, withinFewest_ + kPaddedLines / 8, kScanRing);
   std::fill(edgeWithin_, edgeWithin_ + kPaddedLines, 0);
   for (int i = slice.lineFirst; i <= slice.lineLast; ++i) {
     z[i] = (1.0f - w) * slice.heights[i + 1] + w * slice.heights[i + 2];
@@ -314,6 +316,7 @@ inline void BlockLineWalker<kMajorIsColumn>::scanPush(int step, const StepSlice&
     firstWithin_[i] = first;
     within_[i] = step - first;
     withinMax_[i / 8] = std::max(withinMax_[i / 8], within_[i]);
+    withinFewest_[i / 8] = std::min(withinFewest_[i / 8], within_[i]);
     const double toEdge = edgeTD_[i] - t;
     edgeWithin_[i] = toEdge <= maxDistance_ ? -1 : 0;
     toEdge_[i] = static_cast<float>(toEdge);

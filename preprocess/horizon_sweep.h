@@ -121,10 +121,10 @@ inline int stepsCovering(const BakeTerrain& terrain, double distance) {
 // A limit that stepsCovering gives this many steps or fewer is scanned by
 // the block sweeps (horizon_blocks.h), 8 lines at a time: cheaper than
 // LineWalker's chunks up to about here (a 1024² fBm of 30 m cells, --svf,
-// 32 azimuths, CPU time: 1.81-1.85 against 2.22 s at 10 km, 337 steps;
-// the scan grows by about 4 ms a step there, the chunks stay at 2.2 s;
-// docs/performance.md).
-inline constexpr int kBlockScanSteps = 400;
+// 32 azimuths, CPU time: 1.70-1.75 against 2.12-2.17 s at 14 km, 471
+// steps; the scan grows by about 3 ms a step, the chunks stay at 2.1-2.2
+// s; docs/performance.md). Below ScanRing::kSteps.
+inline constexpr int kBlockScanSteps = 500;
 // The same where rows' cells differ (geographic grids), whose scan divides
 // (about 8.5 ms a step).
 inline constexpr int kBlockScanStepsUneven = 200;

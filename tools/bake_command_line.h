@@ -53,8 +53,8 @@ inline void addSweepOptions(CLI::App& app, SweepCommandLine& o) {
       ->capture_default_str();
   app.add_option("--max-distance", o.maxDistance,
                  "only terrain within this many metres counts (0 = all; the longer the "
-                 "limit, the slower: about 1.05x no limit at 10 cells, 1.8x at 100, 3.5x at "
-                 "333, 4.2x beyond 400; a tiled bake without it takes its far horizons from a "
+                 "limit, the slower: about 1.1x no limit at 10 cells, 1.6x at 100, 2.9x at "
+                 "333, 4.2x beyond 500; a tiled bake without it takes its far horizons from a "
                  "pyramid)")
       ->check(kNonNegative);
 }
