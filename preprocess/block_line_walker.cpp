@@ -28,12 +28,15 @@ BlockLineWalker<kMajorIsColumn>::BlockLineWalker(const BakeTerrain& terrain,
       avx2_(horizonAvx2()),
       ring_(ring) {
   if (scan_ && !ring_) throw std::logic_error("BlockLineWalker: a scanned limit needs a ScanRing");
-  if (scan_ && terrain.uniformCellX) {
-    // Points walked earlier lie farther along u: one step back is this far.
+  if (scan_ && terrain.uniformCellX && layout.majorLength >= 2) {
+    // Points walked earlier lie farther along u: one step back is this far
+    // (steps 0 and 1; a single slice has no point behind another). The
+    // points within the limit lie fewer than stepsCovering steps back.
     const double stepT =
         lineT(layout.start, 0.0) - lineT(layout.start + layout.step, layout.minorPerStep);
     uniformSteps_ = true;
-    for (int k = 1; k < kScanRing; ++k) {
+    const int steps = std::min(kScanRing, stepsCovering(terrain, maxDistance_));
+    for (int k = 1; k < steps; ++k) {
       const float distance = static_cast<float>(k * stepT);
       scanInverse_[k] = 1.0f / distance;
       scanDrop_[k] = curvature_ * distance;

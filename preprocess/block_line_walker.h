@@ -241,7 +241,7 @@ class BlockLineWalker {
   // precision) and the Earth's drop over it, so that the scan multiplies
   // where it would divide (a division per point and 8 lines was its
   // bottleneck). Elsewhere (geographic grids) the distances come from the
-  // ring's positions.
+  // ring's positions. Filled up to the steps the limit covers.
   bool uniformSteps_ = false;
   float scanInverse_[kScanRing], scanDrop_[kScanRing];
   // Per line: the step of its farthest point within the limit, how many of

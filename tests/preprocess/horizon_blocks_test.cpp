@@ -180,14 +180,16 @@ TEST(HorizonBlocks, OpposedSweepMatchesTheReferenceSweepsOfBothAzimuths) {
 // precision and takes the longer ones from its chunks' hulls), with
 // clamped edges and curvature, on a geographic grid (the scan's distances
 // from the points' positions; elsewhere from a table per step), along
-// lines longer than the scan's ring of steps, for both sweeps. The
+// lines longer than the scan's ring of steps and on a grid one row tall
+// (row lines of one step: no table), for both sweeps. The
 // tolerance is tighter than the hull walk's, so a wrong Earth drop (k d:
 // 7e-5 at 1 km) would show.
 TEST(HorizonBlocks, LimitsAreScannedAsTheReferenceSweepFindsThem) {
   const double kCurve = (1 - 0.13) / (2 * 6371000.0);
   constexpr double kTolerance = 1e-5;
-  for (auto [w, h, geographic] : {std::tuple{45, 38, false}, std::tuple{40, 40, true},
-                                  std::tuple{1, 7, false}, std::tuple{600, 6, false}}) {
+  for (auto [w, h, geographic] :
+       {std::tuple{45, 38, false}, std::tuple{40, 40, true}, std::tuple{1, 7, false},
+        std::tuple{9, 1, false}, std::tuple{600, 6, false}}) {
     const Heightfield field = roughTerrain(w, h, geographic);
     const BakeTerrain terrain = prepareBakeTerrain(field);
     for (double limit : {90.0, 200.0, 450.0, 1000.0, 1500.0, 4000.0, 9000.0, 30000.0}) {
