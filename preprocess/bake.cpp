@@ -284,10 +284,7 @@ BakeResult bakeWindow(const BakeTerrain& terrain, const BakeOptions& o) {
     sweeps.run();
     const size_t rows = size_t(map.height), pitch = size_t(summed.pitch), width = size_t(map.width);
     packRows(map.texels, rows, 4 * pitch, 4 * width);
-    for (std::vector<float>* g :
-         {&gis.svf, &gis.openness, &gis.anisotropicSvf, &gis.skyIllumination}) {
-      packRows(*g, rows, pitch, width);
-    }
+    for (std::vector<float>* g : gis.all()) packRows(*g, rows, pitch, width);
     const size_t directions = size_t(o.horizonDirections);
     packRows(result.horizons.codes, rows, directions * pitch, directions * width);
     sweeps.finish(terrain);

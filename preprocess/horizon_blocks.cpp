@@ -377,17 +377,13 @@ int oppositeLines(const SweepLayout& layout, const SweepLayout& opposite) {
   return HorizonBlock::kLines + 1 + (hi - lo);
 }
 
-// How far before a window (or a whole field with a distance limit) the
-// lines start: the limit, else the window's reach (0: at the field's edge).
+// sweepReachM, for a block sweep: a limit it does not scan is refused.
 double sweepReach(const BakeTerrain& terrain, const HorizonSweepOptions& options) {
-  if (options.maxDistanceM > 0.0) {
-    if (!scansWithinLimit(terrain, options)) {
-      throw std::invalid_argument(
-          "the block sweeps take only a distance limit they scan (scansWithinLimit)");
-    }
-    return options.maxDistanceM;
+  if (options.maxDistanceM > 0.0 && !scansWithinLimit(terrain, options)) {
+    throw std::invalid_argument(
+        "the block sweeps take only a distance limit they scan (scansWithinLimit)");
   }
-  return options.windowReachM;
+  return sweepReachM(options);
 }
 
 }  // namespace

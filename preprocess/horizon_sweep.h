@@ -137,6 +137,13 @@ inline bool scansWithinLimit(const BakeTerrain& terrain, const HorizonSweepOptio
              (terrain.uniformCellX ? kBlockScanSteps : kBlockScanStepsUneven);
 }
 
+// How far before a window (or a whole field, with a distance limit) a
+// sweep's lines start: the limit, else the window's reach (0: at the
+// field's edge).
+inline double sweepReachM(const HorizonSweepOptions& options) {
+  return options.maxDistanceM > 0.0 ? options.maxDistanceM : options.windowReachM;
+}
+
 // `maxDistanceM` (0 = none) sets how far before a partial window lines start.
 inline SweepLayout makeSweepLayout(const BakeTerrain& terrain, double ux, double uy,
                                    double maxDistanceM = 0.0) {
@@ -569,8 +576,8 @@ template <class VisitRun>
 void sweepHorizonRuns(const BakeTerrain& terrain, double phi, const HorizonSweepOptions& options,
                       VisitRun&& visitRun) {
   const double ux = std::cos(phi), uy = std::sin(phi);
-  const detail::SweepLayout layout = detail::makeSweepLayout(
-      terrain, ux, uy, options.maxDistanceM > 0.0 ? options.maxDistanceM : options.windowReachM);
+  const detail::SweepLayout layout =
+      detail::makeSweepLayout(terrain, ux, uy, detail::sweepReachM(options));
   if (layout.majorIsColumn) {
     detail::sweepLines<true>(terrain, layout, ux, uy, options, visitRun);
   } else {

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <atomic>
 #include <cmath>
+#include <utility>
 
 #include "aperture/preprocess/horizon_sweep.h"
 #include "aperture/preprocess/openness.h"
@@ -98,8 +99,7 @@ inline void SliceAccumulator::prefetchAhead(const HorizonBlock& b) const {
       __builtin_prefetch(sums_ + 4 * (b.aheadFirstTexel + j * b.stride), 1);
     }
     // The GIS rasters' sums likewise (one cache line per texel here).
-    for (const std::vector<float>* g :
-         {&gis_.svf, &gis_.openness, &gis_.anisotropicSvf, &gis_.skyIllumination}) {
+    for (const std::vector<float>* g : std::as_const(gis_).all()) {
       if (g->empty()) continue;
       for (int j = 0; j < b.aheadCount; ++j) {
         __builtin_prefetch(g->data() + b.aheadFirstTexel + j * b.stride, 1);

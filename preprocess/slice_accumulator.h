@@ -5,6 +5,7 @@
 // positive openness (openness.h) and the directional horizons where wanted.
 #pragma once
 
+#include <array>
 #include <cstddef>
 #include <cstdint>
 #include <vector>
@@ -31,6 +32,14 @@ struct AzimuthSlice {
 // anisotropic sky-view factor's weighted terms, the sky illumination's.
 struct GisSums {
   std::vector<float> svf, openness, anisotropicSvf, skyIllumination;
+
+  // Every one of them, wanted or not (empty).
+  std::array<std::vector<float>*, 4> all() {
+    return {&svf, &openness, &anisotropicSvf, &skyIllumination};
+  }
+  std::array<const std::vector<float>*, 4> all() const {
+    return {&svf, &openness, &anisotropicSvf, &skyIllumination};
+  }
 };
 
 class SliceAccumulator {
