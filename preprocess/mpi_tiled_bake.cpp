@@ -8,6 +8,7 @@
 #include <filesystem>
 #include <memory>
 #include <mutex>
+#include <numeric>
 #include <optional>
 #include <stdexcept>
 #include <string>
@@ -164,9 +165,9 @@ class Tally {
     const std::lock_guard<std::mutex> guard(mutex_);
     if (outcome == kBaked) ++baked_[static_cast<size_t>(rank)];
     if (outcome == kResumed) ++resumed_;
-    if (outcome != kNoOutcome) ++finished_;
     if (outcome != kNoOutcome && progress_) {
-      progress_(static_cast<double>(finished_) / std::max(tiles_, 1));
+      const int finished = std::accumulate(baked_.begin(), baked_.end(), resumed_);
+      progress_(static_cast<double>(finished) / std::max(tiles_, 1));
     }
   }
   const std::vector<int>& baked() const { return baked_; }
@@ -175,7 +176,7 @@ class Tally {
  private:
   std::mutex mutex_;
   std::vector<int> baked_;
-  int resumed_ = 0, finished_ = 0;
+  int resumed_ = 0;
   const int tiles_;
   const std::function<void(double)> progress_;
 };
