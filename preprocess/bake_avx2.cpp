@@ -443,18 +443,19 @@ __attribute__((target("avx2"))) inline void BlockLineWalker<kMajorIsColumn>::sca
                              best);
       }
       best = _mm256_max_ps(other, best);
-    }
-    for (int k = 1; !uniformSteps_ && k <= most; ++k) {
-      const int slot = (step - k) & (kScanRing - 1);
-      const __m256 d = _mm256_set_m128(
-          _mm256_cvtpd_ps(_mm256_sub_pd(_mm256_load_pd(ring.t[slot] + c + 4), tHigh)),
-          _mm256_cvtpd_ps(_mm256_sub_pd(_mm256_load_pd(ring.t[slot] + c), tLow)));
-      const __m256 slope =
-          _mm256_sub_ps(_mm256_div_ps(_mm256_sub_ps(_mm256_load_ps(ring.z[slot] + c), zq), d),
-                        _mm256_mul_ps(curvature, d));
-      const __m256 active =
-          _mm256_castsi256_ps(_mm256_cmpgt_epi32(within, _mm256_set1_epi32(k - 1)));
-      best = _mm256_max_ps(_mm256_blendv_ps(noHorizon, slope, active), best);
+    } else {
+      for (int k = 1; k <= most; ++k) {
+        const int slot = (step - k) & (kScanRing - 1);
+        const __m256 d = _mm256_set_m128(
+            _mm256_cvtpd_ps(_mm256_sub_pd(_mm256_load_pd(ring.t[slot] + c + 4), tHigh)),
+            _mm256_cvtpd_ps(_mm256_sub_pd(_mm256_load_pd(ring.t[slot] + c), tLow)));
+        const __m256 slope =
+            _mm256_sub_ps(_mm256_div_ps(_mm256_sub_ps(_mm256_load_ps(ring.z[slot] + c), zq), d),
+                          _mm256_mul_ps(curvature, d));
+        const __m256 active =
+            _mm256_castsi256_ps(_mm256_cmpgt_epi32(within, _mm256_set1_epi32(k - 1)));
+        best = _mm256_max_ps(_mm256_blendv_ps(noHorizon, slope, active), best);
+      }
     }
     if (clampEdge_) {
       const __m256 edge = clampedEdgeSlopeAvx2(_mm256_sub_ps(_mm256_load_ps(edgeZ_ + c), zq),

@@ -299,7 +299,7 @@ inline void BlockLineWalker<kMajorIsColumn>::scanPush(int step, const StepSlice&
   std::fill(within_, within_ + kPaddedLines, 0);
   std::fill(withinMax_, withinMax_ + kPaddedLines / 8, 0);
   std::fill(withinFewest_, withinFewest_ + kPaddedLines / 8, kScanRing);
-  std::fill(edgeWithin_, edgeWithin_ + kPaddedLines, 0);
+  if (clampEdge_) std::fill(edgeWithin_, edgeWithin_ + kPaddedLines, 0);
   for (int i = slice.lineFirst; i <= slice.lineLast; ++i) {
     z[i] = (1.0f - w) * slice.heights[i + 1] + w * slice.heights[i + 2];
     const double t = slice.lineTD[i];
@@ -317,9 +317,11 @@ inline void BlockLineWalker<kMajorIsColumn>::scanPush(int step, const StepSlice&
     within_[i] = step - first;
     withinMax_[i / 8] = std::max(withinMax_[i / 8], within_[i]);
     withinFewest_[i / 8] = std::min(withinFewest_[i / 8], within_[i]);
-    const double toEdge = edgeTD_[i] - t;
-    edgeWithin_[i] = toEdge <= maxDistance_ ? -1 : 0;
-    toEdge_[i] = static_cast<float>(toEdge);
+    if (clampEdge_) {
+      const double toEdge = edgeTD_[i] - t;
+      edgeWithin_[i] = toEdge <= maxDistance_ ? -1 : 0;
+      toEdge_[i] = static_cast<float>(toEdge);
+    }
     ring.z[slot][i] = z[i];
     ring.t[slot][i] = t;
     ++size_[i];
