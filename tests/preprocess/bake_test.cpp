@@ -8,6 +8,7 @@
 #include <numbers>
 
 #include "aperture/preprocess/bake_terrain.h"
+#include "aperture/preprocess/horizon_sweep.h"
 #include "aperture/preprocess/ray_bake.h"
 #include "aperture/terrain/synthetic.h"
 #include "aperture/tests/preprocess/bake_test_util.h"
@@ -279,9 +280,12 @@ TEST(Bake, SumsSweptAtAPaddedPitchArePackedToTheWidth) {
       turned.z[turned.index(row, field.width - 1 - col)] = field.at(col, row);
     }
   }
-  // Unlimited (the block sweep) and within a distance (the line sweep's
-  // runs, placed in the sums at the pitch).
-  for (const double maxDistanceM : {0.0, 900.0}) {
+  // Unlimited (the block sweep), within a distance it scans (its window
+  // sweep), and within one too long to scan (the line sweep's runs, placed
+  // in the sums at the pitch).
+  for (const double maxDistanceM : {0.0, 900.0, 16000.0}) {
+    ASSERT_EQ(detail::scansWithinLimit(prepareBakeTerrain(field), {false, 0.0, maxDistanceM}),
+              maxDistanceM == 900.0);
     BakeOptions o = sweepOptions(64);
     o.maxDistanceM = maxDistanceM;
     o.skyViewFactor = o.positiveOpenness = o.skyIllumination = true;
