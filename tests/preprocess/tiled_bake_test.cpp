@@ -131,6 +131,18 @@ TEST(TiledBake, DistanceLongerThanATile) {
   expectTilesEqualWholeBake(fbmField(120, 90), distanceLimited(1500), 16);
 }
 
+// A limit too long for the block sweep to scan goes to the line sweep
+// (sweepHorizonRuns): its windows too equal the whole bake, with clamped
+// edges and curvature. The field is longer than the limit (18 against
+// 16 km), so that a tile's lines start inside it.
+TEST(TiledBake, TilesEqualTheInMemoryBakeWithALimitTooLongToScan) {
+  const Heightfield field = fbmField(600, 40);
+  BakeOptions o = distanceLimited(16000, /*clampEdge=*/true);
+  o.curvature = true;
+  ASSERT_FALSE(detail::scansWithinLimit(prepareBakeTerrain(field), {true, 0.0, o.maxDistanceM}));
+  expectTilesEqualWholeBake(field, o, 100);
+}
+
 // The sweep over a window equals the whole sweep there, also without a
 // distance limit (its lines then start at the field's edge).
 TEST(TiledBake, WindowSweepEqualsTheWholeSweep) {
