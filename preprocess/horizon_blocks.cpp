@@ -111,13 +111,12 @@ void forEachGroup(const BlockSweep& sweep, int groupLines, WalkGroup&& walkGroup
   // c - 1 and c, so each group also walks the line just before it.
   const int firstLine = layout.firstLine + 1;
   const int groups = (layout.lastLine - firstLine + groupLines) / groupLines;
+  const bool scan = scansWithinLimit(sweep.terrain, sweep.options);
   tbb::parallel_for(0, groups, [&](int group) {
     BlockScratch& s = scratch.local();
     s.hulls.resize(static_cast<size_t>(BlockLineWalker<kMajorIsColumn>::kMaxLines) *
                    layout.majorLength);
-    if (!s.ring && scansWithinLimit(sweep.terrain, sweep.options)) {
-      s.ring = std::make_unique<ScanRing>();
-    }
+    if (scan && !s.ring) s.ring = std::make_unique<ScanRing>();
     const int first = firstLine + group * groupLines;
     const GroupTexels<kMajorIsColumn> texels{layout, sweep.terrain.pitch, first,
                                              std::min(groupLines, layout.lastLine + 1 - first)};
