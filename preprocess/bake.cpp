@@ -233,6 +233,22 @@ void finishApertures(const BakeTerrain& terrain, std::vector<float>& texels) {
   });
 }
 
+// The visible solid angles, the fourth of each texel's 4 sums.
+std::vector<float> visibleFractions(const std::vector<float>& texels) {
+  std::vector<float> solidAngles(texels.size() / 4);
+  tbb::parallel_for(size_t(0), solidAngles.size(),
+                    [&](size_t i) { solidAngles[i] = texels[4 * i + 3]; });
+  return solidAngles;
+}
+
+// Visible solid angles to shares of the hemisphere, in place (as
+// finishApertures takes them before its arc lengths).
+void finishVisibleFractions(std::vector<float>& solidAngles) {
+  tbb::parallel_for(size_t(0), solidAngles.size(), [&](size_t i) {
+    solidAngles[i] = static_cast<float>(std::clamp(solidAngles[i] / kTwoPi, 0.0, 1.0));
+  });
+}
+
 // Moves the rows of `v`, `rows` of `width` entries each, from `pitch`
 // entries apart to `width` apart, in place, and drops the rest.
 template <class T>
@@ -258,17 +274,21 @@ BakeResult bakeWindow(const BakeTerrain& terrain, const BakeOptions& o) {
   const size_t sums = summed.pitchedTexelCount();
   BakeResult result;
   ApertureMap& map = result.aperture;
-  map.width = terrain.window.width;
-  map.height = terrain.window.height;
-  assignOnHugePages(map.texels, sums * 4, 0.0f);
+  const bool apertureSums = o.apertureMap || o.method != BakeMethod::Sweep;
+  if (apertureSums) {
+    map.width = terrain.window.width;
+    map.height = terrain.window.height;
+    assignOnHugePages(map.texels, sums * 4, 0.0f);
+  }
   GisSums gis;
+  if (o.visibleFraction && !apertureSums) gis.visible.assign(sums, 0.0f);
   if (o.skyViewFactor) gis.svf.assign(sums, 0.0f);
   if (o.positiveOpenness) gis.openness.assign(sums, 0.0f);
   if (o.anisotropicSkyViewFactor) gis.anisotropicSvf.assign(sums, 0.0f);
   if (o.skyIllumination) gis.skyIllumination.assign(sums, 0.0f);
   if (o.horizons) {
-    result.horizons.width = map.width;
-    result.horizons.height = map.height;
+    result.horizons.width = terrain.window.width;
+    result.horizons.height = terrain.window.height;
     result.horizons.directions = o.horizonDirections;
     result.horizons.bits = o.horizonBits;
     result.horizons.codes.assign(sums * size_t(o.horizonDirections), 0);
@@ -279,10 +299,11 @@ BakeResult bakeWindow(const BakeTerrain& terrain, const BakeOptions& o) {
     // progress.
     BakeOptions first = o;
     if (o.negativeOpenness && o.progress) first.progress = [&](double f) { o.progress(0.5 * f); };
-    const AzimuthSweeps sweeps(summed, first, map.texels.data(), gis,
+    const AzimuthSweeps sweeps(summed, first, apertureSums ? map.texels.data() : nullptr, gis,
                                o.horizons ? result.horizons.codes.data() : nullptr);
     sweeps.run();
-    const size_t rows = size_t(map.height), pitch = size_t(summed.pitch), width = size_t(map.width);
+    const size_t rows = size_t(terrain.window.height), pitch = size_t(summed.pitch),
+                 width = size_t(terrain.window.width);
     packRows(map.texels, rows, 4 * pitch, 4 * width);
     for (std::vector<float>* g : gis.all()) packRows(*g, rows, pitch, width);
     const size_t directions = size_t(o.horizonDirections);
@@ -300,6 +321,10 @@ BakeResult bakeWindow(const BakeTerrain& terrain, const BakeOptions& o) {
     bakeRays(terrain, o, map.texels.data(), gis.svf);
   }
   result.skyViewFactor = std::move(gis.svf);
+  if (o.visibleFraction) {
+    result.visibleFraction = apertureSums ? visibleFractions(map.texels) : std::move(gis.visible);
+    finishVisibleFractions(result.visibleFraction);
+  }
   finishApertures(terrain, map.texels);
   map.info = bakeInfo(*terrain.heights.dem, o);
   return result;
@@ -328,9 +353,10 @@ BakeResult bakeApertures(const Heightfield& field, const BakeOptions& o) {
   checkOptions(field, o);
   // The DEM's checksum (its rows hashed in parallel) is a task beside the
   // sweeps rather than a wait after them.
+  // Only the map and the horizons carry it.
   std::string checksum;
   tbb::task_group beside;
-  beside.run([&] { checksum = heightfieldChecksum(field); });
+  if (o.apertureMap || o.horizons) beside.run([&] { checksum = heightfieldChecksum(field); });
   BakeResult result;
   try {
     result = bakeWindow(prepareBakeTerrain(field), o);

@@ -77,4 +77,13 @@ inline void skySliceTerms(float* term, float tanTheta0, float dPhi, float cosPhi
   term[3] = dPhi * (1.0f - sinTheta);
 }
 
+// term[3] of skySliceTerms alone, by the same operations (so the same bits):
+// the visible solid angle of the slice, for bakes that keep no bent vector.
+inline float visibleSliceTerm(float tanTheta0, float dPhi) {
+  const float t = tanTheta0;
+  const float inv = 1.0f / (1.0f + t * t);
+  const float sinTheta = t * std::sqrt(inv);
+  return dPhi * (1.0f - sinTheta);
+}
+
 }  // namespace aal

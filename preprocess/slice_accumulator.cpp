@@ -62,6 +62,7 @@ inline void SliceAccumulator::addSlices(const HorizonBlock& b, const AzimuthSlic
   }
   prefetchAhead(b);
   addGisTerms(b, s, opposite);
+  if (sums_ == nullptr) return;  // no aperture map
 #if AAL_HORIZON_AVX2
   // Not for blocks of one: 20 % slower there.
   if (avx2_ && b.count > 1) {
@@ -90,20 +91,24 @@ inline void SliceAccumulator::addSlices(const HorizonBlock& b, const AzimuthSlic
 // prefetch per cache line (4 texels' sums) and the last texel: 3 % faster
 // at 1024² than one per texel.
 inline void SliceAccumulator::prefetchAhead(const HorizonBlock& b) const {
-  if (b.stride == 1 && b.aheadCount > 0) {
+  if (b.aheadCount <= 0) return;
+  if (b.stride == 1) {
+    if (sums_ == nullptr) return;
     const size_t first = b.aheadFirstTexel, last = first + b.aheadCount - 1;
     for (size_t texel = first; texel < last; texel += 4) __builtin_prefetch(sums_ + 4 * texel, 1);
     __builtin_prefetch(sums_ + 4 * last, 1);
-  } else {
+    return;
+  }
+  if (sums_ != nullptr) {
     for (int j = 0; j < b.aheadCount; ++j) {
       __builtin_prefetch(sums_ + 4 * (b.aheadFirstTexel + j * b.stride), 1);
     }
-    // The GIS rasters' sums likewise (one cache line per texel here).
-    for (const std::vector<float>* g : std::as_const(gis_).all()) {
-      if (g->empty()) continue;
-      for (int j = 0; j < b.aheadCount; ++j) {
-        __builtin_prefetch(g->data() + b.aheadFirstTexel + j * b.stride, 1);
-      }
+  }
+  // The GIS rasters' sums likewise (one cache line per texel here).
+  for (const std::vector<float>* g : std::as_const(gis_).all()) {
+    if (g->empty()) continue;
+    for (int j = 0; j < b.aheadCount; ++j) {
+      __builtin_prefetch(g->data() + b.aheadFirstTexel + j * b.stride, 1);
     }
   }
 }
@@ -137,6 +142,28 @@ inline void SliceAccumulator::addGisTerms(const HorizonBlock& b, const AzimuthSl
     addSkyIllumination(b, b.tanHorizon, s);
     if (opposite) addSkyIllumination(b, b.tanOpposite, *opposite);
   }
+  if (!gis_.visible.empty()) addVisibleSky(b, b.tanHorizon, b.tanOpposite, s, opposite);
+}
+
+// The visible solid angle of slice s and the opposite one: the aperture
+// sums' fourth term (sliceTerms) by the same operations in the same order,
+// so that a bake without the map sums the same bits.
+inline void SliceAccumulator::addVisibleSky(const HorizonBlock& b, const float* tanHorizon,
+                                            const float* tanOpposite, const AzimuthSlice& s,
+                                            const AzimuthSlice* opposite) const {
+  float terms[HorizonBlock::kLines];
+  for (int j = 0; j < b.count; ++j) {
+    const float tanPlane = b.slopeEast[j] * s.cosPhi + b.slopeNorth[j] * s.sinPhi;
+    terms[j] = visibleSliceTerm(std::max(tanHorizon[j], tanPlane), s.dPhi);
+  }
+  if (opposite) {
+    for (int j = 0; j < b.count; ++j) {
+      const float tanPlane = b.slopeEast[j] * opposite->cosPhi + b.slopeNorth[j] * opposite->sinPhi;
+      terms[j] += visibleSliceTerm(std::max(tanOpposite[j], tanPlane), opposite->dPhi);
+    }
+  }
+  float* sum = gis_.visible.data() + b.firstTexel;
+  for (int j = 0; j < b.count; ++j) sum[j * b.stride] += terms[j];
 }
 
 // Signed: openness counts terrain below the horizontal too.

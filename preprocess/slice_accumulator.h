@@ -29,24 +29,26 @@ struct AzimuthSlice {
 
 // The per-texel sums of the GIS outputs, each empty unless wanted: the
 // sky-view factor's, the horizon angles of positive openness, the
-// anisotropic sky-view factor's weighted terms, the sky illumination's.
+// anisotropic sky-view factor's weighted terms, the sky illumination's, and
+// the visible solid angle's where no aperture map is summed (with one, it
+// is the map's fourth sum).
 struct GisSums {
-  std::vector<float> svf, openness, anisotropicSvf, skyIllumination;
+  std::vector<float> svf, openness, anisotropicSvf, skyIllumination, visible;
 
   // Every one of them, wanted or not (empty).
-  std::array<std::vector<float>*, 4> all() {
-    return {&svf, &openness, &anisotropicSvf, &skyIllumination};
+  std::array<std::vector<float>*, 5> all() {
+    return {&svf, &openness, &anisotropicSvf, &skyIllumination, &visible};
   }
-  std::array<const std::vector<float>*, 4> all() const {
-    return {&svf, &openness, &anisotropicSvf, &skyIllumination};
+  std::array<const std::vector<float>*, 5> all() const {
+    return {&svf, &openness, &anisotropicSvf, &skyIllumination, &visible};
   }
 };
 
 class SliceAccumulator {
  public:
-  // sums: 4 floats per texel of terrain.window (bent vector, solid angle);
-  // gis: the GIS outputs' sums, one float per texel where wanted;
-  // horizonCodes: null, or o.horizonDirections codes per texel.
+  // sums: 4 floats per texel of terrain.window (bent vector, solid angle),
+  // or null when no aperture map is baked (BakeOptions::apertureMap); gis: the GIS outputs' sums,
+  // one float per texel where wanted; horizonCodes: null, or o.horizonDirections codes per texel.
   SliceAccumulator(const BakeTerrain& terrain, const BakeOptions& o, float* sums, GisSums& gis,
                    uint8_t* horizonCodes);
 
@@ -77,6 +79,9 @@ class SliceAccumulator {
                                                         const AzimuthSlice& s) const;
   [[gnu::always_inline]] inline void addOpenness(const HorizonBlock& b,
                                                  const float* tanHorizon) const;
+  [[gnu::always_inline]] inline void addVisibleSky(const HorizonBlock& b, const float* tanHorizon,
+                                                   const float* tanOpposite, const AzimuthSlice& s,
+                                                   const AzimuthSlice* opposite) const;
   [[gnu::always_inline]] inline void sliceTerms(const HorizonBlock& b, const float* tanHorizon,
                                                 const AzimuthSlice& s, float (*terms)[4]) const;
 

@@ -73,6 +73,9 @@ constexpr size_t kInMemoryBakeTexelLimit = size_t(16384) * 16384;
 // the 20.2 B measured at 16384^2 (docs/performance.md), before --svf,
 // --visible (4 B each) and --horizons (1 B per direction) add theirs.
 constexpr double kInMemoryBakeBytesPerTexel = 22.0;
+// Of which the aperture map's running sums, which a bake of GIS rasters
+// alone does without (BakeOptions::apertureMap).
+constexpr double kApertureSumBytesPerTexel = 16.0;
 constexpr int kDefaultTileSize = 4096;
 constexpr int kMinTileSize = 16, kMaxTileSize = 16384;
 

@@ -66,23 +66,24 @@ BakeOutput bakeArray(Task& task, DemArray dem, BakeOptions options, int threads)
   const size_t texels = field.texelCount();
   const TexelWindow whole{.width = field.width, .height = field.height};
   // As aal-bake's --visible and --svf: voids are NaN (markVoidsAsNodata).
-  out.visible.resize(texels);
-  for (size_t i = 0; i < texels; ++i) out.visible[i] = result.aperture.visibleFraction(i);
-  markVoidsAsNodata(out.visible, field, whole);
   out.skyViewFactor = std::move(result.skyViewFactor);
   markVoidsAsNodata(out.skyViewFactor, field, whole);
   out.positiveOpenness = std::move(result.positiveOpenness);
   out.negativeOpenness = std::move(result.negativeOpenness);
   if (options.positiveOpenness) markVoidsAsNodata(out.positiveOpenness, field, whole);
   if (options.negativeOpenness) markVoidsAsNodata(out.negativeOpenness, field, whole);
-  out.arcLength.resize(texels);
-  out.bentNormal.resize(3 * texels);
-  const std::vector<float>& t = result.aperture.texels;
-  for (size_t i = 0; i < texels; ++i) {
-    for (int c = 0; c < 3; ++c) out.bentNormal[3 * i + c] = t[4 * i + c];
-    out.arcLength[i] = t[4 * i + 3];
+  if (options.apertureMap) {
+    out.visible = std::move(result.visibleFraction);
+    markVoidsAsNodata(out.visible, field, whole);
+    out.arcLength.resize(texels);
+    out.bentNormal.resize(3 * texels);
+    const std::vector<float>& t = result.aperture.texels;
+    for (size_t i = 0; i < texels; ++i) {
+      for (int c = 0; c < 3; ++c) out.bentNormal[3 * i + c] = t[4 * i + c];
+      out.arcLength[i] = t[4 * i + 3];
+    }
+    markVoidsAsNodata(out.arcLength, field, whole);
   }
-  markVoidsAsNodata(out.arcLength, field, whole);
   if (options.horizons) {
     const HorizonMap& h = result.horizons;
     out.horizonDirections = h.directions;
@@ -96,7 +97,7 @@ BakeOutput bakeArray(Task& task, DemArray dem, BakeOptions options, int threads)
     const size_t n = static_cast<size_t>(out.horizonDirections);
     for (size_t i = 0; i < texels; ++i) {
       if (field.voidMask[i] == 0) continue;
-      std::fill_n(&out.bentNormal[3 * i], 3, nan);
+      if (!out.bentNormal.empty()) std::fill_n(&out.bentNormal[3 * i], 3, nan);
       if (n > 0) std::fill_n(&out.horizonsDeg[n * i], n, nan);
     }
   }
@@ -104,8 +105,8 @@ BakeOutput bakeArray(Task& task, DemArray dem, BakeOptions options, int threads)
 }
 
 py::tuple bake(DemArray& demObject, int azimuths, double maxDistanceM, const std::string& edge,
-               bool curvature, double refraction, int horizons, bool openness, int threads,
-               const py::object& progress) {
+               bool curvature, double refraction, int horizons, bool openness, bool apertures,
+               int threads, const py::object& progress) {
   if (edge != "open" && edge != "clamp") {
     throw InputError("edge must be 'open' or 'clamp', got '" + edge + "'");
   }
@@ -120,6 +121,9 @@ py::tuple bake(DemArray& demObject, int azimuths, double maxDistanceM, const std
   options.refraction = refraction;
   options.maxDistanceM = maxDistanceM;
   options.skyViewFactor = true;
+  // Without the apertures (sky_view_factor, openness) no map is summed, as
+  // aal-bake without -o: the same rasters, about a fifth faster.
+  options.apertureMap = options.visibleFraction = apertures;
   // Both, as aal-bake --openness-positive and --openness-negative.
   options.positiveOpenness = options.negativeOpenness = openness;
   if (openness && curvature) {
@@ -143,10 +147,14 @@ py::tuple bake(DemArray& demObject, int azimuths, double maxDistanceM, const std
     positive = toNumpy(std::move(out.positiveOpenness), {h, w});
     negative = toNumpy(std::move(out.negativeOpenness), {h, w});
   }
-  return py::make_tuple(
-      toNumpy(std::move(out.visible), {h, w}), toNumpy(std::move(out.skyViewFactor), {h, w}),
-      toNumpy(std::move(out.bentNormal), {h, w, 3}), toNumpy(std::move(out.arcLength), {h, w}),
-      horizonArray, positive, negative);
+  py::object visible = py::none(), bentNormal = py::none(), arcLength = py::none();
+  if (apertures) {
+    visible = toNumpy(std::move(out.visible), {h, w});
+    bentNormal = toNumpy(std::move(out.bentNormal), {h, w, 3});
+    arcLength = toNumpy(std::move(out.arcLength), {h, w});
+  }
+  return py::make_tuple(visible, toNumpy(std::move(out.skyViewFactor), {h, w}), bentNormal,
+                        arcLength, horizonArray, positive, negative);
 }
 
 // aal-relief's sky weight when --sky is not given (tools/aal_relief.cpp).
@@ -251,10 +259,11 @@ py::array relief(DemArray& demObject, ReliefArguments a, const py::object& progr
 void addBakeFunctions(py::module_& m) {
   m.def("_bake", &bake, py::arg("dem"), py::arg("azimuths"), py::arg("max_distance"),
         py::arg("edge"), py::arg("curvature"), py::arg("refraction"), py::arg("horizons"),
-        py::arg("openness"), py::arg("threads"), py::arg("progress"),
+        py::arg("openness"), py::arg("apertures") = true, py::arg("threads"),
+        py::arg("progress"),
         "aal-bake's in-memory bake of a _Dem: (visible, sky_view_factor, bent_normal, "
-        "arc_length, horizons or None, positive and negative openness or None). Use "
-        "aperture.bake.");
+        "arc_length, horizons or None, positive and negative openness or None); without "
+        "apertures, visible, bent_normal and arc_length are None. Use aperture.bake.");
   m.def(
       "_relief",
       [](DemArray& dem, const std::string& lighting, double sunAzimuth, double sunElevation,

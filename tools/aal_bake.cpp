@@ -198,12 +198,6 @@ bool checkTiling(const Options& o, const aal::DemSource& dem) {
   return true;
 }
 
-std::vector<float> visibleFractions(const aal::ApertureMap& map) {
-  std::vector<float> visible(map.texelCount());
-  for (size_t i = 0; i < visible.size(); ++i) visible[i] = map.visibleFraction(i);
-  return visible;
-}
-
 // The checks that need the DEM's size: --near-reach and --svf without a
 // path are for tiled bakes, and the reach must cover the DEM's cells.
 void checkTiledOptions(const Options& o, const aal::DemSource& dem, const aal::DemLoadOptions& load,
@@ -231,10 +225,11 @@ void requireInMemoryBake(const Options& o, const aal::DemSource& dem) {
   const double texels = double(dem.width()) * double(dem.height());
   // Negative openness: its sums and the inverted heights it sweeps.
   const double perTexel =
-      aal::kInMemoryBakeBytesPerTexel + (o.svf ? 4 : 0) + (o.visiblePath.empty() ? 0 : 4) +
-      (o.positiveOpennessPath.empty() ? 0 : 4) + (o.negativeOpennessPath.empty() ? 0 : 8) +
-      (o.localDominancePath.empty() ? 0 : 4) + (o.anisotropicSvfPath.empty() ? 0 : 4) +
-      (o.skyIlluminationPath.empty() ? 0 : 4) + (o.horizonsPath.empty() ? 0 : o.horizonDirections);
+      aal::kInMemoryBakeBytesPerTexel - (o.output.empty() ? aal::kApertureSumBytesPerTexel : 0) +
+      (o.svf ? 4 : 0) + (o.visiblePath.empty() ? 0 : 4) + (o.positiveOpennessPath.empty() ? 0 : 4) +
+      (o.negativeOpennessPath.empty() ? 0 : 8) + (o.localDominancePath.empty() ? 0 : 4) +
+      (o.anisotropicSvfPath.empty() ? 0 : 4) + (o.skyIlluminationPath.empty() ? 0 : 4) +
+      (o.horizonsPath.empty() ? 0 : o.horizonDirections);
   aal::requireMemory(
       o.dem, texels * perTexel,
       "its bake in memory (" + std::to_string(std::lround(perTexel)) + " bytes per texel)",
@@ -275,6 +270,9 @@ aal::BakeOptions bakeOptions(const Options& o) {
   aal::applySweepOptions(o, bake);
   bake.rays = o.rays;
   bake.skyViewFactor = o.svf;
+  // Without -o only GIS rasters are written: no aperture map is summed.
+  bake.apertureMap = !o.output.empty();
+  bake.visibleFraction = !o.visiblePath.empty();
   if (bake.skyViewFactor && bake.method == aal::BakeMethod::Rays) {
     throw aal::InputError("--svf needs --method sweep (the ray reference has no horizons)");
   }
@@ -405,7 +403,6 @@ bool writeOutputs(const Options& o, bool tiled, Baked& baked, const aal::Heightf
       writers.run([&, label] { writeGisRaster(path, std::move(values), field, o.raster, label); });
     }
   };
-  std::vector<float> visible;
   try {
     if (!tiled && !o.output.empty()) {
       result.aperture.info.source = source;
@@ -417,9 +414,8 @@ bool writeOutputs(const Options& o, bool tiled, Baked& baked, const aal::Heightf
         }
       });
     }
-    if (!o.visiblePath.empty()) visible = visibleFractions(result.aperture);
     raster(o.svfPath, result.skyViewFactor, aal::skyViewFactorBandLabel());
-    raster(o.visiblePath, visible, aal::visibleFractionBandLabel());
+    raster(o.visiblePath, result.visibleFraction, aal::visibleFractionBandLabel());
     if (!o.horizonsPath.empty()) {
       writers.run([&] { aal::writeHorizonMap(o.horizonsPath, result.horizons); });
     }

@@ -119,6 +119,17 @@ def bake(dem, cell_size, *, azimuths=64, max_distance=None, edge="open", curvatu
     Raises ValueError for bad input (the message aal-bake would print), KeyboardInterrupt on
     Ctrl-C (the bake stops within a block of work).
     """
+    return _bake(dem, cell_size, True, azimuths=azimuths, max_distance=max_distance, edge=edge,
+                 curvature=curvature, refraction=refraction, horizons=horizons,
+                 openness=openness, z_scale=z_scale, nodata=nodata, threads=threads,
+                 progress=progress)
+
+
+def _bake(dem, cell_size, apertures, *, azimuths=64, max_distance=None, edge="open",
+          curvature=False, refraction=0.13, horizons=0, openness=False, z_scale=1.0,
+          nodata=None, threads=None, progress=None):
+    """bake(); without `apertures` no aperture map is summed (as aal-bake without -o:
+    the same rasters, sooner) and visible, bent_normal and arc_length are None."""
     handle = _inputs.make_dem(dem, cell_size, nodata, z_scale)
     if max_distance is None:
         max_distance = 0.0
@@ -128,7 +139,8 @@ def bake(dem, cell_size, *, azimuths=64, max_distance=None, edge="open", curvatu
         handle, azimuths=int(_integer("azimuths", azimuths)), max_distance=float(max_distance),
         edge=str(edge), curvature=bool(curvature), refraction=float(refraction),
         horizons=int(_integer("horizons", horizons)), openness=bool(openness),
-        threads=_inputs.threads_value(threads), progress=_inputs.progress_value(progress))
+        apertures=bool(apertures), threads=_inputs.threads_value(threads),
+        progress=_inputs.progress_value(progress))
     return BakeResult(visible, svf, bent, arc, horizon, positive, negative)
 
 
@@ -140,7 +152,7 @@ def sky_view_factor(dem, cell_size, **options):
     GIS sky-view factor 1 - mean_phi sin(max(h(phi), 0)) (Zaksek et al. 2011), equal bit for
     bit to aal-bake --svf.
     """
-    return bake(dem, cell_size, **options).sky_view_factor
+    return _bake(dem, cell_size, False, **options).sky_view_factor
 
 
 def openness(dem, cell_size, **options):
@@ -152,7 +164,7 @@ def openness(dem, cell_size, **options):
     the outer ring: bake(..., openness=True)'s, equal bit for bit to aal-bake
     --openness-positive and --openness-negative.
     """
-    result = bake(dem, cell_size, openness=True, **options)
+    result = _bake(dem, cell_size, False, openness=True, **options)
     return result.positive_openness, result.negative_openness
 
 

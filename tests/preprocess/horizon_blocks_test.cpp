@@ -11,6 +11,7 @@
 #include <limits>
 #include <numbers>
 #include <stdexcept>
+#include <string>
 #include <tuple>
 #include <utility>
 #include <vector>
@@ -397,6 +398,54 @@ TEST(HorizonBlocks, Avx2AndScalarBakesAgree) {
     EXPECT_TRUE(sameBits(scalar.aperture.texels, avx2.aperture.texels)) << o.azimuths;
     EXPECT_EQ(scalar.skyViewFactor.empty(), !o.skyViewFactor);
     EXPECT_TRUE(sameBits(scalar.skyViewFactor, avx2.skyViewFactor)) << o.azimuths;
+  }
+}
+
+// A bake without the aperture map (BakeOptions::apertureMap, aal-bake's GIS
+// rasters alone) sums the visible solid angle on its own: the same bits as
+// the map's fourth sum, on either path, with every sweep the bake takes.
+TEST(HorizonBlocks, BakesWithoutTheMapGiveTheSameRasters) {
+  const auto sameBits = [](const std::vector<float>& a, const std::vector<float>& b) {
+    return a.size() == b.size() && !a.empty() &&
+           std::memcmp(a.data(), b.data(), a.size() * sizeof(float)) == 0;
+  };
+  BakeOptions opposed;
+  opposed.azimuths = 32;
+  BakeOptions single = opposed;
+  single.azimuths = 15;  // odd: no opposed pass
+  single.clampEdge = true;
+  single.curvature = true;
+  BakeOptions scanned = opposed;
+  scanned.maxDistanceM = 700;
+  BakeOptions runs = opposed;  // too long for the block sweep's scan: its runs
+  runs.maxDistanceM = 30000;
+  for (const bool geographic : {false, true}) {
+    const Heightfield field = roughTerrain(70, 53, geographic);
+    for (BakeOptions o : {opposed, single, scanned, runs}) {
+      o.skyViewFactor = o.visibleFraction = true;
+      for (const bool avx2 : {false, true}) {
+        const Avx2Allowed allowed(avx2);
+        o.apertureMap = true;
+        const BakeResult map = bakeApertures(field, o);
+        o.apertureMap = false;
+        const BakeResult gis = bakeApertures(field, o);
+        const std::string where = std::string(geographic ? "geographic" : "uniform") +
+                                  ", azimuths " + std::to_string(o.azimuths) + ", limit " +
+                                  std::to_string(o.maxDistanceM) + (avx2 ? ", AVX2" : "");
+        EXPECT_TRUE(gis.aperture.texels.empty()) << where;
+        EXPECT_EQ(gis.aperture.width, 0) << where;
+        ASSERT_EQ(map.visibleFraction.size(), field.texelCount()) << where;
+        EXPECT_TRUE(sameBits(map.visibleFraction, gis.visibleFraction)) << where;
+        EXPECT_TRUE(sameBits(map.skyViewFactor, gis.skyViewFactor)) << where;
+        // The map's arc length r holds the same share: 1 - cos r.
+        double worst = 0;
+        for (size_t i = 0; i < field.texelCount(); ++i) {
+          const double r = map.aperture.texels[4 * i + 3];
+          worst = std::max(worst, std::abs(map.visibleFraction[i] - (1.0 - std::cos(r))));
+        }
+        EXPECT_LT(worst, 1e-6) << where;
+      }
+    }
   }
 }
 
