@@ -259,8 +259,7 @@ py::array relief(DemArray& demObject, ReliefArguments a, const py::object& progr
 void addBakeFunctions(py::module_& m) {
   m.def("_bake", &bake, py::arg("dem"), py::arg("azimuths"), py::arg("max_distance"),
         py::arg("edge"), py::arg("curvature"), py::arg("refraction"), py::arg("horizons"),
-        py::arg("openness"), py::arg("apertures") = true, py::arg("threads"),
-        py::arg("progress"),
+        py::arg("openness"), py::arg("apertures") = true, py::arg("threads"), py::arg("progress"),
         "aal-bake's in-memory bake of a _Dem: (visible, sky_view_factor, bent_normal, "
         "arc_length, horizons or None, positive and negative openness or None); without "
         "apertures, visible, bent_normal and arc_length are None. Use aperture.bake.");

@@ -57,15 +57,15 @@ TEST(MemoryLimit, RastersWithoutAMapCountNoApertureSums) {
   TempDir dir;
   const fs::path dem = test::writeSyntheticDem(dir, 512, 512);
   const fs::path svf = dir.path() / "svf.tif";
-  const auto tight = runTool("aal-bake", quoted(dem) + " --svf " + quoted(svf) + " -q",
-                             "AAL_MEMORY_LIMIT=2M");
+  const auto tight =
+      runTool("aal-bake", quoted(dem) + " --svf " + quoted(svf) + " -q", "AAL_MEMORY_LIMIT=2M");
   EXPECT_EQ(tight.exitCode, 2) << tight.out;
   EXPECT_NE(tight.out.find("holding its bake in memory (10 bytes per texel) needs 2.6 MB"),
             std::string::npos)
       << tight.out;
   EXPECT_FALSE(fs::exists(svf));
-  const auto r = runTool("aal-bake", quoted(dem) + " --svf " + quoted(svf) + " -q",
-                         "AAL_MEMORY_LIMIT=4M");
+  const auto r =
+      runTool("aal-bake", quoted(dem) + " --svf " + quoted(svf) + " -q", "AAL_MEMORY_LIMIT=4M");
   EXPECT_EQ(r.exitCode, 0) << r.out;
   EXPECT_TRUE(fs::exists(svf));
 }
