@@ -354,7 +354,7 @@ __attribute__((target("avx2"))) inline void BlockLineWalker<kMajorIsColumn>::upd
     LaneHullTops top{_mm256_load_ps(topT_ + c), _mm256_load_ps(topZ_ + c),
                      _mm256_load_ps(belowT_ + c), _mm256_load_ps(belowZ_ + c), n};
     popUnderAvx2(top, _mm256_load_ps(thirdT_ + c), _mm256_load_ps(thirdZ_ + c), t, curvedZ, valid,
-                 _mm256_mullo_epi32(line, _mm256_set1_epi32(majorLength)), points);
+                 _mm256_mullo_epi32(line, _mm256_set1_epi32(hullStride(majorLength))), points);
     const __m256 aT = top.aT, aZ = top.aZ, bT = top.bT, bZ = top.bZ;
     n = top.n;
     // The new point goes on top (pushed below), a below it, b below that.
@@ -386,7 +386,8 @@ __attribute__((target("avx2"))) inline void BlockLineWalker<kMajorIsColumn>::upd
     _mm256_store_ps(lineHorizon + c, _mm256_blendv_ps(noHorizon, horizon, keep));
   }
   for (int i = slice.lineFirst; i <= slice.lineLast; ++i) {
-    hulls_[static_cast<size_t>(i) * majorLength + size_[i] - 1] = {slice.lineT[i], lineCurvedZ[i]};
+    hulls_[static_cast<size_t>(i) * hullStride(majorLength) + size_[i] - 1] = {slice.lineT[i],
+                                                                               lineCurvedZ[i]};
   }
 }
 

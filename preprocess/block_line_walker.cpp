@@ -102,7 +102,7 @@ void BlockLineWalker<kMajorIsColumn>::seedLine(int i, const FarLineMarch& far, i
   } else {
     far.march(minor, major, distance, height);
   }
-  HullPointF* hull = hulls_ + static_cast<size_t>(i) * majorLength;
+  HullPointF* hull = hulls_ + static_cast<size_t>(i) * hullStride(majorLength);
   int n = 0;
   const int count = std::min(static_cast<int>(distance.size()), std::max(room, 0));
   for (int k = count - 1; k >= 0; --k) {
@@ -215,7 +215,7 @@ void BlockLineWalker<kMajorIsColumn>::updateHulls(const StepSlice& slice, LineVa
     lines.curvedZ[i] = lines.z[i] - curvature * slice.lineT[i] * slice.lineT[i];
   }
   for (int i = slice.lineFirst; i <= slice.lineLast; ++i) {
-    HullPointF* hull = hulls_ + static_cast<size_t>(i) * majorLength;
+    HullPointF* hull = hulls_ + static_cast<size_t>(i) * hullStride(majorLength);
     const float t = slice.lineT[i], z = lines.curvedZ[i];
     if (size_[i] == 0) {
       edgeT_[i] = t;

@@ -52,11 +52,20 @@ struct ScanRing {
   alignas(32) double t[kSteps][kLines];
 };
 
+// The points from one line's hull stack to the next's in the walk's
+// storage: at least majorLength, an odd number of 64-byte cache lines.
+// At a power-of-two length the stacks lay a multiple of 4 KiB apart, so
+// that the tops of a group's 48 stacks, which every step reads, shared a
+// few of the L1 cache's sets.
+inline int hullStride(int majorLength) {
+  return (majorLength + 15) / 16 * 16 + 8;
+}
+
 // A run of neighbouring lines of one layout, walked in lockstep: per sweep
 // step, the texels between consecutive walked lines get their horizon
 // tangents (blended between the two lines, at least the leaving slope).
 // kMajorIsColumn: lines advance column by column. The hull stacks live in
-// caller-owned storage of kMaxLines * majorLength points, and with a
+// caller-owned storage of kMaxLines * hullStride(majorLength) points, and with a
 // scanned limit the points in a caller-owned ScanRing.
 template <bool kMajorIsColumn>
 class BlockLineWalker {

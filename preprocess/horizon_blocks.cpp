@@ -37,7 +37,7 @@ struct BlockSlopes {
 
 // One thread's storage for the walks of its groups.
 struct BlockScratch {
-  std::vector<HullPointF> hulls;              // kMaxLines stacks of majorLength points
+  std::vector<HullPointF> hulls;              // kMaxLines stacks, hullStride apart
   std::vector<float> opposite;                // kLines tangents per step
   std::vector<float> farDistance, farHeight;  // a line's far samples (restart)
   std::unique_ptr<ScanRing> ring;             // a scanned limit's points
@@ -115,7 +115,7 @@ void forEachGroup(const BlockSweep& sweep, int groupLines, WalkGroup&& walkGroup
   tbb::parallel_for(0, groups, [&](int group) {
     BlockScratch& s = scratch.local();
     s.hulls.resize(static_cast<size_t>(BlockLineWalker<kMajorIsColumn>::kMaxLines) *
-                   layout.majorLength);
+                   hullStride(layout.majorLength));
     if (scan && !s.ring) s.ring = std::make_unique<ScanRing>();
     const int first = firstLine + group * groupLines;
     const GroupTexels<kMajorIsColumn> texels{layout, sweep.terrain.pitch, first,

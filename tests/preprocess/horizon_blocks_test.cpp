@@ -18,6 +18,7 @@
 
 #include "aperture/preprocess/bake.h"
 #include "aperture/preprocess/bake_terrain.h"
+#include "aperture/preprocess/block_line_walker.h"
 #include "aperture/preprocess/horizon_sweep.h"
 #include "aperture/terrain/synthetic.h"
 
@@ -398,6 +399,19 @@ TEST(HorizonBlocks, Avx2AndScalarBakesAgree) {
     EXPECT_TRUE(sameBits(scalar.aperture.texels, avx2.aperture.texels)) << o.azimuths;
     EXPECT_EQ(scalar.skyViewFactor.empty(), !o.skyViewFactor);
     EXPECT_TRUE(sameBits(scalar.skyViewFactor, avx2.skyViewFactor)) << o.azimuths;
+  }
+}
+
+// The hull stacks of a group's lines lie an odd number of cache lines apart
+// whatever the length (at a power of two they shared a few L1 sets), with
+// room for a point per step.
+TEST(HorizonBlocks, HullStacksLieAnOddNumberOfCacheLinesApart) {
+  for (const int length : {1, 7, 8, 255, 256, 1000, 1024, 2048, 16385}) {
+    const size_t bytes =
+        sizeof(detail::HullPointF) * static_cast<size_t>(detail::hullStride(length));
+    EXPECT_GE(detail::hullStride(length), length);
+    EXPECT_EQ(bytes % 64, 0u) << length;
+    EXPECT_EQ(bytes / 64 % 2, 1u) << length;
   }
 }
 
