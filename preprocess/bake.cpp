@@ -281,11 +281,11 @@ BakeResult bakeWindow(const BakeTerrain& terrain, const BakeOptions& o) {
     assignOnHugePages(map.texels, sums * 4, 0.0f);
   }
   GisSums gis;
-  if (o.visibleFraction && !apertureSums) gis.visible.assign(sums, 0.0f);
-  if (o.skyViewFactor) gis.svf.assign(sums, 0.0f);
-  if (o.positiveOpenness) gis.openness.assign(sums, 0.0f);
-  if (o.anisotropicSkyViewFactor) gis.anisotropicSvf.assign(sums, 0.0f);
-  if (o.skyIllumination) gis.skyIllumination.assign(sums, 0.0f);
+  if (o.visibleFraction && !apertureSums) assignOnHugePages(gis.visible, sums, 0.0f);
+  if (o.skyViewFactor) assignOnHugePages(gis.svf, sums, 0.0f);
+  if (o.positiveOpenness) assignOnHugePages(gis.openness, sums, 0.0f);
+  if (o.anisotropicSkyViewFactor) assignOnHugePages(gis.anisotropicSvf, sums, 0.0f);
+  if (o.skyIllumination) assignOnHugePages(gis.skyIllumination, sums, 0.0f);
   if (o.horizons) {
     result.horizons.width = terrain.window.width;
     result.horizons.height = terrain.window.height;
