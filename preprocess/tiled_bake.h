@@ -69,6 +69,10 @@ class TiledBakeLock {
 // would need ~22 GB, with the EXR writer's buffers and the system more than
 // a 24 GiB machine has.
 constexpr size_t kInMemoryBakeTexelLimit = size_t(16384) * 16384;
+// GIS rasters alone (no aperture map: BakeOptions::apertureMap false) hold
+// about 6 bytes per texel plus 4 per raster, so twice the side fits as
+// well (32768 x 32768 with --svf: ~11 GB), when the memory check lets it.
+constexpr size_t kInMemoryRasterBakeTexelLimit = size_t(32768) * 32768;
 // What an in-memory bake holds at its peak per texel, with a margin over
 // the 20.2 B measured at 16384^2 (docs/performance.md), before --svf,
 // --visible (4 B each) and --horizons (1 B per direction) add theirs.

@@ -126,7 +126,7 @@ void checkOutputs(const Options& o, bool tiled) {
     if (tiled) {
       throw aal::InputError(
           "a tiled bake writes its tiles into the folder -o: give -o FOLDER (the DEM is above "
-          "16384x16384 texels, or --tile-size was given)");
+          "32768x32768 texels, or --tile-size was given)");
     }
     aal::checkDistinctFiles(dem, others);
   } else if (tiled) {
@@ -150,22 +150,31 @@ void checkOutputs(const Options& o, bool tiled) {
   }
 }
 
+// The most texels a bake holds in memory: rasters alone (no -o) need no
+// aperture sums, so they fit to twice the side.
+size_t inMemoryTexelLimit(const Options& o) {
+  return o.output.empty() ? aal::kInMemoryRasterBakeTexelLimit : aal::kInMemoryBakeTexelLimit;
+}
+std::string inMemorySideLimit(const Options& o) {
+  return o.output.empty() ? "32768x32768" : "16384x16384";
+}
+
 // Tiled when asked, or when the DEM is above the in-memory limit; then the
 // options must suit a tiled bake.
 bool checkTiling(const Options& o, const aal::DemSource& dem) {
   const size_t texels = static_cast<size_t>(dem.width()) * static_cast<size_t>(dem.height());
-  if (o.lowMemory && o.tileSize == 0 && texels <= aal::kInMemoryBakeTexelLimit) {
+  if (o.lowMemory && o.tileSize == 0 && texels <= inMemoryTexelLimit(o)) {
     throw aal::InputError(
         "--low-memory reads the DEM in windows for a tiled bake: give --tile-size");
   }
-  const bool tooLarge = texels > aal::kInMemoryBakeTexelLimit;
+  const bool tooLarge = texels > inMemoryTexelLimit(o);
   if (o.tileSize == 0 && !tooLarge) return false;
   if (o.output.empty()) checkOutputs(o, true);  // says that a tiled bake needs -o FOLDER
-  const std::string why =
-      o.tileSize > 0
-          ? std::string("a tiled bake (--tile-size)")
-          : "the DEM is " + std::to_string(dem.width()) + "x" + std::to_string(dem.height()) +
-                ": above 16384x16384 texels only a tiled bake fits in memory, which";
+  const std::string why = o.tileSize > 0 ? std::string("a tiled bake (--tile-size)")
+                                         : "the DEM is " + std::to_string(dem.width()) + "x" +
+                                               std::to_string(dem.height()) + ": above " +
+                                               inMemorySideLimit(o) +
+                                               " texels only a tiled bake fits in memory, which";
   if (o.method != "sweep") throw aal::InputError(why + " needs --method sweep");
   if (!o.svfPath.empty()) {
     throw aal::InputError(
@@ -638,7 +647,7 @@ void addTiledBakeOptions(CLI::App& app, Options& o) {
   app.add_option("--tile-size", o.tileSize,
                  "bake in tiles of N x N texels into the folder -o, resumable (without "
                  "--max-distance the far horizons come from a pyramid); DEMs above 16384x16384 "
-                 "texels are always baked tiled, in "
+                 "texels (32768x32768 for GIS rasters without -o) are always baked tiled, in "
                  "tiles of 4096")
       ->check(CLI::Range(aal::kMinTileSize, aal::kMaxTileSize));
   aal::addNearReachOption(app, o);
@@ -660,7 +669,8 @@ int main(int argc, char** argv) {
       "like the\nDEM for GIS tools (-o map.tif). Horizons come from the whole DEM (no "
       "distance limit\nunless --max-distance).\n\nAbove 16384x16384 texels (the in-memory bake's "
       "~20 bytes per texel, ~22 GB at the\nnext size up, would not fit 24 GiB) the DEM is baked in "
-      "tiles into the folder -o. Each tile\nis baked from itself plus a halo: with "
+      "tiles into the folder -o (rasters alone, without -o: above 32768x32768). Each tile\nis "
+      "baked from itself plus a halo: with "
       "--max-distance the terrain within that distance,\nequal to the in-memory bake; without, "
       "128 cells, and the horizons beyond from a pyramid\nof the whole DEM's block maxima (a far "
       "field, close to the in-memory bake). An "

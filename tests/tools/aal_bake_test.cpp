@@ -117,6 +117,45 @@ TEST(AalBake, RastersAloneNeedNoMap) {
   EXPECT_EQ(filesIn(dir.path()), 4u);
 }
 
+// Rasters alone (no map) are baked in memory up to 32768 x 32768 texels,
+// twice the map's side, when the memory check lets them: a 20000 x 20000
+// DEM (a VRT over a small GeoTIFF) meets the memory check, not the tiling
+// the map would need; above 32768 x 32768 a tiled bake is asked for.
+TEST(AalBake, RastersAloneStayInMemoryToTwiceTheMapsSide) {
+  TempDir dir;
+  writeDem(dir, 64, "small.tif");
+  const auto vrt = [&](int side) {
+    const fs::path path = dir.path() / ("big" + std::to_string(side) + ".vrt");
+    std::ofstream(path) << "<VRTDataset rasterXSize=\"" << side << "\" rasterYSize=\"" << side
+                        << "\">\n  <SRS>EPSG:32616</SRS>\n"
+                        << "  <GeoTransform>500000, 30, 0, 4000000, 0, -30</GeoTransform>\n"
+                        << "  <VRTRasterBand dataType=\"Float32\" band=\"1\">\n"
+                        << "    <SimpleSource><SourceFilename relativeToVRT=\"1\">small.tif"
+                        << "</SourceFilename>\n      <SourceBand>1</SourceBand>\n"
+                        << "    </SimpleSource>\n  </VRTRasterBand>\n</VRTDataset>\n";
+    return path;
+  };
+  const std::string svf = " --svf " + quoted(dir.path() / "svf.tif") + " -q";
+  const auto alone = runTool("aal-bake", quoted(vrt(20000)) + svf, "AAL_MEMORY_LIMIT=100M");
+  EXPECT_EQ(alone.exitCode, 2) << alone.out;
+  EXPECT_NE(alone.out.find("holding its bake in memory (10 bytes per texel) needs 4.00 GB"),
+            std::string::npos)
+      << alone.out;
+  const auto map =
+      runTool("aal-bake", quoted(vrt(20000)) + " -o " + quoted(dir.path() / "a.exr") + svf,
+              "AAL_MEMORY_LIMIT=100M");
+  EXPECT_EQ(map.exitCode, 2) << map.out;
+  EXPECT_NE(map.out.find("above 16384x16384 texels only a tiled bake fits in memory"),
+            std::string::npos)
+      << map.out;
+  const auto larger = runTool("aal-bake", quoted(vrt(33000)) + svf);
+  EXPECT_EQ(larger.exitCode, 2) << larger.out;
+  EXPECT_NE(larger.out.find("give -o FOLDER (the DEM is above 32768x32768 texels"),
+            std::string::npos)
+      << larger.out;
+  EXPECT_FALSE(fs::exists(dir.path() / "svf.tif"));
+}
+
 // --horizons writes the directional horizons of the same bake (docs/baking.md).
 TEST(AalBake, WritesTheDirectionalHorizons) {
   TempDir dir;
