@@ -242,8 +242,8 @@ void requireInMemoryBake(const Options& o, const aal::DemSource& dem) {
   aal::requireMemory(
       o.dem, texels * perTexel,
       "its bake in memory (" + std::to_string(std::lround(perTexel)) + " bytes per texel)",
-      "bake it in tiles (--tile-size 4096; with --low-memory the DEM is read a "
-      "window at a time)");
+      std::string("bake it in tiles (") + (o.output.empty() ? "-o FOLDER " : "") +
+          "--tile-size 4096; with --low-memory the DEM is read a window at a time)");
 }
 
 // The DEM as the bake reads it: its geometry always, its heights unless

@@ -63,6 +63,9 @@ TEST(MemoryLimit, RastersWithoutAMapCountNoApertureSums) {
   EXPECT_NE(tight.out.find("holding its bake in memory (10 bytes per texel) needs 2.6 MB"),
             std::string::npos)
       << tight.out;
+  // The tiles need their folder.
+  EXPECT_NE(tight.out.find("bake it in tiles (-o FOLDER --tile-size 4096"), std::string::npos)
+      << tight.out;
   EXPECT_FALSE(fs::exists(svf));
   const auto r =
       runTool("aal-bake", quoted(dem) + " --svf " + quoted(svf) + " -q", "AAL_MEMORY_LIMIT=4M");
