@@ -352,8 +352,8 @@ ApertureMapInfo bakeInfo(const Heightfield& field, const BakeOptions& o) {
 BakeResult bakeApertures(const Heightfield& field, const BakeOptions& o) {
   checkOptions(field, o);
   // The DEM's checksum (its rows hashed in parallel) is a task beside the
-  // sweeps rather than a wait after them.
-  // Only the map and the horizons carry it.
+  // sweeps rather than a wait after them; only the map and the horizons
+  // carry it.
   std::string checksum;
   tbb::task_group beside;
   if (o.apertureMap || o.horizons) beside.run([&] { checksum = heightfieldChecksum(field); });

@@ -125,8 +125,10 @@ void checkOutputs(const Options& o, bool tiled) {
     // No map: the rasters alone (checkNeedsOutput made sure there is one).
     if (tiled) {
       throw aal::InputError(
-          "a tiled bake writes its tiles into the folder -o: give -o FOLDER (the DEM is above "
-          "32768x32768 texels, or --tile-size was given)");
+          std::string("a tiled bake writes its tiles into the folder -o: give -o FOLDER (the DEM "
+                      "is above ") +
+          (o.method == "sweep" ? "32768x32768" : "16384x16384") +
+          " texels, or --tile-size was given)");
     }
     aal::checkDistinctFiles(dem, others);
   } else if (tiled) {
@@ -150,13 +152,19 @@ void checkOutputs(const Options& o, bool tiled) {
   }
 }
 
+// Without -o the sweep sums no aperture map (bakeOptions); the ray
+// reference always does.
+bool sumsNoMap(const Options& o) {
+  return o.output.empty() && o.method == "sweep";
+}
+
 // The most texels a bake holds in memory: rasters alone (no -o) need no
 // aperture sums, so they fit to twice the side.
 size_t inMemoryTexelLimit(const Options& o) {
-  return o.output.empty() ? aal::kInMemoryRasterBakeTexelLimit : aal::kInMemoryBakeTexelLimit;
+  return sumsNoMap(o) ? aal::kInMemoryRasterBakeTexelLimit : aal::kInMemoryBakeTexelLimit;
 }
 std::string inMemorySideLimit(const Options& o) {
-  return o.output.empty() ? "32768x32768" : "16384x16384";
+  return sumsNoMap(o) ? "32768x32768" : "16384x16384";
 }
 
 // Tiled when asked, or when the DEM is above the in-memory limit; then the
@@ -234,7 +242,7 @@ void requireInMemoryBake(const Options& o, const aal::DemSource& dem) {
   const double texels = double(dem.width()) * double(dem.height());
   // Negative openness: its sums and the inverted heights it sweeps.
   const double perTexel =
-      aal::kInMemoryBakeBytesPerTexel - (o.output.empty() ? aal::kApertureSumBytesPerTexel : 0) +
+      aal::kInMemoryBakeBytesPerTexel - (sumsNoMap(o) ? aal::kApertureSumBytesPerTexel : 0) +
       (o.svf ? 4 : 0) + (o.visiblePath.empty() ? 0 : 4) + (o.positiveOpennessPath.empty() ? 0 : 4) +
       (o.negativeOpennessPath.empty() ? 0 : 8) + (o.localDominancePath.empty() ? 0 : 4) +
       (o.anisotropicSvfPath.empty() ? 0 : 4) + (o.skyIlluminationPath.empty() ? 0 : 4) +
