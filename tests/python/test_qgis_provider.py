@@ -164,6 +164,22 @@ def test_sky_illumination_and_anisotropic_svf_are_placed_like_the_dem(qgis_app, 
     assert files_in(tmp_path) == ["asvf.tif", "dem.tif", "sky.tif"]
 
 
+def test_sky_view_factor_sums_no_map_unless_one_is_asked_for(qgis_app, tmp_path, monkeypatch):
+    import processing
+    from aperture_processing import algorithm
+    command_lines = []
+    monkeypatch.setattr(algorithm.ApertureAlgorithm, "run_tool",
+                        lambda self, tool, arguments, feedback: command_lines.append(arguments))
+    dem = write_dem(tmp_path / "dem.tif", hills(16, 16))
+    outputs = {"INPUT": str(dem), "SKY_VIEW_FACTOR": str(tmp_path / "svf.tif")}
+    processing.run("aperture:skyviewfactor", outputs)
+    processing.run("aperture:skyviewfactor", {**outputs, "APERTURE_MAP": str(tmp_path / "a.exr")})
+    # The rasters alone: aal-bake without -o, which sums no aperture map.
+    alone, with_map = command_lines
+    assert "-o" not in alone
+    assert with_map[with_map.index("-o") + 1] == str(tmp_path / "a.exr")
+
+
 def test_sky_view_factor_without_an_output_is_refused(qgis_app, tmp_path):
     import processing
     dem = write_dem(tmp_path / "dem.tif", hills(16, 16))

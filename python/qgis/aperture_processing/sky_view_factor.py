@@ -1,11 +1,8 @@
 """Sky-view factor and visible sky: aal-bake --svf / --visible (docs/baking.md)."""
 
-import os
-
 from qgis.core import (QgsProcessingException, QgsProcessingParameterBoolean,
                        QgsProcessingParameterEnum, QgsProcessingParameterFileDestination,
-                       QgsProcessingParameterNumber, QgsProcessingParameterRasterDestination,
-                       QgsProcessingUtils)
+                       QgsProcessingParameterNumber, QgsProcessingParameterRasterDestination)
 
 from .algorithm import ApertureAlgorithm
 
@@ -85,24 +82,19 @@ class SkyViewFactorAlgorithm(ApertureAlgorithm):
             raise QgsProcessingException(
                 "no output chosen: choose at least one of " +
                 ", ".join(description for _, _, description, _ in BAKE_RASTER_OUTPUTS))
+        # Without a map asked for, aal-bake writes the rasters alone and sums
+        # no aperture map: about a fifth faster.
         aperture = self.parameterAsFileOutput(parameters, APERTURE_MAP, context) \
             if self.given(parameters, APERTURE_MAP) else ""
-        keep_aperture = bool(aperture)
-        if not keep_aperture:
-            aperture = QgsProcessingUtils.generateTempFilename("aperture.exr")
+        if aperture:
+            arguments += ["-o", aperture]
+            results[APERTURE_MAP] = aperture
         arguments += [
-            "-o", aperture,
             f"--azimuths={self.parameterAsInt(parameters, AZIMUTHS, context)}",
             f"--max-distance={self.parameterAsDouble(parameters, MAX_DISTANCE, context):.17g}",
             f"--edge={EDGES[self.parameterAsEnum(parameters, EDGE, context)]}",
         ]
         if self.parameterAsBool(parameters, CURVATURE, context):
             arguments.append("--curvature")
-        try:
-            self.run_tool("aal-bake", arguments, feedback)
-        finally:
-            if not keep_aperture and os.path.exists(aperture):
-                os.remove(aperture)
-        if keep_aperture:
-            results[APERTURE_MAP] = aperture
+        self.run_tool("aal-bake", arguments, feedback)
         return results
