@@ -35,12 +35,18 @@ void SliceAccumulator::addRun(const HorizonRun& run, const AzimuthSlice& s) cons
   alignas(32) float east[HorizonBlock::kPaddedTexels] = {};
   alignas(32) float north[HorizonBlock::kPaddedTexels] = {};
   for (int j = 0; j < run.count; ++j) {
-    const int minor = run.minorFirst + j;
-    const int col = run.majorIsColumn ? run.major : minor;
-    const int row = run.majorIsColumn ? minor : run.major;
     tanH[j] = std::max(static_cast<float>(run.tanHorizon[j]), kNoHorizonTangent);
-    east[j] = terrain_.slopeEastAt(col, row);
-    north[j] = terrain_.slopeNorthAt(col, row);
+  }
+  // The slopes only where a term takes the tangent plane (the sky-view
+  // factor and openness do not): a tenth of a 1024² --svf bake within 10 km.
+  if (sums_ != nullptr || !gis_.visible.empty() || !gis_.skyIllumination.empty()) {
+    for (int j = 0; j < run.count; ++j) {
+      const int minor = run.minorFirst + j;
+      const int col = run.majorIsColumn ? run.major : minor;
+      const int row = run.majorIsColumn ? minor : run.major;
+      east[j] = terrain_.slopeEastAt(col, row);
+      north[j] = terrain_.slopeNorthAt(col, row);
+    }
   }
   const int first = run.minorFirst;
   HorizonBlock b{run.majorIsColumn ? terrain_.windowIndex(run.major, first)

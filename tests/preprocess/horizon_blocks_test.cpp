@@ -451,6 +451,10 @@ TEST(HorizonBlocks, BakesWithoutTheMapGiveTheSameRasters) {
         ASSERT_EQ(map.visibleFraction.size(), field.texelCount()) << where;
         EXPECT_TRUE(sameBits(map.visibleFraction, gis.visibleFraction)) << where;
         EXPECT_TRUE(sameBits(map.skyViewFactor, gis.skyViewFactor)) << where;
+        // The sky-view factor alone, which takes no slopes.
+        o.visibleFraction = false;
+        EXPECT_TRUE(sameBits(map.skyViewFactor, bakeApertures(field, o).skyViewFactor)) << where;
+        o.visibleFraction = true;
         // The map's arc length r holds the same share: 1 - cos r.
         double worst = 0;
         for (size_t i = 0; i < field.texelCount(); ++i) {
