@@ -150,7 +150,7 @@ def sky_view_factor(dem, cell_size, **options):
     Takes bake()'s arguments (azimuths, max_distance, edge, curvature, refraction, z_scale,
     nodata, threads, progress). Returns a float32 (H, W) array in [0, 1], NaN at voids: the
     GIS sky-view factor 1 - mean_phi sin(max(h(phi), 0)) (Zaksek et al. 2011), equal bit for
-    bit to aal-bake --svf.
+    bit to aal-bake --svf. Sums no aperture map: sooner than bake().
     """
     return _bake(dem, cell_size, False, **options).sky_view_factor
 
