@@ -116,6 +116,21 @@ void checkNeedsOutput(const Options& o) {
       "--svf-anisotropic, --sky-illumination or --horizons)");
 }
 
+// Without -o the sweep sums no aperture map (bakeOptions); the ray
+// reference always does.
+bool sumsNoMap(const Options& o) {
+  return o.output.empty() && o.method == "sweep";
+}
+
+// The most texels a bake holds in memory: rasters alone (no -o) need no
+// aperture sums, so they fit to twice the side.
+size_t inMemoryTexelLimit(const Options& o) {
+  return sumsNoMap(o) ? aal::kInMemoryRasterBakeTexelLimit : aal::kInMemoryBakeTexelLimit;
+}
+std::string inMemorySideLimit(const Options& o) {
+  return sumsNoMap(o) ? "32768x32768" : "16384x16384";
+}
+
 void checkOutputs(const Options& o, bool tiled) {
   // Every output against the DEM's files (a VRT's sources too) and each
   // other; a tiled bake's files by their names in its folder.
@@ -125,10 +140,8 @@ void checkOutputs(const Options& o, bool tiled) {
     // No map: the rasters alone (checkNeedsOutput made sure there is one).
     if (tiled) {
       throw aal::InputError(
-          std::string("a tiled bake writes its tiles into the folder -o: give -o FOLDER (the DEM "
-                      "is above ") +
-          (o.method == "sweep" ? "32768x32768" : "16384x16384") +
-          " texels, or --tile-size was given)");
+          "a tiled bake writes its tiles into the folder -o: give -o FOLDER (the DEM is above " +
+          inMemorySideLimit(o) + " texels, or --tile-size was given)");
     }
     aal::checkDistinctFiles(dem, others);
   } else if (tiled) {
@@ -150,21 +163,6 @@ void checkOutputs(const Options& o, bool tiled) {
   for (const aal::RunPath& raster : others) {
     if (!raster.path.empty()) aal::requireWritableOutput(raster.path);
   }
-}
-
-// Without -o the sweep sums no aperture map (bakeOptions); the ray
-// reference always does.
-bool sumsNoMap(const Options& o) {
-  return o.output.empty() && o.method == "sweep";
-}
-
-// The most texels a bake holds in memory: rasters alone (no -o) need no
-// aperture sums, so they fit to twice the side.
-size_t inMemoryTexelLimit(const Options& o) {
-  return sumsNoMap(o) ? aal::kInMemoryRasterBakeTexelLimit : aal::kInMemoryBakeTexelLimit;
-}
-std::string inMemorySideLimit(const Options& o) {
-  return sumsNoMap(o) ? "32768x32768" : "16384x16384";
 }
 
 // Tiled when asked, or when the DEM is above the in-memory limit; then the
@@ -288,7 +286,7 @@ aal::BakeOptions bakeOptions(const Options& o) {
   bake.rays = o.rays;
   bake.skyViewFactor = o.svf;
   // Without -o only GIS rasters are written: no aperture map is summed.
-  bake.apertureMap = !o.output.empty();
+  bake.apertureMap = !sumsNoMap(o);
   bake.visibleFraction = !o.visiblePath.empty();
   if (bake.skyViewFactor && bake.method == aal::BakeMethod::Rays) {
     throw aal::InputError("--svf needs --method sweep (the ray reference has no horizons)");
