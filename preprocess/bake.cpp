@@ -77,6 +77,12 @@ void checkOptions(HeightView heights, const BakeOptions& o) {
   }
 }
 
+// Whether the bake sums the aperture map: asked for, or the ray
+// reference's (which has no other sums).
+bool keepsApertureMap(const BakeOptions& o) {
+  return o.apertureMap || o.method != BakeMethod::Sweep;
+}
+
 void checkCancel(const BakeOptions& o) {
   if (o.cancel && o.cancel->load(std::memory_order_relaxed)) throw BakeCancelled();
 }
@@ -233,19 +239,12 @@ void finishApertures(const BakeTerrain& terrain, std::vector<float>& texels) {
   });
 }
 
-// The visible solid angles, the fourth of each texel's 4 sums.
-std::vector<float> visibleFractions(const std::vector<float>& texels) {
-  std::vector<float> solidAngles(texels.size() / 4);
-  tbb::parallel_for(size_t(0), solidAngles.size(),
-                    [&](size_t i) { solidAngles[i] = texels[4 * i + 3]; });
-  return solidAngles;
-}
-
-// Visible solid angles to shares of the hemisphere, in place (as
-// finishApertures takes them before its arc lengths).
-void finishVisibleFractions(std::vector<float>& solidAngles) {
-  tbb::parallel_for(size_t(0), solidAngles.size(), [&](size_t i) {
-    solidAngles[i] = static_cast<float>(std::clamp(solidAngles[i] / kTwoPi, 0.0, 1.0));
+// Visible solid angles, `stride` floats apart (4 in the aperture sums, 1
+// in the GIS sums, where `shares` may be those sums: in place), to shares
+// of the hemisphere, as finishApertures takes them before its arc lengths.
+void visibleShares(const float* solidAngles, size_t stride, std::vector<float>& shares) {
+  tbb::parallel_for(size_t(0), shares.size(), [&](size_t i) {
+    shares[i] = static_cast<float>(std::clamp(solidAngles[stride * i] / kTwoPi, 0.0, 1.0));
   });
 }
 
@@ -274,7 +273,7 @@ BakeResult bakeWindow(const BakeTerrain& terrain, const BakeOptions& o) {
   const size_t sums = summed.pitchedTexelCount();
   BakeResult result;
   ApertureMap& map = result.aperture;
-  const bool apertureSums = o.apertureMap || o.method != BakeMethod::Sweep;
+  const bool apertureSums = keepsApertureMap(o);
   if (apertureSums) {
     map.width = terrain.window.width;
     map.height = terrain.window.height;
@@ -321,9 +320,12 @@ BakeResult bakeWindow(const BakeTerrain& terrain, const BakeOptions& o) {
     bakeRays(terrain, o, map.texels.data(), gis.svf);
   }
   result.skyViewFactor = std::move(gis.svf);
-  if (o.visibleFraction) {
-    result.visibleFraction = apertureSums ? visibleFractions(map.texels) : std::move(gis.visible);
-    finishVisibleFractions(result.visibleFraction);
+  if (o.visibleFraction && apertureSums) {
+    result.visibleFraction.resize(map.texels.size() / 4);
+    visibleShares(map.texels.data() + 3, 4, result.visibleFraction);
+  } else if (o.visibleFraction) {
+    result.visibleFraction = std::move(gis.visible);
+    visibleShares(result.visibleFraction.data(), 1, result.visibleFraction);
   }
   finishApertures(terrain, map.texels);
   map.info = bakeInfo(*terrain.heights.dem, o);
@@ -356,7 +358,9 @@ BakeResult bakeApertures(const Heightfield& field, const BakeOptions& o) {
   // carry it.
   std::string checksum;
   tbb::task_group beside;
-  if (o.apertureMap || o.horizons) beside.run([&] { checksum = heightfieldChecksum(field); });
+  if (keepsApertureMap(o) || o.horizons) {
+    beside.run([&] { checksum = heightfieldChecksum(field); });
+  }
   BakeResult result;
   try {
     result = bakeWindow(prepareBakeTerrain(field), o);

@@ -12,6 +12,15 @@
 
 namespace aal {
 
+namespace {
+
+// The tangent of the texel's tangent plane (its slope) in slice s's azimuth.
+inline float tanPlaneOf(const HorizonBlock& b, int j, const AzimuthSlice& s) {
+  return b.slopeEast[j] * s.cosPhi + b.slopeNorth[j] * s.sinPhi;
+}
+
+}  // namespace
+
 SliceAccumulator::SliceAccumulator(const BakeTerrain& terrain, const BakeOptions& o, float* sums,
                                    GisSums& gis, uint8_t* horizonCodes)
     : terrain_(terrain),
@@ -159,13 +168,13 @@ inline void SliceAccumulator::addVisibleSky(const HorizonBlock& b, const float* 
                                             const AzimuthSlice* opposite) const {
   float terms[HorizonBlock::kLines];
   for (int j = 0; j < b.count; ++j) {
-    const float tanPlane = b.slopeEast[j] * s.cosPhi + b.slopeNorth[j] * s.sinPhi;
+    const float tanPlane = tanPlaneOf(b, j, s);
     terms[j] = visibleSliceTerm(std::max(tanHorizon[j], tanPlane), s.dPhi);
   }
   if (opposite) {
     for (int j = 0; j < b.count; ++j) {
-      const float tanPlane = b.slopeEast[j] * opposite->cosPhi + b.slopeNorth[j] * opposite->sinPhi;
-      terms[j] += visibleSliceTerm(std::max(tanOpposite[j], tanPlane), opposite->dPhi);
+      terms[j] +=
+          visibleSliceTerm(std::max(tanOpposite[j], tanPlaneOf(b, j, *opposite)), opposite->dPhi);
     }
   }
   float* sum = gis_.visible.data() + b.firstTexel;
@@ -199,7 +208,7 @@ inline void SliceAccumulator::addSkyViewFactor(const HorizonBlock& b, const floa
 inline void SliceAccumulator::addSkyIllumination(const HorizonBlock& b, const float* tanHorizon,
                                                  const AzimuthSlice& s) const {
   for (int j = 0; j < b.count; ++j) {
-    const float tanPlane = b.slopeEast[j] * s.cosPhi + b.slopeNorth[j] * s.sinPhi;
+    const float tanPlane = tanPlaneOf(b, j, s);
     const float t0 = std::max({0.0f, tanHorizon[j], tanPlane});
     gis_.skyIllumination[b.firstTexel + j * b.stride] +=
         skyIlluminationSlice(t0, tanPlane, o_.skyModel);
@@ -211,7 +220,7 @@ inline void SliceAccumulator::addSkyIllumination(const HorizonBlock& b, const fl
 inline void SliceAccumulator::sliceTerms(const HorizonBlock& b, const float* tanHorizon,
                                          const AzimuthSlice& s, float (*terms)[4]) const {
   for (int j = 0; j < b.count; ++j) {
-    const float tanPlane = b.slopeEast[j] * s.cosPhi + b.slopeNorth[j] * s.sinPhi;
+    const float tanPlane = tanPlaneOf(b, j, s);
     skySliceTerms(terms[j], std::max(tanHorizon[j], tanPlane), s.dPhi, s.cosPhiDPhi, s.sinPhiDPhi);
   }
 }

@@ -64,7 +64,7 @@ class TiledBakeLock {
   int fd_ = -1;
 };
 
-// Above this many texels (16384 x 16384) a DEM is baked tiled: at the
+// Above this many texels (16384 x 16384) a DEM and its map are baked tiled: at the
 // in-memory bake's ~20 bytes per texel the next size up, 32768 x 32768,
 // would need ~22 GB, with the EXR writer's buffers and the system more than
 // a 24 GiB machine has.
