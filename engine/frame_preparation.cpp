@@ -14,7 +14,6 @@
 #include "aperture/engine/terrain_renderer.h"
 #include "aperture/engine/terrain_scene.h"
 #include "aperture/engine/vk/device.h"
-#include "aperture/engine/vk/frames_in_flight.h"
 #include "aperture/terrain/io/horizon_map.h"
 #include "aperture/terrain/light/cap_table.h"
 #include "aperture/terrain/light/obscurance_samples.h"
@@ -168,10 +167,8 @@ void setTiles(FrameUniforms& u, const TerrainTileLayout& tiles) {
 FramePlan TerrainRenderer::prepareFrame(const TerrainScene& scene, const FrameSettings& s,
                                         const FrameOutput& output) {
   // The host writes the uniforms, the obscurance samples and the LOD patches
-  // in place, and the cap table's copy starts from an undefined image at the
-  // transfer stage: no earlier frame may still read them. A copy of each per
-  // frame in flight before this may rise.
-  static_assert(kFramesInFlight == 1, "the frame's host-written buffers are single");
+  // into the frame slot's copies (record() picked them), which no frame in
+  // flight uses.
   const float scale = std::clamp(output.resolutionScale, 0.05f, 1.0f);
   if (scale < 1.0f && (output.image == VK_NULL_HANDLE || output.linear)) {
     throw std::invalid_argument(
@@ -274,7 +271,7 @@ void TerrainRenderer::writeUniforms(const TerrainScene& scene, const FrameSettin
         scene.horizonDirections(), scene.horizonChannels(), sunAzimuthRad(u.sunDirection));
     u.horizonWeights = glm::vec2(w[0], w[1]);
   }
-  uniforms_.write(&u, sizeof u);
+  slot_->uniforms.write(&u, sizeof u);
 }
 
 void TerrainRenderer::setObscurance(FrameUniforms& u, const TerrainScene& scene,
@@ -298,7 +295,7 @@ void TerrainRenderer::setObscurance(FrameUniforms& u, const TerrainScene& scene,
             glm::vec4(offsets[i], 0.0f);
       }
     }
-    samples_.write(&block, sizeof block);
+    slot_->samples.write(&block, sizeof block);
   }
   if (obscurance && o.history != ObscuranceSettings::History::None) {
     // The samples kept from the previous frame belong to the same terrain,
@@ -343,15 +340,18 @@ void TerrainRenderer::selectPatches(const TerrainScene& scene, const FrameSettin
   selection_ = selectLodForFrame(scene.lod(), frame);
   // At least one instance, so the buffer exists when nothing is in view.
   const size_t bytes = std::max<size_t>(selection_.patches.size(), 1) * sizeof(LodPatch);
-  if (patches_.size() < bytes) {
+  Buffer& patches = slot_->patches;
+  if (patches.size() < bytes) {
     // Grow by half again to avoid a new one every frame. The old buffer is
-    // retired: a frame in flight may still read it.
+    // retired, not destroyed: a command recorded before into the same
+    // command buffer (the viewer's screenshot records a frame twice) may
+    // still read it.
     device_.deletionQueue().retire(
-        std::exchange(patches_, Buffer(device_, bytes + bytes / 2,
-                                       VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, MemoryIntent::Upload)));
+        std::exchange(patches, Buffer(device_, bytes + bytes / 2,
+                                      VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, MemoryIntent::Upload)));
   }
   if (!selection_.patches.empty()) {
-    patches_.write(selection_.patches.data(), selection_.patches.size() * sizeof(LodPatch));
+    patches.write(selection_.patches.data(), selection_.patches.size() * sizeof(LodPatch));
   }
 }
 

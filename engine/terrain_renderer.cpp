@@ -1,6 +1,8 @@
 #include "aperture/engine/terrain_renderer.h"
 
 #include <chrono>
+#include <stdexcept>
+#include <string>
 
 #include <Imath/half.h>
 
@@ -10,6 +12,7 @@
 #include "aperture/engine/terrain_scene.h"
 #include "aperture/engine/vk/commands.h"
 #include "aperture/engine/vk/device.h"
+#include "aperture/engine/vk/frames_in_flight.h"
 #include "aperture/engine/vk/serial_pass_timer.h"
 
 namespace aal {
@@ -46,17 +49,38 @@ TerrainRenderer::TerrainRenderer(const Device& device, uint32_t width, uint32_t 
                          VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_SAMPLED_BIT}),
       capTable_(device, {AAL_CAP_TABLE_WIDTH, AAL_CAP_TABLE_HEIGHT, kCapTableFormat,
                          VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT}),
-      uniforms_(device, sizeof(FrameUniforms), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT,
-                MemoryIntent::Upload),
-      samples_(device, sizeof(ObscuranceSampleBlock), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT,
-               MemoryIntent::Upload),
-      passes_(std::make_unique<PassPipelines>(device, displayFormat)),
-      timer_(device, 8) {}
+      passes_(std::make_unique<PassPipelines>(device, displayFormat)) {
+  for (uint32_t i = 0; i < kFramesInFlight; ++i)
+    slots_.push_back(std::make_unique<FrameSlot>(device));
+  slot_ = slots_.front().get();
+}
 
 TerrainRenderer::~TerrainRenderer() = default;
 
+TerrainRenderer::FrameSlot::FrameSlot(const Device& device)
+    : uniforms(device, sizeof(FrameUniforms), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT,
+               MemoryIntent::Upload),
+      samples(device, sizeof(ObscuranceSampleBlock), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT,
+              MemoryIntent::Upload),
+      timer(device, 8) {}
+
+std::vector<std::pair<std::string, double>> TerrainRenderer::passMilliseconds(
+    uint32_t frameSlot) const {
+  if (frameSlot >= slots_.size()) {
+    throw std::invalid_argument("TerrainRenderer::passMilliseconds: no frame slot " +
+                                std::to_string(frameSlot));
+  }
+  return slots_[frameSlot]->timer.results();
+}
+
 void TerrainRenderer::record(VkCommandBuffer cmd, const TerrainScene& scene, const FrameSettings& s,
                              const FrameOutput& output) {
+  if (output.frameSlot >= slots_.size()) {
+    throw std::invalid_argument("TerrainRenderer::record: frame slot " +
+                                std::to_string(output.frameSlot) + " of " +
+                                std::to_string(slots_.size()));
+  }
+  slot_ = slots_[output.frameSlot].get();
   // Profiled, the host's part is a step of its own.
   const auto wall0 =
       serial_ ? std::chrono::steady_clock::now() : std::chrono::steady_clock::time_point{};
@@ -66,13 +90,17 @@ void TerrainRenderer::record(VkCommandBuffer cmd, const TerrainScene& scene, con
     const std::chrono::duration<double, std::milli> wall = std::chrono::steady_clock::now() - wall0;
     serial_->addHost("prepare (host)", wall.count(), processCpuMs() - cpu0);
   }
-  const PassContext pass{cmd, scene, *passes_, timer_, uniforms_, patches_, samples_};
+  const PassContext pass{
+      cmd, scene, *passes_, slot_->timer, slot_->uniforms, slot_->patches, slot_->samples};
   const FrameTargets targets = frameTargets();
   // Profiled (profile()): each step submitted on its own.
   const auto step = [&](const char* name) {
     if (serial_) serial_->split(cmd, name);
   };
-  timer_.reset(cmd);
+  // The frame before may still be on the device (frames in flight): its
+  // reads and writes of the targets come first.
+  waitForEarlierCommands(cmd);
+  slot_->timer.reset(cmd);
   if (plan.capTableUpload) recordCapTableUpload(cmd, capTableStaging_, capTable_);
   recordSkyTable(pass, targets);
   step("sky table");
@@ -199,7 +227,7 @@ FrameResult TerrainRenderer::renderHeadless(const TerrainScene& scene, const Fra
     linearReadback.read(halves.data(), halves.size() * sizeof(Imath::half));
     result.linear.assign(halves.begin(), halves.end());
   }
-  result.passMilliseconds = timer_.results();
+  result.passMilliseconds = slot_->timer.results();
   result.triangles = selection_.triangles;
   result.patchesPerLevel = selection_.patchesPerLevel;
   return result;

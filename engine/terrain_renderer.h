@@ -126,6 +126,12 @@ struct FrameOutput {
   // goes with any frame that does not accumulate, with a switch between the
   // two uses, and with restartTemporal().
   bool temporal = false;
+  // Which copy of the frame's host-written buffers (uniforms, obscurance
+  // samples, LOD patches) and of the GPU timer it uses, 0 ..
+  // kFramesInFlight - 1 (engine/vk/frames_in_flight.h): the windowed loop's
+  // FrameSync::slot(). The frame that last used the slot must have
+  // completed; headless frames, each waited for, use 0.
+  uint32_t frameSlot = 0;
 };
 
 class TerrainRenderer {
@@ -164,10 +170,11 @@ class TerrainRenderer {
 
   // Records the frame's passes into `cmd` (the windowed viewer presents the
   // result; see FrameOutput for where it goes). Writes the frame's uniforms
-  // at once, so no earlier frame may still be in flight (kFramesInFlight is
-  // 1, engine/vk/frames_in_flight.h); what it replaces (a grown patch
-  // buffer, the cap table's staging) it retires into the device's
-  // DeletionQueue. In the horizon mode it first re-lays the scene's horizons
+  // at once, into the copies of output.frameSlot, which no frame in flight
+  // may use; its first barrier waits for every earlier frame's work (the
+  // passes rewrite the images the frame before may still read). What it
+  // replaces (a grown patch buffer, the cap table's staging) it retires into
+  // the device's DeletionQueue. In the horizon mode it first re-lays the scene's horizons
   // when the frame's sun left their pair of directions
   // (TerrainScene::relayHorizons: an upload and a compute pass, waited for;
   // docs/rendering.md). With `output.linear` hdrImage() then holds the
@@ -183,8 +190,9 @@ class TerrainRenderer {
   uint32_t height() const { return height_; }
   // The LOD selection of the last recorded frame (its triangle count).
   const LodSelection& lodSelection() const { return selection_; }
-  // Milliseconds per pass of the last recorded frame, once it has finished.
-  std::vector<std::pair<std::string, double>> passMilliseconds() const { return timer_.results(); }
+  // Milliseconds per pass of the last frame recorded in `frameSlot`
+  // (FrameOutput::frameSlot), once it has finished; empty before one was.
+  std::vector<std::pair<std::string, double>> passMilliseconds(uint32_t frameSlot = 0) const;
 
  private:
   // The host's part of the frame (engine/frame_preparation.cpp), the only
@@ -257,8 +265,16 @@ class TerrainRenderer {
   float horizonSunAzimuth_ = 0.0f;
   glm::mat4 previousViewProj_{1.0f};
   VkExtent2D previousExtent_{0, 0};
-  Buffer uniforms_, samples_;
-  Buffer patches_;  // LodPatch instances of the frame (grows as needed)
+  // What the host writes for a frame, and the frame's GPU timer: one of
+  // each per frame in flight (FrameOutput::frameSlot).
+  struct FrameSlot {
+    explicit FrameSlot(const Device& device);
+    Buffer uniforms, samples;
+    Buffer patches;  // LodPatch instances of the frame (grows as needed)
+    GpuTimer timer;
+  };
+  std::vector<std::unique_ptr<FrameSlot>> slots_;
+  FrameSlot* slot_ = nullptr;  // of the frame being prepared and recorded
   LodSelection selection_;
   glm::mat4 viewProj_{1.0f};   // of the last writeUniforms, without the jitter
   glm::dmat4 viewProjD_{1.0};  // the same in double (the reprojections invert it)
@@ -281,7 +297,6 @@ class TerrainRenderer {
   uint32_t jitterIndex_ = 0;
   glm::vec2 jitter_{0.0f};
   std::unique_ptr<PassPipelines> passes_;
-  GpuTimer timer_;
   // Set while profile() records: each step is then submitted on its own.
   SerialPassTimer* serial_ = nullptr;
 };

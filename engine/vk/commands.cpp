@@ -51,4 +51,17 @@ void submitAndWait(const Device& device, const std::function<void(VkCommandBuffe
   AAL_VK_CHECK(vkWaitForFences(vk, 1, &fence, VK_TRUE, UINT64_MAX));
 }
 
+void waitForEarlierCommands(VkCommandBuffer cmd) {
+  const VkMemoryBarrier2 barrier{
+      .sType = VK_STRUCTURE_TYPE_MEMORY_BARRIER_2,
+      .srcStageMask = VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT,
+      .srcAccessMask = VK_ACCESS_2_MEMORY_WRITE_BIT,
+      .dstStageMask = VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT,
+      .dstAccessMask = VK_ACCESS_2_MEMORY_READ_BIT | VK_ACCESS_2_MEMORY_WRITE_BIT};
+  const VkDependencyInfo dependency{.sType = VK_STRUCTURE_TYPE_DEPENDENCY_INFO,
+                                    .memoryBarrierCount = 1,
+                                    .pMemoryBarriers = &barrier};
+  vkCmdPipelineBarrier2(cmd, &dependency);
+}
+
 }  // namespace aal

@@ -18,4 +18,12 @@ class Device;
 // headless frame ends itself after its wait (TerrainRenderer::render).
 void submitAndWait(const Device& device, const std::function<void(VkCommandBuffer)>& record);
 
+// A barrier after which the commands recorded into `cmd` start only once
+// every command submitted to the queue before them (earlier frames in
+// flight included) has completed, its writes visible: a frame's first
+// command, so that with frames in flight only the host's work overlaps the
+// device's, and a pass may rewrite an image that the frame before read at
+// any stage.
+void waitForEarlierCommands(VkCommandBuffer cmd);
+
 }  // namespace aal

@@ -44,6 +44,10 @@ class FrameSync {
   // the next slot.
   void submit(uint32_t imageIndex);
 
+  // The frame's slot, 0 .. kFramesInFlight - 1: the frame kFramesInFlight
+  // back used it, and has completed after waitForFrameSlot (what the
+  // renderer's per-slot copies are indexed by, FrameOutput::frameSlot).
+  uint32_t slot() const { return slot_; }
   // The frame's acquire semaphore.
   VkSemaphore acquired() const { return slots_[slot_].acquired; }
   VkSemaphore rendered(uint32_t imageIndex) const { return rendered_[imageIndex]; }

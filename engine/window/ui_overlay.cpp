@@ -5,10 +5,12 @@
 #include <backends/imgui_impl_vulkan.h>
 #include <imgui.h>
 
+#include <algorithm>
 #include <cfloat>
 
 #include "aperture/engine/vk/commands.h"
 #include "aperture/engine/vk/device.h"
+#include "aperture/engine/vk/frames_in_flight.h"
 #include "aperture/engine/vk/instance.h"
 #include "aperture/engine/vk/vk_check.h"
 #include "aperture/engine/window/swapchain.h"
@@ -103,7 +105,9 @@ UiOverlay::UiOverlay(const Instance& instance, const Device& device, Window& win
   info.DescriptorPool = descriptorPool_;
   info.Subpass = 0;
   info.MinImageCount = swapchain.minImageCount();
-  info.ImageCount = swapchain.imageCount();
+  // ImGui's vertex buffers, written by the host each frame, rotate over
+  // ImageCount copies: at least one per frame in flight.
+  info.ImageCount = std::max(swapchain.imageCount(), kFramesInFlight);
   info.MSAASamples = VK_SAMPLE_COUNT_1_BIT;
   info.CheckVkResultFn = checkImGuiVkResult;
   ImGui_ImplVulkan_Init(&info, renderPass_);

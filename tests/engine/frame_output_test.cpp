@@ -19,6 +19,7 @@
 #include "aperture/engine/terrain_scene.h"
 #include "aperture/engine/vk/buffer.h"
 #include "aperture/engine/vk/commands.h"
+#include "aperture/engine/vk/frames_in_flight.h"
 #include "aperture/engine/vk/image.h"
 #include "aperture/preprocess/bake.h"
 #include "aperture/terrain/light/sky_lighting.h"
@@ -212,6 +213,49 @@ TEST_F(FrameOutputTest, FramesGoStraightIntoAnotherImage) {
           << "format " << format << (obscurance ? " with obscurance" : "");
     }
   }
+}
+
+// Frames in flight (FrameOutput::frameSlot): the host prepares a frame
+// while the one before may still be on the device. Here the second frame is
+// recorded after the first, with other settings (the sun, the camera: other
+// uniforms, LOD patches and obscurance samples), and runs before it: each
+// frame still draws what it was recorded with, its own picture.
+TEST_F(FrameOutputTest, FramesInFlightKeepWhatTheyWereRecordedWith) {
+  static_assert(kFramesInFlight >= 2, "two frames in flight");
+  const Heightfield f = fbm();
+  const ApertureMap aperture = bake(f);
+  const TerrainScene scene(device(), f, aperture, nullptr, 100000);
+  TerrainRenderer renderer(device(), kWidth, kHeight);
+  FrameSettings first = view(ShadingMode::Approx, true);
+  FrameSettings second = first;
+  setSunAndSky(second.lighting, 250, 30, 2.5);
+  second.camera.position = {1500, -2000, 1400};
+  second.obscurance.samples = first.obscurance.samples / 2;
+  const FrameResult firstAlone = renderer.render(scene, first, false);
+  const FrameResult secondAlone = renderer.render(scene, second, false);
+  ASSERT_GT(largestDifference(firstAlone.display, secondAlone.display), 32);
+
+  const ImageDesc desc{kWidth, kHeight, VK_FORMAT_R8G8B8A8_UNORM,
+                       VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT};
+  const Image firstTarget(device(), desc), secondTarget(device(), desc);
+  submitAndWait(device(), [&](VkCommandBuffer firstCommands) {
+    renderer.record(firstCommands, scene, first,
+                    {.image = firstTarget.handle(), .view = firstTarget.view(), .frameSlot = 0});
+    submitAndWait(device(), [&](VkCommandBuffer secondCommands) {
+      renderer.record(
+          secondCommands, scene, second,
+          {.image = secondTarget.handle(), .view = secondTarget.view(), .frameSlot = 1});
+    });
+  });
+  EXPECT_EQ(largestDifference(readAttachment(device(), firstTarget), firstAlone.display), 0);
+  EXPECT_EQ(largestDifference(readAttachment(device(), secondTarget), secondAlone.display), 0);
+  // The pass times are the slot's frame's.
+  EXPECT_FALSE(renderer.passMilliseconds(1).empty());
+  EXPECT_THROW(renderer.passMilliseconds(kFramesInFlight), std::invalid_argument);
+  submitAndWait(device(), [&](VkCommandBuffer cmd) {
+    EXPECT_THROW(renderer.record(cmd, scene, first, {.frameSlot = kFramesInFlight}),
+                 std::invalid_argument);
+  });
 }
 
 TEST_F(FrameOutputTest, ReducedResolutionIsTheSmallerPictureScaledUp) {

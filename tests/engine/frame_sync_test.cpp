@@ -4,17 +4,22 @@
 // and is destroyed then. Destroying it earlier is what the validation layer
 // reports (a buffer in use by a pending command buffer), and any message
 // fails the test. No window: a submission signals the acquire semaphore and
-// one waits on the rendered one, in place of acquire and present.
+// one waits on the rendered one, in place of acquire and present. And the
+// layer's synchronisation checks, which every Vulkan test has, at work.
 #include <gtest/gtest.h>
 
 #include <algorithm>
 #include <memory>
+#include <string>
 #include <utility>
 #include <vector>
 
 #include "aperture/engine/vk/buffer.h"
+#include "aperture/engine/vk/commands.h"
+#include "aperture/engine/vk/device.h"
 #include "aperture/engine/vk/frame_sync.h"
 #include "aperture/engine/vk/frames_in_flight.h"
+#include "aperture/engine/vk/instance.h"
 #include "aperture/engine/vk/vk_check.h"
 #include "aperture/tests/engine/vulkan_test.h"
 
@@ -82,6 +87,28 @@ TEST_F(FrameSyncRetirement, BufferRetiredInFrameNIsDestroyedWhenFrameNHasComplet
   sync.waitForSubmittedFrames();
   EXPECT_EQ(destroyed.size(), size_t(frames));
   EXPECT_EQ(device().deletionQueue().pending(), 0u);
+}
+
+// The validation layer of every Vulkan test checks synchronisation too
+// (engine/vk/instance.cpp): two writes of one buffer with no barrier between
+// them are reported.
+TEST(Validation, ReportsAWriteAfterAWriteWithoutABarrier) {
+  InstanceOptions options;
+  options.validation = true;
+  Instance instance(options);
+  {
+    Device device(instance);
+    Buffer buffer(device, 256, VK_BUFFER_USAGE_TRANSFER_DST_BIT, MemoryIntent::DeviceLocal);
+    submitAndWait(device, [&](VkCommandBuffer cmd) {
+      vkCmdFillBuffer(cmd, buffer.handle(), 0, VK_WHOLE_SIZE, 1u);
+      vkCmdFillBuffer(cmd, buffer.handle(), 0, VK_WHOLE_SIZE, 2u);
+    });
+  }
+  const std::vector<std::string> messages = instance.validationLog().messages();
+  ASSERT_FALSE(messages.empty()) << "the second fill was not reported";
+  for (const std::string& message : messages) {
+    EXPECT_NE(message.find("SYNC-HAZARD-WRITE-AFTER-WRITE"), std::string::npos) << message;
+  }
 }
 
 }  // namespace

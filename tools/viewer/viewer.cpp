@@ -487,6 +487,7 @@ void Viewer::recordFrame(VkCommandBuffer cmd, uint32_t imageIndex, const FrameSe
   output.image = swapchain_.image(imageIndex);
   output.view = swapchain_.view(imageIndex);
   output.resolutionScale = resolutionScale;
+  output.frameSlot = sync_.slot();
   // Drawn smaller while the view moves: rebuilt from the frames before.
   output.temporal = resolutionScale < 1.0f && temporal_;
   renderer_->record(cmd, *terrain_->scene, settings, output);
@@ -501,7 +502,8 @@ void Viewer::recordFrame(VkCommandBuffer cmd, uint32_t imageIndex, const FrameSe
     if (screenshotFromSwapchain_) {
       readBackSwapchainImage(cmd, output.image, extent, screenshotBuffer_);
     } else {
-      renderer_->record(cmd, *terrain_->scene, settings);
+      renderer_->record(cmd, *terrain_->scene, settings,
+                        FrameOutput{.frameSlot = output.frameSlot});
       copyImageToBuffer(cmd, renderer_->displayImage(), screenshotBuffer_);
     }
   }
@@ -531,10 +533,9 @@ bool Viewer::drawFrame() {
   timing_->lastSplitMs.fill(0);
   sync_.waitForFrameSlot();
   timing_->split(0, since);
-  // The GPU timer holds the last frame's queries: it is the one waited for
-  // only with one frame in flight (a timer per frame before more).
-  static_assert(kFramesInFlight == 1, "the pass times read are the last frame's");
-  timing_->lastPassMs = renderer_->passMilliseconds();
+  // The pass times of the frame that last used this slot: it has completed
+  // (kFramesInFlight frames back).
+  timing_->lastPassMs = renderer_->passMilliseconds(sync_.slot());
   uint32_t imageIndex = 0;
   SwapchainStatus status = swapchain_.acquire(sync_.acquired(), &imageIndex);
   if (status == SwapchainStatus::OutOfDate) swapchainStale_ = true;
