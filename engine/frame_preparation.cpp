@@ -164,8 +164,8 @@ void setTiles(FrameUniforms& u, const TerrainTileLayout& tiles) {
 
 }  // namespace
 
-FramePlan TerrainRenderer::prepareFrame(const TerrainScene& scene, const FrameSettings& s,
-                                        const FrameOutput& output) {
+FramePlan TerrainRenderer::prepareFrame(VkCommandBuffer cmd, const TerrainScene& scene,
+                                        const FrameSettings& s, const FrameOutput& output) {
   // The host writes the uniforms, the obscurance samples and the LOD patches
   // into the frame slot's copies (record() picked them), which no frame in
   // flight uses.
@@ -180,7 +180,7 @@ FramePlan TerrainRenderer::prepareFrame(const TerrainScene& scene, const FrameSe
   }
   extent_ = {std::max(1u, static_cast<uint32_t>(std::lround(width_ * scale))),
              std::max(1u, static_cast<uint32_t>(std::lround(height_ * scale)))};
-  if (s.mode == ShadingMode::Horizon) relayHorizons(scene, s);
+  if (s.mode == ShadingMode::Horizon) relayHorizons(scene, s, cmd);
   FramePlan plan =
       planPasses(scene, s, output, extent_, {width_, height_}, device_.independentBlend());
   // Rebuilt from frames drawn smaller, or accumulated at full size in
@@ -211,14 +211,17 @@ FramePlan TerrainRenderer::prepareFrame(const TerrainScene& scene, const FrameSe
   return plan;
 }
 
-void TerrainRenderer::relayHorizons(const TerrainScene& scene, const FrameSettings& s) {
+void TerrainRenderer::relayHorizons(const TerrainScene& scene, const FrameSettings& s,
+                                    VkCommandBuffer cmd) {
   // The slope texture must hold the horizons of the two directions beside
   // the sun: re-lay when the sun leaves the pair on the device, at once or
   // this frame's share of a spread re-lay (engine/horizon_relay.h). Safe
-  // with frames in flight: the re-lay writes the slopes with commands of its
-  // own, submitted to the same queue after them, whose first barrier waits
-  // for their reads (transitionImage), and waited for before this frame's
-  // commands are submitted; its upload buffers and code images are its own.
+  // with frames in flight: a share is recorded into this frame's commands
+  // after their first barrier (waitForEarlierCommands), before the passes
+  // that read the slopes; a whole re-lay is submitted to the same queue
+  // after the frames in flight, its first barrier waiting for their reads
+  // (transitionImage), and waited for before this frame's commands are
+  // submitted. Its upload buffers and code images are its own.
   const int n = scene.horizonDirections();
   const float azimuth = sunAzimuthRad(s.lighting.sunDirection);
   const float motion =
@@ -228,8 +231,10 @@ void TerrainRenderer::relayHorizons(const TerrainScene& scene, const FrameSettin
     policy.bandsPerFrame = uint32_t(std::clamp<uint64_t>(
         s.horizonRelayTexelsPerFrame / scene.horizonBandTexels(), 1, scene.horizonBands()));
   }
-  scene.writeHorizonRelay(device_, planHorizonRelay(n, scene.horizonChannels(), azimuth, motion,
-                                                    scene.horizonBands(), policy));
+  scene.writeHorizonRelay(
+      device_,
+      planHorizonRelay(n, scene.horizonChannels(), azimuth, motion, scene.horizonBands(), policy),
+      cmd);
   horizonSunScene_ = scene.id();
   horizonSunAzimuth_ = azimuth;
 }

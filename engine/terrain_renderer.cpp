@@ -81,11 +81,15 @@ void TerrainRenderer::record(VkCommandBuffer cmd, const TerrainScene& scene, con
                                 std::to_string(slots_.size()));
   }
   slot_ = slots_[output.frameSlot].get();
+  // The frame before may still be on the device (frames in flight): its
+  // reads and writes of the targets and of the slopes (which a spread
+  // re-lay rewrites, below) come first.
+  waitForEarlierCommands(cmd);
   // Profiled, the host's part is a step of its own.
   const auto wall0 =
       serial_ ? std::chrono::steady_clock::now() : std::chrono::steady_clock::time_point{};
   const double cpu0 = serial_ ? processCpuMs() : 0;
-  const FramePlan plan = prepareFrame(scene, s, output);
+  const FramePlan plan = prepareFrame(cmd, scene, s, output);
   if (serial_) {
     const std::chrono::duration<double, std::milli> wall = std::chrono::steady_clock::now() - wall0;
     serial_->addHost("prepare (host)", wall.count(), processCpuMs() - cpu0);
@@ -97,9 +101,6 @@ void TerrainRenderer::record(VkCommandBuffer cmd, const TerrainScene& scene, con
   const auto step = [&](const char* name) {
     if (serial_) serial_->split(cmd, name);
   };
-  // The frame before may still be on the device (frames in flight): its
-  // reads and writes of the targets come first.
-  waitForEarlierCommands(cmd);
   slot_->timer.reset(cmd);
   if (plan.capTableUpload) recordCapTableUpload(cmd, capTableStaging_, capTable_);
   recordSkyTable(pass, targets);

@@ -174,10 +174,10 @@ class TerrainRenderer {
   // may use; its first barrier waits for every earlier frame's work (the
   // passes rewrite the images the frame before may still read). What it
   // replaces (a grown patch buffer, the cap table's staging) it retires into
-  // the device's DeletionQueue. In the horizon mode it first re-lays the scene's horizons
-  // when the frame's sun left their pair of directions
-  // (TerrainScene::relayHorizons: an upload and a compute pass, waited for;
-  // docs/rendering.md). With `output.linear` hdrImage() then holds the
+  // the device's DeletionQueue. In the horizon mode it first re-lays the
+  // scene's horizons when the frame's sun left their pair of directions (a
+  // spread re-lay's share recorded into `cmd`; a whole re-lay an upload and
+  // a compute pass, waited for; docs/rendering.md). With `output.linear` hdrImage() then holds the
   // linear radiance, in VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL.
   void record(VkCommandBuffer cmd, const TerrainScene& scene, const FrameSettings& settings,
               const FrameOutput& output = {});
@@ -199,14 +199,16 @@ class TerrainRenderer {
   // one that changes the scene (the horizon re-lay) or the renderer's state:
   // the LOD selection, the uniforms, the cap table and the obscurance
   // history's bookkeeping. Decides which passes run and where they write.
-  FramePlan prepareFrame(const TerrainScene& scene, const FrameSettings& settings,
-                         const FrameOutput& output);
+  // A spread re-lay's share of the frame goes into `cmd`.
+  FramePlan prepareFrame(VkCommandBuffer cmd, const TerrainScene& scene,
+                         const FrameSettings& settings, const FrameOutput& output);
   // A headless frame, submitted and waited for; `readBack`: its display
   // values (and with `wantLinear` its radiance) copied out, else nothing.
   FrameResult renderHeadless(const TerrainScene& scene, const FrameSettings& settings,
                              bool wantLinear, bool temporal, bool readBack = true);
-  // Re-lays the scene's horizons when the frame's sun left their pair.
-  void relayHorizons(const TerrainScene& scene, const FrameSettings& settings);
+  // Re-lays the scene's horizons when the frame's sun left their pair (a
+  // spread re-lay's share recorded into `cmd`).
+  void relayHorizons(const TerrainScene& scene, const FrameSettings& settings, VkCommandBuffer cmd);
   // Writes the frame's uniforms (and, with `obscurance`, the sample set);
   // `rebuilt`: the frame is drawn for the temporal reconstruction (jittered
   // by jitter_, its textures read at the output pixels' footprint).

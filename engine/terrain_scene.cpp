@@ -15,6 +15,7 @@
 
 #include "aperture/engine/vk/commands.h"
 #include "aperture/engine/vk/compute.h"
+#include "aperture/engine/vk/deletion_queue.h"
 #include "aperture/engine/vk/descriptors.h"
 #include "aperture/engine/vk/device.h"
 #include "aperture/engine/vk/upload.h"
@@ -190,7 +191,8 @@ namespace {
 // into the slope texture.
 std::vector<Image> horizonCodePages(const Device& device, const TerrainTileLayout& tiles,
                                     const HorizonMap& map, const std::vector<int>& directions,
-                                    uint32_t rowBegin, uint32_t rowEnd) {
+                                    uint32_t rowBegin, uint32_t rowEnd,
+                                    VkCommandBuffer cmd = VK_NULL_HANDLE) {
   const size_t count = directions.size();
   const DemRows codeRows = [&](uint32_t firstRow, uint32_t endRow, void* destination) {
     // Rows in parallel: every texel's codes are n bytes in a row, so this
@@ -231,7 +233,11 @@ std::vector<Image> horizonCodePages(const Device& device, const TerrainTileLayou
         },
         tile % perPage);
   }
-  upload.submit();
+  if (cmd != VK_NULL_HANDLE) {
+    upload.record(cmd);
+  } else {
+    upload.submit();
+  }
   return pages;
 }
 
@@ -261,19 +267,22 @@ void TerrainScene::computeSlopes(const Device& device, int first, bool keepSlope
                                   tiles_.imageHeight())
                : std::vector<Image>{};
   runSlopePass(device, horizons ? &codes : nullptr, keepSlopes, kBothChannels, 0,
-               tiles_.imageHeight());
+               tiles_.imageHeight(), VK_NULL_HANDLE);
 }
 
 void TerrainScene::runSlopePass(const Device& device, const std::vector<Image>* codes,
-                                bool keepSlopes, int channel, uint32_t rowBegin,
-                                uint32_t rowEnd) const {
+                                bool keepSlopes, int channel, uint32_t rowBegin, uint32_t rowEnd,
+                                VkCommandBuffer frame) const {
   const bool horizons = codes != nullptr;
   std::unique_ptr<ComputePipeline> plain;
   if (!horizons)
     plain = std::make_unique<ComputePipeline>(device, "slopes.comp", sizeof(SlopePush));
   const ComputePipeline& pipeline = horizons ? *horizonSlopes_ : *plain;
-  const Sampler nearest(device, VK_FILTER_NEAREST, true);
-  const Sampler codeSampler(device, VK_FILTER_NEAREST, false);  // integer texels: no filter
+  auto nearestOwner = std::make_unique<Sampler>(device, VK_FILTER_NEAREST, true);
+  // Integer texels: no filter.
+  auto codeSamplerOwner = std::make_unique<Sampler>(device, VK_FILTER_NEAREST, false);
+  const Sampler& nearest = *nearestOwner;
+  const Sampler& codeSampler = *codeSamplerOwner;
   std::vector<std::vector<std::unique_ptr<LevelView>>> views(slopes_.size());
   std::vector<std::vector<std::unique_ptr<LevelView>>> momentViews(horizonMoments_.size());
   for (size_t p = 0; p < slopes_.size(); ++p) {
@@ -284,7 +293,7 @@ void TerrainScene::runSlopePass(const Device& device, const std::vector<Image>* 
       }
     }
   }
-  submitAndWait(device, [&](VkCommandBuffer cmd) {
+  const auto record = [&](VkCommandBuffer cmd) {
     for (size_t p = 0; p < slopes_.size(); ++p) {
       const Image& page = slopes_[p];
       const uint32_t levels = page.desc().mipLevels;
@@ -340,7 +349,19 @@ void TerrainScene::runSlopePass(const Device& device, const std::vector<Image>* 
                         VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL);
       }
     }
-  });
+  };
+  if (frame == VK_NULL_HANDLE) {
+    submitAndWait(device, record);
+    return;
+  }
+  // In a frame's commands: what they use lives until the frame has run.
+  record(frame);
+  DeletionQueue& deletions = device.deletionQueue();
+  deletions.retire(std::move(views));
+  deletions.retire(std::move(momentViews));
+  deletions.retire(std::move(nearestOwner));
+  deletions.retire(std::move(codeSamplerOwner));
+  if (plain) deletions.retire(std::move(plain));
 }
 
 float sunAzimuthRad(const glm::vec3& sun) {
@@ -598,7 +619,8 @@ void TerrainScene::relayHorizons(const Device& device, int first) const {
   writeHorizonRelay(device, step);
 }
 
-void TerrainScene::writeHorizonRelay(const Device& device, const HorizonRelayStep& step) const {
+void TerrainScene::writeHorizonRelay(const Device& device, const HorizonRelayStep& step,
+                                     VkCommandBuffer frame) const {
   if (!horizonMap_ || step.kind == HorizonRelayStep::Kind::Keep) return;
   const int before = horizonFirst();
   if (step.kind == HorizonRelayStep::Kind::LayPair) {
@@ -623,9 +645,16 @@ void TerrainScene::writeHorizonRelay(const Device& device, const HorizonRelaySte
     // band come from the band's rows below (docs/rendering.md).
     const uint32_t rowBegin = step.bandBegin * kTerrainMipAlignment;
     const uint32_t rowEnd = step.bandEnd * kTerrainMipAlignment;
-    const std::vector<Image> codes = horizonCodePages(
-        device, tiles_, *horizonMap_, {step.direction, step.direction}, rowBegin, rowEnd);
-    runSlopePass(device, &codes, true, step.channel, rowBegin, rowEnd);
+    // Into the frame's commands when its codes fit one staging buffer (a
+    // frame's share of a spread re-lay): nothing waits. A larger write (a
+    // whole re-lay at once) is submitted and waited for, through a staging
+    // buffer of bounded size.
+    const uint64_t codeBytes = 2 * uint64_t(step.bandEnd - step.bandBegin) * horizonBandTexels();
+    if (codeBytes > UploadBatch::kDefaultStagingBytes) frame = VK_NULL_HANDLE;
+    std::vector<Image> codes = horizonCodePages(
+        device, tiles_, *horizonMap_, {step.direction, step.direction}, rowBegin, rowEnd, frame);
+    runSlopePass(device, &codes, true, step.channel, rowBegin, rowEnd, frame);
+    if (frame != VK_NULL_HANDLE) device.deletionQueue().retire(std::move(codes));
   }
   horizonChannels_ = afterHorizonRelay(horizonDirections_, horizonChannels_, step, horizonBands());
   if (!horizonChannels_.mixing() && horizonFirst() != before) ++horizonRelays_;

@@ -104,10 +104,16 @@ class TerrainScene {
   // stay what they are, only the pair on the device changes.
   void relayHorizons(const Device& device, int first) const;
   // One frame's share of a re-lay (engine/horizon_relay.h planHorizonRelay):
-  // the bands' codes uploaded and their rows of every level computed, waited
-  // for. TerrainRenderer::record calls it for a frame's sun before it records
-  // a command (as relayHorizons, no unsubmitted command may read the slopes).
-  void writeHorizonRelay(const Device& device, const HorizonRelayStep& step) const;
+  // the bands' codes uploaded and their rows of every level computed.
+  // TerrainRenderer::record calls it for a frame's sun with the frame's
+  // command buffer, after the frame's first barrier and before its passes:
+  // a band step whose codes fit one staging buffer is recorded there (its
+  // staging, code images and views retired into the device's DeletionQueue)
+  // and nothing waits; a whole pair, or a larger step, is submitted and
+  // waited for, as relayHorizons does, before any of `frame`'s commands may
+  // read the slopes. Without `frame`, every step is submitted and waited for.
+  void writeHorizonRelay(const Device& device, const HorizonRelayStep& step,
+                         VkCommandBuffer frame = VK_NULL_HANDLE) const;
   // What B and A hold now, per band while a re-lay is under way.
   const HorizonChannels& horizonChannels() const { return horizonChannels_; }
   // Bands of kTerrainMipAlignment rows of every tile image a re-lay writes,
@@ -147,8 +153,10 @@ class TerrainScene {
   // [rowBegin, rowEnd) (multiples of kTerrainMipAlignment) of every tile
   // image and level; with horizons it writes `channel` (0 B, 1 A, 2 both)
   // from the codes, which hold those rows.
+  // With `frame` it is recorded there (what it made retired), else
+  // submitted and waited for.
   void runSlopePass(const Device& device, const std::vector<Image>* codes, bool keepSlopes,
-                    int channel, uint32_t rowBegin, uint32_t rowEnd) const;
+                    int channel, uint32_t rowBegin, uint32_t rowEnd, VkCommandBuffer frame) const;
   // `apertureRows` writes whole DEM rows of RGBA16F bent normal + arc length.
   void build(const Device& device, const Heightfield& field,
              const std::function<void(uint32_t firstRow, uint32_t endRow, void* destination)>&

@@ -2,7 +2,9 @@
 
 #include <algorithm>
 #include <cstring>
+#include <limits>
 #include <stdexcept>
+#include <utility>
 
 #include "aperture/engine/vk/buffer.h"
 #include "aperture/engine/vk/commands.h"
@@ -118,6 +120,14 @@ void UploadBatch::addBuffer(const Buffer& buffer, const void* data, size_t bytes
 }
 
 void UploadBatch::submit() {
+  transfer(stagingLimit_, VK_NULL_HANDLE);
+}
+
+void UploadBatch::record(VkCommandBuffer cmd) {
+  transfer(std::numeric_limits<size_t>::max(), cmd);
+}
+
+void UploadBatch::transfer(size_t limit, VkCommandBuffer cmd) {
   if (pending_.empty()) return;
   size_t total = 0, widestBand = 16;
   for (const Pending& p : pending_) {
@@ -129,11 +139,19 @@ void UploadBatch::submit() {
       total += alignUp(p.bytes, 16);
     }
   }
-  const size_t capacity = std::max(std::min(total, stagingLimit_), widestBand);
+  const size_t capacity = std::max(std::min(total, limit), widestBand);
   Buffer staging(device_, capacity, VK_BUFFER_USAGE_TRANSFER_SRC_BIT, MemoryIntent::Upload);
   auto* mapped = static_cast<unsigned char*>(staging.mapped());
 
-  for (size_t next = 0; next < pending_.size();) {
+  for (size_t next = 0, loads = 0; next < pending_.size(); ++loads) {
+    // Recorded, a load's copies run later: the next load takes a buffer of
+    // its own (the bands' alignment can make everything one load too many).
+    if (cmd != VK_NULL_HANDLE && loads > 0) {
+      device_.deletionQueue().retire(std::exchange(
+          staging,
+          Buffer(device_, capacity, VK_BUFFER_USAGE_TRANSFER_SRC_BIT, MemoryIntent::Upload)));
+      mapped = static_cast<unsigned char*>(staging.mapped());
+    }
     // Fill the staging buffer with as much as fits.
     std::vector<Copy> copies;
     size_t used = 0;
@@ -196,9 +214,14 @@ void UploadBatch::submit() {
     }
     staging.flush();
 
-    submitAndWait(device_, [&](VkCommandBuffer cmd) { recordCopies(cmd, staging, copies); });
+    if (cmd != VK_NULL_HANDLE) {
+      recordCopies(cmd, staging, copies);
+    } else {
+      submitAndWait(device_, [&](VkCommandBuffer one) { recordCopies(one, staging, copies); });
+    }
   }
   pending_.clear();
+  if (cmd != VK_NULL_HANDLE) device_.deletionQueue().retire(std::move(staging));
 }
 
 }  // namespace aal

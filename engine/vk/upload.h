@@ -50,6 +50,11 @@ class UploadBatch {
 
   // Copies everything, in as many staging-buffer loads as needed, and waits.
   void submit();
+  // Records the copies into `cmd` instead, from one staging buffer of
+  // everything (so mind the size), which it retires into the device's
+  // DeletionQueue: nothing waits, and the data is on the device once `cmd`
+  // has run. What was added must stay alive until this returns only.
+  void record(VkCommandBuffer cmd);
 
  private:
   struct Pending {
@@ -63,6 +68,9 @@ class UploadBatch {
     size_t bytes = 0;
     size_t done = 0;  // rows (images) or bytes (buffers) already copied
   };
+
+  // submit() with staging loads of at most `limit` bytes; with `cmd`, record().
+  void transfer(size_t limit, VkCommandBuffer cmd);
 
   const Device& device_;
   size_t stagingLimit_;
