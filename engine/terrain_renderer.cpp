@@ -64,23 +64,22 @@ TerrainRenderer::FrameSlot::FrameSlot(const Device& device)
               MemoryIntent::Upload),
       timer(device, 8) {}
 
-std::vector<std::pair<std::string, double>> TerrainRenderer::passMilliseconds(
-    uint32_t frameSlot) const {
-  if (frameSlot >= slots_.size()) {
-    throw std::invalid_argument("TerrainRenderer::passMilliseconds: no frame slot " +
-                                std::to_string(frameSlot));
+TerrainRenderer::FrameSlot& TerrainRenderer::frameSlot(uint32_t index, const char* caller) const {
+  if (index >= slots_.size()) {
+    throw std::invalid_argument(std::string("TerrainRenderer::") + caller + ": frame slot " +
+                                std::to_string(index) + " of " + std::to_string(slots_.size()));
   }
-  return slots_[frameSlot]->timer.results();
+  return *slots_[index];
+}
+
+std::vector<std::pair<std::string, double>> TerrainRenderer::passMilliseconds(
+    uint32_t index) const {
+  return frameSlot(index, "passMilliseconds").timer.results();
 }
 
 void TerrainRenderer::record(VkCommandBuffer cmd, const TerrainScene& scene, const FrameSettings& s,
                              const FrameOutput& output) {
-  if (output.frameSlot >= slots_.size()) {
-    throw std::invalid_argument("TerrainRenderer::record: frame slot " +
-                                std::to_string(output.frameSlot) + " of " +
-                                std::to_string(slots_.size()));
-  }
-  slot_ = slots_[output.frameSlot].get();
+  slot_ = &frameSlot(output.frameSlot, "record");
   // The frame before may still be on the device (frames in flight): its
   // reads and writes of the targets and of the slopes (which a spread
   // re-lay rewrites, below) come first.

@@ -276,6 +276,8 @@ class TerrainRenderer {
     GpuTimer timer;
   };
   std::vector<std::unique_ptr<FrameSlot>> slots_;
+  // slots_[index]; std::invalid_argument naming `caller` when there is none.
+  FrameSlot& frameSlot(uint32_t index, const char* caller) const;
   FrameSlot* slot_ = nullptr;  // of the frame being prepared and recorded
   LodSelection selection_;
   glm::mat4 viewProj_{1.0f};   // of the last writeUniforms, without the jitter

@@ -7,6 +7,7 @@
 #include <cstring>
 #include <stdexcept>
 #include <string>
+#include <tuple>
 #include <utility>
 
 #include <Imath/half.h>
@@ -278,11 +279,9 @@ void TerrainScene::runSlopePass(const Device& device, const std::vector<Image>* 
   if (!horizons)
     plain = std::make_unique<ComputePipeline>(device, "slopes.comp", sizeof(SlopePush));
   const ComputePipeline& pipeline = horizons ? *horizonSlopes_ : *plain;
-  auto nearestOwner = std::make_unique<Sampler>(device, VK_FILTER_NEAREST, true);
+  auto nearest = std::make_unique<Sampler>(device, VK_FILTER_NEAREST, true);
   // Integer texels: no filter.
-  auto codeSamplerOwner = std::make_unique<Sampler>(device, VK_FILTER_NEAREST, false);
-  const Sampler& nearest = *nearestOwner;
-  const Sampler& codeSampler = *codeSamplerOwner;
+  auto codeSampler = std::make_unique<Sampler>(device, VK_FILTER_NEAREST, false);
   std::vector<std::vector<std::unique_ptr<LevelView>>> views(slopes_.size());
   std::vector<std::vector<std::unique_ptr<LevelView>>> momentViews(horizonMoments_.size());
   for (size_t p = 0; p < slopes_.size(); ++p) {
@@ -327,11 +326,11 @@ void TerrainScene::runSlopePass(const Device& device, const std::vector<Image>* 
         // each level above is the mean of the one below (bound at level 0
         // too, unread: any other level).
         const uint32_t below = level > 0 ? level - 1 : std::min(1u, levels - 1);
-        writes.image(0, heights_[p].view(), nearest.handle())
+        writes.image(0, heights_[p].view(), nearest->handle())
             .image(1, views[p][level]->handle())
             .image(3, views[p][below]->handle());
         if (horizons) {
-          writes.image(2, (*codes)[p].view(), codeSampler.handle())
+          writes.image(2, (*codes)[p].view(), codeSampler->handle())
               .image(4, momentViews[p][level]->handle())
               .image(5, momentViews[p][below]->handle());
         }
@@ -356,12 +355,9 @@ void TerrainScene::runSlopePass(const Device& device, const std::vector<Image>* 
   }
   // In a frame's commands: what they use lives until the frame has run.
   record(frame);
-  DeletionQueue& deletions = device.deletionQueue();
-  deletions.retire(std::move(views));
-  deletions.retire(std::move(momentViews));
-  deletions.retire(std::move(nearestOwner));
-  deletions.retire(std::move(codeSamplerOwner));
-  if (plain) deletions.retire(std::move(plain));
+  device.deletionQueue().retire(std::make_tuple(std::move(views), std::move(momentViews),
+                                                std::move(nearest), std::move(codeSampler),
+                                                std::move(plain)));
 }
 
 float sunAzimuthRad(const glm::vec3& sun) {
@@ -649,10 +645,12 @@ void TerrainScene::writeHorizonRelay(const Device& device, const HorizonRelaySte
     // frame's share of a spread re-lay): nothing waits. A larger write (a
     // whole re-lay at once) is submitted and waited for, through a staging
     // buffer of bounded size.
-    const uint64_t codeBytes = 2 * uint64_t(step.bandEnd - step.bandBegin) * horizonBandTexels();
+    const std::vector<int> directions{step.direction, step.direction};  // one code a channel
+    const uint64_t codeBytes =
+        directions.size() * uint64_t(step.bandEnd - step.bandBegin) * horizonBandTexels();
     if (codeBytes > UploadBatch::kDefaultStagingBytes) frame = VK_NULL_HANDLE;
-    std::vector<Image> codes = horizonCodePages(
-        device, tiles_, *horizonMap_, {step.direction, step.direction}, rowBegin, rowEnd, frame);
+    std::vector<Image> codes =
+        horizonCodePages(device, tiles_, *horizonMap_, directions, rowBegin, rowEnd, frame);
     runSlopePass(device, &codes, true, step.channel, rowBegin, rowEnd, frame);
     if (frame != VK_NULL_HANDLE) device.deletionQueue().retire(std::move(codes));
   }
