@@ -13,13 +13,7 @@
 
 namespace aal {
 
-namespace {
-
-size_t alignUp(size_t value, size_t alignment) {
-  return (value + alignment - 1) / alignment * alignment;
-}
-
-struct Copy {
+struct UploadCopy {
   const Image* image = nullptr;
   const Buffer* buffer = nullptr;
   size_t stagingOffset = 0, bytes = 0;
@@ -27,6 +21,12 @@ struct Copy {
   size_t bufferOffset = 0;
   bool first = false, last = false;  // the image's first and last band: its transitions
 };
+
+namespace {
+
+size_t alignUp(size_t value, size_t alignment) {
+  return (value + alignment - 1) / alignment * alignment;
+}
 
 // Rows of level 0 that make whole rows of every level of `image`.
 uint32_t rowsPerBandStep(const Image& image) {
@@ -44,8 +44,9 @@ size_t bandBytes(const Image& image, size_t bytesPerTexel, uint32_t rows) {
 }
 
 // The copies of one staging-buffer load, with the images' transitions.
-void recordCopies(VkCommandBuffer cmd, const Buffer& staging, const std::vector<Copy>& copies) {
-  for (const Copy& c : copies) {
+void recordCopies(VkCommandBuffer cmd, const Buffer& staging,
+                  const std::vector<UploadCopy>& copies) {
+  for (const UploadCopy& c : copies) {
     if (c.buffer) {
       const VkBufferCopy region{
           .srcOffset = c.stagingOffset, .dstOffset = c.bufferOffset, .size = c.bytes};
@@ -127,93 +128,113 @@ void UploadBatch::record(VkCommandBuffer cmd) {
   transfer(std::numeric_limits<size_t>::max(), cmd);
 }
 
-void UploadBatch::transfer(size_t limit, VkCommandBuffer cmd) {
-  if (pending_.empty()) return;
-  size_t total = 0, widestBand = 16;
-  for (const Pending& p : pending_) {
+size_t UploadBatch::bytesLeft() const {
+  size_t left = 0;
+  for (size_t i = next_; i < pending_.size(); ++i) {
+    const Pending& p = pending_[i];
     if (p.image) {
-      total += bandBytes(*p.image, p.bytesPerTexel, p.image->desc().height);
-      widestBand =
-          std::max(widestBand, bandBytes(*p.image, p.bytesPerTexel, rowsPerBandStep(*p.image)));
+      left += bandBytes(*p.image, p.bytesPerTexel, p.image->desc().height) -
+              bandBytes(*p.image, p.bytesPerTexel, static_cast<uint32_t>(p.done));
     } else {
-      total += alignUp(p.bytes, 16);
+      left += alignUp(p.bytes - p.done, 16);
     }
   }
-  const size_t capacity = std::max(std::min(total, limit), widestBand);
-  Buffer staging(device_, capacity, VK_BUFFER_USAGE_TRANSFER_SRC_BIT, MemoryIntent::Upload);
-  auto* mapped = static_cast<unsigned char*>(staging.mapped());
+  return left;
+}
 
-  for (size_t next = 0, loads = 0; next < pending_.size(); ++loads) {
+size_t UploadBatch::loadCapacity(size_t limit) const {
+  size_t widestBand = 16;
+  for (size_t i = next_; i < pending_.size(); ++i) {
+    const Pending& p = pending_[i];
+    if (p.image) {
+      widestBand =
+          std::max(widestBand, bandBytes(*p.image, p.bytesPerTexel, rowsPerBandStep(*p.image)));
+    }
+  }
+  return std::max(std::min(bytesLeft(), limit), widestBand);
+}
+
+std::vector<UploadCopy> UploadBatch::fill(unsigned char* mapped, size_t capacity) {
+  std::vector<UploadCopy> copies;
+  size_t used = 0;
+  for (; next_ < pending_.size(); ++next_) {
+    Pending& p = pending_[next_];
+    if (p.image) {
+      const ImageDesc& d = p.image->desc();
+      const uint32_t step = rowsPerBandStep(*p.image);
+      // As many whole steps of rows as fit.
+      uint32_t rows = 0;
+      while (p.done + rows < d.height &&
+             bandBytes(*p.image, p.bytesPerTexel, rows + step) <= capacity - used) {
+        rows += step;
+      }
+      if (rows == 0) break;
+      const uint32_t first = static_cast<uint32_t>(p.done);
+      const unsigned char* upper = nullptr;
+      for (uint32_t level = 0; level < d.mipLevels; ++level) {
+        const uint32_t width = d.width >> level, levelRows = rows >> level;
+        const size_t rowBytes = size_t{width} * p.bytesPerTexel;
+        unsigned char* out = mapped + used;
+        if (level == 0) {
+          p.rows(first, first + rows, out);
+        } else {
+          // From the level above, just written to the staging buffer.
+          for (uint32_t r = 0; r < levelRows; ++r) {
+            p.reduce(upper + 2 * r * 2 * rowBytes, upper + (2 * r + 1) * 2 * rowBytes,
+                     out + r * rowBytes, width);
+          }
+        }
+        upper = out;
+        // The image's layout changes with its first layer's first band and
+        // after its last layer's last band (the transitions cover every
+        // layer and level).
+        copies.push_back({.image = p.image,
+                          .stagingOffset = used,
+                          .bytes = levelRows * rowBytes,
+                          .firstRow = first >> level,
+                          .rows = levelRows,
+                          .layer = p.layer,
+                          .level = level,
+                          .first = first == 0 && p.layer == 0 && level == 0,
+                          .last = first + rows == d.height && p.layer + 1 == d.layers &&
+                                  level + 1 == d.mipLevels});
+        used = alignUp(used + levelRows * rowBytes, 16);
+      }
+      p.done += rows;
+      if (p.done < d.height) break;
+    } else {
+      const size_t chunk = std::min(capacity - used, p.bytes - p.done);
+      if (chunk == 0) break;
+      std::memcpy(mapped + used, p.data + p.done, chunk);
+      copies.push_back(
+          {.buffer = p.buffer, .stagingOffset = used, .bytes = chunk, .bufferOffset = p.done});
+      used = alignUp(used + chunk, 16);
+      p.done += chunk;
+      if (p.done < p.bytes) break;
+    }
+  }
+  return copies;
+}
+
+void UploadBatch::transfer(size_t limit, VkCommandBuffer cmd) {
+  if (next_ >= pending_.size()) {
+    pending_.clear();
+    next_ = 0;
+    return;
+  }
+  const size_t capacity = loadCapacity(limit);
+  Buffer staging(device_, capacity, VK_BUFFER_USAGE_TRANSFER_SRC_BIT, MemoryIntent::Upload);
+  for (size_t loads = 0; next_ < pending_.size(); ++loads) {
     // Recorded, a load's copies run later: the next load takes a buffer of
     // its own (the bands' alignment can make everything one load too many).
     if (cmd != VK_NULL_HANDLE && loads > 0) {
       device_.deletionQueue().retire(std::exchange(
           staging,
           Buffer(device_, capacity, VK_BUFFER_USAGE_TRANSFER_SRC_BIT, MemoryIntent::Upload)));
-      mapped = static_cast<unsigned char*>(staging.mapped());
     }
-    // Fill the staging buffer with as much as fits.
-    std::vector<Copy> copies;
-    size_t used = 0;
-    for (size_t i = next; i < pending_.size(); ++i) {
-      Pending& p = pending_[i];
-      if (p.image) {
-        const ImageDesc& d = p.image->desc();
-        const uint32_t step = rowsPerBandStep(*p.image);
-        // As many whole steps of rows as fit.
-        uint32_t rows = 0;
-        while (p.done + rows < d.height &&
-               bandBytes(*p.image, p.bytesPerTexel, rows + step) <= capacity - used) {
-          rows += step;
-        }
-        if (rows == 0) break;
-        const uint32_t first = static_cast<uint32_t>(p.done);
-        const unsigned char* upper = nullptr;
-        for (uint32_t level = 0; level < d.mipLevels; ++level) {
-          const uint32_t width = d.width >> level, levelRows = rows >> level;
-          const size_t rowBytes = size_t{width} * p.bytesPerTexel;
-          unsigned char* out = mapped + used;
-          if (level == 0) {
-            p.rows(first, first + rows, out);
-          } else {
-            // From the level above, just written to the staging buffer.
-            for (uint32_t r = 0; r < levelRows; ++r) {
-              p.reduce(upper + 2 * r * 2 * rowBytes, upper + (2 * r + 1) * 2 * rowBytes,
-                       out + r * rowBytes, width);
-            }
-          }
-          upper = out;
-          // The image's layout changes with its first layer's first band and
-          // after its last layer's last band (the transitions cover every
-          // layer and level).
-          copies.push_back({.image = p.image,
-                            .stagingOffset = used,
-                            .bytes = levelRows * rowBytes,
-                            .firstRow = first >> level,
-                            .rows = levelRows,
-                            .layer = p.layer,
-                            .level = level,
-                            .first = first == 0 && p.layer == 0 && level == 0,
-                            .last = first + rows == d.height && p.layer + 1 == d.layers &&
-                                    level + 1 == d.mipLevels});
-          used = alignUp(used + levelRows * rowBytes, 16);
-        }
-        p.done += rows;
-        if (p.done < d.height) break;
-      } else {
-        const size_t chunk = std::min(capacity - used, p.bytes - p.done);
-        if (chunk == 0) break;
-        std::memcpy(mapped + used, p.data + p.done, chunk);
-        copies.push_back(
-            {.buffer = p.buffer, .stagingOffset = used, .bytes = chunk, .bufferOffset = p.done});
-        used = alignUp(used + chunk, 16);
-        p.done += chunk;
-        if (p.done < p.bytes) break;
-      }
-      next = i + 1;
-    }
+    const std::vector<UploadCopy> copies =
+        fill(static_cast<unsigned char*>(staging.mapped()), capacity);
     staging.flush();
-
     if (cmd != VK_NULL_HANDLE) {
       recordCopies(cmd, staging, copies);
     } else {
@@ -221,7 +242,24 @@ void UploadBatch::transfer(size_t limit, VkCommandBuffer cmd) {
     }
   }
   pending_.clear();
+  next_ = 0;
   if (cmd != VK_NULL_HANDLE) device_.deletionQueue().retire(std::move(staging));
+}
+
+bool UploadBatch::recordShare(VkCommandBuffer cmd, size_t bytes) {
+  if (next_ < pending_.size()) {
+    const size_t capacity = loadCapacity(bytes);
+    Buffer staging(device_, capacity, VK_BUFFER_USAGE_TRANSFER_SRC_BIT, MemoryIntent::Upload);
+    const std::vector<UploadCopy> copies =
+        fill(static_cast<unsigned char*>(staging.mapped()), capacity);
+    staging.flush();
+    recordCopies(cmd, staging, copies);
+    device_.deletionQueue().retire(std::move(staging));
+  }
+  if (next_ < pending_.size()) return false;
+  pending_.clear();
+  next_ = 0;
+  return true;
 }
 
 }  // namespace aal

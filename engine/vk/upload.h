@@ -16,6 +16,7 @@ namespace aal {
 class Buffer;
 class Device;
 class Image;
+struct UploadCopy;  // one copy out of a staging buffer (upload.cpp)
 
 // Writes rows [firstRow, endRow) of an image, tightly packed, to `destination`.
 using RowWriter = std::function<void(uint32_t firstRow, uint32_t endRow, void* destination)>;
@@ -55,6 +56,16 @@ class UploadBatch {
   // DeletionQueue: nothing waits, and the data is on the device once `cmd`
   // has run. What was added must stay alive until this returns only.
   void record(VkCommandBuffer cmd);
+  // Records only the next share into `cmd`: as many whole bands as fit one
+  // staging buffer of `bytes` (at least one band, so every call makes
+  // progress), retired into the device's DeletionQueue like record()'s.
+  // Returns true once everything added has been recorded (the batch is then
+  // empty). Between shares an image stays in TRANSFER_DST_OPTIMAL: nothing
+  // may read it before the commands of its last share have run. What was
+  // added must stay alive until the call that returns true.
+  bool recordShare(VkCommandBuffer cmd, size_t bytes);
+  // Staging bytes of what is still to be copied.
+  size_t bytesLeft() const;
 
  private:
   struct Pending {
@@ -71,10 +82,17 @@ class UploadBatch {
 
   // submit() with staging loads of at most `limit` bytes; with `cmd`, record().
   void transfer(size_t limit, VkCommandBuffer cmd);
+  // The staging size of a load of at most `limit` bytes: at least the
+  // widest band of any image, so that a load always makes progress.
+  size_t loadCapacity(size_t limit) const;
+  // Fills `mapped` (capacity bytes) with what comes next, from pending_[next_]
+  // on, and returns the copies that take it to the device.
+  std::vector<UploadCopy> fill(unsigned char* mapped, size_t capacity);
 
   const Device& device_;
   size_t stagingLimit_;
   std::vector<Pending> pending_;
+  size_t next_ = 0;  // pending_[next_] is the first not wholly copied
 };
 
 }  // namespace aal
