@@ -258,6 +258,12 @@ struct SlopePush {
 
 constexpr int32_t kBothChannels = 2;
 
+// Unique in the process: a scene's id, renewed when its aperture map changes.
+uint64_t nextSceneId() {
+  static std::atomic<uint64_t> ids{0};
+  return ++ids;
+}
+
 }  // namespace
 
 void TerrainScene::computeSlopes(const Device& device, int first, bool keepSlopes) const {
@@ -268,13 +274,17 @@ void TerrainScene::computeSlopes(const Device& device, int first, bool keepSlope
                                   tiles_.imageHeight())
                : std::vector<Image>{};
   runSlopePass(device, horizons ? &codes : nullptr, keepSlopes, kBothChannels, 0,
-               tiles_.imageHeight(), VK_NULL_HANDLE);
+               tiles_.imageHeight(), VK_NULL_HANDLE, {slopes_, horizonMoments_, keepSlopes});
 }
 
 void TerrainScene::runSlopePass(const Device& device, const std::vector<Image>* codes,
                                 bool keepSlopes, int channel, uint32_t rowBegin, uint32_t rowEnd,
-                                VkCommandBuffer frame) const {
+                                VkCommandBuffer frame, const SlopeTargets& targets) const {
   const bool horizons = codes != nullptr;
+  const std::vector<Image>& slopes = targets.slopes;
+  const std::vector<Image>& moments = targets.moments;
+  const VkImageLayout before =
+      targets.kept ? VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL : VK_IMAGE_LAYOUT_UNDEFINED;
   std::unique_ptr<ComputePipeline> plain;
   if (!horizons)
     plain = std::make_unique<ComputePipeline>(device, "slopes.comp", sizeof(SlopePush));
@@ -282,31 +292,25 @@ void TerrainScene::runSlopePass(const Device& device, const std::vector<Image>* 
   auto nearest = std::make_unique<Sampler>(device, VK_FILTER_NEAREST, true);
   // Integer texels: no filter.
   auto codeSampler = std::make_unique<Sampler>(device, VK_FILTER_NEAREST, false);
-  std::vector<std::vector<std::unique_ptr<LevelView>>> views(slopes_.size());
-  std::vector<std::vector<std::unique_ptr<LevelView>>> momentViews(horizonMoments_.size());
-  for (size_t p = 0; p < slopes_.size(); ++p) {
-    for (uint32_t level = 0; level < slopes_[p].desc().mipLevels; ++level) {
-      views[p].push_back(std::make_unique<LevelView>(device, slopes_[p], level));
+  std::vector<std::vector<std::unique_ptr<LevelView>>> views(slopes.size());
+  std::vector<std::vector<std::unique_ptr<LevelView>>> momentViews(moments.size());
+  for (size_t p = 0; p < slopes.size(); ++p) {
+    for (uint32_t level = 0; level < slopes[p].desc().mipLevels; ++level) {
+      views[p].push_back(std::make_unique<LevelView>(device, slopes[p], level));
       if (horizons) {
-        momentViews[p].push_back(std::make_unique<LevelView>(device, horizonMoments_[p], level));
+        momentViews[p].push_back(std::make_unique<LevelView>(device, moments[p], level));
       }
     }
   }
   const auto record = [&](VkCommandBuffer cmd) {
-    for (size_t p = 0; p < slopes_.size(); ++p) {
-      const Image& page = slopes_[p];
+    for (size_t p = 0; p < slopes.size(); ++p) {
+      const Image& page = slopes[p];
       const uint32_t levels = page.desc().mipLevels;
-      transitionImage(
-          cmd, page,
-          keepSlopes ? VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL : VK_IMAGE_LAYOUT_UNDEFINED,
-          VK_IMAGE_LAYOUT_GENERAL);
+      transitionImage(cmd, page, before, VK_IMAGE_LAYOUT_GENERAL);
       // The second moments as the horizons: a re-lay keeps the channel it
       // does not write, and the rows outside its band.
       if (horizons) {
-        transitionImage(
-            cmd, horizonMoments_[p],
-            keepSlopes ? VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL : VK_IMAGE_LAYOUT_UNDEFINED,
-            VK_IMAGE_LAYOUT_GENERAL);
+        transitionImage(cmd, moments[p], before, VK_IMAGE_LAYOUT_GENERAL);
       }
       for (uint32_t level = 0; level < levels; ++level) {
         // The rows are whole multiples of the mip alignment: each level's
@@ -338,13 +342,12 @@ void TerrainScene::runSlopePass(const Device& device, const std::vector<Image>* 
         // The next level reads this one's slopes and horizons.
         transitionImage(cmd, page, VK_IMAGE_LAYOUT_GENERAL, VK_IMAGE_LAYOUT_GENERAL);
         if (horizons) {
-          transitionImage(cmd, horizonMoments_[p], VK_IMAGE_LAYOUT_GENERAL,
-                          VK_IMAGE_LAYOUT_GENERAL);
+          transitionImage(cmd, moments[p], VK_IMAGE_LAYOUT_GENERAL, VK_IMAGE_LAYOUT_GENERAL);
         }
       }
       transitionImage(cmd, page, VK_IMAGE_LAYOUT_GENERAL, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL);
       if (horizons) {
-        transitionImage(cmd, horizonMoments_[p], VK_IMAGE_LAYOUT_GENERAL,
+        transitionImage(cmd, moments[p], VK_IMAGE_LAYOUT_GENERAL,
                         VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL);
       }
     }
@@ -422,12 +425,81 @@ TerrainScene::TerrainScene(const Device& device, const Heightfield& field,
       albedo, triangleBudget, tiling);
 }
 
+// A map on its way to the device (stageAperture): the texels, the pages
+// they fill and the upload, which reads the texels band by band.
+struct TerrainScene::StagedAperture {
+  const Device* device = nullptr;
+  std::vector<uint16_t> texels;
+  DemRows rows;                        // the texels' DEM rows, for tileRows
+  std::vector<unsigned char> scratch;  // one band of DEM rows (tileRows)
+  std::vector<Image> pages;
+  std::unique_ptr<UploadBatch> upload;
+};
+
+// Like the scene's own pages, a staged map's live until the frames that
+// used the scene have run (the viewer retires whole scenes).
+TerrainScene::~TerrainScene() = default;
+
+void TerrainScene::stageAperture(const Device& device, HalfApertureMap map) {
+  const size_t width = static_cast<size_t>(demInfo_.x), height = static_cast<size_t>(demInfo_.y);
+  if (size_t(map.width) != width || size_t(map.height) != height ||
+      map.texels.size() != width * height * 4) {
+    throw std::invalid_argument("stageAperture: a map of " + std::to_string(map.width) + "x" +
+                                std::to_string(map.height) + " for a DEM of " +
+                                std::to_string(width) + "x" + std::to_string(height));
+  }
+  auto staged = std::make_unique<StagedAperture>();
+  staged->device = &device;
+  staged->texels = std::move(map.texels);
+  const uint16_t* texels = staged->texels.data();
+  staged->rows = [texels, width](uint32_t first, uint32_t end, void* destination) {
+    std::memcpy(destination, texels + size_t{first} * width * 4, size_t{end - first} * width * 8);
+  };
+  for (uint32_t page = 0; page < tiles_.pagesOf(TerrainTexture::Aperture); ++page) {
+    staged->pages.emplace_back(
+        device,
+        ImageDesc{tiles_.imageWidth(), tiles_.imageHeight(), aperture_.front().desc().format,
+                  kTextureUsage, VK_IMAGE_ASPECT_COLOR_BIT,
+                  tiles_.layersIn(TerrainTexture::Aperture, page), true, kTerrainMipLevels});
+  }
+  staged->upload = std::make_unique<UploadBatch>(device);
+  const size_t texelBytes = kTerrainTextureBytes[int(TerrainTexture::Aperture)];
+  const uint32_t perPage = tiles_.layersPerPageOf(TerrainTexture::Aperture);
+  for (uint32_t tile = 0; tile < tiles_.tileCount(); ++tile) {
+    staged->upload->addImage(staged->pages[tile / perPage], texelBytes,
+                             tileRows(tiles_, tile % tiles_.tilesX, tile / tiles_.tilesX,
+                                      texelBytes, staged->rows, staged->scratch),
+                             tile % perPage, reduceApertures);
+  }
+  // A share of the one before may be on the device.
+  if (staged_) device.deletionQueue().retire(std::move(staged_->pages));
+  staged_ = std::move(staged);
+}
+
+uint64_t TerrainScene::apertureTexelsLeft() const {
+  if (!staged_) return 0;
+  // Staging bytes of the levels, 4/3 of level 0's.
+  const size_t texelBytes = kTerrainTextureBytes[int(TerrainTexture::Aperture)];
+  return staged_->upload->bytesLeft() * 3 / 4 / texelBytes;
+}
+
+bool TerrainScene::recordApertureShare(VkCommandBuffer frame, uint64_t texels) {
+  if (!staged_) return true;
+  const size_t texelBytes = kTerrainTextureBytes[int(TerrainTexture::Aperture)];
+  // A band's levels take 4/3 of its level-0 bytes.
+  if (!staged_->upload->recordShare(frame, texels * texelBytes * 4 / 3)) return false;
+  // The frames before this one read the old pages.
+  staged_->device->deletionQueue().retire(std::exchange(aperture_, std::move(staged_->pages)));
+  staged_.reset();
+  id_ = nextSceneId();
+  return true;
+}
+
 void TerrainScene::build(const Device& device, const Heightfield& field,
                          const DemRows& apertureRows, const AlbedoImage* albedo,
                          size_t triangleBudget, const TerrainTiling& tiling) {
   if (triangleBudget < 2) throw std::invalid_argument("triangle budget must be at least 2");
-  static std::atomic<uint64_t> scenes{0};
-  id_ = ++scenes;
+  id_ = nextSceneId();
   const uint32_t w = static_cast<uint32_t>(field.width), h = static_cast<uint32_t>(field.height);
   tiling_ = tiling;
   tiles_ = planTerrainTiles(w, h, deviceTileLimits(device, tiling));
@@ -525,10 +597,21 @@ void TerrainScene::setHorizons(const Device& device, const HorizonMap& map, int 
   setHorizons(device, std::make_shared<const HorizonMap>(map), first);
 }
 
-void TerrainScene::setHorizons(const Device& device, std::shared_ptr<const HorizonMap> shared,
-                               int first) {
-  if (!shared) throw std::invalid_argument("setHorizons: no horizon map");
-  const HorizonMap& map = *shared;
+struct TerrainScene::HorizonPages {
+  std::vector<Image> slopes, moments;
+};
+
+// A pair of horizons on its way to the device (stageHorizons): its images,
+// filled band by band, and the next band.
+struct TerrainScene::StagedHorizons {
+  std::shared_ptr<const HorizonMap> map;
+  int first = 0;
+  HorizonPages pages;
+  uint32_t nextBand = 0;
+};
+
+TerrainScene::HorizonPages TerrainScene::makeHorizonPages(const Device& device,
+                                                          const HorizonMap& map, int first) {
   const glm::vec4 dem = demInfo_;
   if (map.width != int(dem.x) || map.height != int(dem.y) ||
       !validHorizonDirections(map.directions) || !validHorizonBits(map.bits) ||
@@ -555,25 +638,74 @@ void TerrainScene::setHorizons(const Device& device, std::shared_ptr<const Horiz
                              std::to_string(limits.maxAllocationBytes >> 20) +
                              " MiB an allocation)");
   }
-  // Made before anything changes, so a device too small keeps the scene as
-  // it was.
-  std::vector<Image> slopes = makeSlopePages(device, tiles_, true);
-  std::vector<Image> moments = makeHorizonMomentPages(device, tiles_);
+  HorizonPages pages{makeSlopePages(device, tiles_, true), makeHorizonMomentPages(device, tiles_)};
   if (!horizonSlopes_) {
     horizonSlopes_ =
         std::make_unique<ComputePipeline>(device, "slopes_horizons.comp", sizeof(SlopePush));
   }
+  return pages;
+}
+
+void TerrainScene::adoptHorizons(const Device& device, HorizonPages pages,
+                                 std::shared_ptr<const HorizonMap> map, int first) {
   const uint64_t bytes = slopeBytes(tiles_, true) - slopeBytes(tiles_, false);
   // Frames in flight may still read the images before: retired.
-  device.deletionQueue().retire(std::exchange(slopes_, std::move(slopes)));
-  device.deletionQueue().retire(std::exchange(horizonMoments_, std::move(moments)));
+  device.deletionQueue().retire(std::exchange(slopes_, std::move(pages.slopes)));
+  device.deletionQueue().retire(std::exchange(horizonMoments_, std::move(pages.moments)));
   textureBytes_ += bytes - horizonBytes_;  // a second map replaces the first
   horizonBytes_ = bytes;
-  horizonMap_ = std::move(shared);
-  horizonBits_ = map.bits;
-  horizonDirections_ = map.directions;
-  horizonChannels_ = HorizonChannels{{first, (first + 1) % map.directions}};
+  horizonBits_ = map->bits;
+  horizonDirections_ = map->directions;
+  horizonMap_ = std::move(map);
+  horizonChannels_ = HorizonChannels{{first, (first + 1) % horizonDirections_}};
+}
+
+void TerrainScene::setHorizons(const Device& device, std::shared_ptr<const HorizonMap> shared,
+                               int first) {
+  if (!shared) throw std::invalid_argument("setHorizons: no horizon map");
+  // Made before anything changes, so a device too small keeps the scene as
+  // it was.
+  HorizonPages pages = makeHorizonPages(device, *shared, first);
+  adoptHorizons(device, std::move(pages), std::move(shared), first);
   computeSlopes(device, first, false);
+}
+
+void TerrainScene::stageHorizons(const Device& device, std::shared_ptr<const HorizonMap> shared,
+                                 int first) {
+  if (!shared) throw std::invalid_argument("stageHorizons: no horizon map");
+  auto staged = std::make_unique<StagedHorizons>();
+  staged->pages = makeHorizonPages(device, *shared, first);
+  staged->map = std::move(shared);
+  staged->first = first;
+  // A share of the ones before may be on the device.
+  if (stagedHorizons_) {
+    device.deletionQueue().retire(std::move(stagedHorizons_->pages.slopes));
+    device.deletionQueue().retire(std::move(stagedHorizons_->pages.moments));
+  }
+  stagedHorizons_ = std::move(staged);
+}
+
+bool TerrainScene::recordHorizonShare(const Device& device, VkCommandBuffer frame,
+                                      uint64_t texels) {
+  if (!stagedHorizons_) return true;
+  StagedHorizons& staged = *stagedHorizons_;
+  const uint32_t bands = horizonBands();
+  const uint32_t count = static_cast<uint32_t>(
+      std::clamp<uint64_t>(texels / horizonBandTexels(), 1, bands - staged.nextBand));
+  const uint32_t rowBegin = staged.nextBand * kTerrainMipAlignment;
+  const uint32_t rowEnd = (staged.nextBand + count) * kTerrainMipAlignment;
+  const int n = staged.map->directions;
+  std::vector<Image> codes = horizonCodePages(
+      device, tiles_, *staged.map, {staged.first, (staged.first + 1) % n}, rowBegin, rowEnd, frame);
+  // The first band finds the images new; the others keep the bands before.
+  runSlopePass(device, &codes, false, kBothChannels, rowBegin, rowEnd, frame,
+               {staged.pages.slopes, staged.pages.moments, staged.nextBand > 0});
+  device.deletionQueue().retire(std::move(codes));
+  staged.nextBand += count;
+  if (staged.nextBand < bands) return false;
+  adoptHorizons(device, std::move(staged.pages), std::move(staged.map), staged.first);
+  stagedHorizons_.reset();
+  return true;
 }
 
 int TerrainScene::horizonFirst() const {
@@ -651,7 +783,8 @@ void TerrainScene::writeHorizonRelay(const Device& device, const HorizonRelaySte
     if (codeBytes > UploadBatch::kDefaultStagingBytes) frame = VK_NULL_HANDLE;
     std::vector<Image> codes =
         horizonCodePages(device, tiles_, *horizonMap_, directions, rowBegin, rowEnd, frame);
-    runSlopePass(device, &codes, true, step.channel, rowBegin, rowEnd, frame);
+    runSlopePass(device, &codes, true, step.channel, rowBegin, rowEnd, frame,
+                 {slopes_, horizonMoments_, true});
     if (frame != VK_NULL_HANDLE) device.deletionQueue().retire(std::move(codes));
   }
   horizonChannels_ = afterHorizonRelay(horizonDirections_, horizonChannels_, step, horizonBands());

@@ -22,6 +22,7 @@
 #include "aperture/terrain/io/albedo_image.h"
 #include "aperture/terrain/io/aperture_map.h"
 #include "aperture/terrain/io/horizon_map.h"
+#include "aperture/terrain/reference/relief.h"
 #include "aperture/terrain/view/quadtree_lod.h"
 
 namespace aal {
@@ -40,6 +41,7 @@ float sunAzimuthRad(const glm::vec3& sunDirection);
 
 class TerrainScene {
  public:
+  ~TerrainScene();
   // Uploads everything in one batch. The aperture map must belong to the DEM
   // (checkApertureMatchesDem). `albedo` may be null: a palette by height and
   // slope is used then. `triangleBudget` caps the triangles the LOD draws per
@@ -60,6 +62,26 @@ class TerrainScene {
   // it while the real map is baked.
   TerrainScene(const Device& device, const Heightfield& field, const AlbedoImage* albedo,
                size_t triangleBudget, const TerrainTiling& tiling = {});
+
+  // Replaces the aperture map without a stall (aal-view's background bake):
+  // new pages are made now and filled a share a frame by
+  // recordApertureShare from `map` (as the device holds it: RGBA halves;
+  // readHalfApertureMap), which the scene keeps until then. Frames keep drawing the map before
+  // until the last share. A map staged before and not yet complete is
+  // dropped. Throws std::invalid_argument for a map of another size and
+  // VulkanError when the device cannot hold the second set of pages.
+  void stageAperture(const Device& device, HalfApertureMap map);
+  bool apertureStaged() const { return staged_ != nullptr; }
+  // Records the next share of the staged map's upload into `frame`, before
+  // any of its passes: whole bands of about `texels` level-0 texels, their
+  // mip levels made on the host (a fresh staging buffer each time, retired
+  // into the device's DeletionQueue: nothing waits). With the last share the
+  // scene swaps the pages in, retiring the ones before, and takes a new id()
+  // (what the shading's histories are kept for changed); it returns true
+  // then. Nothing staged: returns true and records nothing.
+  bool recordApertureShare(VkCommandBuffer frame, uint64_t texels);
+  // Level-0 texels still to be copied of the staged map (0: none staged).
+  uint64_t apertureTexelsLeft() const;
 
   // How the textures are tiled (one tile: the images are the DEM).
   const TerrainTileLayout& tiles() const { return tiles_; }
@@ -95,6 +117,22 @@ class TerrainScene {
   void setHorizons(const Device& device, std::shared_ptr<const HorizonMap> map, int first = 0);
   // The same with a copy of `map` (tests; the tools share theirs).
   void setHorizons(const Device& device, const HorizonMap& map, int first = 0);
+  // setHorizons without a stall (aal-view's background bake): the slopes
+  // with the pair's horizons and their moments are made in new images, a
+  // share a frame by recordHorizonShare; until the last share the scene draws
+  // as before (without horizons: hasHorizons() false, or with the ones it
+  // had). Throws as setHorizons; drops horizons staged before.
+  void stageHorizons(const Device& device, std::shared_ptr<const HorizonMap> map, int first);
+  bool horizonsStaged() const { return stagedHorizons_ != nullptr; }
+  // Records the next share into `frame`, before any of its passes: whole
+  // bands of about `texels` level-0 texels (at least one band), their codes
+  // uploaded and every level's slopes and horizons computed (nothing waits;
+  // what it made retired into the device's DeletionQueue). With the last
+  // share the scene takes the new images (the ones before retired) and the
+  // map, as setHorizons would have left it, and returns true; also when
+  // nothing is staged.
+  bool recordHorizonShare(const Device& device, VkCommandBuffer frame, uint64_t texels);
+
   // Writes the horizons of another pair into the slope texture at once
   // (nothing when it is the current one): an upload of the codes and a
   // compute pass, waited for; of one direction when the pairs share the
@@ -149,19 +187,38 @@ class TerrainScene {
   // first + 1; `keepSlopes`: R and G are there already (a re-lay), only the
   // horizons' moments change.
   void computeSlopes(const Device& device, int first, bool keepSlopes) const;
+  // The images a slope pass writes: the scene's, or staged ones
+  // (stageHorizons). `kept`: they hold what other rows need (written
+  // before, in SHADER_READ_ONLY_OPTIMAL), else their contents are dropped.
+  struct SlopeTargets {
+    const std::vector<Image>& slopes;
+    const std::vector<Image>& moments;
+    bool kept;
+  };
   // The pass of slopes.comp or (with `codes`) slopes_horizons.comp over rows
   // [rowBegin, rowEnd) (multiples of kTerrainMipAlignment) of every tile
-  // image and level; with horizons it writes `channel` (0 B, 1 A, 2 both)
-  // from the codes, which hold those rows.
-  // With `frame` it is recorded there (what it made retired), else
-  // submitted and waited for.
+  // image and level of `targets`; with horizons it writes `channel` (0 B, 1
+  // A, 2 both) from the codes, which hold those rows; `keepSlopes`: R and G
+  // are left as they are. With `frame` it is recorded there (what it made
+  // retired), else submitted and waited for.
   void runSlopePass(const Device& device, const std::vector<Image>* codes, bool keepSlopes,
-                    int channel, uint32_t rowBegin, uint32_t rowEnd, VkCommandBuffer frame) const;
+                    int channel, uint32_t rowBegin, uint32_t rowEnd, VkCommandBuffer frame,
+                    const SlopeTargets& targets) const;
+  // setHorizons' checks and images (the slopes with horizons, the moments),
+  // made before anything changes; the horizon pipeline made once.
+  struct HorizonPages;
+  HorizonPages makeHorizonPages(const Device& device, const HorizonMap& map, int first);
+  // The scene takes `pages` and the map: the pair `first` on the device.
+  void adoptHorizons(const Device& device, HorizonPages pages,
+                     std::shared_ptr<const HorizonMap> map, int first);
   // `apertureRows` writes whole DEM rows of RGBA16F bent normal + arc length.
   void build(const Device& device, const Heightfield& field,
              const std::function<void(uint32_t firstRow, uint32_t endRow, void* destination)>&
                  apertureRows,
              const AlbedoImage* albedo, size_t triangleBudget, const TerrainTiling& tiling);
+
+  struct StagedAperture;
+  struct StagedHorizons;
 
   TerrainTiling tiling_;  // what the caller asked for beyond the device's limits
   TerrainTileLayout tiles_;
@@ -187,6 +244,8 @@ class TerrainScene {
   glm::vec4 demInfo_{0.0f};
   float minHeight_ = 0, maxHeight_ = 0;
   uint64_t id_ = 0;
+  std::unique_ptr<StagedAperture> staged_;          // stageAperture's map until it is swapped in
+  std::unique_ptr<StagedHorizons> stagedHorizons_;  // stageHorizons' until they are
 };
 
 }  // namespace aal

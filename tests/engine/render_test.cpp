@@ -10,6 +10,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
+#include <functional>
 #include <memory>
 #include <numbers>
 #include <string>
@@ -21,12 +22,14 @@
 #include "aperture/engine/terrain_scene.h"
 #include "aperture/engine/vk/buffer.h"
 #include "aperture/engine/vk/commands.h"
+#include "aperture/engine/vk/deletion_queue.h"
 #include "aperture/engine/vk/serial_pass_timer.h"
 #include "aperture/preprocess/bake.h"
 #include "aperture/terrain/io/dem_loader.h"
 #include "aperture/terrain/io/horizon_map.h"
 #include "aperture/terrain/light/sky_lighting.h"
 #include "aperture/terrain/light/tone_map.h"
+#include "aperture/terrain/reference/relief.h"
 #include "aperture/terrain/synthetic.h"
 #include "aperture/terrain/view/camera.h"
 #include "aperture/tests/engine/vulkan_test.h"
@@ -283,6 +286,136 @@ TEST_F(Render, SpreadReLayDrawsTheSharedDirectionThenTheNewPair) {
   for (int frame = 0; frame < 3; ++frame) renderer.render(moving, end, false);
   EXPECT_EQ(moving.horizonRelays(), 1u);
   EXPECT_FALSE(moving.horizonChannels().mixing());
+}
+
+// One headless frame whose commands begin with `share` (as aal-view's
+// frames begin with a share of a finished bake); `done`: what it returned.
+std::vector<uint8_t> frameAfterShare(const Device& device, TerrainRenderer& renderer,
+                                     const TerrainScene& scene, const FrameSettings& s,
+                                     const std::function<bool(VkCommandBuffer)>& share,
+                                     bool& done) {
+  const size_t bytes = size_t{renderer.width()} * renderer.height() * 4;
+  Buffer back(device, bytes, VK_BUFFER_USAGE_TRANSFER_DST_BIT, MemoryIntent::Readback);
+  submitAndWait(device, [&](VkCommandBuffer cmd) {
+    done = share(cmd);
+    renderer.record(cmd, scene, s, FrameOutput{});
+    copyImageToBuffer(cmd, renderer.displayImage(), back);
+  });
+  DeletionQueue& deletions = device.deletionQueue();
+  deletions.releaseCompleted(deletions.endFrame());
+  std::vector<uint8_t> pixels(bytes);
+  back.read(pixels.data(), pixels.size());
+  return pixels;
+}
+
+// aal-view's background bake: the map staged into a scene that drew an open
+// sky (TerrainScene::stageAperture) goes to the device a share a frame, each
+// share recorded into the frame's own commands ahead of its passes. Until
+// the last share every frame is, byte for byte, the open sky's picture; the
+// frame of the last share and those after are a fresh scene's with the map;
+// the scene's id changes with it.
+TEST_F(Render, StagedApertureArrivesAShareAFrameThenDrawsAsAFreshScene) {
+  const Heightfield f = ridge();
+  const ApertureMap map = bake(f);
+  TerrainRenderer renderer(device(), 96, 96);
+  FrameSettings s = topView(f, ShadingMode::Approx, 90, 20);
+  s.obscurance.enabled = false;
+  TerrainScene arriving(device(), f, nullptr, 100000);
+  // The least share: one band a frame.
+  const auto share = [&](VkCommandBuffer cmd) { return arriving.recordApertureShare(cmd, 1); };
+
+  const std::vector<uint8_t> openSky = renderer.render(arriving, s, false).display;
+  EXPECT_THROW(arriving.stageAperture(device(), HalfApertureMap{.width = 3, .height = 3}),
+               std::invalid_argument);
+  EXPECT_FALSE(arriving.apertureStaged());
+  arriving.stageAperture(device(), toHalfApertureMap(map));
+  ASSERT_TRUE(arriving.apertureStaged());
+  const uint64_t id = arriving.id();
+  uint64_t left = arriving.apertureTexelsLeft();
+  EXPECT_GE(left, uint64_t(f.texelCount()));
+  int shares = 0;
+  bool done = false;
+  std::vector<uint8_t> last;
+  while (!done) {
+    last = frameAfterShare(device(), renderer, arriving, s, share, done);
+    ++shares;
+    ASSERT_LT(shares, 100);
+    if (done) break;
+    EXPECT_LT(arriving.apertureTexelsLeft(), left) << "share " << shares;
+    left = arriving.apertureTexelsLeft();
+    EXPECT_EQ(last, openSky) << "share " << shares << " drew a map not yet whole";
+    EXPECT_EQ(arriving.id(), id);
+  }
+  EXPECT_GE(shares, 3) << "spread over frames";
+  EXPECT_FALSE(arriving.apertureStaged());
+  EXPECT_EQ(arriving.apertureTexelsLeft(), 0u);
+  EXPECT_NE(arriving.id(), id);
+
+  TerrainScene fresh(device(), f, map, nullptr, 100000);
+  const std::vector<uint8_t> expected = renderer.render(fresh, s, false).display;
+  EXPECT_NE(expected, openSky) << "the map shows in this picture";
+  EXPECT_EQ(last, expected) << "the last share's frame";
+  EXPECT_EQ(frameAfterShare(device(), renderer, arriving, s, share, done), expected);
+  EXPECT_TRUE(done) << "nothing staged";
+}
+
+// The bake's horizons follow the same way (TerrainScene::stageHorizons): a
+// band or more a frame into images of their own. Until the last share the
+// scene has no horizons and draws `approx` as before, byte for byte; then
+// it holds the pair it was staged with and draws both modes as a scene given
+// that pair by setHorizons.
+TEST_F(Render, StagedHorizonsArriveAShareAFrameThenDrawAsSetHorizons) {
+  const Heightfield f = ridge();
+  const BakeResult baked = bakeWithHorizons(f);
+  const auto shared = std::make_shared<const HorizonMap>(baked.horizons);
+  TerrainRenderer renderer(device(), 96, 96);
+  FrameSettings horizon = topView(f, ShadingMode::Horizon, 292.5, 26);
+  horizon.obscurance.enabled = false;
+  FrameSettings approx = horizon;
+  approx.mode = ShadingMode::Approx;
+  const int first = horizonPairFor(8, sunAzimuthRad(horizon.lighting.sunDirection), -1);
+  TerrainScene arriving(device(), f, baked.aperture, nullptr, 100000);
+  const auto share = [&](VkCommandBuffer cmd) {
+    return arriving.recordHorizonShare(device(), cmd, 1);
+  };
+
+  const std::vector<uint8_t> before = renderer.render(arriving, approx, false).display;
+  HorizonMap small = baked.horizons;
+  small.width = 7;
+  EXPECT_THROW(arriving.stageHorizons(device(), std::make_shared<const HorizonMap>(small), first),
+               std::invalid_argument);
+  EXPECT_FALSE(arriving.horizonsStaged());
+  arriving.stageHorizons(device(), shared, first);
+  ASSERT_TRUE(arriving.horizonsStaged());
+  EXPECT_FALSE(arriving.hasHorizons());
+  ASSERT_GE(arriving.horizonBands(), 3u);
+  uint32_t shares = 0;
+  bool done = false;
+  while (!done) {
+    const std::vector<uint8_t> frame =
+        frameAfterShare(device(), renderer, arriving, approx, share, done);
+    ++shares;
+    ASSERT_LE(shares, arriving.horizonBands());
+    if (done) break;
+    EXPECT_FALSE(arriving.hasHorizons()) << "share " << shares;
+    EXPECT_EQ(frame, before) << "share " << shares;
+  }
+  EXPECT_EQ(shares, arriving.horizonBands()) << "one band a share";
+  EXPECT_FALSE(arriving.horizonsStaged());
+  ASSERT_TRUE(arriving.hasHorizons());
+  EXPECT_EQ(arriving.horizonFirst(), first);
+  EXPECT_EQ(arriving.horizonRelays(), 0u);
+
+  TerrainScene fresh(device(), f, baked.aperture, nullptr, 100000);
+  fresh.setHorizons(device(), shared, first);
+  EXPECT_EQ(arriving.textureBytes(), fresh.textureBytes());
+  const std::vector<uint8_t> expected = renderer.render(fresh, horizon, false).display;
+  EXPECT_NE(expected, renderer.render(fresh, approx, false).display)
+      << "the horizons show in this picture";
+  EXPECT_EQ(renderer.render(arriving, horizon, false).display, expected);
+  EXPECT_EQ(renderer.render(arriving, approx, false).display,
+            renderer.render(fresh, approx, false).display);
+  EXPECT_EQ(arriving.horizonRelays(), 0u);
 }
 
 // Re-laying the horizons for another sun (TerrainScene::relayHorizons, from

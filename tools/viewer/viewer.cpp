@@ -10,6 +10,7 @@
 #include <filesystem>
 #include <map>
 #include <memory>
+#include <optional>
 #include <string>
 #include <system_error>
 #include <utility>
@@ -38,7 +39,10 @@ struct Viewer::Terrain {
   std::string path;
   std::shared_ptr<const Heightfield> field;
   std::unique_ptr<TerrainScene> scene;
-  std::unique_ptr<BackgroundBake> bake;        // set while the aperture map is baked
+  // Set while the aperture map is baked and then sent to the device.
+  std::unique_ptr<BackgroundBake> bake;
+  // Once the bake is taken, what the panel says when the map is drawn.
+  std::optional<std::string> arrival;
   std::shared_ptr<const HorizonMap> horizons;  // null: no horizon mode
 };
 
@@ -55,7 +59,10 @@ struct Viewer::Timing {
   // Scripted frames, for --stats: wall time from the first counted frame.
   Clock::time_point firstCounted;
   int counted = 0;
-  int whileBaking = 0;  // frames drawn with the placeholder while the map was baked
+  // Frames whose iteration began before the map was drawn (baked, then sent
+  // to the device: the iteration that takes the bake too), and their times.
+  int whileBaking = 0;
+  std::vector<double> bakingMs;
   std::map<std::string, double> passSumsMs;
   int passFrames = 0;
   // Each counted frame's time (its loop iteration), for the median and the
@@ -195,6 +202,18 @@ constexpr double kIdleWaitS = 0.1;
 // 2^20, about a tenth of the frame on lavapipe (docs/performance.md).
 constexpr uint64_t kViewerHorizonRelayTexels = uint64_t{1} << 20;
 
+// Level-0 texels of a finished background bake's aperture map sent to the
+// device a frame (TerrainScene::recordApertureShare), then of its horizons
+// (recordHorizonShare, both channels and the slopes: dearer on the device
+// than a re-lay's one channel). Chosen on lavapipe, 2048^2, 1280x720: the
+// map's 2^20 texels (11 MiB of halves with their levels) cost the frame
+// 4-15 ms of the host's time and nothing measurable on the device; the
+// horizons' 2^20 texels made frames of 87-118 ms out of 55-60, 2^19 of at
+// most 87, 2^18 of at most 74 (docs/performance.md, "A finished bake's
+// arrival"). A 4096^2 map arrives in 16 frames, its horizons in 32.
+constexpr uint64_t kViewerApertureTexelsPerFrame = uint64_t{1} << 20;
+constexpr uint64_t kViewerArrivalHorizonTexels = uint64_t{1} << 19;
+
 // The bake also keeps the sweep's horizons in aal-bake --horizons' 16
 // azimuths (8-bit codes) for the horizon mode when the azimuths allow: no
 // extra sweep, 16 B per texel on the host (docs/viewer.md).
@@ -290,13 +309,13 @@ void Viewer::showTerrain(std::shared_ptr<const Heightfield> field, const std::st
   // retired (the bake, on the host, is cancelled now).
   if (terrain_) device_.deletionQueue().retire(std::move(terrain_->scene));
   terrain_ = std::move(terrain);
-  attachHorizons();
+  attachHorizons(false);
   const VkExtent2D extent = swapchain_.extent();
   camera_ = std::make_unique<CameraController>(field, double(extent.width) / extent.height);
   window_.setTitle("aal-view - " + fs::path(path).filename().string());
 }
 
-void Viewer::attachHorizons() {
+void Viewer::attachHorizons(bool staged) {
   Terrain& t = *terrain_;
   if (!t.horizons) return;
   try {
@@ -304,9 +323,13 @@ void Viewer::attachHorizons() {
     // need not re-lay); the renderer re-lays when the sun leaves the pair.
     FrameSettings s;
     applyViewLighting(lighting_, *t.field, s);
-    t.scene->setHorizons(
-        device_, t.horizons,
-        horizonPairFor(t.horizons->directions, sunAzimuthRad(s.lighting.sunDirection), -1));
+    const int first =
+        horizonPairFor(t.horizons->directions, sunAzimuthRad(s.lighting.sunDirection), -1);
+    if (staged) {
+      t.scene->stageHorizons(device_, t.horizons, first);
+    } else {
+      t.scene->setHorizons(device_, t.horizons, first);
+    }
   } catch (const std::exception& e) {
     t.horizons.reset();
     setMessage(std::string("no horizon mode: ") + e.what());
@@ -335,29 +358,27 @@ void Viewer::openDroppedDem(const std::string& path) {
 
 void Viewer::updateBake() {
   Terrain& t = *terrain_;
-  if (!t.bake || !t.bake->finished()) return;
+  if (!t.bake) return;
+  if (t.arrival) {
+    // The map (and the bake's horizons) go to the device a share a frame
+    // (recordFrame); the scene draws them once the last share is recorded.
+    if (t.scene->apertureStaged() || t.scene->horizonsStaged()) return;
+    t.bake.reset();
+    setMessage(*std::exchange(t.arrival, std::nullopt));
+    return;
+  }
+  if (!t.bake->finished()) return;
   try {
-    CachedAperture cached = t.bake->take();
-    if (!t.horizons) t.horizons = sharedHorizons(std::move(cached.horizons));
-    std::unique_ptr<TerrainScene> scene;
-    if (!cached.path.empty()) {
-      ApertureMapReader reader(cached.path.string());
-      scene = std::make_unique<TerrainScene>(device_, *t.field, reader, nullptr,
-                                             options_.triangleBudget);
-    } else {
-      scene = std::make_unique<TerrainScene>(device_, *t.field, cached.map, nullptr,
-                                             options_.triangleBudget);
-    }
-    // A frame in flight may still draw the placeholder: retired.
-    device_.deletionQueue().retire(std::exchange(t.scene, std::move(scene)));
-    attachHorizons();
-    setMessage("aperture map ready" + (cached.path.empty()
-                                           ? std::string(" (not cached)")
-                                           : ", cached as " + cached.path.string()));
+    BakedAperture baked = t.bake->take();
+    if (!t.horizons) t.horizons = sharedHorizons(std::move(baked.horizons));
+    t.scene->stageAperture(device_, std::move(baked.map));
+    if (!t.scene->hasHorizons()) attachHorizons(true);  // the bake's own
+    t.arrival = "aperture map ready" + (baked.path.empty() ? std::string(" (not cached)")
+                                                           : ", cached as " + baked.path.string());
   } catch (const std::exception& e) {
     setMessage(std::string("aperture bake failed: ") + e.what());
+    t.bake.reset();
   }
-  t.bake.reset();
 }
 
 void Viewer::handleKeys() {
@@ -490,6 +511,14 @@ void Viewer::recordFrame(VkCommandBuffer cmd, uint32_t imageIndex, const FrameSe
   output.frameSlot = sync_.slot();
   // Drawn smaller while the view moves: rebuilt from the frames before.
   output.temporal = resolutionScale < 1.0f && temporal_;
+  // A finished bake's map, then its horizons, go up a share a frame into
+  // images no frame reads yet: no frame waits for all of it, nor pays for
+  // both at once.
+  if (terrain_->scene->apertureStaged()) {
+    terrain_->scene->recordApertureShare(cmd, kViewerApertureTexelsPerFrame);
+  } else {
+    terrain_->scene->recordHorizonShare(device_, cmd, kViewerArrivalHorizonTexels);
+  }
   renderer_->record(cmd, *terrain_->scene, settings, output);
   if (!pendingScreenshot_.empty()) {
     // What is presented (without the panel); the renderer's display image
@@ -514,6 +543,8 @@ bool Viewer::frameNeeded(const FrameSettings& settings) {
   if (options_.frames > 0 || swapchainStale_ || !pendingScreenshot_.empty()) return true;
   if (!lastDrawn_ || !sameView(settings, *lastDrawn_) || lastScale_ < 1.0f) return true;
   if (terrain_->scene->id() != lastDrawnScene_ || message_ != lastDrawnMessage_) return true;
+  // Each frame sends a share of a finished bake's map and horizons.
+  if (terrain_->scene->apertureStaged() || terrain_->scene->horizonsStaged()) return true;
   // Input reaches the panel too: draw a few frames for ImGui to follow it.
   if (window_.takeActivity()) uiSettleFrames_ = 3;
   if (uiSettleFrames_ > 0) {
@@ -732,7 +763,14 @@ void Viewer::printStats() const {
                 (terrain_->scene->horizonFirst() + 1) % terrain_->scene->horizonDirections());
   }
   std::printf("frames     %d\n", t.counted);
-  std::printf("baking     %d frames drawn while the aperture map was baked\n", t.whileBaking);
+  std::printf("baking     %d frames drawn while the aperture map was baked", t.whileBaking);
+  if (!t.bakingMs.empty()) {
+    // Its arrival among them: a stall shows as the longest.
+    std::vector<double> ms = t.bakingMs;
+    std::sort(ms.begin(), ms.end());
+    std::printf(" and sent (median %.1f ms, longest %.1f ms)", ms[ms.size() / 2], ms.back());
+  }
+  std::printf("\n");
   std::printf("drawn      %d frames, %d idle iterations (nothing changed, nothing drawn)\n",
               t.drawn, t.idle);
   if (t.counted > 0) {
@@ -799,6 +837,7 @@ int Viewer::run() {
       recreateSwapchain();
     }
     handleKeys();
+    const bool baking = terrain_->bake != nullptr;
     updateBake();
     advanceViewTime(lighting_, dt);
     updateCamera(dt);
@@ -818,7 +857,11 @@ int Viewer::run() {
         std::chrono::duration<double, std::milli>(Timing::Clock::now() - start).count();
     timing_->frameDrawn(frameMs);
     resolution_.frameFinished(frameMs, frameMoving_);
-    if (terrain_->bake) ++timing_->whileBaking;
+    if (baking) {
+      ++timing_->whileBaking;
+      // The first frame's set-up (pipelines) is left out, as in the mean.
+      if (timing_->drawn > 1) timing_->bakingMs.push_back(frameMs);
+    }
     finishScriptedFrame();
   }
   device_.waitIdle();

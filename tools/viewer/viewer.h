@@ -110,9 +110,9 @@ class Viewer {
   void showTerrain(std::shared_ptr<const Heightfield> field, const std::string& path,
                    const std::string& aperturePath,
                    std::shared_ptr<const HorizonMap> horizons = nullptr);
-  // Gives the terrain's scene its horizons, if it has any (a scene is made
-  // again when the bake finishes).
-  void attachHorizons();
+  // Gives the terrain's scene its horizons, if it has any: at once, or
+  // `staged`, a share a frame (a finished bake's, TerrainScene::stageHorizons).
+  void attachHorizons(bool staged);
   void openDroppedDem(const std::string& path);
   void updateBake();
   void handleKeys();
