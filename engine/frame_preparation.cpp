@@ -165,7 +165,7 @@ void setTiles(FrameUniforms& u, const TerrainTileLayout& tiles) {
 }  // namespace
 
 FramePlan TerrainRenderer::prepareFrame(VkCommandBuffer cmd, const TerrainScene& scene,
-                                        const FrameSettings& s, const FrameOutput& output) {
+                                        const FrameSettings& requested, const FrameOutput& output) {
   // The host writes the uniforms, the obscurance samples and the LOD patches
   // into the frame slot's copies (record() picked them), which no frame in
   // flight uses.
@@ -174,13 +174,24 @@ FramePlan TerrainRenderer::prepareFrame(VkCommandBuffer cmd, const TerrainScene&
     throw std::invalid_argument(
         "TerrainRenderer::record: a reduced resolution needs an output image, not linear output");
   }
-  if (s.mode == ShadingMode::Horizon && !scene.hasHorizons()) {
+  const bool horizon = requested.mode == ShadingMode::Horizon;
+  if (horizon && !scene.hasHorizons()) {
     throw std::invalid_argument(
         "the horizon mode needs the DEM's directional horizons (aal-bake --horizons)");
   }
   extent_ = {std::max(1u, static_cast<uint32_t>(std::lround(width_ * scale))),
              std::max(1u, static_cast<uint32_t>(std::lround(height_ * scale)))};
-  if (s.mode == ShadingMode::Horizon) relayHorizons(scene, s, cmd);
+  if (horizon) relayHorizons(scene, requested, cmd);
+  // While a jump's pair is laid over frames no band's horizons are sure to
+  // be the sun's pair: the frame is drawn in approx, which reads none
+  // (engine/horizon_relay.h).
+  const bool laying = horizon && scene.horizonChannels().layingPair();
+  FrameSettings approx;
+  if (laying) {
+    approx = requested;
+    approx.mode = ShadingMode::Approx;
+  }
+  const FrameSettings& s = laying ? approx : requested;
   FramePlan plan =
       planPasses(scene, s, output, extent_, {width_, height_}, device_.independentBlend());
   // Rebuilt from frames drawn smaller, or accumulated at full size in

@@ -43,6 +43,17 @@ HorizonRelayStep layPair(int first) {
   return step;
 }
 
+// The next bands of pair `first` laid over frames: from `split` on when it
+// is the pair being laid, else from band 0.
+HorizonRelayStep layBands(const HorizonChannels& now, int first, uint32_t count, uint32_t bands) {
+  HorizonRelayStep step;
+  step.kind = HorizonRelayStep::Kind::LayBands;
+  step.first = first;
+  step.bandBegin = now.laying == first ? now.split : 0;
+  step.bandEnd = std::min(bands, step.bandBegin + count);
+  return step;
+}
+
 }  // namespace
 
 int horizonChannelsPair(int directions, const HorizonChannels& c) {
@@ -66,6 +77,15 @@ HorizonRelayStep planHorizonRelay(int directions, const HorizonChannels& now, fl
   const bool spread = policy.bandsPerFrame > 0;
   const float reach = horizonRelayReach(directions);
   const float margin = spread ? reach : kHorizonPairMargin;
+  // A jump: spread, the sun's pair laid over frames; else at once.
+  const auto jump = [&](int first) {
+    return spread ? layBands(now, first, policy.bandsPerFrame, bands) : layPair(first);
+  };
+  if (now.layingPair()) {
+    // The pair being laid while the sun stays by it (the reach's margin),
+    // else the sun's pair from the first band.
+    return jump(horizonPairFor(directions, azimuthRad, now.laying, margin));
+  }
   HorizonChannels m = now;
   if (!now.mixing()) {
     const int first = horizonChannelsPair(directions, now);
@@ -97,16 +117,14 @@ HorizonRelayStep planHorizonRelay(int directions, const HorizonChannels& now, fl
       m.mixed = channelOf(now, next);
       m.head = before;
     } else {
-      return layPair(target);  // no direction in common
+      return jump(target);  // no direction in common
     }
     m.split = 0;
   }
 
   const int shared = m.directions[1 - m.mixed];
   const float off = horizonStepsFrom(directions, azimuthRad, shared);
-  if (std::abs(off) > 1.0f + margin) {
-    return layPair(horizonPairFor(directions, azimuthRad, -1));
-  }
+  if (std::abs(off) > 1.0f + margin) return jump(horizonPairFor(directions, azimuthRad, -1));
   const int up = wrapDirection(shared + 1, directions);
   const int down = wrapDirection(shared - 1, directions);
   const bool inReach = spread && std::abs(off) <= reach;
@@ -122,6 +140,9 @@ HorizonRelayStep planHorizonRelay(int directions, const HorizonChannels& now, fl
       const float framesLeft = std::floor(std::max(0.0f, toEdge) / std::abs(motionSteps)) + 1.0f;
       count = std::max(count, uint32_t(std::ceil(float(remaining) / framesLeft)));
     }
+  } else if (spread && remaining > kHorizonAtOnceFrames * policy.bandsPerFrame) {
+    // Past the reach with too much left for one frame: laid anew, spread.
+    return jump(horizonPairFor(directions, azimuthRad, -1));
   }
   return writeTowards(m, target, std::min(count, remaining), bands);
 }
@@ -133,6 +154,16 @@ HorizonChannels afterHorizonRelay(int directions, const HorizonChannels& now,
     case HorizonRelayStep::Kind::Keep: return c;
     case HorizonRelayStep::Kind::LayPair:
       return HorizonChannels{{step.first, wrapDirection(step.first + 1, directions)}};
+    case HorizonRelayStep::Kind::LayBands:
+      if (step.bandEnd >= bands) {
+        return HorizonChannels{{step.first, wrapDirection(step.first + 1, directions)}};
+      }
+      // The pair before stays named (horizonChannelsPair) until the new one
+      // is whole.
+      c.mixed = c.head = -1;
+      c.laying = step.first;
+      c.split = step.bandEnd;
+      return c;
     case HorizonRelayStep::Kind::WriteBands: break;
   }
   if (!c.mixing()) {
@@ -149,6 +180,7 @@ HorizonChannels afterHorizonRelay(int directions, const HorizonChannels& now,
 std::array<float, 2> horizonChannelWeights(int directions, const HorizonChannels& channels,
                                            float azimuthRad) {
   std::array<float, 2> w{0.0f, 0.0f};
+  if (channels.layingPair()) return w;
   if (channels.mixing()) {
     w[1 - channels.mixed] = 1.0f;
     return w;

@@ -729,9 +729,11 @@ void TerrainScene::relayHorizons(const Device& device, int first) const {
                                 std::to_string(horizonDirections_));
   }
   const int n = horizonDirections_, now = horizonFirst();
-  if (first == now && !horizonChannels_.mixing()) return;
+  // Mixed or half laid, the channels are laid anew.
+  const bool whole = !horizonChannels_.mixing() && !horizonChannels_.layingPair();
+  if (first == now && whole) return;
   HorizonRelayStep step;
-  if (!horizonChannels_.mixing() && (first == (now + 1) % n || first == (now + n - 1) % n)) {
+  if (whole && (first == (now + 1) % n || first == (now + n - 1) % n)) {
     // One direction in common: only the other's channel is written.
     const bool up = first == (now + 1) % n;
     const int replaced = up ? now : (now + 1) % n;
@@ -762,9 +764,11 @@ void TerrainScene::writeHorizonRelay(const Device& device, const HorizonRelaySte
     // promise).
     computeSlopes(device, step.first, true);
   } else {
-    if (step.channel < 0 || step.channel > 1 ||
-        !validHorizonPair(horizonDirections_, step.direction) || step.bandBegin >= step.bandEnd ||
-        step.bandEnd > horizonBands()) {
+    const bool pair = step.kind == HorizonRelayStep::Kind::LayBands;
+    if ((pair ? !validHorizonPair(horizonDirections_, step.first)
+              : step.channel < 0 || step.channel > 1 ||
+                    !validHorizonPair(horizonDirections_, step.direction)) ||
+        step.bandBegin >= step.bandEnd || step.bandEnd > horizonBands()) {
       throw std::invalid_argument("writeHorizonRelay: bands " + std::to_string(step.bandBegin) +
                                   " to " + std::to_string(step.bandEnd) + " of " +
                                   std::to_string(horizonBands()));
@@ -777,18 +781,23 @@ void TerrainScene::writeHorizonRelay(const Device& device, const HorizonRelaySte
     // frame's share of a spread re-lay): nothing waits. A larger write (a
     // whole re-lay at once) is submitted and waited for, through a staging
     // buffer of bounded size.
-    const std::vector<int> directions{step.direction, step.direction};  // one code a channel
+    // One code a channel: the pair's two, or the written channel's twice.
+    const std::vector<int> directions =
+        pair ? std::vector<int>{step.first, (step.first + 1) % horizonDirections_}
+             : std::vector<int>{step.direction, step.direction};
     const uint64_t codeBytes =
         directions.size() * uint64_t(step.bandEnd - step.bandBegin) * horizonBandTexels();
     if (codeBytes > UploadBatch::kDefaultStagingBytes) frame = VK_NULL_HANDLE;
     std::vector<Image> codes =
         horizonCodePages(device, tiles_, *horizonMap_, directions, rowBegin, rowEnd, frame);
-    runSlopePass(device, &codes, true, step.channel, rowBegin, rowEnd, frame,
+    runSlopePass(device, &codes, true, pair ? kBothChannels : step.channel, rowBegin, rowEnd, frame,
                  {slopes_, horizonMoments_, true});
     if (frame != VK_NULL_HANDLE) device.deletionQueue().retire(std::move(codes));
   }
   horizonChannels_ = afterHorizonRelay(horizonDirections_, horizonChannels_, step, horizonBands());
-  if (!horizonChannels_.mixing() && horizonFirst() != before) ++horizonRelays_;
+  if (!horizonChannels_.mixing() && !horizonChannels_.layingPair() && horizonFirst() != before) {
+    ++horizonRelays_;
+  }
 }
 
 }  // namespace aal

@@ -145,9 +145,10 @@ class TerrainScene {
   // the bands' codes uploaded and their rows of every level computed.
   // TerrainRenderer::record calls it for a frame's sun with the frame's
   // command buffer, after the frame's first barrier and before its passes:
-  // a band step whose codes fit one staging buffer is recorded there (its
-  // staging, code images and views retired into the device's DeletionQueue)
-  // and nothing waits; a whole pair, or a larger step, is submitted and
+  // a band step (one channel's, or a spread jump's both) whose codes fit one
+  // staging buffer is recorded there (its staging, code images and views
+  // retired into the device's DeletionQueue) and nothing waits; a whole
+  // pair at once (LayPair), or a larger step, is submitted and
   // waited for, as relayHorizons does, before any of `frame`'s commands may
   // read the slopes. Without `frame`, every step is submitted and waited for.
   void writeHorizonRelay(const Device& device, const HorizonRelayStep& step,

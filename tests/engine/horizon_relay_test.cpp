@@ -34,6 +34,7 @@ struct Bands {
       for (float& v : band) v = h(rng);
   }
   int directionIn(const HorizonChannels& c, int channel, uint32_t band) const {
+    if (c.layingPair() && band < c.split) return (c.laying + channel) % directions;
     if (c.mixing() && channel == c.mixed && band < c.split) return c.head;
     return c.directions[channel];
   }
@@ -62,6 +63,7 @@ struct Bands {
 
 struct Sweep {
   uint32_t relays = 0, mixingFrames = 0, layPairs = 0, mostBands = 0;
+  uint32_t layingFrames = 0;   // frames drawn in approx while a pair was laid
   double worstOverBound = -1;  // (error - bound), worst
 };
 
@@ -78,13 +80,22 @@ Sweep sweep(const Bands& b, HorizonChannels& c, const std::vector<float>& azimut
         planHorizonRelay(b.directions, c, azimuths[i], motion, b.count, policy);
     const int before = horizonChannelsPair(b.directions, c);
     if (step.kind == HorizonRelayStep::Kind::LayPair) ++s.layPairs;
-    if (step.kind == HorizonRelayStep::Kind::WriteBands) {
+    if (step.kind == HorizonRelayStep::Kind::WriteBands ||
+        step.kind == HorizonRelayStep::Kind::LayBands) {
       EXPECT_LT(step.bandBegin, step.bandEnd);
       s.mostBands = std::max(s.mostBands, step.bandEnd - step.bandBegin);
     }
     c = afterHorizonRelay(b.directions, c, step, b.count);
     if (c.mixing()) ++s.mixingFrames;
-    if (!c.mixing() && horizonChannelsPair(b.directions, c) != before) ++s.relays;
+    if (!c.mixing() && !c.layingPair() && horizonChannelsPair(b.directions, c) != before) {
+      ++s.relays;
+    }
+    if (c.layingPair()) {
+      // Drawn in approx: no horizon is read.
+      EXPECT_EQ(horizonChannelWeights(b.directions, c, azimuths[i]), (std::array<float, 2>{0, 0}));
+      ++s.layingFrames;
+      continue;
+    }
     for (uint32_t band = 0; band < b.count; ++band) {
       const double error = std::abs(b.read(c, azimuths[i], band) - b.exact(azimuths[i], band));
       s.worstOverBound = std::max(
@@ -168,7 +179,7 @@ TEST(HorizonRelay, AStillSunNeverReLays) {
 
 // A sun that turns back in the middle of a re-lay takes the written bands
 // back, spread as well; the bound holds throughout and the pair ends as it
-// began. A sun jumping past the next pair lays both channels at once.
+// began.
 TEST(HorizonRelay, ATurningSunTakesItsReLayBackAndAJumpLaysThePair) {
   const Bands b(8, 64);
   // Direction 1 lies at 45 degrees: from 30 up to 46, then back to 30.
@@ -183,16 +194,90 @@ TEST(HorizonRelay, ATurningSunTakesItsReLayBackAndAJumpLaysThePair) {
   EXPECT_FALSE(c.mixing());
   EXPECT_EQ(horizonChannelsPair(8, c), 0);
 
+  // At once (aal-render's policy), a jump past the next pair lays both
+  // channels in one frame, and a step past the reach writes the rest of its
+  // channel.
   const float far = 200.0f * kPi / 180.0f;  // direction 4.4
-  const HorizonRelayStep jump = planHorizonRelay(8, c, far, 1.0f, 64, HorizonRelayPolicy{2});
+  const HorizonRelayStep jump = planHorizonRelay(8, c, far, 1.0f, 64, {});
   EXPECT_EQ(jump.kind, HorizonRelayStep::Kind::LayPair);
   EXPECT_EQ(jump.first, 4);
-  // A step to the next pair, past the reach: its one channel at once.
   const float next = 70.0f * kPi / 180.0f;  // direction 1.56
-  const HorizonRelayStep step = planHorizonRelay(8, c, next, 0.0f, 64, HorizonRelayPolicy{2});
-  EXPECT_EQ(step.kind, HorizonRelayStep::Kind::WriteBands);
-  EXPECT_EQ(step.bandEnd - step.bandBegin, 64u);
-  EXPECT_EQ(step.direction, 2);
+  const HorizonRelayStep atOnce = planHorizonRelay(8, c, next, 0.0f, 64, {});
+  EXPECT_EQ(atOnce.kind, HorizonRelayStep::Kind::WriteBands);
+  EXPECT_EQ(atOnce.bandEnd - atOnce.bandBegin, 64u);
+  EXPECT_EQ(atOnce.direction, 2);
+  // Spread, a step past the reach whose rest is within kHorizonAtOnceFrames
+  // frames' bands writes it at once too.
+  const HorizonRelayStep rest = planHorizonRelay(8, c, next, 0.0f, 64, HorizonRelayPolicy{32});
+  EXPECT_EQ(rest.kind, HorizonRelayStep::Kind::WriteBands);
+  EXPECT_EQ(rest.bandEnd - rest.bandBegin, 64u);
+}
+
+// Spread (aal-view's policy), a jump lays the sun's pair bandsPerFrame bands
+// a frame, both channels, the frames meanwhile reading no horizon (drawn in
+// approx); so does a step past the reach with more than
+// kHorizonAtOnceFrames frames' bands of its channel left. A sun that jumps
+// again while a pair is laid starts the new one from the first band; one
+// that stays by the pair being laid goes on with it.
+TEST(HorizonRelay, ASpreadJumpLaysThePairOverFramesAndReadsNoHorizonMeanwhile) {
+  const Bands b(8, 64);
+  const HorizonRelayPolicy policy{4};
+  // Direction 4.4, then 4.5 (the same pair), then 6.5 (another), each held.
+  std::vector<float> azimuths(3, 200.0f * kPi / 180.0f);
+  azimuths.insert(azimuths.end(), 5, 202.5f * kPi / 180.0f);
+  const size_t again = azimuths.size();
+  azimuths.insert(azimuths.end(), 20, 292.5f * kPi / 180.0f);
+  HorizonChannels c{{0, 1}};
+  std::vector<HorizonRelayStep> steps;
+  for (size_t i = 0; i < azimuths.size(); ++i) {
+    const float motion = i == 0 ? 0.0f : horizonMotionSteps(8, azimuths[i - 1], azimuths[i]);
+    steps.push_back(planHorizonRelay(8, c, azimuths[i], motion, b.count, policy));
+    c = afterHorizonRelay(8, c, steps.back(), b.count);
+    if (c.layingPair()) {
+      EXPECT_EQ(horizonChannelsPair(8, c), 0) << i << ": the pair before, until done";
+    }
+  }
+  for (size_t i = 0; i < again; ++i) {
+    EXPECT_EQ(steps[i].kind, HorizonRelayStep::Kind::LayBands) << i;
+    EXPECT_EQ(steps[i].first, 4) << i;
+    EXPECT_EQ(steps[i].bandBegin, 4 * i) << i;
+    EXPECT_EQ(steps[i].bandEnd, 4 * i + 4) << i;
+  }
+  EXPECT_EQ(steps[again].first, 6);
+  EXPECT_EQ(steps[again].bandBegin, 0u) << "a new pair starts over";
+  // 16 frames of 4 bands lay pair 6; then it is whole and the sun keeps it.
+  for (size_t i = again; i < again + 16; ++i) {
+    EXPECT_EQ(steps[i].kind, HorizonRelayStep::Kind::LayBands) << i;
+  }
+  for (size_t i = again + 16; i < steps.size(); ++i) {
+    EXPECT_EQ(steps[i].kind, HorizonRelayStep::Kind::Keep) << i;
+  }
+  EXPECT_FALSE(c.layingPair());
+  EXPECT_EQ(c, (HorizonChannels{{6, 7}}));
+
+  // A step past the reach with 64 bands of a channel left (more than 2
+  // frames of 4): the sun's pair laid, spread.
+  const HorizonChannels pair{{0, 1}};
+  const HorizonRelayStep past = planHorizonRelay(8, pair, 70.0f * kPi / 180.0f, 0.0f, 64, policy);
+  EXPECT_EQ(past.kind, HorizonRelayStep::Kind::LayBands);
+  EXPECT_EQ(past.first, 1);
+  EXPECT_EQ(past.bandEnd - past.bandBegin, 4u);
+
+  // Along a sweep that jumps every 40 frames the bound holds in every frame
+  // that reads horizons.
+  std::vector<float> hops;
+  for (int k = 0; k < 6; ++k) {
+    const std::vector<float> piece = turn(10.0f + 100.0f * k, 50.0f + 100.0f * k, 1.0f);
+    hops.insert(hops.end(), piece.begin(), piece.end());
+  }
+  HorizonChannels h{{0, 1}};
+  const Sweep s = sweep(b, h, hops, policy);
+  EXPECT_EQ(s.layPairs, 0u);
+  EXPECT_GE(s.layingFrames, 5u * 16u) << "each hop laid over 16 frames";
+  // No frame writes half a channel (a spread re-lay hurries past 4 bands a
+  // frame to be done within the reach).
+  EXPECT_LT(s.mostBands, b.count / 2);
+  EXPECT_LE(s.worstOverBound, 0.0);
 }
 
 }  // namespace

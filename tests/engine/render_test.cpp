@@ -288,6 +288,56 @@ TEST_F(Render, SpreadReLayDrawsTheSharedDirectionThenTheNewPair) {
   EXPECT_FALSE(moving.horizonChannels().mixing());
 }
 
+// A sun that jumps to the opposite side in aal-view's spread policy: the
+// new pair is laid a band a frame, both channels in place; every frame
+// meanwhile is, byte for byte, the approx picture of the same sun (no band's
+// horizons are read), and the frame that completes it and those after are a
+// fresh scene's laid for that sun. One re-lay in all.
+TEST_F(Render, SpreadJumpDrawsApproxWhileThePairIsLaidThenTheNewPair) {
+  const Heightfield f = ridge();
+  const BakeResult baked = bakeWithHorizons(f);
+  const auto shared = std::make_shared<const HorizonMap>(baked.horizons);
+  TerrainRenderer renderer(device(), 96, 96), reference(device(), 96, 96);
+  const auto frameFor = [&](double compassDeg, ShadingMode mode) {
+    FrameSettings s = topView(f, mode, compassDeg, 26);
+    s.obscurance.enabled = false;
+    s.horizonRelayTexelsPerFrame = 1;  // one band a frame
+    return s;
+  };
+  TerrainScene moving(device(), f, baked.aperture, nullptr, 100000);
+  const FrameSettings before = frameFor(330, ShadingMode::Horizon);
+  moving.setHorizons(device(), shared,
+                     horizonPairFor(8, sunAzimuthRad(before.lighting.sunDirection), -1));
+  renderer.render(moving, before, false);
+  ASSERT_EQ(moving.horizonRelays(), 0u);
+
+  const FrameSettings jumped = frameFor(150, ShadingMode::Horizon);
+  const int pair = horizonPairFor(8, sunAzimuthRad(jumped.lighting.sunDirection), -1);
+  const std::vector<uint8_t> approx =
+      reference.render(moving, frameFor(150, ShadingMode::Approx), false).display;
+  uint32_t layingFrames = 0;
+  FrameResult last;
+  for (uint32_t frame = 0; frame <= moving.horizonBands(); ++frame) {
+    last = renderer.render(moving, jumped, false);
+    if (!moving.horizonChannels().layingPair()) break;
+    ++layingFrames;
+    EXPECT_EQ(moving.horizonChannels().laying, pair);
+    EXPECT_EQ(last.display, approx) << "frame " << frame;
+  }
+  EXPECT_EQ(layingFrames + 1, moving.horizonBands()) << "one band a frame";
+  EXPECT_FALSE(moving.horizonChannels().layingPair());
+  EXPECT_EQ(moving.horizonFirst(), pair);
+  EXPECT_EQ(moving.horizonRelays(), 1u);
+
+  TerrainScene fresh(device(), f, baked.aperture, nullptr, 100000);
+  fresh.setHorizons(device(), shared, pair);
+  const std::vector<uint8_t> expected = reference.render(fresh, jumped, false).display;
+  EXPECT_NE(expected, approx) << "the horizons show in this picture";
+  EXPECT_EQ(last.display, expected) << "the frame that completes the pair";
+  EXPECT_EQ(renderer.render(moving, jumped, false).display, expected);
+  EXPECT_EQ(moving.horizonRelays(), 1u);
+}
+
 // One headless frame whose commands begin with `share` (as aal-view's
 // frames begin with a share of a finished bake); `done`: what it returned.
 std::vector<uint8_t> frameAfterShare(const Device& device, TerrainRenderer& renderer,
