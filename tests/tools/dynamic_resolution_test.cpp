@@ -56,6 +56,21 @@ TEST(DynamicResolution, NeverDropsBelowAQuarterOfThePixelsAndRecovers) {
   EXPECT_EQ(d.scaleFor(true), 1.0f);
 }
 
+// Rebuilt from the frames before, the scale may fall to a third of the
+// width; scaled up again, it rises back to half at once.
+TEST(DynamicResolution, RebuiltFramesMayDropToAThirdOfTheWidth) {
+  DynamicResolution d(1000);  // unreachable
+  d.setRebuilt(true);
+  EXPECT_EQ(d.minimumScale(), DynamicResolution::kRebuiltMinimumScale);
+  for (int i = 0; i < 50; ++i) d.frameFinished(frameMs(d.scaleFor(true), 12, 60), true);
+  EXPECT_EQ(d.scaleFor(true), DynamicResolution::kRebuiltMinimumScale);
+  EXPECT_LT(DynamicResolution::kRebuiltMinimumScale, DynamicResolution::kMinimumScale);
+  d.setRebuilt(false);
+  EXPECT_EQ(d.scaleFor(true), DynamicResolution::kMinimumScale);
+  for (int i = 0; i < 50; ++i) d.frameFinished(frameMs(d.scaleFor(true), 12, 60), true);
+  EXPECT_EQ(d.scaleFor(true), DynamicResolution::kMinimumScale);
+}
+
 TEST(DynamicResolution, IgnoresNonsense) {
   DynamicResolution d(std::nan(""));
   EXPECT_EQ(d.targetFps(), 0);

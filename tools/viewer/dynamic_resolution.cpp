@@ -10,6 +10,11 @@ void DynamicResolution::setTargetFps(double targetFps) {
   if (targetFps_ == 0) scale_ = 1.0f;
 }
 
+void DynamicResolution::setRebuilt(bool rebuilt) {
+  minimum_ = rebuilt ? kRebuiltMinimumScale : kMinimumScale;
+  scale_ = std::max(scale_, minimum_);
+}
+
 float DynamicResolution::scaleFor(bool moving) const {
   return moving && targetFps_ > 0 ? scale_ : 1.0f;
 }
@@ -25,7 +30,7 @@ void DynamicResolution::frameFinished(double frameMs, bool moving) {
   } else if (frameMs < 0.8 * targetMs) {
     next = scale_ * 1.05;
   }
-  scale_ = static_cast<float>(std::clamp(next, double(kMinimumScale), 1.0));
+  scale_ = static_cast<float>(std::clamp(next, double(minimum_), 1.0));
 }
 
 }  // namespace aal

@@ -266,6 +266,7 @@ Viewer::Viewer(const ViewerOptions& options, std::shared_ptr<const Heightfield> 
   temporal_ = options.temporal == TemporalReconstruction::On ||
               (options.temporal == TemporalReconstruction::Auto &&
                device_.properties().deviceType != VK_PHYSICAL_DEVICE_TYPE_CPU);
+  resolution_.setRebuilt(temporal_);
   renderer_ = std::make_unique<TerrainRenderer>(device_, swapchain_.extent().width,
                                                 swapchain_.extent().height, swapchain_.format());
   showTerrain(std::move(field), options.dem, options.aperture, options.horizons);
@@ -478,7 +479,10 @@ void Viewer::drawUi() {
   if (actions.screenshot) pendingScreenshot_ = nextScreenshotName();
   if (actions.vsyncChanged) swapchainStale_ = true;
   // The history holds frames of the other way: start it again.
-  if (actions.temporalChanged) renderer_->restartTemporal();
+  if (actions.temporalChanged) {
+    renderer_->restartTemporal();
+    resolution_.setRebuilt(temporal_);
+  }
   if (model.targetFps != resolution_.targetFps()) resolution_.setTargetFps(model.targetFps);
 }
 
