@@ -695,12 +695,17 @@ bool TerrainScene::recordHorizonShare(const Device& device, VkCommandBuffer fram
   const uint32_t rowBegin = staged.nextBand * kTerrainMipAlignment;
   const uint32_t rowEnd = (staged.nextBand + count) * kTerrainMipAlignment;
   const int n = staged.map->directions;
+  // As writeHorizonRelay: codes beyond one staging buffer are submitted and
+  // waited for instead.
+  if (2 * uint64_t(count) * horizonBandTexels() > UploadBatch::kDefaultStagingBytes) {
+    frame = VK_NULL_HANDLE;
+  }
   std::vector<Image> codes = horizonCodePages(
       device, tiles_, *staged.map, {staged.first, (staged.first + 1) % n}, rowBegin, rowEnd, frame);
   // The first band finds the images new; the others keep the bands before.
   runSlopePass(device, &codes, false, kBothChannels, rowBegin, rowEnd, frame,
                {staged.pages.slopes, staged.pages.moments, staged.nextBand > 0});
-  device.deletionQueue().retire(std::move(codes));
+  if (frame != VK_NULL_HANDLE) device.deletionQueue().retire(std::move(codes));
   staged.nextBand += count;
   if (staged.nextBand < bands) return false;
   adoptHorizons(device, std::move(staged.pages), std::move(staged.map), staged.first);

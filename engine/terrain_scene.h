@@ -127,7 +127,8 @@ class TerrainScene {
   // Records the next share into `frame`, before any of its passes: whole
   // bands of about `texels` level-0 texels (at least one band), their codes
   // uploaded and every level's slopes and horizons computed (nothing waits;
-  // what it made retired into the device's DeletionQueue). With the last
+  // what it made retired into the device's DeletionQueue; a share whose
+  // codes exceed one staging buffer is submitted and waited for instead). With the last
   // share the scene takes the new images (the ones before retired) and the
   // map, as setHorizons would have left it, and returns true; also when
   // nothing is staged.
