@@ -397,7 +397,8 @@ TEST_F(FrameOutputTest, TemporalReconstructionRebuildsTheFullResolutionInMotion)
     const std::vector<uint8_t> upscaled = draw(scaled, false);
     if (i < kFilled) continue;
     const std::vector<uint8_t> one = full.render(scene, s, false).display;
-    const std::vector<uint8_t> converged = renderSupersampled(points, scene, s, kConverged, false).display;
+    const std::vector<uint8_t> converged =
+        renderSupersampled(points, scene, s, kConverged, false).display;
     rebuiltToConverged += relativeLinearRmse(temporal, converged) / (kFrames - kFilled);
     fullToConverged += relativeLinearRmse(one, converged) / (kFrames - kFilled);
     rebuiltToFull += relativeLinearRmse(temporal, one) / (kFrames - kFilled);
