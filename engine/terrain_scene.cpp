@@ -264,6 +264,42 @@ uint64_t nextSceneId() {
   return ++ids;
 }
 
+// The 2D array images of one texture kind in `tiles`' pages, with every mip
+// level.
+std::vector<Image> makeTexturePages(const Device& device, const TerrainTileLayout& tiles,
+                                    TerrainTexture texture, VkFormat format) {
+  std::vector<Image> pages;
+  for (uint32_t page = 0; page < tiles.pagesOf(texture); ++page) {
+    pages.emplace_back(device, ImageDesc{tiles.imageWidth(), tiles.imageHeight(), format,
+                                         kTextureUsage, VK_IMAGE_ASPECT_COLOR_BIT,
+                                         tiles.layersIn(texture, page), true, kTerrainMipLevels});
+  }
+  return pages;
+}
+
+// Adds every tile of one texture kind to `upload`, each layer of `pages`
+// filled from the DEM rows `rows` (which, with `scratch`, must outlive the
+// upload).
+void addTileImages(UploadBatch& upload, const TerrainTileLayout& tiles,
+                   const std::vector<Image>& pages, TerrainTexture texture, const DemRows& rows,
+                   std::vector<unsigned char>& scratch, MipReducer reduce) {
+  const size_t texelBytes = kTerrainTextureBytes[int(texture)];
+  const uint32_t perPage = tiles.layersPerPageOf(texture);
+  for (uint32_t tile = 0; tile < tiles.tileCount(); ++tile) {
+    upload.addImage(
+        pages[tile / perPage], texelBytes,
+        tileRows(tiles, tile % tiles.tilesX, tile / tiles.tilesX, texelBytes, rows, scratch),
+        tile % perPage, reduce);
+  }
+}
+
+// A write of `codeBytes` of horizon codes goes into `frame`'s commands when
+// it fits one staging buffer; a larger one is submitted and waited for
+// (VK_NULL_HANDLE), through a staging buffer of bounded size.
+VkCommandBuffer frameForCodes(VkCommandBuffer frame, uint64_t codeBytes) {
+  return codeBytes > UploadBatch::kDefaultStagingBytes ? VK_NULL_HANDLE : frame;
+}
+
 }  // namespace
 
 void TerrainScene::computeSlopes(const Device& device, int first, bool keepSlopes) const {
@@ -455,22 +491,11 @@ void TerrainScene::stageAperture(const Device& device, HalfApertureMap map) {
   staged->rows = [texels, width](uint32_t first, uint32_t end, void* destination) {
     std::memcpy(destination, texels + size_t{first} * width * 4, size_t{end - first} * width * 8);
   };
-  for (uint32_t page = 0; page < tiles_.pagesOf(TerrainTexture::Aperture); ++page) {
-    staged->pages.emplace_back(
-        device,
-        ImageDesc{tiles_.imageWidth(), tiles_.imageHeight(), aperture_.front().desc().format,
-                  kTextureUsage, VK_IMAGE_ASPECT_COLOR_BIT,
-                  tiles_.layersIn(TerrainTexture::Aperture, page), true, kTerrainMipLevels});
-  }
+  staged->pages =
+      makeTexturePages(device, tiles_, TerrainTexture::Aperture, aperture_.front().desc().format);
   staged->upload = std::make_unique<UploadBatch>(device);
-  const size_t texelBytes = kTerrainTextureBytes[int(TerrainTexture::Aperture)];
-  const uint32_t perPage = tiles_.layersPerPageOf(TerrainTexture::Aperture);
-  for (uint32_t tile = 0; tile < tiles_.tileCount(); ++tile) {
-    staged->upload->addImage(staged->pages[tile / perPage], texelBytes,
-                             tileRows(tiles_, tile % tiles_.tilesX, tile / tiles_.tilesX,
-                                      texelBytes, staged->rows, staged->scratch),
-                             tile % perPage, reduceApertures);
-  }
+  addTileImages(*staged->upload, tiles_, staged->pages, TerrainTexture::Aperture, staged->rows,
+                staged->scratch, reduceApertures);
   // A share of the one before may be on the device.
   if (staged_) device.deletionQueue().retire(std::move(staged_->pages));
   staged_ = std::move(staged);
@@ -542,12 +567,9 @@ void TerrainScene::build(const Device& device, const Heightfield& field,
                                                VK_IMAGE_ASPECT_COLOR_BIT, 1, true});
         continue;
       }
-      for (uint32_t page = 0; page < tiles_.pagesOf(kind.texture); ++page) {
-        const uint32_t layers = tiles_.layersIn(kind.texture, page);
-        kind.pages.emplace_back(
-            device, ImageDesc{tiles_.imageWidth(), tiles_.imageHeight(), kind.format, kTextureUsage,
-                              VK_IMAGE_ASPECT_COLOR_BIT, layers, true, kTerrainMipLevels});
-        textureBytes_ += tiles_.layerTexels() * layers * kind.texelBytes();
+      kind.pages = makeTexturePages(device, tiles_, kind.texture, kind.format);
+      for (const Image& page : kind.pages) {
+        textureBytes_ += tiles_.layerTexels() * page.desc().layers * kind.texelBytes();
       }
     }
     slopes_ = makeSlopePages(device, tiles_, false);
@@ -574,13 +596,7 @@ void TerrainScene::build(const Device& device, const Heightfield& field,
       upload.addImage(albedo_[0], 4, grey);
       continue;
     }
-    const uint32_t perPage = tiles_.layersPerPageOf(kind.texture);
-    for (uint32_t tile = 0; tile < tiles_.tileCount(); ++tile) {
-      upload.addImage(kind.pages[tile / perPage], kind.texelBytes(),
-                      tileRows(tiles_, tile % tiles_.tilesX, tile / tiles_.tilesX,
-                               kind.texelBytes(), kind.rows, scratch),
-                      tile % perPage, kind.reduce);
-    }
+    addTileImages(upload, tiles_, kind.pages, kind.texture, kind.rows, scratch, kind.reduce);
   }
   upload.addBuffer(indices_, patchIndices.data(), patchIndices.size() * sizeof(uint32_t));
   upload.submit();
@@ -695,11 +711,7 @@ bool TerrainScene::recordHorizonShare(const Device& device, VkCommandBuffer fram
   const uint32_t rowBegin = staged.nextBand * kTerrainMipAlignment;
   const uint32_t rowEnd = (staged.nextBand + count) * kTerrainMipAlignment;
   const int n = staged.map->directions;
-  // As writeHorizonRelay: codes beyond one staging buffer are submitted and
-  // waited for instead.
-  if (2 * uint64_t(count) * horizonBandTexels() > UploadBatch::kDefaultStagingBytes) {
-    frame = VK_NULL_HANDLE;
-  }
+  frame = frameForCodes(frame, 2 * uint64_t(count) * horizonBandTexels());
   std::vector<Image> codes = horizonCodePages(
       device, tiles_, *staged.map, {staged.first, (staged.first + 1) % n}, rowBegin, rowEnd, frame);
   // The first band finds the images new; the others keep the bands before.
@@ -783,16 +795,14 @@ void TerrainScene::writeHorizonRelay(const Device& device, const HorizonRelaySte
     const uint32_t rowBegin = step.bandBegin * kTerrainMipAlignment;
     const uint32_t rowEnd = step.bandEnd * kTerrainMipAlignment;
     // Into the frame's commands when its codes fit one staging buffer (a
-    // frame's share of a spread re-lay): nothing waits. A larger write (a
-    // whole re-lay at once) is submitted and waited for, through a staging
-    // buffer of bounded size.
-    // One code a channel: the pair's two, or the written channel's twice.
+    // frame's share of a spread re-lay): nothing waits; a whole re-lay at
+    // once is submitted and waited for. One code a channel: the pair's two,
+    // or the written channel's twice.
     const std::vector<int> directions =
         pair ? std::vector<int>{step.first, (step.first + 1) % horizonDirections_}
              : std::vector<int>{step.direction, step.direction};
-    const uint64_t codeBytes =
-        directions.size() * uint64_t(step.bandEnd - step.bandBegin) * horizonBandTexels();
-    if (codeBytes > UploadBatch::kDefaultStagingBytes) frame = VK_NULL_HANDLE;
+    frame = frameForCodes(
+        frame, directions.size() * uint64_t(step.bandEnd - step.bandBegin) * horizonBandTexels());
     std::vector<Image> codes =
         horizonCodePages(device, tiles_, *horizonMap_, directions, rowBegin, rowEnd, frame);
     runSlopePass(device, &codes, true, pair ? kBothChannels : step.channel, rowBegin, rowEnd, frame,
