@@ -79,6 +79,11 @@ std::vector<std::pair<std::string, double>> TerrainRenderer::passMilliseconds(
 
 void TerrainRenderer::record(VkCommandBuffer cmd, const TerrainScene& scene, const FrameSettings& s,
                              const FrameOutput& output) {
+  if (!scene.built()) {
+    throw std::logic_error(
+        "TerrainRenderer::record: the scene's textures are still being sent "
+        "(TerrainScene::recordBuildShare)");
+  }
   slot_ = &frameSlot(output.frameSlot, "record");
   // The frame before may still be on the device (frames in flight): its
   // reads and writes of the targets and of the slopes (which a spread

@@ -322,9 +322,10 @@ void TerrainScene::runSlopePass(const Device& device, const std::vector<Image>* 
   const VkImageLayout before =
       targets.kept ? VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL : VK_IMAGE_LAYOUT_UNDEFINED;
   std::unique_ptr<ComputePipeline> plain;
-  if (!horizons)
+  if (!horizons && !plainSlopes_) {
     plain = std::make_unique<ComputePipeline>(device, "slopes.comp", sizeof(SlopePush));
-  const ComputePipeline& pipeline = horizons ? *horizonSlopes_ : *plain;
+  }
+  const ComputePipeline& pipeline = horizons ? *horizonSlopes_ : plain ? *plain : *plainSlopes_;
   auto nearest = std::make_unique<Sampler>(device, VK_FILTER_NEAREST, true);
   // Integer texels: no filter.
   auto codeSampler = std::make_unique<Sampler>(device, VK_FILTER_NEAREST, false);
@@ -420,6 +421,52 @@ TerrainTileLimits deviceTileLimits(const Device& device, const TerrainTiling& ti
   return limits;
 }
 
+namespace {
+
+DemRows heightRowsOf(const Heightfield& field) {
+  const size_t w = static_cast<size_t>(field.width);
+  return [&field, w](uint32_t first, uint32_t end, void* destination) {
+    std::memcpy(destination, field.z.data() + first * w, (end - first) * w * 4);
+  };
+}
+
+// Every texel an open sky: bent normal up, arc length pi/2.
+DemRows openSkyRows(size_t width) {
+  return [width](uint32_t first, uint32_t end, void* destination) {
+    static const uint16_t up[4] = {Imath::half(0.0f).bits(), Imath::half(0.0f).bits(),
+                                   Imath::half(1.0f).bits(), Imath::half(1.5707964f).bits()};
+    uint16_t* out = static_cast<uint16_t*>(destination);
+    for (size_t i = 0; i < (end - first) * width; ++i) std::copy(up, up + 4, out + 4 * i);
+  };
+}
+
+// RGBA8 from the linear RGB floats, band by band (no second full copy).
+DemRows albedoRowsOf(size_t width, const AlbedoImage* albedo) {
+  if (!albedo) return {};
+  return [albedo, width](uint32_t first, uint32_t end, void* destination) {
+    auto* out = static_cast<uint8_t*>(destination);
+    for (size_t i = first * width; i < end * width; ++i, out += 4) {
+      for (int c = 0; c < 3; ++c) {
+        out[c] =
+            static_cast<uint8_t>(std::clamp(albedo->rgb[3 * i + c], 0.0f, 1.0f) * 255.0f + 0.5f);
+      }
+      out[3] = 255;
+    }
+  };
+}
+
+// The rows of an aperture map held as halves (HalfApertureMap::texels).
+DemRows halfMapRows(const uint16_t* texels, size_t width) {
+  return [texels, width](uint32_t first, uint32_t end, void* destination) {
+    std::memcpy(destination, texels + first * width * 4, (end - first) * width * 8);
+  };
+}
+
+// The one texel of a scene without an albedo image (the shader ignores it).
+constexpr uint8_t kNoAlbedo[4] = {128, 128, 128, 255};
+
+}  // namespace
+
 TerrainScene::TerrainScene(const Device& device, const Heightfield& field,
                            const ApertureMap& aperture, const AlbedoImage* albedo,
                            size_t triangleBudget, const TerrainTiling& tiling) {
@@ -449,16 +496,8 @@ TerrainScene::TerrainScene(const Device& device, const Heightfield& field,
 TerrainScene::TerrainScene(const Device& device, const Heightfield& field,
                            const AlbedoImage* albedo, size_t triangleBudget,
                            const TerrainTiling& tiling) {
-  const size_t width = static_cast<size_t>(field.width);
-  const uint16_t up[4] = {Imath::half(0.0f).bits(), Imath::half(0.0f).bits(),
-                          Imath::half(1.0f).bits(), Imath::half(1.5707964f).bits()};
-  build(
-      device, field,
-      [&](uint32_t first, uint32_t end, void* destination) {
-        uint16_t* out = static_cast<uint16_t*>(destination);
-        for (size_t i = 0; i < (end - first) * width; ++i) std::copy(up, up + 4, out + 4 * i);
-      },
-      albedo, triangleBudget, tiling);
+  build(device, field, openSkyRows(static_cast<size_t>(field.width)), albedo, triangleBudget,
+        tiling);
 }
 
 // A map on its way to the device (stageAperture): the texels, the pages
@@ -470,6 +509,24 @@ struct TerrainScene::StagedAperture {
   std::vector<unsigned char> scratch;  // one band of DEM rows (tileRows)
   std::vector<Image> pages;
   std::unique_ptr<UploadBatch> upload;
+};
+
+// What build() fills the images from (each kind's DEM rows, the LOD's
+// indices); kept with the upload while a staged build is under way.
+struct TerrainScene::BuildRows {
+  DemRows heights, apertures, albedo;
+  std::vector<unsigned char> scratch;  // one band of DEM rows (tileRows)
+  std::vector<uint32_t> patchIndices;
+};
+
+// A scene on its way to the device (staged): the rows its upload reads, the
+// upload, and the slopes' next band once the upload is done.
+struct TerrainScene::StagedBuild {
+  std::shared_ptr<const Heightfield> field;
+  std::vector<uint16_t> apertures;  // the map's halves; none: an open sky
+  BuildRows rows;
+  std::unique_ptr<UploadBatch> upload;  // null once every texture is copied
+  uint32_t nextSlopeBand = 0;
 };
 
 // Like the scene's own pages, a staged map's live until the frames that
@@ -488,9 +545,7 @@ void TerrainScene::stageAperture(const Device& device, HalfApertureMap map) {
   staged->device = &device;
   staged->texels = std::move(map.texels);
   const uint16_t* texels = staged->texels.data();
-  staged->rows = [texels, width](uint32_t first, uint32_t end, void* destination) {
-    std::memcpy(destination, texels + size_t{first} * width * 4, size_t{end - first} * width * 8);
-  };
+  staged->rows = halfMapRows(texels, width);
   staged->pages =
       makeTexturePages(device, tiles_, TerrainTexture::Aperture, aperture_.front().desc().format);
   staged->upload = std::make_unique<UploadBatch>(device);
@@ -520,56 +575,63 @@ bool TerrainScene::recordApertureShare(VkCommandBuffer frame, uint64_t texels) {
   return true;
 }
 
+std::array<TerrainScene::TextureKind, 3> TerrainScene::textureKinds() {
+  return {{{TerrainTexture::Height, &heights_, VK_FORMAT_R32_SFLOAT, &BuildRows::heights,
+            reduceHeights},
+           {TerrainTexture::Aperture, &aperture_, VK_FORMAT_R16G16B16A16_SFLOAT,
+            &BuildRows::apertures, reduceApertures},
+           {TerrainTexture::Albedo, &albedo_, VK_FORMAT_R8G8B8A8_UNORM, &BuildRows::albedo,
+            reduceAlbedo}}};
+}
+
+PreparedTerrain prepareTerrain(std::shared_ptr<const Heightfield> field) {
+  if (!field) throw std::invalid_argument("prepareTerrain: no heightfield");
+  PreparedTerrain prepared;
+  prepared.lod = std::make_unique<LodQuadtree>(*field);
+  const auto [lo, hi] = std::minmax_element(field->z.begin(), field->z.end());
+  prepared.minHeight = *lo;
+  prepared.maxHeight = *hi;
+  prepared.field = std::move(field);
+  return prepared;
+}
+
 void TerrainScene::build(const Device& device, const Heightfield& field,
                          const DemRows& apertureRows, const AlbedoImage* albedo,
                          size_t triangleBudget, const TerrainTiling& tiling) {
+  BuildRows rows{heightRowsOf(field), apertureRows,
+                 albedoRowsOf(static_cast<size_t>(field.width), albedo)};
+  // The caller's field, not shared: only for the build.
+  PreparedTerrain prepared =
+      prepareTerrain(std::shared_ptr<const Heightfield>(&field, [](const Heightfield*) {}));
+  makeImages(device, prepared, albedo != nullptr, triangleBudget, tiling, rows);
+  UploadBatch upload(device);
+  addUploads(upload, rows);
+  upload.submit();
+  computeSlopes(device, 0, false);
+}
+
+void TerrainScene::makeImages(const Device& device, PreparedTerrain& prepared, bool albedo,
+                              size_t triangleBudget, const TerrainTiling& tiling, BuildRows& rows) {
   if (triangleBudget < 2) throw std::invalid_argument("triangle budget must be at least 2");
+  const Heightfield& field = *prepared.field;
   id_ = nextSceneId();
   const uint32_t w = static_cast<uint32_t>(field.width), h = static_cast<uint32_t>(field.height);
   tiling_ = tiling;
   tiles_ = planTerrainTiles(w, h, deviceTileLimits(device, tiling));
-  hasAlbedo_ = albedo != nullptr;
-
-  const DemRows heightRows = [&](uint32_t first, uint32_t end, void* destination) {
-    std::memcpy(destination, field.z.data() + size_t{first} * w, size_t{end - first} * w * 4);
-  };
-  // RGBA8 from the linear RGB floats, band by band (no second full copy).
-  const DemRows albedoRows = [&](uint32_t first, uint32_t end, void* destination) {
-    auto* out = static_cast<uint8_t*>(destination);
-    for (size_t i = size_t{first} * w; i < size_t{end} * w; ++i, out += 4) {
-      for (int c = 0; c < 3; ++c) {
-        out[c] =
-            static_cast<uint8_t>(std::clamp(albedo->rgb[3 * i + c], 0.0f, 1.0f) * 255.0f + 0.5f);
-      }
-      out[3] = 255;
-    }
-  };
-
-  struct Kind {
-    TerrainTexture texture;
-    std::vector<Image>& pages;
-    VkFormat format;
-    const DemRows& rows;
-    MipReducer reduce;
-    size_t texelBytes() const { return kTerrainTextureBytes[int(texture)]; }
-  };
-  const Kind kinds[] = {
-      {TerrainTexture::Height, heights_, VK_FORMAT_R32_SFLOAT, heightRows, reduceHeights},
-      {TerrainTexture::Aperture, aperture_, VK_FORMAT_R16G16B16A16_SFLOAT, apertureRows,
-       reduceApertures},
-      {TerrainTexture::Albedo, albedo_, VK_FORMAT_R8G8B8A8_UNORM, albedoRows, reduceAlbedo}};
+  hasAlbedo_ = albedo;
   textureBytes_ = 0;
   try {
-    for (const Kind& kind : kinds) {
-      if (&kind.pages == &albedo_ && !albedo) {
+    for (const TextureKind& kind : textureKinds()) {
+      if (kind.pages == &albedo_ && !albedo) {
         // A bound texture is required; one texel that the shader ignores.
         albedo_.emplace_back(device, ImageDesc{1, 1, kind.format, kTextureUsage,
                                                VK_IMAGE_ASPECT_COLOR_BIT, 1, true});
         continue;
       }
-      kind.pages = makeTexturePages(device, tiles_, kind.texture, kind.format);
-      for (const Image& page : kind.pages) {
-        textureBytes_ += tiles_.layerTexels() * page.desc().layers * kind.texelBytes();
+      *kind.pages = makeTexturePages(device, tiles_, kind.texture, kind.format);
+      for (const Image& page : *kind.pages) {
+        textureBytes_ +=
+            tiles_.layerTexels() * page.desc().layers * kTerrainTextureBytes[int(kind.texture)];
       }
     }
     slopes_ = makeSlopePages(device, tiles_, false);
@@ -580,33 +642,101 @@ void TerrainScene::build(const Device& device, const Heightfield& field,
                       " MiB) do not fit the device's memory: " + e.what());
   }
 
-  lod_ = std::make_unique<LodQuadtree>(field);
+  lod_ = std::move(prepared.lod);
   triangleBudget_ = triangleBudget;
   lodBudgetErrorScale_ = aal::lodBudgetErrorScale(*lod_, triangleBudget);
-  const std::vector<uint32_t> patchIndices = makeLodPatchIndices();
-  indices_ = Buffer(device, patchIndices.size() * sizeof(uint32_t),
+  rows.patchIndices = makeLodPatchIndices();
+  indices_ = Buffer(device, rows.patchIndices.size() * sizeof(uint32_t),
                     VK_BUFFER_USAGE_INDEX_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT,
                     MemoryIntent::DeviceLocal);
-
-  UploadBatch upload(device);
-  std::vector<unsigned char> scratch;  // one band of DEM rows while a tile is filled
-  const uint8_t grey[4] = {128, 128, 128, 255};
-  for (const Kind& kind : kinds) {
-    if (&kind.pages == &albedo_ && !albedo) {
-      upload.addImage(albedo_[0], 4, grey);
-      continue;
-    }
-    addTileImages(upload, tiles_, kind.pages, kind.texture, kind.rows, scratch, kind.reduce);
-  }
-  upload.addBuffer(indices_, patchIndices.data(), patchIndices.size() * sizeof(uint32_t));
-  upload.submit();
   demInfo_ = {static_cast<float>(field.width), static_cast<float>(field.height),
               static_cast<float>(field.cellSizeXM), static_cast<float>(field.cellSizeYM)};
-  computeSlopes(device, 0, false);
+  minHeight_ = prepared.minHeight;
+  maxHeight_ = prepared.maxHeight;
+}
 
-  const auto [lo, hi] = std::minmax_element(field.z.begin(), field.z.end());
-  minHeight_ = *lo;
-  maxHeight_ = *hi;
+void TerrainScene::addUploads(UploadBatch& upload, BuildRows& rows) {
+  // The indices first: a share takes at least the widest band of the images
+  // still to come, so they never go a few bytes a share.
+  upload.addBuffer(indices_, rows.patchIndices.data(), rows.patchIndices.size() * sizeof(uint32_t));
+  for (const TextureKind& kind : textureKinds()) {
+    if (kind.pages == &albedo_ && !hasAlbedo_) {
+      upload.addImage(albedo_[0], 4, kNoAlbedo);
+      continue;
+    }
+    addTileImages(upload, tiles_, *kind.pages, kind.texture, rows.*kind.rows, rows.scratch,
+                  kind.reduce);
+  }
+}
+
+std::unique_ptr<TerrainScene> TerrainScene::staged(const Device& device, PreparedTerrain prepared,
+                                                   size_t triangleBudget,
+                                                   const TerrainTiling& tiling) {
+  if (!prepared.field || !prepared.lod) {
+    throw std::invalid_argument("TerrainScene::staged: not a prepared terrain");
+  }
+  std::unique_ptr<TerrainScene> scene(new TerrainScene());
+  auto staged = std::make_unique<StagedBuild>();
+  staged->field = prepared.field;
+  const Heightfield& f = *staged->field;
+  const size_t width = static_cast<size_t>(f.width);
+  HalfApertureMap& map = prepared.aperture;
+  if (map.width != 0 && (map.width != f.width || map.height != f.height ||
+                         map.texels.size() != width * static_cast<size_t>(f.height) * 4)) {
+    throw std::invalid_argument("TerrainScene::staged: a map of " + std::to_string(map.width) +
+                                "x" + std::to_string(map.height) + " for a DEM of " +
+                                std::to_string(f.width) + "x" + std::to_string(f.height));
+  }
+  staged->apertures = std::move(map.texels);
+  staged->rows = {
+      heightRowsOf(f),
+      staged->apertures.empty() ? openSkyRows(width) : halfMapRows(staged->apertures.data(), width),
+      {}};
+  scene->makeImages(device, prepared, false, triangleBudget, tiling, staged->rows);
+  staged->upload = std::make_unique<UploadBatch>(device);
+  scene->addUploads(*staged->upload, staged->rows);
+  // One pipeline for every band's pass (lavapipe compiles each anew).
+  scene->plainSlopes_ = std::make_unique<ComputePipeline>(device, "slopes.comp", sizeof(SlopePush));
+  scene->stagedBuild_ = std::move(staged);
+  return scene;
+}
+
+bool TerrainScene::recordBuildShare(const Device& device, VkCommandBuffer frame, uint64_t texels) {
+  if (!stagedBuild_) return true;
+  StagedBuild& staged = *stagedBuild_;
+  if (staged.upload) {
+    // The heights' and the apertures' bands; a band's levels take 4/3 of
+    // its level-0 bytes.
+    const size_t texelBytes = kTerrainTextureBytes[int(TerrainTexture::Height)] +
+                              kTerrainTextureBytes[int(TerrainTexture::Aperture)];
+    if (!staged.upload->recordShare(frame, texels * texelBytes * 4 / 3)) return false;
+    // The slopes read the heights of the bands beside their own: they begin
+    // with the next share, once every height is copied.
+    staged.upload.reset();
+    return false;
+  }
+  const uint32_t bands = horizonBands();
+  const uint32_t count = static_cast<uint32_t>(
+      std::clamp<uint64_t>(texels / horizonBandTexels(), 1, bands - staged.nextSlopeBand));
+  const uint32_t rowBegin = staged.nextSlopeBand * kTerrainMipAlignment;
+  const uint32_t rowEnd = (staged.nextSlopeBand + count) * kTerrainMipAlignment;
+  runSlopePass(device, nullptr, false, kBothChannels, rowBegin, rowEnd, frame,
+               {slopes_, horizonMoments_, staged.nextSlopeBand > 0});
+  staged.nextSlopeBand += count;
+  if (staged.nextSlopeBand < bands) return false;
+  // What the upload read (the heights are the field's) is no longer needed.
+  stagedBuild_.reset();
+  return true;
+}
+
+uint64_t TerrainScene::buildTexelsLeft() const {
+  if (!stagedBuild_) return 0;
+  const uint64_t slopeTexels =
+      uint64_t(horizonBands() - stagedBuild_->nextSlopeBand) * horizonBandTexels();
+  if (!stagedBuild_->upload) return slopeTexels;
+  const size_t texelBytes = kTerrainTextureBytes[int(TerrainTexture::Height)] +
+                            kTerrainTextureBytes[int(TerrainTexture::Aperture)];
+  return stagedBuild_->upload->bytesLeft() * 3 / 4 / texelBytes + slopeTexels;
 }
 
 void TerrainScene::setHorizons(const Device& device, const HorizonMap& map, int first) {

@@ -4,6 +4,7 @@
 // (engine/terrain_tiles.h); every tile stays resident (docs/rendering.md).
 #pragma once
 
+#include <array>
 #include <cstddef>
 #include <cstdint>
 #include <functional>
@@ -18,6 +19,7 @@
 #include "aperture/engine/vk/buffer.h"
 #include "aperture/engine/vk/compute.h"
 #include "aperture/engine/vk/image.h"
+#include "aperture/engine/vk/upload.h"
 #include "aperture/terrain/heightfield.h"
 #include "aperture/terrain/io/albedo_image.h"
 #include "aperture/terrain/io/aperture_map.h"
@@ -38,6 +40,20 @@ TerrainTileLimits deviceTileLimits(const Device& device, const TerrainTiling& ti
 // the zenith, where any azimuth serves. What the renderer picks the
 // horizons' pair and weights with (horizonPairFor, horizonPairWeights).
 float sunAzimuthRad(const glm::vec3& sunDirection);
+
+// What a scene takes from its DEM alone, with the host's longest work (the
+// quadtree LOD's geometric errors: 0.36 s at 4096^2 on two cores), made on
+// any thread: aal-view reads a dropped DEM and prepares it on one.
+struct PreparedTerrain {
+  std::shared_ptr<const Heightfield> field;
+  std::unique_ptr<LodQuadtree> lod;
+  float minHeight = 0, maxHeight = 0;
+  // Its aperture map as the device holds it, when the caller has one
+  // (checkApertureMatchesDem, readHalfApertureMap); none (width 0): an open
+  // sky.
+  HalfApertureMap aperture;
+};
+PreparedTerrain prepareTerrain(std::shared_ptr<const Heightfield> field);
 
 class TerrainScene {
  public:
@@ -62,6 +78,30 @@ class TerrainScene {
   // it while the real map is baked.
   TerrainScene(const Device& device, const Heightfield& field, const AlbedoImage* albedo,
                size_t triangleBudget, const TerrainTiling& tiling = {});
+
+  // The scene of `prepared` (its map, else an open sky) made without a
+  // stall (aal-view's dropped DEMs): the images and the LOD's mesh are made
+  // now, what they hold goes to the device a share a frame by
+  // recordBuildShare, and nothing may draw the scene before built(). The
+  // scene keeps the prepared field and map until then: the shares read them.
+  // Throws std::invalid_argument for a map of another size.
+  static std::unique_ptr<TerrainScene> staged(const Device& device, PreparedTerrain prepared,
+                                              size_t triangleBudget,
+                                              const TerrainTiling& tiling = {});
+  // Whether every texture is on the device (always, but for a staged scene
+  // before its last share).
+  bool built() const { return stagedBuild_ == nullptr; }
+  // Records the next share of a staged scene into `frame`, before any of
+  // its passes: whole bands of about `texels` level-0 texels of the heights
+  // and apertures (their mip levels made on the host, each share's staging
+  // buffer retired into the device's DeletionQueue: nothing waits), then,
+  // from the share after the last copy, the slopes' bands, computed on the
+  // device. Returns true with the last share (built() then) and when
+  // nothing is staged.
+  bool recordBuildShare(const Device& device, VkCommandBuffer frame, uint64_t texels);
+  // Level-0 texels a staged build still has to copy, and then to compute
+  // the slopes of (0: built).
+  uint64_t buildTexelsLeft() const;
 
   // Replaces the aperture map without a stall (aal-view's background bake):
   // new pages are made now and filled a share a frame by
@@ -184,6 +224,7 @@ class TerrainScene {
   float maxHeight() const { return maxHeight_; }
 
  private:
+  TerrainScene() = default;  // staged()
   // Fills slopes_ from heights_ on the device (after their upload), and
   // with horizons their B and A and horizonMoments_ from the pair `first`,
   // first + 1; `keepSlopes`: R and G are there already (a re-lay), only the
@@ -213,6 +254,24 @@ class TerrainScene {
   // The scene takes `pages` and the map: the pair `first` on the device.
   void adoptHorizons(const Device& device, HorizonPages pages,
                      std::shared_ptr<const HorizonMap> map, int first);
+  struct BuildRows;
+  // One texture kind a scene uploads from the DEM's rows.
+  struct TextureKind {
+    TerrainTexture texture;
+    std::vector<Image>* pages;
+    VkFormat format;
+    std::function<void(uint32_t, uint32_t, void*)> BuildRows::*rows;
+    MipReducer reduce;
+  };
+  std::array<TextureKind, 3> textureKinds();
+  // The tiles, the texture and slope images, the LOD's index buffer (the
+  // indices into `rows`); the scene takes `prepared`'s LOD and heights'
+  // range: all but the upload.
+  void makeImages(const Device& device, PreparedTerrain& prepared, bool albedo,
+                  size_t triangleBudget, const TerrainTiling& tiling, BuildRows& rows);
+  // Adds every texture and the index buffer to `upload`, read from `rows`
+  // (which must outlive it).
+  void addUploads(UploadBatch& upload, BuildRows& rows);
   // `apertureRows` writes whole DEM rows of RGBA16F bent normal + arc length.
   void build(const Device& device, const Heightfield& field,
              const std::function<void(uint32_t firstRow, uint32_t endRow, void* destination)>&
@@ -221,6 +280,7 @@ class TerrainScene {
 
   struct StagedAperture;
   struct StagedHorizons;
+  struct StagedBuild;
 
   TerrainTiling tiling_;  // what the caller asked for beyond the device's limits
   TerrainTileLayout tiles_;
@@ -230,6 +290,8 @@ class TerrainScene {
   // slopes_horizons.comp, made once (a pipeline is compiled on lavapipe:
   // tens of ms a re-lay otherwise).
   std::unique_ptr<ComputePipeline> horizonSlopes_;
+  // slopes.comp for a staged build's bands (else made per pass).
+  std::unique_ptr<ComputePipeline> plainSlopes_;
   int horizonBits_ = kHorizonBits;
   int horizonDirections_ = 0;
   // What B and A hold now: the device's state, not the scene's content
@@ -248,6 +310,7 @@ class TerrainScene {
   uint64_t id_ = 0;
   std::unique_ptr<StagedAperture> staged_;          // stageAperture's map until it is swapped in
   std::unique_ptr<StagedHorizons> stagedHorizons_;  // stageHorizons' until they are
+  std::unique_ptr<StagedBuild> stagedBuild_;        // staged()'s until built
 };
 
 }  // namespace aal

@@ -358,6 +358,62 @@ std::vector<uint8_t> frameAfterShare(const Device& device, TerrainRenderer& rend
   return pixels;
 }
 
+// aal-view's dropped DEMs: a staged scene (TerrainScene::staged) is built a
+// share a frame, each share recorded into the commands of a frame that draws
+// another scene, which it leaves as it was; nothing draws it before the last
+// share; then it draws as the same scene built at once, byte for byte.
+TEST_F(Render, AStagedSceneIsBuiltAShareAFrameThenDrawsAsOneBuiltAtOnce) {
+  const Heightfield f = ridge();
+  TerrainRenderer renderer(device(), 96, 96);
+  FrameSettings s = topView(f, ShadingMode::Approx, 250, 20);
+  s.obscurance.enabled = false;
+  const TerrainScene atOnce(device(), f, nullptr, 100000);
+  const std::vector<uint8_t> before = renderer.render(atOnce, s, false).display;
+  std::unique_ptr<TerrainScene> staged = TerrainScene::staged(
+      device(), prepareTerrain(std::make_shared<const Heightfield>(f)), 100000);
+  ASSERT_FALSE(staged->built());
+  EXPECT_THROW(renderer.render(*staged, s, false), std::logic_error);
+  // The heights and apertures to copy, then the slopes to compute.
+  uint64_t left = staged->buildTexelsLeft();
+  EXPECT_GE(left, 2 * uint64_t(f.texelCount()));
+  // The least share: one band a frame.
+  const auto share = [&](VkCommandBuffer cmd) {
+    return staged->recordBuildShare(device(), cmd, 1);
+  };
+  int shares = 0;
+  bool done = false;
+  while (!done) {
+    EXPECT_EQ(frameAfterShare(device(), renderer, atOnce, s, share, done), before)
+        << "share " << shares;
+    ++shares;
+    ASSERT_LT(shares, 100);
+    if (done) break;
+    EXPECT_FALSE(staged->built());
+    EXPECT_LT(staged->buildTexelsLeft(), left) << "share " << shares;
+    left = staged->buildTexelsLeft();
+  }
+  EXPECT_GE(shares, 4) << "spread over frames";
+  EXPECT_TRUE(staged->built());
+  EXPECT_EQ(staged->buildTexelsLeft(), 0u);
+  EXPECT_TRUE(staged->recordBuildShare(device(), VK_NULL_HANDLE, 1)) << "nothing left to send";
+  EXPECT_EQ(staged->textureBytes(), atOnce.textureBytes());
+  EXPECT_EQ(staged->minHeight(), atOnce.minHeight());
+  EXPECT_EQ(staged->maxHeight(), atOnce.maxHeight());
+  EXPECT_NE(staged->id(), atOnce.id());
+  // The slopes (the normals) and the heights, in every mode that reads them.
+  for (const ShadingMode mode :
+       {ShadingMode::Approx, ShadingMode::BaselineLambert, ShadingMode::DebugBentNormal}) {
+    FrameSettings m = topView(f, mode, 250, 20);
+    m.obscurance.enabled = false;
+    EXPECT_EQ(renderer.render(*staged, m, false).display, renderer.render(atOnce, m, false).display)
+        << int(mode);
+  }
+  FrameSettings oblique = s;
+  oblique.camera.position = {-2500, -2500, 1500};
+  EXPECT_EQ(renderer.render(*staged, oblique, false).display,
+            renderer.render(atOnce, oblique, false).display);
+}
+
 // aal-view's background bake: the map staged into a scene that drew an open
 // sky (TerrainScene::stageAperture) goes to the device a share a frame, each
 // share recorded into the frame's own commands ahead of its passes. Until

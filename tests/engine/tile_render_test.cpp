@@ -14,6 +14,7 @@
 #include <cmath>
 #include <cstdio>
 #include <cstring>
+#include <memory>
 #include <numbers>
 #include <random>
 #include <stdexcept>
@@ -28,6 +29,7 @@
 #include "aperture/engine/terrain_scene.h"
 #include "aperture/engine/vk/buffer.h"
 #include "aperture/engine/vk/commands.h"
+#include "aperture/engine/vk/deletion_queue.h"
 #include "aperture/preprocess/bake.h"
 #include "aperture/terrain/io/albedo_image.h"
 #include "aperture/terrain/io/horizon_map.h"
@@ -678,6 +680,33 @@ TEST_F(TileRender, AperturesInSeveralPagesWithHeightsInOne) {
         compare(renderer.render(tiled, s, false), renderer.render(single, s, false), false);
     EXPECT_LE(d.pixelsOff, size_t(192 * 64 / 1000)) << int(mode);
     EXPECT_LE(d.maxLsb, 1) << int(mode);
+  }
+}
+
+// A staged scene (aal-view's dropped DEMs) in 20 tiles: band by band, each
+// share in a submission of its own, every tile's heights, levels and slopes
+// arrive as a scene built at once makes them.
+TEST_F(TileRender, AStagedSceneTilesAsOneBuiltAtOnce) {
+  const Heightfield field = fbm();
+  const TerrainScene atOnce(device(), field, nullptr, 400000, {kTile, 0});
+  std::unique_ptr<TerrainScene> staged = TerrainScene::staged(
+      device(), prepareTerrain(std::make_shared<const Heightfield>(field)), 400000, {kTile, 0});
+  ASSERT_EQ(staged->tiles().tileCount(), 20u);
+  int shares = 0;
+  bool done = false;
+  while (!done) {
+    submitAndWait(device(), [&](VkCommandBuffer cmd) {
+      done = staged->recordBuildShare(device(), cmd, 65536);
+    });
+    device().deletionQueue().releaseCompleted(device().deletionQueue().endFrame());
+    ASSERT_LT(++shares, 100);
+  }
+  EXPECT_GE(shares, 3);
+  TerrainRenderer renderer(device(), kWidth, kHeight);
+  for (const ShadingMode mode : {ShadingMode::Approx, ShadingMode::BaselineLambert}) {
+    const FrameSettings s = obliqueView(mode);
+    EXPECT_EQ(renderer.render(*staged, s, false).display, renderer.render(atOnce, s, false).display)
+        << int(mode);
   }
 }
 

@@ -250,12 +250,38 @@ TEST(AalView, ADroppedDemReplacesTheTerrain) {
   const fs::path first = dir.path() / "big.tif", dem = dir.path() / "small.tif";
   ASSERT_EQ(runTool("aal-synth", "-o " + quoted(first) + " --size 2048").exitCode, 0);
   ASSERT_EQ(runTool("aal-synth", "-o " + quoted(dem) + " --size 96").exitCode, 0);
-  const auto r = view(dir, quoted(first) + " --size 160x120 --frames 2 --drop " + quoted(dem));
+  const auto r =
+      view(dir, quoted(first) + " --size 160x120 --frames 2 --stats --drop " + quoted(dem));
   ASSERT_EQ(r.exitCode, 0) << r.out;
   EXPECT_NE(r.out.find("opened"), std::string::npos) << r.out;
+  // Read on a thread and sent a share a frame while the first DEM was drawn.
+  EXPECT_NE(r.out.find("frames drawn while a dropped DEM was read and built"), std::string::npos)
+      << r.out;
+  EXPECT_NE(r.out.find("shown after"), std::string::npos) << r.out;
   // The first DEM's bake was cancelled when the second replaced it: the
   // second's map and horizons.
   EXPECT_EQ(filesIn(dir.path() / "cache"), 2u);
+}
+
+// A dropped DEM with a cached map is shown with it (read on the opening's
+// thread, sent with the scene): the same picture as the DEM opened at start.
+TEST(AalView, ADroppedDemWithACachedMapShowsIt) {
+  TempDir dir;
+  const fs::path atStart = dir.path() / "start.png", dropped = dir.path() / "dropped.png";
+  const std::string args = quoted(kDem) + " --size 160x120 --frames 2 --stats";
+  // The first run bakes and caches the map; the second drops the same DEM.
+  const auto first = view(dir, args + " --screenshot " + quoted(atStart));
+  ASSERT_EQ(first.exitCode, 0) << first.out;
+  const auto second =
+      view(dir, args + " --drop " + quoted(kDem) + " --screenshot " + quoted(dropped));
+  ASSERT_EQ(second.exitCode, 0) << second.out;
+  EXPECT_NE(second.out.find("its aperture map from the cache"), std::string::npos) << second.out;
+  EXPECT_NE(second.out.find("baking     0 frames"), std::string::npos) << second.out;
+  const Picture a = readPng(atStart), b = readPng(dropped);
+  ASSERT_EQ(a.width, 160);
+  ASSERT_EQ(b.width, 160);
+  EXPECT_TRUE(a.rgba == b.rgba) << "the dropped DEM's picture differs";
+  EXPECT_GT(greenSpread(b, 0, 120), 2.0);
 }
 
 TEST(AalView, WithoutADisplayItPointsToAalRender) {

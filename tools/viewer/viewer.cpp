@@ -8,6 +8,7 @@
 #include <cstdio>
 #include <ctime>
 #include <filesystem>
+#include <future>
 #include <map>
 #include <memory>
 #include <optional>
@@ -95,6 +96,28 @@ struct Viewer::Timing {
     ++drawn;
   }
   double elapsedS() const { return std::chrono::duration<double>(Clock::now() - start).count(); }
+  // Frames drawn while a dropped DEM was read and built (their times), and
+  // how long each drop took until its terrain was shown.
+  std::vector<double> openingMs;
+  std::vector<double> openedS;
+};
+
+// A dropped DEM on its way to the screen: read on a thread (GDAL, the
+// memory check, the LOD, the sun's place, a cached map and its horizons),
+// then its scene built a share a frame.
+struct Viewer::Opening {
+  struct Read {
+    PreparedTerrain prepared;  // with the cached map when there is one
+    GeoPlace place;
+    std::shared_ptr<const HorizonMap> horizons;  // the cached map's
+  };
+  std::string path;
+  std::future<Read> read;  // valid while the file is read
+  GeoPlace place;
+  bool cached = false;               // the map came from the cache
+  std::unique_ptr<Terrain> terrain;  // once read: its scene being built
+  std::string next;                  // dropped during the read: opened after it
+  Timing::Clock::time_point start = Timing::Clock::now();
 };
 
 namespace {
@@ -213,6 +236,9 @@ constexpr uint64_t kViewerHorizonRelayTexels = uint64_t{1} << 20;
 // arrival"). A 4096^2 map arrives in 16 frames, its horizons in 32.
 constexpr uint64_t kViewerApertureTexelsPerFrame = uint64_t{1} << 20;
 constexpr uint64_t kViewerArrivalHorizonTexels = uint64_t{1} << 19;
+// Level-0 texels of a dropped DEM's scene (TerrainScene::recordBuildShare:
+// heights and the open sky's apertures, then the slopes) a frame.
+constexpr uint64_t kViewerBuildTexelsPerFrame = uint64_t{1} << 20;
 
 // The bake also keeps the sweep's horizons in aal-bake --horizons' 16
 // azimuths (8-bit codes) for the horizon mode when the azimuths allow: no
@@ -269,18 +295,21 @@ Viewer::Viewer(const ViewerOptions& options, std::shared_ptr<const Heightfield> 
   resolution_.setRebuilt(temporal_);
   renderer_ = std::make_unique<TerrainRenderer>(device_, swapchain_.extent().width,
                                                 swapchain_.extent().height, swapchain_.format());
-  showTerrain(std::move(field), options.dem, options.aperture, options.horizons);
+  showTerrain(makeTerrain(std::move(field), options.dem, options.aperture, options.horizons));
 }
 
 Viewer::~Viewer() {
   device_.waitIdle();
-  // Cancels a running bake before the window and device go.
+  // Cancels running bakes (and waits for a DEM being read) before the
+  // window and device go.
+  opening_.reset();
   terrain_.reset();
 }
 
-void Viewer::showTerrain(std::shared_ptr<const Heightfield> field, const std::string& path,
-                         const std::string& aperturePath,
-                         std::shared_ptr<const HorizonMap> horizons) {
+std::unique_ptr<Viewer::Terrain> Viewer::makeTerrain(std::shared_ptr<const Heightfield> field,
+                                                     const std::string& path,
+                                                     const std::string& aperturePath,
+                                                     std::shared_ptr<const HorizonMap> horizons) {
   auto terrain = std::make_unique<Terrain>();
   terrain->path = path;
   terrain->field = field;
@@ -306,14 +335,28 @@ void Viewer::showTerrain(std::shared_ptr<const Heightfield> field, const std::st
         std::make_unique<TerrainScene>(device_, *field, nullptr, options_.triangleBudget);
     terrain->bake = std::make_unique<BackgroundBake>(field, path, bakeOptions);
   }
+  return terrain;
+}
+
+std::unique_ptr<Viewer::Terrain> Viewer::makeStagedTerrain(PreparedTerrain prepared,
+                                                           const std::string& path) {
+  auto terrain = std::make_unique<Terrain>();
+  terrain->path = path;
+  terrain->field = prepared.field;
+  terrain->scene = TerrainScene::staged(device_, std::move(prepared), options_.triangleBudget);
+  return terrain;
+}
+
+void Viewer::showTerrain(std::unique_ptr<Terrain> terrain, bool stagedHorizons) {
   // A frame in flight may still draw the previous terrain: its scene is
   // retired (the bake, on the host, is cancelled now).
   if (terrain_) device_.deletionQueue().retire(std::move(terrain_->scene));
   terrain_ = std::move(terrain);
-  attachHorizons(false);
+  attachHorizons(stagedHorizons);
   const VkExtent2D extent = swapchain_.extent();
-  camera_ = std::make_unique<CameraController>(field, double(extent.width) / extent.height);
-  window_.setTitle("aal-view - " + fs::path(path).filename().string());
+  camera_ =
+      std::make_unique<CameraController>(terrain_->field, double(extent.width) / extent.height);
+  window_.setTitle("aal-view - " + fs::path(terrain_->path).filename().string());
 }
 
 void Viewer::attachHorizons(bool staged) {
@@ -338,23 +381,91 @@ void Viewer::attachHorizons(bool staged) {
 }
 
 void Viewer::openDroppedDem(const std::string& path) {
-  try {
-    std::shared_ptr<const Heightfield> field = loadViewerDem(path, options_.exaggeration);
-    const GeoPlace place = defaultSunPlace(*field);
-    showTerrain(field, path, "");  // without --horizons: they were the first DEM's
-    if (mode_ == ShadingMode::Horizon && !terrain_->scene->hasHorizons() && !terrain_->bake) {
-      mode_ = ShadingMode::Approx;
-    }
-    // The same local solar time at the new place.
-    lighting_.hourUtc = std::fmod(
-        lighting_.hourUtc - (place.longitudeDeg - lighting_.longitudeDeg) / 15.0 + 48.0, 24.0);
-    lighting_.latitudeDeg = place.latitudeDeg;
-    lighting_.longitudeDeg = place.longitudeDeg;
-    setMessage("opened " + path);
-  } catch (const std::exception& e) {
-    // The previous terrain stays.
-    setMessage(std::string("cannot open ") + path + ": " + e.what());
+  if (opening_ && opening_->read.valid()) {
+    // A read cannot be stopped: the latest drop waits for it.
+    opening_->next = path;
+    setMessage("opening " + path + " after " + opening_->path);
+    return;
   }
+  // A scene still being built for an earlier drop goes (frames in flight
+  // may hold its shares).
+  if (opening_) device_.deletionQueue().retire(std::move(opening_->terrain->scene));
+  opening_ = std::make_unique<Opening>();
+  opening_->path = path;
+  opening_->read =
+      std::async(std::launch::async, [path, exaggeration = options_.exaggeration,
+                                      bakeOptions = viewerBakeOptions(options_.bakeAzimuths)] {
+        Opening::Read read;
+        read.prepared = prepareTerrain(loadViewerDem(path, exaggeration));
+        const Heightfield& field = *read.prepared.field;
+        read.place = defaultSunPlace(field);
+        const fs::path cached = findCachedAperture(field, path, bakeOptions);
+        if (!cached.empty()) {
+          try {
+            ApertureMapReader reader(cached.string());
+            checkApertureMatchesDem(reader.header(), cached.string(), field, path);
+            read.prepared.aperture = readHalfApertureMap(reader);
+            if (bakeOptions.horizons) {
+              read.horizons = sharedHorizons(findCachedHorizons(field, bakeOptions));
+            }
+          } catch (const std::exception&) {
+            // Baked again (the bake replaces an entry it cannot use).
+            read.prepared.aperture = HalfApertureMap{};
+          }
+        }
+        return read;
+      });
+  setMessage("opening " + path);
+}
+
+void Viewer::updateOpening() {
+  if (!opening_) return;
+  Opening& o = *opening_;
+  if (o.read.valid()) {
+    if (o.read.wait_for(std::chrono::seconds(0)) != std::future_status::ready) return;
+    const std::string next = std::exchange(o.next, {});
+    try {
+      Opening::Read read = o.read.get();
+      if (next.empty()) {
+        o.place = read.place;
+        o.cached = read.prepared.aperture.width != 0;
+        // Without --horizons: they were the first DEM's.
+        o.terrain = makeStagedTerrain(std::move(read.prepared), o.path);
+        o.terrain->horizons = std::move(read.horizons);
+        return;
+      }
+    } catch (const std::exception& e) {
+      // The terrain before stays.
+      setMessage(std::string("cannot open ") + o.path + ": " + e.what());
+    }
+    opening_.reset();
+    if (!next.empty()) openDroppedDem(next);
+    return;
+  }
+  // Until then recordFrame sends the scene's shares.
+  if (!o.terrain->scene->built()) return;
+  timing_->openedS.push_back(std::chrono::duration<double>(Timing::Clock::now() - o.start).count());
+  const GeoPlace place = o.place;
+  const std::string path = o.path;
+  // Without a cached map the background bake makes one: started now, so
+  // that it does not take the cores from the frames that sent the scene.
+  const BakeOptions bakeOptions = viewerBakeOptions(options_.bakeAzimuths);
+  const bool cached = o.cached;
+  if (!cached) {
+    o.terrain->bake = std::make_unique<BackgroundBake>(o.terrain->field, path, bakeOptions);
+  }
+  // The cached horizons follow a share a frame.
+  showTerrain(std::move(o.terrain), /*stagedHorizons=*/true);
+  opening_.reset();
+  // The horizon mode waits for horizons when some are coming.
+  const bool horizonsComing = terrain_->horizons || (terrain_->bake && bakeOptions.horizons);
+  if (mode_ == ShadingMode::Horizon && !horizonsComing) mode_ = ShadingMode::Approx;
+  // The same local solar time at the new place.
+  lighting_.hourUtc = std::fmod(
+      lighting_.hourUtc - (place.longitudeDeg - lighting_.longitudeDeg) / 15.0 + 48.0, 24.0);
+  lighting_.latitudeDeg = place.latitudeDeg;
+  lighting_.longitudeDeg = place.longitudeDeg;
+  setMessage("opened " + path + (cached ? " (its aperture map from the cache)" : ""));
 }
 
 void Viewer::updateBake() {
@@ -518,7 +629,10 @@ void Viewer::recordFrame(VkCommandBuffer cmd, uint32_t imageIndex, const FrameSe
   // A finished bake's map, then its horizons, go up a share a frame into
   // images no frame reads yet: no frame waits for all of it, nor pays for
   // both at once.
-  if (terrain_->scene->apertureStaged()) {
+  // A dropped DEM's scene is built the same way, while this one is drawn.
+  if (opening_ && opening_->terrain) {
+    opening_->terrain->scene->recordBuildShare(device_, cmd, kViewerBuildTexelsPerFrame);
+  } else if (terrain_->scene->apertureStaged()) {
     terrain_->scene->recordApertureShare(cmd, kViewerApertureTexelsPerFrame);
   } else {
     terrain_->scene->recordHorizonShare(device_, cmd, kViewerArrivalHorizonTexels);
@@ -547,8 +661,10 @@ bool Viewer::frameNeeded(const FrameSettings& settings) {
   if (options_.frames > 0 || swapchainStale_ || !pendingScreenshot_.empty()) return true;
   if (!lastDrawn_ || !sameView(settings, *lastDrawn_) || lastScale_ < 1.0f) return true;
   if (terrain_->scene->id() != lastDrawnScene_ || message_ != lastDrawnMessage_) return true;
-  // Each frame sends a share of a finished bake's map and horizons.
+  // Each frame sends a share of a finished bake's map and horizons, or of a
+  // dropped DEM's scene.
   if (terrain_->scene->apertureStaged() || terrain_->scene->horizonsStaged()) return true;
+  if (opening_ && opening_->terrain) return true;
   // Input reaches the panel too: draw a few frames for ImGui to follow it.
   if (window_.takeActivity()) uiSettleFrames_ = 3;
   if (uiSettleFrames_ > 0) {
@@ -663,7 +779,9 @@ void Viewer::finishScriptedFrame() {
   if (!options_.dropAfterFirstFrame.empty()) {
     openDroppedDem(std::exchange(options_.dropAfterFirstFrame, {}));
   }
-  if (terrain_->bake) return;  // scripted frames and window events wait for the bake
+  // Scripted frames and window events wait for a dropped DEM, the bake and
+  // horizons on their way.
+  if (opening_ || terrain_->bake || terrain_->scene->horizonsStaged()) return;
   ++scriptedFrame_;
   runWindowScript();
   if (options_.frames <= 0) return;
@@ -775,6 +893,17 @@ void Viewer::printStats() const {
     std::printf(" and sent (median %.1f ms, longest %.1f ms)", ms[ms.size() / 2], ms.back());
   }
   std::printf("\n");
+  if (!t.openedS.empty() || !t.openingMs.empty()) {
+    std::printf("opening    %zu frames drawn while a dropped DEM was read and built",
+                t.openingMs.size());
+    if (!t.openingMs.empty()) {
+      std::vector<double> ms = t.openingMs;
+      std::sort(ms.begin(), ms.end());
+      std::printf(" (median %.1f ms, longest %.1f ms)", ms[ms.size() / 2], ms.back());
+    }
+    for (double seconds : t.openedS) std::printf("; shown after %.2f s", seconds);
+    std::printf("\n");
+  }
   std::printf("drawn      %d frames, %d idle iterations (nothing changed, nothing drawn)\n",
               t.drawn, t.idle);
   if (t.counted > 0) {
@@ -842,6 +971,8 @@ int Viewer::run() {
     }
     handleKeys();
     const bool baking = terrain_->bake != nullptr;
+    const bool opening = opening_ != nullptr;
+    updateOpening();
     updateBake();
     advanceViewTime(lighting_, dt);
     updateCamera(dt);
@@ -861,6 +992,7 @@ int Viewer::run() {
         std::chrono::duration<double, std::milli>(Timing::Clock::now() - start).count();
     timing_->frameDrawn(frameMs);
     resolution_.frameFinished(frameMs, frameMoving_);
+    if (opening) timing_->openingMs.push_back(frameMs);
     if (baking) {
       ++timing_->whileBaking;
       // The first frame's set-up (pipelines) is left out, as in the mean.

@@ -105,15 +105,30 @@ class Viewer {
 
  private:
   struct Terrain;
+  struct Opening;
   struct Timing;
 
-  void showTerrain(std::shared_ptr<const Heightfield> field, const std::string& path,
-                   const std::string& aperturePath,
-                   std::shared_ptr<const HorizonMap> horizons = nullptr);
+  // The terrain of `field`: its scene with the aperture map given, else the
+  // cached one, else an open sky while the map is baked in the background.
+  std::unique_ptr<Terrain> makeTerrain(std::shared_ptr<const Heightfield> field,
+                                       const std::string& path, const std::string& aperturePath,
+                                       std::shared_ptr<const HorizonMap> horizons);
+  // A dropped DEM's terrain, its scene built a share a frame
+  // (TerrainScene::staged) with the cached map read on the opening's thread,
+  // else an open sky until the bake, started once it is shown: nothing here
+  // reads a file or waits.
+  std::unique_ptr<Terrain> makeStagedTerrain(PreparedTerrain prepared, const std::string& path);
+  // Shows `terrain` in place of the one before, from its default camera;
+  // its horizons laid at once or `stagedHorizons`, a share a frame.
+  void showTerrain(std::unique_ptr<Terrain> terrain, bool stagedHorizons = false);
   // Gives the terrain's scene its horizons, if it has any: at once, or
   // `staged`, a share a frame (a finished bake's, TerrainScene::stageHorizons).
   void attachHorizons(bool staged);
+  // A dropped DEM is read on a thread and its scene built a share a frame
+  // while the terrain before stays on screen (docs/viewer.md); the latest
+  // of several drops wins.
   void openDroppedDem(const std::string& path);
+  void updateOpening();
   void updateBake();
   void handleKeys();
   void updateCamera(double dtSeconds);
@@ -147,6 +162,7 @@ class Viewer {
   UiOverlay ui_;
   std::unique_ptr<TerrainRenderer> renderer_;
   std::unique_ptr<Terrain> terrain_;
+  std::unique_ptr<Opening> opening_;  // a dropped DEM on its way; null: none
   std::unique_ptr<CameraController> camera_;
   ViewLighting lighting_;
   ShadingMode mode_;
