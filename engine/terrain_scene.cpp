@@ -465,6 +465,10 @@ DemRows halfMapRows(const uint16_t* texels, size_t width) {
 // The one texel of a scene without an albedo image (the shader ignores it).
 constexpr uint8_t kNoAlbedo[4] = {128, 128, 128, 255};
 
+// Level-0 bytes a texel of a staged build copies: its height and aperture.
+constexpr size_t kStagedTexelBytes = kTerrainTextureBytes[int(TerrainTexture::Height)] +
+                                     kTerrainTextureBytes[int(TerrainTexture::Aperture)];
+
 }  // namespace
 
 TerrainScene::TerrainScene(const Device& device, const Heightfield& field,
@@ -600,20 +604,19 @@ void TerrainScene::build(const Device& device, const Heightfield& field,
                          size_t triangleBudget, const TerrainTiling& tiling) {
   BuildRows rows{heightRowsOf(field), apertureRows,
                  albedoRowsOf(static_cast<size_t>(field.width), albedo)};
-  // The caller's field, not shared: only for the build.
-  PreparedTerrain prepared =
-      prepareTerrain(std::shared_ptr<const Heightfield>(&field, [](const Heightfield*) {}));
-  makeImages(device, prepared, albedo != nullptr, triangleBudget, tiling, rows);
+  const auto [lo, hi] = std::minmax_element(field.z.begin(), field.z.end());
+  makeImages(device, field, std::make_unique<LodQuadtree>(field), {*lo, *hi}, albedo != nullptr,
+             triangleBudget, tiling, rows);
   UploadBatch upload(device);
   addUploads(upload, rows);
   upload.submit();
   computeSlopes(device, 0, false);
 }
 
-void TerrainScene::makeImages(const Device& device, PreparedTerrain& prepared, bool albedo,
+void TerrainScene::makeImages(const Device& device, const Heightfield& field,
+                              std::unique_ptr<LodQuadtree> lod, glm::vec2 heightRange, bool albedo,
                               size_t triangleBudget, const TerrainTiling& tiling, BuildRows& rows) {
   if (triangleBudget < 2) throw std::invalid_argument("triangle budget must be at least 2");
-  const Heightfield& field = *prepared.field;
   id_ = nextSceneId();
   const uint32_t w = static_cast<uint32_t>(field.width), h = static_cast<uint32_t>(field.height);
   tiling_ = tiling;
@@ -642,7 +645,7 @@ void TerrainScene::makeImages(const Device& device, PreparedTerrain& prepared, b
                       " MiB) do not fit the device's memory: " + e.what());
   }
 
-  lod_ = std::move(prepared.lod);
+  lod_ = std::move(lod);
   triangleBudget_ = triangleBudget;
   lodBudgetErrorScale_ = aal::lodBudgetErrorScale(*lod_, triangleBudget);
   rows.patchIndices = makeLodPatchIndices();
@@ -651,8 +654,8 @@ void TerrainScene::makeImages(const Device& device, PreparedTerrain& prepared, b
                     MemoryIntent::DeviceLocal);
   demInfo_ = {static_cast<float>(field.width), static_cast<float>(field.height),
               static_cast<float>(field.cellSizeXM), static_cast<float>(field.cellSizeYM)};
-  minHeight_ = prepared.minHeight;
-  maxHeight_ = prepared.maxHeight;
+  minHeight_ = heightRange.x;
+  maxHeight_ = heightRange.y;
 }
 
 void TerrainScene::addUploads(UploadBatch& upload, BuildRows& rows) {
@@ -692,7 +695,8 @@ std::unique_ptr<TerrainScene> TerrainScene::staged(const Device& device, Prepare
       heightRowsOf(f),
       staged->apertures.empty() ? openSkyRows(width) : halfMapRows(staged->apertures.data(), width),
       {}};
-  scene->makeImages(device, prepared, false, triangleBudget, tiling, staged->rows);
+  scene->makeImages(device, f, std::move(prepared.lod), {prepared.minHeight, prepared.maxHeight},
+                    false, triangleBudget, tiling, staged->rows);
   staged->upload = std::make_unique<UploadBatch>(device);
   scene->addUploads(*staged->upload, staged->rows);
   // One pipeline for every band's pass (lavapipe compiles each anew).
@@ -707,9 +711,7 @@ bool TerrainScene::recordBuildShare(const Device& device, VkCommandBuffer frame,
   if (staged.upload) {
     // The heights' and the apertures' bands; a band's levels take 4/3 of
     // its level-0 bytes.
-    const size_t texelBytes = kTerrainTextureBytes[int(TerrainTexture::Height)] +
-                              kTerrainTextureBytes[int(TerrainTexture::Aperture)];
-    if (!staged.upload->recordShare(frame, texels * texelBytes * 4 / 3)) return false;
+    if (!staged.upload->recordShare(frame, texels * kStagedTexelBytes * 4 / 3)) return false;
     // The slopes read the heights of the bands beside their own: they begin
     // with the next share, once every height is copied.
     staged.upload.reset();
@@ -734,9 +736,7 @@ uint64_t TerrainScene::buildTexelsLeft() const {
   const uint64_t slopeTexels =
       uint64_t(horizonBands() - stagedBuild_->nextSlopeBand) * horizonBandTexels();
   if (!stagedBuild_->upload) return slopeTexels;
-  const size_t texelBytes = kTerrainTextureBytes[int(TerrainTexture::Height)] +
-                            kTerrainTextureBytes[int(TerrainTexture::Aperture)];
-  return stagedBuild_->upload->bytesLeft() * 3 / 4 / texelBytes + slopeTexels;
+  return stagedBuild_->upload->bytesLeft() * 3 / 4 / kStagedTexelBytes + slopeTexels;
 }
 
 void TerrainScene::setHorizons(const Device& device, const HorizonMap& map, int first) {

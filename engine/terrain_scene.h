@@ -11,6 +11,7 @@
 #include <memory>
 #include <vector>
 
+#include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
 #include <glm/vec4.hpp>
 
@@ -265,10 +266,11 @@ class TerrainScene {
   };
   std::array<TextureKind, 3> textureKinds();
   // The tiles, the texture and slope images, the LOD's index buffer (the
-  // indices into `rows`); the scene takes `prepared`'s LOD and heights'
-  // range: all but the upload.
-  void makeImages(const Device& device, PreparedTerrain& prepared, bool albedo,
-                  size_t triangleBudget, const TerrainTiling& tiling, BuildRows& rows);
+  // indices into `rows`); the scene takes `lod` and the heights' range (min,
+  // max): all but the upload.
+  void makeImages(const Device& device, const Heightfield& field, std::unique_ptr<LodQuadtree> lod,
+                  glm::vec2 heightRange, bool albedo, size_t triangleBudget,
+                  const TerrainTiling& tiling, BuildRows& rows);
   // Adds every texture and the index buffer to `upload`, read from `rows`
   // (which must outlive it).
   void addUploads(UploadBatch& upload, BuildRows& rows);
