@@ -3,6 +3,7 @@
 #include <memory>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include <CLI/CLI.hpp>
 
@@ -36,7 +37,8 @@ obscurance, vsync,
 and shows the frame rate and GPU time per pass. See docs/viewer.md.)";
 
 struct Options {
-  std::string dem, aperture, horizons, cameraPath, screenshot, drop, size = "1280x720";
+  std::string dem, aperture, horizons, cameraPath, screenshot, size = "1280x720";
+  std::vector<std::string> drop;
   std::optional<std::string> resizeAfter, minimiseAfter, toggleVsyncAfter, modeAfter,
       sunAzimuthAfter;  // test hooks
   std::string mode = "approx";
@@ -62,7 +64,9 @@ void checkScript(const Options& o) {
   // a tiled aperture map's.
   aal::NamedPaths inputs = aal::inputFiles("DEM", o.dem, /*raster=*/true);
   aal::append(inputs, aal::inputFiles("--aperture", o.aperture));
-  aal::append(inputs, aal::inputFiles("--drop", o.drop, /*raster=*/true));
+  for (const std::string& path : o.drop) {
+    aal::append(inputs, aal::inputFiles("--drop", path, /*raster=*/true));
+  }
   inputs.push_back({"--horizons", o.horizons});
   inputs.push_back({"--camera-path", o.cameraPath});
   aal::checkDistinctFiles(inputs, {{"--screenshot", o.screenshot}});
@@ -267,7 +271,9 @@ int main(int argc, char** argv) {
   app.add_option("--timeout", o.timeoutS, "close the window after this many seconds")
       ->check(aal::kPositive);
   app.add_option("--drop", o.drop,
-                 "after the first frame, open this DEM as if it were dropped on the window");
+                 "after the first frame, open this DEM as if it were dropped on the window; "
+                 "repeated, the DEMs as if dropped together (each read in turn, the last shown)")
+      ->allow_extra_args(false);
   // Test hooks: what the user does to the window, scripted. FRAME counts
   // like --frames.
   app.add_option("--resize-after", o.resizeAfter,

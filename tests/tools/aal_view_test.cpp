@@ -263,6 +263,26 @@ TEST(AalView, ADroppedDemReplacesTheTerrain) {
   EXPECT_EQ(filesIn(dir.path() / "cache"), 2u);
 }
 
+// DEMs dropped together: each is read in turn, a drop during a read waits
+// for it, and the last is the one shown.
+TEST(AalView, DemsDroppedTogetherShowTheLast) {
+  TempDir dir;
+  const fs::path a = dir.path() / "a.tif", b = dir.path() / "b.tif";
+  ASSERT_EQ(runTool("aal-synth", "-o " + quoted(a) + " --size 96").exitCode, 0);
+  ASSERT_EQ(runTool("aal-synth", "-o " + quoted(b) + " --size 80").exitCode, 0);
+  const auto r = view(dir, quoted(kDem) + " --size 160x120 --frames 2 --stats --drop " + quoted(a) +
+                               " --drop " + quoted(b));
+  ASSERT_EQ(r.exitCode, 0) << r.out;
+  EXPECT_NE(r.out.find("opening " + b.string() + " after " + a.string()), std::string::npos)
+      << r.out;
+  EXPECT_NE(r.out.find("opened " + b.string()), std::string::npos) << r.out;
+  EXPECT_EQ(r.out.find("opened " + a.string()), std::string::npos) << r.out;
+  // Only the shown DEM was baked: its map and horizons.
+  EXPECT_EQ(r.out.find("shown after", r.out.find("shown after") + 1), std::string::npos)
+      << "one drop shown";
+  EXPECT_EQ(filesIn(dir.path() / "cache"), 4u) << "the first DEM's and the last drop's";
+}
+
 // A dropped DEM with a cached map is shown with it (read on the opening's
 // thread, sent with the scene): the same picture as the DEM opened at start.
 TEST(AalView, ADroppedDemWithACachedMapShowsIt) {

@@ -776,8 +776,8 @@ void Viewer::recreateSurface() {
 }
 
 void Viewer::finishScriptedFrame() {
-  if (!options_.dropAfterFirstFrame.empty()) {
-    openDroppedDem(std::exchange(options_.dropAfterFirstFrame, {}));
+  for (const std::string& path : std::exchange(options_.dropAfterFirstFrame, {})) {
+    openDroppedDem(path);
   }
   // Scripted frames and window events wait for a dropped DEM, the bake and
   // horizons on their way.

@@ -80,8 +80,9 @@ struct ViewerOptions {
   std::optional<CameraPath> cameraPath;
   std::string screenshot;
   double timeoutS = 0;  // > 0: close the window after this many seconds
-  // Opened after the first frame as if dropped on the window (tests, demos).
-  std::string dropAfterFirstFrame;
+  // Opened after the first frame as if dropped on the window together
+  // (tests, demos).
+  std::vector<std::string> dropAfterFirstFrame;
   WindowScript script;
   bool stats = false;                    // print frame and GPU pass times at the end
   std::optional<ViewLighting> lighting;  // initial sun and sky (default from the DEM)
