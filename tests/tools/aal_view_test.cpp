@@ -284,11 +284,14 @@ TEST(AalView, DemsDroppedTogetherShowTheLast) {
 }
 
 // A dropped DEM with a cached map is shown with it (read on the opening's
-// thread, sent with the scene): the same picture as the DEM opened at start.
+// thread, sent with the scene), its cached horizons read and sent after it:
+// in the horizon mode the same picture as the DEM opened at start.
 TEST(AalView, ADroppedDemWithACachedMapShowsIt) {
   TempDir dir;
   const fs::path atStart = dir.path() / "start.png", dropped = dir.path() / "dropped.png";
-  const std::string args = quoted(kDem) + " --size 160x120 --frames 2 --stats";
+  const std::string args = quoted(kDem) +
+                           " --size 160x120 --frames 2 --stats --sun-azimuth 250 "
+                           "--sun-elevation 12 --mode-after 1:horizon";
   // The first run bakes and caches the map; the second drops the same DEM.
   const auto first = view(dir, args + " --screenshot " + quoted(atStart));
   ASSERT_EQ(first.exitCode, 0) << first.out;
@@ -297,6 +300,7 @@ TEST(AalView, ADroppedDemWithACachedMapShowsIt) {
   ASSERT_EQ(second.exitCode, 0) << second.out;
   EXPECT_NE(second.out.find("its aperture map from the cache"), std::string::npos) << second.out;
   EXPECT_NE(second.out.find("baking     0 frames"), std::string::npos) << second.out;
+  EXPECT_EQ(second.out.find("no horizon mode"), std::string::npos) << second.out;
   const Picture a = readPng(atStart), b = readPng(dropped);
   ASSERT_EQ(a.width, 160);
   ASSERT_EQ(b.width, 160);

@@ -119,9 +119,9 @@ class Viewer {
   // else an open sky until the bake, started once it is shown: nothing here
   // reads a file or waits.
   std::unique_ptr<Terrain> makeStagedTerrain(PreparedTerrain prepared, const std::string& path);
-  // Shows `terrain` in place of the one before, from its default camera;
-  // its horizons laid at once or `stagedHorizons`, a share a frame.
-  void showTerrain(std::unique_ptr<Terrain> terrain, bool stagedHorizons = false);
+  // Shows `terrain` in place of the one before, from its default camera,
+  // with its horizons laid.
+  void showTerrain(std::unique_ptr<Terrain> terrain);
   // Gives the terrain's scene its horizons, if it has any: at once, or
   // `staged`, a share a frame (a finished bake's, TerrainScene::stageHorizons).
   void attachHorizons(bool staged);
@@ -130,6 +130,8 @@ class Viewer {
   // of several drops wins.
   void openDroppedDem(const std::string& path);
   void updateOpening();
+  // A dropped DEM's cached horizons, once read, staged.
+  void updateHorizonsRead();
   void updateBake();
   void handleKeys();
   void updateCamera(double dtSeconds);
