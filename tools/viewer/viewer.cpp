@@ -238,7 +238,10 @@ constexpr uint64_t kViewerHorizonRelayTexels = uint64_t{1} << 20;
 constexpr uint64_t kViewerApertureTexelsPerFrame = uint64_t{1} << 20;
 constexpr uint64_t kViewerArrivalHorizonTexels = uint64_t{1} << 19;
 // Level-0 texels of a dropped DEM's scene (TerrainScene::recordBuildShare:
-// heights and the open sky's apertures, then the slopes) a frame.
+// heights and apertures, then the slopes) a frame. Chosen on lavapipe at
+// 4096^2 (docs/performance.md, "A dropped DEM"): a share of copies costs the
+// frame about 50 ms, one of slopes 20-25 ms; at 2^19 texels the scene took
+// 9 s to show, at 2^22 the slopes' frames were 125-160 ms.
 constexpr uint64_t kViewerBuildTexelsPerFrame = uint64_t{1} << 20;
 
 // The bake also keeps the sweep's horizons in aal-bake --horizons' 16
