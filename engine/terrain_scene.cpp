@@ -462,6 +462,12 @@ DemRows halfMapRows(const uint16_t* texels, size_t width) {
   };
 }
 
+// The lowest and highest height of `field`.
+glm::vec2 heightRange(const Heightfield& field) {
+  const auto [lo, hi] = std::minmax_element(field.z.begin(), field.z.end());
+  return {*lo, *hi};
+}
+
 // The one texel of a scene without an albedo image (the shader ignores it).
 constexpr uint8_t kNoAlbedo[4] = {128, 128, 128, 255};
 
@@ -592,9 +598,9 @@ PreparedTerrain prepareTerrain(std::shared_ptr<const Heightfield> field) {
   if (!field) throw std::invalid_argument("prepareTerrain: no heightfield");
   PreparedTerrain prepared;
   prepared.lod = std::make_unique<LodQuadtree>(*field);
-  const auto [lo, hi] = std::minmax_element(field->z.begin(), field->z.end());
-  prepared.minHeight = *lo;
-  prepared.maxHeight = *hi;
+  const glm::vec2 range = heightRange(*field);
+  prepared.minHeight = range.x;
+  prepared.maxHeight = range.y;
   prepared.field = std::move(field);
   return prepared;
 }
@@ -604,9 +610,8 @@ void TerrainScene::build(const Device& device, const Heightfield& field,
                          size_t triangleBudget, const TerrainTiling& tiling) {
   BuildRows rows{heightRowsOf(field), apertureRows,
                  albedoRowsOf(static_cast<size_t>(field.width), albedo)};
-  const auto [lo, hi] = std::minmax_element(field.z.begin(), field.z.end());
-  makeImages(device, field, std::make_unique<LodQuadtree>(field), {*lo, *hi}, albedo != nullptr,
-             triangleBudget, tiling, rows);
+  makeImages(device, field, std::make_unique<LodQuadtree>(field), heightRange(field),
+             albedo != nullptr, triangleBudget, tiling, rows);
   UploadBatch upload(device);
   addUploads(upload, rows);
   upload.submit();
